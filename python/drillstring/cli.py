@@ -1,0 +1,175 @@
+"""The ``drillstring`` command line.
+
+    drillstring simulate [CONFIG.toml] [--preset NAME] [overrides] [--out FILE.csv] [--plot FILE.png]
+    drillstring table2 [--json]
+
+Errors are reported as one line on stderr with exit status 2 (no traceback).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any, Optional, Sequence
+
+from . import __version__
+from .errors import DrillstringError, ValidationError
+from .parameters import PRESETS, Parameters, load, load_toml, preset
+from .simulate import METHODS, simulate
+from .table2 import format_table2, table2, table2_json
+
+__all__ = ["main"]
+
+#: Keys of a config file's [solver] table and their types.
+SOLVER_KEYS = {
+    "modes": int,
+    "rigid_mode": bool,
+    "t_end": float,
+    "method": str,
+    "rtol": float,
+    "atol": float,
+    "dt": float,
+    "samples": int,
+    "z": float,
+}
+
+
+def _floats(text: str) -> tuple[float, ...]:
+    try:
+        return tuple(float(x) for x in text.split(",") if x.strip())
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from exc
+
+
+def _solver_table(path: str) -> dict[str, Any]:
+    table = load_toml(path).get("solver", {})
+    if not isinstance(table, dict):
+        raise ValidationError("solver", table, "a TOML table [solver]", source=path)
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        if key not in SOLVER_KEYS:
+            raise ValidationError(
+                f"solver.{key}", value, "one of the keys " + ", ".join(SOLVER_KEYS), source=path
+            )
+        kind = SOLVER_KEYS[key]
+        ok = isinstance(value, kind) and not (kind is not bool and isinstance(value, bool))
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            ok, value = True, float(value)
+        if not ok:
+            raise ValidationError(f"solver.{key}", value, f"a {kind.__name__}", source=path)
+        out[key] = value
+    return out
+
+
+def _add_simulate(sub: Any) -> None:
+    p = sub.add_parser(
+        "simulate",
+        help="integrate the n-mode Galerkin model",
+        description="Integrate the n-mode Galerkin model and write theta(z, t) at one section.",
+        epilog="example: drillstring simulate --preset aluminum --modes 3 --t-end 1 --out run.csv --plot run.png",
+    )
+    p.add_argument("config", nargs="?", help="TOML file with [parameters] and optional [solver] tables")
+    p.add_argument("--preset", choices=PRESETS, help="start from a preset (default: aluminum)")
+    p.add_argument("--length", type=float, help="string length l, m")
+    p.add_argument("--omega", type=float, help="rotation speed Omega, rad/s")
+    p.add_argument("--initial-velocities", type=_floats, metavar="C1,C2,...", help="initial modal velocities, rad/s")
+    p.add_argument("--k5-variant", choices=("paper", "energy"), help="k5 as printed or re-derived")
+    p.add_argument("--modes", type=int, help="number of elastic modes n (default 3)")
+    p.add_argument("--rigid-mode", action="store_true", default=None, help="include the rigid mode i = 0")
+    p.add_argument("--t-end", type=float, help="end time, s (default 1)")
+    p.add_argument("--method", choices=METHODS, help="integrator (default dop853)")
+    p.add_argument("--rtol", type=float, help="relative tolerance (default 1e-9)")
+    p.add_argument("--atol", type=float, help="absolute tolerance (default 1e-12)")
+    p.add_argument("--dt", type=float, help="step of rk4 / central, s")
+    p.add_argument("--samples", type=int, help="number of uniform output times (default 1001)")
+    p.add_argument("--z", type=float, help="section z, m (default 2l/3)")
+    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,q1..qn")
+    p.add_argument("--plot", help="write a time-history and phase-portrait PNG")
+    p.set_defaults(func=_cmd_simulate)
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    if args.config and args.preset:
+        raise ValidationError("--preset", args.preset, "either a config file or --preset, not both")
+    params: Parameters = load(args.config) if args.config else preset(args.preset or "aluminum")
+    solver = _solver_table(args.config) if args.config else {}
+    overrides = {
+        "length": args.length,
+        "omega": args.omega,
+        "initial_velocities": args.initial_velocities,
+        "k5_variant": args.k5_variant,
+    }
+    params = params.replace(**{k: v for k, v in overrides.items() if v is not None})
+    for key in ("modes", "rigid_mode", "t_end", "method", "rtol", "atol", "dt", "samples", "z"):
+        value = getattr(args, key)
+        if value is not None:
+            solver[key] = value
+    z = solver.pop("z", 2 * params.length / 3)
+    result = simulate(params, **solver)
+    theta = result.theta(z)
+    print(
+        f"{result.method}: {result.t.size} samples over 0 <= t <= {result.t[-1]:g} s, "
+        f"modes {', '.join(map(str, result.indices))}\n"
+        f"max |theta(z={z:.4g} m)| = {abs(theta).max():.6e} rad, "
+        f"energy drift {result.energy_drift():.2e}, "
+        f"{result.stats.nfev} rhs evaluations, {result.stats.naccept} steps "
+        f"({result.stats.nreject} rejected)"
+    )
+    if args.out:
+        result.to_csv(args.out, z)
+        print(f"wrote {args.out}")
+    if args.plot:
+        from .plots import save, time_history_and_phase
+
+        save(time_history_and_phase(result, z), args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_table2(sub: Any) -> None:
+    p = sub.add_parser(
+        "table2",
+        help="reproduce the paper's Table 2",
+        description="RK4 at dt = 1e-4 vs central differences at four steps: max |theta_1| over 0 <= t <= 1.",
+    )
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    p.set_defaults(func=_cmd_table2)
+
+
+def _cmd_table2(args: argparse.Namespace) -> int:
+    rows = table2()
+    print(table2_json(rows) if args.json else format_table2(rows))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="drillstring",
+        description="Nonlinear torsional dynamics of rotating drill strings.",
+    )
+    parser.add_argument("--version", action="version", version=f"drillstring {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    _add_simulate(sub)
+    _add_table2(sub)
+    return parser
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Entry point of the ``drillstring`` command; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.func(args))
+    except (DrillstringError, ValueError, OSError) as exc:
+        print(f"drillstring: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("drillstring: interrupted", file=sys.stderr)
+        return 130
+
+
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

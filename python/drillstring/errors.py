@@ -1,0 +1,57 @@
+"""Exceptions raised by drillstring.
+
+* :class:`ValidationError` (a :class:`ValueError`): an input was refused before any work was
+  done. The message names the field, the value and the allowed range; so do the attributes.
+* :class:`SolveError` (a :class:`RuntimeError`): a solve ended early (step limit, step-size
+  underflow, non-finite state). ``status`` is the short status name; ``result`` holds what was
+  computed before the failure.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["DrillstringError", "ValidationError", "SolveError"]
+
+
+class DrillstringError(Exception):
+    """Base class of every exception raised by drillstring."""
+
+
+class ValidationError(DrillstringError, ValueError):
+    """An input value outside its allowed range.
+
+    Attributes
+    ----------
+    field:
+        Name of the offending field or option (e.g. ``"poisson_ratio"``).
+    value:
+        The value that was given.
+    allowed:
+        Human-readable description of the allowed values (e.g. ``"-1 < poisson_ratio < 0.5"``).
+    """
+
+    def __init__(self, field: str, value: Any, allowed: str, *, source: str | None = None) -> None:
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        self.source = source
+        where = f"{source}: " if source else ""
+        super().__init__(f"{where}invalid {field}: got {value!r}, expected {allowed}")
+
+
+class SolveError(DrillstringError, RuntimeError):
+    """A solve ended before ``t_end``.
+
+    Attributes
+    ----------
+    status:
+        ``"max_steps"``, ``"step_size_underflow"`` or ``"non_finite"``.
+    result:
+        The partial result (samples up to the failure), or ``None``.
+    """
+
+    def __init__(self, status: str, message: str, result: Any = None) -> None:
+        self.status = status
+        self.result = result
+        super().__init__(f"solve failed ({status}): {message}")

@@ -1,0 +1,551 @@
+r"""Bubnov-Galerkin reduction of eq. 18 onto the cosine modes of the free-free string.
+
+Basis and ansatz (eqs. 15, 16)
+------------------------------
+``theta(z, t) = sum_k q_k(t) phi_k(z)`` with ``phi_k(z) = cos(i_k pi z / l)``, where the mode
+numbers are ``i_k = 1..n`` (the paper's basis, default) or ``i_k = 0, 1..n`` with the rigid
+(uniform-twist) mode ``i = 0`` placed first (``rigid_mode=True``). Every ``phi_k`` satisfies the
+boundary conditions ``phi_k'(0) = phi_k'(l) = 0`` (eq. 14).
+
+Reduced equations
+-----------------
+Eq. 18 is the Euler-Lagrange equation of ``H`` (see :mod:`drillstring.coefficients`). Projecting
+it onto ``phi_j``, ``int_0^l (k1 theta_tt - RHS) phi_j dz = 0``, and integrating the
+``d/dz (...)`` terms by parts (the boundary terms carry ``theta_z = 0`` at both ends and vanish)
+gives the Ritz equations of the modal energy::
+
+    M q'' + K q + grad V(q) = 0,
+    M_jj = k1 int_0^l phi_j^2 dz,   K_jj = k2 int_0^l phi_j'^2 dz - k6 int_0^l phi_j^2 dz,
+    V(q) = int_0^l [k3/4 theta^4 + k4/2 theta^2 theta_z^2 + k5/4 theta_z^4] dz,
+
+with ``int_0^l phi^2 = l/2`` (``i >= 1``) or ``l`` (``i = 0``), ``int_0^l phi'^2 = (i pi)^2/(2 l)``;
+``M`` and ``K`` are diagonal. The modal energy ``1/2 q'^T M q' + 1/2 q^T K q + V(q)`` equals
+``H`` of the Galerkin field and is conserved by the reduced equations.
+
+Quartic potential
+-----------------
+With ``s = z/l`` and ``c_k = cos(i_k pi s)``, ``s_k = sin(i_k pi s)``::
+
+    V(q) = sum_t C_t q_a q_b q_c q_d        over sorted positions a <= b <= c <= d,
+    C_t  = k3 l / 4 * cos4_t  +  k4 pi^2 / (2 l) * mixed_t  +  k5 pi^4 / (4 l^3) * sin4_t,
+
+    cos4_t  = mult_t * int_0^1 c_a c_b c_c c_d ds,
+    mixed_t = sum over the mult_t distinct orderings (p1, p2, p3, p4) of (a, b, c, d) of
+              i_p3 i_p4 int_0^1 c_p1 c_p2 s_p3 s_p4 ds,
+    sin4_t  = mult_t * i_a i_b i_c i_d * int_0^1 s_a s_b s_c s_d ds,
+
+where ``mult_t = 24 / prod(r!)`` is the number of distinct orderings of ``t`` (``r`` = how often
+each position repeats). The integrals are exact: writing ``cos x = (e^{ix} + e^{-ix})/2`` and
+``sin x = (e^{ix} - e^{-ix})/(2i)`` and using that the integrand is even in ``s``,
+``int_0^1 cos(k pi s) ds = [k = 0]`` for integer ``k`` gives, with ``e_a = +1``,
+``e = (e_a, e_b, e_c, e_d) in {+-1}^4`` and ``N(e) = [e_a i_a + e_b i_b + e_c i_c + e_d i_d = 0]``::
+
+    int c_a c_b c_c c_d = 1/8 sum_e N(e),
+    int c_a c_b s_c s_d = 1/8 sum_e (-e_c e_d) N(e),
+    int s_a s_b s_c s_d = 1/8 sum_e e_b e_c e_d N(e).
+
+All three sets are integer multiples of 1/8 (computed in ``int64``, exact in ``float64``). A term
+is nonzero only if ``i_d = +-i_a +- i_b +- i_c`` (then ``cos4_t > 0``); only those are stored.
+Consequences: ``theta -> -theta`` symmetry (only quartic terms) and the selection rule
+``i_a + i_b + i_c + i_d`` even, so that odd modes alone never force even modes.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+import math
+from dataclasses import dataclass
+from numbers import Integral
+from typing import TYPE_CHECKING, Any, NamedTuple, Union
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .coefficients import PDECoefficients
+from .errors import ValidationError
+
+if TYPE_CHECKING:
+    from .parameters import Parameters
+
+__all__ = [
+    "MAX_MODES",
+    "GalerkinIntegrals",
+    "ModalCoefficients",
+    "DuffingCoefficients",
+    "dimensionless_integrals",
+    "mode_numbers",
+    "project",
+]
+
+#: Largest accepted number of elastic modes ``n``.
+MAX_MODES = 256
+
+#: Largest number of retained modes for which :meth:`ModalCoefficients.cubic_tensor` builds
+#: the dense ``(m, m, m, m)`` tensor.
+MAX_TENSOR_MODES = 64
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+FloatOrArray = Union[float, FloatArray]
+
+
+# --------------------------------------------------------------------------- validation
+
+
+def _check_modes(modes: Any) -> int:
+    if isinstance(modes, (bool, np.bool_)) or not isinstance(modes, Integral):
+        raise ValidationError("modes", modes, f"an integer, 1 <= modes <= {MAX_MODES}")
+    if not 1 <= int(modes) <= MAX_MODES:
+        raise ValidationError("modes", modes, f"1 <= modes <= {MAX_MODES}")
+    return int(modes)
+
+
+def _check_rigid_mode(rigid_mode: Any) -> bool:
+    if not isinstance(rigid_mode, (bool, np.bool_)):
+        raise ValidationError("rigid_mode", rigid_mode, "True or False")
+    return bool(rigid_mode)
+
+
+def _readonly(array: NDArray[Any]) -> NDArray[Any]:
+    array.flags.writeable = False
+    return array
+
+
+def mode_numbers(modes: int, rigid_mode: bool = False) -> IntArray:
+    """Mode numbers ``i`` of the retained basis: ``1..n``, or ``0, 1..n`` with the rigid mode."""
+    n = _check_modes(modes)
+    first = 0 if _check_rigid_mode(rigid_mode) else 1
+    return np.arange(first, n + 1, dtype=np.int64)
+
+
+# --------------------------------------------------------------------------- integrals
+
+
+@dataclass(frozen=True, eq=False)
+class GalerkinIntegrals:
+    """Dimensionless quartic integrals on ``s = z/l in [0, 1]`` (see the module docstring).
+
+    Attributes
+    ----------
+    indices:
+        ``(m,)`` mode numbers ``i_k`` of the basis positions ``k = 0..m-1``.
+    quartic_index:
+        ``(T, 4)`` positions ``a <= b <= c <= d`` (into ``indices``) of the nonzero terms,
+        in lexicographic order.
+    cos4:
+        ``(T,)`` ``mult_t * int c_a c_b c_c c_d ds`` (multiplies ``k3 l / 4``).
+    mixed:
+        ``(T,)`` ``sum_orderings i_p3 i_p4 int c_p1 c_p2 s_p3 s_p4 ds``
+        (multiplies ``k4 pi^2 / (2 l)``).
+    sin4:
+        ``(T,)`` ``mult_t i_a i_b i_c i_d int s_a s_b s_c s_d ds``
+        (multiplies ``k5 pi^4 / (4 l^3)``).
+
+    All arrays are read-only (instances are cached and shared).
+    """
+
+    indices: IntArray
+    quartic_index: IntArray
+    cos4: FloatArray
+    mixed: FloatArray
+    sin4: FloatArray
+
+    @property
+    def rigid_mode(self) -> bool:
+        """Whether the rigid mode ``i = 0`` is included (as position 0)."""
+        return bool(self.indices[0] == 0)
+
+    @property
+    def n_terms(self) -> int:
+        """Number ``T`` of stored (nonzero) quartic terms."""
+        return int(self.quartic_index.shape[0])
+
+
+# distinct-ordering count of a sorted quadruple, indexed by (a==b)*4 + (b==c)*2 + (c==d)
+_MULTIPLICITY = np.array([24, 12, 12, 4, 12, 6, 4, 1], dtype=np.int64)
+_SIGNS = np.array(
+    [(1, *rest) for rest in itertools.product((1, -1), repeat=3)], dtype=np.int64
+)  # (8, 4), e_a = +1
+_PAIRS = tuple(itertools.combinations(range(4), 2))
+
+
+def _integer_integrals(quad: IntArray) -> tuple[IntArray, IntArray, IntArray]:
+    """``8 x (cos4, mixed, sin4)`` for sorted mode-number quadruples ``quad`` (K, 4)."""
+    hit = (quad @ _SIGNS.T == 0).astype(np.int64)  # (K, 8): N(e)
+    eq = (quad[:, :-1] == quad[:, 1:]).astype(np.int64)
+    mult = _MULTIPLICITY[eq[:, 0] * 4 + eq[:, 1] * 2 + eq[:, 2]]
+    cos4 = mult * hit.sum(axis=1)
+    pair_sum = np.zeros(quad.shape[0], dtype=np.int64)
+    for i, j in _PAIRS:
+        # sine pair at (i, j), cosines at the other two
+        pair_sum += quad[:, i] * quad[:, j] * (hit @ (-_SIGNS[:, i] * _SIGNS[:, j]))
+    # sum over the 24 permutations = 4 * pair_sum; distinct orderings = mult/24 of that
+    numerator = mult * pair_sum
+    if np.any(numerator % 6):  # pragma: no cover - an arithmetic invariant
+        raise AssertionError("mixed quartic integral is not a multiple of 1/8")
+    mixed = numerator // 6
+    sin4 = mult * quad.prod(axis=1) * (hit @ _SIGNS.prod(axis=1))
+    return cos4, mixed, sin4
+
+
+@functools.lru_cache(maxsize=64)
+def _cached_integrals(modes: int, rigid_mode: bool) -> GalerkinIntegrals:
+    indices = np.arange(0 if rigid_mode else 1, modes + 1, dtype=np.int64)
+    first = int(indices[0])
+    top = modes
+    base = top + 1
+    keys: list[IntArray] = []
+    for a in range(first, top + 1):
+        # b = a + u, c = a + v with 0 <= u <= v <= top - a
+        u, v = np.triu_indices(top - a + 1)
+        b = a + u.astype(np.int64)
+        c = a + v.astype(np.int64)
+        # candidates d = +-a +- b +- c with c <= d <= top
+        cand = a * _SIGNS[:, 1, None] + b * _SIGNS[:, 2, None] + c * _SIGNS[:, 3, None]
+        ok = (cand >= c) & (cand <= top)
+        rows, = np.nonzero(ok.ravel())
+        col = rows % b.size
+        d = cand.ravel()[rows]
+        key = ((a * base + b[col]) * base + c[col]) * base + d
+        keys.append(np.unique(key))
+    key = np.concatenate(keys) if keys else np.zeros(0, dtype=np.int64)
+    quad = np.empty((key.size, 4), dtype=np.int64)
+    rest = key
+    for col in (3, 2, 1, 0):
+        quad[:, col] = rest % base
+        rest = rest // base
+    cos4, mixed, sin4 = _integer_integrals(quad)
+    return GalerkinIntegrals(
+        indices=_readonly(indices),
+        quartic_index=_readonly(quad - first),
+        cos4=_readonly(cos4 / 8.0),
+        mixed=_readonly(mixed / 8.0),
+        sin4=_readonly(sin4 / 8.0),
+    )
+
+
+def dimensionless_integrals(modes: int, rigid_mode: bool = False) -> GalerkinIntegrals:
+    """Exact dimensionless quartic integrals of the ``cos(i pi s)`` basis (cached, read-only).
+
+    Parameters
+    ----------
+    modes:
+        Number ``n`` of elastic modes ``i = 1..n``, ``1 <= n <= 256``.
+    rigid_mode:
+        Include the rigid mode ``i = 0`` (as position 0).
+
+    Raises
+    ------
+    ValidationError
+        For a bad ``modes`` or ``rigid_mode``.
+    """
+    return _cached_integrals(_check_modes(modes), _check_rigid_mode(rigid_mode))
+
+
+# --------------------------------------------------------------------------- modal model
+
+
+class DuffingCoefficients(NamedTuple):
+    """One-mode Duffing equation ``a1 q'' + a2 q + a3 q^3 = 0`` (eq. 19, corrected eq. 20)."""
+
+    a1: float
+    a2: float
+    a3: float
+
+
+def _as_state(name: str, value: ArrayLike, m: int) -> FloatArray:
+    array = np.asarray(value, dtype=float)
+    if array.ndim not in (1, 2) or array.shape[0] != m:
+        raise ValidationError(
+            name, f"array of shape {array.shape}", f"shape ({m},) or ({m}, samples)"
+        )
+    return array
+
+
+def _as_positions(name: str, value: ArrayLike) -> FloatArray:
+    array = np.atleast_1d(np.asarray(value, dtype=float))
+    if array.ndim != 1:
+        raise ValidationError(name, f"array of shape {array.shape}", "a scalar or a 1-D array")
+    return array
+
+
+@dataclass(frozen=True, eq=False)
+class ModalCoefficients:
+    """Galerkin model ``M q'' + K q + grad V(q) = 0`` of eq. 18 (see the module docstring).
+
+    Attributes
+    ----------
+    indices:
+        ``(m,)`` mode numbers ``i`` of the basis ``cos(i pi z / l)``.
+    length:
+        ``l`` in m.
+    mass:
+        ``(m,)`` diagonal of ``M``: ``k1 l/2`` (``i >= 1``), ``k1 l`` (``i = 0``).
+    stiffness:
+        ``(m,)`` diagonal of ``K``: ``k2 (i pi)^2/(2 l) - k6 l/2`` (``i >= 1``), ``-k6 l``
+        (``i = 0``).
+    quartic_index:
+        ``(T, 4)`` positions ``a <= b <= c <= d`` of the quartic terms.
+    quartic_coef:
+        ``(T,)`` coefficients ``C_t`` with ``V(q) = sum_t C_t q_a q_b q_c q_d``.
+
+    All arrays are read-only. Build with :func:`project`,
+    :meth:`from_parameters` or :meth:`from_coefficients`.
+    """
+
+    indices: IntArray
+    length: float
+    mass: FloatArray
+    stiffness: FloatArray
+    quartic_index: IntArray
+    quartic_coef: FloatArray
+
+    def __post_init__(self) -> None:
+        indices = np.array(self.indices, dtype=np.int64)
+        m = indices.size
+        if indices.ndim != 1 or m == 0:
+            raise ValidationError("indices", self.indices, "a non-empty 1-D array of modes")
+        set_ = functools.partial(object.__setattr__, self)
+        set_("indices", _readonly(indices))
+        length = float(self.length)
+        if not (math.isfinite(length) and length > 0.0):
+            raise ValidationError("length", self.length, "0 < length < inf")
+        set_("length", length)
+        for name in ("mass", "stiffness"):
+            array = np.array(getattr(self, name), dtype=float)
+            if array.shape != (m,):
+                raise ValidationError(name, f"array of shape {array.shape}", f"shape ({m},)")
+            set_(name, _readonly(array))
+        quad = np.array(self.quartic_index, dtype=np.int64).reshape(-1, 4)
+        if quad.size and (quad.min() < 0 or quad.max() >= m):
+            raise ValidationError("quartic_index", "out-of-range position", f"0 <= k < {m}")
+        coef = np.array(self.quartic_coef, dtype=float)
+        if coef.shape != (quad.shape[0],):
+            raise ValidationError(
+                "quartic_coef", f"array of shape {coef.shape}", f"shape ({quad.shape[0]},)"
+            )
+        set_("quartic_index", _readonly(quad))
+        set_("quartic_coef", _readonly(coef))
+
+    # ------------------------------------------------------------------ construction
+
+    @classmethod
+    def from_coefficients(
+        cls, coefficients: PDECoefficients, modes: int = 3, rigid_mode: bool = False
+    ) -> ModalCoefficients:
+        """Project eq. 18 with the given ``k1..k6`` and ``l`` onto ``modes`` cosine modes."""
+        integrals = dimensionless_integrals(modes, rigid_mode)
+        k1, k2, k3, k4, k5, k6 = coefficients.as_tuple()
+        length = coefficients.length
+        i = integrals.indices.astype(float)
+        norm = np.where(integrals.indices == 0, length, length / 2.0)  # int_0^l phi_i^2 dz
+        mass = k1 * norm
+        stiffness = k2 * (i * math.pi / length) ** 2 * norm - k6 * norm
+        coef = (
+            (k3 * length / 4.0) * integrals.cos4
+            + (k4 * math.pi**2 / (2.0 * length)) * integrals.mixed
+            + (k5 * math.pi**4 / (4.0 * length**3)) * integrals.sin4
+        )
+        return cls(
+            indices=integrals.indices,
+            length=length,
+            mass=mass,
+            stiffness=stiffness,
+            quartic_index=integrals.quartic_index,
+            quartic_coef=coef,
+        )
+
+    @classmethod
+    def from_parameters(
+        cls, params: Parameters, modes: int = 3, rigid_mode: bool = False
+    ) -> ModalCoefficients:
+        """Project eq. 18 with ``k1..k6`` of eq. 17 evaluated for ``params``."""
+        return cls.from_coefficients(PDECoefficients.from_parameters(params), modes, rigid_mode)
+
+    # ------------------------------------------------------------------ basic properties
+
+    @property
+    def n_modes(self) -> int:
+        """Number ``m`` of retained basis functions (including the rigid mode)."""
+        return int(self.indices.size)
+
+    @property
+    def rigid_mode(self) -> bool:
+        """Whether the rigid mode ``i = 0`` is included (as position 0)."""
+        return bool(self.indices[0] == 0)
+
+    @property
+    def mass_matrix(self) -> FloatArray:
+        """Full ``(m, m)`` mass matrix ``M`` (diagonal)."""
+        return np.diag(self.mass)
+
+    @property
+    def stiffness_matrix(self) -> FloatArray:
+        """Full ``(m, m)`` linear stiffness matrix ``K`` (diagonal)."""
+        return np.diag(self.stiffness)
+
+    @property
+    def linear_frequencies(self) -> FloatArray:
+        """``(m,)`` ``w_i = sqrt(K_ii / M_ii)`` in rad/s; ``nan`` where ``K_ii < 0``."""
+        w2 = self.stiffness / self.mass
+        return np.sqrt(np.where(w2 >= 0.0, w2, np.nan))
+
+    # ------------------------------------------------------------------ potential and forces
+
+    def _factors(self, q: FloatArray) -> FloatArray:
+        return q[self.quartic_index]  # (T, 4) or (T, 4, S)
+
+    def potential(self, q: ArrayLike) -> FloatOrArray:
+        """Quartic potential ``V(q)``; ``q`` of shape ``(m,)`` -> float, ``(m, S)`` -> ``(S,)``."""
+        qa = _as_state("q", q, self.n_modes)
+        f = self._factors(qa)
+        value = np.tensordot(self.quartic_coef, f.prod(axis=1), axes=(0, 0))
+        return float(value) if qa.ndim == 1 else np.asarray(value)
+
+    def cubic_force(self, q: ArrayLike) -> FloatArray:
+        """``grad V(q)``, the cubic generalised force; same shape as ``q``."""
+        qa = _as_state("q", q, self.n_modes)
+        m = self.n_modes
+        f = self._factors(qa)
+        one = np.ones_like(f[:, 0])
+        left = [one, f[:, 0], f[:, 0] * f[:, 1], f[:, 0] * f[:, 1] * f[:, 2]]
+        right = [f[:, 1] * f[:, 2] * f[:, 3], f[:, 2] * f[:, 3], f[:, 3], one]
+        coef = self.quartic_coef if qa.ndim == 1 else self.quartic_coef[:, None]
+        weights = np.concatenate([coef * left[k] * right[k] for k in range(4)])
+        target = self.quartic_index.T.ravel()  # position k of every term, k-major
+        if qa.ndim == 1:
+            return np.bincount(target, weights=weights, minlength=m)
+        samples = qa.shape[1]
+        flat = (target[:, None] * samples + np.arange(samples)).ravel()
+        return np.bincount(flat, weights=weights.ravel(), minlength=m * samples).reshape(
+            m, samples
+        )
+
+    def cubic_tensor(self) -> FloatArray:
+        """Dense symmetric ``T`` (m, m, m, m) with ``grad V_j = sum T_jbcd q_b q_c q_d``.
+
+        ``V = 1/4 sum T_abcd q_a q_b q_c q_d``. For tests and small models
+        (``m <= 64``).
+        """
+        m = self.n_modes
+        if m > MAX_TENSOR_MODES:
+            raise ValidationError(
+                "modes", m, f"at most {MAX_TENSOR_MODES} retained modes for a dense tensor"
+            )
+        tensor = np.zeros((m, m, m, m))
+        # each distinct ordering of term t is visited 24/mult_t times: 4 C_t / 24 each time
+        # gives 4 C_t / mult_t = 4 S_t per ordering, where V = sum_ordered S q q q q
+        value = self.quartic_coef / 6.0
+        for perm in itertools.permutations(range(4)):
+            np.add.at(tensor, tuple(self.quartic_index[:, p] for p in perm), value)
+        return tensor
+
+    def acceleration(self, q: ArrayLike) -> FloatArray:
+        """``q'' = -M^{-1} (K q + grad V(q))``; same shape as ``q``."""
+        qa = _as_state("q", q, self.n_modes)
+        force = self.cubic_force(qa)
+        if qa.ndim == 1:
+            return -(self.stiffness * qa + force) / self.mass
+        return -(self.stiffness[:, None] * qa + force) / self.mass[:, None]
+
+    def energy(self, q: ArrayLike, qdot: ArrayLike) -> FloatOrArray:
+        """``H = 1/2 q'^T M q' + 1/2 q^T K q + V(q)`` (J), the PDE energy of the Galerkin field.
+
+        ``q`` and ``qdot`` of shape ``(m,)`` -> float, ``(m, S)`` -> ``(S,)``.
+        """
+        qa = _as_state("q", q, self.n_modes)
+        va = _as_state("qdot", qdot, self.n_modes)
+        if qa.shape != va.shape:
+            raise ValidationError("qdot", f"array of shape {va.shape}", f"shape {qa.shape}")
+        shape = (-1,) + (1,) * (qa.ndim - 1)
+        mass = self.mass.reshape(shape)
+        stiffness = self.stiffness.reshape(shape)
+        quadratic = 0.5 * np.sum(mass * va**2 + stiffness * qa**2, axis=0)
+        total = quadratic + self.potential(qa)
+        return float(total) if qa.ndim == 1 else np.asarray(total)
+
+    def duffing(self) -> DuffingCoefficients:
+        """``a1, a2, a3`` of eq. 19 for a one-mode model (divided by ``int phi_1^2 = l/2``).
+
+        Equal to the corrected eq. 20: ``a1 = k1``, ``a2 = k2 pi^2/l^2 - k6``,
+        ``a3 = 3 k3/4 + k4 pi^2/(2 l^2) + 3 k5 pi^4/(4 l^4)``.
+
+        Raises
+        ------
+        ValidationError
+            Unless the model is the single mode ``i = 1`` (``modes=1, rigid_mode=False``).
+        """
+        if self.n_modes != 1 or int(self.indices[0]) != 1:
+            raise ValidationError(
+                "modes",
+                f"{self.n_modes} retained modes (i = {self.indices.tolist()})",
+                "exactly one mode i = 1 (modes=1, rigid_mode=False)",
+            )
+        norm = self.length / 2.0
+        quartic = 4.0 * float(np.sum(self.quartic_coef))
+        return DuffingCoefficients(
+            a1=float(self.mass[0]) / norm,
+            a2=float(self.stiffness[0]) / norm,
+            a3=quartic / norm,
+        )
+
+    # ------------------------------------------------------------------ fields
+
+    def basis(self, z: ArrayLike) -> FloatArray:
+        """``phi_k(z) = cos(i_k pi z / l)`` as a ``(len(z), m)`` array."""
+        za = _as_positions("z", z)
+        return np.cos(np.outer(za, self.indices * (math.pi / self.length)))
+
+    def basis_derivative(self, z: ArrayLike) -> FloatArray:
+        """``phi_k'(z) = -(i_k pi / l) sin(i_k pi z / l)`` as a ``(len(z), m)`` array."""
+        za = _as_positions("z", z)
+        wave = self.indices * (math.pi / self.length)
+        return -wave * np.sin(np.outer(za, wave))
+
+    def twist(self, q: ArrayLike, z: ArrayLike) -> FloatArray:
+        """``theta(z) = sum_k q_k phi_k(z)``: ``(len(z),)`` for ``q (m,)``, else ``(len(z), S)``."""
+        qa = _as_state("q", q, self.n_modes)
+        return self.basis(z) @ qa
+
+    def initial_state(self, params: Parameters) -> tuple[FloatArray, FloatArray]:
+        """Initial ``(q(0), q'(0))`` from eq. 13 (eq. 21 for one mode).
+
+        ``theta(z, 0) = 0`` gives ``q(0) = 0``. ``theta_t(z, 0) = sum_i C_i cos(i pi z / l)``
+        projected onto the retained basis (orthogonality) gives ``q_k'(0) = C_{i_k}`` for
+        ``1 <= i_k <= len(C)`` and ``0`` otherwise, in particular ``0`` for the rigid mode.
+        Velocities ``C_i`` with ``i > n`` are not representable in the basis and are dropped
+        (this *is* their Galerkin projection, not an error).
+        """
+        velocities = params.initial_velocities
+        q0 = np.zeros(self.n_modes)
+        v0 = np.zeros(self.n_modes)
+        for k, i in enumerate(self.indices.tolist()):
+            if 1 <= i <= len(velocities):
+                v0[k] = velocities[i - 1]
+        return q0, v0
+
+
+def project(
+    source: Parameters | PDECoefficients, modes: int = 3, rigid_mode: bool = False
+) -> ModalCoefficients:
+    """Bubnov-Galerkin model of eq. 18 on ``modes`` cosine modes (plus ``i = 0`` if asked).
+
+    Parameters
+    ----------
+    source:
+        A :class:`~drillstring.parameters.Parameters` (``k1..k6`` from eq. 17) or explicit
+        :class:`~drillstring.coefficients.PDECoefficients`.
+    modes:
+        Number ``n`` of elastic modes ``i = 1..n``, ``1 <= n <= 256``.
+    rigid_mode:
+        Also include the rigid mode ``i = 0`` (first position).
+
+    Raises
+    ------
+    ValidationError
+        For a bad ``modes`` or ``rigid_mode``.
+    """
+    if isinstance(source, PDECoefficients):
+        return ModalCoefficients.from_coefficients(source, modes, rigid_mode)
+    return ModalCoefficients.from_parameters(source, modes, rigid_mode)

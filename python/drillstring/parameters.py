@@ -1,0 +1,330 @@
+"""Physical parameters of the drill string (paper Tables 1 and 3), their presets and TOML I/O.
+
+A :class:`Parameters` holds every physical input of the model in SI units: the length ``l``,
+the material (``E``, ``rho``, ``nu``), the annular section (``D``, ``d``), the rotation speed
+``Omega`` and the initial generalised velocities ``C_i`` of eq. 13. It is immutable and
+validated on construction; every bad value raises :class:`~drillstring.errors.ValidationError`
+naming the field, the value and the allowed range.
+
+TOML format (see ``examples/reference.toml``)::
+
+    # drillstring parameters: Table 1 of the paper (aluminium reference), SI units
+    [parameters]
+    preset = "aluminum"   # optional: start from a preset, then override fields below
+    length = 100.0
+    initial_velocities = [0.1, 0.05, 0.02]
+    k5_variant = "paper"
+
+Other tables (e.g. ``[solver]``) may be present; :func:`load` reads only ``[parameters]``,
+:func:`load_toml` returns the whole document.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import sys
+from dataclasses import dataclass, field
+from numbers import Real
+from typing import Any, Mapping, Union
+
+from .errors import ValidationError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python < 3.11 only
+    import tomli as tomllib
+
+__all__ = [
+    "Parameters",
+    "PRESETS",
+    "K5_VARIANTS",
+    "preset",
+    "load",
+    "load_toml",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+#: Names accepted by :func:`preset` (``"aluminium"`` is also accepted as an alias).
+PRESETS: tuple[str, ...] = ("aluminum", "steel")
+
+#: Accepted values of :attr:`Parameters.k5_variant`.
+K5_VARIANTS: tuple[str, ...] = ("paper", "energy")
+
+_PRESET_ALIASES = {"aluminium": "aluminum"}
+
+_TOML_HEADER = "# drillstring parameters: Table 1 of the paper (aluminium reference), SI units"
+
+
+def _real(name: str, value: Any, allowed: str) -> float:
+    """Coerce ``value`` to a finite float or raise ``ValidationError`` (bools refused)."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise ValidationError(name, value, allowed)
+    result = float(value)
+    if not math.isfinite(result):
+        raise ValidationError(name, value, allowed)
+    return result
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """Physical parameters of the rotating drill string, SI units.
+
+    Defaults are Table 1 of the paper (aluminium reference) with the one-mode initial
+    condition ``C_1 = 0.1``; :func:`preset` gives the sets used for the paper's figures.
+
+    Parameters
+    ----------
+    length:
+        String length ``l`` in m, ``> 0``.
+    youngs_modulus:
+        Young's modulus ``E`` in Pa, ``> 0``.
+    density:
+        Density ``rho`` in kg/m^3, ``> 0`` (Table 1 prints kg/m^2, a typo).
+    poisson_ratio:
+        Poisson's ratio ``nu``, ``-1 < nu < 0.5`` (``k3``, ``k4``, ``k5`` of eq. 17 contain
+        ``1/(1 - 2 nu)``).
+    outer_diameter:
+        Outer diameter ``D`` in m, ``> 0``.
+    inner_diameter:
+        Inner diameter ``d`` in m, ``0 <= d < D``.
+    omega:
+        Rotation speed ``Omega`` in rad/s (any finite value; it enters eq. 17 only as
+        ``k6 = rho I_p Omega^2``).
+    initial_velocities:
+        ``(C_1, C_2, ...)`` in rad/s: ``C_i`` is the initial generalised velocity of mode
+        ``cos(i pi z / l)``, ``i = 1, 2, ...`` (eq. 13:
+        ``theta_t(z, 0) = sum_i C_i cos(i pi z / l)``, ``theta(z, 0) = 0``). Modes beyond the
+        tuple, and the rigid mode ``i = 0`` when it is included, start at rest. May be empty.
+        Lists are accepted and stored as a tuple of floats.
+    k5_variant:
+        ``"paper"``: ``k5 = G (I_r - I_{x^2y^2} (5 - 6 nu)) / (8 (1 - 2 nu))`` as printed in
+        eq. 17; ``"energy"``: the re-derived ``k5`` with a plus sign (model notes, erratum 2).
+
+    Raises
+    ------
+    ValidationError
+        If any field is out of range or of the wrong type.
+    """
+
+    length: float = 100.0
+    youngs_modulus: float = 0.7e11
+    density: float = 2.7e3
+    poisson_ratio: float = 0.34
+    outer_diameter: float = 0.20
+    inner_diameter: float = 0.12
+    omega: float = 2.0 * math.pi * 0.5
+    initial_velocities: tuple[float, ...] = field(default=(0.1,))
+    k5_variant: str = "paper"
+
+    def __post_init__(self) -> None:
+        def set_(name: str, value: Any) -> None:
+            object.__setattr__(self, name, value)
+
+        for name in ("length", "youngs_modulus", "density", "outer_diameter"):
+            value = _real(name, getattr(self, name), f"a finite real number, 0 < {name} < inf")
+            if value <= 0.0:
+                raise ValidationError(name, getattr(self, name), f"0 < {name} < inf")
+            set_(name, value)
+
+        outer = self.outer_diameter
+        inner_allowed = f"0 <= inner_diameter < outer_diameter = {outer!r}"
+        inner = _real("inner_diameter", self.inner_diameter, inner_allowed)
+        if not 0.0 <= inner < outer:
+            raise ValidationError("inner_diameter", self.inner_diameter, inner_allowed)
+        set_("inner_diameter", inner)
+
+        nu_allowed = "-1 < poisson_ratio < 0.5"
+        nu = _real("poisson_ratio", self.poisson_ratio, nu_allowed)
+        if not -1.0 < nu < 0.5:
+            raise ValidationError("poisson_ratio", self.poisson_ratio, nu_allowed)
+        set_("poisson_ratio", nu)
+
+        set_("omega", _real("omega", self.omega, "a finite real number (rad/s, any sign)"))
+
+        velocities = self.initial_velocities
+        if isinstance(velocities, (str, bytes, Mapping)) or not hasattr(velocities, "__iter__"):
+            raise ValidationError(
+                "initial_velocities",
+                velocities,
+                "a sequence of finite real numbers (C_1, C_2, ...) in rad/s",
+            )
+        coerced = []
+        for i, value in enumerate(velocities):
+            coerced.append(
+                _real(f"initial_velocities[{i}]", value, "a finite real number (rad/s)")
+            )
+        set_("initial_velocities", tuple(coerced))
+
+        if not isinstance(self.k5_variant, str) or self.k5_variant not in K5_VARIANTS:
+            raise ValidationError(
+                "k5_variant", self.k5_variant, "one of " + ", ".join(map(repr, K5_VARIANTS))
+            )
+
+    # ------------------------------------------------------------------ copies and dicts
+
+    @classmethod
+    def field_names(cls) -> tuple[str, ...]:
+        """Names of the fields, in declaration order."""
+        return tuple(f.name for f in dataclasses.fields(cls))
+
+    def replace(self, **changes: Any) -> Parameters:
+        """Return a copy with some fields changed (validated like the constructor).
+
+        Raises
+        ------
+        ValidationError
+            For an unknown field name (the message lists the valid ones) or a bad value.
+        """
+        names = self.field_names()
+        for name, value in changes.items():
+            if name not in names:
+                raise ValidationError(name, value, "a field of Parameters: " + ", ".join(names))
+        return dataclasses.replace(self, **changes)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain ``{field: value}`` dict (``initial_velocities`` as a list), JSON/TOML-ready."""
+        out: dict[str, Any] = {name: getattr(self, name) for name in self.field_names()}
+        out["initial_velocities"] = list(self.initial_velocities)
+        return out
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], source: str | None = None) -> Parameters:
+        """Build from a mapping of field names (the ``[parameters]`` table of a TOML file).
+
+        An optional ``"preset"`` key selects the starting set (see :func:`preset`); the other
+        keys override its fields. Without ``"preset"`` the start is the default
+        :class:`Parameters` (Table 1, ``C = (0.1,)``).
+
+        Parameters
+        ----------
+        data:
+            Mapping of field names to values.
+        source:
+            Where the mapping came from (e.g. a file name); prefixed to error messages.
+
+        Raises
+        ------
+        ValidationError
+            For an unknown key, an unknown preset or a bad value; ``source`` is attached.
+        """
+        if not isinstance(data, Mapping):
+            raise ValidationError(
+                "parameters", data, "a table/mapping of parameter fields", source=source
+            )
+        names = cls.field_names()
+        changes: dict[str, Any] = {}
+        base_name: Any = None
+        for key, value in data.items():
+            if key == "preset":
+                base_name = value
+            elif key in names:
+                changes[key] = value
+            else:
+                raise ValidationError(
+                    str(key),
+                    value,
+                    "a field of Parameters: preset, " + ", ".join(names),
+                    source=source,
+                )
+        try:
+            base = cls() if base_name is None else preset(base_name)
+            return dataclasses.replace(base, **changes)
+        except ValidationError as exc:
+            if source is None:
+                raise
+            raise ValidationError(exc.field, exc.value, exc.allowed, source=source) from exc
+
+    # ------------------------------------------------------------------ TOML
+
+    def to_toml(self) -> str:
+        """Format as a TOML document with a ``[parameters]`` table.
+
+        Floats are written with ``repr`` so that :func:`load` reproduces them bit-for-bit.
+        """
+        lines = [_TOML_HEADER, "[parameters]"]
+        for name in self.field_names():
+            value = getattr(self, name)
+            if name == "initial_velocities":
+                text = "[" + ", ".join(_toml_float(v) for v in value) + "]"
+            elif name == "k5_variant":
+                text = f'"{value}"'
+            else:
+                text = _toml_float(value)
+            lines.append(f"{name} = {text}")
+        return "\n".join(lines) + "\n"
+
+    def save(self, path: PathLike) -> None:
+        """Write :meth:`to_toml` to ``path`` (UTF-8), replacing any existing file."""
+        with open(path, "w", encoding="utf-8") as handle:
+            handle.write(self.to_toml())
+
+
+def _toml_float(value: float) -> str:
+    # repr is the shortest exact round-trip form; '1e-05', '1e+16', '0.1', '100.0' are all
+    # valid TOML floats (finite values only: validation refuses inf and nan).
+    return repr(float(value))
+
+
+def preset(name: str) -> Parameters:
+    """A named parameter set.
+
+    * ``"aluminum"`` (alias ``"aluminium"``): Table 1 with ``C = (0.1, 0.05, 0.02)``.
+    * ``"steel"``: Table 3 (``E = 2.1e11`` Pa, ``rho = 7.8e3`` kg/m^3, ``nu = 0.28``) on the
+      geometry, ``Omega`` and ``C`` of the aluminium set.
+
+    Raises
+    ------
+    ValidationError
+        For an unknown name (the message lists the valid ones).
+    """
+    key = _PRESET_ALIASES.get(name, name) if isinstance(name, str) else name
+    aluminum = Parameters(initial_velocities=(0.1, 0.05, 0.02))
+    if key == "aluminum":
+        return aluminum
+    if key == "steel":
+        return aluminum.replace(youngs_modulus=2.1e11, density=7.8e3, poisson_ratio=0.28)
+    raise ValidationError(
+        "preset", name, "one of " + ", ".join(map(repr, PRESETS + tuple(_PRESET_ALIASES)))
+    )
+
+
+def load_toml(path: PathLike) -> dict[str, Any]:
+    """Parse a whole TOML file (``tomllib`` on Python >= 3.11, else ``tomli``).
+
+    Raises
+    ------
+    ValidationError
+        ``field="toml"``: the file cannot be read, or is malformed; the message names the file
+        and the parser's line and column.
+    """
+    source = os.fspath(path)
+    try:
+        with open(source, "rb") as handle:
+            return tomllib.load(handle)
+    except tomllib.TOMLDecodeError as exc:
+        raise ValidationError("toml", source, f"valid TOML ({exc})", source=source) from exc
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ValidationError(
+            "toml", source, f"a readable UTF-8 TOML file ({exc})", source=source
+        ) from exc
+
+
+def load(path: PathLike) -> Parameters:
+    """Read the ``[parameters]`` table of a TOML file (other tables are ignored).
+
+    Raises
+    ------
+    ValidationError
+        If the file is malformed, has no ``[parameters]`` table, or holds an unknown key or a
+        bad value; messages name the file and the key.
+    """
+    source = os.fspath(path)
+    document = load_toml(source)
+    if "parameters" not in document:
+        raise ValidationError(
+            "parameters", None, "a [parameters] table in the TOML file", source=source
+        )
+    return Parameters.from_dict(document["parameters"], source=source)

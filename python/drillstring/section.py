@@ -1,0 +1,106 @@
+"""Geometric properties of the drill-string cross-section (paper eq. 8).
+
+For a hollow circular section (annulus) with outer radius ``R = D/2`` and inner radius
+``r = d/2``:
+
+* ``A = pi (R^2 - r^2)``                          cross-sectional area,
+* ``I_p = int (x^2 + y^2) dA = pi (R^4 - r^4)/2``  polar moment of inertia,
+* ``I_r = int (x^4 + y^4) dA = pi (R^6 - r^6)/4``,
+* ``I_x2y2 = int x^2 y^2 dA = pi (R^6 - r^6)/24``.
+
+The last two follow from ``int_0^{2 pi} cos^4 = 3 pi/4`` and
+``int_0^{2 pi} cos^2 sin^2 = pi/4`` with ``int_r^R rho^5 d rho = (R^6 - r^6)/6``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from numbers import Real
+from typing import Any
+
+from .errors import ValidationError
+
+__all__ = ["Section"]
+
+
+def _positive_finite(field: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real) or not math.isfinite(value):
+        raise ValidationError(field, value, f"a finite real number, 0 < {field} < inf")
+    if value <= 0:
+        raise ValidationError(field, value, f"0 < {field} < inf")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class Section:
+    """Cross-section properties entering the coefficients ``k1..k6`` (eqs. 8, 17).
+
+    Attributes
+    ----------
+    area:
+        ``A`` in m^2.
+    polar_moment:
+        ``I_p = int (x^2 + y^2) dA`` in m^4.
+    i_r:
+        ``I_r = int (x^4 + y^4) dA`` in m^6.
+    i_x2y2:
+        ``I_{x^2 y^2} = int x^2 y^2 dA`` in m^6.
+    """
+
+    area: float
+    polar_moment: float
+    i_r: float
+    i_x2y2: float
+
+    def __post_init__(self) -> None:
+        for name in ("area", "polar_moment", "i_r", "i_x2y2"):
+            object.__setattr__(self, name, _positive_finite(name, getattr(self, name)))
+
+    @property
+    def axial_moment(self) -> float:
+        """``I_x = I_y = I_p / 2`` (m^4), the axial moments of eq. 10."""
+        return self.polar_moment / 2.0
+
+    @classmethod
+    def annulus(cls, outer_diameter: float, inner_diameter: float) -> Section:
+        """Properties of a hollow circular section.
+
+        Parameters
+        ----------
+        outer_diameter:
+            ``D`` in m, ``D > 0``.
+        inner_diameter:
+            ``d`` in m, ``0 <= d < D`` (``d = 0`` is a solid shaft).
+
+        Returns
+        -------
+        Section
+            ``A``, ``I_p``, ``I_r`` and ``I_{x^2 y^2}`` of eq. 8.
+
+        Raises
+        ------
+        ValidationError
+            If a diameter is not a finite real number or ``0 <= d < D`` fails.
+        """
+        big = _positive_finite("outer_diameter", outer_diameter)
+        if (
+            isinstance(inner_diameter, bool)
+            or not isinstance(inner_diameter, Real)
+            or not math.isfinite(inner_diameter)
+            or not 0.0 <= inner_diameter < big
+        ):
+            raise ValidationError(
+                "inner_diameter",
+                inner_diameter,
+                f"0 <= inner_diameter < outer_diameter = {big!r}",
+            )
+        r_out = big / 2.0
+        r_in = float(inner_diameter) / 2.0
+        r6 = r_out**6 - r_in**6
+        return cls(
+            area=math.pi * (r_out**2 - r_in**2),
+            polar_moment=math.pi * (r_out**4 - r_in**4) / 2.0,
+            i_r=math.pi * r6 / 4.0,
+            i_x2y2=math.pi * r6 / 24.0,
+        )

@@ -1,0 +1,296 @@
+"""Time integration of the n-mode Galerkin model: :func:`simulate` and :class:`Simulation`.
+
+The twist is expanded as ``theta(z, t) = sum_i q_i(t) cos(i pi z / l)`` (paper eq. 15) and the
+modal system ``M q'' + K q + grad V(q) = 0`` (eq. 19 for one mode) is integrated in the Rust
+core with the GIL released.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _core
+from .errors import SolveError, ValidationError
+from .galerkin import ModalCoefficients, project
+from .parameters import Parameters
+
+if TYPE_CHECKING:  # pragma: no cover
+    from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["METHODS", "SolverStats", "Simulation", "simulate", "check_solver_options"]
+
+#: Integration methods: adaptive Dormand-Prince 8(5,3) and 5(4), fixed-step classical RK4 and
+#: the explicit central-difference scheme of the paper's Table 2.
+METHODS = ("dop853", "dopri5", "rk4", "central")
+FIXED_STEP_METHODS = ("rk4", "central")
+
+#: rtol below 100 machine epsilons cannot be met by the step-size controller.
+MIN_RTOL = 100 * float(np.finfo(float).eps)
+
+
+@dataclass(frozen=True)
+class SolverStats:
+    """Work counters of one solve."""
+
+    nfev: int
+    """Right-hand-side (acceleration) evaluations."""
+    naccept: int
+    """Accepted steps."""
+    nreject: int
+    """Rejected steps (0 for fixed-step methods)."""
+
+
+def _positive(field: str, value: Any, *, allow_none: bool = False) -> Optional[float]:
+    if value is None and allow_none:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ValidationError(field, value, "a finite number > 0")
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValidationError(field, value, "a finite number > 0")
+    return value
+
+
+def _count(field: str, value: Any, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValidationError(field, value, f"an integer >= {minimum}")
+    return int(value)
+
+
+def check_solver_options(
+    method: Any, t_end: Any, rtol: Any, atol: Any, dt: Any, max_steps: Any = None
+) -> tuple[str, float, float, float, Optional[float], Optional[int]]:
+    """Validates the solver options shared by every solver; returns them normalised.
+
+    Raises :class:`~drillstring.errors.ValidationError` naming the option and its range.
+    """
+    if method not in METHODS:
+        raise ValidationError("method", method, "one of " + ", ".join(repr(m) for m in METHODS))
+    t_end_f = _positive("t_end", t_end)
+    rtol_f = _positive("rtol", rtol)
+    assert t_end_f is not None and rtol_f is not None
+    if rtol_f < MIN_RTOL or rtol_f >= 1.0:
+        raise ValidationError("rtol", rtol, f"{MIN_RTOL:.3g} <= rtol < 1")
+    atol_f = _positive("atol", atol)
+    assert atol_f is not None
+    dt_f = _positive("dt", dt, allow_none=True)
+    if dt_f is not None and dt_f > t_end_f:
+        raise ValidationError("dt", dt, f"0 < dt <= t_end = {t_end_f}")
+    steps = None if max_steps is None else _count("max_steps", max_steps, 1)
+    return method, t_end_f, rtol_f, atol_f, dt_f, steps
+
+
+def _output_times(t_eval: Any, samples: Any, t_end: float, method: str) -> Optional[NDArray[np.float64]]:
+    if t_eval is None:
+        if method in FIXED_STEP_METHODS and samples is None:
+            return None  # every step
+        n = _count("samples", 1001 if samples is None else samples, 2)
+        return np.linspace(0.0, t_end, n)
+    try:
+        times = np.asarray(t_eval, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValidationError("t_eval", t_eval, "a 1-D array of floats") from exc
+    if times.ndim != 1:
+        raise ValidationError("t_eval", f"an array of shape {times.shape}", "a 1-D array")
+    return np.ascontiguousarray(times)
+
+
+def _default_dt(coefficients: ModalCoefficients) -> float:
+    """1e-4 s, or 1/100 of the shortest linear period if that is shorter."""
+    omega_max = float(np.sqrt(np.max(np.abs(coefficients.stiffness / coefficients.mass))))
+    if omega_max == 0.0:
+        return 1e-4
+    return min(1e-4, 2 * math.pi / omega_max / 100)
+
+
+class Simulation:
+    """The result of :func:`simulate`.
+
+    Attributes
+    ----------
+    t : ndarray, shape (samples,)
+        Output times, s.
+    q, qdot : ndarray, shape (m, samples)
+        Modal coordinates ``q_i`` (rad) and their rates (rad/s), one row per mode in
+        ``indices`` order (the rigid mode i = 0 first when included).
+    indices : ndarray of int
+        Mode numbers ``i`` of the rows.
+    params : Parameters
+    coefficients : ModalCoefficients
+        The Galerkin system that was integrated.
+    method : str
+    status : str
+        ``"success"``, ``"max_steps"``, ``"step_size_underflow"`` or ``"non_finite"``.
+    message : str
+        Explanation of a non-success status ("" on success).
+    stats : SolverStats
+    """
+
+    def __init__(
+        self,
+        params: Parameters,
+        coefficients: ModalCoefficients,
+        system: Any,
+        method: str,
+        raw: dict[str, Any],
+    ) -> None:
+        self.params = params
+        self.coefficients = coefficients
+        self.method = method
+        self._system = system
+        m = len(coefficients.indices)
+        y = np.asarray(raw["y"])
+        self.t: NDArray[np.float64] = np.asarray(raw["t"])
+        self.q: NDArray[np.float64] = np.ascontiguousarray(y[:, :m].T)
+        self.qdot: NDArray[np.float64] = np.ascontiguousarray(y[:, m:].T)
+        self.status: str = raw["status"]
+        self.message: str = raw["message"]
+        self.stats = SolverStats(int(raw["nfev"]), int(raw["naccept"]), int(raw["nreject"]))
+        self._energy: Optional[NDArray[np.float64]] = None
+
+    @property
+    def success(self) -> bool:
+        """True when the solve reached ``t_end``."""
+        return self.status == "success"
+
+    @property
+    def indices(self) -> NDArray[np.int64]:
+        return self.coefficients.indices
+
+    def _basis(self, z: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], bool]:
+        z_arr = np.asarray(z, dtype=np.float64)
+        scalar = z_arr.ndim == 0
+        z_flat = np.atleast_1d(z_arr).ravel()
+        length = self.params.length
+        if not np.all(np.isfinite(z_flat)) or np.any(z_flat < 0) or np.any(z_flat > length):
+            raise ValidationError("z", z, f"sections with 0 <= z <= length = {length}")
+        return self.coefficients.basis(z_flat), z_flat, scalar
+
+    def theta(self, z: Union[float, ArrayLike]) -> NDArray[np.float64]:
+        """Twist angle ``theta(z, t)`` (rad) at section(s) ``z`` (m) over ``t``.
+
+        Returns shape (samples,) for a scalar ``z``, else (len(z), samples).
+        """
+        basis, _, scalar = self._basis(z)
+        out = basis @ self.q
+        return out[0] if scalar else out
+
+    def theta_dot(self, z: Union[float, ArrayLike]) -> NDArray[np.float64]:
+        """Twist rate ``d theta / dt (z, t)`` (rad/s) at section(s) ``z``; shapes as :meth:`theta`."""
+        basis, _, scalar = self._basis(z)
+        out = basis @ self.qdot
+        return out[0] if scalar else out
+
+    @property
+    def energy(self) -> NDArray[np.float64]:
+        """The conserved energy ``H`` (J, model notes) of each sample."""
+        if self._energy is None:
+            self._energy = np.asarray(self._system.energy(self.q, self.qdot))
+        return self._energy
+
+    def energy_drift(self) -> float:
+        """``max |H(t) - H(0)| / |H(0)|`` over the samples (0 when H(0) = 0)."""
+        h = self.energy
+        if h.size == 0 or h[0] == 0:
+            return 0.0
+        return float(np.max(np.abs(h - h[0])) / abs(h[0]))
+
+    def table(self, z: float) -> tuple[list[str], NDArray[np.float64]]:
+        """Columns ``t, theta, theta_dot, q<i>...`` at section ``z`` (the CLI's CSV)."""
+        header = ["t", "theta", "theta_dot"] + [f"q{i}" for i in self.indices]
+        data = np.column_stack([self.t, self.theta(z), self.theta_dot(z), self.q.T])
+        return header, data
+
+    def to_csv(self, path: Any, z: float) -> None:
+        """Writes :meth:`table` at section ``z`` as CSV."""
+        header, data = self.table(z)
+        np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.10e")
+
+    def __repr__(self) -> str:
+        return (
+            f"Simulation(method={self.method!r}, modes={list(self.indices)}, "
+            f"samples={self.t.size}, status={self.status!r}, nfev={self.stats.nfev})"
+        )
+
+
+def simulate(
+    params: Parameters,
+    modes: int = 3,
+    rigid_mode: bool = False,
+    t_end: float = 1.0,
+    method: str = "dop853",
+    rtol: float = 1e-9,
+    atol: float = 1e-12,
+    dt: Optional[float] = None,
+    t_eval: Optional[Sequence[float]] = None,
+    *,
+    samples: Optional[int] = None,
+    max_steps: Optional[int] = None,
+    check: bool = True,
+) -> Simulation:
+    """Integrates the ``modes``-mode Galerkin model of ``params`` over ``0 <= t <= t_end``.
+
+    Parameters
+    ----------
+    params : Parameters
+        Drill string, rotation speed ``omega`` and initial modal velocities ``C_i``.
+    modes : int
+        Number of elastic modes ``n`` (basis ``cos(i pi z / l)``, i = 1..n).
+    rigid_mode : bool
+        Also keep the uniform twist i = 0 (needed for convergence to the PDE, model notes).
+    t_end : float
+        End time, s.
+    method : {"dop853", "dopri5", "rk4", "central"}
+        Adaptive DOP853 (default) or Dormand-Prince 5(4) with dense output; fixed-step classical
+        RK4 or the explicit central-difference scheme of Table 2.
+    rtol, atol : float
+        Tolerances of the adaptive methods (Hairer's scaled RMS error norm).
+    dt : float, optional
+        Step of the fixed-step methods (shrunk to divide ``t_end`` evenly). Default: 1e-4 s, or
+        1/100 of the shortest linear period if shorter.
+    t_eval : array_like, optional
+        Output times in ``[0, t_end]``, non-decreasing. Default: ``samples`` uniform times for
+        adaptive methods (1001 when ``samples`` is None), every step for fixed-step methods.
+    samples : int, optional
+        Number of uniform output times when ``t_eval`` is None.
+    max_steps : int, optional
+        Step limit (default 10^7 adaptive, 10^8 fixed-step).
+    check : bool
+        Raise :class:`~drillstring.errors.SolveError` when the solve stops early (default);
+        with ``check=False`` the partial result is returned with its ``status``.
+
+    Examples
+    --------
+    >>> import drillstring as ds
+    >>> res = ds.simulate(ds.preset("aluminum"), modes=3, t_end=1.0)
+    >>> theta_k = res.theta(2 * 100.0 / 3)      # twist at z_k = 2l/3
+    >>> float(abs(res.q[0]).max())               # doctest: +ELLIPSIS
+    0.000...
+    """
+    if not isinstance(params, Parameters):
+        raise ValidationError("params", type(params).__name__, "a drillstring.Parameters")
+    method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
+        method, t_end, rtol, atol, dt, max_steps
+    )
+    coefficients = project(params, modes=modes, rigid_mode=rigid_mode)
+    times = _output_times(t_eval, samples, t_end_f, method)
+    if method in FIXED_STEP_METHODS and dt_f is None:
+        dt_f = _default_dt(coefficients)
+    system = _core.ModalSystem(
+        coefficients.mass,
+        coefficients.stiffness,
+        np.ascontiguousarray(coefficients.quartic_index, dtype=np.int64),
+        coefficients.quartic_coef,
+    )
+    q0, v0 = coefficients.initial_state(params)
+    raw = _core.solve_modal(
+        system, q0, v0, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps
+    )
+    result = Simulation(params, coefficients, system, method, raw)
+    if check and not result.success:
+        raise SolveError(result.status, result.message, result)
+    return result

@@ -1,0 +1,383 @@
+//! The adaptive stepping loop shared by Dormand-Prince 5(4) and DOP853.
+//!
+//! One loop, the method as data ([`Scheme`]: tableau, error estimate, dense output,
+//! step-size constants), following Hairer's `dopri5.f` / `dop853.f` (Hairer, Norsett,
+//! Wanner, *Solving ODEs I*, sec. II.4-II.6).
+//!
+//! A step `(t, y) -> (t + h, y_new)` is accepted when the scaled RMS error
+//!
+//! ```text
+//! err = sqrt(1/n sum_i (e_i / sc_i)^2),   sc_i = atol + rtol max(|y_i|, |y_new,i|)
+//! ```
+//!
+//! is `<= 1` (DOP853 combines two estimates, see `dop853.rs`). The next step is
+//! `h_new = h / fac` with (Lund-stabilised, sec. IV.2)
+//!
+//! ```text
+//! fac11 = err^expo1,  fac = fac11 / facold^beta,  fac = clamp(fac / safe, 1/fac2, 1/fac1)
+//! ```
+//!
+//! and `facold = max(err, 1e-4)` of the last accepted step. After a rejection
+//! `h_new = h / min(1/fac1, fac11 / safe)` and the step following the next accepted one
+//! may not grow beyond it. A non-finite `err` is a rejection with `h_new = 0.2 h`.
+//! The stages are evaluated FSAL: `f(t + h, y_new)` of an accepted step is `k_0` of
+//! the next one. A step that would end within 1% of `t_end` is stretched to land on it.
+//!
+//! Checked against Hairer's codes as shipped in scipy (`scipy.integrate.ode`): identical
+//! accepted/rejected step and evaluation counts for DOPRI5; for DOP853 too once scipy's
+//! C port's rejection typo (`h / min(facc1, facc1 / safe)` instead of
+//! `h / min(facc1, fac11 / safe)`) is mimicked. `Stats::nreject` counts every rejection
+//! (Hairer's `NREJCT` skips those before the first accepted step).
+
+use std::marker::PhantomData;
+
+use super::sampling::Sampler;
+use super::tableau::{all_finite, Stages, Tableau};
+use crate::error::Result;
+use crate::options::{validate_span, AdaptiveOptions, Output};
+use crate::solution::{Solution, Stats, Status};
+use crate::system::OdeSystem;
+
+/// Hairer's step-size control constants.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Control {
+    /// Safety factor `safe`.
+    pub safe: f64,
+    /// Smallest allowed ratio `h_new / h` (`fac1`).
+    pub fac1: f64,
+    /// Largest allowed ratio `h_new / h` (`fac2`).
+    pub fac2: f64,
+    /// Lund stabilisation exponent `beta`.
+    pub beta: f64,
+    /// `expo1`, the exponent of `err` (`1/(q+1) - c beta` for error order `q`).
+    pub expo1: f64,
+    /// Order used by the initial step guess `hinit`.
+    pub hinit_order: i32,
+}
+
+/// An embedded Runge-Kutta pair with dense output, run by [`integrate`].
+///
+/// Row layout of the stage storage: `0 .. TABLEAU.stages()` the step's stages,
+/// `FSAL` the derivative `f(t + h, y_new)`, then any extra dense-output stages.
+pub(crate) trait Scheme {
+    const TABLEAU: Tableau;
+    const CONTROL: Control;
+    /// Rows of the stage storage.
+    const ROWS: usize;
+    /// Row of `f(t + h, y_new)`.
+    const FSAL: usize;
+    /// Whether the error estimate uses `f(t + h, y_new)` (then it is evaluated on every
+    /// attempt; otherwise only on accepted steps).
+    const FSAL_IN_ERROR: bool;
+    /// Rows of the dense-output coefficients.
+    const DENSE_ROWS: usize;
+
+    /// The scaled error norm of the attempted step `(y, h) -> y_new` with stages `k`.
+    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64) -> f64;
+
+    /// Builds the continuous extension of the accepted step `t -> t + h` into `dense`,
+    /// evaluating any extra stages. Returns the number of right-hand-side evaluations.
+    #[allow(clippy::too_many_arguments)]
+    fn dense_prepare<S: OdeSystem + ?Sized>(
+        sys: &S,
+        t: f64,
+        h: f64,
+        y: &[f64],
+        y_new: &[f64],
+        k: &mut Stages,
+        ytmp: &mut [f64],
+        dense: &mut Stages,
+    ) -> u64;
+
+    /// Evaluates the continuous extension at `theta = (t_out - t) / h` into `out`.
+    fn dense_eval(dense: &Stages, y: &[f64], theta: f64, out: &mut [f64]);
+}
+
+/// The scaling `sc_i = atol + rtol max(|y_i|, |y_new,i|)` of Hairer's error norm.
+#[inline]
+pub(crate) fn scale(atol: f64, rtol: f64, y: f64, y_new: f64) -> f64 {
+    atol + rtol * y.abs().max(y_new.abs())
+}
+
+/// Validates the inputs of an adaptive solve.
+pub(crate) fn validate<S: OdeSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &AdaptiveOptions,
+) -> Result<()> {
+    validate_span(t0, t_end, output)?;
+    opts.validate()?;
+    super::check_state("y0", y0, sys.dim())
+}
+
+/// Solves `y' = f(t, y)` on `[t0, t_end]` with the pair `P`.
+pub(crate) fn integrate<P: Scheme, S: OdeSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &AdaptiveOptions,
+) -> Result<Solution> {
+    validate(sys, t0, y0, t_end, output, opts)?;
+    let mut sampler = Sampler::new(output);
+    let mut sol = sampler.solution(y0.len(), 1024);
+    let mut run = Run::<P, S>::new(sys, t0, y0, t_end, opts);
+    run.solve(&mut sampler, &mut sol);
+    sol.stats = run.stats;
+    Ok(sol)
+}
+
+/// The state of one adaptive solve; all buffers are allocated here, once.
+pub(crate) struct Run<'a, P, S: ?Sized> {
+    sys: &'a S,
+    opts: &'a AdaptiveOptions,
+    t_end: f64,
+    /// Largest step: `min(max_step, t_end - t0)`.
+    hmax: f64,
+    t: f64,
+    y: Vec<f64>,
+    y_new: Vec<f64>,
+    ytmp: Vec<f64>,
+    k: Stages,
+    dense: Stages,
+    stats: Stats,
+    scheme: PhantomData<P>,
+}
+
+/// How the loop of [`Run::solve`] ended.
+enum Outcome {
+    Done,
+    Failed(Status, String),
+}
+
+impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
+    /// Sets up the buffers and evaluates `k_0 = f(t0, y0)`.
+    pub fn new(sys: &'a S, t0: f64, y0: &[f64], t_end: f64, opts: &'a AdaptiveOptions) -> Self {
+        let n = y0.len();
+        let mut run = Run {
+            sys,
+            opts,
+            t_end,
+            hmax: opts.max_step.min(t_end - t0),
+            t: t0,
+            y: y0.to_vec(),
+            y_new: vec![0.0; n],
+            ytmp: vec![0.0; n],
+            k: Stages::new(P::ROWS, n),
+            dense: Stages::new(P::DENSE_ROWS, n),
+            stats: Stats::default(),
+            scheme: PhantomData,
+        };
+        sys.rhs(t0, &run.y, run.k.row_mut(0));
+        run.stats.nfev += 1;
+        run
+    }
+
+    /// The step floor `10 eps max(|t|, tiny)`.
+    fn min_step(&self) -> f64 {
+        10.0 * f64::EPSILON * self.t.abs().max(f64::MIN_POSITIVE)
+    }
+
+    fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution) {
+        sampler.start(sol, self.t, &self.y);
+        let h = match self.opts.first_step {
+            Some(h) => h.min(self.hmax),
+            None => self.hinit(),
+        };
+        if let Outcome::Failed(status, message) = self.step_loop(h, sampler, sol) {
+            sol.fail(status, message);
+        }
+    }
+
+    /// The accept/reject loop from step size `h` until `t_end` or a failure.
+    fn step_loop(&mut self, mut h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Outcome {
+        let c = P::CONTROL;
+        let mut facold: f64 = 1e-4;
+        let mut reject = false;
+        let mut attempts: u64 = 0;
+        loop {
+            if attempts >= self.opts.max_steps {
+                return Outcome::Failed(Status::MaxStepsReached, self.max_steps_message());
+            }
+            if h.is_nan() || h < self.min_step() {
+                let msg =
+                    format!("step size h = {h:e} fell below 10*eps*|t| = {:e} at t = {}", self.min_step(), self.t);
+                return Outcome::Failed(Status::StepSizeUnderflow, msg);
+            }
+            let (h_step, last) = self.clip_to_end(h);
+            h = h_step;
+            attempts += 1;
+            let err = self.attempt(h);
+            if !err.is_finite() {
+                self.stats.nreject += 1;
+                reject = true;
+                h *= 0.2;
+                continue;
+            }
+            let fac11 = err.powf(c.expo1);
+            let fac = (fac11 / facold.powf(c.beta) / c.safe).min(1.0 / c.fac1).max(1.0 / c.fac2);
+            let mut h_new = h / fac;
+            if err <= 1.0 {
+                facold = err.max(1e-4);
+                let t_new = if last { self.t_end } else { self.t + h };
+                if !all_finite(&self.y_new) {
+                    let msg = format!("state became non-finite in the step from t = {} to t = {t_new}", self.t);
+                    return Outcome::Failed(Status::NonFinite, msg);
+                }
+                self.accept(h, t_new, sampler, sol);
+                if last {
+                    return Outcome::Done;
+                }
+                h_new = h_new.min(self.hmax);
+                if reject {
+                    h_new = h_new.min(h);
+                }
+                reject = false;
+            } else {
+                h_new = h / (1.0 / c.fac1).min(fac11 / c.safe);
+                reject = true;
+                self.stats.nreject += 1;
+            }
+            h = h_new;
+        }
+    }
+
+    /// Hairer's end-point rule: a step that would come within `1%` of `t_end` is stretched
+    /// to end exactly there (the last step). If that would exceed `max_step`, the rest is
+    /// split into two equal steps instead.
+    fn clip_to_end(&self, h: f64) -> (f64, bool) {
+        let rest = self.t_end - self.t;
+        if self.t + 1.01 * h <= self.t_end {
+            (h, false)
+        } else if rest <= self.hmax {
+            (rest, true)
+        } else {
+            (0.5 * rest, false)
+        }
+    }
+
+    fn max_steps_message(&self) -> String {
+        format!(
+            "reached t = {} before t_end = {}: max_steps = {} step attempts (accepted + rejected) used",
+            self.t, self.t_end, self.opts.max_steps
+        )
+    }
+
+    /// Attempts the step `t -> t + h`: stages, `y_new` and the error norm.
+    pub fn attempt(&mut self, h: f64) -> f64 {
+        let tab = P::TABLEAU;
+        self.stats.nfev += tab.eval_stages(self.sys, self.t, h, &self.y, &mut self.k, &mut self.ytmp);
+        tab.advance(h, &self.y, &self.k, &mut self.y_new);
+        if P::FSAL_IN_ERROR {
+            self.eval_fsal(self.t + h);
+        }
+        P::error_norm(&self.k, h, &self.y, &self.y_new, self.opts.rtol, self.opts.atol)
+    }
+
+    /// `k[FSAL] = f(t_new, y_new)`.
+    fn eval_fsal(&mut self, t_new: f64) {
+        self.sys.rhs(t_new, &self.y_new, self.k.row_mut(P::FSAL));
+        self.stats.nfev += 1;
+    }
+
+    /// Accepts the attempted step of size `h` ending at `t_new`: FSAL derivative, output
+    /// samples, and the move to the new state.
+    pub fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) {
+        self.stats.naccept += 1;
+        if !P::FSAL_IN_ERROR {
+            self.eval_fsal(t_new);
+        }
+        if sampler.needs_interpolant(t_new) {
+            self.stats.nfev += P::dense_prepare(
+                self.sys,
+                self.t,
+                h,
+                &self.y,
+                &self.y_new,
+                &mut self.k,
+                &mut self.ytmp,
+                &mut self.dense,
+            );
+        }
+        let (t, y, dense) = (self.t, &self.y, &self.dense);
+        sampler.record(sol, t_new, &self.y_new, &mut self.ytmp, |t_out, out| {
+            P::dense_eval(dense, y, (t_out - t) / h, out);
+        });
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.k.copy_row(P::FSAL, 0);
+        self.t = t_new;
+    }
+
+    /// Hairer's initial step guess `hinit`: with `d0 = ||y0||`, `d1 = ||f0||` (scaled with
+    /// `sc_i = atol + rtol |y0_i|`), an explicit Euler step of `h0 = 0.01 d0 / d1` and
+    /// `d2 = ||f(t0 + h0, y0 + h0 f0) - f0|| / h0`, the step
+    /// `min(100 h0, (0.01 / max(d2, d1))^(1/order), hmax)`.
+    fn hinit(&mut self) -> f64 {
+        let (rtol, atol, order) = (self.opts.rtol, self.opts.atol, P::CONTROL.hinit_order);
+        let f0 = self.k.row(0);
+        let (mut dnf, mut dny) = (0.0, 0.0);
+        for (&y, &f) in self.y.iter().zip(f0) {
+            let sk = atol + rtol * y.abs();
+            dnf += (f / sk) * (f / sk);
+            dny += (y / sk) * (y / sk);
+        }
+        let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
+        h = h.min(self.hmax);
+        if h.is_nan() || h <= 0.0 {
+            h = 1e-6_f64.min(self.hmax);
+        }
+        for ((yt, &y), &f) in self.ytmp.iter_mut().zip(&self.y).zip(f0) {
+            *yt = y + h * f;
+        }
+        // Row 1 is free before the first step.
+        self.sys.rhs(self.t + h, &self.ytmp, self.k.row_mut(1));
+        self.stats.nfev += 1;
+        let mut der2 = 0.0;
+        for ((&y, &f0i), &f1i) in self.y.iter().zip(self.k.row(0)).zip(self.k.row(1)) {
+            let sk = atol + rtol * y.abs();
+            der2 += ((f1i - f0i) / sk) * ((f1i - f0i) / sk);
+        }
+        let der2 = der2.sqrt() / h;
+        let der12 = der2.abs().max(dnf.sqrt());
+        let h1 = if der12 <= 1e-15 { 1e-6_f64.max(h * 1e-3) } else { (0.01 / der12).powf(1.0 / f64::from(order)) };
+        let guess = (100.0 * h).min(h1).min(self.hmax);
+        if guess > 0.0 {
+            guess
+        } else {
+            h
+        }
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod testing {
+    //! Test hook: the adaptive pairs stepped with `n` uniform steps, every step accepted.
+
+    use super::*;
+
+    /// Takes `n` uniform steps of the pair `P` (its propagated solution) from `(t0, y0)`
+    /// to `t_end` and returns the final state.
+    pub(crate) fn uniform_steps<P: Scheme, S: OdeSystem + ?Sized>(
+        sys: &S,
+        t0: f64,
+        y0: &[f64],
+        t_end: f64,
+        n: usize,
+    ) -> Vec<f64> {
+        let opts = AdaptiveOptions::default();
+        let output = Output::EveryStep;
+        let mut sampler = Sampler::new(&output);
+        let mut sol = sampler.solution(y0.len(), n + 1);
+        let mut run = Run::<P, S>::new(sys, t0, y0, t_end, &opts);
+        let h = (t_end - t0) / n as f64;
+        for i in 1..=n {
+            run.attempt(h);
+            run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol);
+        }
+        run.y
+    }
+}

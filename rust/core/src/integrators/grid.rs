@@ -1,0 +1,62 @@
+//! The uniform time grid of the fixed-step methods.
+//!
+//! The requested step `dt` is shrunk to the largest value `<= dt` that divides the span:
+//! `N = ceil((t_end - t0) / dt - 1e-9)` steps of `dt_eff = (t_end - t0) / N` (the `1e-9`
+//! keeps a span that is a multiple of `dt` up to rounding from getting an extra step).
+//! Grid times are computed as `t_n = t0 + n dt_eff`, never accumulated, and `t_N = t_end`
+//! exactly.
+
+/// `N` uniform steps from `t0` to `t_end`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Grid {
+    pub t0: f64,
+    pub t_end: f64,
+    /// Number of steps `N >= 1`.
+    pub steps: u64,
+    /// The effective step `dt_eff = (t_end - t0) / N`.
+    pub dt: f64,
+}
+
+impl Grid {
+    /// The grid for a requested step `dt > 0` on `t0 < t_end` (validated by the caller).
+    pub fn new(t0: f64, t_end: f64, dt: f64) -> Self {
+        let span = t_end - t0;
+        let n = (span / dt - 1e-9).ceil();
+        // `as` saturates: an absurd step count is caught by `max_steps`.
+        let steps = if n >= 1.0 { n as u64 } else { 1 };
+        Grid { t0, t_end, steps, dt: span / steps as f64 }
+    }
+
+    /// The grid time `t_n` (`t_end` exactly for `n >= N`).
+    pub fn time(&self, n: u64) -> f64 {
+        if n >= self.steps {
+            self.t_end
+        } else {
+            self.t0 + n as f64 * self.dt
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shrinks_dt_to_divide_the_span() {
+        let g = Grid::new(0.0, 1.0, 0.3);
+        assert_eq!(g.steps, 4);
+        assert_eq!(g.dt, 0.25);
+        assert_eq!(g.time(4), 1.0);
+        // A multiple of dt up to rounding gets no extra step.
+        let g = Grid::new(0.0, 0.3, 0.1);
+        assert_eq!(g.steps, 3);
+        assert_eq!(g.time(3), 0.3);
+        // dt larger than the span: one step.
+        let g = Grid::new(1.0, 2.0, 1e300);
+        assert_eq!(g.steps, 1);
+        assert_eq!(g.dt, 1.0);
+        // Absurdly small dt saturates instead of panicking.
+        let g = Grid::new(0.0, 1e300, 1e-300);
+        assert_eq!(g.steps, u64::MAX);
+    }
+}

@@ -1,0 +1,219 @@
+//! Time integrators: the adaptive explicit Runge-Kutta pairs DOP853 and Dormand-Prince
+//! 5(4) with dense output, classical RK4 and central differences with fixed steps.
+//!
+//! Every solve validates its input first (an [`Error`] names the offending field) and
+//! then never panics: numerical failure ends it with a [`crate::Status`] and the samples
+//! reached so far. Adaptive steps are not tied to the output grid: [`Output::Times`] is
+//! sampled through the methods' continuous extensions. Fixed-step methods use
+//! `N = ceil((t_end - t0) / dt - 1e-9)` uniform steps of `(t_end - t0) / N` (the largest
+//! step `<= dt` that divides the span) and cubic Hermite interpolation between them.
+//!
+//! Reference: E. Hairer, S. P. Norsett, G. Wanner, *Solving Ordinary Differential
+//! Equations I: Nonstiff Problems*, 2nd ed., Springer 1993, sec. II.1-II.6.
+
+mod adaptive;
+mod central;
+mod dop853;
+mod dopri5;
+mod grid;
+mod hermite;
+mod rk4;
+mod sampling;
+mod tableau;
+
+use crate::error::{Error, Result};
+use crate::options::{AdaptiveOptions, FixedOptions, Output};
+use crate::solution::Solution;
+use crate::system::{FirstOrder, OdeSystem, SecondOrderSystem};
+
+/// DOP853 (Dormand-Prince order 8 with 5th/3rd-order error estimate and 7th-order dense
+/// output), with Hairer's step-size control (`safe = 0.9`, `fac1 = 0.333`, `fac2 = 6`,
+/// `beta = 0`).
+pub fn dop853<S: OdeSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &AdaptiveOptions,
+) -> Result<Solution> {
+    adaptive::integrate::<dop853::Dop853, S>(sys, t0, y0, t_end, output, opts)
+}
+
+/// Dormand-Prince 5(4) (`DOPRI5`, 4th-order dense output), with Hairer's step-size control
+/// (`safe = 0.9`, `fac1 = 0.2`, `fac2 = 10`, Lund stabilisation `beta = 0.04`).
+pub fn dopri5<S: OdeSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &AdaptiveOptions,
+) -> Result<Solution> {
+    adaptive::integrate::<dopri5::Dopri5, S>(sys, t0, y0, t_end, output, opts)
+}
+
+/// Classical fourth-order Runge-Kutta with fixed steps (see the module docs for the grid).
+pub fn rk4<S: OdeSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    y0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &FixedOptions,
+) -> Result<Solution> {
+    rk4::integrate(sys, t0, y0, t_end, output, opts)
+}
+
+/// Explicit central differences `q[n+1] = 2 q[n] - q[n-1] + dt^2 a(q[n])`, started with
+/// `q[1] = q[0] + dt v0` (exactly this start: it is what the published table used).
+/// The state in the [`Solution`] is `[q, v]` with `v` the central-difference velocity
+/// `(q[n+1] - q[n-1]) / (2 dt)` (`v0` at `n = 0`). `Stats::nfev` counts evaluations of `a`.
+pub fn central_difference<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &FixedOptions,
+) -> Result<Solution> {
+    central::integrate(sys, t0, q0, v0, t_end, output, opts)
+}
+
+/// An integration method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    Dop853,
+    Dopri5,
+    Rk4,
+    Central,
+}
+
+impl Method {
+    /// Every method, in the order of their names in [`Method::parse`]'s error.
+    pub const ALL: [Method; 4] = [Method::Dop853, Method::Dopri5, Method::Rk4, Method::Central];
+
+    /// Parses `"dop853"`, `"dopri5"`, `"rk4"` or `"central"`.
+    pub fn parse(name: &str) -> Result<Method> {
+        Method::ALL.into_iter().find(|m| m.name() == name).ok_or_else(|| {
+            Error::invalid("method", format!("{name:?}"), "one of \"dop853\", \"dopri5\", \"rk4\", \"central\"")
+        })
+    }
+
+    /// The name accepted by [`Method::parse`].
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Dop853 => "dop853",
+            Method::Dopri5 => "dopri5",
+            Method::Rk4 => "rk4",
+            Method::Central => "central",
+        }
+    }
+
+    /// Whether the method chooses its steps (`rtol`, `atol`, `first_step`, `max_step`
+    /// apply) rather than taking fixed steps of `dt`.
+    pub fn is_adaptive(self) -> bool {
+        matches!(self, Method::Dop853 | Method::Dopri5)
+    }
+}
+
+/// Options for any method: `rtol`, `atol`, `first_step`, `max_step` are used by the
+/// adaptive methods, `dt` is required (`Some`) by the fixed-step ones. `max_steps: None`
+/// takes the method's default ([`AdaptiveOptions::default`], [`FixedOptions::new`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveOptions {
+    pub method: Method,
+    pub rtol: f64,
+    pub atol: f64,
+    pub dt: Option<f64>,
+    pub max_steps: Option<u64>,
+    pub first_step: Option<f64>,
+    pub max_step: f64,
+}
+
+impl SolveOptions {
+    /// The defaults of [`AdaptiveOptions`] for `method`, without `dt`.
+    pub fn new(method: Method) -> Self {
+        let a = AdaptiveOptions::default();
+        SolveOptions {
+            method,
+            rtol: a.rtol,
+            atol: a.atol,
+            dt: None,
+            max_steps: None,
+            first_step: a.first_step,
+            max_step: a.max_step,
+        }
+    }
+
+    /// The options of an adaptive method.
+    pub fn adaptive(&self) -> AdaptiveOptions {
+        let default = AdaptiveOptions::default();
+        AdaptiveOptions {
+            rtol: self.rtol,
+            atol: self.atol,
+            max_steps: self.max_steps.unwrap_or(default.max_steps),
+            first_step: self.first_step,
+            max_step: self.max_step,
+        }
+    }
+
+    /// The options of a fixed-step method; `dt` must be given.
+    pub fn fixed(&self) -> Result<FixedOptions> {
+        let dt = self.dt.ok_or_else(|| {
+            Error::invalid("dt", "None", format!("a finite number > 0 (required by method {})", self.method.name()))
+        })?;
+        let mut opts = FixedOptions::new(dt);
+        if let Some(max_steps) = self.max_steps {
+            opts.max_steps = max_steps;
+        }
+        Ok(opts)
+    }
+}
+
+impl Default for SolveOptions {
+    /// DOP853 with the default tolerances.
+    fn default() -> Self {
+        SolveOptions::new(Method::Dop853)
+    }
+}
+
+/// Solves a second-order system `q'' = a(q)` from `(q0, v0)` with any method; the state in
+/// the [`Solution`] is `y = [q, v]`.
+pub fn solve_second_order<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &SolveOptions,
+) -> Result<Solution> {
+    check_state("q0", q0, sys.dof())?;
+    check_state("v0", v0, sys.dof())?;
+    let first_order = FirstOrder(sys);
+    match opts.method {
+        Method::Dop853 => dop853(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.adaptive()),
+        Method::Dopri5 => dopri5(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.adaptive()),
+        Method::Rk4 => rk4(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.fixed()?),
+        Method::Central => central_difference(sys, t0, q0, v0, t_end, output, &opts.fixed()?),
+    }
+}
+
+/// Checks that an initial state has length `dim >= 1` and finite entries.
+fn check_state(field: &'static str, values: &[f64], dim: usize) -> Result<()> {
+    if dim == 0 {
+        return Err(Error::invalid(field, "a system of dimension 0", "a system with at least one unknown"));
+    }
+    if values.len() != dim {
+        return Err(Error::invalid(field, format!("length {}", values.len()), format!("length {dim}")));
+    }
+    if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(Error::invalid(field, format!("{field}[{i}] = {v}"), "finite values"));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests;

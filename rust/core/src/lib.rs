@@ -1,0 +1,28 @@
+//! drillstring-core: the numerics of drillstring.
+//!
+//! The model is the nonlinear torsion PDE of a rotating drill string (paper eq. 18)
+//!
+//! ```text
+//! k1 th_tt = k2 th_zz - k3 th^3 + k4 (th^2 th_zz + th th_z^2) + k5 (th_z^3)_z + k6 th,
+//! th_z(0, t) = th_z(l, t) = 0,
+//! ```
+//!
+//! reduced by Bubnov-Galerkin projection on `cos(i pi z / l)` to the modal system
+//! `M q'' + K q + N(q) = 0` ([`modal::ModalSystem`]) and integrated by the explicit
+//! Runge-Kutta methods and the central-difference scheme in [`integrators`].
+//!
+//! Invalid input is an [`Error`]; numerical failure (step limit, step-size underflow,
+//! non-finite state) ends a solve with a [`Status`] and a message. Nothing here panics on
+//! finite or non-finite numeric input.
+
+pub mod error;
+pub mod integrators;
+pub mod modal;
+pub mod options;
+pub mod solution;
+pub mod system;
+
+pub use error::{Error, Result};
+pub use options::{AdaptiveOptions, FixedOptions, Output};
+pub use solution::{Solution, Stats, Status};
+pub use system::{FirstOrder, OdeSystem, SecondOrderSystem};

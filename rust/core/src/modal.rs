@@ -1,0 +1,254 @@
+//! The modal (Bubnov-Galerkin) system `M q'' + K q + N(q) = 0`.
+//!
+//! With the twist expanded as `theta(z, t) = sum_i q_i(t) cos(i pi z / l)` the basis is
+//! orthogonal, so the mass matrix `M` and the linear stiffness `K` are diagonal:
+//! `M_ii = k1 * int cos^2`, `K_ii = (k2 (i pi / l)^2 - k6) * int cos^2`. The cubic force is
+//! the gradient of the quartic potential
+//!
+//! ```text
+//! V(q) = int_0^l [k3/4 th^4 + k4/2 th^2 th_z^2 + k5/4 th_z^4] dz
+//!      = sum_t c_t q_a q_b q_c q_d      (a <= b <= c <= d, one term per index set)
+//! ```
+//!
+//! which is the compact, symmetry-exploiting form of the cubic coupling tensor. The
+//! coefficients are generated in the Python layer (`drillstring.galerkin`) from exact
+//! trigonometric integrals and passed here.
+
+use crate::error::{Error, Result};
+use crate::system::SecondOrderSystem;
+
+/// One term `coef * q[a] q[b] q[c] q[d]` of the quartic potential.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QuarticTerm {
+    pub idx: [u32; 4],
+    pub coef: f64,
+}
+
+/// One monomial `coef * q[b] q[c] q[d]` of a component of `grad V`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct CubicMonomial {
+    idx: [u32; 3],
+    coef: f64,
+}
+
+/// `M q'' + K q + grad V(q) = 0` with diagonal `M`, `K`.
+///
+/// The gradient is stored row by row (compressed rows: `grad_start[j] .. grad_start[j + 1]`
+/// index the monomials of `dV/dq_j`, duplicates merged), so each component is accumulated
+/// in a register and written once: no read-modify-write chains through memory.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalSystem {
+    inv_mass: Vec<f64>,
+    mass: Vec<f64>,
+    stiffness: Vec<f64>,
+    terms: Vec<QuarticTerm>,
+    grad: Vec<CubicMonomial>,
+    grad_start: Vec<usize>,
+}
+
+/// The monomials of `grad V` grouped by component: `d/dq_j` of each term, merged.
+fn gradient_rows(n: usize, terms: &[QuarticTerm]) -> (Vec<CubicMonomial>, Vec<usize>) {
+    let mut rows: Vec<Vec<CubicMonomial>> = vec![Vec::new(); n];
+    for term in terms {
+        for k in 0..4 {
+            let mut rest = [0u32; 3];
+            let mut r = 0;
+            for (m, &i) in term.idx.iter().enumerate() {
+                if m != k {
+                    rest[r] = i;
+                    r += 1;
+                }
+            }
+            rest.sort_unstable();
+            let row = &mut rows[term.idx[k] as usize];
+            match row.iter_mut().find(|mono| mono.idx == rest) {
+                Some(mono) => mono.coef += term.coef,
+                None => row.push(CubicMonomial { idx: rest, coef: term.coef }),
+            }
+        }
+    }
+    let mut grad = Vec::new();
+    let mut start = Vec::with_capacity(n + 1);
+    for mut row in rows {
+        start.push(grad.len());
+        row.retain(|mono| mono.coef != 0.0);
+        row.sort_by(|a, b| a.idx.cmp(&b.idx));
+        grad.extend(row);
+    }
+    start.push(grad.len());
+    (grad, start)
+}
+
+impl ModalSystem {
+    /// Builds the system from the diagonal of `M` (finite, > 0), the diagonal of `K`
+    /// (finite; negative entries are linearly unstable modes) and the quartic terms
+    /// (indices < n, finite coefficients).
+    pub fn new(mass: Vec<f64>, stiffness: Vec<f64>, terms: Vec<QuarticTerm>) -> Result<Self> {
+        let n = mass.len();
+        if n == 0 {
+            return Err(Error::invalid("mass", "an empty vector", "at least one mode"));
+        }
+        if stiffness.len() != n {
+            return Err(Error::invalid(
+                "stiffness",
+                format!("length {}", stiffness.len()),
+                format!("length {n} (the number of modes)"),
+            ));
+        }
+        for (i, &m) in mass.iter().enumerate() {
+            if !(m.is_finite() && m > 0.0) {
+                return Err(Error::invalid(format!("mass[{i}]"), m, "a finite number > 0"));
+            }
+        }
+        for (i, &k) in stiffness.iter().enumerate() {
+            if !k.is_finite() {
+                return Err(Error::invalid(format!("stiffness[{i}]"), k, "a finite number"));
+            }
+        }
+        for (t, term) in terms.iter().enumerate() {
+            if let Some(&bad) = term.idx.iter().find(|&&i| i as usize >= n) {
+                return Err(Error::invalid(format!("quartic_index[{t}]"), bad, format!("mode positions in 0..{n}")));
+            }
+            if !term.coef.is_finite() {
+                return Err(Error::invalid(format!("quartic_coef[{t}]"), term.coef, "a finite number"));
+            }
+        }
+        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        let (grad, grad_start) = gradient_rows(n, &terms);
+        Ok(ModalSystem { inv_mass, mass, stiffness, terms, grad, grad_start })
+    }
+
+    /// Number of modal coordinates.
+    pub fn modes(&self) -> usize {
+        self.mass.len()
+    }
+
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
+    }
+
+    pub fn stiffness(&self) -> &[f64] {
+        &self.stiffness
+    }
+
+    pub fn terms(&self) -> &[QuarticTerm] {
+        &self.terms
+    }
+
+    /// The generalised force `K q + grad V(q)` into `out`.
+    #[inline]
+    pub fn force(&self, q: &[f64], out: &mut [f64]) {
+        let n = self.modes();
+        let (q, out) = (&q[..n], &mut out[..n]);
+        for j in 0..n {
+            let mut acc = self.stiffness[j] * q[j];
+            for mono in &self.grad[self.grad_start[j]..self.grad_start[j + 1]] {
+                let [b, c, d] = mono.idx;
+                acc += mono.coef * q[b as usize] * q[c as usize] * q[d as usize];
+            }
+            out[j] = acc;
+        }
+    }
+
+    /// The quartic potential `V(q)`.
+    pub fn quartic_potential(&self, q: &[f64]) -> f64 {
+        self.terms
+            .iter()
+            .map(|t| t.coef * q[t.idx[0] as usize] * q[t.idx[1] as usize] * q[t.idx[2] as usize] * q[t.idx[3] as usize])
+            .sum()
+    }
+
+    /// The conserved energy `H = q'^T M q' / 2 + q^T K q / 2 + V(q)` (model notes), i.e. the
+    /// PDE energy evaluated on the Galerkin expansion.
+    pub fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        let quadratic: f64 =
+            (0..self.modes()).map(|i| 0.5 * (self.mass[i] * v[i] * v[i] + self.stiffness[i] * q[i] * q[i])).sum();
+        quadratic + self.quartic_potential(q)
+    }
+}
+
+impl SecondOrderSystem for ModalSystem {
+    fn dof(&self) -> usize {
+        self.modes()
+    }
+
+    #[inline]
+    fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
+        self.force(q, acc);
+        for (a, &im) in acc.iter_mut().zip(&self.inv_mass) {
+            *a = -*a * im;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two coupled modes with a few terms, including repeated indices.
+    fn sample() -> ModalSystem {
+        ModalSystem::new(
+            vec![2.0, 3.0],
+            vec![5.0, -1.0],
+            vec![
+                QuarticTerm { idx: [0, 0, 0, 0], coef: 0.7 },
+                QuarticTerm { idx: [0, 0, 1, 1], coef: -0.3 },
+                QuarticTerm { idx: [0, 1, 1, 1], coef: 0.2 },
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn force_is_gradient_of_energy() {
+        let sys = sample();
+        let q = [0.3, -0.7];
+        let v = [0.0, 0.0];
+        let mut f = [0.0; 2];
+        sys.force(&q, &mut f);
+        for i in 0..2 {
+            let h = 1e-6;
+            let mut qp = q;
+            let mut qm = q;
+            qp[i] += h;
+            qm[i] -= h;
+            let fd = (sys.energy(&qp, &v) - sys.energy(&qm, &v)) / (2.0 * h);
+            assert!((fd - f[i]).abs() < 1e-8, "mode {i}: {fd} vs {}", f[i]);
+        }
+    }
+
+    #[test]
+    fn gradient_rows_merge_duplicates() {
+        // V = 0.7 q0^4: one monomial 2.8 q0^3 in row 0
+        let sys = ModalSystem::new(vec![1.0], vec![0.0], vec![QuarticTerm { idx: [0, 0, 0, 0], coef: 0.7 }]).unwrap();
+        assert_eq!(sys.grad.len(), 1);
+        assert!((sys.grad[0].coef - 2.8).abs() < 1e-15);
+        // V = -0.3 q0^2 q1^2: rows 0 and 1 each get one merged monomial of weight -0.6
+        let sys = sample();
+        assert_eq!(sys.grad_start, vec![0, 3, 5]);
+    }
+
+    #[test]
+    fn acceleration_divides_by_mass() {
+        let sys = sample();
+        let q = [0.1, 0.2];
+        let mut f = [0.0; 2];
+        let mut a = [0.0; 2];
+        sys.force(&q, &mut f);
+        sys.acceleration(&q, &mut a);
+        assert_eq!(a[0], -f[0] / 2.0);
+        assert!((a[1] + f[1] / 3.0).abs() < 1e-16);
+    }
+
+    #[test]
+    fn rejects_bad_input() {
+        assert_eq!(ModalSystem::new(vec![], vec![], vec![]).unwrap_err().field(), "mass");
+        assert_eq!(ModalSystem::new(vec![1.0], vec![1.0, 2.0], vec![]).unwrap_err().field(), "stiffness");
+        assert_eq!(ModalSystem::new(vec![-1.0], vec![1.0], vec![]).unwrap_err().field(), "mass[0]");
+        assert_eq!(ModalSystem::new(vec![1.0], vec![f64::NAN], vec![]).unwrap_err().field(), "stiffness[0]");
+        let bad = vec![QuarticTerm { idx: [0, 0, 0, 1], coef: 1.0 }];
+        assert_eq!(ModalSystem::new(vec![1.0], vec![1.0], bad).unwrap_err().field(), "quartic_index[0]");
+        let bad = vec![QuarticTerm { idx: [0, 0, 0, 0], coef: f64::INFINITY }];
+        assert_eq!(ModalSystem::new(vec![1.0], vec![1.0], bad).unwrap_err().field(), "quartic_coef[0]");
+    }
+}

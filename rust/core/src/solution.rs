@@ -1,0 +1,116 @@
+//! What a solve returns: samples, a status and statistics.
+
+use std::fmt;
+
+/// How a solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Reached `t_end`.
+    Success,
+    /// Stopped after `max_steps` steps before reaching `t_end`.
+    MaxStepsReached,
+    /// The adaptive step size fell below the floor `10 * eps * |t|` (stiffness or a blow-up).
+    StepSizeUnderflow,
+    /// The state became NaN or infinite (divergence).
+    NonFinite,
+}
+
+impl Status {
+    /// A stable integer code (used across the Python boundary).
+    pub fn code(self) -> i32 {
+        match self {
+            Status::Success => 0,
+            Status::MaxStepsReached => 1,
+            Status::StepSizeUnderflow => 2,
+            Status::NonFinite => 3,
+        }
+    }
+
+    /// A stable short name (`"success"`, `"max_steps"`, `"step_size_underflow"`, `"non_finite"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Success => "success",
+            Status::MaxStepsReached => "max_steps",
+            Status::StepSizeUnderflow => "step_size_underflow",
+            Status::NonFinite => "non_finite",
+        }
+    }
+
+    pub fn is_success(self) -> bool {
+        self == Status::Success
+    }
+}
+
+impl fmt::Display for Status {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Work counters of one solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Right-hand-side evaluations (for second-order fixed-step schemes: acceleration evaluations).
+    pub nfev: u64,
+    /// Accepted steps.
+    pub naccept: u64,
+    /// Rejected steps (always 0 for fixed-step methods).
+    pub nreject: u64,
+}
+
+/// The samples of one solve: `t[k]` and the state `y[k * dim .. (k + 1) * dim]`.
+///
+/// When the solve stops early (any status other than [`Status::Success`]) the samples
+/// hold only the output times reached before it stopped.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Solution {
+    pub dim: usize,
+    pub t: Vec<f64>,
+    /// Row-major, `t.len() * dim` values.
+    pub y: Vec<f64>,
+    pub status: Status,
+    /// Human-readable explanation of the status (empty on success).
+    pub message: String,
+    pub stats: Stats,
+}
+
+impl Solution {
+    /// An empty solution for a state of length `dim`, with room for `capacity` samples.
+    pub fn with_capacity(dim: usize, capacity: usize) -> Self {
+        Solution {
+            dim,
+            t: Vec::with_capacity(capacity),
+            y: Vec::with_capacity(capacity * dim),
+            status: Status::Success,
+            message: String::new(),
+            stats: Stats::default(),
+        }
+    }
+
+    /// Appends one sample.
+    pub fn push(&mut self, t: f64, y: &[f64]) {
+        debug_assert_eq!(y.len(), self.dim);
+        self.t.push(t);
+        self.y.extend_from_slice(y);
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// The state at sample `k`.
+    pub fn state(&self, k: usize) -> &[f64] {
+        &self.y[k * self.dim..(k + 1) * self.dim]
+    }
+
+    /// Ends the solve with a failure status and message.
+    pub fn fail(&mut self, status: Status, message: impl Into<String>) {
+        self.status = status;
+        self.message = message.into();
+    }
+}
