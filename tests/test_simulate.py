@@ -200,3 +200,13 @@ def test_core_rejects_bad_arrays():
         _core.solve_modal(system, np.zeros(3), np.zeros(2), 1.0, None, "dop853", 1e-6, 1e-9)
     with pytest.raises(ValidationError, match="q0"):
         _core.solve_modal(system, np.array([math.nan, 0.0]), np.zeros(2), 1.0, None, "dop853", 1e-6, 1e-9)
+
+
+def test_linearised_model_is_harmonic():
+    # nonlinear=False: q1(t) = (C1 / w1) sin(w1 t) exactly
+    res = ds.simulate(REF, modes=1, nonlinear=False, t_end=1.0, rtol=1e-12, atol=1e-16)
+    w1 = res.coefficients.linear_frequencies[0]
+    np.testing.assert_allclose(res.q[0], 0.1 / w1 * np.sin(w1 * res.t), rtol=0, atol=1e-10 * 0.1 / w1)
+    assert res.energy_drift() < 1e-10
+    nonlinear = ds.simulate(REF, modes=1, t_end=1.0)
+    assert np.abs(nonlinear.q[0] - res.q[0]).max() > 1e-5  # the cubic term shifts the phase visibly

@@ -18,7 +18,8 @@ def rows():
 #: prints 5.068e-4 and 0.120. The discrete maximum moves by +-2e-4 percentage points under 1e-5
 #: relative changes of a2 (peak sampling), and the linear theory of the scheme bounds the excess
 #: amplitude by 1/sqrt(1 - (w dt)^2/4) - 1 = 0.119 %, so that one cell is held to the paper within
-#: 1e-5 relative of its rounding interval (amplitude) and 1e-3 percentage points (difference); every other cell to the digit.
+#: 1e-5 relative of its rounding interval (amplitude) and 1e-3 percentage points (difference);
+#: every other cell to the printed digit.
 BOUNDARY_ROW = 2
 
 

@@ -37,7 +37,7 @@ from .section import Section
 if TYPE_CHECKING:
     from .parameters import Parameters
 
-__all__ = ["shear_modulus", "PDECoefficients"]
+__all__ = ["PDECoefficients", "shear_modulus"]
 
 FloatOrArray = Union[float, NDArray[np.float64]]
 
@@ -113,7 +113,8 @@ class PDECoefficients:
             k2=4.0 * g * ip,
             k3=2.0 * section.area * g / (1.0 - 2.0 * nu),
             k4=g * ip * (5.0 - 6.0 * nu) / (4.0 * (1.0 - 2.0 * nu)),
-            k5=g * (section.i_r + sign * section.i_x2y2 * (5.0 - 6.0 * nu))
+            k5=g
+            * (section.i_r + sign * section.i_x2y2 * (5.0 - 6.0 * nu))
             / (8.0 * (1.0 - 2.0 * nu)),
             k6=params.density * ip * params.omega**2,
             length=params.length,

@@ -70,9 +70,9 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MAX_MODES",
+    "DuffingCoefficients",
     "GalerkinIntegrals",
     "ModalCoefficients",
-    "DuffingCoefficients",
     "dimensionless_integrals",
     "mode_numbers",
     "project",
@@ -204,7 +204,7 @@ def _cached_integrals(modes: int, rigid_mode: bool) -> GalerkinIntegrals:
         # candidates d = +-a +- b +- c with c <= d <= top
         cand = a * _SIGNS[:, 1, None] + b * _SIGNS[:, 2, None] + c * _SIGNS[:, 3, None]
         ok = (cand >= c) & (cand <= top)
-        rows, = np.nonzero(ok.ravel())
+        (rows,) = np.nonzero(ok.ravel())
         col = rows % b.size
         d = cand.ravel()[rows]
         key = ((a * base + b[col]) * base + c[col]) * base + d
@@ -415,12 +415,11 @@ class ModalCoefficients:
         weights = np.concatenate([coef * left[k] * right[k] for k in range(4)])
         target = self.quartic_index.T.ravel()  # position k of every term, k-major
         if qa.ndim == 1:
-            return np.bincount(target, weights=weights, minlength=m)
+            return np.bincount(target, weights=weights, minlength=m).astype(float, copy=False)
         samples = qa.shape[1]
         flat = (target[:, None] * samples + np.arange(samples)).ravel()
-        return np.bincount(flat, weights=weights.ravel(), minlength=m * samples).reshape(
-            m, samples
-        )
+        force = np.bincount(flat, weights=weights.ravel(), minlength=m * samples)
+        return force.astype(float, copy=False).reshape(m, samples)
 
     def cubic_tensor(self) -> FloatArray:
         """Dense symmetric ``T`` (m, m, m, m) with ``grad V_j = sum T_jbcd q_b q_c q_d``.

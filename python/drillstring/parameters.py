@@ -25,9 +25,10 @@ import dataclasses
 import math
 import os
 import sys
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from numbers import Real
-from typing import Any, Mapping, Union
+from typing import Any, Union
 
 from .errors import ValidationError
 
@@ -37,12 +38,12 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
     import tomli as tomllib
 
 __all__ = [
-    "Parameters",
-    "PRESETS",
     "K5_VARIANTS",
-    "preset",
+    "PRESETS",
+    "Parameters",
     "load",
     "load_toml",
+    "preset",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -153,9 +154,7 @@ class Parameters:
             )
         coerced = []
         for i, value in enumerate(velocities):
-            coerced.append(
-                _real(f"initial_velocities[{i}]", value, "a finite real number (rad/s)")
-            )
+            coerced.append(_real(f"initial_velocities[{i}]", value, "a finite real number (rad/s)"))
         set_("initial_velocities", tuple(coerced))
 
         if not isinstance(self.k5_variant, str) or self.k5_variant not in K5_VARIANTS:

@@ -7,9 +7,11 @@ core with the GIL released.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
@@ -230,6 +232,7 @@ def simulate(
     *,
     samples: Optional[int] = None,
     max_steps: Optional[int] = None,
+    nonlinear: bool = True,
     check: bool = True,
 ) -> Simulation:
     """Integrates the ``modes``-mode Galerkin model of ``params`` over ``0 <= t <= t_end``.
@@ -259,6 +262,8 @@ def simulate(
         Number of uniform output times when ``t_eval`` is None.
     max_steps : int, optional
         Step limit (default 10^7 adaptive, 10^8 fixed-step).
+    nonlinear : bool
+        ``False`` drops the cubic terms: the linearised model ``M q'' + K q = 0`` (sec. 3.3).
     check : bool
         Raise :class:`~drillstring.errors.SolveError` when the solve stops early (default);
         with ``check=False`` the partial result is returned with its ``status``.
@@ -276,7 +281,13 @@ def simulate(
     method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
         method, t_end, rtol, atol, dt, max_steps
     )
+    if not isinstance(nonlinear, bool):
+        raise ValidationError("nonlinear", nonlinear, "True or False")
     coefficients = project(params, modes=modes, rigid_mode=rigid_mode)
+    if not nonlinear:
+        coefficients = dataclasses.replace(
+            coefficients, quartic_index=np.zeros((0, 4), dtype=np.int64), quartic_coef=np.zeros(0)
+        )
     times = _output_times(t_eval, samples, t_end_f, method)
     if method in FIXED_STEP_METHODS and dt_f is None:
         dt_f = _default_dt(coefficients)

@@ -72,7 +72,7 @@ fn gradient_rows(n: usize, terms: &[QuarticTerm]) -> (Vec<CubicMonomial>, Vec<us
     for mut row in rows {
         start.push(grad.len());
         row.retain(|mono| mono.coef != 0.0);
-        row.sort_by(|a, b| a.idx.cmp(&b.idx));
+        row.sort_by_key(|mono| mono.idx);
         grad.extend(row);
     }
     start.push(grad.len());

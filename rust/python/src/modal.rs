@@ -1,0 +1,156 @@
+//! Bindings of the modal Galerkin system and its solve.
+
+use drillstring_core as core;
+use drillstring_core::integrators::{self, Method, SolveOptions};
+use drillstring_core::modal::{ModalSystem as CoreModalSystem, QuarticTerm};
+use drillstring_core::{Output, SecondOrderSystem};
+use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{no_panic, solution_dict, to_vec, validation_error};
+
+/// The modal system `M q'' + K q + grad V(q) = 0` (diagonal M and K, quartic potential terms).
+#[pyclass(frozen, module = "drillstring._core")]
+pub(crate) struct ModalSystem {
+    inner: CoreModalSystem,
+}
+
+#[pymethods]
+impl ModalSystem {
+    #[new]
+    fn new(
+        py: Python<'_>,
+        mass: PyReadonlyArray1<'_, f64>,
+        stiffness: PyReadonlyArray1<'_, f64>,
+        quartic_index: PyReadonlyArray2<'_, i64>,
+        quartic_coef: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Self> {
+        let idx = quartic_index.as_array();
+        let coef = quartic_coef.as_array();
+        if idx.ncols() != 4 || idx.nrows() != coef.len() {
+            return Err(validation_error(
+                py,
+                core::Error::invalid(
+                    "quartic_index",
+                    format!("shape {:?} with {} coefficients", idx.shape(), coef.len()),
+                    "shape (T, 4) with T = len(quartic_coef)",
+                ),
+            ));
+        }
+        let mut terms = Vec::with_capacity(coef.len());
+        for (t, row) in idx.outer_iter().enumerate() {
+            let mut four = [0u32; 4];
+            for (k, &i) in row.iter().enumerate() {
+                four[k] = u32::try_from(i).map_err(|_| {
+                    validation_error(
+                        py,
+                        core::Error::invalid(format!("quartic_index[{t}]"), i, "non-negative mode positions"),
+                    )
+                })?;
+            }
+            terms.push(QuarticTerm { idx: four, coef: coef[t] });
+        }
+        let inner =
+            CoreModalSystem::new(to_vec(&mass), to_vec(&stiffness), terms).map_err(|e| validation_error(py, e))?;
+        Ok(ModalSystem { inner })
+    }
+
+    /// Number of modal coordinates.
+    #[getter]
+    fn modes(&self) -> usize {
+        self.inner.modes()
+    }
+
+    /// Accelerations `q'' = -M^{-1} (K q + grad V(q))` at one state `q` (shape (m,)).
+    fn acceleration<'py>(&self, py: Python<'py>, q: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let q = to_vec(&q);
+        self.check_len(py, "q", q.len())?;
+        let mut acc = vec![0.0; q.len()];
+        no_panic(|| self.inner.acceleration(&q, &mut acc))?;
+        Ok(PyArray1::from_vec(py, acc))
+    }
+
+    /// The energy H of each sample: `q` and `qdot` of shape (m, samples).
+    fn energy<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qdot: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (q, v) = (q.as_array(), qdot.as_array());
+        let m = self.inner.modes();
+        if q.nrows() != m || v.shape() != q.shape() {
+            return Err(validation_error(
+                py,
+                core::Error::invalid(
+                    "q",
+                    format!("shapes {:?} and {:?}", q.shape(), v.shape()),
+                    format!("q and qdot of equal shape ({m}, samples)"),
+                ),
+            ));
+        }
+        let samples = q.ncols();
+        let mut qk = vec![0.0; m];
+        let mut vk = vec![0.0; m];
+        let mut out = Vec::with_capacity(samples);
+        for k in 0..samples {
+            for i in 0..m {
+                qk[i] = q[(i, k)];
+                vk[i] = v[(i, k)];
+            }
+            out.push(self.inner.energy(&qk, &vk));
+        }
+        Ok(PyArray1::from_vec(py, out))
+    }
+}
+
+impl ModalSystem {
+    fn check_len(&self, py: Python<'_>, field: &str, len: usize) -> PyResult<()> {
+        let m = self.inner.modes();
+        if len != m {
+            return Err(validation_error(
+                py,
+                core::Error::invalid(field, format!("length {len}"), format!("length {m}")),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Integrates a modal system from `(q0, v0)` at `t = 0` to `t_end`.
+///
+/// Returns a dict with `t` (samples,), `y` (samples, 2m) holding `[q, qdot]`, `status`,
+/// `message`, `nfev`, `naccept`, `nreject`. `t_eval=None` samples every step.
+#[pyfunction]
+#[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_modal<'py>(
+    py: Python<'py>,
+    system: &Bound<'py, ModalSystem>,
+    q0: PyReadonlyArray1<'py, f64>,
+    v0: PyReadonlyArray1<'py, f64>,
+    t_end: f64,
+    t_eval: Option<PyReadonlyArray1<'py, f64>>,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    dt: Option<f64>,
+    max_steps: Option<u64>,
+    first_step: Option<f64>,
+    max_step: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
+    let (q0, v0) = (to_vec(&q0), to_vec(&v0));
+    let output = match &t_eval {
+        Some(t) => Output::Times(to_vec(t)),
+        None => Output::EveryStep,
+    };
+    let opts = SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step };
+    let sys: &CoreModalSystem = &system.get().inner;
+    let solved =
+        py.detach(|| no_panic(|| integrators::solve_second_order(sys, 0.0, &q0, &v0, t_end, &output, &opts)))?;
+    let sol = solved.map_err(|e| validation_error(py, e))?;
+    solution_dict(py, sol)
+}
+
