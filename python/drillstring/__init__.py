@@ -16,7 +16,7 @@ True
 
 from __future__ import annotations
 
-from . import coefficients, galerkin, section
+from . import analysis, coefficients, galerkin, paper, plots, section, stability
 from ._core import __version__
 from .coefficients import PDECoefficients
 from .errors import DrillstringError, SolveError, ValidationError
@@ -46,4 +46,8 @@ __all__ = [
     "coefficients",
     "galerkin",
     "section",
+    "analysis",
+    "paper",
+    "plots",
+    "stability",
 ]

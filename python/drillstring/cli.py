@@ -10,7 +10,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Any, Optional, Sequence
+from collections.abc import Sequence
+from typing import Any, Optional
 
 from . import __version__
 from .errors import DrillstringError, ValidationError
@@ -142,6 +143,41 @@ def _cmd_table2(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_paper(sub: Any) -> None:
+    p = sub.add_parser(
+        "paper",
+        help="reproduce every figure and table of the paper as a report",
+        description="Regenerate Figs. 1-15 (PNG + CSV), Table 2, the stability table and a report "
+        "(report.md, report.html) checking each claim of the paper against the numbers.",
+        epilog="example: drillstring paper --out paper-results",
+    )
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
+    p.add_argument("--quick", action="store_true",
+                   help="short test run: times x0.1 and 1000 samples per second (numbers are not the paper's)")
+    p.add_argument("--t-end-scale", type=float, metavar="X",
+                   help="multiply every time span by X (default 1, or 0.1 with --quick)")
+    p.set_defaults(func=_cmd_paper)
+
+
+def _cmd_paper(args: argparse.Namespace) -> int:
+    from . import paper
+
+    scale = args.t_end_scale if args.t_end_scale is not None else (
+        paper.QUICK_T_END_SCALE if args.quick else 1.0)
+    per_second = paper.QUICK_SAMPLES_PER_SECOND if args.quick else paper.SAMPLES_PER_SECOND
+    command = f"drillstring paper --out {args.out}" + (" --quick" if args.quick else "") + (
+        f" --t-end-scale {args.t_end_scale:g}" if args.t_end_scale is not None else "")
+    report = paper.reproduce(args.out, t_end_scale=scale, samples_per_second=per_second, command=command)
+    verdicts = [f.verdict for f in report.figures]
+    print(f"wrote {len(report.files)} files to {report.out_dir} in {report.total_seconds:.1f} s")
+    print(f"figure claims: {verdicts.count('supported')} supported, "
+          f"{verdicts.count('partly supported')} partly, {verdicts.count('contradicted')} contradicted")
+    for number, finding in report.contradictions:
+        print(f"  Fig. {number}: {finding}")
+    print(f"report: {report.report_html}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="drillstring",
@@ -152,6 +188,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
     _add_simulate(sub)
     _add_table2(sub)
+    _add_paper(sub)
     return parser
 
 

@@ -1,29 +1,69 @@
 """Plots of simulation results; every function returns a matplotlib Figure.
 
-matplotlib is imported lazily with the non-interactive Agg backend when no backend was chosen,
-so the functions work on headless machines.
+matplotlib is imported lazily and figures are built with :class:`matplotlib.figure.Figure`
+(Agg canvas, no pyplot state), so the functions work on headless machines and in threads. Style
+a returned figure as usual (``fig.axes``, ``ax.lines``) and write it with :func:`save` or
+``fig.savefig``.
+
+The paper's figures (``drillstring paper``, :mod:`drillstring.paper`) are built from:
+
+* :func:`modal_response`, :func:`modal_phase_portrait`: one modal coordinate ``theta_i(t)`` and
+  its phase portrait (Figs. 1, 2);
+* :func:`linear_vs_nonlinear`, :func:`linear_vs_nonlinear_phase`: the linearised against the
+  nonlinear model, with the accumulated phase shift and a zoom on the amplitude (Figs. 3-5);
+* :func:`section_response`, :func:`section_phase_portrait`: ``theta(z_k, t)`` at a section
+  (default ``z_k = 2l/3``) and the phase-plane projection ``(theta, theta_dot)`` there, for one
+  run or several runs compared (Figs. 6-15).
+
+Curves are told apart by colour *and* line style (blue solid, orange dashed, green dash-dot, as
+listed in :data:`COLORS` and :data:`LINESTYLES`). When several runs are compared, the figure
+shows them overlaid, as in the paper, and again one per panel with its own scale, so that a
+small response is not flattened by a large one.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Optional
+import textwrap
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Optional, Union
 
+import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
     from .simulate import Simulation
 
-__all__ = ["time_history_and_phase"]
+__all__ = [
+    "COLORS",
+    "LINESTYLES",
+    "time_history_and_phase",
+    "modal_response",
+    "modal_phase_portrait",
+    "linear_vs_nonlinear",
+    "linear_vs_nonlinear_phase",
+    "section_response",
+    "section_phase_portrait",
+    "save",
+]
+
+#: Colours of the 1st, 2nd, 3rd... curve of a figure (the paper's blue, orange, green).
+COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple")
+#: Line styles of the 1st, 2nd, 3rd... curve.
+LINESTYLES = ("-", "--", "-.", ":", (0, (5, 1, 1, 1)))
+
+Runs = Union["Simulation", Mapping[str, "Simulation"]]
+Window = Optional[Sequence[float]]
 
 
-def _figure(**kwargs: object) -> "Figure":
+def _figure(**kwargs: object) -> Figure:
     from matplotlib.figure import Figure
 
     return Figure(**kwargs)  # type: ignore[arg-type]
 
 
-def time_history_and_phase(result: "Simulation", z: Optional[float] = None, title: Optional[str] = None) -> "Figure":
+def time_history_and_phase(result: Simulation, z: Optional[float] = None, title: Optional[str] = None) -> Figure:
     """Time history ``theta(z, t)`` and phase portrait ``(theta, theta_dot)`` at section ``z``.
 
     ``z`` defaults to ``z_k = 2l/3``, the paper's section.
@@ -49,8 +89,319 @@ def time_history_and_phase(result: "Simulation", z: Optional[float] = None, titl
     return fig
 
 
-def save(fig: "Figure", path: object, dpi: int = 130) -> None:
+# --------------------------------------------------------------------------- helpers
+
+
+def _style(k: int) -> dict[str, object]:
+    return {"color": COLORS[k % len(COLORS)], "linestyle": LINESTYLES[k % len(LINESTYLES)]}
+
+
+def _window_mask(t: np.ndarray, window: Window) -> np.ndarray:
+    if window is None:
+        return np.ones(t.shape, dtype=bool)
+    lo, hi = float(window[0]), float(window[1])
+    span = hi - lo
+    return (t >= lo - 1e-9 * span) & (t <= hi + 1e-9 * span)
+
+
+def _title(fig: Figure, title: Optional[str], width: int = 110) -> None:
+    if title:
+        fig.suptitle("\n".join(textwrap.wrap(title, width)), fontsize=11)
+
+
+def _sci(ax: Axes) -> None:
+    ax.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
+    ax.grid(alpha=0.3)
+
+
+def _legend_above(ax: Axes, ncol: int = 3, fontsize: float = 9) -> None:
+    """Legend above the top-right corner of the axes, clear of the oscillating curves."""
+    ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=ncol, fontsize=fontsize,
+              frameon=False, borderaxespad=0.1, handlelength=2.6)
+
+
+def _runs(results: Runs) -> dict[str, Simulation]:
+    if isinstance(results, Mapping):
+        return dict(results)
+    length = results.params.length
+    return {f"l = {length:g} m": results}
+
+
+def _section(result: Simulation, z: Optional[float]) -> float:
+    return 2.0 * result.params.length / 3.0 if z is None else float(z)
+
+
+def _phase_axes_labels(ax: Axes, symbol: str) -> None:
+    ax.set_xlabel(rf"${symbol}$, rad")
+    ax.set_ylabel(rf"$\dot{{{symbol}}}$, rad/s" if "_" not in symbol else rf"$d{symbol}/dt$, rad/s")
+
+
+# --------------------------------------------------------------------------- one mode
+
+
+def modal_response(
+    result: Simulation, mode: int = 1, *, window: Window = None, title: Optional[str] = None
+) -> Figure:
+    """Time history of the generalised coordinate ``theta_i(t)`` (``q`` of mode ``i``), Fig. 1."""
+    k = int(np.nonzero(result.indices == mode)[0][0])
+    mask = _window_mask(result.t, window)
+    fig = _figure(figsize=(10, 4.2), layout="constrained", dpi=120)
+    ax = fig.subplots()
+    label = rf"$\theta_{mode}(t)$, {result.indices.size}-mode model"
+    ax.plot(result.t[mask], result.q[k][mask], lw=1.0, label=label, **_style(0))
+    ax.set_xlabel("t, s")
+    ax.set_ylabel(rf"$\theta_{mode}(t)$, rad")
+    ax.set_xlim(result.t[mask][0], result.t[mask][-1])
+    _legend_above(ax, 1)
+    _sci(ax)
+    _title(fig, title)
+    return fig
+
+
+def modal_phase_portrait(
+    result: Simulation, mode: int = 1, *, window: Window = None, title: Optional[str] = None
+) -> Figure:
+    """Phase portrait ``(theta_i, d theta_i / dt)`` of one modal coordinate, Fig. 2.
+
+    The start ``t = 0`` is marked; the orbit of a centre is retraced once per period.
+    """
+    k = int(np.nonzero(result.indices == mode)[0][0])
+    mask = _window_mask(result.t, window)
+    q, v = result.q[k][mask], result.qdot[k][mask]
+    fig = _figure(figsize=(6.4, 5.6), layout="constrained", dpi=120)
+    ax = fig.subplots()
+    ax.plot(q, v, lw=0.8, alpha=0.8, label=rf"trajectory, $0 \leq t \leq {result.t[mask][-1]:g}$ s", **_style(0))
+    ax.plot(q[0], v[0], "o", color="black", ms=5, label=f"t = {result.t[mask][0]:g} s")
+    _arrow(ax, q, v, COLORS[0])
+    ax.plot(0, 0, "+", color="black", ms=9, mew=1.2, label="equilibrium")
+    _phase_axes_labels(ax, rf"\theta_{mode}")
+    # inside the orbit of a centre there is room for the legend
+    ax.legend(loc="center", bbox_to_anchor=(0.5, 0.3), fontsize=8)
+    _sci(ax)
+    _title(fig, title, 60)
+    return fig
+
+
+def _arrow(ax: Axes, x: np.ndarray, y: np.ndarray, color: str) -> None:
+    """Direction of motion: an arrow head on the trajectory about 1/8 of a turn after the start."""
+    sx = float(np.ptp(x)) or 1.0
+    sy = float(np.ptp(y)) or 1.0
+    dist = np.hypot((x - x[0]) / sx, (y - y[0]) / sy)
+    far = np.nonzero(dist > 0.3)[0]
+    n = int(far[0]) if far.size else len(x) - 1
+    back = max(0, n - max(2, n // 6))
+    ax.annotate("", xy=(x[n], y[n]), xytext=(x[back], y[back]),
+                arrowprops={"arrowstyle": "-|>", "color": color, "lw": 1.5, "mutation_scale": 16})
+
+
+def linear_vs_nonlinear(
+    linear: Simulation,
+    nonlinear: Simulation,
+    mode: int = 1,
+    *,
+    window: Window = None,
+    title: Optional[str] = None,
+) -> Figure:
+    """``theta_i(t)`` of the linearised and the nonlinear model (Figs. 3, 5) and, below, the
+    accumulated phase shift of the nonlinear response (zero crossings, :func:`analysis.phase_shift`)
+    over the whole record, the window shaded.
+    """
+    from .analysis import phase_shift
+
+    k = int(np.nonzero(linear.indices == mode)[0][0])
+    mask = _window_mask(linear.t, window)
+    t = linear.t
+    fig = _figure(figsize=(10, 6.2), layout="constrained", dpi=120)
+    ax, ax_s = fig.subplots(2, 1, gridspec_kw={"height_ratios": [2.3, 1]})
+    for j, (label, res) in enumerate((("linear", linear), ("nonlinear", nonlinear))):
+        ax.plot(t[mask], res.q[k][mask], lw=1.1 if j == 0 else 1.0, label=label, **_style(j))
+    ax.set_xlabel("t, s")
+    ax.set_ylabel(rf"$\theta_{mode}(t)$, rad")
+    ax.set_xlim(t[mask][0], t[mask][-1])
+    _legend_above(ax, 2)
+    _sci(ax)
+    shift = np.degrees(phase_shift(t, linear.q[k], nonlinear.q[k], t))
+    ax_s.plot(t, shift, color="black", lw=1.2, label="nonlinear minus linear")
+    if window is not None:
+        ax_s.axvspan(t[mask][0], t[mask][-1], color=COLORS[1], alpha=0.15, lw=0, label="window above")
+    ax_s.set_xlabel("t, s")
+    ax_s.set_ylabel("phase shift, deg")
+    ax_s.set_xlim(t[0], t[-1])
+    ax_s.legend(loc="upper left", fontsize=8)
+    ax_s.grid(alpha=0.3)
+    _title(fig, title)
+    return fig
+
+
+def linear_vs_nonlinear_phase(
+    linear: Simulation,
+    nonlinear: Simulation,
+    mode: int = 1,
+    *,
+    window: Window = None,
+    title: Optional[str] = None,
+) -> Figure:
+    """Phase portraits ``(theta_i, d theta_i/dt)`` of the linearised and nonlinear models
+    (Fig. 4), with a zoom on the turning points ``theta_i = max`` where they differ."""
+    k = int(np.nonzero(linear.indices == mode)[0][0])
+    mask = _window_mask(linear.t, window)
+    fig = _figure(figsize=(11, 5.4), layout="constrained", dpi=120)
+    ax, ax_z = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.35, 1]})
+    tops = []
+    for j, (label, res) in enumerate((("linear", linear), ("nonlinear", nonlinear))):
+        q, v = res.q[k][mask], res.qdot[k][mask]
+        tops.append(float(np.max(q)))
+        for target in (ax, ax_z):
+            target.plot(q, v, lw=1.6 if j == 0 else 1.1, alpha=0.9, label=label, **_style(j))
+    ax.plot(0, 0, "+", color="black", ms=9, mew=1.2, label="equilibrium")
+    top = max(tops)
+    vmax = float(np.max(np.abs(linear.qdot[k][mask])))
+    ax_z.set_xlim(0.94 * min(tops), 1.01 * top)
+    ax_z.set_ylim(-0.3 * vmax, 0.3 * vmax)
+    ax.indicate_inset_zoom(ax_z, edgecolor="0.4")
+    ax_z.set_title(rf"zoom on the turning points $\theta_{mode} = \max$", fontsize=10)
+    for target in (ax, ax_z):
+        _phase_axes_labels(target, rf"\theta_{mode}")
+        _sci(target)
+    ax.legend(loc="upper right", fontsize=8)
+    _title(fig, title)
+    return fig
+
+
+# --------------------------------------------------------------------------- sections
+
+
+def section_response(
+    results: Runs,
+    *,
+    z: Optional[float] = None,
+    window: Window = None,
+    modal: Optional[bool] = None,
+    title: Optional[str] = None,
+) -> Figure:
+    """``theta(z_k, t)`` at the section ``z_k`` (default ``2l/3`` of each string), Figs. 6, 8, 10.
+
+    ``results`` is one :class:`~drillstring.simulate.Simulation` or a mapping
+    ``{"l = 100 m": sim, ...}`` (the keys label the curves). Several runs: all overlaid on the
+    top panel and each again below on its own scale. One run: below it, with ``modal`` (default
+    for one run), the modal contributions ``theta_i(t) cos(i pi z_k / l)`` whose sum it is.
+    """
+    runs = _runs(results)
+    n = len(runs)
+    modal = (n == 1) if modal is None else modal
+    rows = [2.2] + ([1.0] * n if n > 1 else []) + ([1.3] if modal and n == 1 else [])
+    fig = _figure(figsize=(10, 2.2 + 1.45 * (len(rows) - 1) + 1.3), layout="constrained", dpi=120)
+    axes = fig.subplots(len(rows), 1, sharex=True, squeeze=False, gridspec_kw={"height_ratios": rows})[:, 0]
+    top = axes[0]
+    t0 = t1 = None
+    for j, (label, res) in enumerate(runs.items()):
+        zk = _section(res, z)
+        mask = _window_mask(res.t, window)
+        t, theta = res.t[mask], res.theta(zk)[mask]
+        t0, t1 = t[0], t[-1]
+        top.plot(t, theta, lw=0.9, alpha=0.9, label=label, **_style(j))
+        if n > 1:
+            ax = axes[1 + j]
+            ax.plot(t, theta, lw=0.8, **_style(j))
+            ax.set_ylabel(r"$\theta$, rad")
+            ax.set_title(label, fontsize=9, loc="right", pad=3, color=COLORS[j % len(COLORS)])
+            _sci(ax)
+    top.set_ylabel(r"$\theta(z_k, t)$, rad")
+    _legend_above(top, min(n, 3))
+    _sci(top)
+    if n > 1:
+        top.set_title("overlaid (as in the paper)", fontsize=9, loc="left")
+        axes[1].set_title("each run on its own scale", fontsize=9, loc="left")
+    if modal and n == 1:
+        res = next(iter(runs.values()))
+        zk = _section(res, z)
+        mask = _window_mask(res.t, window)
+        ax = axes[-1]
+        basis = res.coefficients.basis(zk)[0]
+        for j, i in enumerate(res.indices.tolist()):
+            ax.plot(res.t[mask], res.q[j][mask] * basis[j], lw=0.8,
+                    label=rf"$\theta_{i}(t)\,\cos({i}\pi z_k/l)$", **_style(j))
+        ax.set_ylabel("modal parts, rad")
+        _legend_above(ax, len(res.indices), 8)
+        _sci(ax)
+    axes[-1].set_xlabel("t, s")
+    if t0 is not None:
+        axes[-1].set_xlim(t0, t1)
+    _title(fig, title)
+    return fig
+
+
+def section_phase_portrait(
+    results: Runs,
+    *,
+    z: Optional[float] = None,
+    window: Window = None,
+    title: Optional[str] = None,
+) -> Figure:
+    """Phase-plane projection ``(theta(z_k, t), theta_dot(z_k, t))``, Figs. 7, 9, 11.
+
+    One run: the trajectory coloured by time (colour bar), thin lines, the start marked.
+    Several runs: overlaid, semi-transparent, on the left (as in the paper) and each on its own
+    scale on the right.
+    """
+    from matplotlib.collections import LineCollection
+
+    runs = _runs(results)
+    n = len(runs)
+    if n == 1:
+        label, res = next(iter(runs.items()))
+        zk = _section(res, z)
+        mask = _window_mask(res.t, window)
+        x, y, t = res.theta(zk)[mask], res.theta_dot(zk)[mask], res.t[mask]
+        fig = _figure(figsize=(7.4, 5.8), layout="constrained", dpi=120)
+        ax = fig.subplots()
+        points = np.column_stack([x, y])
+        segments = np.stack([points[:-1], points[1:]], axis=1)
+        lines = LineCollection(segments, cmap="viridis", linewidths=0.6, alpha=0.85)
+        lines.set_array(0.5 * (t[:-1] + t[1:]))
+        ax.add_collection(lines)
+        ax.autoscale()
+        ax.plot(x[0], y[0], "o", color="black", ms=5, label=f"t = {t[0]:g} s")
+        ax.plot(0, 0, "+", color="red", ms=9, mew=1.2, label="equilibrium")
+        fig.colorbar(lines, ax=ax, label="t, s")
+        ax.legend(loc="upper right", fontsize=8, title=label, title_fontsize=8)
+        ax.set_xlabel(r"$\theta(z_k, t)$, rad")
+        ax.set_ylabel(r"$\dot\theta(z_k, t)$, rad/s")
+        _sci(ax)
+        _title(fig, title, 70)
+        return fig
+    fig = _figure(figsize=(12, 7.2), layout="constrained", dpi=120)
+    grid = fig.add_gridspec(n, 2, width_ratios=[1.7, 1])
+    main = fig.add_subplot(grid[:, 0])
+    for j, (label, res) in enumerate(runs.items()):
+        zk = _section(res, z)
+        mask = _window_mask(res.t, window)
+        x, y = res.theta(zk)[mask], res.theta_dot(zk)[mask]
+        # largest first underneath: draw order by run, thin and semi-transparent
+        main.plot(x, y, lw=0.65, alpha=0.55, color=COLORS[j % len(COLORS)],
+                  linestyle=LINESTYLES[j % len(LINESTYLES)])
+        main.plot([], [], lw=1.5, label=label, **_style(j))  # opaque legend entry
+        ax = fig.add_subplot(grid[j, 1])
+        ax.plot(x, y, lw=0.45, alpha=0.6, color=COLORS[j % len(COLORS)])
+        ax.plot(x[0], y[0], "o", color="black", ms=3)
+        ax.text(0.02, 0.95, label, transform=ax.transAxes, ha="left", va="top", fontsize=9,
+                bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "0.7", "alpha": 0.9})
+        ax.set_ylabel(r"$\dot\theta$, rad/s", fontsize=9)
+        ax.tick_params(labelsize=8)
+        ax.margins(x=0.04, y=0.22)
+        _sci(ax)
+        if j == n - 1:
+            ax.set_xlabel(r"$\theta$, rad", fontsize=9)
+    main.plot(0, 0, "+", color="black", ms=9, mew=1.2)
+    main.set_xlabel(r"$\theta(z_k, t)$, rad")
+    main.set_ylabel(r"$\dot\theta(z_k, t)$, rad/s")
+    main.legend(loc="upper right", fontsize=9)
+    main.set_title("overlaid (as in the paper)", fontsize=9, loc="left")
+    _sci(main)
+    _title(fig, title)
+    return fig
+
+
+def save(fig: Figure, path: object, dpi: int = 130) -> None:
     """Saves a figure to ``path`` (format from the extension)."""
     fig.savefig(path, dpi=dpi)  # type: ignore[arg-type]
-
-

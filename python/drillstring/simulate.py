@@ -10,8 +10,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional, Union
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
@@ -19,31 +18,22 @@ from . import _core
 from .errors import SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .parameters import Parameters
+from .result import SolverStats, TrajectoryResult
 
 if TYPE_CHECKING:  # pragma: no cover
-    from numpy.typing import ArrayLike, NDArray
+    from numpy.typing import NDArray
 
 __all__ = ["METHODS", "SolverStats", "Simulation", "simulate", "check_solver_options"]
 
-#: Integration methods: adaptive Dormand-Prince 8(5,3) and 5(4), fixed-step classical RK4 and
-#: the explicit central-difference scheme of the paper's Table 2.
-METHODS = ("dop853", "dopri5", "rk4", "central")
-FIXED_STEP_METHODS = ("rk4", "central")
+#: Integration methods: adaptive Dormand-Prince 8(5,3) and 5(4), fixed-step classical RK4, the
+#: explicit central-difference scheme of the paper's Table 2 and symplectic Stormer-Verlet.
+METHODS = ("dop853", "dopri5", "rk4", "central", "verlet")
+FIXED_STEP_METHODS = ("rk4", "central", "verlet")
+#: Methods of the PDE solver (every method applies to both).
+PDE_METHODS = METHODS
 
 #: rtol below 100 machine epsilons cannot be met by the step-size controller.
 MIN_RTOL = 100 * float(np.finfo(float).eps)
-
-
-@dataclass(frozen=True)
-class SolverStats:
-    """Work counters of one solve."""
-
-    nfev: int
-    """Right-hand-side (acceleration) evaluations."""
-    naccept: int
-    """Accepted steps."""
-    nreject: int
-    """Rejected steps (0 for fixed-step methods)."""
 
 
 def _positive(field: str, value: Any, *, allow_none: bool = False) -> Optional[float]:
@@ -64,14 +54,20 @@ def _count(field: str, value: Any, minimum: int) -> int:
 
 
 def check_solver_options(
-    method: Any, t_end: Any, rtol: Any, atol: Any, dt: Any, max_steps: Any = None
+    method: Any,
+    t_end: Any,
+    rtol: Any,
+    atol: Any,
+    dt: Any,
+    max_steps: Any = None,
+    methods: Sequence[str] = METHODS,
 ) -> tuple[str, float, float, float, Optional[float], Optional[int]]:
     """Validates the solver options shared by every solver; returns them normalised.
 
     Raises :class:`~drillstring.errors.ValidationError` naming the option and its range.
     """
-    if method not in METHODS:
-        raise ValidationError("method", method, "one of " + ", ".join(repr(m) for m in METHODS))
+    if method not in methods:
+        raise ValidationError("method", method, "one of " + ", ".join(repr(m) for m in methods))
     t_end_f = _positive("t_end", t_end)
     rtol_f = _positive("rtol", rtol)
     assert t_end_f is not None and rtol_f is not None
@@ -109,7 +105,7 @@ def _default_dt(coefficients: ModalCoefficients) -> float:
     return min(1e-4, 2 * math.pi / omega_max / 100)
 
 
-class Simulation:
+class Simulation(TrajectoryResult):
     """The result of :func:`simulate`.
 
     Attributes
@@ -140,77 +136,18 @@ class Simulation:
         method: str,
         raw: dict[str, Any],
     ) -> None:
-        self.params = params
         self.coefficients = coefficients
-        self.method = method
-        self._system = system
-        m = len(coefficients.indices)
-        y = np.asarray(raw["y"])
-        self.t: NDArray[np.float64] = np.asarray(raw["t"])
-        self.q: NDArray[np.float64] = np.ascontiguousarray(y[:, :m].T)
-        self.qdot: NDArray[np.float64] = np.ascontiguousarray(y[:, m:].T)
-        self.status: str = raw["status"]
-        self.message: str = raw["message"]
-        self.stats = SolverStats(int(raw["nfev"]), int(raw["naccept"]), int(raw["nreject"]))
-        self._energy: Optional[NDArray[np.float64]] = None
-
-    @property
-    def success(self) -> bool:
-        """True when the solve reached ``t_end``."""
-        return self.status == "success"
+        super().__init__(params, system, method, raw)
 
     @property
     def indices(self) -> NDArray[np.int64]:
         return self.coefficients.indices
 
-    def _basis(self, z: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], bool]:
-        z_arr = np.asarray(z, dtype=np.float64)
-        scalar = z_arr.ndim == 0
-        z_flat = np.atleast_1d(z_arr).ravel()
-        length = self.params.length
-        if not np.all(np.isfinite(z_flat)) or np.any(z_flat < 0) or np.any(z_flat > length):
-            raise ValidationError("z", z, f"sections with 0 <= z <= length = {length}")
-        return self.coefficients.basis(z_flat), z_flat, scalar
+    def _section_matrix(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        return self.coefficients.basis(z)
 
-    def theta(self, z: Union[float, ArrayLike]) -> NDArray[np.float64]:
-        """Twist angle ``theta(z, t)`` (rad) at section(s) ``z`` (m) over ``t``.
-
-        Returns shape (samples,) for a scalar ``z``, else (len(z), samples).
-        """
-        basis, _, scalar = self._basis(z)
-        out = basis @ self.q
-        return out[0] if scalar else out
-
-    def theta_dot(self, z: Union[float, ArrayLike]) -> NDArray[np.float64]:
-        """Twist rate ``d theta / dt (z, t)`` (rad/s) at section(s) ``z``; shapes as :meth:`theta`."""
-        basis, _, scalar = self._basis(z)
-        out = basis @ self.qdot
-        return out[0] if scalar else out
-
-    @property
-    def energy(self) -> NDArray[np.float64]:
-        """The conserved energy ``H`` (J, model notes) of each sample."""
-        if self._energy is None:
-            self._energy = np.asarray(self._system.energy(self.q, self.qdot))
-        return self._energy
-
-    def energy_drift(self) -> float:
-        """``max |H(t) - H(0)| / |H(0)|`` over the samples (0 when H(0) = 0)."""
-        h = self.energy
-        if h.size == 0 or h[0] == 0:
-            return 0.0
-        return float(np.max(np.abs(h - h[0])) / abs(h[0]))
-
-    def table(self, z: float) -> tuple[list[str], NDArray[np.float64]]:
-        """Columns ``t, theta, theta_dot, q<i>...`` at section ``z`` (the CLI's CSV)."""
-        header = ["t", "theta", "theta_dot"] + [f"q{i}" for i in self.indices]
-        data = np.column_stack([self.t, self.theta(z), self.theta_dot(z), self.q.T])
-        return header, data
-
-    def to_csv(self, path: Any, z: float) -> None:
-        """Writes :meth:`table` at section ``z`` as CSV."""
-        header, data = self.table(z)
-        np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.10e")
+    def _state_columns(self) -> list[str]:
+        return [f"q{i}" for i in self.indices]
 
     def __repr__(self) -> str:
         return (
@@ -247,9 +184,9 @@ def simulate(
         Also keep the uniform twist i = 0 (needed for convergence to the PDE, model notes).
     t_end : float
         End time, s.
-    method : {"dop853", "dopri5", "rk4", "central"}
+    method : {"dop853", "dopri5", "rk4", "central", "verlet"}
         Adaptive DOP853 (default) or Dormand-Prince 5(4) with dense output; fixed-step classical
-        RK4 or the explicit central-difference scheme of Table 2.
+        RK4, the explicit central-difference scheme of Table 2 or symplectic Stormer-Verlet.
     rtol, atol : float
         Tolerances of the adaptive methods (Hairer's scaled RMS error norm).
     dt : float, optional

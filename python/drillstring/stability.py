@@ -1,0 +1,186 @@
+"""Linear stability of the equilibrium ``q = qdot = 0`` of a Galerkin model (paper sec. 3.6).
+
+Writing the modal system ``M q'' + K q + grad V(q) = 0`` in first order, ``x = (q, qdot)``,
+the quartic potential contributes nothing at the equilibrium, so the Jacobian there is::
+
+    J = [[0, I], [-M^-1 K, 0]],
+
+(eq. 28 for one mode). Its eigenvalues are ``lambda = +-sqrt(-mu)`` for every eigenvalue
+``mu`` of ``M^-1 K``; ``M`` and ``K`` are diagonal, so ``mu_i = K_ii / M_ii = w_i^2`` and the
+eigenvalues are ``+-i w_i`` (eq. 29: ``+-i sqrt(a2/a1)``) while ``K_ii > 0``.
+
+Classification of the equilibrium:
+
+* ``"centre"``: every ``mu_i > 0``, all eigenvalues purely imaginary (Lyapunov stable in the
+  linear approximation, not asymptotically stable; the conserved energy with a positive
+  definite quadratic part makes it a nonlinear centre too).
+* ``"saddle"``: some ``mu_i < 0``, a real positive eigenvalue ``sqrt(-mu_i)`` (unstable).
+* ``"degenerate"``: no ``mu_i < 0`` but some ``mu_i = 0`` (a double zero eigenvalue, exactly at
+  a critical speed); the linearisation does not decide.
+
+Since ``K_ii / M_ii = (k2/k1) (i pi / l)^2 - Omega^2``, mode ``i`` loses linear stability when
+the rotation speed exceeds the critical speed ``Omega_crit,i = (i pi / l) sqrt(k2 / k1) =
+(i pi / l) sqrt(4 G / rho)``, which does not depend on the cross-section. The rigid mode
+``i = 0`` has ``Omega_crit,0 = 0``: it is a saddle for any ``Omega != 0``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Optional, Union
+
+import numpy as np
+
+from .errors import ValidationError
+from .galerkin import ModalCoefficients, project
+from .parameters import Parameters
+
+if TYPE_CHECKING:  # pragma: no cover
+    from numpy.typing import NDArray
+
+__all__ = ["CLASSIFICATIONS", "Stability", "jacobian", "classify", "analyse"]
+
+#: Possible values of :attr:`Stability.classification`.
+CLASSIFICATIONS = ("centre", "saddle", "degenerate")
+
+
+def jacobian(coefficients: ModalCoefficients) -> NDArray[np.float64]:
+    """``J = [[0, I], [-M^-1 K, 0]]`` (2m, 2m) of the first-order system at ``q = qdot = 0``."""
+    m = coefficients.n_modes
+    jac = np.zeros((2 * m, 2 * m))
+    jac[:m, m:] = np.eye(m)
+    jac[m:, :m] = -np.linalg.solve(coefficients.mass_matrix, coefficients.stiffness_matrix)
+    return jac
+
+
+def _classify_mu(mu: NDArray[np.float64], scale: float) -> str:
+    tol = 1e-12 * scale
+    if np.any(mu < -tol):
+        return "saddle"
+    if np.any(np.abs(mu) <= tol):
+        return "degenerate"
+    return "centre"
+
+
+def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
+    """Classification of an equilibrium from the eigenvalues of its Jacobian.
+
+    Real parts with ``|Re| <= rtol * max |lambda|`` count as zero (round-off of the eigen
+    solver). ``"saddle"`` if some real part is positive, ``"degenerate"`` if some eigenvalue
+    is zero (below the same tolerance), otherwise ``"centre"`` (all purely imaginary).
+    Only meaningful for the Hamiltonian ``J`` of this module, whose spectrum is symmetric
+    under ``lambda -> -lambda``.
+    """
+    lam = np.asarray(eigenvalues, dtype=complex)
+    scale = float(np.max(np.abs(lam))) if lam.size else 0.0
+    tol = rtol * scale
+    if np.any(lam.real > tol):
+        return "saddle"
+    if np.any(np.abs(lam) <= tol):
+        return "degenerate"
+    return "centre"
+
+
+@dataclass(frozen=True, eq=False)
+class Stability:
+    """Linear stability of the equilibrium of one Galerkin model; see :func:`analyse`."""
+
+    indices: NDArray[np.int64]
+    """Mode numbers ``i`` of the retained basis (rigid mode ``0`` first when included)."""
+    jacobian: NDArray[np.float64]
+    """``(2m, 2m)`` Jacobian at the equilibrium."""
+    eigenvalues: NDArray[np.complex128]
+    """``(2m,)`` eigenvalues of :attr:`jacobian` (numpy), sorted by imaginary then real part."""
+    mode_eigenvalues: NDArray[np.complex128]
+    """``(m,)`` per mode the eigenvalue ``sqrt(-K_ii / M_ii)`` with ``Im >= 0`` (and ``Re >= 0``);
+    the mode contributes the pair ``+-`` it. ``i w_i`` for a stable mode, ``+-s_i`` real for an
+    unstable one."""
+    mode_classification: tuple[str, ...]
+    """Per mode ``"centre"``, ``"saddle"`` or ``"degenerate"`` (from the sign of ``K_ii``)."""
+    classification: str
+    """Of the whole equilibrium: ``"saddle"`` if any mode is, else ``"degenerate"`` if any mode
+    is, else ``"centre"``."""
+    omega: Optional[float]
+    """Rotation speed ``Omega`` (rad/s) the model was built for, when known."""
+    critical_speeds: Optional[NDArray[np.float64]]
+    """``(m,)`` ``Omega_crit,i = (i pi / l) sqrt(k2 / k1)`` (rad/s), when ``omega`` is known."""
+
+    @property
+    def linear_frequencies_hz(self) -> NDArray[np.float64]:
+        """``w_i / (2 pi)`` (Hz) of the stable modes, ``nan`` for unstable or degenerate ones."""
+        lam = self.mode_eigenvalues
+        return np.where((lam.real == 0) & (lam.imag > 0), lam.imag / (2 * math.pi), np.nan)
+
+    @property
+    def stable(self) -> bool:
+        """True for a centre."""
+        return self.classification == "centre"
+
+
+def analyse(
+    source: Union[ModalCoefficients, Parameters],
+    modes: int = 3,
+    rigid_mode: bool = False,
+    *,
+    omega: Optional[float] = None,
+) -> Stability:
+    """Jacobian, eigenvalues, classification and critical speeds of a Galerkin model.
+
+    Parameters
+    ----------
+    source : ModalCoefficients or Parameters
+        A projected model (any modes, rigid or not), or parameters to project with ``modes``
+        and ``rigid_mode`` (then ``omega`` is ``source.omega``).
+    modes, rigid_mode :
+        Basis of the projection when ``source`` is a :class:`Parameters`.
+    omega : float, optional
+        Rotation speed of a :class:`ModalCoefficients` source. Needed only for the critical
+        speeds: ``K_ii / M_ii + Omega^2 = (k2/k1) (i pi/l)^2`` gives ``k2/k1`` and
+        ``Omega_crit,i = (i pi / l) sqrt(k2/k1)`` (exactly 0 for the rigid mode).
+
+    Examples
+    --------
+    >>> import drillstring as ds
+    >>> s = analyse(ds.preset("aluminum"), modes=1)
+    >>> s.classification, round(float(s.mode_eigenvalues[0].imag), 2)
+    ('centre', 195.4)
+    """
+    if isinstance(source, Parameters):
+        if omega is not None and float(omega) != source.omega:
+            raise ValidationError("omega", omega, f"omitted or equal to params.omega = {source.omega}")
+        omega = source.omega
+        coefficients = project(source, modes=modes, rigid_mode=rigid_mode)
+    elif isinstance(source, ModalCoefficients):
+        coefficients = source
+    else:
+        raise ValidationError(
+            "source", type(source).__name__, "a drillstring.ModalCoefficients or Parameters"
+        )
+    if omega is not None and not math.isfinite(float(omega)):
+        raise ValidationError("omega", omega, "a finite rotation speed, rad/s")
+    jac = jacobian(coefficients)
+    eig = np.linalg.eigvals(jac)
+    eig = eig[np.lexsort((eig.real, eig.imag))]
+    mu = coefficients.stiffness / coefficients.mass  # eigenvalues of M^-1 K (diagonal)
+    scale = float(np.max(np.abs(mu))) if mu.size else 0.0
+    mode_eig = np.sqrt(-mu + 0j)  # principal root: Re >= 0, Im >= 0
+    mode_class = tuple(_classify_mu(np.array([m]), scale) for m in mu)
+    overall = _classify_mu(mu, scale)
+    critical = None
+    if omega is not None:
+        # (k2/k1) from the elastic modes: K_ii/M_ii + Omega^2 = (k2/k1) (i pi / l)^2
+        wave = coefficients.indices * (math.pi / coefficients.length)
+        elastic = coefficients.indices > 0
+        speed2 = float(np.mean((mu[elastic] + float(omega) ** 2) / wave[elastic] ** 2))
+        critical = wave * math.sqrt(speed2) if speed2 >= 0.0 else np.full(mu.shape, math.nan)
+    return Stability(
+        indices=coefficients.indices.copy(),
+        jacobian=jac,
+        eigenvalues=eig,
+        mode_eigenvalues=mode_eig,
+        mode_classification=mode_class,
+        classification=overall,
+        omega=None if omega is None else float(omega),
+        critical_speeds=critical,
+    )

@@ -1,0 +1,209 @@
+"""``drillstring paper``: the whole reproduction, end to end, in its quick form."""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+import re
+
+import numpy as np
+import pytest
+
+import drillstring as ds
+from drillstring import paper
+from drillstring.cli import main
+
+SCALE = paper.QUICK_T_END_SCALE  # 0.1: the 1-s runs last 0.1 s, the 10-s runs 1 s
+SPS = paper.QUICK_SAMPLES_PER_SECOND
+KW = dict(rtol=1e-10, atol=1e-13)
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    out = tmp_path_factory.mktemp("paper")
+    stdout, stderr = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+        code = main(["paper", "--out", str(out), "--quick"])
+    return out, code, stdout.getvalue(), stderr.getvalue()
+
+
+def read_csv(path):
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    return rows[0], rows[1:]
+
+
+def columns(path):
+    header, rows = read_csv(path)
+    data = np.array(rows, dtype=float)
+    return {name: data[:, k] for k, name in enumerate(header)}
+
+
+def test_command_succeeds_quietly_off_a_terminal(quick):
+    out, code, stdout, stderr = quick
+    assert code == 0
+    assert stderr == ""  # progress lines only on a terminal
+    assert f"wrote 34 files to {out}" in stdout
+    assert re.search(r"figure claims: \d+ supported, \d+ partly, \d+ contradicted", stdout)
+
+
+def test_every_file_appears(quick):
+    out = quick[0]
+    names = [f"fig{n:02d}.{ext}" for n in range(1, 16) for ext in ("png", "csv")]
+    names += ["table2.csv", "stability.csv", "report.md", "report.html"]
+    assert sorted(p.name for p in out.iterdir()) == sorted(names)
+    for name in names:
+        assert (out / name).stat().st_size > 0, name
+    for n in range(1, 16):
+        png = (out / f"fig{n:02d}.png").read_bytes()
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        assert png.__len__() > 20_000  # a real figure, not an empty canvas
+
+
+EXPECTED_HEADERS = {
+    1: ["t", "theta1", "theta1_dot"],
+    2: ["t", "theta1", "theta1_dot"],
+    3: ["t", "theta1_linear", "theta1_dot_linear", "theta1_nonlinear", "theta1_dot_nonlinear", "phase_shift_deg"],
+    4: ["t", "theta1_linear", "theta1_dot_linear", "theta1_nonlinear", "theta1_dot_nonlinear"],
+    5: ["t", "theta1_linear", "theta1_dot_linear", "theta1_nonlinear", "theta1_dot_nonlinear", "phase_shift_deg"],
+    6: ["t", "theta_zk", "theta_dot_zk", "q1", "q2"],
+    8: ["t", "theta_zk", "theta_dot_zk", "q1", "q2", "q3"],
+    10: ["t"] + [f"{q}_{tag}" for tag in ("l100", "l250", "l500") for q in ("theta_zk", "theta_dot_zk")],
+    12: ["t"] + [f"{q}_{tag}" for tag in ("omega_2pi0.5", "omega_2pi6") for q in ("theta_zk", "theta_dot_zk")],
+    14: ["t"] + [f"{q}_{tag}" for tag in ("aluminium", "steel") for q in ("theta_zk", "theta_dot_zk")],
+}
+
+
+@pytest.mark.parametrize("number", sorted(EXPECTED_HEADERS))
+def test_figure_csv_columns(quick, number):
+    header, rows = read_csv(quick[0] / f"fig{number:02d}.csv")
+    assert header == EXPECTED_HEADERS[number]
+    data = np.array(rows, dtype=float)
+    assert np.all(np.isfinite(data))
+    window = (9 * SCALE, 10 * SCALE) if number == 5 else (0.0, SCALE)
+    assert data[0, 0] == pytest.approx(window[0]) and data[-1, 0] == pytest.approx(window[1])
+    assert data.shape[0] == round((window[1] - window[0]) * SPS) + 1
+
+
+def close(actual, expected):
+    np.testing.assert_allclose(actual, expected, rtol=1e-10, atol=1e-10 * np.max(np.abs(expected)))
+
+
+def test_figure_data_equal_direct_simulate(quick):
+    out = quick[0]
+    al = ds.preset("aluminum")
+    # Fig. 1: one mode, theta_1
+    fig1 = columns(out / "fig01.csv")
+    one = ds.simulate(al, modes=1, t_end=SCALE, samples=round(SPS * SCALE) + 1, **KW)
+    close(fig1["t"], one.t)
+    close(fig1["theta1"], one.q[0])
+    close(fig1["theta1_dot"], one.qdot[0])
+    # Fig. 5: linear and nonlinear over the last tenth of the long run
+    fig5 = columns(out / "fig05.csv")
+    n10 = round(SPS * 10 * SCALE) + 1
+    lin = ds.simulate(al, modes=1, t_end=10 * SCALE, samples=n10, nonlinear=False, **KW)
+    nl = ds.simulate(al, modes=1, t_end=10 * SCALE, samples=n10, **KW)
+    tail = slice(n10 - fig5["t"].size, n10)
+    close(fig5["theta1_linear"], lin.q[0][tail])
+    close(fig5["theta1_nonlinear"], nl.q[0][tail])
+    assert fig5["phase_shift_deg"][-1] == pytest.approx(
+        np.degrees(ds.analysis.phase_shift(nl.t, lin.q[0], nl.q[0], 10 * SCALE)), rel=1e-9)
+    # Fig. 10: l = 500 m, theta and theta_dot at z_k = 2l/3
+    fig10 = columns(out / "fig10.csv")
+    l500 = ds.simulate(al.replace(length=500.0), modes=3, t_end=SCALE, samples=round(SPS * SCALE) + 1, **KW)
+    close(fig10["theta_zk_l500"], l500.theta(1000.0 / 3))
+    close(fig10["theta_dot_zk_l500"], l500.theta_dot(1000.0 / 3))
+    # Fig. 13: Omega = 2 pi 6; Fig. 15: steel
+    fig13 = columns(out / "fig13.csv")
+    fast = ds.simulate(al.replace(omega=2 * np.pi * 6), modes=3, t_end=SCALE, samples=round(SPS * SCALE) + 1, **KW)
+    close(fig13["theta_zk_omega_2pi6"], fast.theta(200.0 / 3))
+    fig15 = columns(out / "fig15.csv")
+    steel = ds.simulate(ds.preset("steel"), modes=3, t_end=SCALE, samples=round(SPS * SCALE) + 1, **KW)
+    close(fig15["theta_dot_zk_steel"], steel.theta_dot(200.0 / 3))
+    # Fig. 7: two modes, with the modal coordinates
+    fig7 = columns(out / "fig07.csv")
+    two = ds.simulate(al, modes=2, t_end=SCALE, samples=round(SPS * SCALE) + 1, **KW)
+    close(fig7["q2"], two.q[1])
+    close(fig7["theta_zk"], two.theta(200.0 / 3))
+
+
+def test_table2_csv(quick):
+    header, rows = read_csv(quick[0] / "table2.csv")
+    assert header == ["method", "dt", "max_amplitude", "difference_percent"]
+    assert len(rows) == 5
+    assert rows[0][0] == "Runge-Kutta" and f"{float(rows[0][2]):.3e}" == "5.061e-04"
+    assert [float(r[1]) for r in rows[1:]] == [1e-3, 5e-4, 2.5e-4, 1e-4]
+
+
+def test_stability_csv(quick):
+    header, rows = read_csv(quick[0] / "stability.csv")
+    assert header == list(paper.STABILITY_COLUMNS)
+    assert len(rows) == 5 * (1 + 2 + 3)  # five parameter sets, 1, 2 and 3 modes
+    col = {name: k for k, name in enumerate(header)}
+    assert {r[col["classification"]] for r in rows} == {"centre"}
+    for r in rows:
+        assert float(r[col["eigenvalue_real"]]) == 0.0 and float(r[col["eigenvalue_imag"]]) > 0
+        params = ds.preset(r[col["material"]].replace("aluminium", "aluminum")).replace(
+            length=float(r[col["length_m"]]), omega=float(r[col["omega_rad_s"]]))
+        crit = ds.PDECoefficients.from_parameters(params).critical_speed(int(r[col["mode"]]))
+        assert float(r[col["critical_speed_rad_s"]]) == pytest.approx(crit, rel=1e-12)
+        assert float(r[col["omega_over_critical"]]) < 1
+    lengths = {float(r[col["length_m"]]) for r in rows}
+    assert lengths == {100.0, 250.0, 500.0}
+
+
+def test_report_html_is_self_contained(quick):
+    text = (quick[0] / "report.html").read_text(encoding="utf-8")
+    assert text.count('src="data:image/png;base64,') == 15
+    assert "http://" not in text and "https://" not in text
+    assert "<link" not in text and "<script" not in text
+    assert text.count("<table>") >= 17  # one per figure, Table 2, stability, timings
+
+
+def test_report_md_states_claims_numbers_errata_and_commands(quick):
+    text = (quick[0] / "report.md").read_text(encoding="utf-8")
+    for n in range(1, 16):
+        assert f"## Fig. {n}:" in text
+        assert f"](fig{n:02d}.png)" in text and f"(fig{n:02d}.csv)" in text
+    assert text.count("**Paper:**") == 17  # 15 figures, Table 2, stability
+    assert text.count("**Here (") == 17
+    assert "Quick run" in text  # says the numbers are not the paper's
+    assert "## Errata" in text and text.count("\n1. Eq. 9") == 1 and "\n5. Table 2" in text
+    assert "ds.simulate(ds.preset(\"aluminum\").replace(length=500.0), modes=3, t_end=0.1" in text
+    assert "drillstring paper --out" in text and "--quick" in text
+    assert "accumulated phase shift" in text
+    assert "0.1195 %" in text  # Table 2's rounding-boundary row is reported as such
+
+
+def test_progress_lines_and_report_object(tmp_path, monkeypatch):
+    monkeypatch.setattr(paper, "FIGURES", paper.FIGURES[:2])
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        rep = paper.reproduce(tmp_path, t_end_scale=0.3, samples_per_second=1000, progress=True)
+    lines = err.getvalue().splitlines()
+    assert re.fullmatch(r"\[ 1/2\] fig01 one-mode response \.\.\. \d+\.\d s", lines[1])
+    assert re.fullmatch(r"\[ 2/2\] fig02 one-mode phase portrait \.\.\. \d+\.\d s", lines[2])
+    assert [f.number for f in rep.figures] == [1, 2]
+    curve = rep.figures[0].curves[0]
+    assert curve.amplitude == pytest.approx(5.06e-4, rel=0.01) and curve.bounded
+    assert curve.frequencies[0] == pytest.approx(31.616, rel=2e-3)  # ~9.5 cycles
+    assert rep.report_html.exists() and rep.total_seconds > 0
+
+
+def test_bad_options_are_one_line_errors(tmp_path, capsys):
+    assert main(["paper", "--out", str(tmp_path / "x"), "--t-end-scale", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "t_end_scale" in err
+
+
+def test_single_figure_is_a_reusable_matplotlib_figure():
+    from matplotlib.figure import Figure
+
+    fig = paper.figure(10, t_end_scale=0.05)
+    assert isinstance(fig, Figure)
+    assert [line.get_label() for line in fig.axes[0].get_lines()] == ["l = 100 m", "l = 250 m", "l = 500 m"]
+    assert fig.axes[0].get_ylabel() == r"$\theta(z_k, t)$, rad"
+    assert "different drill string lengths" in fig._suptitle.get_text().replace("\n", " ")
+    with pytest.raises(ds.ValidationError):
+        paper.figure(16)
