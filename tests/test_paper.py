@@ -44,7 +44,7 @@ def test_command_succeeds_quietly_off_a_terminal(quick):
     out, code, stdout, stderr = quick
     assert code == 0
     assert stderr == ""  # progress lines only on a terminal
-    assert f"wrote 34 files to {out}" in stdout
+    assert f"wrote 38 files to {out}" in stdout
     assert re.search(r"figure claims: \d+ supported, \d+ partly, \d+ contradicted", stdout)
 
 
@@ -52,6 +52,7 @@ def test_every_file_appears(quick):
     out = quick[0]
     names = [f"fig{n:02d}.{ext}" for n in range(1, 16) for ext in ("png", "csv")]
     names += ["table2.csv", "stability.csv", "report.md", "report.html"]
+    names += ["convergence.csv", "grids.csv", "reference.csv", "convergence.png"]
     assert sorted(p.name for p in out.iterdir()) == sorted(names)
     for name in names:
         assert (out / name).stat().st_size > 0, name
@@ -155,7 +156,7 @@ def test_stability_csv(quick):
 
 def test_report_html_is_self_contained(quick):
     text = (quick[0] / "report.html").read_text(encoding="utf-8")
-    assert text.count('src="data:image/png;base64,') == 15
+    assert text.count('src="data:image/png;base64,') == 16  # 15 figures and the truncation study
     assert "http://" not in text and "https://" not in text
     assert "<link" not in text and "<script" not in text
     assert text.count("<table>") >= 17  # one per figure, Table 2, stability, timings
@@ -207,3 +208,14 @@ def test_single_figure_is_a_reusable_matplotlib_figure():
     assert "different drill string lengths" in fig._suptitle.get_text().replace("\n", " ")
     with pytest.raises(ds.ValidationError):
         paper.figure(16)
+
+
+def test_report_has_the_truncation_study(quick):
+    out = quick[0]
+    text = (out / "report.md").read_text(encoding="utf-8")
+    assert "Beyond the paper" in text and "convergence.png" in text
+    header, rows = read_csv(out / "convergence.csv")
+    assert header == ["modes", "rigid_mode", "relative_error", "seconds"]
+    errors = {(int(r[0]), r[1] == "True"): float(r[2]) for r in rows}
+    # the rigid mode matters once an even mode moves: 3 modes with it beat 3 modes without it
+    assert errors[3, True] < errors[3, False]

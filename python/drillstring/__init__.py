@@ -16,12 +16,13 @@ True
 
 from __future__ import annotations
 
-from . import analysis, coefficients, galerkin, paper, plots, section, stability
+from . import analysis, coefficients, convergence, galerkin, paper, pde, plots, section, stability
 from ._core import __version__
 from .coefficients import PDECoefficients
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .parameters import PRESETS, Parameters, load, preset
+from .pde import PdeSolution, solve_pde
 from .simulate import METHODS, Simulation, SolverStats, simulate
 from .table2 import Table2Row, table2
 
@@ -35,6 +36,10 @@ __all__ = [
     "ModalCoefficients",
     "project",
     "simulate",
+    "solve_pde",
+    "PdeSolution",
+    "pde",
+    "convergence",
     "Simulation",
     "SolverStats",
     "METHODS",

@@ -16,7 +16,7 @@ from typing import Any, Optional
 from . import __version__
 from .errors import DrillstringError, ValidationError
 from .parameters import PRESETS, Parameters, load, load_toml, preset
-from .simulate import METHODS, simulate
+from .simulate import METHODS, PDE_METHODS, simulate
 from .table2 import format_table2, table2, table2_json
 
 __all__ = ["main"]
@@ -62,34 +62,26 @@ def _solver_table(path: str) -> dict[str, Any]:
     return out
 
 
-def _add_simulate(sub: Any) -> None:
-    p = sub.add_parser(
-        "simulate",
-        help="integrate the n-mode Galerkin model",
-        description="Integrate the n-mode Galerkin model and write theta(z, t) at one section.",
-        epilog="example: drillstring simulate --preset aluminum --modes 3 --t-end 1 --out run.csv --plot run.png",
-    )
+def _add_model_arguments(p: argparse.ArgumentParser, methods: Sequence[str]) -> None:
+    """Arguments shared by `simulate` and `pde`: the configuration, overrides and outputs."""
     p.add_argument("config", nargs="?", help="TOML file with [parameters] and optional [solver] tables")
     p.add_argument("--preset", choices=PRESETS, help="start from a preset (default: aluminum)")
     p.add_argument("--length", type=float, help="string length l, m")
     p.add_argument("--omega", type=float, help="rotation speed Omega, rad/s")
     p.add_argument("--initial-velocities", type=_floats, metavar="C1,C2,...", help="initial modal velocities, rad/s")
     p.add_argument("--k5-variant", choices=("paper", "energy"), help="k5 as printed or re-derived")
-    p.add_argument("--modes", type=int, help="number of elastic modes n (default 3)")
-    p.add_argument("--rigid-mode", action="store_true", default=None, help="include the rigid mode i = 0")
     p.add_argument("--t-end", type=float, help="end time, s (default 1)")
-    p.add_argument("--method", choices=METHODS, help="integrator (default dop853)")
+    p.add_argument("--method", choices=methods, help="integrator (default dop853)")
     p.add_argument("--rtol", type=float, help="relative tolerance (default 1e-9)")
     p.add_argument("--atol", type=float, help="absolute tolerance (default 1e-12)")
-    p.add_argument("--dt", type=float, help="step of rk4 / central, s")
+    p.add_argument("--dt", type=float, help="step of the fixed-step methods, s")
     p.add_argument("--samples", type=int, help="number of uniform output times (default 1001)")
     p.add_argument("--z", type=float, help="section z, m (default 2l/3)")
-    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,q1..qn")
-    p.add_argument("--plot", help="write a time-history and phase-portrait PNG")
-    p.set_defaults(func=_cmd_simulate)
+    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,...")
 
 
-def _cmd_simulate(args: argparse.Namespace) -> int:
+def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parameters, dict[str, Any], float]:
+    """Parameters, solver options (file, then command line) and the section z of a run."""
     if args.config and args.preset:
         raise ValidationError("--preset", args.preset, "either a config file or --preset, not both")
     params: Parameters = load(args.config) if args.config else preset(args.preset or "aluminum")
@@ -101,21 +93,49 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         "k5_variant": args.k5_variant,
     }
     params = params.replace(**{k: v for k, v in overrides.items() if v is not None})
-    for key in ("modes", "rigid_mode", "t_end", "method", "rtol", "atol", "dt", "samples", "z"):
+    for key in keys:
         value = getattr(args, key)
         if value is not None:
             solver[key] = value
+    unknown = sorted(set(solver) - set(keys))
+    if unknown:
+        raise ValidationError(f"solver.{unknown[0]}", solver[unknown[0]], f"one of {', '.join(keys)} for this command")
     z = solver.pop("z", 2 * params.length / 3)
-    result = simulate(params, **solver)
+    return params, solver, z
+
+
+def _summary(result: Any, z: float, what: str) -> None:
     theta = result.theta(z)
     print(
-        f"{result.method}: {result.t.size} samples over 0 <= t <= {result.t[-1]:g} s, "
-        f"modes {', '.join(map(str, result.indices))}\n"
+        f"{result.method}: {result.t.size} samples over 0 <= t <= {result.t[-1]:g} s, {what}\n"
         f"max |theta(z={z:.4g} m)| = {abs(theta).max():.6e} rad, "
         f"energy drift {result.energy_drift():.2e}, "
         f"{result.stats.nfev} rhs evaluations, {result.stats.naccept} steps "
         f"({result.stats.nreject} rejected)"
     )
+
+
+def _add_simulate(sub: Any) -> None:
+    p = sub.add_parser(
+        "simulate",
+        help="integrate the n-mode Galerkin model",
+        description="Integrate the n-mode Galerkin model and write theta(z, t) at one section.",
+        epilog="example: drillstring simulate --preset aluminum --modes 3 --t-end 1 --out run.csv --plot run.png",
+    )
+    _add_model_arguments(p, METHODS)
+    p.add_argument("--modes", type=int, help="number of elastic modes n (default 3)")
+    p.add_argument("--rigid-mode", action="store_true", default=None, help="include the rigid mode i = 0")
+    p.add_argument("--plot", help="write a time-history and phase-portrait PNG")
+    p.set_defaults(func=_cmd_simulate)
+
+
+SIMULATE_KEYS = ("modes", "rigid_mode", "t_end", "method", "rtol", "atol", "dt", "samples", "z")
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    params, solver, z = _model_inputs(args, SIMULATE_KEYS)
+    result = simulate(params, **solver)
+    _summary(result, z, f"modes {', '.join(map(str, result.indices))}")
     if args.out:
         result.to_csv(args.out, z)
         print(f"wrote {args.out}")
@@ -124,6 +144,87 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
         save(time_history_and_phase(result, z), args.plot)
         print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_pde(sub: Any) -> None:
+    p = sub.add_parser(
+        "pde",
+        help="solve the PDE itself (method of lines)",
+        description="Solve the nonlinear torsion PDE by an energy-conserving finite-difference method of lines.",
+        epilog="example: drillstring pde --preset aluminum --nodes 240 --t-end 1 --out pde.csv --plot pde.png "
+        "--field field.npz",
+    )
+    _add_model_arguments(p, PDE_METHODS)
+    p.add_argument("--nodes", type=int, help="grid points N >= 3, ends included (default 240)")
+    p.add_argument("--field", help="write theta(z, t) on the grid to a compressed .npz (t, z, theta)")
+    p.add_argument("--save-field-every", type=int, help="keep every k-th output sample in --field (default 1)")
+    p.add_argument("--plot", help="write a space-time map of theta(z, t) and theta(z_k, t) as PNG")
+    p.set_defaults(func=_cmd_pde)
+
+
+PDE_KEYS = ("nodes", "t_end", "method", "rtol", "atol", "dt", "samples", "z")
+
+
+def _cmd_pde(args: argparse.Namespace) -> int:
+    from .pde import solve_pde
+
+    params, solver, z = _model_inputs(args, PDE_KEYS)
+    every = args.save_field_every if args.save_field_every is not None else (1 if args.field or args.plot else None)
+    result = solve_pde(params, save_field_every=every, **solver)
+    _summary(result, z, f"{result.nodes} nodes")
+    if args.out:
+        result.to_csv(args.out, z)
+        print(f"wrote {args.out}")
+    if args.field:
+        result.save_field(args.field)
+        print(f"wrote {args.field}")
+    if args.plot:
+        from .plots import save, space_time
+
+        save(space_time(result, z), args.plot)
+        print(f"wrote {args.plot}")
+    return 0
+
+
+def _add_convergence(sub: Any) -> None:
+    p = sub.add_parser(
+        "convergence",
+        help="Galerkin truncation error against the converged PDE solution",
+        description="Refine the finite-difference PDE until two (Richardson-extrapolated) grids agree, then "
+        "measure the 1-, 2-, 3-, ... mode Galerkin models with and without the rigid mode against it.",
+        epilog="example: drillstring convergence --out convergence",
+    )
+    p.add_argument("config", nargs="?", help="TOML file with a [parameters] table (default: the aluminium preset)")
+    p.add_argument("--preset", choices=PRESETS, help="start from a preset (default: aluminum)")
+    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--t-end", type=float, default=1.0, help="end time, s (default 1)")
+    p.add_argument("--modes", type=_ints, default=None, metavar="1,2,3,...", help="Galerkin sizes to measure")
+    p.add_argument("--max-nodes", type=int, default=1921, help="largest PDE grid (default 1921)")
+    p.add_argument("--tol", type=float, default=1e-4, help="agreement of successive grids (default 1e-4)")
+    p.set_defaults(func=_cmd_convergence)
+
+
+def _ints(text: str) -> tuple[int, ...]:
+    try:
+        return tuple(int(x) for x in text.split(",") if x.strip())
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"expected comma-separated integers, got {text!r}") from exc
+
+
+def _cmd_convergence(args: argparse.Namespace) -> int:
+    from . import convergence
+
+    if args.config and args.preset:
+        raise ValidationError("--preset", args.preset, "either a config file or --preset, not both")
+    params = load(args.config) if args.config else preset(args.preset or "aluminum")
+    kwargs: dict[str, Any] = {"t_end": args.t_end, "max_nodes": args.max_nodes, "tol": args.tol}
+    if args.modes:
+        kwargs["modes"] = args.modes
+    result = convergence.study(params, progress=lambda line: print(line, file=sys.stderr, flush=True), **kwargs)
+    for path in convergence.write(result, args.out):
+        print(f"wrote {path}")
+    print("\n".join(convergence.summary(result)))
     return 0
 
 
@@ -187,6 +288,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     _add_simulate(sub)
+    _add_pde(sub)
+    _add_convergence(sub)
     _add_table2(sub)
     _add_paper(sub)
     return parser

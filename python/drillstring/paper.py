@@ -36,6 +36,7 @@ from typing import Any, Callable, Optional, Union
 import numpy as np
 
 from . import analysis, plots
+from . import convergence as _convergence
 from .errors import ValidationError
 from .galerkin import project
 from .parameters import Parameters, preset
@@ -1016,6 +1017,9 @@ def _document(rep: ReproductionReport, ctx: dict[str, Any], command: str) -> lis
     doc.append(("p", "Data: [stability.csv](stability.csv) (one row per retained mode; the mode "
                      "contributes the eigenvalue pair ± eigenvalue_real + i eigenvalue_imag). "
                      "`drillstring.stability.analyse(ds.preset(\"aluminum\").replace(length=500.0), modes=3)`."))
+    study = rep.notes.get("convergence")
+    if study is not None:
+        doc += _convergence_section(study)
     # errata
     doc.append(("h2", "Errata of the printed equations and how the software handles them"))
     a1, a2, a3 = ctx["one_mode"]["a"]
@@ -1046,6 +1050,36 @@ def _document(rep: ReproductionReport, ctx: dict[str, Any], command: str) -> lis
                         f"report = ds.paper.reproduce(\"{rep.out_dir}\", t_end_scale={scale:g}{extra})"))
     timing = [[name, f"{sec:.2f}"] for name, sec in rep.timings.items()]
     doc.append(("table", ["step", "seconds"], timing))
+    return doc
+
+
+def _convergence_section(study: Any) -> list[Block]:
+    """Beyond the paper: the Galerkin truncation error against the converged PDE solution."""
+    doc: list[Block] = [("h2", "Beyond the paper: how many modes does an honest answer need?")]
+    doc.append(("p", "The paper trusts a 1- to 3-mode Galerkin truncation in the basis cos(iπz/l), "
+                     "i = 1..n. Here the PDE itself (eq. 18) is solved by an energy-conserving "
+                     "finite-difference method of lines (`ds.solve_pde`), refined until two successive "
+                     "Richardson-extrapolated grids agree, and every Galerkin model is measured against "
+                     "it at z_k (Table 1, C = (0.1, 0.05, 0.02))."))
+    doc.append(("img", "convergence.png", "Galerkin truncation error against the converged PDE solution"))
+    doc.append(("ul", _convergence.summary(study)))
+    rows = []
+    for count in sorted({m.modes for m in study.models}):
+        rows.append([str(count), f"{study.error(count, False):.2e}", f"{study.error(count, True):.2e}"])
+    doc.append(("table", ["modes n", "error, basis i = 1..n (paper)", "error, with rigid mode i = 0"], rows))
+    three, three_r = study.error(3, False), study.error(3, True)
+    doc.append(("p", "**What it means for the paper's conclusions.** The qualitative claims survive: the "
+                     "motion is bounded, multi-frequency and modulated in every model and in the PDE. "
+                     f"The quantitative ones do not: the three-mode θ(z_k, t) behind Figs. 8-15 differs "
+                     f"from the PDE by {three:.0%} of its amplitude at l = 100 m, and no number of "
+                     "modes in the paper's basis fixes that, because the uniform twist i = 0, which the "
+                     "cubic terms drive as soon as an even mode moves (model notes), is left out. With it, "
+                     f"three modes are {three_r:.1%} off and six reach 1e-3. The multimode amplitude "
+                     "and modulation figures should be read as properties of the truncated model; "
+                     "`ds.simulate(..., rigid_mode=True, modes=6)` or `ds.solve_pde` give the PDE's."))
+    doc.append(("p", "Data: [convergence.csv](convergence.csv), [grids.csv](grids.csv), "
+                     "[reference.csv](reference.csv). `drillstring convergence --out DIR` or "
+                     "`ds.convergence.study()`."))
     return doc
 
 
@@ -1173,6 +1207,7 @@ def reproduce(
     samples_per_second: int = SAMPLES_PER_SECOND,
     progress: Optional[bool] = None,
     command: Optional[str] = None,
+    convergence: bool = True,
 ) -> ReproductionReport:
     """Regenerates every numerical result of the paper into ``out_dir`` (created if needed).
 
@@ -1191,6 +1226,10 @@ def reproduce(
         default: when stderr is a terminal.
     command :
         The command line to quote in the report (default: the equivalent ``drillstring paper``).
+    convergence :
+        Add the truncation study beyond the paper (:mod:`drillstring.convergence`: Galerkin
+        models against the converged PDE solution; ``convergence.csv``, ``grids.csv``,
+        ``reference.csv``, ``convergence.png``).
 
     Returns
     -------
@@ -1259,9 +1298,17 @@ def reproduce(
     _write_stability_csv(srows, out / "stability.csv")
     files.append(out / "stability.csv")
     tick("        table 2 and stability", time.perf_counter() - t0)
+    study = None
+    if convergence:
+        t0 = time.perf_counter()
+        study = _convergence.study(preset("aluminum"), t_end=scale, samples=max(201, int(1000 * scale) + 1),
+                                   **({} if scale == 1.0 else {"cells": 60, "max_nodes": 241, "tol": 1e-3,
+                                                              "modes": (1, 2, 3, 6)}))
+        files += _convergence.write(study, out)
+        tick("        truncation study against the PDE", time.perf_counter() - t0)
     t0 = time.perf_counter()
     rep = ReproductionReport(out, scale, samples_per_second, results, rows2, srows, files, timings, 0.0)
-    rep.notes = {"context": ctx}
+    rep.notes = {"context": ctx, "convergence": study}
     rep.total_seconds = time.perf_counter() - start
     doc = _document(rep, ctx, command)
     rep.report_md.write_text(_markdown(doc), encoding="utf-8")

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import textwrap
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Optional, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
@@ -399,6 +399,38 @@ def section_phase_portrait(
     main.set_title("overlaid (as in the paper)", fontsize=9, loc="left")
     _sci(main)
     _title(fig, title)
+    return fig
+
+
+def space_time(result: Any, z: Optional[float] = None, title: Optional[str] = None) -> Figure:
+    """Space-time map of ``theta(z, t)`` from a PDE solution, and ``theta(z_k, t)`` below it.
+
+    Uses ``result.field`` (``save_field_every``) when present, else every sample.
+    """
+    length = result.params.length
+    z = 2 * length / 3 if z is None else z
+    theta = result.q if result.field is None else result.field
+    t = result.t if result.field_t is None else result.field_t
+    stride = max(1, t.size // 1500)  # at most ~1500 columns drawn; data untouched
+    fig = _figure(figsize=(11, 6.4), layout="constrained")
+    ax_map, ax_k = fig.subplots(2, 1, height_ratios=[2.2, 1], sharex=True)
+    limit = float(np.abs(theta).max()) or 1.0
+    mesh = ax_map.pcolormesh(
+        t[::stride], result.z, theta[:, ::stride], cmap="RdBu_r", vmin=-limit, vmax=limit, shading="nearest",
+        rasterized=True,
+    )
+    cbar = fig.colorbar(mesh, ax=ax_map, pad=0.01)
+    cbar.set_label(r"$\theta(z, t)$, rad")
+    cbar.formatter.set_powerlimits((-3, 3))
+    ax_map.axhline(z, color="k", lw=0.8, ls="--")
+    ax_map.annotate(r"$z_k$", (t[-1], z), xytext=(4, 0), textcoords="offset points", va="center", fontsize=9)
+    ax_map.set_ylabel("z, m")
+    ax_k.plot(result.t, result.theta(z), lw=0.8, color="C0")
+    ax_k.set_xlabel("t, s")
+    ax_k.set_ylabel(rf"$\theta(z_k={z:.4g}\,\mathrm{{m}}, t)$, rad")
+    ax_k.grid(alpha=0.3)
+    _sci(ax_k)
+    fig.suptitle(title or f"PDE, {result.nodes} nodes, l = {length:.4g} m, {result.method}")
     return fig
 
 

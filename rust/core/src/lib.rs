@@ -19,6 +19,7 @@ pub mod error;
 pub mod integrators;
 pub mod modal;
 pub mod options;
+pub mod pde;
 pub mod solution;
 pub mod system;
 

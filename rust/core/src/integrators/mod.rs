@@ -1,5 +1,6 @@
 //! Time integrators: the adaptive explicit Runge-Kutta pairs DOP853 and Dormand-Prince
-//! 5(4) with dense output, classical RK4 and central differences with fixed steps.
+//! 5(4) with dense output, classical RK4, central differences and velocity Verlet with
+//! fixed steps.
 //!
 //! Every solve validates its input first (an [`Error`] names the offending field) and
 //! then never panics: numerical failure ends it with a [`crate::Status`] and the samples
@@ -20,6 +21,7 @@ mod hermite;
 mod rk4;
 mod sampling;
 mod tableau;
+mod verlet;
 
 use crate::error::{Error, Result};
 use crate::options::{AdaptiveOptions, FixedOptions, Output};
@@ -81,6 +83,22 @@ pub fn central_difference<S: SecondOrderSystem + ?Sized>(
     central::integrate(sys, t0, q0, v0, t_end, output, opts)
 }
 
+/// Velocity (Stormer-)Verlet, the symplectic kick-drift-kick scheme
+/// `v+ = v + dt/2 a(q)`, `q1 = q + dt v+`, `v1 = v+ + dt/2 a(q1)`: second order, bounded
+/// energy error without drift. The state in the [`Solution`] is `[q, v]`; `Stats::nfev`
+/// counts evaluations of `a` (one per step plus one at the start).
+pub fn verlet<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &FixedOptions,
+) -> Result<Solution> {
+    verlet::integrate(sys, t0, q0, v0, t_end, output, opts)
+}
+
 /// An integration method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
@@ -88,16 +106,21 @@ pub enum Method {
     Dopri5,
     Rk4,
     Central,
+    Verlet,
 }
 
 impl Method {
     /// Every method, in the order of their names in [`Method::parse`]'s error.
-    pub const ALL: [Method; 4] = [Method::Dop853, Method::Dopri5, Method::Rk4, Method::Central];
+    pub const ALL: [Method; 5] = [Method::Dop853, Method::Dopri5, Method::Rk4, Method::Central, Method::Verlet];
 
-    /// Parses `"dop853"`, `"dopri5"`, `"rk4"` or `"central"`.
+    /// Parses `"dop853"`, `"dopri5"`, `"rk4"`, `"central"` or `"verlet"`.
     pub fn parse(name: &str) -> Result<Method> {
         Method::ALL.into_iter().find(|m| m.name() == name).ok_or_else(|| {
-            Error::invalid("method", format!("{name:?}"), "one of \"dop853\", \"dopri5\", \"rk4\", \"central\"")
+            Error::invalid(
+                "method",
+                format!("{name:?}"),
+                "one of \"dop853\", \"dopri5\", \"rk4\", \"central\", \"verlet\"",
+            )
         })
     }
 
@@ -108,6 +131,7 @@ impl Method {
             Method::Dopri5 => "dopri5",
             Method::Rk4 => "rk4",
             Method::Central => "central",
+            Method::Verlet => "verlet",
         }
     }
 
@@ -198,6 +222,7 @@ pub fn solve_second_order<S: SecondOrderSystem + ?Sized>(
         Method::Dopri5 => dopri5(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.adaptive()),
         Method::Rk4 => rk4(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.fixed()?),
         Method::Central => central_difference(sys, t0, q0, v0, t_end, output, &opts.fixed()?),
+        Method::Verlet => verlet(sys, t0, q0, v0, t_end, output, &opts.fixed()?),
     }
 }
 

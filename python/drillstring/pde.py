@@ -1,0 +1,198 @@
+"""The PDE itself (eq. 18) by the method of lines: :func:`solve_pde` and :class:`PdeSolution`.
+
+The energy ``H`` of the model notes is discretised on ``N`` nodes ``z_j = j h``,
+``h = l / (N - 1)`` (trapezoid weights for node terms, cell gradients
+``g = (theta_{j+1} - theta_j) / h`` for the gradient terms) and the discrete Euler-Lagrange
+equations are integrated: the semi-discrete system conserves the discrete energy exactly, the
+Neumann ends (eq. 14) are natural, and the scheme is second order in ``h`` (the lumped-mass
+linear finite-element method). The nodes' equations are solved in the Rust core with the same
+integrators as the modal system (DOP853 by default; ``"verlet"`` is symplectic Stormer-Verlet).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
+
+import numpy as np
+
+from . import _core
+from .coefficients import PDECoefficients
+from .errors import SolveError, ValidationError
+from .parameters import Parameters
+from .result import TrajectoryResult
+from .simulate import FIXED_STEP_METHODS, PDE_METHODS, _count, _output_times, check_solver_options
+
+if TYPE_CHECKING:  # pragma: no cover
+    from numpy.typing import ArrayLike, NDArray
+
+__all__ = ["PdeSolution", "solve_pde", "pde_system", "MAX_NODES"]
+
+#: Largest grid accepted (memory of one state: 16 bytes a node a sample).
+MAX_NODES = 1_000_000
+
+InitialField = Union[None, "ArrayLike", Callable[["NDArray[np.float64]"], "ArrayLike"]]
+
+
+def pde_system(params: Parameters, nodes: int = 240) -> Any:
+    """The Rust ``PdeSystem`` of ``params`` on ``nodes`` grid points (validated)."""
+    nodes = _count("nodes", nodes, 3)
+    if nodes > MAX_NODES:
+        raise ValidationError("nodes", nodes, f"3 <= nodes <= {MAX_NODES}")
+    k = PDECoefficients.from_parameters(params)
+    return _core.PdeSystem(k.k1, k.k2, k.k3, k.k4, k.k5, k.k6, params.length, nodes)
+
+
+def _initial_field(name: str, value: InitialField, z: NDArray[np.float64]) -> Optional[NDArray[np.float64]]:
+    if value is None:
+        return None
+    if callable(value):
+        value = value(z.copy())
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValidationError(name, type(value).__name__, f"an array of {z.size} floats or a function of z") from exc
+    if arr.shape != z.shape:
+        raise ValidationError(name, f"an array of shape {arr.shape}", f"shape ({z.size},) (one value per node)")
+    if not np.all(np.isfinite(arr)):
+        raise ValidationError(name, "an array with NaN or infinite values", "finite values")
+    return np.ascontiguousarray(arr)
+
+
+def _default_dt(params: Parameters, nodes: int) -> float:
+    """Half the CFL limit ``h / c`` of the explicit schemes, ``c = sqrt(k2 / k1)``."""
+    k = PDECoefficients.from_parameters(params)
+    h = params.length / (nodes - 1)
+    return 0.5 * h / math.sqrt(k.k2 / k.k1)
+
+
+class PdeSolution(TrajectoryResult):
+    """The result of :func:`solve_pde`.
+
+    Attributes
+    ----------
+    t : ndarray, shape (samples,)
+        Output times, s.
+    z : ndarray, shape (nodes,)
+        Node positions, m.
+    q, qdot : ndarray, shape (nodes, samples)
+        ``theta(z_j, t)`` (rad) and its rate (rad/s) at every node and sample.
+    field : ndarray, shape (nodes, len(field_t)) or None
+        ``theta(z_j, t)`` at every ``save_field_every``-th sample (``None`` when not asked).
+    field_t : ndarray or None
+        The times of ``field``.
+    status, message, stats, method, params
+        As :class:`~drillstring.simulate.Simulation`.
+
+    ``theta(z)`` interpolates linearly between nodes (second order, like the scheme).
+    """
+
+    def __init__(
+        self, params: Parameters, system: Any, method: str, raw: dict[str, Any], save_field_every: Optional[int]
+    ) -> None:
+        super().__init__(params, system, method, raw)
+        self.z: NDArray[np.float64] = np.asarray(system.z)
+        self.save_field_every = save_field_every
+        if save_field_every is None:
+            self.field: Optional[NDArray[np.float64]] = None
+            self.field_t: Optional[NDArray[np.float64]] = None
+        else:
+            self.field = self.q[:, ::save_field_every]
+            self.field_t = self.t[::save_field_every]
+
+    @property
+    def nodes(self) -> int:
+        return int(self.z.size)
+
+    def _section_matrix(self, z: NDArray[np.float64]) -> NDArray[np.float64]:
+        n = self.nodes
+        h = self.params.length / (n - 1)
+        j = np.minimum(np.floor(z / h).astype(np.int64), n - 2)
+        w = z / h - j
+        matrix = np.zeros((z.size, n))
+        rows = np.arange(z.size)
+        matrix[rows, j] = 1.0 - w
+        matrix[rows, j + 1] = w
+        return matrix
+
+    def _state_columns(self) -> list[str]:
+        return []
+
+    def save_field(self, path: Any) -> None:
+        """Writes ``t``, ``z`` and ``theta`` (nodes x samples; the saved field, else every sample)
+        to a compressed ``.npz``."""
+        theta = self.q if self.field is None else self.field
+        t = self.t if self.field_t is None else self.field_t
+        np.savez_compressed(path, t=t, z=self.z, theta=theta)
+
+    def __repr__(self) -> str:
+        return (
+            f"PdeSolution(method={self.method!r}, nodes={self.nodes}, samples={self.t.size}, "
+            f"status={self.status!r}, nfev={self.stats.nfev})"
+        )
+
+
+def solve_pde(
+    params: Parameters,
+    nodes: int = 240,
+    t_end: float = 1.0,
+    method: str = "dop853",
+    rtol: float = 1e-9,
+    atol: float = 1e-12,
+    t_eval: Optional[Sequence[float]] = None,
+    save_field_every: Optional[int] = None,
+    *,
+    dt: Optional[float] = None,
+    samples: Optional[int] = None,
+    initial_twist: InitialField = None,
+    initial_velocity: InitialField = None,
+    max_steps: Optional[int] = None,
+    check: bool = True,
+) -> PdeSolution:
+    """Solves the nonlinear torsion PDE (eq. 18, Neumann ends) on ``nodes`` grid points.
+
+    Parameters
+    ----------
+    params : Parameters
+        Drill string, ``omega`` and the initial modal velocities ``C_i``: by default
+        ``theta(z, 0) = 0`` and ``theta_t(z, 0) = sum_i C_i cos(i pi z / l)`` (eq. 13).
+    nodes : int
+        Grid points ``N >= 3`` including both ends.
+    t_end, method, rtol, atol, t_eval, dt, samples, max_steps, check
+        As :func:`~drillstring.simulate.simulate`; ``method`` may also be ``"verlet"``
+        (symplectic, fixed step). Fixed-step methods default to half the CFL limit ``h / c``.
+    save_field_every : int, optional
+        Keep ``theta(z_j, t)`` at every k-th output sample in ``result.field``.
+    initial_twist, initial_velocity : array_like or callable, optional
+        ``theta(z_j, 0)`` and ``theta_t(z_j, 0)`` as arrays over the nodes or functions of
+        ``z``; they replace the modal initial conditions.
+
+    Examples
+    --------
+    >>> import drillstring as ds
+    >>> sol = ds.solve_pde(ds.preset("aluminum"), nodes=120, t_end=0.1)
+    >>> sol.theta(200.0 / 3).shape
+    (1001,)
+    """
+    if not isinstance(params, Parameters):
+        raise ValidationError("params", type(params).__name__, "a drillstring.Parameters")
+    method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
+        method, t_end, rtol, atol, dt, max_steps, methods=PDE_METHODS
+    )
+    every = None if save_field_every is None else _count("save_field_every", save_field_every, 1)
+    system = pde_system(params, nodes)
+    z = np.asarray(system.z)
+    twist = _initial_field("initial_twist", initial_twist, z)
+    velocity = _initial_field("initial_velocity", initial_velocity, z)
+    q0 = np.zeros(z.size) if twist is None else twist
+    if velocity is None:
+        velocity = np.asarray(system.initial_velocity_from_modes(np.asarray(params.initial_velocities, dtype=float)))
+    times = _output_times(t_eval, samples, t_end_f, method)
+    if method in FIXED_STEP_METHODS and dt_f is None:
+        dt_f = _default_dt(params, z.size)
+    raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps)
+    result = PdeSolution(params, system, method, raw, every)
+    if check and not result.success:
+        raise SolveError(result.status, result.message, result)
+    return result

@@ -1,0 +1,239 @@
+//! The nodal system [`PdeSystem`]: grid, discrete energy `H_h` and its Euler-Lagrange
+//! accelerations (derivation in the module docs of [`crate::pde`]).
+
+use crate::error::{Error, Result};
+use crate::system::SecondOrderSystem;
+
+/// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
+/// this length; far beyond any grid an explicit method can step through).
+pub const MAX_NODES: usize = 10_000_000;
+
+/// The coefficients `k1 .. k6` of the PDE (model notes, eq. 18).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PdeCoefficients {
+    pub k1: f64,
+    pub k2: f64,
+    pub k3: f64,
+    pub k4: f64,
+    pub k5: f64,
+    pub k6: f64,
+}
+
+impl From<[f64; 6]> for PdeCoefficients {
+    fn from([k1, k2, k3, k4, k5, k6]: [f64; 6]) -> Self {
+        PdeCoefficients { k1, k2, k3, k4, k5, k6 }
+    }
+}
+
+impl PdeCoefficients {
+    /// `[k1, k2, k3, k4, k5, k6]`.
+    pub fn to_array(&self) -> [f64; 6] {
+        [self.k1, self.k2, self.k3, self.k4, self.k5, self.k6]
+    }
+
+    /// `k1`, `k2` finite and > 0, `k3 .. k6` finite.
+    pub fn validate(&self) -> Result<()> {
+        for (i, &k) in self.to_array().iter().enumerate() {
+            let field = ["k1", "k2", "k3", "k4", "k5", "k6"][i];
+            if i < 2 {
+                if !(k.is_finite() && k > 0.0) {
+                    return Err(Error::invalid(field, k, "a finite number > 0"));
+                }
+            } else if !k.is_finite() {
+                return Err(Error::invalid(field, k, "a finite number"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The semi-discrete PDE on `N` nodes: `q_j = th(z_j)`, `q_j'' = -(dV_h/dth_j) / (w_j k1)`.
+///
+/// Holds only scalars: [`SecondOrderSystem::acceleration`] is one allocation-free pass over
+/// the cells.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PdeSystem {
+    k: PdeCoefficients,
+    length: f64,
+    nodes: usize,
+    /// The spacing `h = l / (N - 1)`.
+    h: f64,
+}
+
+impl PdeSystem {
+    /// The discretisation of the PDE with coefficients `k` on `[0, length]` with `nodes`
+    /// nodes (ends included). Refuses `nodes < 3` or `> MAX_NODES` (field `"nodes"`),
+    /// a non-finite or non-positive `length` (`"length"`), non-finite `k` (`"k1"` ..
+    /// `"k6"`) and `k1 <= 0` or `k2 <= 0`.
+    pub fn new(k: impl Into<PdeCoefficients>, length: f64, nodes: usize) -> Result<Self> {
+        let k = k.into();
+        if !(3..=MAX_NODES).contains(&nodes) {
+            return Err(Error::invalid("nodes", nodes, format!("an integer in 3..={MAX_NODES}")));
+        }
+        if !(length.is_finite() && length > 0.0) {
+            return Err(Error::invalid("length", length, "a finite number > 0"));
+        }
+        k.validate()?;
+        let h = length / (nodes - 1) as f64;
+        if !(1.0 / (h * k.k1)).is_finite() {
+            return Err(Error::invalid(
+                "length",
+                length,
+                format!("a grid spacing h = l / {} with 1 / (h k1) finite", nodes - 1),
+            ));
+        }
+        Ok(PdeSystem { k, length, nodes, h })
+    }
+
+    pub fn coefficients(&self) -> PdeCoefficients {
+        self.k
+    }
+
+    /// The length `l`.
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// The number of nodes `N` (the number of unknowns).
+    pub fn nodes(&self) -> usize {
+        self.nodes
+    }
+
+    /// The node spacing `h = l / (N - 1)`.
+    pub fn spacing(&self) -> f64 {
+        self.h
+    }
+
+    /// The node position `z_j = j h` (`z_{N-1} = l` exactly).
+    pub fn z(&self, j: usize) -> f64 {
+        if j + 1 >= self.nodes {
+            self.length
+        } else {
+            j as f64 * self.h
+        }
+    }
+
+    /// All node positions.
+    pub fn positions(&self) -> Vec<f64> {
+        (0..self.nodes).map(|j| self.z(j)).collect()
+    }
+
+    /// The trapezoid weight `w_j` (`h / 2` at the ends, `h` inside).
+    pub fn weight(&self, j: usize) -> f64 {
+        if j == 0 || j + 1 == self.nodes {
+            0.5 * self.h
+        } else {
+            self.h
+        }
+    }
+
+    /// All node weights (they sum to `l`).
+    pub fn weights(&self) -> Vec<f64> {
+        (0..self.nodes).map(|j| self.weight(j)).collect()
+    }
+
+    /// The nodal velocities `th_t(z_j) = sum_i c[i - 1] cos(i pi z_j / l)` of a modal
+    /// initial condition (`c[0]` is the amplitude of mode `i = 1`; paper eq. 13).
+    pub fn initial_velocity_from_modes(&self, c: &[f64]) -> Vec<f64> {
+        let kz = std::f64::consts::PI / self.length;
+        (0..self.nodes)
+            .map(|j| {
+                let z = self.z(j);
+                c.iter().enumerate().map(|(m, &ci)| ci * ((m + 1) as f64 * kz * z).cos()).sum()
+            })
+            .collect()
+    }
+
+    /// The piecewise-linear (finite-element) interpolant of the nodal values `q` at `z`
+    /// (clamped to `[0, l]`).
+    pub fn interpolate(&self, q: &[f64], z: f64) -> f64 {
+        let n = self.nodes;
+        let s = (z / self.h).clamp(0.0, (n - 1) as f64);
+        let c = (s.floor() as usize).min(n - 2);
+        let frac = s - c as f64;
+        (1.0 - frac) * q[c] + frac * q[c + 1]
+    }
+
+    /// The discrete potential `V_h(q)` (everything in `H_h` but the kinetic term).
+    pub fn potential(&self, q: &[f64]) -> f64 {
+        let PdeCoefficients { k2, k3, k4, k5, k6, .. } = self.k;
+        let q = &q[..self.nodes];
+        let nodal: f64 = q
+            .iter()
+            .enumerate()
+            .map(|(j, &th)| {
+                let th2 = th * th;
+                self.weight(j) * (0.25 * k3 * th2 * th2 - 0.5 * k6 * th2)
+            })
+            .sum();
+        let inv_h = 1.0 / self.h;
+        let cells: f64 = q
+            .windows(2)
+            .map(|pair| {
+                let (a, b) = (pair[0], pair[1]);
+                let g = (b - a) * inv_h;
+                let g2 = g * g;
+                g2 * (0.5 * k2 + 0.25 * k4 * (a * a + b * b) + 0.25 * k5 * g2)
+            })
+            .sum();
+        nodal + self.h * cells
+    }
+
+    /// The discrete energy `H_h(q, v)`, conserved by the semi-discrete system.
+    pub fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        let kinetic: f64 =
+            v[..self.nodes].iter().enumerate().map(|(j, &vj)| self.weight(j) * 0.5 * self.k.k1 * vj * vj).sum();
+        kinetic + self.potential(q)
+    }
+
+    /// The generalised force `dV_h/dth` (the gradient of [`PdeSystem::potential`]) into
+    /// `out`: one pass over the cells, no allocation.
+    #[inline]
+    pub fn force(&self, q: &[f64], out: &mut [f64]) {
+        self.sweep(q, out, 1.0, 1.0);
+    }
+
+    /// `scale * dV_h/dth_j` for interior nodes and `end_factor * scale * dV_h/dth_j` at the ends.
+    ///
+    /// The force on node `j` collects its nodal term and the contributions of cells
+    /// `j - 1` (carried in `pending`) and `j`; it is complete, and written, once cell `j`
+    /// has been visited. Every node is first treated as interior (weight `h`) and the last
+    /// one's nodal term halved at the end.
+    #[inline(always)]
+    fn sweep(&self, q: &[f64], out: &mut [f64], scale: f64, end_factor: f64) {
+        let n = self.nodes;
+        let (q, out) = (&q[..n], &mut out[..n]);
+        let PdeCoefficients { k2, k3, k4, k5, k6, .. } = self.k;
+        let h = self.h;
+        let inv_h = 1.0 / h;
+        let half_k4 = 0.5 * k4;
+        let h_half_k4 = h * half_k4;
+        let nodal = |th: f64| th * (k3 * th * th - k6);
+        // Force on node c gathered so far (nodal term and cell c - 1).
+        let mut pending = 0.5 * h * nodal(q[0]);
+        for (pair, f_out) in q.windows(2).zip(out.iter_mut()) {
+            let (a, b) = (pair[0], pair[1]);
+            let g = (b - a) * inv_h;
+            let g2 = g * g;
+            let flux = g * (k2 + half_k4 * (a * a + b * b) + k5 * g2);
+            let s = h_half_k4 * g2;
+            *f_out = (pending - flux + s * a) * scale;
+            pending = h * nodal(b) + flux + s * b;
+        }
+        out[0] *= end_factor;
+        out[n - 1] = (pending - 0.5 * h * nodal(q[n - 1])) * (scale * end_factor);
+    }
+}
+
+impl SecondOrderSystem for PdeSystem {
+    fn dof(&self) -> usize {
+        self.nodes
+    }
+
+    /// `q_j'' = -(dV_h/dth_j) / (w_j k1)`.
+    #[inline]
+    fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
+        // 1 / (w_j k1): 1 / (h k1) inside, twice that at the ends.
+        self.sweep(q, acc, -1.0 / (self.h * self.k.k1), 2.0);
+    }
+}

@@ -1,0 +1,204 @@
+//! Bindings of the method-of-lines PDE system and its solve.
+
+use drillstring_core as core;
+use drillstring_core::integrators::{self, Method, SolveOptions};
+use drillstring_core::pde::{PdeCoefficients, PdeSystem as CorePdeSystem};
+use drillstring_core::{Output, SecondOrderSystem};
+use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{no_panic, solution_dict, to_vec, validation_error};
+
+/// The torsion PDE discretised on `nodes` grid points `z_j = j l / (nodes - 1)` (lumped-mass
+/// linear finite elements: the discrete energy `H_h` is conserved by the semi-discrete system).
+#[pyclass(frozen, module = "drillstring._core")]
+pub(crate) struct PdeSystem {
+    inner: CorePdeSystem,
+}
+
+/// `value` as a `usize`, or a `ValidationError` naming `field`.
+fn non_negative(py: Python<'_>, field: &str, value: i64, allowed: &str) -> PyResult<usize> {
+    usize::try_from(value).map_err(|_| validation_error(py, core::Error::invalid(field, value, allowed)))
+}
+
+#[pymethods]
+impl PdeSystem {
+    #[new]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        k1: f64,
+        k2: f64,
+        k3: f64,
+        k4: f64,
+        k5: f64,
+        k6: f64,
+        length: f64,
+        nodes: i64,
+    ) -> PyResult<Self> {
+        let allowed = format!("an integer in 3..={}", core::pde::MAX_NODES);
+        let nodes = non_negative(py, "nodes", nodes, &allowed)?;
+        let k = PdeCoefficients { k1, k2, k3, k4, k5, k6 };
+        let inner = CorePdeSystem::new(k, length, nodes).map_err(|e| validation_error(py, e))?;
+        Ok(PdeSystem { inner })
+    }
+
+    /// Number of grid nodes `N` (the unknowns `theta(z_j)`).
+    #[getter]
+    fn nodes(&self) -> usize {
+        self.inner.nodes()
+    }
+
+    /// The string length `l`.
+    #[getter]
+    fn length(&self) -> f64 {
+        self.inner.length()
+    }
+
+    /// The node spacing `h = l / (N - 1)`.
+    #[getter]
+    fn spacing(&self) -> f64 {
+        self.inner.spacing()
+    }
+
+    /// `(k1, k2, k3, k4, k5, k6)`.
+    #[getter]
+    fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
+        let [k1, k2, k3, k4, k5, k6] = self.inner.coefficients().to_array();
+        (k1, k2, k3, k4, k5, k6)
+    }
+
+    /// Node positions `z_j`, shape (N,).
+    #[getter]
+    fn z<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.inner.positions())
+    }
+
+    /// Trapezoid node weights `w_j` (`h/2` at the ends, `h` inside), shape (N,).
+    #[getter]
+    fn weights<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.inner.weights())
+    }
+
+    /// Accelerations `theta_j'' = -(dV_h/dtheta_j) / (w_j k1)` at one state `q` (shape (N,)).
+    fn acceleration<'py>(&self, py: Python<'py>, q: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let q = to_vec(&q);
+        self.check_len(py, "q", q.len())?;
+        let mut acc = vec![0.0; q.len()];
+        no_panic(|| self.inner.acceleration(&q, &mut acc))?;
+        Ok(PyArray1::from_vec(py, acc))
+    }
+
+    /// The discrete energy `H_h` of each sample: `q` and `qdot` of shape (N, samples).
+    fn energy<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qdot: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (q, v) = (q.as_array(), qdot.as_array());
+        let n = self.inner.nodes();
+        if q.nrows() != n || v.shape() != q.shape() {
+            return Err(validation_error(
+                py,
+                core::Error::invalid(
+                    "q",
+                    format!("shapes {:?} and {:?}", q.shape(), v.shape()),
+                    format!("q and qdot of equal shape ({n}, samples)"),
+                ),
+            ));
+        }
+        let out = no_panic(|| {
+            let mut qk = vec![0.0; n];
+            let mut vk = vec![0.0; n];
+            (0..q.ncols())
+                .map(|k| {
+                    for i in 0..n {
+                        qk[i] = q[(i, k)];
+                        vk[i] = v[(i, k)];
+                    }
+                    self.inner.energy(&qk, &vk)
+                })
+                .collect::<Vec<f64>>()
+        })?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// Nodal velocities `sum_i c[i-1] cos(i pi z_j / l)` of modal amplitudes `c` (mode 1 first).
+    fn initial_velocity_from_modes<'py>(
+        &self,
+        py: Python<'py>,
+        c: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let c = to_vec(&c);
+        let v = no_panic(|| self.inner.initial_velocity_from_modes(&c))?;
+        Ok(PyArray1::from_vec(py, v))
+    }
+
+    /// The lowest `count` squared linear frequencies `w^2` (ascending; the first, `-k6/k1`, is
+    /// the uniform twist). Costs `O(N^2)`; runs without the GIL.
+    fn linear_frequencies_squared<'py>(&self, py: Python<'py>, count: i64) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let nodes = self.inner.nodes();
+        let count = non_negative(py, "count", count, &format!("an integer in 1..={nodes} (the number of nodes)"))?;
+        let sys = &self.inner;
+        let w2 = py.detach(|| no_panic(|| sys.linear_frequencies_squared(count)))?;
+        Ok(PyArray1::from_vec(py, w2.map_err(|e| validation_error(py, e))?))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("PdeSystem(nodes={}, length={})", self.inner.nodes(), self.inner.length())
+    }
+}
+
+impl PdeSystem {
+    fn check_len(&self, py: Python<'_>, field: &str, len: usize) -> PyResult<()> {
+        let n = self.inner.nodes();
+        if len != n {
+            return Err(validation_error(
+                py,
+                core::Error::invalid(field, format!("length {len}"), format!("length {n} (the number of nodes)")),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Integrates the PDE system from nodal `(q0, v0) = (theta, theta_t)(z_j, 0)` to `t_end`.
+///
+/// Returns a dict with `t` (samples,), `y` (samples, 2N) holding `[theta, theta_t]` at the
+/// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`. `t_eval=None` samples every
+/// step. Any method (`"dop853"`, `"dopri5"`, `"rk4"`, `"central"`, `"verlet"`); the
+/// fixed-step ones need `dt`.
+#[pyfunction]
+#[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_pde<'py>(
+    py: Python<'py>,
+    system: &Bound<'py, PdeSystem>,
+    q0: PyReadonlyArray1<'py, f64>,
+    v0: PyReadonlyArray1<'py, f64>,
+    t_end: f64,
+    t_eval: Option<PyReadonlyArray1<'py, f64>>,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    dt: Option<f64>,
+    max_steps: Option<u64>,
+    first_step: Option<f64>,
+    max_step: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
+    let (q0, v0) = (to_vec(&q0), to_vec(&v0));
+    let output = match &t_eval {
+        Some(t) => Output::Times(to_vec(t)),
+        None => Output::EveryStep,
+    };
+    let opts = SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step };
+    let sys: &CorePdeSystem = &system.get().inner;
+    // Lengths ("q0", "v0") and finiteness are checked by the core before any work.
+    let solved =
+        py.detach(|| no_panic(|| integrators::solve_second_order(sys, 0.0, &q0, &v0, t_end, &output, &opts)))?;
+    let sol = solved.map_err(|e| validation_error(py, e))?;
+    solution_dict(py, sol)
+}
