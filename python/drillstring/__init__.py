@@ -16,14 +16,16 @@ True
 
 from __future__ import annotations
 
-from . import analysis, coefficients, convergence, galerkin, paper, pde, plots, section, stability
+from . import analysis, coefficients, convergence, galerkin, limits, paper, pde, plots, section, stability
 from ._core import __version__
 from .coefficients import PDECoefficients
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
+from .grid import linspace, logspace
 from .parameters import PRESETS, Parameters, load, preset
 from .pde import PdeSolution, solve_pde
 from .simulate import METHODS, Simulation, SolverStats, simulate
+from .sweep import SweepTrajectories, sweep
 from .table2 import Table2Row, table2
 
 __all__ = [
@@ -55,4 +57,9 @@ __all__ = [
     "paper",
     "plots",
     "stability",
+    "limits",
+    "sweep",
+    "linspace",
+    "logspace",
+    "SweepTrajectories",
 ]

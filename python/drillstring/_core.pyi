@@ -92,3 +92,61 @@ def solve_pde(
     first_step: Optional[float] = None,
     max_step: float = ...,
 ) -> SolveOutput: ...
+
+class BatchOutput(TypedDict, total=False):
+    status: list[str]
+    message: list[str]
+    max_theta: NDArray[np.float64]
+    rms_theta: NDArray[np.float64]
+    dominant_frequency_hz: NDArray[np.float64]
+    energy_drift: NDArray[np.float64]
+    unstable_modes: NDArray[np.int64]
+    nfev: NDArray[np.int64]
+    max_share: NDArray[np.float64]
+    t: NDArray[np.float64]
+    y: NDArray[np.float64]
+    theta: NDArray[np.float64]
+
+def batch_solve(
+    k: NDArray[np.float64],
+    length: NDArray[np.float64],
+    initial_velocities: NDArray[np.float64],
+    z: NDArray[np.float64],
+    indices: NDArray[np.int64],
+    quartic_index: NDArray[np.int64],
+    cos4: NDArray[np.float64],
+    mixed: NDArray[np.float64],
+    sin4: NDArray[np.float64],
+    t_end: float,
+    samples: int,
+    method: str,
+    rtol: float,
+    atol: float,
+    dt: Optional[float] = None,
+    max_steps: Optional[int] = None,
+    first_step: Optional[float] = None,
+    max_step: float = ...,
+    keep_trajectories: bool = False,
+    threads: Optional[int] = None,
+) -> BatchOutput:
+    """Solve R runs of one Galerkin basis in parallel (GIL released); one entry per run in
+    every column (``unstable_modes`` -1 for an invalid run; ``t``, ``y`` (R, S, 2m), ``theta``
+    (R, S) only with ``keep_trajectories``)."""
+    ...
+
+class ScaledSystem(TypedDict):
+    mass: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    quartic_coef: NDArray[np.float64]
+
+def scale_integrals(
+    k: NDArray[np.float64],
+    length: float,
+    indices: NDArray[np.int64],
+    quartic_index: NDArray[np.int64],
+    cos4: NDArray[np.float64],
+    mixed: NDArray[np.float64],
+    sin4: NDArray[np.float64],
+) -> ScaledSystem:
+    """The modal system of one sweep run: the dimensionless integrals scaled by k1..k6 and l."""
+    ...

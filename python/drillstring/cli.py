@@ -3,7 +3,10 @@
     drillstring simulate [CONFIG.toml] [--preset NAME] [overrides] [--out FILE.csv] [--plot FILE.png]
     drillstring table2 [--json]
 
-Errors are reported as one line on stderr with exit status 2 (no traceback).
+Errors are reported as one line on stderr with exit status 2 (no traceback); an error in a
+TOML file names the file, the line and the key. Ctrl-C stops a run within a fraction of a second
+with "drillstring: interrupted" and exit status 130; output files are written atomically, so an
+interrupted run leaves none half-written.
 """
 
 from __future__ import annotations
@@ -11,11 +14,11 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
-from typing import Any, Optional
+from typing import Any, NoReturn, Optional
 
 from . import __version__
 from .errors import DrillstringError, ValidationError
-from .parameters import PRESETS, Parameters, load, load_toml, preset
+from .parameters import PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
 from .simulate import METHODS, PDE_METHODS, simulate
 from .table2 import format_table2, table2, table2_json
 
@@ -50,16 +53,28 @@ def _solver_table(path: str) -> dict[str, Any]:
     for key, value in table.items():
         if key not in SOLVER_KEYS:
             raise ValidationError(
-                f"solver.{key}", value, "one of the keys " + ", ".join(SOLVER_KEYS), source=path
+                f"solver.{key}", value, "one of the keys " + ", ".join(SOLVER_KEYS), source=path,
+                line=toml_key_line(path, "solver", key),
             )
         kind = SOLVER_KEYS[key]
         ok = isinstance(value, kind) and not (kind is not bool and isinstance(value, bool))
         if kind is float and isinstance(value, int) and not isinstance(value, bool):
             ok, value = True, float(value)
         if not ok:
-            raise ValidationError(f"solver.{key}", value, f"a {kind.__name__}", source=path)
+            kinds = {int: "an integer", float: "a number", bool: "true or false", str: "a string"}
+            raise ValidationError(
+                f"solver.{key}", value, kinds[kind], source=path, line=toml_key_line(path, "solver", key)
+            )
         out[key] = value
     return out
+
+
+def _from_config(exc: ValidationError, args: argparse.Namespace) -> ValidationError:
+    """A solver option that came from the config file and was refused by the solver: the error
+    names the file and the line."""
+    if args.config and exc.source is None and exc.field in getattr(args, "file_solver_keys", ()):
+        return with_toml_line(exc, args.config, "solver")
+    return exc
 
 
 def _add_model_arguments(p: argparse.ArgumentParser, methods: Sequence[str]) -> None:
@@ -97,6 +112,8 @@ def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parame
         value = getattr(args, key)
         if value is not None:
             solver[key] = value
+        elif key in solver:
+            args.file_solver_keys = (*getattr(args, "file_solver_keys", ()), key)
     unknown = sorted(set(solver) - set(keys))
     if unknown:
         raise ValidationError(f"solver.{unknown[0]}", solver[unknown[0]], f"one of {', '.join(keys)} for this command")
@@ -134,7 +151,10 @@ SIMULATE_KEYS = ("modes", "rigid_mode", "t_end", "method", "rtol", "atol", "dt",
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     params, solver, z = _model_inputs(args, SIMULATE_KEYS)
-    result = simulate(params, **solver)
+    try:
+        result = simulate(params, **solver)
+    except ValidationError as exc:
+        raise _from_config(exc, args) from exc
     _summary(result, z, f"modes {', '.join(map(str, result.indices))}")
     if args.out:
         result.to_csv(args.out, z)
@@ -171,7 +191,10 @@ def _cmd_pde(args: argparse.Namespace) -> int:
 
     params, solver, z = _model_inputs(args, PDE_KEYS)
     every = args.save_field_every if args.save_field_every is not None else (1 if args.field or args.plot else None)
-    result = solve_pde(params, save_field_every=every, **solver)
+    try:
+        result = solve_pde(params, save_field_every=every, **solver)
+    except ValidationError as exc:
+        raise _from_config(exc, args) from exc
     _summary(result, z, f"{result.nodes} nodes")
     if args.out:
         result.to_csv(args.out, z)
@@ -279,8 +302,131 @@ def _cmd_paper(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Keys of a sweep file's [solver] table and their types.
+SWEEP_SOLVER_KEYS = {
+    "modes": int,
+    "rigid_mode": bool,
+    "t_end": float,
+    "method": str,
+    "rtol": float,
+    "atol": float,
+    "samples": int,
+    "dt": float,
+    "max_steps": int,
+    "z": float,
+}
+
+
+def _add_sweep(sub: Any) -> None:
+    p = sub.add_parser(
+        "sweep",
+        help="solve the Galerkin model over a parameter grid (parallel, resumable, optionally on Dask)",
+        description="Solve the n-mode Galerkin model for every parameter set of a grid and write one row per "
+        "run (results.parquet, results.csv) and a plot per metric. Re-running with the same --out resumes an "
+        "interrupted sweep. The file has a [base] table (preset = ... and field overrides), a [solver] table "
+        "(modes, rigid_mode, t_end, method, rtol, atol, samples, dt, max_steps, z) and a [grid] table of "
+        "Parameters fields with lists or {linspace = [start, stop, count]} / {logspace = [start, stop, count]} "
+        "(end values, not exponents).",
+        epilog="example: drillstring sweep examples/sweep_length_speed.toml --out sweep-results",
+    )
+    p.add_argument("config", metavar="SWEEP.toml", help="sweep file with [base], [solver] and [grid] tables")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created; reused to resume)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the chunks on this Dask distributed scheduler, e.g. tcp://head-node:8786")
+    p.add_argument("--threads", type=int, help="threads per batch solve (default: all cores)")
+    p.add_argument("--chunk-size", type=int, help="runs per chunk (default 500)")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bar on stderr (default: when stderr is a terminal)")
+    p.add_argument("--no-plots", action="store_true", help="skip the PNG per metric")
+    p.set_defaults(func=_cmd_sweep)
+
+
+def _sweep_config(path: str) -> tuple[Parameters, dict[str, Any], dict[str, Any]]:
+    """[base] parameters, [solver] options and the [grid] table of a sweep file."""
+    document = load_toml(path)
+    unknown = sorted(set(document) - {"base", "solver", "grid"})
+    if unknown:
+        raise ValidationError(unknown[0], document[unknown[0]], "only the tables [base], [solver], [grid]", source=path)
+    base = Parameters.from_dict(document.get("base", {}), source=path)
+    solver: dict[str, Any] = {}
+    table = document.get("solver", {})
+    if not isinstance(table, dict):
+        raise ValidationError("solver", table, "a TOML table [solver]", source=path)
+    for key, value in table.items():
+        kind = SWEEP_SOLVER_KEYS.get(key)
+        if kind is None:
+            allowed = "one of the keys " + ", ".join(SWEEP_SOLVER_KEYS)
+            raise ValidationError(f"solver.{key}", value, allowed, source=path)
+        if kind is float and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        if not isinstance(value, kind) or (kind is not bool and isinstance(value, bool)):
+            raise ValidationError(f"solver.{key}", value, f"a {kind.__name__}", source=path)
+        solver[key] = value
+    grid = document.get("grid", {})
+    if not isinstance(grid, dict):
+        raise ValidationError("grid", grid, "a TOML table [grid] of Parameters fields", source=path)
+    return base, solver, grid
+
+
+def _cmd_sweep(args: argparse.Namespace) -> int:
+    import os
+    import time
+
+    from .sweep import sweep
+
+    base, solver, grid = _sweep_config(args.config)
+    client = None
+    if args.scheduler:
+        try:
+            from distributed import Client
+        except ImportError as exc:
+            raise ValidationError(
+                "--scheduler", args.scheduler, "dask.distributed installed: pip install 'drillstring[dask]'"
+            ) from exc
+        client = Client(args.scheduler)
+    options: dict[str, Any] = {"threads": args.threads, "progress": args.progress}
+    if args.chunk_size is not None:
+        options["chunk_size"] = args.chunk_size
+    start = time.perf_counter()
+    try:
+        try:
+            table = sweep(base, grid, out_dir=args.out, client=client, **solver, **options)
+        except ImportError as exc:  # pandas / pyarrow missing
+            print(f"drillstring: error: {exc}", file=sys.stderr)
+            return 2
+        except ValidationError as exc:
+            if exc.source is None and exc.field.startswith(("grid", "modes", "rigid_mode", "samples")):
+                raise ValidationError(exc.field, exc.value, exc.allowed, source=args.config) from exc
+            raise
+    finally:
+        if client is not None:
+            client.close()
+    seconds = time.perf_counter() - start
+    counts = table["status"].value_counts()
+    ok = int(counts.get("success", 0))
+    invalid = int(counts.get("invalid", 0))
+    failed = len(table) - ok - invalid
+    print(f"{len(table)} runs in {seconds:.1f} s ({len(table) / seconds:.0f} runs/s): "
+          f"{ok} ok, {failed} failed, {invalid} invalid")
+    print(f"wrote {os.path.join(args.out, 'results.parquet')} and {os.path.join(args.out, 'results.csv')}")
+    if not args.no_plots:
+        from .plots import sweep_plots
+
+        written = sweep_plots(table, os.path.join(args.out, "plots"))
+        if written:
+            print(f"wrote {len(written)} plots to {os.path.join(args.out, 'plots')}")
+    return 0
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line (``prog: error: ...``) with exit status 2."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="drillstring",
         description="Nonlinear torsional dynamics of rotating drill strings.",
     )
@@ -292,6 +438,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_convergence(sub)
     _add_table2(sub)
     _add_paper(sub)
+    _add_sweep(sub)
     return parser
 
 
@@ -301,8 +448,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args.func(args))
-    except (DrillstringError, ValueError, OSError) as exc:
-        print(f"drillstring: error: {exc}", file=sys.stderr)
+    except (DrillstringError, ValueError, OSError, MemoryError) as exc:
+        print(f"drillstring: error: {exc}".replace("\n", " "), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("drillstring: interrupted", file=sys.stderr)

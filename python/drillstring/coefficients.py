@@ -102,23 +102,37 @@ class PDECoefficients:
 
     @classmethod
     def from_parameters(cls, params: Parameters) -> PDECoefficients:
-        """Evaluate eq. 17 (with ``params.k5_variant`` for the sign in ``k5``)."""
-        section = Section.annulus(params.outer_diameter, params.inner_diameter)
-        nu = params.poisson_ratio
-        g = shear_modulus(params.youngs_modulus, nu)
-        ip = section.polar_moment
-        sign = -1.0 if params.k5_variant == "paper" else 1.0
-        return cls(
-            k1=params.density * ip,
-            k2=4.0 * g * ip,
-            k3=2.0 * section.area * g / (1.0 - 2.0 * nu),
-            k4=g * ip * (5.0 - 6.0 * nu) / (4.0 * (1.0 - 2.0 * nu)),
-            k5=g
-            * (section.i_r + sign * section.i_x2y2 * (5.0 - 6.0 * nu))
-            / (8.0 * (1.0 - 2.0 * nu)),
-            k6=params.density * ip * params.omega**2,
-            length=params.length,
-        )
+        """Evaluate eq. 17 (with ``params.k5_variant`` for the sign in ``k5``).
+
+        Raises
+        ------
+        ValidationError
+            ``field="parameters"``: valid fields whose magnitudes make a coefficient overflow
+            (or ``k1`` underflow to 0), e.g. ``omega=1e200``; the message names the coefficient.
+        """
+        try:
+            section = Section.annulus(params.outer_diameter, params.inner_diameter)
+            nu = params.poisson_ratio
+            g = shear_modulus(params.youngs_modulus, nu)
+            ip = section.polar_moment
+            sign = -1.0 if params.k5_variant == "paper" else 1.0
+            return cls(
+                k1=params.density * ip,
+                k2=4.0 * g * ip,
+                k3=2.0 * section.area * g / (1.0 - 2.0 * nu),
+                k4=g * ip * (5.0 - 6.0 * nu) / (4.0 * (1.0 - 2.0 * nu)),
+                k5=g
+                * (section.i_r + sign * section.i_x2y2 * (5.0 - 6.0 * nu))
+                / (8.0 * (1.0 - 2.0 * nu)),
+                k6=params.density * ip * params.omega**2,
+                length=params.length,
+            )
+        except (OverflowError, ZeroDivisionError, ValidationError) as exc:
+            raise ValidationError(
+                "parameters",
+                params,
+                f"magnitudes whose PDE coefficients k1..k6 (eq. 17) are finite with k1 > 0 ({exc})",
+            ) from exc
 
     def as_tuple(self) -> tuple[float, float, float, float, float, float]:
         """``(k1, k2, k3, k4, k5, k6)``."""

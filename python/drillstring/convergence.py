@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any, Callable, Optional
 
 import numpy as np
 
+from ._atomic import atomic_path, atomic_write
 from .parameters import Parameters, preset
 from .pde import solve_pde
 from .simulate import simulate
@@ -219,20 +220,22 @@ def write(result: ConvergenceStudy, out_dir: Any) -> list[Path]:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / "convergence.csv", out / "grids.csv", out / "reference.csv", out / "convergence.png"]
-    with open(paths[0], "w", newline="") as handle:
+    with atomic_path(paths[0]) as tmp, open(tmp, "w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["modes", "rigid_mode", "relative_error", "seconds"])
         for m in result.models:
             writer.writerow([m.modes, m.rigid_mode, repr(m.error), f"{m.seconds:.4f}"])
-    with open(paths[1], "w", newline="") as handle:
+    with atomic_path(paths[1]) as tmp, open(tmp, "w", newline="") as handle:
         writer = csv.writer(handle)
         writer.writerow(["nodes", "grid_spacing_m", "difference", "extrapolated_difference", "energy_drift", "seconds"])
         for g in result.grids:
             writer.writerow([g.nodes, repr(result.params.length / (g.nodes - 1)), g.difference,
                              g.extrapolated_difference, repr(g.energy_drift), f"{g.seconds:.3f}"])
-    np.savetxt(paths[2], np.column_stack([result.t, result.reference]), delimiter=",",
-               header="t,theta_reference", comments="", fmt="%.12e")
-    figure(result).savefig(paths[3], dpi=120)
+    data = np.column_stack([result.t, result.reference])
+    atomic_write(paths[2], lambda target: np.savetxt(target, data, delimiter=",", header="t,theta_reference",
+                                                     comments="", fmt="%.12e"))
+    fig = figure(result)
+    atomic_write(paths[3], lambda target: fig.savefig(target, dpi=120))
     return paths
 
 

@@ -5,6 +5,9 @@
 * :class:`SolveError` (a :class:`RuntimeError`): a solve ended early (step limit, step-size
   underflow, non-finite state). ``status`` is the short status name; ``result`` holds what was
   computed before the failure.
+
+Ctrl-C during a solve raises :class:`KeyboardInterrupt` within a few milliseconds (the Rust core
+polls Python's signal handlers while it runs without the GIL).
 """
 
 from __future__ import annotations
@@ -29,14 +32,21 @@ class ValidationError(DrillstringError, ValueError):
         The value that was given.
     allowed:
         Human-readable description of the allowed values (e.g. ``"-1 < poisson_ratio < 0.5"``).
+    source:
+        The file the value came from (e.g. a TOML file), or ``None``.
+    line:
+        Its line in ``source`` (1-based), when known.
     """
 
-    def __init__(self, field: str, value: Any, allowed: str, *, source: str | None = None) -> None:
+    def __init__(
+        self, field: str, value: Any, allowed: str, *, source: str | None = None, line: int | None = None
+    ) -> None:
         self.field = field
         self.value = value
         self.allowed = allowed
         self.source = source
-        where = f"{source}: " if source else ""
+        self.line = line
+        where = f"{source}, line {line}: " if source and line else f"{source}: " if source else ""
         super().__init__(f"{where}invalid {field}: got {value!r}, expected {allowed}")
 
 
@@ -46,7 +56,8 @@ class SolveError(DrillstringError, RuntimeError):
     Attributes
     ----------
     status:
-        ``"max_steps"``, ``"step_size_underflow"`` or ``"non_finite"``.
+        ``"max_steps"``, ``"step_size_underflow"`` or ``"non_finite"`` (a solve interrupted by
+        Ctrl-C raises ``KeyboardInterrupt`` instead).
     result:
         The partial result (samples up to the failure), or ``None``.
     """

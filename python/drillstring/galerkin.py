@@ -334,19 +334,41 @@ class ModalCoefficients:
     def from_coefficients(
         cls, coefficients: PDECoefficients, modes: int = 3, rigid_mode: bool = False
     ) -> ModalCoefficients:
-        """Project eq. 18 with the given ``k1..k6`` and ``l`` onto ``modes`` cosine modes."""
+        """Project eq. 18 with the given ``k1..k6`` and ``l`` onto ``modes`` cosine modes.
+
+        Raises
+        ------
+        ValidationError
+            For a bad ``modes`` or ``rigid_mode``, or (``field="coefficients"``) coefficients
+            whose projection overflows (a mass, stiffness or quartic coefficient not finite).
+        """
         integrals = dimensionless_integrals(modes, rigid_mode)
         k1, k2, k3, k4, k5, k6 = coefficients.as_tuple()
         length = coefficients.length
         i = integrals.indices.astype(float)
-        norm = np.where(integrals.indices == 0, length, length / 2.0)  # int_0^l phi_i^2 dz
-        mass = k1 * norm
-        stiffness = k2 * (i * math.pi / length) ** 2 * norm - k6 * norm
-        coef = (
-            (k3 * length / 4.0) * integrals.cos4
-            + (k4 * math.pi**2 / (2.0 * length)) * integrals.mixed
-            + (k5 * math.pi**4 / (4.0 * length**3)) * integrals.sin4
-        )
+        try:
+            with np.errstate(all="ignore"):
+                norm = np.where(integrals.indices == 0, length, length / 2.0)  # int_0^l phi_i^2 dz
+                mass = k1 * norm
+                stiffness = k2 * (i * math.pi / length) ** 2 * norm - k6 * norm
+                coef = (
+                    (k3 * length / 4.0) * integrals.cos4
+                    + (k4 * math.pi**2 / (2.0 * length)) * integrals.mixed
+                    + (k5 * math.pi**4 / (4.0 * length**3)) * integrals.sin4
+                )
+        except (OverflowError, ZeroDivisionError) as exc:
+            raise ValidationError(
+                "coefficients", coefficients, f"magnitudes whose Galerkin projection is finite ({exc})"
+            ) from exc
+        for name, values in (("mass", mass), ("stiffness", stiffness), ("quartic coefficient", coef)):
+            ok = np.isfinite(values) & ((values > 0) if name == "mass" else True)
+            if not np.all(ok):
+                bad = float(np.asarray(values)[~ok][0])
+                raise ValidationError(
+                    "coefficients",
+                    coefficients,
+                    f"magnitudes whose Galerkin projection is finite with masses > 0 (a {name} is {bad!r})",
+                )
         return cls(
             indices=integrals.indices,
             length=length,
@@ -360,8 +382,21 @@ class ModalCoefficients:
     def from_parameters(
         cls, params: Parameters, modes: int = 3, rigid_mode: bool = False
     ) -> ModalCoefficients:
-        """Project eq. 18 with ``k1..k6`` of eq. 17 evaluated for ``params``."""
-        return cls.from_coefficients(PDECoefficients.from_parameters(params), modes, rigid_mode)
+        """Project eq. 18 with ``k1..k6`` of eq. 17 evaluated for ``params``.
+
+        Raises
+        ------
+        ValidationError
+            For a bad ``modes`` or ``rigid_mode``, or (``field="parameters"``) valid fields whose
+            magnitudes make a coefficient overflow.
+        """
+        coefficients = PDECoefficients.from_parameters(params)
+        try:
+            return cls.from_coefficients(coefficients, modes, rigid_mode)
+        except ValidationError as exc:
+            if exc.field != "coefficients":
+                raise
+            raise ValidationError("parameters", params, exc.allowed) from exc
 
     # ------------------------------------------------------------------ basic properties
 

@@ -24,11 +24,12 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import re
 import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from numbers import Real
-from typing import Any, Union
+from typing import Any, Optional, Union
 
 from .errors import ValidationError
 
@@ -44,6 +45,8 @@ __all__ = [
     "load",
     "load_toml",
     "preset",
+    "toml_key_line",
+    "with_toml_line",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -256,8 +259,10 @@ class Parameters:
         return "\n".join(lines) + "\n"
 
     def save(self, path: PathLike) -> None:
-        """Write :meth:`to_toml` to ``path`` (UTF-8), replacing any existing file."""
-        with open(path, "w", encoding="utf-8") as handle:
+        """Write :meth:`to_toml` to ``path`` (UTF-8), replacing any existing file atomically."""
+        from ._atomic import atomic_path
+
+        with atomic_path(path) as tmp, open(tmp, "w", encoding="utf-8") as handle:
             handle.write(self.to_toml())
 
 
@@ -290,6 +295,46 @@ def preset(name: str) -> Parameters:
     )
 
 
+_TABLE_HEADER = re.compile(r"^\s*\[\s*([^\[\]]+?)\s*\]\s*(#.*)?$")
+_KEY = re.compile(r"""^\s*("[^"]*"|'[^']*'|[A-Za-z0-9_.-]+)\s*=""")
+
+
+def toml_key_line(path: PathLike, table: str, key: str) -> Optional[int]:
+    """The 1-based line of ``key = ...`` in ``[table]`` of the TOML file ``path`` (also as the
+    dotted key ``table.key`` at the top level), or ``None`` (not found, unreadable)."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            lines = handle.read().splitlines()
+    except (OSError, UnicodeDecodeError):
+        return None
+    current = ""
+    for number, line in enumerate(lines, 1):
+        header = _TABLE_HEADER.match(line)
+        if header:
+            current = re.sub(r"""["'\s]""", "", header.group(1))
+            continue
+        match = _KEY.match(line)
+        if match:
+            name = re.sub(r"""["'\s]""", "", match.group(1))
+            if (current == table and name == key) or (current == "" and name == f"{table}.{key}"):
+                return number
+    return None
+
+
+def with_toml_line(exc: ValidationError, path: PathLike, table: str) -> ValidationError:
+    """``exc`` attributed to the file ``path`` and the line of its key in ``[table]``.
+
+    The key is ``exc.field`` without an index suffix (``initial_velocities[1]``) and without a
+    ``table.`` prefix (``solver.modes``).
+    """
+    source = os.fspath(path)
+    key = exc.field.split("[", 1)[0]
+    if key.startswith(f"{table}."):
+        key = key[len(table) + 1 :]
+    line = toml_key_line(source, table, key)
+    return ValidationError(exc.field, exc.value, exc.allowed, source=source, line=line)
+
+
 def load_toml(path: PathLike) -> dict[str, Any]:
     """Parse a whole TOML file (``tomllib`` on Python >= 3.11, else ``tomli``).
 
@@ -304,7 +349,9 @@ def load_toml(path: PathLike) -> dict[str, Any]:
         with open(source, "rb") as handle:
             return tomllib.load(handle)
     except tomllib.TOMLDecodeError as exc:
-        raise ValidationError("toml", source, f"valid TOML ({exc})", source=source) from exc
+        found = re.search(r"at line (\d+)", str(exc))
+        line = int(found.group(1)) if found else None
+        raise ValidationError("toml", source, f"valid TOML ({exc})", source=source, line=line) from exc
     except (OSError, UnicodeDecodeError) as exc:
         raise ValidationError(
             "toml", source, f"a readable UTF-8 TOML file ({exc})", source=source
@@ -318,7 +365,8 @@ def load(path: PathLike) -> Parameters:
     ------
     ValidationError
         If the file is malformed, has no ``[parameters]`` table, or holds an unknown key or a
-        bad value; messages name the file and the key.
+        bad value; messages name the file, the line (``source`` and ``line`` attributes) and the
+        key.
     """
     source = os.fspath(path)
     document = load_toml(source)
@@ -326,4 +374,7 @@ def load(path: PathLike) -> Parameters:
         raise ValidationError(
             "parameters", None, "a [parameters] table in the TOML file", source=source
         )
-    return Parameters.from_dict(document["parameters"], source=source)
+    try:
+        return Parameters.from_dict(document["parameters"], source=source)
+    except ValidationError as exc:
+        raise with_toml_line(exc, source, "parameters") from exc

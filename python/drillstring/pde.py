@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 import numpy as np
 
 from . import _core
+from ._atomic import atomic_write, is_path
 from .coefficients import PDECoefficients
 from .errors import SolveError, ValidationError
 from .parameters import Parameters
@@ -121,10 +122,13 @@ class PdeSolution(TrajectoryResult):
 
     def save_field(self, path: Any) -> None:
         """Writes ``t``, ``z`` and ``theta`` (nodes x samples; the saved field, else every sample)
-        to a compressed ``.npz``."""
+        to a compressed ``.npz`` (``.npz`` is appended to a name without it, as numpy does; the
+        write is atomic: an interrupted one leaves no partial file)."""
         theta = self.q if self.field is None else self.field
         t = self.t if self.field_t is None else self.field_t
-        np.savez_compressed(path, t=t, z=self.z, theta=theta)
+        if is_path(path) and not str(path).endswith(".npz"):
+            path = f"{path}.npz"
+        atomic_write(path, lambda target: np.savez_compressed(target, t=t, z=self.z, theta=theta))
 
     def __repr__(self) -> str:
         return (
@@ -180,6 +184,8 @@ def solve_pde(
     method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
         method, t_end, rtol, atol, dt, max_steps, methods=PDE_METHODS
     )
+    if not isinstance(check, bool):
+        raise ValidationError("check", check, "True or False")
     every = None if save_field_every is None else _count("save_field_every", save_field_every, 1)
     system = pde_system(params, nodes)
     z = np.asarray(system.z)
@@ -188,9 +194,12 @@ def solve_pde(
     q0 = np.zeros(z.size) if twist is None else twist
     if velocity is None:
         velocity = np.asarray(system.initial_velocity_from_modes(np.asarray(params.initial_velocities, dtype=float)))
-    times = _output_times(t_eval, samples, t_end_f, method)
     if method in FIXED_STEP_METHODS and dt_f is None:
         dt_f = _default_dt(params, z.size)
+    times = _output_times(
+        t_eval, samples, t_end_f, method, state_dim=2 * z.size, dt=dt_f, max_steps=steps,
+        default_field="nodes", default_value=nodes,
+    )
     raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps)
     result = PdeSolution(params, system, method, raw, every)
     if check and not result.success:

@@ -435,5 +435,232 @@ def space_time(result: Any, z: Optional[float] = None, title: Optional[str] = No
 
 
 def save(fig: Figure, path: object, dpi: int = 130) -> None:
-    """Saves a figure to ``path`` (format from the extension)."""
-    fig.savefig(path, dpi=dpi)  # type: ignore[arg-type]
+    """Saves a figure to ``path`` (format from the extension), atomically: an interrupted save
+    leaves no partial file."""
+    import os
+
+    from ._atomic import atomic_write, is_path
+
+    if is_path(path) and not os.path.splitext(os.fsdecode(os.fspath(path)))[1]:
+        import matplotlib
+
+        path = f"{os.fsdecode(os.fspath(path))}.{matplotlib.rcParams['savefig.format']}"  # as savefig does
+    atomic_write(path, lambda target: fig.savefig(target, dpi=dpi))
+
+
+# --------------------------------------------------------------------------- parameter sweeps
+
+#: Axis labels (with units) of the sweep table's parameter and metric columns.
+SWEEP_LABELS = {
+    "length": "l, m",
+    "youngs_modulus": "E, Pa",
+    "density": r"$\rho$, kg/m$^3$",
+    "poisson_ratio": r"$\nu$",
+    "outer_diameter": "D, m",
+    "inner_diameter": "d, m",
+    "omega": r"$\Omega$, rad/s",
+    "k5_variant": "k5 variant",
+    "initial_velocities": "initial velocities C, rad/s",
+    "z": "z, m",
+    "max_theta": r"max $|\theta(z_k, t)|$, rad",
+    "rms_theta": r"RMS $\theta(z_k, t)$, rad",
+    "dominant_frequency_hz": "dominant frequency, Hz",
+    "energy_drift": r"energy drift $\max|H - H_0| / |H_0|$",
+    "unstable_modes": "linearly unstable modes",
+    "nfev": "right-hand-side evaluations",
+}
+
+
+def _sweep_label(column: str) -> str:
+    if column in SWEEP_LABELS:
+        return SWEEP_LABELS[column]
+    if column.startswith("share_mode_"):
+        return f"max energy share of mode {column[len('share_mode_'):]}"
+    if column[:1] == "c" and column[1:].isdigit():
+        return f"$C_{{{column[1:]}}}$, rad/s"
+    return column
+
+
+def _sweep_axes(table: Any, axes: Optional[Sequence[str]]) -> list[str]:
+    if axes is None:
+        axes = list(table.attrs.get("axes", {}))
+    out = []
+    for name in axes:
+        column = name
+        if name == "initial_velocities":  # swept as a whole: plot against c1 if it varies
+            varying = [c for c in table.columns if c[:1] == "c" and c[1:].isdigit() and table[c].nunique() > 1]
+            column = varying[0] if varying else "c1"
+        if column in table.columns and table[column].nunique(dropna=False) > 1:
+            out.append(column)
+    return out
+
+
+def _axis_positions(values: Any) -> tuple[np.ndarray, Optional[list[str]], bool]:
+    """Sorted distinct values of an axis as positions, tick labels (categorical) and log flag."""
+    import pandas as pd
+
+    numeric = pd.to_numeric(pd.Series(values), errors="coerce")
+    if numeric.notna().all():
+        u = np.unique(numeric.to_numpy(dtype=float))
+        log = bool(u.size > 2 and u[0] > 0 and np.allclose(np.diff(np.log(u)), np.log(u[1] / u[0]), rtol=1e-6)
+                   and not np.allclose(np.diff(u), u[1] - u[0], rtol=1e-6))
+        return u, None, log
+    labels = sorted({str(v) for v in values})
+    return np.arange(len(labels), dtype=float), labels, False
+
+
+def _edges(centres: np.ndarray, log: bool) -> np.ndarray:
+    c = np.log(centres) if log else centres
+    if c.size == 1:
+        e = np.array([c[0] - 0.5, c[0] + 0.5]) if not log else np.array([c[0] - 0.1, c[0] + 0.1])
+    else:
+        mid = 0.5 * (c[1:] + c[:-1])
+        e = np.concatenate([[c[0] - (mid[0] - c[0])], mid, [c[-1] + (c[-1] - mid[-1])]])
+    return np.exp(e) if log else e
+
+
+def _critical_speeds(table: Any, length: np.ndarray, count: int) -> list[np.ndarray]:
+    """``Omega_crit,i(l) = (i pi / l) sqrt(4 G / rho)`` for i = 1..count, G and rho of the first row."""
+    row = table.iloc[0]
+    g = float(row["youngs_modulus"]) / (2.0 * (1.0 + float(row["poisson_ratio"])))
+    speed = np.sqrt(4.0 * g / float(row["density"]))
+    return [i * np.pi / length * speed for i in range(1, count + 1)]
+
+
+def sweep_metric(
+    table: Any,
+    metric: str,
+    axes: Optional[Sequence[str]] = None,
+    *,
+    title: Optional[str] = None,
+) -> Figure:
+    """A metric of a sweep table over its swept axes.
+
+    One axis: the metric against it (one marker per run). Two axes: a heat map (colour bar;
+    blank cells are runs without the metric, e.g. failed or invalid). More axes: a heat map over
+    the first two, of the largest value over the others. Log-spaced axes are drawn on log
+    scales; a positive metric spanning more than three decades gets a log colour scale.
+
+    When ``omega`` and ``length`` are both swept, the critical speeds
+    ``Omega_crit,i(l) = (i pi / l) sqrt(4 G / rho)`` of the retained elastic modes are drawn
+    (``G``, ``rho`` of the first row): above ``Omega_crit,i`` mode ``i`` is linearly unstable.
+    A sweep of ``omega`` alone at one length marks them as vertical lines.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A :func:`drillstring.sweep` table.
+    metric : str
+        A column, e.g. ``"max_theta"``, ``"dominant_frequency_hz"``, ``"share_mode_1"``.
+    axes : sequence of str, optional
+        Columns to plot against; default the grid axes in ``table.attrs["axes"]`` that vary.
+    """
+    import pandas as pd
+    from matplotlib.colors import BoundaryNorm, LogNorm
+
+    if metric not in table.columns:
+        raise ValueError(f"no column {metric!r} in the sweep table")
+    names = _sweep_axes(table, axes)
+    if not names:
+        raise ValueError("the sweep has no varying axis to plot against (pass axes=...)")
+    # length on x and omega on y, so that the critical-speed curves are Omega(l)
+    if len(names) >= 2 and names[0] == "omega" and names[1] == "length":
+        names[0], names[1] = names[1], names[0]
+    values = pd.to_numeric(table[metric], errors="coerce").astype(float)
+    modes = [c for c in table.columns if c.startswith("share_mode_") and c != "share_mode_0"]
+    fig = _figure(figsize=(7.4, 5.4) if len(names) >= 2 else (7.4, 4.6), layout="constrained")
+    ax = fig.subplots()
+    if len(names) == 1:
+        x, labels, log = _axis_positions(table[names[0]])
+        key = table[names[0]] if labels is None else table[names[0]].astype(str)
+        order = pd.DataFrame({"x": key, "v": values}).groupby("x", sort=True)["v"].max()
+        xs = order.index.to_numpy(dtype=float) if labels is None else np.arange(len(order))
+        ax.plot(xs, order.to_numpy(), marker="o", ms=3, lw=1.0, color=COLORS[0])
+        if labels is not None:
+            ax.set_xticks(xs, order.index.tolist())
+        if log:
+            ax.set_xscale("log")
+        ax.set_xlabel(_sweep_label(names[0]))
+        ax.set_ylabel(_sweep_label(metric))
+        ax.grid(alpha=0.3)
+        if names[0] == "omega" and table["length"].nunique() == 1 and "density" in table:
+            lo, hi = np.nanmin(xs), np.nanmax(xs)
+            for i, crit in enumerate(_critical_speeds(table, np.array([float(table["length"].iloc[0])]), len(modes))):
+                if lo <= crit[0] <= hi:
+                    ax.axvline(crit[0], color="k", lw=0.9, ls="--" if i else "-")
+                    ax.annotate(rf"$\Omega_{{crit,{i + 1}}}$", (crit[0], 1.0), xycoords=("data", "axes fraction"),
+                                xytext=(3, -12), textcoords="offset points", fontsize=9)
+    else:
+        xname, yname = names[0], names[1]
+        x, xlabels, xlog = _axis_positions(table[xname])
+        y, ylabels, ylog = _axis_positions(table[yname])
+        xkey = table[xname].astype(str) if xlabels is not None else pd.to_numeric(table[xname])
+        ykey = table[yname].astype(str) if ylabels is not None else pd.to_numeric(table[yname])
+        grid = (
+            pd.DataFrame({"x": xkey, "y": ykey, "v": values})
+            .groupby(["y", "x"], sort=True)["v"].max()
+            .unstack("x")
+        )
+        grid = grid.reindex(index=ylabels if ylabels is not None else y, columns=xlabels if xlabels is not None else x)
+        z = grid.to_numpy(dtype=float)
+        finite = z[np.isfinite(z)]
+        norm = None
+        cmap = "viridis"
+        if metric == "unstable_modes" and finite.size:
+            top = int(finite.max())
+            norm = BoundaryNorm(np.arange(-0.5, top + 1.5), 256)
+        elif finite.size and finite.min() > 0 and finite.max() > 1e3 * finite.min():
+            norm = LogNorm(finite.min(), finite.max())
+        mesh = ax.pcolormesh(_edges(x, xlog), _edges(y, ylog), np.ma.masked_invalid(z), cmap=cmap, norm=norm,
+                             rasterized=True)
+        cbar = fig.colorbar(mesh, ax=ax, pad=0.01)
+        cbar.set_label(_sweep_label(metric))
+        if metric == "unstable_modes" and finite.size:
+            cbar.set_ticks(np.arange(0, int(finite.max()) + 1))
+        for axis_set, labels, pos in ((ax.set_xticks, xlabels, x), (ax.set_yticks, ylabels, y)):
+            if labels is not None:
+                axis_set(pos, labels)
+        if xlog:
+            ax.set_xscale("log")
+        if ylog:
+            ax.set_yscale("log")
+        ax.set_xlabel(_sweep_label(xname))
+        ax.set_ylabel(_sweep_label(yname))
+        if {xname, yname} == {"length", "omega"} and "density" in table:
+            xlim, ylim = ax.get_xlim(), ax.get_ylim()
+            lim, log = (xlim, xlog) if xname == "length" else (ylim, ylog)
+            span = np.geomspace(*lim, 400) if log else np.linspace(*lim, 400)
+            span = span[span > 0]
+            for i, crit in enumerate(_critical_speeds(table, span, max(len(modes), 1))):
+                xy = (span, crit) if xname == "length" else (crit, span)
+                label = r"$\Omega_{crit,i}(l) = (i\pi/l)\sqrt{4G/\rho}$" if i == 0 else None
+                ax.plot(*xy, color="w", lw=1.6 if i == 0 else 1.0, ls="-" if i == 0 else "--", label=label)
+                ax.plot(*xy, color="k", lw=0.6 if i == 0 else 0.4, ls="-" if i == 0 else "--")
+            ax.set_xlim(xlim)
+            ax.set_ylim(ylim)
+            ax.legend(loc="upper right", fontsize=8, framealpha=0.8)
+    suffix = f" (max over {', '.join(names[2:])})" if len(names) > 2 else ""
+    ax.set_title(title or f"{_sweep_label(metric)}{suffix}", fontsize=10)
+    return fig
+
+
+def sweep_plots(table: Any, out_dir: object, axes: Optional[Sequence[str]] = None) -> list[str]:
+    """Write one PNG per metric of a sweep table (:func:`sweep_metric`) to ``out_dir``:
+    ``<metric>.png`` for every metric and modal energy share; returns the paths written.
+    Nothing is written when the sweep has no varying axis."""
+    import os
+
+    from .sweep import METRICS
+
+    if not _sweep_axes(table, axes):
+        return []
+    os.makedirs(os.fspath(out_dir), exist_ok=True)
+    written = []
+    for metric in [*METRICS, *(c for c in table.columns if c.startswith("share_mode_"))]:
+        path = os.path.join(os.fspath(out_dir), f"{metric}.png")
+        save(sweep_metric(table, metric, axes), path)
+        written.append(path)
+    return written
+
+
+__all__ += ["SWEEP_LABELS", "sweep_metric", "sweep_plots"]

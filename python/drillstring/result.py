@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
+from ._atomic import atomic_write
 from .errors import ValidationError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -107,12 +108,22 @@ class TrajectoryResult:
         return float(np.max(np.abs(h - h[0])) / abs(h[0]))
 
     def table(self, z: float) -> tuple[list[str], NDArray[np.float64]]:
-        """Columns ``t, theta, theta_dot`` at section ``z``, then the state rows."""
-        header = ["t", "theta", "theta_dot", *self._state_columns()]
-        data = np.column_stack([self.t, self.theta(z), self.theta_dot(z), self.q.T])
-        return header, data
+        """Columns ``t, theta, theta_dot`` at section ``z``, then the state rows that have column
+        names (the modal coordinates ``q_i``; none for the PDE's nodal values)."""
+        columns = self._state_columns()
+        header = ["t", "theta", "theta_dot", *columns]
+        parts = [self.t, self.theta(z), self.theta_dot(z)]
+        if columns:
+            parts.append(self.q.T)
+        return header, np.column_stack(parts)
 
     def to_csv(self, path: Any, z: float) -> None:
-        """Writes :meth:`table` at section ``z`` as CSV."""
+        """Writes :meth:`table` at section ``z`` as CSV (atomically: an interrupted write leaves
+        no partial file)."""
         header, data = self.table(z)
-        np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.10e")
+        atomic_write(
+            path,
+            lambda target: np.savetxt(
+                target, data, delimiter=",", header=",".join(header), comments="", fmt="%.10e"
+            ),
+        )

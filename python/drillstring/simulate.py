@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
-from . import _core
+from . import _core, limits
 from .errors import SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .parameters import Parameters
@@ -34,7 +34,6 @@ PDE_METHODS = METHODS
 
 #: rtol below 100 machine epsilons cannot be met by the step-size controller.
 MIN_RTOL = 100 * float(np.finfo(float).eps)
-
 
 def _positive(field: str, value: Any, *, allow_none: bool = False) -> Optional[float]:
     if value is None and allow_none:
@@ -79,21 +78,64 @@ def check_solver_options(
     if dt_f is not None and dt_f > t_end_f:
         raise ValidationError("dt", dt, f"0 < dt <= t_end = {t_end_f}")
     steps = None if max_steps is None else _count("max_steps", max_steps, 1)
+    if steps is not None and steps > 2**63 - 1:
+        raise ValidationError("max_steps", max_steps, "an integer, 1 <= max_steps <= 2**63 - 1")
     return method, t_end_f, rtol_f, atol_f, dt_f, steps
 
 
-def _output_times(t_eval: Any, samples: Any, t_end: float, method: str) -> Optional[NDArray[np.float64]]:
-    if t_eval is None:
-        if method in FIXED_STEP_METHODS and samples is None:
+def _output_times(
+    t_eval: Any,
+    samples: Any,
+    t_end: float,
+    method: str,
+    *,
+    state_dim: int,
+    dt: Optional[float],
+    max_steps: Optional[int],
+    default_field: str = "samples",
+    default_value: Any = None,
+) -> Optional[NDArray[np.float64]]:
+    """The output times (``None``: every step), after the resource guards.
+
+    Before anything is allocated: a fixed-step method needing more than
+    :data:`~drillstring.limits.FIXED_MAX_STEPS`
+    steps without an explicit ``max_steps`` is refused (field ``dt``), and so is an output larger
+    than :func:`~drillstring.limits.memory_budget` (field ``t_eval``, ``samples``, ``dt`` for every-step output, or
+    ``default_field`` for the default 1001 samples, e.g. ``nodes`` for the PDE).
+    """
+    if method in FIXED_STEP_METHODS:
+        assert dt is not None
+        steps = limits.fixed_steps(t_end, dt)
+        if max_steps is None and steps > limits.FIXED_MAX_STEPS:
+            raise ValidationError(
+                "dt",
+                dt,
+                f"a step giving at most max_steps = {limits.FIXED_MAX_STEPS} steps over t_end = {t_end:g} "
+                f"({steps} needed; pass max_steps to allow more)",
+            )
+        if t_eval is None and samples is None:
+            count = min(steps, limits.FIXED_MAX_STEPS if max_steps is None else max_steps) + 1
+            limits.check_output_size("dt", dt, count, state_dim, f"every step of dt = {dt:g} over t_end = {t_end:g}")
             return None  # every step
-        n = _count("samples", 1001 if samples is None else samples, 2)
+    if t_eval is None:
+        if samples is None:
+            n = 1001
+            limits.check_output_size(default_field, default_value, n, state_dim, f"the default {n} samples")
+        else:
+            n = _count("samples", samples, 2)
+            limits.check_output_size("samples", samples, n, state_dim, "samples")
         return np.linspace(0.0, t_end, n)
+    if isinstance(t_eval, (str, bytes)):
+        raise ValidationError("t_eval", t_eval, "a 1-D array of floats")
     try:
         times = np.asarray(t_eval, dtype=np.float64)
     except (TypeError, ValueError) as exc:
         raise ValidationError("t_eval", t_eval, "a 1-D array of floats") from exc
     if times.ndim != 1:
         raise ValidationError("t_eval", f"an array of shape {times.shape}", "a 1-D array")
+    if times.size == 0:
+        raise ValidationError("t_eval", "an empty array", "at least one output time")
+    limits.check_output_size("t_eval", f"{times.size} times", times.size, state_dim, "len(t_eval)")
     return np.ascontiguousarray(times)
 
 
@@ -122,7 +164,9 @@ class Simulation(TrajectoryResult):
         The Galerkin system that was integrated.
     method : str
     status : str
-        ``"success"``, ``"max_steps"``, ``"step_size_underflow"`` or ``"non_finite"``.
+        ``"success"``, ``"max_steps"``, ``"step_size_underflow"`` or ``"non_finite"``
+        (``"interrupted"`` exists in the core for cancelled sweeps; Ctrl-C during
+        :func:`simulate` raises ``KeyboardInterrupt`` instead).
     message : str
         Explanation of a non-success status ("" on success).
     stats : SolverStats
@@ -198,7 +242,10 @@ def simulate(
     samples : int, optional
         Number of uniform output times when ``t_eval`` is None.
     max_steps : int, optional
-        Step limit (default 10^7 adaptive, 10^8 fixed-step).
+        Step limit: accepted + rejected steps of the adaptive methods (default 10^7), steps of the
+        fixed-step ones (default 10^8; their step count is known up front and a request needing
+        more is refused unless ``max_steps`` is given). A solve that reaches it ends with
+        status ``"max_steps"``.
     nonlinear : bool
         ``False`` drops the cubic terms: the linearised model ``M q'' + K q = 0`` (sec. 3.3).
     check : bool
@@ -220,14 +267,18 @@ def simulate(
     )
     if not isinstance(nonlinear, bool):
         raise ValidationError("nonlinear", nonlinear, "True or False")
+    if not isinstance(check, bool):
+        raise ValidationError("check", check, "True or False")
     coefficients = project(params, modes=modes, rigid_mode=rigid_mode)
     if not nonlinear:
         coefficients = dataclasses.replace(
             coefficients, quartic_index=np.zeros((0, 4), dtype=np.int64), quartic_coef=np.zeros(0)
         )
-    times = _output_times(t_eval, samples, t_end_f, method)
     if method in FIXED_STEP_METHODS and dt_f is None:
         dt_f = _default_dt(coefficients)
+    times = _output_times(
+        t_eval, samples, t_end_f, method, state_dim=2 * coefficients.n_modes, dt=dt_f, max_steps=steps
+    )
     system = _core.ModalSystem(
         coefficients.mass,
         coefficients.stiffness,

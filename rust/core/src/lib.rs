@@ -13,17 +13,26 @@
 //!
 //! Invalid input is an [`Error`]; numerical failure (step limit, step-size underflow,
 //! non-finite state) ends a solve with a [`Status`] and a message. Nothing here panics on
-//! finite or non-finite numeric input.
+//! finite or non-finite numeric input. A long solve can be stopped from another thread (or a
+//! signal handler's hook) through [`interrupt`]: it ends with [`Status::Interrupted`].
+//!
+//! The crate has no `unsafe` code (enforced below), so Miri and AddressSanitizer have nothing
+//! beyond the standard library and the dependencies to check.
+
+#![forbid(unsafe_code)]
 
 pub mod error;
 pub mod integrators;
+pub mod interrupt;
 pub mod modal;
 pub mod options;
 pub mod pde;
 pub mod solution;
+pub mod sweep;
 pub mod system;
 
 pub use error::{Error, Result};
+pub use interrupt::{CancelFlag, Interrupt};
 pub use options::{AdaptiveOptions, FixedOptions, Output};
 pub use solution::{Solution, Stats, Status};
 pub use system::{FirstOrder, OdeSystem, SecondOrderSystem};

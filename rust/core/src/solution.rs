@@ -13,6 +13,8 @@ pub enum Status {
     StepSizeUnderflow,
     /// The state became NaN or infinite (divergence).
     NonFinite,
+    /// Stopped on request (an [`crate::interrupt::Interrupt`] hook: Ctrl-C, a cancelled sweep).
+    Interrupted,
 }
 
 impl Status {
@@ -23,16 +25,19 @@ impl Status {
             Status::MaxStepsReached => 1,
             Status::StepSizeUnderflow => 2,
             Status::NonFinite => 3,
+            Status::Interrupted => 4,
         }
     }
 
-    /// A stable short name (`"success"`, `"max_steps"`, `"step_size_underflow"`, `"non_finite"`).
+    /// A stable short name (`"success"`, `"max_steps"`, `"step_size_underflow"`, `"non_finite"`,
+    /// `"interrupted"`).
     pub fn name(self) -> &'static str {
         match self {
             Status::Success => "success",
             Status::MaxStepsReached => "max_steps",
             Status::StepSizeUnderflow => "step_size_underflow",
             Status::NonFinite => "non_finite",
+            Status::Interrupted => "interrupted",
         }
     }
 

@@ -1,9 +1,13 @@
 //! Conversions shared by the bindings: core errors to Python exceptions, panics to
-//! `RuntimeError`, numpy arrays to vectors, solutions to dicts.
+//! `RuntimeError`, numpy arrays to vectors, solutions to dicts, and Python's signal handlers
+//! (Ctrl-C) polled during a solve that runs without the GIL.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 use drillstring_core as core;
+use drillstring_core::interrupt::Interrupt;
 use drillstring_core::Solution;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyRuntimeError;
@@ -37,6 +41,28 @@ pub(crate) fn no_panic<T>(f: impl FnOnce() -> T) -> PyResult<T> {
     })
 }
 
+/// An integer argument as `T` (`u64`, `usize`), or a `ValidationError` naming `field` (instead of
+/// the `OverflowError` a negative or huge Python int gives when extracted directly).
+pub(crate) fn integer<'py, T: for<'a> FromPyObject<'a, 'py>>(
+    py: Python<'py>,
+    field: &str,
+    value: &Bound<'py, PyAny>,
+    allowed: &str,
+) -> PyResult<T> {
+    value.extract::<T>().map_err(|_| {
+        let shown = value.repr().map(|r| r.to_string()).unwrap_or_else(|_| "?".into());
+        validation_error(py, core::Error::invalid(field, shown, allowed))
+    })
+}
+
+/// An optional `max_steps` argument (`None` or an int in `1..=2^64-1`; 0 is refused by the core).
+pub(crate) fn max_steps_arg(py: Python<'_>, value: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u64>> {
+    match value {
+        Some(v) if !v.is_none() => integer(py, "max_steps", v, "None or an integer in 1..=2**64 - 1").map(Some),
+        _ => Ok(None),
+    }
+}
+
 pub(crate) fn to_vec(a: &PyReadonlyArray1<'_, f64>) -> Vec<f64> {
     a.as_array().iter().copied().collect()
 }
@@ -55,4 +81,73 @@ pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: Solution) -> PyResult<Bou
     out.set_item("naccept", sol.stats.naccept)?;
     out.set_item("nreject", sol.stats.nreject)?;
     Ok(out)
+}
+
+/// How often a solve running without the GIL re-attaches to run Python's signal handlers.
+const SIGNAL_CHECK_INTERVAL: Duration = Duration::from_millis(20);
+
+/// The interrupt hook of a solve started from Python: at most every
+/// [`SIGNAL_CHECK_INTERVAL`] it re-attaches to the interpreter briefly and calls
+/// `PyErr_CheckSignals` (`Python::check_signals`), which runs the Python-level signal handlers.
+/// An exception they raise (`KeyboardInterrupt` for Ctrl-C) is stored and stops the solve;
+/// [`SignalCheck::finish`] then raises it.
+///
+/// Python runs signal handlers only in the main thread, so a solve started from another thread
+/// never re-attaches (solves on several threads keep running in parallel).
+pub(crate) struct SignalCheck {
+    main_thread: bool,
+    last: Mutex<Instant>,
+    error: Mutex<Option<PyErr>>,
+}
+
+impl SignalCheck {
+    /// A hook for a solve about to be started by the current thread.
+    pub(crate) fn new(py: Python<'_>) -> Self {
+        SignalCheck { main_thread: is_main_thread(py), last: Mutex::new(Instant::now()), error: Mutex::new(None) }
+    }
+
+    /// Raises the exception a signal handler raised during the solve, if any.
+    pub(crate) fn finish(self) -> PyResult<()> {
+        match self.error.into_inner() {
+            Ok(Some(err)) => Err(err),
+            _ => Ok(()),
+        }
+    }
+}
+
+impl Interrupt for SignalCheck {
+    fn interrupted(&self) -> bool {
+        if !self.main_thread {
+            return false;
+        }
+        {
+            let Ok(mut last) = self.last.lock() else { return false };
+            if last.elapsed() < SIGNAL_CHECK_INTERVAL {
+                return false;
+            }
+            *last = Instant::now();
+        }
+        let checked = Python::try_attach(|py| py.check_signals());
+        match checked {
+            Some(Err(err)) => {
+                if let Ok(mut slot) = self.error.lock() {
+                    *slot = Some(err);
+                }
+                true
+            }
+            // Handled, no signal, or the interpreter is finalizing.
+            _ => false,
+        }
+    }
+}
+
+/// Whether the current thread is Python's main thread (the only one that runs signal handlers).
+fn is_main_thread(py: Python<'_>) -> bool {
+    let check = || -> PyResult<bool> {
+        let threading = py.import("threading")?;
+        let current = threading.call_method0("current_thread")?;
+        let main = threading.call_method0("main_thread")?;
+        Ok(current.is(&main))
+    };
+    check().unwrap_or(false)
 }

@@ -2,13 +2,17 @@
 //!
 //! This crate only converts: numpy arrays in and out, core errors to
 //! `drillstring.errors.ValidationError`, panics to `RuntimeError`; every solve runs with the
-//! GIL released. No numerics here. One file per bound concept.
+//! GIL released. No numerics here. One file per bound concept. No `unsafe` code of its own
+//! (denied below; PyO3's macros allow it in what they generate).
+
+#![deny(unsafe_code)]
 
 use pyo3::prelude::*;
 
 mod convert;
 mod modal;
 mod pde;
+mod sweep;
 
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -16,6 +20,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(modal::solve_modal, m)?)?;
     m.add_class::<pde::PdeSystem>()?;
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::batch_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::scale_integrals, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -8,18 +8,13 @@ use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{no_panic, solution_dict, to_vec, validation_error};
+use crate::convert::{integer, max_steps_arg, no_panic, solution_dict, to_vec, validation_error, SignalCheck};
 
 /// The torsion PDE discretised on `nodes` grid points `z_j = j l / (nodes - 1)` (lumped-mass
 /// linear finite elements: the discrete energy `H_h` is conserved by the semi-discrete system).
 #[pyclass(frozen, module = "drillstring._core")]
 pub(crate) struct PdeSystem {
     inner: CorePdeSystem,
-}
-
-/// `value` as a `usize`, or a `ValidationError` naming `field`.
-fn non_negative(py: Python<'_>, field: &str, value: i64, allowed: &str) -> PyResult<usize> {
-    usize::try_from(value).map_err(|_| validation_error(py, core::Error::invalid(field, value, allowed)))
 }
 
 #[pymethods]
@@ -35,10 +30,10 @@ impl PdeSystem {
         k5: f64,
         k6: f64,
         length: f64,
-        nodes: i64,
+        nodes: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
         let allowed = format!("an integer in 3..={}", core::pde::MAX_NODES);
-        let nodes = non_negative(py, "nodes", nodes, &allowed)?;
+        let nodes: usize = integer(py, "nodes", nodes, &allowed)?;
         let k = PdeCoefficients { k1, k2, k3, k4, k5, k6 };
         let inner = CorePdeSystem::new(k, length, nodes).map_err(|e| validation_error(py, e))?;
         Ok(PdeSystem { inner })
@@ -138,9 +133,13 @@ impl PdeSystem {
 
     /// The lowest `count` squared linear frequencies `w^2` (ascending; the first, `-k6/k1`, is
     /// the uniform twist). Costs `O(N^2)`; runs without the GIL.
-    fn linear_frequencies_squared<'py>(&self, py: Python<'py>, count: i64) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    fn linear_frequencies_squared<'py>(
+        &self,
+        py: Python<'py>,
+        count: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let nodes = self.inner.nodes();
-        let count = non_negative(py, "count", count, &format!("an integer in 1..={nodes} (the number of nodes)"))?;
+        let count: usize = integer(py, "count", count, &format!("an integer in 1..={nodes} (the number of nodes)"))?;
         let sys = &self.inner;
         let w2 = py.detach(|| no_panic(|| sys.linear_frequencies_squared(count)))?;
         Ok(PyArray1::from_vec(py, w2.map_err(|e| validation_error(py, e))?))
@@ -170,6 +169,9 @@ impl PdeSystem {
 /// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`. `t_eval=None` samples every
 /// step. Any method (`"dop853"`, `"dopri5"`, `"rk4"`, `"central"`, `"verlet"`); the
 /// fixed-step ones need `dt`.
+///
+/// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
+/// within ~20 ms and is raised here.
 #[pyfunction]
 #[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY))]
 #[allow(clippy::too_many_arguments)]
@@ -184,7 +186,7 @@ pub(crate) fn solve_pde<'py>(
     rtol: f64,
     atol: f64,
     dt: Option<f64>,
-    max_steps: Option<u64>,
+    max_steps: Option<&Bound<'py, PyAny>>,
     first_step: Option<f64>,
     max_step: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -194,11 +196,16 @@ pub(crate) fn solve_pde<'py>(
         Some(t) => Output::Times(to_vec(t)),
         None => Output::EveryStep,
     };
+    let max_steps = max_steps_arg(py, max_steps)?;
     let opts = SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step };
     let sys: &CorePdeSystem = &system.get().inner;
     // Lengths ("q0", "v0") and finiteness are checked by the core before any work.
-    let solved =
-        py.detach(|| no_panic(|| integrators::solve_second_order(sys, 0.0, &q0, &v0, t_end, &output, &opts)))?;
+    // Ctrl-C during the solve: the hook stops it and `finish` raises KeyboardInterrupt.
+    let signals = SignalCheck::new(py);
+    let solved = py.detach(|| {
+        no_panic(|| integrators::solve_second_order_with(sys, 0.0, &q0, &v0, t_end, &output, &opts, &signals))
+    })?;
+    signals.finish()?;
     let sol = solved.map_err(|e| validation_error(py, e))?;
     solution_dict(py, sol)
 }

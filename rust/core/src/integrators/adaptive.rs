@@ -31,9 +31,10 @@
 
 use std::marker::PhantomData;
 
-use super::sampling::Sampler;
+use super::sampling::{interpolation_failure, Sampler};
 use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Result;
+use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, AdaptiveOptions, Output};
 use crate::solution::{Solution, Stats, Status};
 use crate::system::OdeSystem;
@@ -113,7 +114,8 @@ pub(crate) fn validate<S: OdeSystem + ?Sized>(
     super::check_state("y0", y0, sys.dim())
 }
 
-/// Solves `y' = f(t, y)` on `[t0, t_end]` with the pair `P`.
+/// Solves `y' = f(t, y)` on `[t0, t_end]` with the pair `P`, polling `interrupt` once per
+/// step attempt (rate-limited by [`Poller`]).
 pub(crate) fn integrate<P: Scheme, S: OdeSystem + ?Sized>(
     sys: &S,
     t0: f64,
@@ -121,12 +123,13 @@ pub(crate) fn integrate<P: Scheme, S: OdeSystem + ?Sized>(
     t_end: f64,
     output: &Output,
     opts: &AdaptiveOptions,
+    interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
     validate(sys, t0, y0, t_end, output, opts)?;
     let mut sampler = Sampler::new(output);
     let mut sol = sampler.solution(y0.len(), 1024);
     let mut run = Run::<P, S>::new(sys, t0, y0, t_end, opts);
-    run.solve(&mut sampler, &mut sol);
+    run.solve(&mut sampler, &mut sol, &mut Poller::new(interrupt));
     sol.stats = run.stats;
     Ok(sol)
 }
@@ -182,19 +185,19 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
         10.0 * f64::EPSILON * self.t.abs().max(f64::MIN_POSITIVE)
     }
 
-    fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution) {
+    fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) {
         sampler.start(sol, self.t, &self.y);
         let h = match self.opts.first_step {
             Some(h) => h.min(self.hmax),
             None => self.hinit(),
         };
-        if let Outcome::Failed(status, message) = self.step_loop(h, sampler, sol) {
+        if let Outcome::Failed(status, message) = self.step_loop(h, sampler, sol, poller) {
             sol.fail(status, message);
         }
     }
 
-    /// The accept/reject loop from step size `h` until `t_end` or a failure.
-    fn step_loop(&mut self, mut h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Outcome {
+    /// The accept/reject loop from step size `h` until `t_end`, a failure or an interrupt.
+    fn step_loop(&mut self, mut h: f64, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) -> Outcome {
         let c = P::CONTROL;
         let mut facold: f64 = 1e-4;
         let mut reject = false;
@@ -202,6 +205,13 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
         loop {
             if attempts >= self.opts.max_steps {
                 return Outcome::Failed(Status::MaxStepsReached, self.max_steps_message());
+            }
+            if poller.poll() {
+                let msg = format!(
+                    "interrupted at t = {} before t_end = {} after {attempts} step attempts",
+                    self.t, self.t_end
+                );
+                return Outcome::Failed(Status::Interrupted, msg);
             }
             if h.is_nan() || h < self.min_step() {
                 let msg =
@@ -228,7 +238,11 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
                     let msg = format!("state became non-finite in the step from t = {} to t = {t_new}", self.t);
                     return Outcome::Failed(Status::NonFinite, msg);
                 }
-                self.accept(h, t_new, sampler, sol);
+                let t_old = self.t;
+                if let Err(t_out) = self.accept(h, t_new, sampler, sol) {
+                    let (status, message) = interpolation_failure(t_out, t_old, t_new);
+                    return Outcome::Failed(status, message);
+                }
                 if last {
                     return Outcome::Done;
                 }
@@ -285,8 +299,15 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
     }
 
     /// Accepts the attempted step of size `h` ending at `t_new`: FSAL derivative, output
-    /// samples, and the move to the new state.
-    pub fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) {
+    /// samples, and the move to the new state. `Err(t_out)`: the dense output overflowed at
+    /// the output time `t_out` (see [`Sampler::record`]).
+    pub fn accept(
+        &mut self,
+        h: f64,
+        t_new: f64,
+        sampler: &mut Sampler,
+        sol: &mut Solution,
+    ) -> std::result::Result<(), f64> {
         self.stats.naccept += 1;
         if !P::FSAL_IN_ERROR {
             self.eval_fsal(t_new);
@@ -306,10 +327,11 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
         let (t, y, dense) = (self.t, &self.y, &self.dense);
         sampler.record(sol, t_new, &self.y_new, &mut self.ytmp, |t_out, out| {
             P::dense_eval(dense, y, (t_out - t) / h, out);
-        });
+        })?;
         std::mem::swap(&mut self.y, &mut self.y_new);
         self.k.copy_row(P::FSAL, 0);
         self.t = t_new;
+        Ok(())
     }
 
     /// Hairer's initial step guess `hinit`: with `d0 = ||y0||`, `d1 = ||f0||` (scaled with
@@ -376,7 +398,7 @@ pub(crate) mod testing {
         let h = (t_end - t0) / n as f64;
         for i in 1..=n {
             run.attempt(h);
-            run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol);
+            run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
         }
         run.y
     }

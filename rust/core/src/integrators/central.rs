@@ -14,9 +14,10 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::Sampler;
+use super::sampling::{interpolation_failure, Sampler};
 use super::tableau::all_finite;
 use crate::error::Result;
+use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, FixedOptions, Output};
 use crate::solution::{Solution, Stats, Status};
 use crate::system::SecondOrderSystem;
@@ -31,6 +32,7 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
     t_end: f64,
     output: &Output,
     opts: &FixedOptions,
+    interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
     validate_span(t0, t_end, output)?;
     opts.validate()?;
@@ -41,7 +43,9 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
     let hint = usize::try_from(grid.steps.min(opts.max_steps)).unwrap_or(usize::MAX).saturating_add(1);
     let mut sol = sampler.solution(2 * q0.len(), hint);
     let mut run = Run::new(sys, q0, v0, grid.dt);
-    if let Err((status, message)) = run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol) {
+    if let Err((status, message)) =
+        run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol, &mut Poller::new(interrupt))
+    {
         sol.fail(status, message);
     }
     sol.stats = run.stats;
@@ -98,6 +102,7 @@ impl Run {
         max_steps: u64,
         sampler: &mut Sampler,
         sol: &mut Solution,
+        poller: &mut Poller,
     ) -> std::result::Result<(), (Status, String)> {
         sampler.start(sol, grid.t0, &self.state_prev);
         for n in 1..=grid.steps {
@@ -111,6 +116,15 @@ impl Run {
                 );
                 return Err((Status::MaxStepsReached, msg));
             }
+            if poller.poll() {
+                let msg = format!(
+                    "interrupted at t = {} before t_end = {} after {} steps",
+                    grid.time(n - 1),
+                    grid.t_end,
+                    n - 1
+                );
+                return Err((Status::Interrupted, msg));
+            }
             let t = grid.time(n);
             self.complete_state(sys);
             if !all_finite(&self.state) {
@@ -118,7 +132,8 @@ impl Run {
                 return Err((Status::NonFinite, msg));
             }
             self.stats.naccept += 1;
-            self.record(grid.time(n - 1), t, sampler, sol);
+            let t_prev = grid.time(n - 1);
+            self.record(t_prev, t, sampler, sol).map_err(|t_out| interpolation_failure(t_out, t_prev, t))?;
         }
         Ok(())
     }
@@ -137,7 +152,13 @@ impl Run {
     }
 
     /// Records output of the interval `t -> t_new` and shifts the two-step history.
-    fn record(&mut self, t: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) {
+    fn record(
+        &mut self,
+        t: f64,
+        t_new: f64,
+        sampler: &mut Sampler,
+        sol: &mut Solution,
+    ) -> std::result::Result<(), f64> {
         let (dof, h) = (self.dof, self.dt);
         let (q0, v0) = self.state_prev.split_at(dof);
         let (q1, v1) = self.state.split_at(dof);
@@ -147,11 +168,12 @@ impl Run {
             let (q_out, v_out) = out.split_at_mut(dof);
             hermite(theta, h, q0, v0, q1, v1, q_out);
             hermite(theta, h, v0, a0, v1, a1, v_out);
-        });
+        })?;
         // (q_{n-1}, q_n, q_{n+1}) <- (q_n, q_{n+1}, unused)
         std::mem::swap(&mut self.q_prev, &mut self.q);
         std::mem::swap(&mut self.q, &mut self.q_next);
         std::mem::swap(&mut self.state_prev, &mut self.state);
         std::mem::swap(&mut self.acc_prev, &mut self.acc);
+        Ok(())
     }
 }

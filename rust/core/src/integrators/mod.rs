@@ -24,6 +24,7 @@ mod tableau;
 mod verlet;
 
 use crate::error::{Error, Result};
+use crate::interrupt::{Interrupt, Never};
 use crate::options::{AdaptiveOptions, FixedOptions, Output};
 use crate::solution::Solution;
 use crate::system::{FirstOrder, OdeSystem, SecondOrderSystem};
@@ -39,7 +40,7 @@ pub fn dop853<S: OdeSystem + ?Sized>(
     output: &Output,
     opts: &AdaptiveOptions,
 ) -> Result<Solution> {
-    adaptive::integrate::<dop853::Dop853, S>(sys, t0, y0, t_end, output, opts)
+    adaptive::integrate::<dop853::Dop853, S>(sys, t0, y0, t_end, output, opts, &Never)
 }
 
 /// Dormand-Prince 5(4) (`DOPRI5`, 4th-order dense output), with Hairer's step-size control
@@ -52,7 +53,7 @@ pub fn dopri5<S: OdeSystem + ?Sized>(
     output: &Output,
     opts: &AdaptiveOptions,
 ) -> Result<Solution> {
-    adaptive::integrate::<dopri5::Dopri5, S>(sys, t0, y0, t_end, output, opts)
+    adaptive::integrate::<dopri5::Dopri5, S>(sys, t0, y0, t_end, output, opts, &Never)
 }
 
 /// Classical fourth-order Runge-Kutta with fixed steps (see the module docs for the grid).
@@ -64,7 +65,7 @@ pub fn rk4<S: OdeSystem + ?Sized>(
     output: &Output,
     opts: &FixedOptions,
 ) -> Result<Solution> {
-    rk4::integrate(sys, t0, y0, t_end, output, opts)
+    rk4::integrate(sys, t0, y0, t_end, output, opts, &Never)
 }
 
 /// Explicit central differences `q[n+1] = 2 q[n] - q[n-1] + dt^2 a(q[n])`, started with
@@ -80,7 +81,7 @@ pub fn central_difference<S: SecondOrderSystem + ?Sized>(
     output: &Output,
     opts: &FixedOptions,
 ) -> Result<Solution> {
-    central::integrate(sys, t0, q0, v0, t_end, output, opts)
+    central::integrate(sys, t0, q0, v0, t_end, output, opts, &Never)
 }
 
 /// Velocity (Stormer-)Verlet, the symplectic kick-drift-kick scheme
@@ -96,7 +97,7 @@ pub fn verlet<S: SecondOrderSystem + ?Sized>(
     output: &Output,
     opts: &FixedOptions,
 ) -> Result<Solution> {
-    verlet::integrate(sys, t0, q0, v0, t_end, output, opts)
+    verlet::integrate(sys, t0, q0, v0, t_end, output, opts, &Never)
 }
 
 /// An integration method.
@@ -204,7 +205,7 @@ impl Default for SolveOptions {
 }
 
 /// Solves a second-order system `q'' = a(q)` from `(q0, v0)` with any method; the state in
-/// the [`Solution`] is `y = [q, v]`.
+/// the [`Solution`] is `y = [q, v]`. Never interrupted: see [`solve_second_order_with`].
 pub fn solve_second_order<S: SecondOrderSystem + ?Sized>(
     sys: &S,
     t0: f64,
@@ -214,15 +215,63 @@ pub fn solve_second_order<S: SecondOrderSystem + ?Sized>(
     output: &Output,
     opts: &SolveOptions,
 ) -> Result<Solution> {
+    solve_second_order_with(sys, t0, q0, v0, t_end, output, opts, &Never)
+}
+
+/// [`solve_second_order`] that polls `interrupt` while it steps (every few milliseconds, see
+/// [`crate::interrupt`]): once the hook answers `true` the solve ends with
+/// [`crate::Status::Interrupted`], a message and the samples recorded so far. A hook that never
+/// fires leaves the result bit-identical to [`solve_second_order`].
+///
+/// ```
+/// use drillstring_core::integrators::{solve_second_order_with, Method, SolveOptions};
+/// use drillstring_core::modal::ModalSystem;
+/// use drillstring_core::{CancelFlag, Output, Status};
+///
+/// let sys = ModalSystem::new(vec![1.0], vec![1.0], vec![]).unwrap();
+/// let flag = CancelFlag::new();
+/// flag.cancel(); // e.g. from another thread
+/// let opts = SolveOptions::new(Method::Dop853);
+/// let sol = solve_second_order_with(&sys, 0.0, &[0.0], &[1.0], 1e6, &Output::EveryStep, &opts, &flag).unwrap();
+/// assert_eq!(sol.status, Status::Interrupted);
+/// ```
+#[allow(clippy::too_many_arguments)]
+pub fn solve_second_order_with<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &SolveOptions,
+    interrupt: &dyn Interrupt,
+) -> Result<Solution> {
     check_state("q0", q0, sys.dof())?;
     check_state("v0", v0, sys.dof())?;
     let first_order = FirstOrder(sys);
+    let y0 = || [q0, v0].concat();
     match opts.method {
-        Method::Dop853 => dop853(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.adaptive()),
-        Method::Dopri5 => dopri5(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.adaptive()),
-        Method::Rk4 => rk4(&first_order, t0, &[q0, v0].concat(), t_end, output, &opts.fixed()?),
-        Method::Central => central_difference(sys, t0, q0, v0, t_end, output, &opts.fixed()?),
-        Method::Verlet => verlet(sys, t0, q0, v0, t_end, output, &opts.fixed()?),
+        Method::Dop853 => adaptive::integrate::<dop853::Dop853, _>(
+            &first_order,
+            t0,
+            &y0(),
+            t_end,
+            output,
+            &opts.adaptive(),
+            interrupt,
+        ),
+        Method::Dopri5 => adaptive::integrate::<dopri5::Dopri5, _>(
+            &first_order,
+            t0,
+            &y0(),
+            t_end,
+            output,
+            &opts.adaptive(),
+            interrupt,
+        ),
+        Method::Rk4 => rk4::integrate(&first_order, t0, &y0(), t_end, output, &opts.fixed()?, interrupt),
+        Method::Central => central::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
+        Method::Verlet => verlet::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
     }
 }
 

@@ -12,9 +12,10 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::Sampler;
+use super::sampling::{interpolation_failure, Sampler};
 use super::tableau::{all_finite, Stages, RK4};
 use crate::error::Result;
+use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, FixedOptions, Output};
 use crate::solution::{Solution, Stats, Status};
 use crate::system::OdeSystem;
@@ -27,6 +28,7 @@ pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     t_end: f64,
     output: &Output,
     opts: &FixedOptions,
+    interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
     validate_span(t0, t_end, output)?;
     opts.validate()?;
@@ -36,7 +38,9 @@ pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     let hint = usize::try_from(grid.steps.min(opts.max_steps)).unwrap_or(usize::MAX).saturating_add(1);
     let mut sol = sampler.solution(y0.len(), hint);
     let mut run = Run::new(y0);
-    if let Err((status, message)) = run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol) {
+    if let Err((status, message)) =
+        run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol, &mut Poller::new(interrupt))
+    {
         sol.fail(status, message);
     }
     sol.stats = run.stats;
@@ -78,6 +82,7 @@ impl Run {
         max_steps: u64,
         sampler: &mut Sampler,
         sol: &mut Solution,
+        poller: &mut Poller,
     ) -> std::result::Result<(), (Status, String)> {
         sampler.start(sol, grid.t0, &self.y);
         for n in 0..grid.steps {
@@ -89,6 +94,10 @@ impl Run {
                 );
                 return Err((Status::MaxStepsReached, msg));
             }
+            if poller.poll() {
+                let msg = format!("interrupted at t = {t} before t_end = {} after {n} steps", grid.t_end);
+                return Err((Status::Interrupted, msg));
+            }
             let t_new = grid.time(n + 1);
             self.step(sys, t, grid.dt);
             if !all_finite(&self.y_new) {
@@ -96,7 +105,8 @@ impl Run {
                 return Err((Status::NonFinite, msg));
             }
             self.stats.naccept += 1;
-            self.record(sys, t, t_new, grid.dt, sampler, sol);
+            self.record(sys, t, t_new, grid.dt, sampler, sol)
+                .map_err(|t_out| interpolation_failure(t_out, t, t_new))?;
         }
         Ok(())
     }
@@ -121,7 +131,7 @@ impl Run {
         h: f64,
         sampler: &mut Sampler,
         sol: &mut Solution,
-    ) {
+    ) -> std::result::Result<(), f64> {
         if sampler.needs_interpolant(t_new) {
             sys.rhs(t_new, &self.y_new, &mut self.f_new);
             self.stats.nfev += 1;
@@ -130,10 +140,11 @@ impl Run {
         let (y, f0, y1, f1) = (&self.y, self.k.row(0), &self.y_new, &self.f_new);
         sampler.record(sol, t_new, y1, &mut self.ytmp, |t_out, out| {
             hermite((t_out - t) / h, h, y, f0, y1, f1, out);
-        });
+        })?;
         std::mem::swap(&mut self.y, &mut self.y_new);
         if self.k1_valid {
             self.k.row_mut(0).copy_from_slice(&self.f_new);
         }
+        Ok(())
     }
 }

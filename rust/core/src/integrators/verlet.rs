@@ -18,9 +18,10 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::Sampler;
+use super::sampling::{interpolation_failure, Sampler};
 use super::tableau::all_finite;
 use crate::error::Result;
+use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, FixedOptions, Output};
 use crate::solution::{Solution, Stats, Status};
 use crate::system::SecondOrderSystem;
@@ -35,6 +36,7 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
     t_end: f64,
     output: &Output,
     opts: &FixedOptions,
+    interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
     validate_span(t0, t_end, output)?;
     opts.validate()?;
@@ -45,7 +47,9 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
     let hint = usize::try_from(grid.steps.min(opts.max_steps)).unwrap_or(usize::MAX).saturating_add(1);
     let mut sol = sampler.solution(2 * q0.len(), hint);
     let mut run = Run::new(sys, q0, v0);
-    if let Err((status, message)) = run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol) {
+    if let Err((status, message)) =
+        run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol, &mut Poller::new(interrupt))
+    {
         sol.fail(status, message);
     }
     sol.stats = run.stats;
@@ -91,6 +95,7 @@ impl Run {
         max_steps: u64,
         sampler: &mut Sampler,
         sol: &mut Solution,
+        poller: &mut Poller,
     ) -> std::result::Result<(), (Status, String)> {
         sampler.start(sol, grid.t0, &self.state);
         for n in 0..grid.steps {
@@ -102,6 +107,10 @@ impl Run {
                 );
                 return Err((Status::MaxStepsReached, msg));
             }
+            if poller.poll() {
+                let msg = format!("interrupted at t = {t} before t_end = {} after {n} steps", grid.t_end);
+                return Err((Status::Interrupted, msg));
+            }
             let t_new = grid.time(n + 1);
             self.step(sys, grid.dt);
             if !all_finite(&self.state_new) {
@@ -109,7 +118,7 @@ impl Run {
                 return Err((Status::NonFinite, msg));
             }
             self.stats.naccept += 1;
-            self.record(t, t_new, grid.dt, sampler, sol);
+            self.record(t, t_new, grid.dt, sampler, sol).map_err(|t_out| interpolation_failure(t_out, t, t_new))?;
         }
         Ok(())
     }
@@ -132,7 +141,14 @@ impl Run {
     }
 
     /// Records output of the step `t -> t_new` and moves to the new state.
-    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) {
+    fn record(
+        &mut self,
+        t: f64,
+        t_new: f64,
+        h: f64,
+        sampler: &mut Sampler,
+        sol: &mut Solution,
+    ) -> std::result::Result<(), f64> {
         let dof = self.dof;
         let (q0, v0) = self.state.split_at(dof);
         let (q1, v1) = self.state_new.split_at(dof);
@@ -142,9 +158,10 @@ impl Run {
             let (q_out, v_out) = out.split_at_mut(dof);
             hermite(theta, h, q0, v0, q1, v1, q_out);
             hermite(theta, h, v0, a0, v1, a1, v_out);
-        });
+        })?;
         std::mem::swap(&mut self.state, &mut self.state_new);
         std::mem::swap(&mut self.acc, &mut self.acc_new);
+        Ok(())
     }
 }
 

@@ -1,0 +1,172 @@
+"""Sweep grids: axes of :class:`~drillstring.parameters.Parameters` fields and their product.
+
+A grid is a mapping ``{field: values}``. The keys are :class:`Parameters` field names, or
+``c1``, ``c2``, ... for one initial velocity ``C_i`` (the other ``C_j`` keep their base values;
+missing ones are 0). The values are
+
+* a list, tuple or 1-D array of values (``initial_velocities``: a list of sequences);
+* ``{"linspace": [start, stop, count]}``: ``count`` evenly spaced values, both ends included
+  (``numpy.linspace``);
+* ``{"logspace": [start, stop, count]}``: ``count`` values evenly spaced on a log scale from
+  ``start`` to ``stop`` (both > 0), ends included (``numpy.geomspace``). Note: ``start`` and
+  ``stop`` are the end *values*, not powers of ten as in ``numpy.logspace``;
+* a single value (a one-point axis).
+
+:func:`linspace` and :func:`logspace` build the two dicts in Python. The runs of a grid are the
+Cartesian product of its axes in the order given, the last axis varying fastest.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from collections.abc import Mapping, Sequence
+from numbers import Integral, Real
+from typing import Any, Union
+
+import numpy as np
+
+from .errors import ValidationError
+from .parameters import Parameters
+
+__all__ = [
+    "linspace",
+    "logspace",
+    "axis_values",
+    "expand_grid",
+    "grid_fields",
+    "run_overrides",
+    "apply_overrides",
+]
+
+_VELOCITY_KEY = re.compile(r"^c([1-9][0-9]*)$")
+
+Grid = Mapping[str, Any]
+
+
+def linspace(start: float, stop: float, count: int) -> dict[str, list[float]]:
+    """``{"linspace": [start, stop, count]}``: ``count`` evenly spaced values, ends included."""
+    return {"linspace": [start, stop, count]}
+
+
+def logspace(start: float, stop: float, count: int) -> dict[str, list[float]]:
+    """``{"logspace": [start, stop, count]}``: ``count`` log-spaced values from ``start`` to
+    ``stop`` (end values, both > 0; not powers of ten)."""
+    return {"logspace": [start, stop, count]}
+
+
+def grid_fields() -> tuple[str, ...]:
+    """Keys a grid may use: the :class:`Parameters` fields (``c1``, ``c2``, ... also accepted)."""
+    return Parameters.field_names()
+
+
+def _check_key(key: Any) -> str:
+    if isinstance(key, str) and (key in Parameters.field_names() or _VELOCITY_KEY.match(key)):
+        return key
+    raise ValidationError(
+        "grid", key, "a Parameters field (" + ", ".join(Parameters.field_names()) + ") or c1, c2, ..."
+    )
+
+
+def _spacing(key: str, kind: str, spec: Any) -> list[float]:
+    allowed = f"{{{kind} = [start, stop, count]}} with finite start, stop and an integer count >= 1"
+    if not isinstance(spec, Sequence) or isinstance(spec, str) or len(spec) != 3:
+        raise ValidationError(f"grid.{key}", spec, allowed)
+    start, stop, count = spec
+    ok = all(isinstance(v, Real) and not isinstance(v, bool) and math.isfinite(v) for v in (start, stop))
+    if not ok or isinstance(count, bool) or not isinstance(count, Integral) or count < 1:
+        raise ValidationError(f"grid.{key}", spec, allowed)
+    if kind == "linspace":
+        return np.linspace(float(start), float(stop), int(count)).tolist()
+    if not (start > 0 and stop > 0):
+        raise ValidationError(
+            f"grid.{key}", spec, "logspace end values start > 0 and stop > 0 (the values themselves, "
+            "not powers of ten: {logspace = [0.1, 100.0, 4]} gives 0.1, 1, 10, 100)"
+        )
+    return np.geomspace(float(start), float(stop), int(count)).tolist()
+
+
+def _plain(value: Any) -> Any:
+    """numpy scalars and arrays to Python floats/ints/lists (JSON-ready)."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+def axis_values(key: str, spec: Any) -> list[Any]:
+    """The values of one grid axis (see the module docstring)."""
+    key = _check_key(key)
+    if isinstance(spec, Mapping):
+        if len(spec) != 1 or next(iter(spec)) not in ("linspace", "logspace"):
+            raise ValidationError(
+                f"grid.{key}", dict(spec), "a list of values, {linspace = [start, stop, count]} or "
+                "{logspace = [start, stop, count]}"
+            )
+        kind = next(iter(spec))
+        return _spacing(key, kind, spec[kind])
+    if key == "initial_velocities":
+        # a list of sequences; a single flat sequence of numbers is one value
+        if isinstance(spec, np.ndarray) and spec.ndim == 2:
+            return [_plain(row) for row in spec]
+        if isinstance(spec, (list, tuple)) and spec and all(
+            isinstance(v, (list, tuple, np.ndarray)) for v in spec
+        ):
+            return [_plain(v) for v in spec]
+        return [_plain(spec)]
+    if isinstance(spec, (list, tuple, np.ndarray)):
+        values = np.ravel(spec).tolist() if isinstance(spec, np.ndarray) else [_plain(v) for v in spec]
+        if not values:
+            raise ValidationError(f"grid.{key}", spec, "at least one value")
+        return values
+    return [_plain(spec)]
+
+
+def expand_grid(grid: Grid) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
+    """Axes ``{key: values}`` and the runs of the Cartesian product, each a dict of overrides.
+
+    Raises
+    ------
+    ValidationError
+        For an unknown key or a malformed axis.
+    """
+    if not isinstance(grid, Mapping):
+        raise ValidationError("grid", grid, "a mapping {Parameters field: values}")
+    axes = {_check_key(key): axis_values(key, spec) for key, spec in grid.items()}
+    names = list(axes)
+    runs = [dict(zip(names, combo)) for combo in itertools.product(*axes.values())]
+    return axes, runs
+
+
+def run_overrides(run: Union[Parameters, Mapping[str, Any]]) -> dict[str, Any]:
+    """One explicit run (a :class:`Parameters`, or a mapping of field overrides) as overrides."""
+    if isinstance(run, Parameters):
+        return run.to_dict()
+    if not isinstance(run, Mapping):
+        raise ValidationError("runs", run, "a list of Parameters or of mappings {field: value}")
+    return {_check_key(key): _plain(value) for key, value in run.items()}
+
+
+def apply_overrides(base: dict[str, Any], overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """``base`` (a :meth:`Parameters.to_dict`) with ``overrides`` applied; ``c<i>`` keys set
+    ``initial_velocities[i - 1]`` (after any ``initial_velocities`` override), padding with 0."""
+    full = dict(base)
+    velocity_keys = []
+    for key, value in overrides.items():
+        match = _VELOCITY_KEY.match(key)
+        if match:
+            velocity_keys.append((int(match.group(1)), value))
+        else:
+            full[key] = value
+    if velocity_keys:
+        current = full.get("initial_velocities")
+        velocities = list(current) if isinstance(current, (list, tuple)) else []
+        for i, value in sorted(velocity_keys):
+            velocities.extend([0.0] * (i - len(velocities)))
+            velocities[i - 1] = value
+        full["initial_velocities"] = velocities
+    return full

@@ -1,0 +1,104 @@
+"""Resource limits of a solve, checked before any work is done.
+
+* The **output memory budget**: the arrays a solve returns (times, the state at every sample
+  and the ``q``/``qdot`` copies made from it, 8 bytes a value) must fit :data:`MEMORY_BUDGET`
+  bytes, 2 GiB by default. Set ``drillstring.limits.MEMORY_BUDGET`` or the environment variable
+  ``DRILLSTRING_MEMORY_BUDGET`` (bytes, optionally with a K, M, G or T suffix, powers of 1024;
+  the variable wins) to change it. A request beyond it raises
+  :class:`~drillstring.errors.ValidationError` naming the field that sets the size (``samples``,
+  ``t_eval``, ``dt`` for every-step output, ``nodes``) and the bytes it would need.
+* **Step limits** (``max_steps``): :data:`ADAPTIVE_MAX_STEPS` step attempts for the adaptive
+  methods, :data:`FIXED_MAX_STEPS` steps for the fixed-step ones. A fixed-step solve's step
+  count ``ceil(t_end / dt)`` is known up front, so one needing more is refused at once (field
+  ``dt``) unless ``max_steps`` is given; an adaptive solve that reaches its limit ends with status
+  ``"max_steps"`` (:class:`~drillstring.errors.SolveError`).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import Any
+
+from .errors import ValidationError
+
+__all__ = [
+    "ADAPTIVE_MAX_STEPS",
+    "FIXED_MAX_STEPS",
+    "MEMORY_BUDGET",
+    "MEMORY_BUDGET_ENV",
+    "check_output_size",
+    "fixed_steps",
+    "memory_budget",
+    "output_bytes",
+]
+
+#: Default budget, in bytes, for the output arrays of one solve (2 GiB). A request whose output
+#: would need more is refused before any work, naming the field that sets its size. The
+#: environment variable ``DRILLSTRING_MEMORY_BUDGET`` (bytes, optionally with a K, M, G or T
+#: suffix: powers of 1024) overrides it; so does assigning this constant.
+MEMORY_BUDGET = 2 * 1024**3
+MEMORY_BUDGET_ENV = "DRILLSTRING_MEMORY_BUDGET"
+#: Default step limit of the adaptive methods (accepted + rejected steps; the core's default).
+ADAPTIVE_MAX_STEPS = 10_000_000
+#: Default step limit of the fixed-step methods. Their step count ``ceil(t_end / dt)`` is known
+#: up front: a request needing more is refused before any work unless ``max_steps`` is given.
+FIXED_MAX_STEPS = 100_000_000
+
+_UNITS = {"": 1, "B": 1, "K": 1024, "KB": 1024, "KIB": 1024, "M": 1024**2, "MB": 1024**2, "MIB": 1024**2,
+          "G": 1024**3, "GB": 1024**3, "GIB": 1024**3, "T": 1024**4, "TB": 1024**4, "TIB": 1024**4}
+
+
+def memory_budget() -> int:
+    """The output memory budget in bytes: ``$DRILLSTRING_MEMORY_BUDGET`` if set, else
+    :data:`MEMORY_BUDGET`."""
+    text = os.environ.get(MEMORY_BUDGET_ENV, "").strip()
+    if not text:
+        return int(MEMORY_BUDGET)
+    number = text.rstrip("kKmMgGtTiIbB").strip()
+    unit = text[len(text.rstrip("kKmMgGtTiIbB")):].upper()
+    try:
+        value = float(number) * _UNITS[unit]
+    except (ValueError, KeyError):
+        value = float("nan")
+    if not (math.isfinite(value) and value > 0):
+        raise ValidationError(
+            MEMORY_BUDGET_ENV, text, "a number of bytes > 0, optionally with a K, M, G or T suffix (e.g. 512M)"
+        )
+    return int(value)
+
+
+def _human_bytes(n: float) -> str:
+    for unit in ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB"):
+        if n < 1024 or unit == "PiB":
+            return f"{n:.0f} {unit}" if unit == "bytes" else f"{n:.3g} {unit}"
+        n /= 1024
+    return f"{n:.3g} PiB"  # pragma: no cover
+
+
+def output_bytes(samples: int, state_dim: int) -> int:
+    """Peak memory of a solve's output: the times, the core's state samples and the ``q``,
+    ``qdot`` arrays made from them, 8 bytes a value."""
+    return 8 * samples * (1 + 2 * state_dim)
+
+
+def check_output_size(field: str, value: Any, samples: int, state_dim: int, what: str) -> None:
+    """Refuses (``ValidationError`` naming ``field``) an output larger than :func:`memory_budget`."""
+    need = output_bytes(samples, state_dim)
+    budget = memory_budget()
+    if need > budget:
+        raise ValidationError(
+            field,
+            value,
+            f"an output within the memory budget of {_human_bytes(budget)} ({MEMORY_BUDGET_ENV}): {what} "
+            f"= {samples} samples of {state_dim} values would need {_human_bytes(need)} ({need} bytes)",
+        )
+
+
+def fixed_steps(t_end: float, dt: float) -> int:
+    """The number of steps of a fixed-step method: ``ceil(t_end / dt - 1e-9)`` (at least 1;
+    saturating at 2^62 like the core's count)."""
+    ratio = t_end / dt
+    if not ratio < 2.0**62:
+        return 2**62
+    return max(math.ceil(ratio - 1e-9), 1)

@@ -1,0 +1,180 @@
+//! Bindings of the batch solve of a parameter sweep (`drillstring.sweep`).
+
+use drillstring_core as core;
+use drillstring_core::integrators::{Method, SolveOptions};
+use drillstring_core::sweep::{self, GalerkinIntegrals, RunSpec, SweepOptions};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::convert::{no_panic, to_vec, validation_error};
+
+fn invalid(py: Python<'_>, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> PyErr {
+    validation_error(py, core::Error::invalid(field, value, allowed))
+}
+
+/// Mode numbers / positions as `u32`.
+fn to_u32(py: Python<'_>, field: &str, values: impl Iterator<Item = i64>) -> PyResult<Vec<u32>> {
+    values
+        .enumerate()
+        .map(|(j, v)| u32::try_from(v).map_err(|_| invalid(py, &format!("{field}[{j}]"), v, "a non-negative integer")))
+        .collect()
+}
+
+/// The dimensionless integrals of `drillstring.galerkin.GalerkinIntegrals` from its arrays.
+fn integrals_from_arrays(
+    py: Python<'_>,
+    indices: &PyReadonlyArray1<'_, i64>,
+    quartic_index: &PyReadonlyArray2<'_, i64>,
+    cos4: &PyReadonlyArray1<'_, f64>,
+    mixed: &PyReadonlyArray1<'_, f64>,
+    sin4: &PyReadonlyArray1<'_, f64>,
+) -> PyResult<GalerkinIntegrals> {
+    let idx = quartic_index.as_array();
+    if idx.ncols() != 4 {
+        return Err(invalid(py, "quartic_index", format!("shape {:?}", idx.shape()), "shape (T, 4)"));
+    }
+    let flat = to_u32(py, "quartic_index", idx.iter().copied())?;
+    let quads = flat.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
+    GalerkinIntegrals::new(
+        to_u32(py, "indices", indices.as_array().iter().copied())?,
+        quads,
+        to_vec(cos4),
+        to_vec(mixed),
+        to_vec(sin4),
+    )
+    .map_err(|e| validation_error(py, e))
+}
+
+/// The modal system of one run as the batch solve builds it: the integrals scaled by `k`
+/// (6,) = k1..k6 and `length`. Returns a dict of `mass`, `stiffness` (m,) and `quartic_coef`
+/// (T,) in the order of `quartic_index` (for checks against `drillstring.galerkin.project`).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn scale_integrals<'py>(
+    py: Python<'py>,
+    k: PyReadonlyArray1<'py, f64>,
+    length: f64,
+    indices: PyReadonlyArray1<'py, i64>,
+    quartic_index: PyReadonlyArray2<'py, i64>,
+    cos4: PyReadonlyArray1<'py, f64>,
+    mixed: PyReadonlyArray1<'py, f64>,
+    sin4: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let integrals = integrals_from_arrays(py, &indices, &quartic_index, &cos4, &mixed, &sin4)?;
+    let k = to_vec(&k);
+    let k: [f64; 6] =
+        k.try_into().map_err(|k: Vec<f64>| invalid(py, "k", format!("length {}", k.len()), "length 6"))?;
+    let sys = integrals.scale(&k, length).map_err(|e| validation_error(py, e))?;
+    let out = PyDict::new(py);
+    out.set_item("mass", PyArray1::from_slice(py, sys.mass()))?;
+    out.set_item("stiffness", PyArray1::from_slice(py, sys.stiffness()))?;
+    let coef: Vec<f64> = sys.terms().iter().map(|t| t.coef).collect();
+    out.set_item("quartic_coef", PyArray1::from_vec(py, coef))?;
+    Ok(out)
+}
+
+/// Solves `R` runs of one Galerkin basis in parallel (GIL released) and returns columns.
+///
+/// Inputs: `k` (R, 6) = k1..k6, `length` (R,), `initial_velocities` (R, m) = qdot(0) per
+/// retained coordinate, `z` (R,); the dimensionless integrals of the basis (`indices` (m,),
+/// `quartic_index` (T, 4), `cos4`, `mixed`, `sin4` (T,)); the shared solver options.
+///
+/// Returns a dict: `status`, `message` (lists of str), `max_theta`, `rms_theta`,
+/// `dominant_frequency_hz`, `energy_drift` (R,) float (NaN unless successful),
+/// `unstable_modes` (R,) int (-1 for an invalid run), `nfev` (R,) int, `max_share` (R, m);
+/// with `keep_trajectories`, also `t` (S,), `y` (R, S, 2m) and `theta` (R, S), NaN past the
+/// end of a run that stopped early.
+#[pyfunction]
+#[pyo3(signature = (k, length, initial_velocities, z, indices, quartic_index, cos4, mixed, sin4, t_end, samples, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, keep_trajectories=false, threads=None))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn batch_solve<'py>(
+    py: Python<'py>,
+    k: PyReadonlyArray2<'py, f64>,
+    length: PyReadonlyArray1<'py, f64>,
+    initial_velocities: PyReadonlyArray2<'py, f64>,
+    z: PyReadonlyArray1<'py, f64>,
+    indices: PyReadonlyArray1<'py, i64>,
+    quartic_index: PyReadonlyArray2<'py, i64>,
+    cos4: PyReadonlyArray1<'py, f64>,
+    mixed: PyReadonlyArray1<'py, f64>,
+    sin4: PyReadonlyArray1<'py, f64>,
+    t_end: f64,
+    samples: usize,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    dt: Option<f64>,
+    max_steps: Option<u64>,
+    first_step: Option<f64>,
+    max_step: f64,
+    keep_trajectories: bool,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
+    let integrals = integrals_from_arrays(py, &indices, &quartic_index, &cos4, &mixed, &sin4)?;
+    let m = integrals.modes();
+
+    let (k, length, c, z) = (k.as_array(), length.as_array(), initial_velocities.as_array(), z.as_array());
+    let r = length.len();
+    if k.shape() != [r, 6] || c.shape() != [r, m] || z.len() != r {
+        return Err(invalid(
+            py,
+            "runs",
+            format!(
+                "k {:?}, length {:?}, initial_velocities {:?}, z {:?}",
+                k.shape(),
+                length.shape(),
+                c.shape(),
+                z.shape()
+            ),
+            format!("k (R, 6), length (R,), initial_velocities (R, {m}), z (R,) for one R"),
+        ));
+    }
+    let runs: Vec<RunSpec> = (0..r)
+        .map(|i| RunSpec {
+            k: [k[(i, 0)], k[(i, 1)], k[(i, 2)], k[(i, 3)], k[(i, 4)], k[(i, 5)]],
+            length: length[i],
+            initial_velocities: c.row(i).to_vec(),
+            z: z[i],
+        })
+        .collect();
+    let opts = SweepOptions {
+        solve: SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step },
+        t_end,
+        samples,
+        keep_trajectories,
+    };
+    let solved = py.detach(|| no_panic(|| sweep::batch_solve(&integrals, &runs, &opts, threads)))?;
+    let records = solved.map_err(|e| validation_error(py, e))?;
+
+    let out = PyDict::new(py);
+    let column = |f: &dyn Fn(&sweep::RunRecord) -> f64| records.iter().map(f).collect::<Vec<f64>>();
+    out.set_item("status", records.iter().map(|r| r.status.name()).collect::<Vec<_>>())?;
+    out.set_item("message", records.iter().map(|r| r.message.as_str()).collect::<Vec<_>>())?;
+    out.set_item("max_theta", PyArray1::from_vec(py, column(&|r| r.max_theta)))?;
+    out.set_item("rms_theta", PyArray1::from_vec(py, column(&|r| r.rms_theta)))?;
+    out.set_item("dominant_frequency_hz", PyArray1::from_vec(py, column(&|r| r.dominant_frequency_hz)))?;
+    out.set_item("energy_drift", PyArray1::from_vec(py, column(&|r| r.energy_drift)))?;
+    let unstable: Vec<i64> = records.iter().map(|r| r.unstable_modes.map_or(-1, i64::from)).collect();
+    out.set_item("unstable_modes", PyArray1::from_vec(py, unstable))?;
+    let nfev: Vec<i64> = records.iter().map(|r| i64::try_from(r.nfev).unwrap_or(i64::MAX)).collect();
+    out.set_item("nfev", PyArray1::from_vec(py, nfev))?;
+    let shares: Vec<f64> = records.iter().flat_map(|r| r.max_share.iter().copied()).collect();
+    out.set_item("max_share", PyArray1::from_vec(py, shares).reshape([r, m])?)?;
+    if keep_trajectories {
+        let s = samples;
+        let mut y = vec![f64::NAN; r * s * 2 * m];
+        let mut theta = vec![f64::NAN; r * s];
+        for (i, rec) in records.iter().enumerate() {
+            if let Some(traj) = &rec.trajectory {
+                y[i * s * 2 * m..i * s * 2 * m + traj.y.len()].copy_from_slice(&traj.y);
+                theta[i * s..i * s + traj.theta.len()].copy_from_slice(&traj.theta);
+            }
+        }
+        out.set_item("t", PyArray1::from_vec(py, opts.times()))?;
+        out.set_item("y", PyArray1::from_vec(py, y).reshape([r, s, 2 * m])?)?;
+        out.set_item("theta", PyArray1::from_vec(py, theta).reshape([r, s])?)?;
+    }
+    Ok(out)
+}
