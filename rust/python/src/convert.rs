@@ -7,8 +7,9 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use drillstring_core as core;
+use drillstring_core::integrators::{self, Method, SolveOptions};
 use drillstring_core::interrupt::Interrupt;
-use drillstring_core::Solution;
+use drillstring_core::{Output, SecondOrderSystem, Solution};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -150,4 +151,54 @@ fn is_main_thread(py: Python<'_>) -> bool {
         Ok(current.is(&main))
     };
     check().unwrap_or(false)
+}
+
+/// The arguments every `solve_*` binding takes after its system.
+pub(crate) struct SolveArgs<'a, 'py> {
+    pub q0: PyReadonlyArray1<'py, f64>,
+    pub v0: PyReadonlyArray1<'py, f64>,
+    pub t_end: f64,
+    pub t_eval: Option<PyReadonlyArray1<'py, f64>>,
+    pub method: &'a str,
+    pub rtol: f64,
+    pub atol: f64,
+    pub dt: Option<f64>,
+    pub max_steps: Option<&'a Bound<'py, PyAny>>,
+    pub first_step: Option<f64>,
+    pub max_step: f64,
+}
+
+/// Solves `sys` from `(q0, v0)` at `t = 0` without the GIL and returns [`solution_dict`].
+///
+/// Ctrl-C (any exception raised by a Python signal handler) stops the solve within ~20 ms
+/// through [`SignalCheck`] and is raised here; core input errors become `ValidationError`.
+pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
+    py: Python<'py>,
+    sys: &S,
+    args: SolveArgs<'_, 'py>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let method = Method::parse(args.method).map_err(|e| validation_error(py, e))?;
+    let (q0, v0) = (to_vec(&args.q0), to_vec(&args.v0));
+    let output = match &args.t_eval {
+        Some(t) => Output::Times(to_vec(t)),
+        None => Output::EveryStep,
+    };
+    let max_steps = max_steps_arg(py, args.max_steps)?;
+    let opts = SolveOptions {
+        method,
+        rtol: args.rtol,
+        atol: args.atol,
+        dt: args.dt,
+        max_steps,
+        first_step: args.first_step,
+        max_step: args.max_step,
+    };
+    let t_end = args.t_end;
+    let signals = SignalCheck::new(py);
+    let solved = py.detach(|| {
+        no_panic(|| integrators::solve_second_order_with(sys, 0.0, &q0, &v0, t_end, &output, &opts, &signals))
+    })?;
+    signals.finish()?;
+    let sol = solved.map_err(|e| validation_error(py, e))?;
+    solution_dict(py, sol)
 }

@@ -1,14 +1,13 @@
 //! Bindings of the method-of-lines PDE system and its solve.
 
 use drillstring_core as core;
-use drillstring_core::integrators::{self, Method, SolveOptions};
 use drillstring_core::pde::{PdeCoefficients, PdeSystem as CorePdeSystem};
-use drillstring_core::{Output, SecondOrderSystem};
+use drillstring_core::SecondOrderSystem;
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{integer, max_steps_arg, no_panic, solution_dict, to_vec, validation_error, SignalCheck};
+use crate::convert::{integer, no_panic, solve_to_dict, to_vec, validation_error, SolveArgs};
 
 /// The torsion PDE discretised on `nodes` grid points `z_j = j l / (nodes - 1)` (lumped-mass
 /// linear finite elements: the discrete energy `H_h` is conserved by the semi-discrete system).
@@ -190,22 +189,7 @@ pub(crate) fn solve_pde<'py>(
     first_step: Option<f64>,
     max_step: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
-    let (q0, v0) = (to_vec(&q0), to_vec(&v0));
-    let output = match &t_eval {
-        Some(t) => Output::Times(to_vec(t)),
-        None => Output::EveryStep,
-    };
-    let max_steps = max_steps_arg(py, max_steps)?;
-    let opts = SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step };
     let sys: &CorePdeSystem = &system.get().inner;
-    // Lengths ("q0", "v0") and finiteness are checked by the core before any work.
-    // Ctrl-C during the solve: the hook stops it and `finish` raises KeyboardInterrupt.
-    let signals = SignalCheck::new(py);
-    let solved = py.detach(|| {
-        no_panic(|| integrators::solve_second_order_with(sys, 0.0, &q0, &v0, t_end, &output, &opts, &signals))
-    })?;
-    signals.finish()?;
-    let sol = solved.map_err(|e| validation_error(py, e))?;
-    solution_dict(py, sol)
+    let args = SolveArgs { q0, v0, t_end, t_eval, method, rtol, atol, dt, max_steps, first_step, max_step };
+    solve_to_dict(py, sys, args)
 }
