@@ -178,3 +178,43 @@ def test_result_files_are_written_atomically_with_their_formats(tmp_path: Path) 
         res.to_csv(handle, 10.0)
     assert (tmp_path / "direct.csv").stat().st_size > 0
     assert os.access(tmp_path / "pde.csv", os.R_OK)
+
+
+def test_sweep_ctrl_c_stops_within_a_second_and_keeps_only_whole_chunks(tmp_path: Path) -> None:
+    # 20 x 20 runs in chunks of 5: finished chunks are kept, none is half-written, and the
+    # same command then resumes to the same table as an uninterrupted sweep
+    (tmp_path / "sweep.toml").write_text(
+        "[base]\npreset = \"aluminum\"\n[solver]\nmodes = 6\nrigid_mode = true\nt_end = 3.0\n"
+        "[grid]\nlength = {linspace = [100.0, 500.0, 20]}\nomega = {linspace = [0.0, 50.0, 20]}\n"
+    )
+    proc = _start(
+        """
+        import sys, time
+        from drillstring import cli, sweep
+        print("ready", flush=True)
+        code = cli.main(["sweep", "sweep.toml", "--out", "out", "--chunk-size", "5", "--threads", "1",
+                         "--no-plots"])
+        print(time.monotonic(), flush=True)
+        sys.exit(code)
+        """,
+        tmp_path,
+    )
+    sent = _interrupt(proc)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, (out, err)
+    latency = float(out.split()[-1]) - sent
+    print(f"sweep exits {1000 * latency:.1f} ms after SIGINT")
+    assert 0 <= latency < 1.0
+    chunks = sorted((tmp_path / "out" / "chunks").iterdir())
+    assert 0 < len(chunks) < 80 and all(p.suffix == ".parquet" for p in chunks)
+    assert not (tmp_path / "out" / "results.parquet").exists()
+    import pandas as pd
+
+    from drillstring.cli import main
+
+    for out_dir in ("out", "fresh"):  # resume with the same options; then an uninterrupted sweep
+        args = ["sweep", str(tmp_path / "sweep.toml"), "--out", str(tmp_path / out_dir), "--chunk-size", "5"]
+        assert main([*args, "--no-plots"]) == 0
+    resumed = pd.read_parquet(tmp_path / "out" / "results.parquet")
+    fresh = pd.read_parquet(tmp_path / "fresh" / "results.parquet")
+    pd.testing.assert_frame_equal(resumed, fresh)
