@@ -106,30 +106,11 @@ impl Run {
     ) -> std::result::Result<(), (Status, String)> {
         sampler.start(sol, grid.t0, &self.state_prev);
         for n in 1..=grid.steps {
-            if n > max_steps {
-                let msg = format!(
-                    "reached t = {} before t_end = {}: max_steps = {max_steps} steps used of the {} needed with dt = {}",
-                    grid.time(n - 1),
-                    grid.t_end,
-                    grid.steps,
-                    grid.dt
-                );
-                return Err((Status::MaxStepsReached, msg));
-            }
-            if poller.poll() {
-                let msg = format!(
-                    "interrupted at t = {} before t_end = {} after {} steps",
-                    grid.time(n - 1),
-                    grid.t_end,
-                    n - 1
-                );
-                return Err((Status::Interrupted, msg));
-            }
+            grid.before_step(n - 1, max_steps, poller)?;
             let t = grid.time(n);
             self.complete_state(sys);
             if !all_finite(&self.state) {
-                let msg = format!("state became non-finite at t = {t} (step {n})");
-                return Err((Status::NonFinite, msg));
+                return Err(grid.non_finite(n));
             }
             self.stats.naccept += 1;
             let t_prev = grid.time(n - 1);

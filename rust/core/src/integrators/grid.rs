@@ -6,6 +6,9 @@
 //! Grid times are computed as `t_n = t0 + n dt_eff`, never accumulated, and `t_N = t_end`
 //! exactly.
 
+use crate::interrupt::Poller;
+use crate::solution::Status;
+
 /// `N` uniform steps from `t0` to `t_end`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Grid {
@@ -25,6 +28,34 @@ impl Grid {
         // `as` saturates: an absurd step count is caught by `max_steps`.
         let steps = if n >= 1.0 { n as u64 } else { 1 };
         Grid { t0, t_end, steps, dt: span / steps as f64 }
+    }
+
+    /// The checks before the step after `done` completed steps: the step limit, then an
+    /// interrupt request. `Err` carries the status and message that end the solve.
+    pub fn before_step(&self, done: u64, max_steps: u64, poller: &mut Poller) -> Result<(), (Status, String)> {
+        let t = self.time(done);
+        if done >= max_steps {
+            let msg = format!(
+                "reached t = {t} before t_end = {}: max_steps = {max_steps} steps used of the {} needed with dt = {}",
+                self.t_end, self.steps, self.dt
+            );
+            return Err((Status::MaxStepsReached, msg));
+        }
+        if poller.poll() {
+            let msg = format!("interrupted at t = {t} before t_end = {} after {done} steps", self.t_end);
+            return Err((Status::Interrupted, msg));
+        }
+        Ok(())
+    }
+
+    /// The failure of step `step` (1-based) whose new state is not finite.
+    pub fn non_finite(&self, step: u64) -> (Status, String) {
+        let msg = format!(
+            "state became non-finite in the step from t = {} to t = {} (step {step})",
+            self.time(step - 1),
+            self.time(step)
+        );
+        (Status::NonFinite, msg)
     }
 
     /// The grid time `t_n` (`t_end` exactly for `n >= N`).

@@ -86,23 +86,11 @@ impl Run {
     ) -> std::result::Result<(), (Status, String)> {
         sampler.start(sol, grid.t0, &self.y);
         for n in 0..grid.steps {
-            let t = grid.time(n);
-            if n >= max_steps {
-                let msg = format!(
-                    "reached t = {t} before t_end = {}: max_steps = {max_steps} steps used of the {} needed with dt = {}",
-                    grid.t_end, grid.steps, grid.dt
-                );
-                return Err((Status::MaxStepsReached, msg));
-            }
-            if poller.poll() {
-                let msg = format!("interrupted at t = {t} before t_end = {} after {n} steps", grid.t_end);
-                return Err((Status::Interrupted, msg));
-            }
-            let t_new = grid.time(n + 1);
+            grid.before_step(n, max_steps, poller)?;
+            let (t, t_new) = (grid.time(n), grid.time(n + 1));
             self.step(sys, t, grid.dt);
             if !all_finite(&self.y_new) {
-                let msg = format!("state became non-finite in the step from t = {t} to t = {t_new} (step {})", n + 1);
-                return Err((Status::NonFinite, msg));
+                return Err(grid.non_finite(n + 1));
             }
             self.stats.naccept += 1;
             self.record(sys, t, t_new, grid.dt, sampler, sol)
