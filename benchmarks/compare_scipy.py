@@ -66,7 +66,7 @@ def main() -> None:
     diff = np.abs(res.q - ref.y[:m]).max()
     scale = np.abs(ref.y[:m]).max()
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
-          f"numpy {np.__version__}, python {platform.python_version()}")
+          f"numpy {np.__version__}, python {platform.python_version()}, core kernels {ds.simd_path()}")
     print("case: 3 modes, Table 1, C = (0.1, 0.05, 0.02), 0 <= t <= 1, DOP853, rtol = atol = 1e-12")
     print(f"scipy solve_ivp DOP853 : {t_scipy * 1e3:9.2f} ms  ({ref.nfev} rhs evaluations)")
     print(f"drillstring.simulate   : {t_ds * 1e3:9.3f} ms  ({res.stats.nfev} rhs evaluations, "

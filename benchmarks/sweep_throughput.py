@@ -118,7 +118,7 @@ def main() -> None:
     runs = args.side**2
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
     print(f"machine: {platform.machine()}, {cores} cores available, Python {platform.python_version()}, "
-          f"drillstring {ds.__version__}")
+          f"drillstring {ds.__version__}, core kernels {ds.simd_path()}")
     print(f"sweep: {runs} runs of 3 modes, 0 <= t <= 1 s, DOP853 rtol 1e-8 atol 1e-12, 1024 samples per run\n")
 
     ds.sweep(ds.preset("aluminum"), {"length": [100.0, 200.0]}, t_end=0.1, progress=False)  # warm-up

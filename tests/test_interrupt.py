@@ -92,7 +92,7 @@ def test_a_python_signal_handler_runs_during_the_solve(tmp_path: Path) -> None:
         handled = []
         signal.signal(signal.SIGINT, lambda *_: handled.append(time.monotonic()))
         print("ready", flush=True)
-        res = ds.solve_pde(ds.preset("aluminum"), nodes=1000, t_end=0.5, samples=11)
+        res = ds.solve_pde(ds.preset("aluminum"), nodes=1000, t_end=3.0, samples=11)  # a few seconds
         print(res.status, time.monotonic(), *handled, flush=True)
         """,
         tmp_path,

@@ -3,7 +3,11 @@ with the Galerkin models, errors."""
 
 from __future__ import annotations
 
+import json
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -40,6 +44,36 @@ def test_discrete_energy_is_conserved():
     w = np.asarray(sol._system.weights)
     k1 = ds.PDECoefficients.from_parameters(REF).k1
     assert sol.energy[0] == pytest.approx(0.5 * k1 * np.sum(w * v0**2), rel=1e-13)
+
+
+SIMD_PROBE = """
+import json, drillstring as ds
+p = ds.preset("aluminum")
+sol = ds.solve_pde(p, nodes=81, t_end=0.2, rtol=1e-11, atol=1e-15, samples=21)
+modal = ds.simulate(p, modes=3, t_end=0.2, rtol=1e-11, atol=1e-15, samples=21)
+zk = 2 * p.length / 3
+print(json.dumps({"path": ds.simd_path(), "pde": sol.theta(zk).tolist(), "modal": modal.theta(zk).tolist()}))
+"""
+
+
+def _probe(simd: str | None) -> dict:
+    env = {k: v for k, v in os.environ.items() if k != "DRILLSTRING_SIMD"}
+    if simd is not None:
+        env["DRILLSTRING_SIMD"] = simd
+    out = subprocess.run([sys.executable, "-c", SIMD_PROBE], env=env, capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def test_vector_and_baseline_kernels_agree():
+    # The hot loops run as AVX2 + FMA code where the processor has it and as baseline code
+    # otherwise (or with DRILLSTRING_SIMD=baseline): same solutions to well below rtol.
+    default, baseline = _probe(None), _probe("baseline")
+    assert default["path"] == ds.simd_path() in ("avx2+fma", "baseline")
+    assert baseline["path"] == "baseline"
+    for key in ("pde", "modal"):
+        a, b = np.array(default[key]), np.array(baseline[key])
+        assert np.abs(a).max() > 1e-4  # a real response (~3e-4 rad at z_k)
+        assert np.abs(a - b).max() < 1e-10 * np.abs(a).max(), key
 
 
 def test_verlet_is_bounded_and_close_to_dop853():

@@ -17,7 +17,7 @@ True
 from __future__ import annotations
 
 from . import analysis, coefficients, convergence, galerkin, limits, paper, pde, plots, section, stability
-from ._core import __version__
+from ._core import __version__, simd_path
 from .coefficients import PDECoefficients
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
@@ -30,6 +30,7 @@ from .table2 import Table2Row, table2
 
 __all__ = [
     "__version__",
+    "simd_path",
     "Parameters",
     "PRESETS",
     "preset",

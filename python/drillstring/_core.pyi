@@ -7,6 +7,9 @@ from numpy.typing import NDArray
 
 __version__: str
 
+def simd_path() -> str:
+    """``"avx2+fma"`` or ``"baseline"``: the code path of the core's hot loops here."""
+
 class SolveOutput(TypedDict):
     t: NDArray[np.float64]
     y: NDArray[np.float64]

@@ -27,6 +27,7 @@ pub mod interrupt;
 pub mod modal;
 pub mod options;
 pub mod pde;
+pub mod simd;
 pub mod solution;
 pub mod sweep;
 pub mod system;

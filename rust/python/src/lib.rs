@@ -14,6 +14,13 @@ mod modal;
 mod pde;
 mod sweep;
 
+/// The vector instruction path of the core's hot loops on this machine: `"avx2+fma"` or
+/// `"baseline"` (`DRILLSTRING_SIMD=baseline` pins the latter).
+#[pyfunction]
+fn simd_path() -> &'static str {
+    drillstring_core::simd::path()
+}
+
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<modal::ModalSystem>()?;
@@ -22,6 +29,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::batch_solve, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::scale_integrals, m)?)?;
+    m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -36,6 +36,7 @@ use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, AdaptiveOptions, Output};
+use crate::simd::{dispatch, Kernel, MulAdd};
 use crate::solution::{Solution, Stats, Status};
 use crate::system::OdeSystem;
 
@@ -73,8 +74,10 @@ pub(crate) trait Scheme {
     /// Rows of the dense-output coefficients.
     const DENSE_ROWS: usize;
 
-    /// The scaled error norm of the attempted step `(y, h) -> y_new` with stages `k`.
-    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64) -> f64;
+    /// The scaled error norm of the attempted step `(y, h) -> y_new` with stages `k`;
+    /// `work` is scratch of length `2 n`.
+    #[allow(clippy::too_many_arguments)]
+    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64, work: &mut [f64]) -> f64;
 
     /// Builds the continuous extension of the accepted step `t -> t + h` into `dense`,
     /// evaluating any extra stages. Returns the number of right-hand-side evaluations.
@@ -95,9 +98,60 @@ pub(crate) trait Scheme {
 }
 
 /// The scaling `sc_i = atol + rtol max(|y_i|, |y_new,i|)` of Hairer's error norm.
-#[inline]
+#[inline(always)]
 pub(crate) fn scale(atol: f64, rtol: f64, y: f64, y_new: f64) -> f64 {
     atol + rtol * y.abs().max(y_new.abs())
+}
+
+/// Lanes of the error-norm sums: independent partial sums the compiler can vectorise.
+const LANES: usize = 4;
+
+/// `(sum_i (a_i / sc_i)^2, sum_i (b_i / sc_i)^2)` with `sc_i` of [`scale`], summed in
+/// [`LANES`] interleaved partial sums.
+pub(crate) fn scaled_sums(a: &[f64], b: &[f64], y: &[f64], y_new: &[f64], rtol: f64, atol: f64) -> (f64, f64) {
+    dispatch(ScaledSums { a, b, y, y_new, rtol, atol })
+}
+
+/// The kernel of [`scaled_sums`].
+struct ScaledSums<'a> {
+    a: &'a [f64],
+    b: &'a [f64],
+    y: &'a [f64],
+    y_new: &'a [f64],
+    rtol: f64,
+    atol: f64,
+}
+
+impl Kernel for ScaledSums<'_> {
+    type Output = (f64, f64);
+
+    #[inline(always)]
+    fn run<M: MulAdd>(self) -> (f64, f64) {
+        let ScaledSums { a, b, y, y_new, rtol, atol } = self;
+        let n = y.len();
+        let (a, b, y_new) = (&a[..n], &b[..n], &y_new[..n]);
+        let (mut sa, mut sb) = ([0.0; LANES], [0.0; LANES]);
+        let body = n - n % LANES;
+        for i0 in (0..body).step_by(LANES) {
+            let a: &[f64; LANES] = a[i0..i0 + LANES].try_into().expect("LANES components");
+            let b: &[f64; LANES] = b[i0..i0 + LANES].try_into().expect("LANES components");
+            let y0: &[f64; LANES] = y[i0..i0 + LANES].try_into().expect("LANES components");
+            let y1: &[f64; LANES] = y_new[i0..i0 + LANES].try_into().expect("LANES components");
+            for l in 0..LANES {
+                let inv = 1.0 / scale(atol, rtol, y0[l], y1[l]);
+                let (ea, eb) = (a[l] * inv, b[l] * inv);
+                sa[l] = M::mul_add(ea, ea, sa[l]);
+                sb[l] = M::mul_add(eb, eb, sb[l]);
+            }
+        }
+        for i in body..n {
+            let inv = 1.0 / scale(atol, rtol, y[i], y_new[i]);
+            let (ea, eb) = (a[i] * inv, b[i] * inv);
+            sa[0] = M::mul_add(ea, ea, sa[0]);
+            sb[0] = M::mul_add(eb, eb, sb[0]);
+        }
+        (sa.iter().sum(), sb.iter().sum())
+    }
 }
 
 /// Validates the inputs of an adaptive solve.
@@ -145,6 +199,8 @@ pub(crate) struct Run<'a, P, S: ?Sized> {
     y: Vec<f64>,
     y_new: Vec<f64>,
     ytmp: Vec<f64>,
+    /// Scratch of the error estimate, `2 n`.
+    work: Vec<f64>,
     k: Stages,
     dense: Stages,
     stats: Stats,
@@ -170,6 +226,7 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
             y: y0.to_vec(),
             y_new: vec![0.0; n],
             ytmp: vec![0.0; n],
+            work: vec![0.0; 2 * n],
             k: Stages::new(P::ROWS, n),
             dense: Stages::new(P::DENSE_ROWS, n),
             stats: Stats::default(),
@@ -289,7 +346,7 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
         if P::FSAL_IN_ERROR {
             self.eval_fsal(self.t + h);
         }
-        P::error_norm(&self.k, h, &self.y, &self.y_new, self.opts.rtol, self.opts.atol)
+        P::error_norm(&self.k, h, &self.y, &self.y_new, self.opts.rtol, self.opts.atol, &mut self.work)
     }
 
     /// `k[FSAL] = f(t_new, y_new)`.

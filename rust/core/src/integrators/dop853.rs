@@ -18,7 +18,7 @@
 //! values to 30 digits).
 #![allow(clippy::excessive_precision)]
 
-use super::adaptive::{scale, Control, Scheme};
+use super::adaptive::{scaled_sums, Control, Scheme};
 use super::tableau::{Stages, Tableau};
 use crate::system::OdeSystem;
 
@@ -291,15 +291,11 @@ impl Scheme for Dop853 {
     const FSAL_IN_ERROR: bool = false;
     const DENSE_ROWS: usize = 7;
 
-    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64) -> f64 {
-        let (mut s5, mut s3) = (0.0, 0.0);
-        for (i, (&y0, &y1)) in y.iter().zip(y_new).enumerate() {
-            let sk = scale(atol, rtol, y0, y1);
-            let e5 = k.combine_at(&E5, i) / sk;
-            let e3 = k.combine_at(&E3, i) / sk;
-            s5 += e5 * e5;
-            s3 += e3 * e3;
-        }
+    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64, work: &mut [f64]) -> f64 {
+        let (e5, e3) = work.split_at_mut(y.len());
+        k.combine(&E5, e5);
+        k.combine(&E3, e3);
+        let (s5, s3) = scaled_sums(e5, e3, y, y_new, rtol, atol);
         let mut deno = s5 + 0.01 * s3;
         if deno <= 0.0 {
             deno = 1.0;

@@ -6,7 +6,7 @@
 //! error `e = h sum_i E_i k_i` over all seven stages is measured in Hairer's scaled RMS
 //! norm. Coefficients as in scipy's `RK45` (`scipy/integrate/_ivp/rk.py`).
 
-use super::adaptive::{scale, Control, Scheme};
+use super::adaptive::{scaled_sums, Control, Scheme};
 use super::tableau::{Stages, Tableau};
 use crate::system::OdeSystem;
 
@@ -69,12 +69,11 @@ impl Scheme for Dopri5 {
     const DENSE_ROWS: usize = 4;
 
     /// `err = sqrt(1/n sum_i (h sum_j E_j k_j,i / sc_i)^2)`.
-    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64) -> f64 {
-        let mut sum = 0.0;
-        for (i, (&y0, &y1)) in y.iter().zip(y_new).enumerate() {
-            let e = h * k.combine_at(&E, i) / scale(atol, rtol, y0, y1);
-            sum += e * e;
-        }
+    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64, work: &mut [f64]) -> f64 {
+        let e = &mut work[..y.len()];
+        k.combine(&E, e);
+        let (sum, _) = scaled_sums(e, e, y, y_new, rtol, atol);
+        let sum = h * h * sum;
         (sum / y.len() as f64).sqrt()
     }
 
@@ -96,8 +95,9 @@ impl Scheme for Dopri5 {
             dense.row_mut(0)[i] = d;
             dense.row_mut(1)[i] = r2;
             dense.row_mut(2)[i] = d - h * k.row(Self::FSAL)[i] - r2;
-            dense.row_mut(3)[i] = h * k.combine_at(&D, i);
         }
+        k.combine(&D, dense.row_mut(3));
+        dense.row_mut(3).iter_mut().for_each(|v| *v *= h);
         0
     }
 

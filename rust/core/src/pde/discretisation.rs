@@ -2,6 +2,7 @@
 //! accelerations (derivation in the module docs of [`crate::pde`]).
 
 use crate::error::{Error, Result};
+use crate::simd::{dispatch, Kernel, MulAdd};
 use crate::system::SecondOrderSystem;
 
 /// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
@@ -190,38 +191,125 @@ impl PdeSystem {
     /// `out`: one pass over the cells, no allocation.
     #[inline]
     pub fn force(&self, q: &[f64], out: &mut [f64]) {
-        self.sweep(q, out, 1.0, 1.0);
+        dispatch(Sweep { sys: self, q, out, scale: 1.0, end_factor: 1.0 });
     }
 
     /// `scale * dV_h/dth_j` for interior nodes and `end_factor * scale * dV_h/dth_j` at the ends.
     ///
-    /// The force on node `j` collects its nodal term and the contributions of cells
-    /// `j - 1` (carried in `pending`) and `j`; it is complete, and written, once cell `j`
-    /// has been visited. Every node is first treated as interior (weight `h`) and the last
-    /// one's nodal term halved at the end.
+    /// With the flux `F_c = g (k2 + k4/2 (a^2 + b^2) + k5 g^2)` and `S_c = h k4/2 g^2` of
+    /// cell `c` (nodes `a = q_c`, `b = q_c+1`, `g = (b - a)/h`), the force on node `j` is
+    /// `w_j th_j (k3 th_j^2 - k6) + (F_{j-1} + S_{j-1} th_j) - (F_j - S_j th_j)`, the cell
+    /// terms present where the cell exists. Interior nodes go in blocks of [`NODE_BLOCK`]:
+    /// the fluxes of the block's cells into a small stack array, then the nodes, two
+    /// loops without a carried dependency that the compiler vectorises.
     #[inline(always)]
     fn sweep(&self, q: &[f64], out: &mut [f64], scale: f64, end_factor: f64) {
         let n = self.nodes;
         let (q, out) = (&q[..n], &mut out[..n]);
-        let PdeCoefficients { k2, k3, k4, k5, k6, .. } = self.k;
-        let h = self.h;
-        let inv_h = 1.0 / h;
-        let half_k4 = 0.5 * k4;
-        let h_half_k4 = h * half_k4;
-        let nodal = |th: f64| th * (k3 * th * th - k6);
-        // Force on node c gathered so far (nodal term and cell c - 1).
-        let mut pending = 0.5 * h * nodal(q[0]);
-        for (pair, f_out) in q.windows(2).zip(out.iter_mut()) {
-            let (a, b) = (pair[0], pair[1]);
-            let g = (b - a) * inv_h;
-            let g2 = g * g;
-            let flux = g * (k2 + half_k4 * (a * a + b * b) + k5 * g2);
-            let s = h_half_k4 * g2;
-            *f_out = (pending - flux + s * a) * scale;
-            pending = h * nodal(b) + flux + s * b;
+        let cells = self.cell_terms();
+        let half_h = 0.5 * self.h;
+        // (F, S) of the cell left of the next node.
+        let mut left = cells.flux(q[0], q[1]);
+        out[0] = (half_h * cells.nodal(q[0]) - left.0 + left.1 * q[0]) * (scale * end_factor);
+        let mut j0 = 1;
+        while j0 + NODE_BLOCK < n {
+            left = node_block::<NODE_BLOCK>(&cells, q, out, j0, left, scale);
+            j0 += NODE_BLOCK;
         }
-        out[0] *= end_factor;
-        out[n - 1] = (pending - 0.5 * h * nodal(q[n - 1])) * (scale * end_factor);
+        while j0 + 1 < n {
+            left = node_block::<1>(&cells, q, out, j0, left, scale);
+            j0 += 1;
+        }
+        out[n - 1] = (half_h * cells.nodal(q[n - 1]) + left.0 + left.1 * q[n - 1]) * (scale * end_factor);
+    }
+
+    /// The coefficient combinations of [`PdeSystem::sweep`].
+    #[inline(always)]
+    fn cell_terms(&self) -> CellTerms {
+        let PdeCoefficients { k2, k3, k4, k5, k6, .. } = self.k;
+        CellTerms { h: self.h, inv_h: 1.0 / self.h, k2, k3, half_k4: 0.5 * k4, k5, k6 }
+    }
+}
+
+/// Interior nodes `j0 .. j0 + B` of [`PdeSystem::sweep`], given `(F, S)` of cell `j0 - 1`;
+/// returns those of cell `j0 + B - 1`.
+#[inline(always)]
+fn node_block<const B: usize>(
+    cells: &CellTerms,
+    q: &[f64],
+    out: &mut [f64],
+    j0: usize,
+    left: (f64, f64),
+    scale: f64,
+) -> (f64, f64) {
+    // Index l + 1 holds cell j0 + l; index 0 the cell on the left of the block.
+    let mut flux = [0.0; NODE_BLOCK + 1];
+    let mut s = [0.0; NODE_BLOCK + 1];
+    (flux[0], s[0]) = left;
+    let a: &[f64; B] = q[j0..j0 + B].try_into().expect("B nodes");
+    let b: &[f64; B] = q[j0 + 1..j0 + B + 1].try_into().expect("B nodes");
+    for l in 0..B {
+        let (f, sl) = cells.flux(a[l], b[l]);
+        flux[l + 1] = f;
+        s[l + 1] = sl;
+    }
+    let out: &mut [f64; B] = (&mut out[j0..j0 + B]).try_into().expect("B nodes");
+    for l in 0..B {
+        let th = a[l];
+        out[l] = (cells.h * cells.nodal(th) + (s[l] + s[l + 1]) * th + (flux[l] - flux[l + 1])) * scale;
+    }
+    (flux[B], s[B])
+}
+
+/// The kernel of [`PdeSystem::force`] and the acceleration.
+struct Sweep<'a> {
+    sys: &'a PdeSystem,
+    q: &'a [f64],
+    out: &'a mut [f64],
+    scale: f64,
+    end_factor: f64,
+}
+
+impl Kernel for Sweep<'_> {
+    type Output = ();
+
+    /// Plain products: with `mul_add` the compiler keeps this loop scalar (0.76 vs 0.30 us
+    /// for N = 240 on AVX2), so the kernel uses the dispatch only for the wider vectors.
+    #[inline(always)]
+    fn run<M: MulAdd>(self) {
+        self.sys.sweep(self.q, self.out, self.scale, self.end_factor);
+    }
+}
+
+/// Interior nodes per block of [`PdeSystem::sweep`].
+const NODE_BLOCK: usize = 16;
+
+/// `h`, `1/h` and the coefficients, as [`PdeSystem::sweep`] uses them.
+#[derive(Clone, Copy)]
+struct CellTerms {
+    h: f64,
+    inv_h: f64,
+    k2: f64,
+    k3: f64,
+    half_k4: f64,
+    k5: f64,
+    k6: f64,
+}
+
+impl CellTerms {
+    /// `th (k3 th^2 - k6)`, the nodal force per unit weight.
+    #[inline(always)]
+    fn nodal(&self, th: f64) -> f64 {
+        th * (self.k3 * th * th - self.k6)
+    }
+
+    /// `(F_c, S_c)` of the cell with end values `a`, `b`.
+    #[inline(always)]
+    fn flux(&self, a: f64, b: f64) -> (f64, f64) {
+        let g = (b - a) * self.inv_h;
+        let g2 = g * g;
+        let flux = g * (self.k2 + self.half_k4 * (a * a + b * b) + self.k5 * g2);
+        (flux, self.h * self.half_k4 * g2)
     }
 }
 
@@ -234,6 +322,6 @@ impl SecondOrderSystem for PdeSystem {
     #[inline]
     fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
         // 1 / (w_j k1): 1 / (h k1) inside, twice that at the ends.
-        self.sweep(q, acc, -1.0 / (self.h * self.k.k1), 2.0);
+        dispatch(Sweep { sys: self, q, out: acc, scale: -1.0 / (self.h * self.k.k1), end_factor: 2.0 });
     }
 }

@@ -54,35 +54,41 @@ fn slope(hs: &[f64], errs: &[f64]) -> f64 {
 
 #[test]
 fn acceleration_is_the_gradient_of_the_discrete_energy() {
-    // O(1) coefficients of both signs so that every term of the flux matters.
+    // O(1) coefficients of both signs so that every term of the flux matters; sizes below,
+    // at and past the node blocks of the sweep (16 interior nodes each).
     let k = PdeCoefficients { k1: 1.3, k2: 2.0, k3: 0.7, k4: -0.9, k5: 0.4, k6: 0.6 };
-    let sys = PdeSystem::new(k, 3.0, 7).unwrap();
     let mut rng = 0x9e37_79b9_7f4a_7c15_u64;
-    for _ in 0..5 {
-        let q: Vec<f64> = (0..7).map(|_| uniform(&mut rng)).collect();
-        let v: Vec<f64> = (0..7).map(|_| uniform(&mut rng)).collect();
-        let mut acc = vec![0.0; 7];
-        let mut force = vec![0.0; 7];
-        sys.acceleration(&q, &mut acc);
-        sys.force(&q, &mut force);
-        for j in 0..7 {
-            let eps = 1e-5;
-            let shifted = |d: f64| {
-                let mut qs = q.clone();
-                qs[j] += d;
-                sys.energy(&qs, &v)
-            };
-            // Fourth-order central difference of H_h in th_j.
-            let fd = (8.0 * (shifted(eps) - shifted(-eps)) - (shifted(2.0 * eps) - shifted(-2.0 * eps))) / (12.0 * eps);
-            assert!((fd - force[j]).abs() < 1e-9 * (1.0 + fd.abs()), "node {j}: fd {fd} vs force {}", force[j]);
-            let expected = -fd / (sys.weight(j) * k.k1);
-            assert!((acc[j] - expected).abs() < 1e-8 * (1.0 + expected.abs()), "node {j}: {} vs {expected}", acc[j]);
-            // The kinetic term is sum_j w_j k1 v_j^2 / 2.
-            let mut vs = v.clone();
-            vs[j] += eps;
-            let dk = (sys.energy(&q, &vs) - sys.energy(&q, &v)) / eps;
-            let mass = sys.weight(j) * k.k1;
-            assert!((dk - mass * (v[j] + 0.5 * eps)).abs() < 1e-8, "node {j}: dH/dv {dk}");
+    for n in [3, 7, 17, 18, 19, 35, 36, 40] {
+        let sys = PdeSystem::new(k, 3.0, n).unwrap();
+        // Keep the gradients O(1) on the finer grids.
+        let amp = 6.0 / n as f64;
+        for _ in 0..3 {
+            let q: Vec<f64> = (0..n).map(|_| amp * uniform(&mut rng)).collect();
+            let v: Vec<f64> = (0..n).map(|_| uniform(&mut rng)).collect();
+            let mut acc = vec![0.0; n];
+            let mut force = vec![0.0; n];
+            sys.acceleration(&q, &mut acc);
+            sys.force(&q, &mut force);
+            for j in 0..n {
+                let eps = 1e-5;
+                let shifted = |d: f64| {
+                    let mut qs = q.clone();
+                    qs[j] += d;
+                    sys.energy(&qs, &v)
+                };
+                // Fourth-order central difference of H_h in th_j.
+                let fd =
+                    (8.0 * (shifted(eps) - shifted(-eps)) - (shifted(2.0 * eps) - shifted(-2.0 * eps))) / (12.0 * eps);
+                assert!((fd - force[j]).abs() < 1e-9 * (1.0 + fd.abs()), "N {n}, node {j}: fd {fd} vs {}", force[j]);
+                let expected = -fd / (sys.weight(j) * k.k1);
+                assert!((acc[j] - expected).abs() < 1e-8 * (1.0 + expected.abs()), "N {n}, node {j}: {}", acc[j]);
+                // The kinetic term is sum_j w_j k1 v_j^2 / 2.
+                let mut vs = v.clone();
+                vs[j] += eps;
+                let dk = (sys.energy(&q, &vs) - sys.energy(&q, &v)) / eps;
+                let mass = sys.weight(j) * k.k1;
+                assert!((dk - mass * (v[j] + 0.5 * eps)).abs() < 1e-8, "N {n}, node {j}: dH/dv {dk}");
+            }
         }
     }
 }

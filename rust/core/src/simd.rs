@@ -1,0 +1,148 @@
+//! Runtime dispatch of the hot loops to AVX2 + FMA.
+//!
+//! The crate is compiled for the baseline of its target (SSE2 on x86-64), so a wheel runs on
+//! any machine. The few loops that dominate a solve (the Runge-Kutta stage combinations and
+//! the finite-difference acceleration) are written once as a [`Kernel`], generic over how a
+//! product is accumulated ([`MulAdd`]), and [`dispatch`] runs them compiled for AVX2 + FMA
+//! (x86-64-v3) when the processor has it, through the `pulp` crate's safe target-feature
+//! token, and as plain baseline code otherwise.
+//!
+//! A fused multiply-add rounds once where `a * b + c` rounds twice, so results computed on
+//! machines with and without FMA may differ in the last bits; every method's accuracy and
+//! the tests' tolerances are far above that.
+
+use std::sync::OnceLock;
+
+/// How `a * b + c` is evaluated inside a [`Kernel`].
+pub(crate) trait MulAdd {
+    /// Whether the kernel runs with 256-bit vectors (wider blocks pay off).
+    const WIDE: bool;
+    /// `a * b + c`.
+    fn mul_add(a: f64, b: f64, c: f64) -> f64;
+}
+
+/// One rounding: `f64::mul_add`, a single instruction where FMA is enabled.
+pub(crate) struct Fused;
+
+impl MulAdd for Fused {
+    const WIDE: bool = true;
+    #[inline(always)]
+    fn mul_add(a: f64, b: f64, c: f64) -> f64 {
+        a.mul_add(b, c)
+    }
+}
+
+/// Two roundings: `a * b + c` (a fused `mul_add` without FMA hardware is a slow library call).
+pub(crate) struct Unfused;
+
+impl MulAdd for Unfused {
+    const WIDE: bool = false;
+    #[inline(always)]
+    fn mul_add(a: f64, b: f64, c: f64) -> f64 {
+        a * b + c
+    }
+}
+
+/// A loop to run under [`dispatch`]. `run` and everything it calls must be
+/// `#[inline(always)]`: target features apply only to code inlined into the dispatched call.
+pub(crate) trait Kernel {
+    type Output;
+    fn run<M: MulAdd>(self) -> Self::Output;
+}
+
+/// The environment variable that can pin every kernel to baseline code:
+/// `DRILLSTRING_SIMD=baseline` (bit-identical results on every x86-64 machine, or a
+/// benchmark of the fallback). Any other value, or none, selects the best path. Read once.
+pub const SIMD_ENV: &str = "DRILLSTRING_SIMD";
+
+/// Whether `DRILLSTRING_SIMD=baseline` is set (read once per process).
+fn pinned_to_baseline() -> bool {
+    static PINNED: OnceLock<bool> = OnceLock::new();
+    *PINNED.get_or_init(|| std::env::var(SIMD_ENV).is_ok_and(|v| v.trim().eq_ignore_ascii_case("baseline")))
+}
+
+/// Runs `kernel` with AVX2 + FMA if this processor has them (x86-64-v3, detected once and
+/// cached) and [`SIMD_ENV`] does not say otherwise, else as baseline code.
+#[inline(always)]
+pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(simd) = v3() {
+        return simd.vectorize(InV3(kernel));
+    }
+    kernel.run::<Unfused>()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn v3() -> Option<pulp::x86::V3> {
+    if pinned_to_baseline() {
+        None
+    } else {
+        pulp::x86::V3::try_new()
+    }
+}
+
+/// The code path [`dispatch`] takes on this machine: `"avx2+fma"` or `"baseline"`.
+pub fn path() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if v3().is_some() {
+        return "avx2+fma";
+    }
+    let _ = pinned_to_baseline();
+    "baseline"
+}
+
+/// A kernel called inside pulp's AVX2 + FMA context.
+#[cfg(target_arch = "x86_64")]
+struct InV3<K>(K);
+
+#[cfg(target_arch = "x86_64")]
+impl<K: Kernel> pulp::NullaryFnOnce for InV3<K> {
+    type Output = K::Output;
+    #[inline(always)]
+    fn call(self) -> K::Output {
+        self.0.run::<Fused>()
+    }
+}
+
+/// Runs `kernel` as baseline code, whatever the processor (tests compare both paths).
+#[cfg(test)]
+pub(crate) fn baseline<K: Kernel>(kernel: K) -> K::Output {
+    kernel.run::<Unfused>()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_path_is_named() {
+        assert!(["avx2+fma", "baseline"].contains(&path()));
+    }
+
+    /// `sum_i a_i b_i` as a kernel.
+    struct Dot<'a>(&'a [f64], &'a [f64]);
+
+    impl Kernel for Dot<'_> {
+        type Output = f64;
+        #[inline(always)]
+        fn run<M: MulAdd>(self) -> f64 {
+            self.0.iter().zip(self.1).fold(0.0, |s, (&a, &b)| M::mul_add(a, b, s))
+        }
+    }
+
+    #[test]
+    fn both_paths_compute_the_same_sum() {
+        let a: Vec<f64> = (0..37).map(|i| (i as f64 * 0.37).sin()).collect();
+        let b: Vec<f64> = (0..37).map(|i| (i as f64 * 0.11).cos()).collect();
+        let exact: f64 = a.iter().zip(&b).map(|(x, y)| x * y).sum();
+        for value in [dispatch(Dot(&a, &b)), baseline(Dot(&a, &b))] {
+            assert!((value - exact).abs() < 1e-14 * exact.abs().max(1.0), "{value} vs {exact}");
+        }
+        // 0.1 * 10 - 1 with one rounding is the representation error of 0.1, with two zero.
+        let fused = Fused::mul_add(0.1, 10.0, -1.0);
+        assert_eq!(fused, 0.1_f64.mul_add(10.0, -1.0));
+        assert_ne!(fused, 0.0);
+        assert_eq!(Unfused::mul_add(0.1, 10.0, -1.0), 0.0);
+    }
+}
