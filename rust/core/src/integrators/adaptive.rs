@@ -31,6 +31,7 @@
 
 use std::marker::PhantomData;
 
+use super::form::Form;
 use super::sampling::{interpolation_failure, Sampler};
 use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Result;
@@ -38,7 +39,6 @@ use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, AdaptiveOptions, Output};
 use crate::simd::{dispatch, Kernel, MulAdd};
 use crate::solution::{Solution, Stats, Status};
-use crate::system::OdeSystem;
 
 /// Hairer's step-size control constants.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,17 +73,39 @@ pub(crate) trait Scheme {
     const FSAL_IN_ERROR: bool;
     /// Rows of the dense-output coefficients.
     const DENSE_ROWS: usize;
+    /// The input coefficients of the stored rows after `FSAL` (extra dense-output stages).
+    const EXTRA_INPUTS: &'static [&'static [f64]];
+
+    /// The input coefficients of every stored row: the tableau's rows, `b` for `FSAL`,
+    /// then [`Scheme::EXTRA_INPUTS`] (see [`super::form::Nystrom::new`]).
+    fn row_inputs() -> Vec<&'static [f64]> {
+        let mut rows = Self::TABLEAU.a.to_vec();
+        debug_assert_eq!(rows.len(), Self::FSAL);
+        rows.push(Self::TABLEAU.b);
+        rows.extend_from_slice(Self::EXTRA_INPUTS);
+        debug_assert_eq!(rows.len(), Self::ROWS);
+        rows
+    }
 
     /// The scaled error norm of the attempted step `(y, h) -> y_new` with stages `k`;
     /// `work` is scratch of length `2 n`.
     #[allow(clippy::too_many_arguments)]
-    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64, work: &mut [f64]) -> f64;
+    fn error_norm<F: Form>(
+        form: &F,
+        k: &Stages,
+        h: f64,
+        y: &[f64],
+        y_new: &[f64],
+        rtol: f64,
+        atol: f64,
+        work: &mut [f64],
+    ) -> f64;
 
     /// Builds the continuous extension of the accepted step `t -> t + h` into `dense`,
     /// evaluating any extra stages. Returns the number of right-hand-side evaluations.
     #[allow(clippy::too_many_arguments)]
-    fn dense_prepare<S: OdeSystem + ?Sized>(
-        sys: &S,
+    fn dense_prepare<F: Form>(
+        form: &F,
         t: f64,
         h: f64,
         y: &[f64],
@@ -155,8 +177,8 @@ impl Kernel for ScaledSums<'_> {
 }
 
 /// Validates the inputs of an adaptive solve.
-pub(crate) fn validate<S: OdeSystem + ?Sized>(
-    sys: &S,
+pub(crate) fn validate<F: Form>(
+    form: &F,
     t0: f64,
     y0: &[f64],
     t_end: f64,
@@ -165,13 +187,13 @@ pub(crate) fn validate<S: OdeSystem + ?Sized>(
 ) -> Result<()> {
     validate_span(t0, t_end, output)?;
     opts.validate()?;
-    super::check_state("y0", y0, sys.dim())
+    super::check_state("y0", y0, form.dim())
 }
 
 /// Solves `y' = f(t, y)` on `[t0, t_end]` with the pair `P`, polling `interrupt` once per
 /// step attempt (rate-limited by [`Poller`]).
-pub(crate) fn integrate<P: Scheme, S: OdeSystem + ?Sized>(
-    sys: &S,
+pub(crate) fn integrate<P: Scheme, F: Form>(
+    form: &F,
     t0: f64,
     y0: &[f64],
     t_end: f64,
@@ -179,18 +201,18 @@ pub(crate) fn integrate<P: Scheme, S: OdeSystem + ?Sized>(
     opts: &AdaptiveOptions,
     interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
-    validate(sys, t0, y0, t_end, output, opts)?;
+    validate(form, t0, y0, t_end, output, opts)?;
     let mut sampler = Sampler::new(output);
     let mut sol = sampler.solution(y0.len(), 1024);
-    let mut run = Run::<P, S>::new(sys, t0, y0, t_end, opts);
+    let mut run = Run::<P, F>::new(form, t0, y0, t_end, opts);
     run.solve(&mut sampler, &mut sol, &mut Poller::new(interrupt));
     sol.stats = run.stats;
     Ok(sol)
 }
 
 /// The state of one adaptive solve; all buffers are allocated here, once.
-pub(crate) struct Run<'a, P, S: ?Sized> {
-    sys: &'a S,
+pub(crate) struct Run<'a, P, F> {
+    form: &'a F,
     opts: &'a AdaptiveOptions,
     t_end: f64,
     /// Largest step: `min(max_step, t_end - t0)`.
@@ -201,6 +223,8 @@ pub(crate) struct Run<'a, P, S: ?Sized> {
     ytmp: Vec<f64>,
     /// Scratch of the error estimate, `2 n`.
     work: Vec<f64>,
+    /// Scratch of [`Run::hinit`]: two derivatives over the whole state, `2 n`.
+    init: Vec<f64>,
     k: Stages,
     dense: Stages,
     stats: Stats,
@@ -213,12 +237,12 @@ enum Outcome {
     Failed(Status, String),
 }
 
-impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
+impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
     /// Sets up the buffers and evaluates `k_0 = f(t0, y0)`.
-    pub fn new(sys: &'a S, t0: f64, y0: &[f64], t_end: f64, opts: &'a AdaptiveOptions) -> Self {
+    pub fn new(form: &'a F, t0: f64, y0: &[f64], t_end: f64, opts: &'a AdaptiveOptions) -> Self {
         let n = y0.len();
         let mut run = Run {
-            sys,
+            form,
             opts,
             t_end,
             hmax: opts.max_step.min(t_end - t0),
@@ -227,12 +251,13 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
             y_new: vec![0.0; n],
             ytmp: vec![0.0; n],
             work: vec![0.0; 2 * n],
-            k: Stages::new(P::ROWS, n),
+            init: Vec::new(),
+            k: Stages::new(P::ROWS, form.row_len()),
             dense: Stages::new(P::DENSE_ROWS, n),
             stats: Stats::default(),
             scheme: PhantomData,
         };
-        sys.rhs(t0, &run.y, run.k.row_mut(0));
+        form.eval_at(&mut run.k, 0, t0, &run.y);
         run.stats.nfev += 1;
         run
     }
@@ -341,17 +366,20 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
     /// Attempts the step `t -> t + h`: stages, `y_new` and the error norm.
     pub fn attempt(&mut self, h: f64) -> f64 {
         let tab = P::TABLEAU;
-        self.stats.nfev += tab.eval_stages(self.sys, self.t, h, &self.y, &mut self.k, &mut self.ytmp);
-        tab.advance(h, &self.y, &self.k, &mut self.y_new);
+        for s in 1..tab.stages() {
+            self.form.eval_stage(&mut self.k, s, self.t + tab.c[s] * h, h, &self.y, tab.a[s], &mut self.ytmp);
+        }
+        self.stats.nfev += (tab.stages() - 1) as u64;
+        self.form.advance(&self.k, tab.b, h, &self.y, &mut self.y_new, &mut self.ytmp);
         if P::FSAL_IN_ERROR {
             self.eval_fsal(self.t + h);
         }
-        P::error_norm(&self.k, h, &self.y, &self.y_new, self.opts.rtol, self.opts.atol, &mut self.work)
+        P::error_norm(self.form, &self.k, h, &self.y, &self.y_new, self.opts.rtol, self.opts.atol, &mut self.work)
     }
 
     /// `k[FSAL] = f(t_new, y_new)`.
     fn eval_fsal(&mut self, t_new: f64) {
-        self.sys.rhs(t_new, &self.y_new, self.k.row_mut(P::FSAL));
+        self.form.eval_at(&mut self.k, P::FSAL, t_new, &self.y_new);
         self.stats.nfev += 1;
     }
 
@@ -371,7 +399,7 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
         }
         if sampler.needs_interpolant(t_new) {
             self.stats.nfev += P::dense_prepare(
-                self.sys,
+                self.form,
                 self.t,
                 h,
                 &self.y,
@@ -397,9 +425,13 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
     /// `min(100 h0, (0.01 / max(d2, d1))^(1/order), hmax)`.
     fn hinit(&mut self) -> f64 {
         let (rtol, atol, order) = (self.opts.rtol, self.opts.atol, P::CONTROL.hinit_order);
-        let f0 = self.k.row(0);
+        let n = self.y.len();
+        self.init.resize(2 * n, 0.0);
+        let (f0, f1) = self.init.split_at_mut(n);
+        // f(t0, y0) over the whole state, from row 0 (no new evaluation).
+        self.form.combine(&self.k, &[1.0], 0.0, &self.y, f0);
         let (mut dnf, mut dny) = (0.0, 0.0);
-        for (&y, &f) in self.y.iter().zip(f0) {
+        for (&y, &f) in self.y.iter().zip(f0.iter()) {
             let sk = atol + rtol * y.abs();
             dnf += (f / sk) * (f / sk);
             dny += (y / sk) * (y / sk);
@@ -409,14 +441,13 @@ impl<'a, P: Scheme, S: OdeSystem + ?Sized> Run<'a, P, S> {
         if h.is_nan() || h <= 0.0 {
             h = 1e-6_f64.min(self.hmax);
         }
-        for ((yt, &y), &f) in self.ytmp.iter_mut().zip(&self.y).zip(f0) {
+        for ((yt, &y), &f) in self.ytmp.iter_mut().zip(&self.y).zip(f0.iter()) {
             *yt = y + h * f;
         }
-        // Row 1 is free before the first step.
-        self.sys.rhs(self.t + h, &self.ytmp, self.k.row_mut(1));
+        self.form.rhs(self.t + h, &self.ytmp, f1);
         self.stats.nfev += 1;
         let mut der2 = 0.0;
-        for ((&y, &f0i), &f1i) in self.y.iter().zip(self.k.row(0)).zip(self.k.row(1)) {
+        for ((&y, &f0i), &f1i) in self.y.iter().zip(f0.iter()).zip(f1.iter()) {
             let sk = atol + rtol * y.abs();
             der2 += ((f1i - f0i) / sk) * ((f1i - f0i) / sk);
         }
@@ -440,18 +471,12 @@ pub(crate) mod testing {
 
     /// Takes `n` uniform steps of the pair `P` (its propagated solution) from `(t0, y0)`
     /// to `t_end` and returns the final state.
-    pub(crate) fn uniform_steps<P: Scheme, S: OdeSystem + ?Sized>(
-        sys: &S,
-        t0: f64,
-        y0: &[f64],
-        t_end: f64,
-        n: usize,
-    ) -> Vec<f64> {
+    pub(crate) fn uniform_steps<P: Scheme, F: Form>(form: &F, t0: f64, y0: &[f64], t_end: f64, n: usize) -> Vec<f64> {
         let opts = AdaptiveOptions::default();
         let output = Output::EveryStep;
         let mut sampler = Sampler::new(&output);
         let mut sol = sampler.solution(y0.len(), n + 1);
-        let mut run = Run::<P, S>::new(sys, t0, y0, t_end, &opts);
+        let mut run = Run::<P, F>::new(form, t0, y0, t_end, &opts);
         let h = (t_end - t0) / n as f64;
         for i in 1..=n {
             run.attempt(h);

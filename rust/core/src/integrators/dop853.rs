@@ -19,8 +19,8 @@
 #![allow(clippy::excessive_precision)]
 
 use super::adaptive::{scaled_sums, Control, Scheme};
+use super::form::Form;
 use super::tableau::{Stages, Tableau};
-use crate::system::OdeSystem;
 
 /// The DOP853 pair.
 #[derive(Debug, Clone, Copy)]
@@ -280,6 +280,16 @@ pub(crate) const E3: [f64; 12] =
 /// Row of `f(t + h, y_new)` in the stage storage.
 const FSAL: usize = 12;
 
+/// Selects `k_0 = f(t, y)` in a combination.
+const F0: [f64; 1] = [1.0];
+
+/// Selects `k_FSAL = f(t + h, y_new)` in a combination.
+const F1: [f64; FSAL + 1] = {
+    let mut unit = [0.0; FSAL + 1];
+    unit[FSAL] = 1.0;
+    unit
+};
+
 impl Scheme for Dop853 {
     const TABLEAU: Tableau = Tableau { c: &C, a: &A, b: &B };
     /// Hairer's defaults: `safe = 0.9`, `fac1 = 0.333`, `fac2 = 6`, `beta = 0`,
@@ -290,11 +300,21 @@ impl Scheme for Dop853 {
     const FSAL: usize = FSAL;
     const FSAL_IN_ERROR: bool = false;
     const DENSE_ROWS: usize = 7;
+    const EXTRA_INPUTS: &'static [&'static [f64]] = &A_EXTRA;
 
-    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64, work: &mut [f64]) -> f64 {
+    fn error_norm<F: Form>(
+        form: &F,
+        k: &Stages,
+        h: f64,
+        y: &[f64],
+        y_new: &[f64],
+        rtol: f64,
+        atol: f64,
+        work: &mut [f64],
+    ) -> f64 {
         let (e5, e3) = work.split_at_mut(y.len());
-        k.combine(&E5, e5);
-        k.combine(&E3, e3);
+        form.combine(k, &E5, h, y, e5);
+        form.combine(k, &E3, h, y, e3);
         let (s5, s3) = scaled_sums(e5, e3, y, y_new, rtol, atol);
         let mut deno = s5 + 0.01 * s3;
         if deno <= 0.0 {
@@ -306,8 +326,8 @@ impl Scheme for Dop853 {
     /// Hairer's `contd8` coefficients, with `D = y_new - y`:
     /// `r1 = D`, `r2 = h f_0 - D`, `r3 = 2 D - h (f_0 + f_1)`, `r4..r7 = h sum_j d_*j k_j`
     /// over the 16 stages (the extra stages `k_13 .. k_15` are evaluated here).
-    fn dense_prepare<S: OdeSystem + ?Sized>(
-        sys: &S,
+    fn dense_prepare<F: Form>(
+        form: &F,
         t: f64,
         h: f64,
         y: &[f64],
@@ -317,15 +337,18 @@ impl Scheme for Dop853 {
         dense: &mut Stages,
     ) -> u64 {
         for (s, (&c, &a)) in C_EXTRA.iter().zip(A_EXTRA.iter()).enumerate() {
-            k.eval_stage(sys, FSAL + 1 + s, t + c * h, h, y, a, ytmp);
+            form.eval_stage(k, FSAL + 1 + s, t + c * h, h, y, a, ytmp);
         }
         for (r, d_row) in D.iter().enumerate() {
-            k.combine(d_row, dense.row_mut(3 + r));
+            form.combine(k, d_row, h, y, dense.row_mut(3 + r));
             dense.row_mut(3 + r).iter_mut().for_each(|v| *v *= h);
         }
+        // f_0 and f_1 = f(t + h, y_new) into rows 1 and 2, then the rows in place.
+        form.combine(k, &F0, h, y, dense.row_mut(1));
+        form.combine(k, &F1, h, y, dense.row_mut(2));
         for i in 0..y.len() {
             let d = y_new[i] - y[i];
-            let (f0, f1) = (k.row(0)[i], k.row(FSAL)[i]);
+            let (f0, f1) = (dense.row(1)[i], dense.row(2)[i]);
             dense.row_mut(0)[i] = d;
             dense.row_mut(1)[i] = h * f0 - d;
             dense.row_mut(2)[i] = 2.0 * d - h * (f1 + f0);

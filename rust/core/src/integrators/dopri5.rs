@@ -7,8 +7,11 @@
 //! norm. Coefficients as in scipy's `RK45` (`scipy/integrate/_ivp/rk.py`).
 
 use super::adaptive::{scaled_sums, Control, Scheme};
+use super::form::Form;
 use super::tableau::{Stages, Tableau};
-use crate::system::OdeSystem;
+
+/// Selects `k_6 = f(t + h, y_new)` (the FSAL row) in a combination.
+const F1: [f64; 7] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0];
 
 /// The Dormand-Prince 5(4) pair.
 #[derive(Debug, Clone, Copy)]
@@ -67,11 +70,21 @@ impl Scheme for Dopri5 {
     const FSAL: usize = 6;
     const FSAL_IN_ERROR: bool = true;
     const DENSE_ROWS: usize = 4;
+    const EXTRA_INPUTS: &'static [&'static [f64]] = &[];
 
     /// `err = sqrt(1/n sum_i (h sum_j E_j k_j,i / sc_i)^2)`.
-    fn error_norm(k: &Stages, h: f64, y: &[f64], y_new: &[f64], rtol: f64, atol: f64, work: &mut [f64]) -> f64 {
+    fn error_norm<F: Form>(
+        form: &F,
+        k: &Stages,
+        h: f64,
+        y: &[f64],
+        y_new: &[f64],
+        rtol: f64,
+        atol: f64,
+        work: &mut [f64],
+    ) -> f64 {
         let e = &mut work[..y.len()];
-        k.combine(&E, e);
+        form.combine(k, &E, h, y, e);
         let (sum, _) = scaled_sums(e, e, y, y_new, rtol, atol);
         let sum = h * h * sum;
         (sum / y.len() as f64).sqrt()
@@ -79,8 +92,8 @@ impl Scheme for Dopri5 {
 
     /// Hairer's `cont5`: with `D = y_new - y`,
     /// `r1 = D`, `r2 = h f_0 - D`, `r3 = D - h f_1 - r2`, `r4 = h sum_j d_j k_j`.
-    fn dense_prepare<S: OdeSystem + ?Sized>(
-        _sys: &S,
+    fn dense_prepare<F: Form>(
+        form: &F,
         _t: f64,
         h: f64,
         y: &[f64],
@@ -89,14 +102,18 @@ impl Scheme for Dopri5 {
         _ytmp: &mut [f64],
         dense: &mut Stages,
     ) -> u64 {
+        // f_0 and f_1 = f(t + h, y_new) into rows 1 and 2, then the rows in place.
+        form.combine(k, &[1.0], h, y, dense.row_mut(1));
+        form.combine(k, &F1, h, y, dense.row_mut(2));
         for i in 0..y.len() {
             let d = y_new[i] - y[i];
-            let r2 = h * k.row(0)[i] - d;
+            let r2 = h * dense.row(1)[i] - d;
+            let f1 = dense.row(2)[i];
             dense.row_mut(0)[i] = d;
             dense.row_mut(1)[i] = r2;
-            dense.row_mut(2)[i] = d - h * k.row(Self::FSAL)[i] - r2;
+            dense.row_mut(2)[i] = d - h * f1 - r2;
         }
-        k.combine(&D, dense.row_mut(3));
+        form.combine(k, &D, h, y, dense.row_mut(3));
         dense.row_mut(3).iter_mut().for_each(|v| *v *= h);
         0
     }
@@ -114,6 +131,7 @@ impl Scheme for Dopri5 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrators::form::Plain;
     use crate::integrators::tableau::check_consistency;
 
     #[test]
@@ -141,7 +159,7 @@ mod tests {
         let mut dense = Stages::new(4, dim);
         let mut ytmp = [0.0; 2];
         let sys = crate::integrators::tests::Decay;
-        Dopri5::dense_prepare(&sys, 0.0, h, &y, &y_new, &mut k, &mut ytmp, &mut dense);
+        Dopri5::dense_prepare(&Plain(&sys), 0.0, h, &y, &y_new, &mut k, &mut ytmp, &mut dense);
         let mut out = [0.0; 2];
         for step in 0..=8 {
             let theta = step as f64 / 8.0;

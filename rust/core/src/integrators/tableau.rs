@@ -75,6 +75,8 @@ struct Combination<'a> {
     coef: &'a [f64],
     /// `(y, h)`: `out = y + h sum`; `None`: `out = sum`.
     base: Option<(&'a [f64], f64)>,
+    /// `(x, c)`: `c x` added to the result.
+    extra: Option<(&'a [f64], f64)>,
     out: &'a mut [f64],
 }
 
@@ -83,11 +85,11 @@ impl Kernel for Combination<'_> {
 
     #[inline(always)]
     fn run<M: MulAdd>(self) {
-        let Combination { k, coef, base, out } = self;
+        let Combination { k, coef, base, extra, out } = self;
         if M::WIDE {
-            k.chunked::<M, WIDE_BLOCK>(coef, base, out)
+            k.chunked::<M, WIDE_BLOCK>(coef, base, extra, out)
         } else {
-            k.chunked::<M, BLOCK>(coef, base, out)
+            k.chunked::<M, BLOCK>(coef, base, extra, out)
         }
     }
 }
@@ -146,12 +148,18 @@ impl Stages {
 
     /// `out = sum_j coef_j k_j`, skipping zero coefficients.
     pub fn combine(&self, coef: &[f64], out: &mut [f64]) {
-        dispatch(Combination { k: self, coef, base: None, out });
+        dispatch(Combination { k: self, coef, base: None, extra: None, out });
     }
 
     /// `out = y + h sum_j coef_j k_j`, skipping zero coefficients.
     pub fn axpy_combine(&self, y: &[f64], h: f64, coef: &[f64], out: &mut [f64]) {
-        dispatch(Combination { k: self, coef, base: Some((y, h)), out });
+        dispatch(Combination { k: self, coef, base: Some((y, h)), extra: None, out });
+    }
+
+    /// `out = y + c x + h sum_j coef_j k_j`, skipping zero coefficients.
+    #[allow(clippy::too_many_arguments)]
+    pub fn axpy_combine_plus(&self, y: &[f64], h: f64, coef: &[f64], x: &[f64], c: f64, out: &mut [f64]) {
+        dispatch(Combination { k: self, coef, base: Some((y, h)), extra: Some((x, c)), out });
     }
 
     /// `out = sum_j coef_j k_j` or, with `base = (y, h)`, `out = y + h sum_j coef_j k_j`;
@@ -160,33 +168,65 @@ impl Stages {
     /// The components go in blocks of `B` whose partial sums stay in registers while the
     /// stage rows stream past: enough independent sums to hide the latency of the
     /// floating-point adds (a block of four is latency-bound, a row-outer loop sends every
-    /// partial sum through memory). A tail shorter than a block goes in fours, then ones.
+    /// partial sum through memory). A tail shorter than a block goes in sixteens, fours, then ones.
     #[inline(always)]
-    fn chunked<M: MulAdd, const B: usize>(&self, coef: &[f64], base: Option<(&[f64], f64)>, out: &mut [f64]) {
-        let terms = Terms::new(coef);
+    fn chunked<M: MulAdd, const B: usize>(
+        &self,
+        coef: &[f64],
+        base: Option<(&[f64], f64)>,
+        extra: Option<(&[f64], f64)>,
+        out: &mut [f64],
+    ) {
+        let mut terms = Terms::new(coef);
         let dim = self.dim;
         let out = &mut out[..dim];
-        let base = base.map(|(y, h)| (&y[..dim], h));
+        // y + h sum_j a_j k_j is summed as y + sum_j (h a_j) k_j: no separate final pass.
+        let base = base.map(|(y, h)| {
+            terms.coefs.iter_mut().for_each(|a| *a *= h);
+            &y[..dim]
+        });
+        let extra = extra.map(|(x, c)| (&x[..dim], c));
         let mut i0 = 0;
         while i0 + B <= dim {
-            self.block::<M, B>(&terms, i0, base, out);
+            self.block::<M, B>(&terms, i0, base, extra, out);
             i0 += B;
         }
+        if B > 16 && i0 + 16 <= dim {
+            self.block::<M, 16>(&terms, i0, base, extra, out);
+            i0 += 16;
+        }
         while i0 + 4 <= dim {
-            self.block::<M, 4>(&terms, i0, base, out);
+            self.block::<M, 4>(&terms, i0, base, extra, out);
             i0 += 4;
         }
         while i0 < dim {
-            self.block::<M, 1>(&terms, i0, base, out);
+            self.block::<M, 1>(&terms, i0, base, extra, out);
             i0 += 1;
         }
     }
 
-    /// Components `i0 .. i0 + B` of [`Stages::chunked`]; fixed-size arrays throughout, so
-    /// the loops unroll into vector instructions without run-time length or alias checks.
+    /// Components `i0 .. i0 + B` of [`Stages::chunked`]: the partial sums start from the
+    /// base (`y`, or zero) and take the (already `h`-scaled) terms; fixed-size arrays
+    /// throughout, so the loops unroll into vector instructions without run-time checks.
     #[inline(always)]
-    fn block<M: MulAdd, const B: usize>(&self, terms: &Terms, i0: usize, base: Option<(&[f64], f64)>, out: &mut [f64]) {
-        let mut acc = [0.0; B];
+    fn block<M: MulAdd, const B: usize>(
+        &self,
+        terms: &Terms,
+        i0: usize,
+        base: Option<&[f64]>,
+        extra: Option<(&[f64], f64)>,
+        out: &mut [f64],
+    ) {
+        let mut acc: [f64; B] = match base {
+            Some(y) => *<&[f64; B]>::try_from(&y[i0..i0 + B]).expect("block of B components"),
+            None => [0.0; B],
+        };
+        if let Some((x, c)) = extra {
+            let x: &[f64; B] = x[i0..i0 + B].try_into().expect("block of B components");
+            for (s, &xi) in acc.iter_mut().zip(x) {
+                *s = M::mul_add(c, xi, *s);
+            }
+        }
         for (&row, &a) in terms.rows[..terms.len].iter().zip(&terms.coefs[..terms.len]) {
             let start = row * self.dim + i0;
             let k: &[f64; B] = self.data[start..start + B].try_into().expect("block of B components");
@@ -194,16 +234,7 @@ impl Stages {
                 *s = M::mul_add(a, kj, *s);
             }
         }
-        let out: &mut [f64; B] = (&mut out[i0..i0 + B]).try_into().expect("block of B components");
-        match base {
-            None => *out = acc,
-            Some((y, h)) => {
-                let y: &[f64; B] = y[i0..i0 + B].try_into().expect("block of B components");
-                for ((o, &s), &yi) in out.iter_mut().zip(&acc).zip(y) {
-                    *o = M::mul_add(h, s, yi);
-                }
-            }
-        }
+        *<&mut [f64; B]>::try_from(&mut out[i0..i0 + B]).expect("block of B components") = acc;
     }
 
     /// Stage `s`: `k_s = f(t_s, y + h sum_{j < a.len()} a_j k_j)` with `a.len() <= s`.
@@ -288,14 +319,21 @@ mod tests {
                     (0..dim).map(|i| terms.iter().enumerate().map(|(j, &a)| a * k.row(j)[i]).sum()).collect();
                 k.combine(terms, &mut out);
                 assert_close(&out, &plain, dim);
-                crate::simd::baseline(Combination { k: &k, coef: terms, base: None, out: &mut out });
+                crate::simd::baseline(Combination { k: &k, coef: terms, base: None, extra: None, out: &mut out });
                 assert_close(&out, &plain, dim);
             }
             let expected_axpy: Vec<f64> = y.iter().zip(&expected_sum).map(|(&yi, &s)| yi + h * s).collect();
             k.axpy_combine(&y, h, &coef, &mut out);
             assert_close(&out, &expected_axpy, dim);
-            crate::simd::baseline(Combination { k: &k, coef: &coef, base: Some((&y, h)), out: &mut out });
+            crate::simd::baseline(Combination { k: &k, coef: &coef, base: Some((&y, h)), extra: None, out: &mut out });
             assert_close(&out, &expected_axpy, dim);
+            let x: Vec<f64> = (0..dim).map(|i| (i as f64 * 0.3).sin()).collect();
+            let expected_plus: Vec<f64> = expected_axpy.iter().zip(&x).map(|(&e, &xi)| e - 0.6 * xi).collect();
+            k.axpy_combine_plus(&y, h, &coef, &x, -0.6, &mut out);
+            assert_close(&out, &expected_plus, dim);
+            let extra = Some((&x[..], -0.6));
+            crate::simd::baseline(Combination { k: &k, coef: &coef, base: Some((&y, h)), extra, out: &mut out });
+            assert_close(&out, &expected_plus, dim);
         }
     }
 

@@ -5,6 +5,7 @@ use super::adaptive::testing::uniform_steps;
 use super::adaptive::Scheme;
 use super::dop853::Dop853;
 use super::dopri5::Dopri5;
+use super::form::{Nystrom, Plain};
 use super::*;
 use crate::solution::Status;
 
@@ -141,7 +142,7 @@ fn harmonic_error(sys: &Harmonic, q0: f64, v0: f64, sol: &Solution) -> f64 {
 /// Error at `t_end` of the pair `P` with `n` uniform steps on the harmonic oscillator.
 fn uniform_error_harmonic<P: Scheme>(n: usize, t_end: f64) -> f64 {
     let sys = Harmonic { w: 1.0 };
-    let y = uniform_steps::<P, _>(&FirstOrder(&sys), 0.0, &[1.0, 0.5], t_end, n);
+    let y = uniform_steps::<P, _>(&Plain(&FirstOrder(&sys)), 0.0, &[1.0, 0.5], t_end, n);
     let exact = sys.exact(1.0, 0.5, t_end);
     (y[0] - exact[0]).abs().max((y[1] - exact[1]).abs())
 }
@@ -150,10 +151,77 @@ fn uniform_error_harmonic<P: Scheme>(n: usize, t_end: f64) -> f64 {
 /// `y0 = (0.6, 0.3)` (exact: rotation by the angle `(1 + 0.45) t`).
 fn uniform_error_rotation<P: Scheme>(n: usize, t_end: f64) -> f64 {
     let y0 = [0.6, 0.3];
-    let y = uniform_steps::<P, _>(&NonlinearRotation, 0.0, &y0, t_end, n);
+    let y = uniform_steps::<P, _>(&Plain(&NonlinearRotation), 0.0, &y0, t_end, n);
     let (s, c) = (1.45 * t_end).sin_cos();
     let exact = [c * y0[0] - s * y0[1], s * y0[0] + c * y0[1]];
     (y[0] - exact[0]).abs().max((y[1] - exact[1]).abs())
+}
+
+/// [`uniform_error_harmonic`] in the Runge-Kutta-Nystrom form.
+fn uniform_error_harmonic_nystrom<P: Scheme>(n: usize, t_end: f64) -> f64 {
+    let sys = Harmonic { w: 1.0 };
+    let y = uniform_steps::<P, _>(&Nystrom::new(&sys, &P::row_inputs()), 0.0, &[1.0, 0.5], t_end, n);
+    let exact = sys.exact(1.0, 0.5, t_end);
+    (y[0] - exact[0]).abs().max((y[1] - exact[1]).abs())
+}
+
+/// A nonlinear chain of `n` unit masses: `q_i'' = (q_{i-1} - 2 q_i + q_{i+1}) - q_i^3`
+/// (free ends), enough coordinates for the Nystrom form of [`solve_second_order`].
+struct DuffingChain(usize);
+
+impl SecondOrderSystem for DuffingChain {
+    fn dof(&self) -> usize {
+        self.0
+    }
+    fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
+        let n = self.0;
+        for i in 0..n {
+            let left = if i > 0 { q[i - 1] - q[i] } else { 0.0 };
+            let right = if i + 1 < n { q[i + 1] - q[i] } else { 0.0 };
+            acc[i] = left + right - q[i] * q[i] * q[i];
+        }
+    }
+}
+
+/// The Nystrom form is the same method as the first-order form, up to rounding: uniform
+/// steps agree to rounding, and full adaptive solves (error estimate, step control, dense
+/// output with DOP853's extra stages) take the same steps and agree to far below the tolerance.
+#[test]
+fn nystrom_form_is_the_same_method() {
+    let n = NYSTROM_MIN_DOF;
+    let sys = DuffingChain(n);
+    assert!(n >= NYSTROM_MIN_DOF);
+    let q0: Vec<f64> = (0..n).map(|i| 0.8 * (i as f64 * 0.9).sin()).collect();
+    let v0: Vec<f64> = (0..n).map(|i| 0.5 * (i as f64 * 0.4).cos()).collect();
+    let y0 = [q0.clone(), v0.clone()].concat();
+    let plain = Plain(&FirstOrder(&sys));
+    fn compare<P: Scheme>(sys: &DuffingChain, plain: &Plain<'_, FirstOrder<'_, DuffingChain>>, y0: &[f64]) {
+        let nystrom = Nystrom::new(sys, &P::row_inputs());
+        let a = uniform_steps::<P, _>(plain, 0.0, y0, 3.0, 60);
+        let b = uniform_steps::<P, _>(&nystrom, 0.0, y0, 3.0, 60);
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-13, "uniform steps: {x} vs {y}");
+        }
+    }
+    compare::<Dop853>(&sys, &plain, &y0);
+    compare::<Dopri5>(&sys, &plain, &y0);
+    let output = Output::Times((0..=40).map(|i| i as f64 * 0.25).collect());
+    for method in [Method::Dop853, Method::Dopri5] {
+        let opts = SolveOptions { rtol: 1e-10, atol: 1e-12, ..SolveOptions::new(method) };
+        let first = match method {
+            Method::Dop853 => dop853(&FirstOrder(&sys), 0.0, &y0, 10.0, &output, &opts.adaptive()),
+            _ => dopri5(&FirstOrder(&sys), 0.0, &y0, 10.0, &output, &opts.adaptive()),
+        }
+        .unwrap();
+        let second = solve_second_order(&sys, 0.0, &q0, &v0, 10.0, &output, &opts).unwrap();
+        assert!(first.status.is_success() && second.status.is_success());
+        let (s1, s2) = (first.stats, second.stats);
+        assert!(s1.naccept.abs_diff(s2.naccept) <= 1 && s1.nreject.abs_diff(s2.nreject) <= 1, "{s1:?} vs {s2:?}");
+        assert!(s1.naccept > 50, "{s1:?}");
+        let scale = first.y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let diff = first.y.iter().zip(&second.y).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(diff < 1e-10 * scale, "{method:?}: max difference {diff} (scale {scale})");
+    }
 }
 
 fn measured_order(ns: &[usize], t_end: f64, err: impl Fn(usize) -> f64) -> f64 {
@@ -172,6 +240,9 @@ fn dop853_has_order_8() {
     let p = measured_order(&ns, 5.0, |n| uniform_error_rotation::<Dop853>(n, 5.0));
     eprintln!("DOP853 nonlinear rotation order {p}");
     assert!((p - 8.0).abs() < 0.5, "order {p}");
+    let p = measured_order(&ns, 10.0, |n| uniform_error_harmonic_nystrom::<Dop853>(n, 10.0));
+    eprintln!("DOP853 harmonic order, Nystrom form {p}");
+    assert!((p - 8.0).abs() < 0.5, "order {p}");
 }
 
 #[test]
@@ -179,6 +250,9 @@ fn dopri5_has_order_5() {
     let ns = [20, 40, 80, 160];
     let p = measured_order(&ns, 10.0, |n| uniform_error_harmonic::<Dopri5>(n, 10.0));
     eprintln!("DOPRI5 harmonic order {p}");
+    assert!((p - 5.0).abs() < 0.5, "order {p}");
+    let p = measured_order(&ns, 10.0, |n| uniform_error_harmonic_nystrom::<Dopri5>(n, 10.0));
+    eprintln!("DOPRI5 harmonic order, Nystrom form {p}");
     assert!((p - 5.0).abs() < 0.5, "order {p}");
     let ns = [80, 112, 160, 224];
     let p = measured_order(&ns, 5.0, |n| uniform_error_rotation::<Dopri5>(n, 5.0));
