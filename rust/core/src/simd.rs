@@ -72,6 +72,21 @@ pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
     kernel.run::<Unfused>()
 }
 
+/// Loops shorter than this run inline as baseline code: the call into the vector path
+/// (a few ns) costs more than it saves on a handful of components (a 3-mode solve).
+pub(crate) const MIN_DISPATCH_LEN: usize = 32;
+
+/// [`dispatch`] for a loop over `len` components, inline baseline code below
+/// [`MIN_DISPATCH_LEN`].
+#[inline(always)]
+pub(crate) fn dispatch_len<K: Kernel>(len: usize, kernel: K) -> K::Output {
+    if len < MIN_DISPATCH_LEN {
+        kernel.run::<Unfused>()
+    } else {
+        dispatch(kernel)
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn v3() -> Option<pulp::x86::V3> {

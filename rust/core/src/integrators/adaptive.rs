@@ -37,7 +37,7 @@ use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, AdaptiveOptions, Output};
-use crate::simd::{dispatch, Kernel, MulAdd};
+use crate::simd::{dispatch_len, Kernel, MulAdd};
 use crate::solution::{Solution, Stats, Status};
 
 /// Hairer's step-size control constants.
@@ -87,19 +87,9 @@ pub(crate) trait Scheme {
         rows
     }
 
-    /// The scaled error norm of the attempted step `(y, h) -> y_new` with stages `k`;
-    /// `work` is scratch of length `2 n`.
-    #[allow(clippy::too_many_arguments)]
-    fn error_norm<F: Form>(
-        form: &F,
-        k: &Stages,
-        h: f64,
-        y: &[f64],
-        y_new: &[f64],
-        rtol: f64,
-        atol: f64,
-        work: &mut [f64],
-    ) -> f64;
+    /// The scaled error norm of the attempted step with stages `k`; `work` is scratch of
+    /// length `2 n`.
+    fn error_norm<F: Form>(form: &F, k: &Stages, step: &Attempt<'_>, work: &mut [f64]) -> f64;
 
     /// Builds the continuous extension of the accepted step `t -> t + h` into `dense`,
     /// evaluating any extra stages. Returns the number of right-hand-side evaluations.
@@ -119,6 +109,15 @@ pub(crate) trait Scheme {
     fn dense_eval(dense: &Stages, y: &[f64], theta: f64, out: &mut [f64]);
 }
 
+/// An attempted step `(t, y) -> (t + h, y_new)` and the tolerances its error is measured by.
+pub(crate) struct Attempt<'a> {
+    pub h: f64,
+    pub y: &'a [f64],
+    pub y_new: &'a [f64],
+    pub rtol: f64,
+    pub atol: f64,
+}
+
 /// The scaling `sc_i = atol + rtol max(|y_i|, |y_new,i|)` of Hairer's error norm.
 #[inline(always)]
 pub(crate) fn scale(atol: f64, rtol: f64, y: f64, y_new: f64) -> f64 {
@@ -131,7 +130,7 @@ const LANES: usize = 4;
 /// `(sum_i (a_i / sc_i)^2, sum_i (b_i / sc_i)^2)` with `sc_i` of [`scale`], summed in
 /// [`LANES`] interleaved partial sums.
 pub(crate) fn scaled_sums(a: &[f64], b: &[f64], y: &[f64], y_new: &[f64], rtol: f64, atol: f64) -> (f64, f64) {
-    dispatch(ScaledSums { a, b, y, y_new, rtol, atol })
+    dispatch_len(y.len(), ScaledSums { a, b, y, y_new, rtol, atol })
 }
 
 /// The kernel of [`scaled_sums`].
@@ -374,7 +373,8 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
         if P::FSAL_IN_ERROR {
             self.eval_fsal(self.t + h);
         }
-        P::error_norm(self.form, &self.k, h, &self.y, &self.y_new, self.opts.rtol, self.opts.atol, &mut self.work)
+        let step = Attempt { h, y: &self.y, y_new: &self.y_new, rtol: self.opts.rtol, atol: self.opts.atol };
+        P::error_norm(self.form, &self.k, &step, &mut self.work)
     }
 
     /// `k[FSAL] = f(t_new, y_new)`.

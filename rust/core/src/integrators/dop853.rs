@@ -18,7 +18,7 @@
 //! values to 30 digits).
 #![allow(clippy::excessive_precision)]
 
-use super::adaptive::{scaled_sums, Control, Scheme};
+use super::adaptive::{scaled_sums, Attempt, Control, Scheme};
 use super::form::Form;
 use super::tableau::{Stages, Tableau};
 
@@ -302,16 +302,8 @@ impl Scheme for Dop853 {
     const DENSE_ROWS: usize = 7;
     const EXTRA_INPUTS: &'static [&'static [f64]] = &A_EXTRA;
 
-    fn error_norm<F: Form>(
-        form: &F,
-        k: &Stages,
-        h: f64,
-        y: &[f64],
-        y_new: &[f64],
-        rtol: f64,
-        atol: f64,
-        work: &mut [f64],
-    ) -> f64 {
+    fn error_norm<F: Form>(form: &F, k: &Stages, step: &Attempt<'_>, work: &mut [f64]) -> f64 {
+        let Attempt { h, y, y_new, rtol, atol } = *step;
         let (e5, e3) = work.split_at_mut(y.len());
         form.combine(k, &E5, h, y, e5);
         form.combine(k, &E3, h, y, e3);

@@ -6,7 +6,7 @@
 //! error `e = h sum_i E_i k_i` over all seven stages is measured in Hairer's scaled RMS
 //! norm. Coefficients as in scipy's `RK45` (`scipy/integrate/_ivp/rk.py`).
 
-use super::adaptive::{scaled_sums, Control, Scheme};
+use super::adaptive::{scaled_sums, Attempt, Control, Scheme};
 use super::form::Form;
 use super::tableau::{Stages, Tableau};
 
@@ -73,16 +73,8 @@ impl Scheme for Dopri5 {
     const EXTRA_INPUTS: &'static [&'static [f64]] = &[];
 
     /// `err = sqrt(1/n sum_i (h sum_j E_j k_j,i / sc_i)^2)`.
-    fn error_norm<F: Form>(
-        form: &F,
-        k: &Stages,
-        h: f64,
-        y: &[f64],
-        y_new: &[f64],
-        rtol: f64,
-        atol: f64,
-        work: &mut [f64],
-    ) -> f64 {
+    fn error_norm<F: Form>(form: &F, k: &Stages, step: &Attempt<'_>, work: &mut [f64]) -> f64 {
+        let Attempt { h, y, y_new, rtol, atol } = *step;
         let e = &mut work[..y.len()];
         form.combine(k, &E, h, y, e);
         let (sum, _) = scaled_sums(e, e, y, y_new, rtol, atol);

@@ -254,10 +254,10 @@ pub fn solve_second_order_with<S: SecondOrderSystem + ?Sized>(
     let y0 = || [q0, v0].concat();
     match opts.method {
         Method::Dop853 => {
-            adaptive_second_order::<dop853::Dop853, S>(sys, t0, q0, v0, t_end, output, &opts.adaptive(), interrupt)
+            adaptive_second_order::<dop853::Dop853, S>(sys, &y0(), (t0, t_end), output, &opts.adaptive(), interrupt)
         }
         Method::Dopri5 => {
-            adaptive_second_order::<dopri5::Dopri5, S>(sys, t0, q0, v0, t_end, output, &opts.adaptive(), interrupt)
+            adaptive_second_order::<dopri5::Dopri5, S>(sys, &y0(), (t0, t_end), output, &opts.adaptive(), interrupt)
         }
         Method::Rk4 => rk4::integrate(&first_order, t0, &y0(), t_end, output, &opts.fixed()?, interrupt),
         Method::Central => central::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
@@ -273,22 +273,19 @@ pub fn solve_second_order_with<S: SecondOrderSystem + ?Sized>(
 /// on the PDE system 15-20 % less time per evaluation at N = 240 and N = 2400.
 pub const NYSTROM_MIN_DOF: usize = 64;
 
-#[allow(clippy::too_many_arguments)]
+/// `P` on `y = [q, v]` over `span = (t0, t_end)`, in the form [`NYSTROM_MIN_DOF`] picks.
 fn adaptive_second_order<P: adaptive::Scheme, S: SecondOrderSystem + ?Sized>(
     sys: &S,
-    t0: f64,
-    q0: &[f64],
-    v0: &[f64],
-    t_end: f64,
+    y0: &[f64],
+    (t0, t_end): (f64, f64),
     output: &Output,
     opts: &AdaptiveOptions,
     interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
-    let y0 = [q0, v0].concat();
     if sys.dof() >= NYSTROM_MIN_DOF {
-        adaptive::integrate::<P, _>(&Nystrom::new(sys, &P::row_inputs()), t0, &y0, t_end, output, opts, interrupt)
+        adaptive::integrate::<P, _>(&Nystrom::new(sys, &P::row_inputs()), t0, y0, t_end, output, opts, interrupt)
     } else {
-        adaptive::integrate::<P, _>(&Plain(&FirstOrder(sys)), t0, &y0, t_end, output, opts, interrupt)
+        adaptive::integrate::<P, _>(&Plain(&FirstOrder(sys)), t0, y0, t_end, output, opts, interrupt)
     }
 }
 

@@ -11,7 +11,7 @@
 //! evaluation skips zero coefficients, so the sparse DOP853 rows cost only their
 //! non-zeros. [`Stages`] holds the `k_i` contiguously and is allocated once per solve.
 
-use crate::simd::{dispatch, Kernel, MulAdd};
+use crate::simd::{dispatch, Kernel, MulAdd, MIN_DISPATCH_LEN};
 use crate::system::OdeSystem;
 
 /// The Butcher tableau of an explicit Runge-Kutta method.
@@ -148,18 +148,59 @@ impl Stages {
 
     /// `out = sum_j coef_j k_j`, skipping zero coefficients.
     pub fn combine(&self, coef: &[f64], out: &mut [f64]) {
-        dispatch(Combination { k: self, coef, base: None, extra: None, out });
+        if self.dim < MIN_DISPATCH_LEN {
+            self.small(coef, out, |_, acc| acc);
+        } else {
+            dispatch(Combination { k: self, coef, base: None, extra: None, out });
+        }
     }
 
     /// `out = y + h sum_j coef_j k_j`, skipping zero coefficients.
     pub fn axpy_combine(&self, y: &[f64], h: f64, coef: &[f64], out: &mut [f64]) {
-        dispatch(Combination { k: self, coef, base: Some((y, h)), extra: None, out });
+        if self.dim < MIN_DISPATCH_LEN {
+            let y = &y[..self.dim];
+            self.small(coef, out, |i, acc| y[i] + h * acc);
+        } else {
+            dispatch(Combination { k: self, coef, base: Some((y, h)), extra: None, out });
+        }
     }
 
     /// `out = y + c x + h sum_j coef_j k_j`, skipping zero coefficients.
     #[allow(clippy::too_many_arguments)]
     pub fn axpy_combine_plus(&self, y: &[f64], h: f64, coef: &[f64], x: &[f64], c: f64, out: &mut [f64]) {
-        dispatch(Combination { k: self, coef, base: Some((y, h)), extra: Some((x, c)), out });
+        if self.dim < MIN_DISPATCH_LEN {
+            let (y, x) = (&y[..self.dim], &x[..self.dim]);
+            self.small(coef, out, |i, acc| y[i] + c * x[i] + h * acc);
+        } else {
+            dispatch(Combination { k: self, coef, base: Some((y, h)), extra: Some((x, c)), out });
+        }
+    }
+
+    /// The combinations of a few components (a modal system of a few modes): in chunks of
+    /// up to four whose partial sums stay in registers, zero coefficients skipped inline,
+    /// `out[i] = finish(i, sum_j coef_j k_j[i])`.
+    #[inline(always)]
+    fn small(&self, coef: &[f64], out: &mut [f64], finish: impl Fn(usize, f64) -> f64) {
+        const W: usize = 4;
+        let dim = self.dim;
+        let k = &self.data[..coef.len() * dim];
+        let mut i0 = 0;
+        while i0 < dim {
+            let w = W.min(dim - i0);
+            let mut acc = [0.0; W];
+            for (j, &a) in coef.iter().enumerate() {
+                if a != 0.0 {
+                    let row = &k[j * dim + i0..j * dim + i0 + w];
+                    for (s, &kj) in acc.iter_mut().zip(row) {
+                        *s += a * kj;
+                    }
+                }
+            }
+            for (l, &s) in acc[..w].iter().enumerate() {
+                out[i0 + l] = finish(i0 + l, s);
+            }
+            i0 += w;
+        }
     }
 
     /// `out = sum_j coef_j k_j` or, with `base = (y, h)`, `out = y + h sum_j coef_j k_j`;

@@ -2,7 +2,7 @@
 //! accelerations (derivation in the module docs of [`crate::pde`]).
 
 use crate::error::{Error, Result};
-use crate::simd::{dispatch, Kernel, MulAdd};
+use crate::simd::{dispatch_len, Kernel, MulAdd};
 use crate::system::SecondOrderSystem;
 
 /// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
@@ -191,7 +191,7 @@ impl PdeSystem {
     /// `out`: one pass over the cells, no allocation.
     #[inline]
     pub fn force(&self, q: &[f64], out: &mut [f64]) {
-        dispatch(Sweep { sys: self, q, out, scale: 1.0, end_factor: 1.0 });
+        dispatch_len(self.nodes, Sweep { sys: self, q, out, scale: 1.0, end_factor: 1.0 });
     }
 
     /// `scale * dV_h/dth_j` for interior nodes and `end_factor * scale * dV_h/dth_j` at the ends.
@@ -322,6 +322,6 @@ impl SecondOrderSystem for PdeSystem {
     #[inline]
     fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
         // 1 / (w_j k1): 1 / (h k1) inside, twice that at the ends.
-        dispatch(Sweep { sys: self, q, out: acc, scale: -1.0 / (self.h * self.k.k1), end_factor: 2.0 });
+        dispatch_len(self.nodes, Sweep { sys: self, q, out: acc, scale: -1.0 / (self.h * self.k.k1), end_factor: 2.0 });
     }
 }
