@@ -2,8 +2,8 @@
 //!
 //! The crate is compiled for the baseline of its target (SSE2 on x86-64), so a wheel runs on
 //! any machine. The few loops that dominate a solve (the Runge-Kutta stage combinations and
-//! the finite-difference acceleration) are written once as a [`Kernel`], generic over how a
-//! product is accumulated ([`MulAdd`]), and [`dispatch`] runs them compiled for AVX2 + FMA
+//! the finite-difference acceleration) are written once as a `Kernel`, generic over how a
+//! product is accumulated (`MulAdd`), and `dispatch` runs them compiled for AVX2 + FMA
 //! (x86-64-v3) when the processor has it, through the `pulp` crate's safe target-feature
 //! token, and as plain baseline code otherwise.
 //!
@@ -73,7 +73,8 @@ pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
 }
 
 /// Loops shorter than this run inline as baseline code: the call into the vector path
-/// (a few ns) costs more than it saves on a handful of components (a 3-mode solve).
+/// costs more than it saves on a handful of components (a modal system of a few modes),
+/// and small systems then give bit-identical results on every machine.
 pub(crate) const MIN_DISPATCH_LEN: usize = 32;
 
 /// [`dispatch`] for a loop over `len` components, inline baseline code below
@@ -97,7 +98,7 @@ fn v3() -> Option<pulp::x86::V3> {
     }
 }
 
-/// The code path [`dispatch`] takes on this machine: `"avx2+fma"` or `"baseline"`.
+/// The code path `dispatch` takes on this machine: `"avx2+fma"` or `"baseline"`.
 pub fn path() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     if v3().is_some() {
