@@ -21,9 +21,15 @@ import drillstring as ds
 from drillstring import _core
 from drillstring.cli import main
 from drillstring.errors import SolveError, ValidationError
+from drillstring.grid import expand_grid
 
 P = ds.preset("aluminum")
 NAN, INF = math.nan, math.inf
+#: An integer too large for a float (float(HUGE) raises OverflowError; 1e400 is inf).
+HUGE = 10**400
+HUGE_TEXT = str(HUGE)  # "1000...0", 401 digits
+#: An array nested deeper than the TOML parser can recurse.
+DEEP_TOML = "[parameters]\nlength = " + "[" * 10_000 + "\n"
 
 
 def _message(exc: BaseException) -> str:
@@ -58,6 +64,15 @@ PARAMETER_CASES += [
     ("initial_velocities-nested", {"initial_velocities": [[0.1]]}),
     ("k5_variant-unknown", {"k5_variant": "minus"}),
     ("k5_variant-int", {"k5_variant": 2}),
+    # integers too large for a float: the same refusal as 1e400, not OverflowError
+    ("length-10**400", {"length": HUGE}),
+    ("length-minus-10**400", {"length": -HUGE}),
+    ("youngs_modulus-10**400", {"youngs_modulus": HUGE}),
+    ("inner_diameter-10**400", {"inner_diameter": HUGE}),
+    ("poisson_ratio-10**400", {"poisson_ratio": HUGE}),
+    ("omega-10**400", {"omega": -HUGE}),
+    ("initial_velocities-10**400", {"initial_velocities": [0.1, HUGE]}),
+    ("length-10**5000", {"length": 10**5000}),  # beyond repr's 4300-digit limit too
 ]
 
 
@@ -68,6 +83,25 @@ def test_bad_parameter_is_refused_naming_the_field(changes: dict[str, Any]) -> N
         P.replace(**changes)
     assert info.value.field.split("[")[0] == name
     assert name in str(info.value) and "expected" in str(info.value)
+    with pytest.raises(ValidationError) as info:  # the constructor, as well as replace()
+        ds.Parameters(**changes)
+    assert info.value.field.split("[")[0] == name
+
+
+def test_an_integer_too_large_for_a_float_is_refused_like_1e400() -> None:
+    with pytest.raises(ValidationError) as as_float:
+        ds.Parameters(length=1e400)
+    with pytest.raises(ValidationError) as as_int:
+        ds.Parameters(length=HUGE)
+    assert as_int.value.field == as_float.value.field == "length"
+    assert as_int.value.allowed == as_float.value.allowed
+    # the message stays short: the digit count, not 401 digits
+    assert "an integer of 401 digits" in str(as_int.value) and HUGE_TEXT not in str(as_int.value)
+    with pytest.raises(ValidationError, match="an integer of 5001 digits"):
+        ds.Parameters(length=10**5000)
+    # the largest finite floats and integers that fit one are still accepted
+    assert ds.Parameters(length=10**300).length == 1e300
+    assert ds.Parameters(omega=-(10**308)).omega == -1e308
 
 
 @pytest.mark.parametrize(
@@ -146,6 +180,38 @@ OPTION_CASES: list[tuple[str, Callable[[], Any], type, str]] = [
     ("project-modes-zero", lambda: ds.project(P, modes=0), ValidationError, "modes"),
     ("preset-unknown", lambda: ds.preset("copper"), ValidationError, "preset"),
     ("replace-unknown-field", lambda: P.replace(colour="red"), ValidationError, "colour"),
+    # integers too large for a float, or for the core's 64-bit integers (OverflowError before)
+    ("modes-10**400", lambda: ds.simulate(P, modes=HUGE), ValidationError, "modes"),
+    ("project-modes-10**400", lambda: ds.project(P, modes=-HUGE), ValidationError, "modes"),
+    ("samples-10**400", lambda: ds.simulate(P, samples=HUGE), ValidationError, "samples"),
+    ("samples-2**63", lambda: ds.simulate(P, samples=2**63), ValidationError, "samples"),
+    ("pde-samples-10**400", lambda: ds.solve_pde(P, nodes=20, samples=HUGE), ValidationError, "samples"),
+    ("t_end-10**400", lambda: ds.simulate(P, t_end=HUGE), ValidationError, "t_end"),
+    ("pde-t_end-10**400", lambda: ds.solve_pde(P, nodes=20, t_end=HUGE), ValidationError, "t_end"),
+    ("rtol-10**400", lambda: ds.simulate(P, rtol=HUGE), ValidationError, "rtol"),
+    ("atol-10**400", lambda: ds.solve_pde(P, nodes=20, atol=-HUGE), ValidationError, "atol"),
+    ("dt-10**400", lambda: ds.simulate(P, method="rk4", dt=HUGE), ValidationError, "dt"),
+    ("max_steps-10**400", lambda: ds.simulate(P, max_steps=HUGE), ValidationError, "max_steps"),
+    ("nodes-10**400", lambda: ds.solve_pde(P, nodes=HUGE), ValidationError, "nodes"),
+    ("save_field_every-10**400", lambda: ds.solve_pde(P, nodes=20, save_field_every=HUGE), ValidationError,
+     "save_field_every"),
+    ("t_eval-10**400", lambda: ds.simulate(P, t_eval=[0.0, HUGE]), ValidationError, "t_eval"),
+    ("initial_twist-10**400", lambda: ds.solve_pde(P, nodes=20, initial_twist=[HUGE] * 20), ValidationError,
+     "initial_twist"),
+    ("linspace-stop-10**400", lambda: expand_grid({"length": ds.linspace(100.0, HUGE, 3)}), ValidationError,
+     "grid.length.stop"),
+    ("linspace-start-10**400", lambda: expand_grid({"omega": ds.linspace(-HUGE, 1.0, 3)}), ValidationError,
+     "grid.omega.start"),
+    ("linspace-count-10**400", lambda: expand_grid({"length": ds.linspace(100.0, 200.0, HUGE)}), ValidationError,
+     "grid.length.count"),
+    ("logspace-stop-10**400", lambda: expand_grid({"length": ds.logspace(1.0, HUGE, 3)}), ValidationError,
+     "grid.length.stop"),
+    ("linspace-count-float", lambda: expand_grid({"length": ds.linspace(100.0, 200.0, 3.0)}), ValidationError,
+     "grid.length.count"),
+    ("grid-key-c-400-digits", lambda: expand_grid({"c" + HUGE_TEXT: [0.1]}), ValidationError, "grid"),
+    ("grid-key-c257", lambda: expand_grid({"c257": [0.1]}), ValidationError, "grid"),  # no model has mode 257
+    ("from_dict-10**400", lambda: ds.Parameters.from_dict({"preset": "steel", "length": HUGE}), ValidationError,
+     "length"),
 ]
 
 
@@ -239,6 +305,12 @@ TOML_CASES = [
     ("bad-array-item", "[parameters]\ninitial_velocities = [0.1, 'x']\n", "initial_velocities", 2),
     ("unknown-preset", "[parameters]\npreset = 'copper'\n", "preset", 2),
     ("no-parameters-table", "[solver]\nmodes = 3\n", "parameters", None),
+    ("length-400-digits", f"[parameters]\nomega = 1.0\nlength = {HUGE_TEXT}\n", "length", 3),
+    ("length-1e400", "[parameters]\nlength = 1e400\n", "length", 2),
+    ("velocity-400-digits", f"[parameters]\ninitial_velocities = [0.1, -{HUGE_TEXT}]\n", "initial_velocities", 2),
+    ("integer-5000-digits", "[parameters]\nlength = " + "7" * 5000 + "\n", "toml", None),  # int() refuses it
+    ("deeply-nested-array", DEEP_TOML, "toml", None),  # RecursionError in the parser before
+    ("deeply-nested-inline-table", "[parameters]\na = " + "{b = " * 10_000 + "\n", "toml", None),
 ]
 
 
@@ -273,12 +345,15 @@ SOLVER_TOML_CASES = [
     ("bad-solver-value", "[parameters]\n[solver]\nmodes = 3\nrtol = -1e-9\n", "rtol", 4),
     ("bad-parameter-value", "[parameters]\nlength = -100.0\n", "length", 2),
     ("malformed", "[solver\n", "toml", 1),
+    ("length-400-digits", f"[parameters]\nlength = {HUGE_TEXT}\n", "length", 2),
+    ("solver-modes-400-digits", f"[parameters]\n[solver]\nmodes = {HUGE_TEXT}\n", "modes", 3),
+    ("solver-samples-400-digits", f"[parameters]\n[solver]\nt_end = 0.01\nsamples = {HUGE_TEXT}\n", "samples", 4),
+    ("solver-t_end-400-digits", f"[parameters]\n[solver]\nt_end = {HUGE_TEXT}\n", "t_end", 3),
+    ("solver-z-400-digits", f"[parameters]\n[solver]\nt_end = 0.01\nz = {HUGE_TEXT}\n", "z", 4),
 ]
 
 
-@pytest.mark.parametrize(
-    "text, key, line", [c[1:] for c in SOLVER_TOML_CASES], ids=[c[0] for c in SOLVER_TOML_CASES]
-)
+@pytest.mark.parametrize("text, key, line", [pytest.param(*c[1:], id=c[0]) for c in SOLVER_TOML_CASES])
 def test_cli_config_errors_name_file_line_and_key(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], text: str, key: str, line: int
 ) -> None:
@@ -313,6 +388,13 @@ CLI_CASES = [
     ("bad-method", ["simulate", "--method", "euler"], "--method"),
     ("bad-velocities", ["simulate", "--initial-velocities", "a,b"], "--initial-velocities"),
     ("dt-too-small", ["simulate", "--method", "rk4", "--dt", "1e-12"], "dt"),
+    ("modes-400-digits", ["simulate", "--modes", HUGE_TEXT], "modes"),
+    ("samples-400-digits", ["simulate", "--samples", HUGE_TEXT], "samples"),
+    ("nodes-400-digits", ["pde", "--nodes", HUGE_TEXT], "nodes"),
+    ("save-field-every-400-digits", ["pde", "--nodes", "20", "--save-field-every", HUGE_TEXT], "save_field_every"),
+    ("length-400-digits", ["simulate", "--length", HUGE_TEXT], "length"),  # float("1000...0") is inf
+    ("t_end-400-digits", ["simulate", "--t-end", "-" + HUGE_TEXT], "t_end"),
+    ("modes-5000-digits", ["simulate", "--modes", "9" * 5000], "--modes"),  # int() refuses it: a usage error
 ]
 
 
@@ -337,6 +419,36 @@ def test_cli_errors_in_a_real_process_have_no_traceback() -> None:
         )
         assert proc.returncode == 2, proc.stderr
         assert proc.stderr.count("\n") == 1 and needle in proc.stderr and "Traceback" not in proc.stderr
+
+
+REAL_PROCESS_CASES = [
+    ("modes-400-digits", ["simulate", "--modes", HUGE_TEXT], None, "invalid modes"),
+    ("samples-400-digits", ["simulate", "--samples", HUGE_TEXT], None, "invalid samples"),
+    ("toml-length-400-digits", ["simulate", "{file}"], f"[parameters]\nlength = {HUGE_TEXT}\n",
+     "line 2: invalid length"),
+    ("toml-deeply-nested", ["pde", "{file}"], DEEP_TOML, "invalid toml"),
+    ("sweep-toml-deeply-nested", ["sweep", "{file}", "--out", "{dir}"], DEEP_TOML, "invalid toml"),
+]
+
+
+@pytest.mark.parametrize("argv, text, needle", [c[1:] for c in REAL_PROCESS_CASES],
+                         ids=[c[0] for c in REAL_PROCESS_CASES])
+def test_numbers_too_large_and_nesting_too_deep_exit_2_without_traceback(
+    tmp_path: Path, argv: list[str], text: Any, needle: str
+) -> None:
+    """Before: OverflowError / RecursionError tracebacks with exit status 1."""
+    path = tmp_path / "case.toml"
+    if text is not None:
+        path.write_text(text)
+    args = [a.format(file=path, dir=tmp_path / "out") for a in argv]
+    proc = subprocess.run([sys.executable, "-m", "drillstring", *args], capture_output=True, text=True,
+                          timeout=120, cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr, proc.stderr
+    assert proc.stderr.startswith("drillstring: error: ") and needle in proc.stderr, proc.stderr
+    if text is not None:
+        assert str(path) in proc.stderr
+    assert len(proc.stderr) < 400  # the 401 digits are not echoed
 
 
 # ------------------------------------------------------------------ the raw bindings
@@ -429,7 +541,7 @@ def test_raw_bindings_raise_type_or_value_errors(call: Callable[[], Any], error:
 
 def test_the_case_table_is_large() -> None:
     total = (len(PARAMETER_CASES) + len(OPTION_CASES) + len(TOML_CASES) + len(SOLVER_TOML_CASES)
-             + len(CLI_CASES) + len(CORE_CASES))
+             + len(CLI_CASES) + len(CORE_CASES) + len(REAL_PROCESS_CASES))
     assert total >= 40
     names = [c[0] for c in OPTION_CASES] + [c[0] for c in CORE_CASES] + [c[0] for c in CLI_CASES]
     assert len(set(names)) >= 40

@@ -290,6 +290,25 @@ def test_malformed_toml_names_file_and_line(tmp_path: Path) -> None:
         assert "line 3" in message
 
 
+def test_toml_nesting_and_big_integers_within_the_parser_s_limits_still_load(tmp_path: Path) -> None:
+    """load_toml refuses only what the parser cannot represent (nesting beyond its recursion,
+    integers beyond 4300 digits, see test_bad_input): moderate nesting and long integers load."""
+    big = 10**400
+    path = _write(tmp_path, "[parameters]\nlength = 250\n[other]\na = " + "[" * 50 + "1" + "]" * 50
+                  + f"\nb = {big}\n")
+    document = load_toml(path)
+    inner = document["other"]["a"]
+    for _ in range(50):
+        inner = inner[0]
+    assert inner == 1 and document["other"]["b"] == big
+    assert load(path).length == 250.0  # the other tables do not matter to load()
+    # an integer too large for a float as a parameter is refused like 1e400, naming file and line
+    path = _write(tmp_path, f"[parameters]\nlength = {big}\n")
+    with pytest.raises(ValidationError) as info:
+        load(path)
+    assert (info.value.field, info.value.source, info.value.line) == ("length", str(path), 2)
+
+
 def test_missing_file(tmp_path: Path) -> None:
     with pytest.raises(ValidationError) as info:
         load(tmp_path / "nope.toml")

@@ -70,3 +70,18 @@ def test_sweep_command_errors_are_one_line(tmp_path):
     assert proc.stderr.count("\n") == 1 and "lenght" in proc.stderr and "typo.toml" in proc.stderr
     config.write_text("[base]\n[solver]\nrtol = 'tight'\n")
     assert main(["sweep", str(config), "--out", str(tmp_path / "o")]) == 2
+
+
+def test_a_resume_that_recomputes_chunks_says_so_in_one_line(tmp_path, capsys):
+    config = tmp_path / "sweep.toml"
+    config.write_text('[base]\npreset = "aluminum"\n[solver]\nt_end = 0.05\nsamples = 64\n'
+                      '[grid]\nlength = [100.0, 150.0, 200.0]\n')
+    args = ["sweep", str(config), "--out", str(tmp_path / "out"), "--chunk-size", "2", "--no-plots"]
+    assert main(args) == 0
+    chunk = tmp_path / "out" / "chunks" / "chunk-00001.parquet"
+    chunk.write_bytes(chunk.read_bytes()[:-1] + b"\0")
+    capsys.readouterr()
+    assert main(args) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("drillstring: warning: resuming the sweep in ")
+    assert "chunk 1: its bytes differ from those written (SHA-256 mismatch)" in err[0]

@@ -106,6 +106,7 @@ class BatchOutput(TypedDict, total=False):
     unstable_modes: NDArray[np.int64]
     nfev: NDArray[np.int64]
     max_share: NDArray[np.float64]
+    interrupt: Optional[BaseException]
     t: NDArray[np.float64]
     y: NDArray[np.float64]
     theta: NDArray[np.float64]
@@ -131,10 +132,48 @@ def batch_solve(
     max_step: float = ...,
     keep_trajectories: bool = False,
     threads: Optional[int] = None,
+    memory_budget: Optional[int] = None,
 ) -> BatchOutput:
-    """Solve R runs of one Galerkin basis in parallel (GIL released); one entry per run in
-    every column (``unstable_modes`` -1 for an invalid run; ``t``, ``y`` (R, S, 2m), ``theta``
-    (R, S) only with ``keep_trajectories``)."""
+    """Solve R runs of one Galerkin basis in parallel (GIL released) on a thread pool made for
+    this call; one entry per run in every column (``unstable_modes`` -1 for an invalid run;
+    ``t``, ``y`` (R, S, 2m), ``theta`` (R, S) only with ``keep_trajectories``).
+
+    Ctrl-C stops the runs under way within tens of ms: the result is still returned, the runs
+    that did not finish have status ``"interrupted"``, and ``interrupt`` holds the exception to
+    raise (None otherwise).
+
+    Raises
+    ------
+    ValidationError
+        ``threads`` outside ``1..=MAX_THREADS``, a batch whose memory estimate exceeds
+        ``memory_budget`` bytes (field ``samples``), or other bad shared options.
+    """
+    ...
+
+#: Largest ``threads`` of a batch solve.
+MAX_THREADS: int
+
+class BatchPlan(TypedDict):
+    threads: int
+    bytes: int
+
+def batch_plan(
+    modes: int,
+    samples: int,
+    runs: int,
+    threads: Optional[int] = None,
+    keep_trajectories: bool = False,
+    memory_budget: Optional[int] = None,
+) -> BatchPlan:
+    """Check a planned batch before any work: the thread count it would use (every core for
+    None) and its peak memory estimate in bytes.
+
+    Raises
+    ------
+    ValidationError
+        ``threads`` outside ``1..=MAX_THREADS``; ``samples`` when the estimate exceeds
+        ``memory_budget`` bytes (or ``samples`` is not an integer the core can hold).
+    """
     ...
 
 class ScaledSystem(TypedDict):

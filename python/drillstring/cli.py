@@ -7,17 +7,27 @@ Errors are reported as one line on stderr with exit status 2 (no traceback); an 
 TOML file names the file, the line and the key. Ctrl-C stops a run within a fraction of a second
 with "drillstring: interrupted" and exit status 130; output files are written atomically, so an
 interrupted run leaves none half-written.
+
+Every output destination is checked before any work is done (:func:`_check_outputs`,
+:func:`drillstring._output.check_destination`); a command never writes over its own input file;
+``-`` writes a file output to standard output (the messages then go to stderr); a closed or
+failing standard output is an error (exit status 2), never silently lost output.
 """
 
 from __future__ import annotations
 
 import argparse
+import errno
+import os
 import sys
-from collections.abc import Sequence
-from typing import Any, NoReturn, Optional
+import warnings
+from collections.abc import Mapping, Sequence
+from typing import Any, NoReturn, Optional, TextIO
 
 from . import __version__
-from .errors import DrillstringError, ValidationError
+from ._output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
+from .errors import DrillstringError, DrillstringWarning, ValidationError
+from .limits import as_float
 from .parameters import PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
 from .simulate import METHODS, PDE_METHODS, simulate
 from .table2 import format_table2, table2, table2_json
@@ -59,7 +69,7 @@ def _solver_table(path: str) -> dict[str, Any]:
         kind = SOLVER_KEYS[key]
         ok = isinstance(value, kind) and not (kind is not bool and isinstance(value, bool))
         if kind is float and isinstance(value, int) and not isinstance(value, bool):
-            ok, value = True, float(value)
+            ok = True  # kept an int: the solver's check converts it (and refuses 10**400)
         if not ok:
             kinds = {int: "an integer", float: "a number", bool: "true or false", str: "a string"}
             raise ValidationError(
@@ -92,7 +102,7 @@ def _add_model_arguments(p: argparse.ArgumentParser, methods: Sequence[str]) -> 
     p.add_argument("--dt", type=float, help="step of the fixed-step methods, s")
     p.add_argument("--samples", type=int, help="number of uniform output times (default 1001)")
     p.add_argument("--z", type=float, help="section z, m (default 2l/3)")
-    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,...")
+    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,... ('-': standard output)")
 
 
 def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parameters, dict[str, Any], float]:
@@ -118,17 +128,62 @@ def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parame
     if unknown:
         raise ValidationError(f"solver.{unknown[0]}", solver[unknown[0]], f"one of {', '.join(keys)} for this command")
     z = solver.pop("z", 2 * params.length / 3)
+    allowed = f"a section 0 <= z <= length = {params.length:g} m"
+    try:
+        z = as_float("z", z, allowed)
+        if not 0.0 <= z <= params.length:
+            raise ValidationError("z", z, allowed)
+    except ValidationError as exc:
+        raise _from_config(exc, args) from exc
     return params, solver, z
 
 
-def _summary(result: Any, z: float, what: str) -> None:
+def _say(text: str, file: Optional[TextIO] = None) -> None:
+    """Prints a line of the command's report; a failing standard output raises
+    :class:`~drillstring._output.OutputError` naming it (never silently lost output)."""
+    stream = sys.stdout if file is None else file
+    if stream is None:
+        raise OutputError(errno.EBADF, "it is closed", "standard output")
+    try:
+        print(text, file=stream)
+    except OSError as exc:
+        if stream is sys.stdout:
+            raise OutputError(exc.errno or errno.EIO, exc.strerror or str(exc), "standard output") from exc
+        raise
+
+
+def _check_outputs(outputs: Mapping[str, Any]) -> TextIO:
+    """Checks the file outputs of a command (option -> path as it will be written, ``None`` when
+    not asked for) before any work is done: each with :func:`check_destination`, and no two
+    options naming the same destination. Returns the stream for the command's messages: stderr
+    when an output goes to standard output (``-``), else stdout."""
+    seen: dict[str, str] = {}
+    for option, path in outputs.items():
+        if path is None:
+            continue
+        check_destination(path, field=option)
+        key = STDOUT if is_stdout(path) else os.path.realpath(path)
+        if key in seen:
+            raise ValidationError(option, path, f"a destination other than that of {seen[key]}")
+        seen[key] = option
+    return sys.stderr if STDOUT in seen else sys.stdout
+
+
+def _wrote(path: Any, file: TextIO) -> None:
+    """Reports a file written (the path the writer returns: with an appended extension)."""
+    if path is not None and not is_stdout(path):
+        _say(f"wrote {os.fsdecode(path)}", file)
+
+
+def _summary(result: Any, z: float, what: str, file: TextIO) -> None:
     theta = result.theta(z)
-    print(
+    _say(
         f"{result.method}: {result.t.size} samples over 0 <= t <= {result.t[-1]:g} s, {what}\n"
         f"max |theta(z={z:.4g} m)| = {abs(theta).max():.6e} rad, "
         f"energy drift {result.energy_drift():.2e}, "
         f"{result.stats.nfev} rhs evaluations, {result.stats.naccept} steps "
-        f"({result.stats.nreject} rejected)"
+        f"({result.stats.nreject} rejected)",
+        file,
     )
 
 
@@ -142,28 +197,38 @@ def _add_simulate(sub: Any) -> None:
     _add_model_arguments(p, METHODS)
     p.add_argument("--modes", type=int, help="number of elastic modes n (default 3)")
     p.add_argument("--rigid-mode", action="store_true", default=None, help="include the rigid mode i = 0")
-    p.add_argument("--plot", help="write a time-history and phase-portrait PNG")
+    p.add_argument("--plot", help="write a time-history and phase-portrait PNG "
+                   "(format from the extension; .png is appended to a name without one)")
     p.set_defaults(func=_cmd_simulate)
 
 
 SIMULATE_KEYS = ("modes", "rigid_mode", "t_end", "method", "rtol", "atol", "dt", "samples", "z")
 
 
+def _plot_target(args: argparse.Namespace) -> Any:
+    """The file ``--plot`` writes (an extension appended as matplotlib does), or ``None``."""
+    if not args.plot:
+        return None
+    from .plots import plot_path
+
+    return plot_path(args.plot, "--plot")
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     params, solver, z = _model_inputs(args, SIMULATE_KEYS)
+    plot = _plot_target(args)
+    info = _check_outputs({"--out": args.out, "--plot": plot})
     try:
         result = simulate(params, **solver)
     except ValidationError as exc:
         raise _from_config(exc, args) from exc
-    _summary(result, z, f"modes {', '.join(map(str, result.indices))}")
+    _summary(result, z, f"modes {', '.join(map(str, result.indices))}", info)
     if args.out:
-        result.to_csv(args.out, z)
-        print(f"wrote {args.out}")
-    if args.plot:
+        _wrote(result.to_csv(args.out, z), info)
+    if plot:
         from .plots import save, time_history_and_phase
 
-        save(time_history_and_phase(result, z), args.plot)
-        print(f"wrote {args.plot}")
+        _wrote(save(time_history_and_phase(result, z), plot), info)
     return 0
 
 
@@ -177,9 +242,11 @@ def _add_pde(sub: Any) -> None:
     )
     _add_model_arguments(p, PDE_METHODS)
     p.add_argument("--nodes", type=int, help="grid points N >= 3, ends included (default 240)")
-    p.add_argument("--field", help="write theta(z, t) on the grid to a compressed .npz (t, z, theta)")
+    p.add_argument("--field", help="write theta(z, t) on the grid to a compressed .npz (t, z, theta); "
+                   ".npz is appended to a name without it")
     p.add_argument("--save-field-every", type=int, help="keep every k-th output sample in --field (default 1)")
-    p.add_argument("--plot", help="write a space-time map of theta(z, t) and theta(z_k, t) as PNG")
+    p.add_argument("--plot", help="write a space-time map of theta(z, t) and theta(z_k, t) as PNG "
+                   "(format from the extension; .png is appended to a name without one)")
     p.set_defaults(func=_cmd_pde)
 
 
@@ -187,26 +254,26 @@ PDE_KEYS = ("nodes", "t_end", "method", "rtol", "atol", "dt", "samples", "z")
 
 
 def _cmd_pde(args: argparse.Namespace) -> int:
-    from .pde import solve_pde
+    from .pde import field_path, solve_pde
 
     params, solver, z = _model_inputs(args, PDE_KEYS)
+    field = field_path(args.field) if args.field else None
+    plot = _plot_target(args)
+    info = _check_outputs({"--out": args.out, "--field": field, "--plot": plot})
     every = args.save_field_every if args.save_field_every is not None else (1 if args.field or args.plot else None)
     try:
         result = solve_pde(params, save_field_every=every, **solver)
     except ValidationError as exc:
         raise _from_config(exc, args) from exc
-    _summary(result, z, f"{result.nodes} nodes")
+    _summary(result, z, f"{result.nodes} nodes", info)
     if args.out:
-        result.to_csv(args.out, z)
-        print(f"wrote {args.out}")
-    if args.field:
-        result.save_field(args.field)
-        print(f"wrote {args.field}")
-    if args.plot:
+        _wrote(result.to_csv(args.out, z), info)
+    if field:
+        _wrote(result.save_field(field), info)
+    if plot:
         from .plots import save, space_time
 
-        save(space_time(result, z), args.plot)
-        print(f"wrote {args.plot}")
+        _wrote(save(space_time(result, z), plot), info)
     return 0
 
 
@@ -241,13 +308,14 @@ def _cmd_convergence(args: argparse.Namespace) -> int:
     if args.config and args.preset:
         raise ValidationError("--preset", args.preset, "either a config file or --preset, not both")
     params = load(args.config) if args.config else preset(args.preset or "aluminum")
+    check_destination(args.out, field="--out", directory=True, files=convergence.FILES)
     kwargs: dict[str, Any] = {"t_end": args.t_end, "max_nodes": args.max_nodes, "tol": args.tol}
     if args.modes:
         kwargs["modes"] = args.modes
     result = convergence.study(params, progress=lambda line: print(line, file=sys.stderr, flush=True), **kwargs)
     for path in convergence.write(result, args.out):
-        print(f"wrote {path}")
-    print("\n".join(convergence.summary(result)))
+        _wrote(path, sys.stdout)
+    _say("\n".join(convergence.summary(result)))
     return 0
 
 
@@ -263,7 +331,7 @@ def _add_table2(sub: Any) -> None:
 
 def _cmd_table2(args: argparse.Namespace) -> int:
     rows = table2()
-    print(table2_json(rows) if args.json else format_table2(rows))
+    _say(table2_json(rows) if args.json else format_table2(rows))
     return 0
 
 
@@ -291,14 +359,15 @@ def _cmd_paper(args: argparse.Namespace) -> int:
     per_second = paper.QUICK_SAMPLES_PER_SECOND if args.quick else paper.SAMPLES_PER_SECOND
     command = f"drillstring paper --out {args.out}" + (" --quick" if args.quick else "") + (
         f" --t-end-scale {args.t_end_scale:g}" if args.t_end_scale is not None else "")
+    check_destination(args.out, field="--out", directory=True, files=paper.output_names())
     report = paper.reproduce(args.out, t_end_scale=scale, samples_per_second=per_second, command=command)
     verdicts = [f.verdict for f in report.figures]
-    print(f"wrote {len(report.files)} files to {report.out_dir} in {report.total_seconds:.1f} s")
-    print(f"figure claims: {verdicts.count('supported')} supported, "
-          f"{verdicts.count('partly supported')} partly, {verdicts.count('contradicted')} contradicted")
+    _say(f"wrote {len(report.files)} files to {report.out_dir} in {report.total_seconds:.1f} s")
+    _say(f"figure claims: {verdicts.count('supported')} supported, "
+         f"{verdicts.count('partly supported')} partly, {verdicts.count('contradicted')} contradicted")
     for number, finding in report.contradictions:
-        print(f"  Fig. {number}: {finding}")
-    print(f"report: {report.report_html}")
+        _say(f"  Fig. {number}: {finding}")
+    _say(f"report: {report.report_html}")
     return 0
 
 
@@ -358,7 +427,7 @@ def _sweep_config(path: str) -> tuple[Parameters, dict[str, Any], dict[str, Any]
             allowed = "one of the keys " + ", ".join(SWEEP_SOLVER_KEYS)
             raise ValidationError(f"solver.{key}", value, allowed, source=path)
         if kind is float and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
+            kind = int  # kept an int: the sweep's check converts it (and refuses 10**400)
         if not isinstance(value, kind) or (kind is not bool and isinstance(value, bool)):
             raise ValidationError(f"solver.{key}", value, f"a {kind.__name__}", source=path)
         solver[key] = value
@@ -369,12 +438,13 @@ def _sweep_config(path: str) -> tuple[Parameters, dict[str, Any], dict[str, Any]
 
 
 def _cmd_sweep(args: argparse.Namespace) -> int:
-    import os
     import time
 
     from .sweep import sweep
+    from .sweep_store import MANIFEST, RESULTS_CSV, RESULTS_PARQUET
 
     base, solver, grid = _sweep_config(args.config)
+    check_destination(args.out, field="--out", directory=True, files=(MANIFEST, RESULTS_PARQUET, RESULTS_CSV))
     client = None
     if args.scheduler:
         try:
@@ -398,6 +468,10 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             if exc.source is None and exc.field.startswith(("grid", "modes", "rigid_mode", "samples")):
                 raise ValidationError(exc.field, exc.value, exc.allowed, source=args.config) from exc
             raise
+        except KeyboardInterrupt:
+            print(f"drillstring: the finished runs are kept in {args.out}; run the same command again to resume",
+                  file=sys.stderr)
+            raise
     finally:
         if client is not None:
             client.close()
@@ -406,15 +480,15 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     ok = int(counts.get("success", 0))
     invalid = int(counts.get("invalid", 0))
     failed = len(table) - ok - invalid
-    print(f"{len(table)} runs in {seconds:.1f} s ({len(table) / seconds:.0f} runs/s): "
-          f"{ok} ok, {failed} failed, {invalid} invalid")
-    print(f"wrote {os.path.join(args.out, 'results.parquet')} and {os.path.join(args.out, 'results.csv')}")
+    _say(f"{len(table)} runs in {seconds:.1f} s ({len(table) / seconds:.0f} runs/s): "
+         f"{ok} ok, {failed} failed, {invalid} invalid")
+    _say(f"wrote {os.path.join(args.out, 'results.parquet')} and {os.path.join(args.out, 'results.csv')}")
     if not args.no_plots:
         from .plots import sweep_plots
 
         written = sweep_plots(table, os.path.join(args.out, "plots"))
         if written:
-            print(f"wrote {len(written)} plots to {os.path.join(args.out, 'plots')}")
+            _say(f"wrote {len(written)} plots to {os.path.join(args.out, 'plots')}")
     return 0
 
 
@@ -442,13 +516,53 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _flush_stdout() -> None:
+    """Flushes standard output at the end of a command: output that cannot be written (a closed
+    descriptor, a full disk, a reader that went away) is an error, not silently lost."""
+    if sys.stdout is None:
+        raise OutputError(errno.EBADF, "it is closed", "standard output")
+    try:
+        sys.stdout.flush()
+    except OSError as exc:
+        raise OutputError(exc.errno or errno.EIO, exc.strerror or str(exc), "standard output") from exc
+
+
+def _drop_failed_stdout() -> None:
+    """After standard output failed: close the process's own stdout (what is still buffered
+    cannot be written), so that the interpreter's flush at exit does not fail a second time
+    with a traceback. Other streams (a test's capture) are left alone."""
+    stream = sys.stdout
+    if stream is None or stream is not sys.__stdout__:
+        return
+    try:
+        stream.flush()
+    except OSError:
+        try:
+            stream.close()
+        except OSError:
+            pass
+
+
+def _show_warning(message: Any, category: Any, *_: Any, **__: Any) -> None:
+    """A warning as one line on stderr (``drillstring: warning: ...``)."""
+    print(f"drillstring: warning: {message}".replace("\n", " "), file=sys.stderr, flush=True)
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Entry point of the ``drillstring`` command; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        return int(args.func(args))
-    except (DrillstringError, ValueError, OSError, MemoryError) as exc:
+        with command_inputs(getattr(args, "config", None)), warnings.catch_warnings():
+            warnings.simplefilter("always", DrillstringWarning)
+            warnings.showwarning = _show_warning
+            if sys.stdout is None:  # started with descriptor 1 closed (`drillstring ... >&-`)
+                raise OutputError(errno.EBADF, "it is closed", "standard output")
+            status = int(args.func(args))
+            _flush_stdout()
+            return status
+    except (DrillstringError, ValueError, OSError, MemoryError, ArithmeticError, RecursionError) as exc:
+        _drop_failed_stdout()
         print(f"drillstring: error: {exc}".replace("\n", " "), file=sys.stderr)
         return 2
     except KeyboardInterrupt:

@@ -25,13 +25,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from numbers import Real
 from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import ValidationError
+from .limits import as_float
 from .section import Section
 
 if TYPE_CHECKING:
@@ -48,9 +48,7 @@ def shear_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
 
 
 def _finite(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, Real) or not math.isfinite(value):
-        raise ValidationError(name, value, "a finite real number")
-    return float(value)
+    return as_float(name, value, "a finite real number")
 
 
 def _mode_numbers(indices: ArrayLike) -> NDArray[np.float64]:

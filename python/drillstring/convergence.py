@@ -12,6 +12,7 @@ with and without the rigid mode ``i = 0``, are measured by the relative max-norm
 from __future__ import annotations
 
 import csv
+import io
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -20,7 +21,7 @@ from typing import TYPE_CHECKING, Any, Callable, Optional
 
 import numpy as np
 
-from ._atomic import atomic_path, atomic_write
+from ._output import make_directory, write_bytes
 from .parameters import Parameters, preset
 from .pde import solve_pde
 from .simulate import simulate
@@ -29,7 +30,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
 
-__all__ = ["GridLevel", "ModelError", "ConvergenceStudy", "study", "write", "DEFAULT_MODES"]
+__all__ = ["GridLevel", "ModelError", "ConvergenceStudy", "study", "write", "render", "FILES", "DEFAULT_MODES"]
 
 #: Galerkin sizes measured by default.
 DEFAULT_MODES = (1, 2, 3, 4, 6, 8, 12, 16)
@@ -214,29 +215,39 @@ def figure(result: ConvergenceStudy) -> Figure:
     return fig
 
 
+#: The files :func:`write` puts into its directory.
+FILES = ("convergence.csv", "grids.csv", "reference.csv", "convergence.png")
+
+
+def render(result: ConvergenceStudy) -> dict[str, bytes]:
+    """The contents of :data:`FILES`: ``convergence.csv`` (models), ``grids.csv`` (PDE
+    refinement), ``reference.csv`` (t, theta of the converged PDE) and ``convergence.png``."""
+    models = io.StringIO(newline="")
+    writer = csv.writer(models)
+    writer.writerow(["modes", "rigid_mode", "relative_error", "seconds"])
+    for m in result.models:
+        writer.writerow([m.modes, m.rigid_mode, repr(m.error), f"{m.seconds:.4f}"])
+    grids = io.StringIO(newline="")
+    writer = csv.writer(grids)
+    writer.writerow(["nodes", "grid_spacing_m", "difference", "extrapolated_difference", "energy_drift", "seconds"])
+    for g in result.grids:
+        writer.writerow([g.nodes, repr(result.params.length / (g.nodes - 1)), g.difference,
+                         g.extrapolated_difference, repr(g.energy_drift), f"{g.seconds:.3f}"])
+    reference = io.BytesIO()
+    np.savetxt(reference, np.column_stack([result.t, result.reference]), delimiter=",",
+               header="t,theta_reference", comments="", fmt="%.12e")
+    png = io.BytesIO()
+    figure(result).savefig(png, dpi=120, format="png")
+    return dict(zip(FILES, (models.getvalue().encode(), grids.getvalue().encode(), reference.getvalue(),
+                            png.getvalue())))
+
+
 def write(result: ConvergenceStudy, out_dir: Any) -> list[Path]:
-    """Writes ``convergence.csv`` (models), ``grids.csv`` (PDE refinement), ``convergence.png``,
-    ``reference.csv`` (t, theta of the converged PDE) into ``out_dir``."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = [out / "convergence.csv", out / "grids.csv", out / "reference.csv", out / "convergence.png"]
-    with atomic_path(paths[0]) as tmp, open(tmp, "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(["modes", "rigid_mode", "relative_error", "seconds"])
-        for m in result.models:
-            writer.writerow([m.modes, m.rigid_mode, repr(m.error), f"{m.seconds:.4f}"])
-    with atomic_path(paths[1]) as tmp, open(tmp, "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(["nodes", "grid_spacing_m", "difference", "extrapolated_difference", "energy_drift", "seconds"])
-        for g in result.grids:
-            writer.writerow([g.nodes, repr(result.params.length / (g.nodes - 1)), g.difference,
-                             g.extrapolated_difference, repr(g.energy_drift), f"{g.seconds:.3f}"])
-    data = np.column_stack([result.t, result.reference])
-    atomic_write(paths[2], lambda target: np.savetxt(target, data, delimiter=",", header="t,theta_reference",
-                                                     comments="", fmt="%.12e"))
-    fig = figure(result)
-    atomic_write(paths[3], lambda target: fig.savefig(target, dpi=120))
-    return paths
+    """Writes :data:`FILES` (:func:`render`) into ``out_dir`` (created if needed) and returns
+    their paths; see :mod:`drillstring._output` for how existing files, symlinks and devices
+    there are treated."""
+    out = make_directory(out_dir)
+    return [write_bytes(out / name, data, field="out_dir") for name, data in render(result).items()]
 
 
 def summary(result: ConvergenceStudy) -> list[str]:

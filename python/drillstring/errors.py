@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["DrillstringError", "ValidationError", "SolveError"]
+__all__ = ["DrillstringError", "ValidationError", "SolveError", "DrillstringWarning", "ResumeWarning"]
 
 
 class DrillstringError(Exception):
@@ -66,3 +66,14 @@ class SolveError(DrillstringError, RuntimeError):
         self.status = status
         self.result = result
         super().__init__(f"solve failed ({status}): {message}")
+
+
+class DrillstringWarning(UserWarning):
+    """Base class of the warnings drillstring issues (the command line prints each as one line,
+    ``drillstring: warning: ...``)."""
+
+
+class ResumeWarning(DrillstringWarning):
+    """A resumed sweep found a stored chunk that failed verification (altered bytes, a file of
+    another chunk or sweep, a missing checksum record) and recomputed it; the message names the
+    chunk and the reason."""

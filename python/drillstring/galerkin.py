@@ -56,7 +56,6 @@ import functools
 import itertools
 import math
 from dataclasses import dataclass
-from numbers import Integral
 from typing import TYPE_CHECKING, Any, NamedTuple, Union
 
 import numpy as np
@@ -64,6 +63,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .coefficients import PDECoefficients
 from .errors import ValidationError
+from .limits import as_float, as_int
 
 if TYPE_CHECKING:
     from .parameters import Parameters
@@ -94,11 +94,7 @@ FloatOrArray = Union[float, FloatArray]
 
 
 def _check_modes(modes: Any) -> int:
-    if isinstance(modes, (bool, np.bool_)) or not isinstance(modes, Integral):
-        raise ValidationError("modes", modes, f"an integer, 1 <= modes <= {MAX_MODES}")
-    if not 1 <= int(modes) <= MAX_MODES:
-        raise ValidationError("modes", modes, f"1 <= modes <= {MAX_MODES}")
-    return int(modes)
+    return as_int("modes", modes, 1, MAX_MODES)
 
 
 def _check_rigid_mode(rigid_mode: Any) -> bool:
@@ -308,8 +304,8 @@ class ModalCoefficients:
             raise ValidationError("indices", self.indices, "a non-empty 1-D array of modes")
         set_ = functools.partial(object.__setattr__, self)
         set_("indices", _readonly(indices))
-        length = float(self.length)
-        if not (math.isfinite(length) and length > 0.0):
+        length = as_float("length", self.length, "0 < length < inf")
+        if not length > 0.0:
             raise ValidationError("length", self.length, "0 < length < inf")
         set_("length", length)
         for name in ("mass", "stiffness"):

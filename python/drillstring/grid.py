@@ -1,8 +1,9 @@
 """Sweep grids: axes of :class:`~drillstring.parameters.Parameters` fields and their product.
 
 A grid is a mapping ``{field: values}``. The keys are :class:`Parameters` field names, or
-``c1``, ``c2``, ... for one initial velocity ``C_i`` (the other ``C_j`` keep their base values;
-missing ones are 0). The values are
+``c1``, ``c2``, ..., ``c256`` for one initial velocity ``C_i`` (the other ``C_j`` keep their base
+values; missing ones are 0; ``i`` is at most :data:`~drillstring.galerkin.MAX_MODES`, the largest
+model). The values are
 
 * a list, tuple or 1-D array of values (``initial_velocities``: a list of sequences);
 * ``{"linspace": [start, stop, count]}``: ``count`` evenly spaced values, both ends included
@@ -22,12 +23,13 @@ import itertools
 import math
 import re
 from collections.abc import Mapping, Sequence
-from numbers import Integral, Real
 from typing import Any, Union
 
 import numpy as np
 
 from .errors import ValidationError
+from .galerkin import MAX_MODES
+from .limits import as_float, as_int, check_run_count
 from .parameters import Parameters
 
 __all__ = [
@@ -62,10 +64,15 @@ def grid_fields() -> tuple[str, ...]:
 
 
 def _check_key(key: Any) -> str:
-    if isinstance(key, str) and (key in Parameters.field_names() or _VELOCITY_KEY.match(key)):
-        return key
+    """A grid key: a Parameters field, or ``c<i>`` for the initial velocity of a mode
+    ``1 <= i <= MAX_MODES`` (a mode beyond is never in a model: its ``C_i`` could not matter)."""
+    if isinstance(key, str):
+        velocity = _VELOCITY_KEY.match(key)
+        if key in Parameters.field_names() or (velocity and len(velocity.group(1)) <= 6
+                                               and int(velocity.group(1)) <= MAX_MODES):
+            return key
     raise ValidationError(
-        "grid", key, "a Parameters field (" + ", ".join(Parameters.field_names()) + ") or c1, c2, ..."
+        "grid", key, "a Parameters field (" + ", ".join(Parameters.field_names()) + f") or c1, c2, ..., c{MAX_MODES}"
     )
 
 
@@ -73,18 +80,18 @@ def _spacing(key: str, kind: str, spec: Any) -> list[float]:
     allowed = f"{{{kind} = [start, stop, count]}} with finite start, stop and an integer count >= 1"
     if not isinstance(spec, Sequence) or isinstance(spec, str) or len(spec) != 3:
         raise ValidationError(f"grid.{key}", spec, allowed)
-    start, stop, count = spec
-    ok = all(isinstance(v, Real) and not isinstance(v, bool) and math.isfinite(v) for v in (start, stop))
-    if not ok or isinstance(count, bool) or not isinstance(count, Integral) or count < 1:
-        raise ValidationError(f"grid.{key}", spec, allowed)
+    start_f = as_float(f"grid.{key}.start", spec[0], allowed)
+    stop_f = as_float(f"grid.{key}.stop", spec[1], allowed)
+    count = as_int(f"grid.{key}.count", spec[2], 1)
+    check_run_count(f"grid.{key}.count", count, count)
     if kind == "linspace":
-        return np.linspace(float(start), float(stop), int(count)).tolist()
-    if not (start > 0 and stop > 0):
+        return np.linspace(start_f, stop_f, count).tolist()
+    if not (start_f > 0 and stop_f > 0):
         raise ValidationError(
             f"grid.{key}", spec, "logspace end values start > 0 and stop > 0 (the values themselves, "
             "not powers of ten: {logspace = [0.1, 100.0, 4]} gives 0.1, 1, 10, 100)"
         )
-    return np.geomspace(float(start), float(stop), int(count)).tolist()
+    return np.geomspace(start_f, stop_f, count).tolist()
 
 
 def _plain(value: Any) -> Any:
@@ -132,11 +139,14 @@ def expand_grid(grid: Grid) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]
     Raises
     ------
     ValidationError
-        For an unknown key or a malformed axis.
+        For an unknown key or a malformed axis, or a product of more runs than the memory
+        budget allows to plan (:func:`drillstring.limits.check_run_count`), before listing them.
     """
     if not isinstance(grid, Mapping):
         raise ValidationError("grid", grid, "a mapping {Parameters field: values}")
     axes = {_check_key(key): axis_values(key, spec) for key, spec in grid.items()}
+    sizes = [len(values) for values in axes.values()]
+    check_run_count("grid", " x ".join(f"{len(v)} {k}" for k, v in axes.items()), math.prod(sizes))
     names = list(axes)
     runs = [dict(zip(names, combo)) for combo in itertools.product(*axes.values())]
     return axes, runs

@@ -12,12 +12,18 @@
   count ``ceil(t_end / dt)`` is known up front, so one needing more is refused at once (field
   ``dt``) unless ``max_steps`` is given; an adaptive solve that reaches its limit ends with status
   ``"max_steps"`` (:class:`~drillstring.errors.SolveError`).
+* **Number conversion**: every number a user gives (Python API, command line, TOML) is converted
+  by :func:`as_float` or :func:`as_int`. A value that is not a real number, not finite, or too
+  large for a float (``10**400``) or outside an integer range (``2**63``) raises
+  :class:`~drillstring.errors.ValidationError` naming the field and the allowed range, never
+  ``OverflowError``.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from numbers import Integral, Real
 from typing import Any
 
 from .errors import ValidationError
@@ -25,8 +31,11 @@ from .errors import ValidationError
 __all__ = [
     "ADAPTIVE_MAX_STEPS",
     "FIXED_MAX_STEPS",
+    "INT64_MAX",
     "MEMORY_BUDGET",
     "MEMORY_BUDGET_ENV",
+    "as_float",
+    "as_int",
     "check_output_size",
     "fixed_steps",
     "memory_budget",
@@ -45,8 +54,54 @@ ADAPTIVE_MAX_STEPS = 10_000_000
 #: up front: a request needing more is refused before any work unless ``max_steps`` is given.
 FIXED_MAX_STEPS = 100_000_000
 
+#: Largest integer option (a count of samples, nodes, steps, ...): what the core's 64-bit
+#: integers hold.
+INT64_MAX = 2**63 - 1
+
+#: Integers with more digits than this are shown in error messages by their digit count only
+#: (``repr`` of an integer beyond 4300 digits raises ``ValueError``).
+_SHOWN_DIGITS = 40
+
 _UNITS = {"": 1, "B": 1, "K": 1024, "KB": 1024, "KIB": 1024, "M": 1024**2, "MB": 1024**2, "MIB": 1024**2,
           "G": 1024**3, "GB": 1024**3, "GIB": 1024**3, "T": 1024**4, "TB": 1024**4, "TIB": 1024**4}
+
+
+def _shown(value: Any) -> Any:
+    """``value`` for an error message: an integer too long to print becomes a short description."""
+    if isinstance(value, Integral) and not isinstance(value, bool) and abs(int(value)) >= 10**_SHOWN_DIGITS:
+        magnitude = abs(int(value))
+        digits = int(math.log10(magnitude)) + 1
+        if 10 ** (digits - 1) > magnitude:  # log10 rounded up at a power of ten
+            digits -= 1
+        elif 10**digits <= magnitude:
+            digits += 1
+        return f"an integer of {digits} digits"
+    return value
+
+
+def as_float(field: str, value: Any, allowed: str) -> float:
+    """``value`` as a finite float, or :class:`~drillstring.errors.ValidationError` naming
+    ``field`` with ``allowed`` (bools, strings, NaN, infinities and integers too large for a float
+    such as ``10**400`` are refused)."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise ValidationError(field, _shown(value), allowed)
+    try:
+        result = float(value)
+    except (OverflowError, ValueError, TypeError):
+        raise ValidationError(field, _shown(value), allowed) from None
+    if not math.isfinite(result):
+        raise ValidationError(field, value, allowed)
+    return result
+
+
+def as_int(field: str, value: Any, minimum: int, maximum: int = INT64_MAX, allowed: str = "") -> int:
+    """``value`` as an int with ``minimum <= value <= maximum``, or
+    :class:`~drillstring.errors.ValidationError` naming ``field`` (default message: "an integer,
+    minimum <= field <= maximum"; bools and floats are refused)."""
+    if isinstance(value, bool) or not isinstance(value, Integral) or not minimum <= int(value) <= maximum:
+        top = "2**63 - 1" if maximum == INT64_MAX else str(maximum)
+        raise ValidationError(field, _shown(value), allowed or f"an integer, {minimum} <= {field} <= {top}")
+    return int(value)
 
 
 def memory_budget() -> int:
@@ -71,7 +126,7 @@ def memory_budget() -> int:
 def _human_bytes(n: float) -> str:
     for unit in ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB"):
         if n < 1024 or unit == "PiB":
-            return f"{n:.0f} {unit}" if unit == "bytes" else f"{n:.3g} {unit}"
+            return f"{n:.0f} {unit}" if unit == "bytes" else f"{n:.4g} {unit}"
         n /= 1024
     return f"{n:.3g} PiB"  # pragma: no cover
 
@@ -102,3 +157,40 @@ def fixed_steps(t_end: float, dt: float) -> int:
     if not ratio < 2.0**62:
         return 2**62
     return max(math.ceil(ratio - 1e-9), 1)
+
+
+#: Memory a planned sweep run takes before it is solved, bytes: its parameter dict, its task
+#: entry and its table row (measured: ``benchmarks/sweep_throughput.py`` prints it).
+PLAN_BYTES_PER_RUN = 2048
+
+
+def check_run_count(field: str, value: Any, runs: int) -> None:
+    """Refuses (``ValidationError`` naming ``field``) a sweep of ``runs`` runs whose plan alone,
+    :data:`PLAN_BYTES_PER_RUN` bytes a run, would not fit :func:`memory_budget`; checked before
+    the runs are listed."""
+    need = runs * PLAN_BYTES_PER_RUN
+    budget = memory_budget()
+    if need > budget:
+        raise ValidationError(
+            field,
+            value,
+            f"a sweep whose {runs} runs fit the memory budget of {_human_bytes(budget)} ({MEMORY_BUDGET_ENV}): "
+            f"planning them would need {_human_bytes(need)} ({PLAN_BYTES_PER_RUN} bytes a run); "
+            f"at most {budget // PLAN_BYTES_PER_RUN} runs",
+        )
+
+
+def check_table_size(runs: int, columns: int, velocity_columns: int) -> None:
+    """Refuses a sweep table of ``runs`` rows and ``columns`` columns (16 bytes a cell with
+    pandas' overhead) over :func:`memory_budget`, naming ``initial_velocities`` when its
+    ``velocity_columns`` are most of the columns."""
+    need = 16 * runs * columns
+    budget = memory_budget()
+    if need > budget:
+        field = "initial_velocities" if 2 * velocity_columns > columns else "grid"
+        raise ValidationError(
+            field,
+            f"{runs} runs x {columns} columns",
+            f"a table within the memory budget of {_human_bytes(budget)} ({MEMORY_BUDGET_ENV}): it would need "
+            f"{_human_bytes(need)}",
+        )

@@ -23,6 +23,7 @@ from __future__ import annotations
 import base64
 import csv
 import html
+import io
 import math
 import os
 import re
@@ -37,6 +38,7 @@ import numpy as np
 
 from . import analysis, plots
 from . import convergence as _convergence
+from ._output import check_destination, make_directory, write_bytes, write_text
 from .errors import ValidationError
 from .galerkin import project
 from .parameters import Parameters, preset
@@ -850,8 +852,10 @@ def _figure_table(spec: FigureSpec, runs: _Runs, window: tuple[float, float]) ->
     return header, np.column_stack(columns)
 
 
-def _write_csv(path: Path, header: Sequence[str], data: np.ndarray) -> None:
-    np.savetxt(path, data, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+def _write_csv(path: Path, header: Sequence[str], data: np.ndarray) -> Path:
+    text = io.BytesIO()
+    np.savetxt(text, data, delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+    return write_bytes(path, text.getvalue(), field="out_dir")
 
 
 def stability_rows() -> list[StabilityRow]:
@@ -891,17 +895,18 @@ STABILITY_COLUMNS = (
 )
 
 
-def _write_stability_csv(rows: Sequence[StabilityRow], path: Path) -> None:
-    with open(path, "w", newline="", encoding="utf-8") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(STABILITY_COLUMNS)
-        for r in rows:
-            writer.writerow([
-                r.parameter_set, r.material, repr(r.length), repr(r.omega), r.modes, r.mode,
-                repr(r.eigenvalue.real), repr(r.eigenvalue.imag), repr(r.linear_frequency_hz),
-                repr(r.critical_speed), repr(r.omega / r.critical_speed), r.mode_classification,
-                r.classification, r.figures,
-            ])
+def _write_stability_csv(rows: Sequence[StabilityRow], path: Path) -> Path:
+    text = io.StringIO(newline="")
+    writer = csv.writer(text)
+    writer.writerow(STABILITY_COLUMNS)
+    for r in rows:
+        writer.writerow([
+            r.parameter_set, r.material, repr(r.length), repr(r.omega), r.modes, r.mode,
+            repr(r.eigenvalue.real), repr(r.eigenvalue.imag), repr(r.linear_frequency_hz),
+            repr(r.critical_speed), repr(r.omega / r.critical_speed), r.mode_classification,
+            r.classification, r.figures,
+        ])
+    return write_text(path, text.getvalue(), field="out_dir")
 
 
 # --------------------------------------------------------------------------- the report document
@@ -1165,7 +1170,9 @@ pre { background: #f6f6f6; padding: 0.7em; overflow-x: auto; }
 """
 
 
-def _html(doc: Sequence[Block], out_dir: Path) -> str:
+def _html(doc: Sequence[Block], images: dict[str, bytes]) -> str:
+    """The report as one self-contained HTML page; ``images`` holds the PNG of each "img" block
+    (kept in memory rather than read back: an output may be a FIFO or a device)."""
     parts = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
              f"<title>{html.escape(doc[0][1])}</title>", f"<style>{_CSS}</style></head><body>"]
     for block in doc:
@@ -1177,7 +1184,7 @@ def _html(doc: Sequence[Block], out_dir: Path) -> str:
         elif kind in ("ul", "ol"):
             parts.append(f"<{kind}>" + "".join(f"<li>{_inline_html(i)}</li>" for i in block[1]) + f"</{kind}>")
         elif kind == "img":
-            data = base64.b64encode((out_dir / block[1]).read_bytes()).decode("ascii")
+            data = base64.b64encode(images[block[1]]).decode("ascii")
             parts.append(f'<figure><img src="data:image/png;base64,{data}" alt="{html.escape(block[2])}">'
                          "</figure>")
         elif kind == "code":
@@ -1245,9 +1252,9 @@ def reproduce(
         raise ValidationError(
             "samples_per_second", samples_per_second, "an integer, 100 <= samples_per_second <= 100000"
         )
+    check_destination(out_dir, field="out_dir", directory=True, files=output_names(convergence))
     start = time.perf_counter()
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = make_directory(out_dir)
     stream = _progress_stream(progress)
     scale = float(t_end_scale)
     if command is None:
@@ -1257,6 +1264,7 @@ def reproduce(
     runs = _Runs(scale, samples_per_second)
     timings: dict[str, float] = {}
     files: list[Path] = []
+    images: dict[str, bytes] = {}
 
     def tick(label: str, seconds: float) -> None:
         timings[label] = seconds
@@ -1275,7 +1283,10 @@ def reproduce(
         title = spec.caption if scale == 1.0 else f"{spec.caption} (quick run, times x{scale:g})"
         fig = _plot(spec, runs, window, title)
         png = out / f"{spec.stem}.png"
-        fig.savefig(png, dpi=DPI)
+        image = io.BytesIO()
+        fig.savefig(image, dpi=DPI, format="png")
+        images[png.name] = image.getvalue()
+        write_bytes(png, images[png.name], field="out_dir")
         header, data = _figure_table(spec, runs, window)
         csv_path = out / f"{spec.stem}.csv"
         _write_csv(csv_path, header, data)
@@ -1304,19 +1315,30 @@ def reproduce(
         study = _convergence.study(preset("aluminum"), t_end=scale, samples=max(201, int(1000 * scale) + 1),
                                    **({} if scale == 1.0 else {"cells": 60, "max_nodes": 241, "tol": 1e-3,
                                                               "modes": (1, 2, 3, 6)}))
-        files += _convergence.write(study, out)
+        rendered = _convergence.render(study)
+        files += [write_bytes(out / name, data, field="out_dir") for name, data in rendered.items()]
+        images.update((name, data) for name, data in rendered.items() if name.endswith(".png"))
         tick("        truncation study against the PDE", time.perf_counter() - t0)
     t0 = time.perf_counter()
     rep = ReproductionReport(out, scale, samples_per_second, results, rows2, srows, files, timings, 0.0)
     rep.notes = {"context": ctx, "convergence": study}
     rep.total_seconds = time.perf_counter() - start
     doc = _document(rep, ctx, command)
-    rep.report_md.write_text(_markdown(doc), encoding="utf-8")
-    rep.report_html.write_text(_html(doc, out), encoding="utf-8")
+    write_text(rep.report_md, _markdown(doc), field="out_dir")
+    write_text(rep.report_html, _html(doc, images), field="out_dir")
     files += [rep.report_md, rep.report_html]
     tick("        report.md, report.html", time.perf_counter() - t0)
     rep.total_seconds = time.perf_counter() - start
     return rep
+
+
+def output_names(convergence: bool = True) -> list[str]:
+    """The names of the files :func:`reproduce` writes into its directory."""
+    names = [f"{spec.stem}.{ext}" for spec in FIGURES for ext in ("png", "csv")]
+    names += ["table2.csv", "stability.csv"]
+    if convergence:
+        names += list(_convergence.FILES)
+    return [*names, "report.md", "report.html"]
 
 
 def figure(

@@ -28,10 +28,10 @@ import re
 import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from numbers import Real
 from typing import Any, Optional, Union
 
 from .errors import ValidationError
+from .limits import as_float
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -60,16 +60,6 @@ K5_VARIANTS: tuple[str, ...] = ("paper", "energy")
 _PRESET_ALIASES = {"aluminium": "aluminum"}
 
 _TOML_HEADER = "# drillstring parameters: Table 1 of the paper (aluminium reference), SI units"
-
-
-def _real(name: str, value: Any, allowed: str) -> float:
-    """Coerce ``value`` to a finite float or raise ``ValidationError`` (bools refused)."""
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise ValidationError(name, value, allowed)
-    result = float(value)
-    if not math.isfinite(result):
-        raise ValidationError(name, value, allowed)
-    return result
 
 
 @dataclass(frozen=True)
@@ -128,25 +118,25 @@ class Parameters:
             object.__setattr__(self, name, value)
 
         for name in ("length", "youngs_modulus", "density", "outer_diameter"):
-            value = _real(name, getattr(self, name), f"a finite real number, 0 < {name} < inf")
+            value = as_float(name, getattr(self, name), f"a finite real number, 0 < {name} < inf")
             if value <= 0.0:
                 raise ValidationError(name, getattr(self, name), f"0 < {name} < inf")
             set_(name, value)
 
         outer = self.outer_diameter
         inner_allowed = f"0 <= inner_diameter < outer_diameter = {outer!r}"
-        inner = _real("inner_diameter", self.inner_diameter, inner_allowed)
+        inner = as_float("inner_diameter", self.inner_diameter, inner_allowed)
         if not 0.0 <= inner < outer:
             raise ValidationError("inner_diameter", self.inner_diameter, inner_allowed)
         set_("inner_diameter", inner)
 
         nu_allowed = "-1 < poisson_ratio < 0.5"
-        nu = _real("poisson_ratio", self.poisson_ratio, nu_allowed)
+        nu = as_float("poisson_ratio", self.poisson_ratio, nu_allowed)
         if not -1.0 < nu < 0.5:
             raise ValidationError("poisson_ratio", self.poisson_ratio, nu_allowed)
         set_("poisson_ratio", nu)
 
-        set_("omega", _real("omega", self.omega, "a finite real number (rad/s, any sign)"))
+        set_("omega", as_float("omega", self.omega, "a finite real number (rad/s, any sign)"))
 
         velocities = self.initial_velocities
         if isinstance(velocities, (str, bytes, Mapping)) or not hasattr(velocities, "__iter__"):
@@ -157,7 +147,7 @@ class Parameters:
             )
         coerced = []
         for i, value in enumerate(velocities):
-            coerced.append(_real(f"initial_velocities[{i}]", value, "a finite real number (rad/s)"))
+            coerced.append(as_float(f"initial_velocities[{i}]", value, "a finite real number (rad/s)"))
         set_("initial_velocities", tuple(coerced))
 
         if not isinstance(self.k5_variant, str) or self.k5_variant not in K5_VARIANTS:
@@ -258,12 +248,13 @@ class Parameters:
             lines.append(f"{name} = {text}")
         return "\n".join(lines) + "\n"
 
-    def save(self, path: PathLike) -> None:
-        """Write :meth:`to_toml` to ``path`` (UTF-8), replacing any existing file atomically."""
-        from ._atomic import atomic_path
+    def save(self, path: PathLike) -> os.PathLike[str]:
+        """Write :meth:`to_toml` to ``path`` (UTF-8) and return the path written: an existing file
+        is replaced atomically, a symlink is written through, a device, FIFO or ``"-"`` is
+        streamed into (see :mod:`drillstring._output`); the path is a :class:`pathlib.Path`."""
+        from ._output import write_text
 
-        with atomic_path(path) as tmp, open(tmp, "w", encoding="utf-8") as handle:
-            handle.write(self.to_toml())
+        return write_text(path, self.to_toml())
 
 
 def _toml_float(value: float) -> str:
@@ -342,20 +333,27 @@ def load_toml(path: PathLike) -> dict[str, Any]:
     ------
     ValidationError
         ``field="toml"``: the file cannot be read, or is malformed; the message names the file
-        and the parser's line and column.
+        and the parser's line and column. Also for what the parser cannot represent: arrays or
+        inline tables nested too deeply for its recursion (``a = [[[[...``), integers beyond
+        Python's 4300-digit conversion limit.
     """
     source = os.fspath(path)
     try:
         with open(source, "rb") as handle:
             return tomllib.load(handle)
-    except tomllib.TOMLDecodeError as exc:
-        found = re.search(r"at line (\d+)", str(exc))
-        line = int(found.group(1)) if found else None
-        raise ValidationError("toml", source, f"valid TOML ({exc})", source=source, line=line) from exc
     except (OSError, UnicodeDecodeError) as exc:
         raise ValidationError(
             "toml", source, f"a readable UTF-8 TOML file ({exc})", source=source
         ) from exc
+    except RecursionError as exc:
+        raise ValidationError(
+            "toml", source, "valid TOML with arrays and inline tables nested at most a few hundred deep",
+            source=source,
+        ) from exc
+    except ValueError as exc:  # tomllib.TOMLDecodeError, or int() of a too-long integer
+        found = re.search(r"at line (\d+)", str(exc))
+        line = int(found.group(1)) if found else None
+        raise ValidationError("toml", source, f"valid TOML ({exc})", source=source, line=line) from exc
 
 
 def load(path: PathLike) -> Parameters:

@@ -12,13 +12,15 @@ integrators as the modal system (DOP853 by default; ``"verlet"`` is symplectic S
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 
 from . import _core
-from ._atomic import atomic_write, is_path
+from ._output import is_stream, write_to
 from .coefficients import PDECoefficients
 from .errors import SolveError, ValidationError
 from .parameters import Parameters
@@ -38,9 +40,7 @@ InitialField = Union[None, "ArrayLike", Callable[["NDArray[np.float64]"], "Array
 
 def pde_system(params: Parameters, nodes: int = 240) -> Any:
     """The Rust ``PdeSystem`` of ``params`` on ``nodes`` grid points (validated)."""
-    nodes = _count("nodes", nodes, 3)
-    if nodes > MAX_NODES:
-        raise ValidationError("nodes", nodes, f"3 <= nodes <= {MAX_NODES}")
+    nodes = _count("nodes", nodes, 3, MAX_NODES)
     k = PDECoefficients.from_parameters(params)
     return _core.PdeSystem(k.k1, k.k2, k.k3, k.k4, k.k5, k.k6, params.length, nodes)
 
@@ -52,8 +52,9 @@ def _initial_field(name: str, value: InitialField, z: NDArray[np.float64]) -> Op
         value = value(z.copy())
     try:
         arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValidationError(name, type(value).__name__, f"an array of {z.size} floats or a function of z") from exc
+    except (TypeError, ValueError, OverflowError) as exc:  # OverflowError: an int like 10**400
+        allowed = f"an array of {z.size} finite floats or a function of z"
+        raise ValidationError(name, type(value).__name__, allowed) from exc
     if arr.shape != z.shape:
         raise ValidationError(name, f"an array of shape {arr.shape}", f"shape ({z.size},) (one value per node)")
     if not np.all(np.isfinite(arr)):
@@ -120,21 +121,35 @@ class PdeSolution(TrajectoryResult):
     def _state_columns(self) -> list[str]:
         return []
 
-    def save_field(self, path: Any) -> None:
+    def save_field(self, path: Any) -> Optional[Path]:
         """Writes ``t``, ``z`` and ``theta`` (nodes x samples; the saved field, else every sample)
-        to a compressed ``.npz`` (``.npz`` is appended to a name without it, as numpy does; the
-        write is atomic: an interrupted one leaves no partial file)."""
+        to a compressed ``.npz`` and returns the path written (:func:`field_path`: ``.npz`` is
+        appended to a file name without it, as numpy does). A file is replaced atomically (an
+        interrupted write leaves the old one), a symlink is written through, a device, FIFO or
+        ``"-"`` is streamed into (see :mod:`drillstring._output`); an open file object is
+        written directly."""
         theta = self.q if self.field is None else self.field
         t = self.t if self.field_t is None else self.field_t
-        if is_path(path) and not str(path).endswith(".npz"):
-            path = f"{path}.npz"
-        atomic_write(path, lambda target: np.savez_compressed(target, t=t, z=self.z, theta=theta))
+        return write_to(
+            field_path(path), lambda target: np.savez_compressed(target, t=t, z=self.z, theta=theta), suffix=".npz"
+        )
 
     def __repr__(self) -> str:
         return (
             f"PdeSolution(method={self.method!r}, nodes={self.nodes}, samples={self.t.size}, "
             f"status={self.status!r}, nfev={self.stats.nfev})"
         )
+
+
+def field_path(path: Any) -> Any:
+    """The file :meth:`PdeSolution.save_field` writes for ``path``: ``.npz`` appended to a file
+    name without it (as numpy does), unless ``path`` is streamed into (``"-"``, a device or a
+    FIFO); an open file object is returned as it is."""
+    if isinstance(path, (str, bytes, os.PathLike)) and not is_stream(path):
+        text = os.fsdecode(os.fspath(path))
+        if not text.endswith(".npz"):
+            return f"{text}.npz"
+    return path
 
 
 def solve_pde(

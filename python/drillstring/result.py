@@ -8,11 +8,12 @@ the state maps to the twist ``theta(z, t)`` (a Galerkin basis or interpolation b
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
-from ._atomic import atomic_write
+from ._output import write_to
 from .errors import ValidationError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -70,7 +71,7 @@ class TrajectoryResult:
     def _sections(self, z: ArrayLike) -> tuple[NDArray[np.float64], bool]:
         try:
             z_arr = np.asarray(z, dtype=np.float64)
-        except (TypeError, ValueError) as exc:
+        except (TypeError, ValueError, OverflowError) as exc:
             raise ValidationError("z", z, "a number or array of numbers") from exc
         length = self.params.length
         z_flat = np.atleast_1d(z_arr).ravel()
@@ -117,13 +118,16 @@ class TrajectoryResult:
             parts.append(self.q.T)
         return header, np.column_stack(parts)
 
-    def to_csv(self, path: Any, z: float) -> None:
-        """Writes :meth:`table` at section ``z`` as CSV (atomically: an interrupted write leaves
-        no partial file)."""
+    def to_csv(self, path: Any, z: float) -> Optional[Path]:
+        """Writes :meth:`table` at section ``z`` as CSV to ``path`` (or an open file object) and
+        returns the path written. A file is replaced atomically (an interrupted write leaves the
+        old one), a symlink is written through, a device or FIFO is streamed into, ``"-"`` is
+        standard output (see :mod:`drillstring._output`)."""
         header, data = self.table(z)
-        atomic_write(
+        return write_to(
             path,
             lambda target: np.savetxt(
                 target, data, delimiter=",", header=",".join(header), comments="", fmt="%.10e"
             ),
+            suffix=".csv",
         )

@@ -16,20 +16,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from numbers import Real
 from typing import Any
 
 from .errors import ValidationError
+from .limits import as_float
 
 __all__ = ["Section"]
 
 
 def _positive_finite(field: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, Real) or not math.isfinite(value):
-        raise ValidationError(field, value, f"a finite real number, 0 < {field} < inf")
-    if value <= 0:
+    number = as_float(field, value, f"a finite real number, 0 < {field} < inf")
+    if number <= 0:
         raise ValidationError(field, value, f"0 < {field} < inf")
-    return float(value)
+    return number
 
 
 @dataclass(frozen=True)
@@ -84,19 +83,12 @@ class Section:
             If a diameter is not a finite real number or ``0 <= d < D`` fails.
         """
         big = _positive_finite("outer_diameter", outer_diameter)
-        if (
-            isinstance(inner_diameter, bool)
-            or not isinstance(inner_diameter, Real)
-            or not math.isfinite(inner_diameter)
-            or not 0.0 <= inner_diameter < big
-        ):
-            raise ValidationError(
-                "inner_diameter",
-                inner_diameter,
-                f"0 <= inner_diameter < outer_diameter = {big!r}",
-            )
+        allowed = f"0 <= inner_diameter < outer_diameter = {big!r}"
+        small = as_float("inner_diameter", inner_diameter, allowed)
+        if not 0.0 <= small < big:
+            raise ValidationError("inner_diameter", inner_diameter, allowed)
         r_out = big / 2.0
-        r_in = float(inner_diameter) / 2.0
+        r_in = small / 2.0
         r6 = r_out**6 - r_in**6
         return cls(
             area=math.pi * (r_out**2 - r_in**2),

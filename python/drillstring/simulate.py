@@ -38,18 +38,15 @@ MIN_RTOL = 100 * float(np.finfo(float).eps)
 def _positive(field: str, value: Any, *, allow_none: bool = False) -> Optional[float]:
     if value is None and allow_none:
         return None
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+    result = limits.as_float(field, value, "a finite number > 0")
+    if not result > 0:
         raise ValidationError(field, value, "a finite number > 0")
-    value = float(value)
-    if not (math.isfinite(value) and value > 0):
-        raise ValidationError(field, value, "a finite number > 0")
-    return value
+    return result
 
 
-def _count(field: str, value: Any, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValidationError(field, value, f"an integer >= {minimum}")
-    return int(value)
+def _count(field: str, value: Any, minimum: int, maximum: int = limits.INT64_MAX) -> int:
+    """An integer option ``minimum <= value <= maximum`` (at most 2**63 - 1, the core's limit)."""
+    return limits.as_int(field, value, minimum, maximum)
 
 
 def check_solver_options(
@@ -78,8 +75,6 @@ def check_solver_options(
     if dt_f is not None and dt_f > t_end_f:
         raise ValidationError("dt", dt, f"0 < dt <= t_end = {t_end_f}")
     steps = None if max_steps is None else _count("max_steps", max_steps, 1)
-    if steps is not None and steps > 2**63 - 1:
-        raise ValidationError("max_steps", max_steps, "an integer, 1 <= max_steps <= 2**63 - 1")
     return method, t_end_f, rtol_f, atol_f, dt_f, steps
 
 
@@ -129,6 +124,8 @@ def _output_times(
         raise ValidationError("t_eval", t_eval, "a 1-D array of floats")
     try:
         times = np.asarray(t_eval, dtype=np.float64)
+    except OverflowError as exc:  # an int like 10**400 (its repr may be too long to print)
+        raise ValidationError("t_eval", "a number too large for a float", "a 1-D array of finite floats") from exc
     except (TypeError, ValueError) as exc:
         raise ValidationError("t_eval", t_eval, "a 1-D array of floats") from exc
     if times.ndim != 1:

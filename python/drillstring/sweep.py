@@ -13,14 +13,25 @@ The runs (the Cartesian product of a grid, see :mod:`drillstring.grid`, or an ex
 are split into chunks of ``chunk_size`` runs. A chunk is solved by one call of the Rust batch
 solver (``drillstring._core.batch_solve``): each run's ``k1..k6`` (eq. 17) scale the
 dimensionless Galerkin integrals of the basis, generated once, into its modal system; the runs
-are integrated in parallel on a rayon pool with the GIL released; the metrics are computed in
-Rust from ``theta(z, t)`` sampled at ``samples`` uniform times. Each chunk becomes a block of
-rows; the table is the blocks in run order.
+are integrated in parallel with the GIL released, on a thread pool made for the call (so a
+forked child process can sweep too); the metrics are computed in Rust from ``theta(z, t)``
+sampled at ``samples`` uniform times. Each chunk becomes a block of rows; the table is the
+blocks in run order.
 
+* Before any work the sweep is checked as a whole: the thread count (``1..=MAX_THREADS``),
+  the memory of one chunk and, with ``trajectories``, of all kept samples (the core's estimate,
+  ``drillstring._core.batch_plan``), and the size of the plan and the table, against
+  :func:`drillstring.limits.memory_budget`. A request that cannot fit is a
+  :class:`~drillstring.errors.ValidationError` naming the field, never an abort.
+* A problem of one run (a value out of range, a number too large for a float, a coefficient
+  that overflows) is that run's row (status ``"invalid"`` and a message); the others are solved.
 * ``out_dir``: chunks are written as they finish (atomically, see
-  :mod:`drillstring.sweep_store`); running the same sweep again with the same ``out_dir``
-  resumes, skipping finished chunks, and returns the same table as an uninterrupted run.
-  A Ctrl-C is handled between chunks (the finished ones are kept).
+  :mod:`drillstring.sweep_store`, which also locks the directory against a second writer);
+  running the same sweep again with the same ``out_dir`` resumes: it reuses each stored chunk
+  that verifies against the plan and its checksum, recomputes (and names, with a
+  :class:`~drillstring.errors.ResumeWarning`) those that do not, and returns the same table as
+  an uninterrupted run. A Ctrl-C stops the runs under way within a fraction of a second; the
+  chunk is stored with its finished runs, and a resume solves only the interrupted ones.
 * ``client``: a ``dask.distributed.Client`` (or a scheduler address); every chunk is one task
   on the cluster, calling the same chunk function as the local path, so the table is the same.
 
@@ -31,7 +42,8 @@ The parameters of each run as requested (``length``, ``youngs_modulus``, ``densi
 ``initial_velocities``, ``k5_variant``), ``z`` (the section of the metrics, m), then
 
 * ``status``: ``"success"``, ``"invalid"`` (the parameter set was refused; no solve),
-  ``"max_steps"``, ``"step_size_underflow"``, ``"non_finite"`` or ``"error"``; ``message``
+  ``"max_steps"``, ``"step_size_underflow"``, ``"non_finite"``, ``"out_of_memory"``,
+  ``"interrupted"`` (only in a stored chunk awaiting its resume) or ``"error"``; ``message``
   says why ("" on success);
 * ``max_theta`` = ``max |theta(z, t)|`` (rad) and ``rms_theta`` (rad) over the samples;
 * ``dominant_frequency_hz``: the strongest peak of the Hann-windowed spectrum of
@@ -57,6 +69,7 @@ import math
 import os
 import sys
 import time
+import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from numbers import Real
@@ -69,6 +82,7 @@ from .coefficients import PDECoefficients
 from .errors import ValidationError
 from .galerkin import dimensionless_integrals
 from .grid import apply_overrides, expand_grid, linspace, logspace, run_overrides
+from .limits import as_float, check_table_size, memory_budget
 from .parameters import Parameters, preset
 from .simulate import FIXED_STEP_METHODS, check_solver_options
 
@@ -153,10 +167,15 @@ class ChunkTask:
 
 
 def _as_float(value: Any) -> float:
+    """A requested value as its table entry: the float, +-inf for a number too large for one,
+    NaN for anything else (the row's message says why it was refused)."""
     if type(value) is float:
         return value
     if isinstance(value, Real) and not isinstance(value, bool):
-        return float(value)
+        try:
+            return float(value)
+        except OverflowError:
+            return math.inf if value > 0 else -math.inf
     return math.nan
 
 
@@ -193,7 +212,61 @@ def columns(velocity_columns: int, indices: Sequence[int]) -> list[str]:
     return names + ["z", "status", "message", *METRICS] + [f"share_mode_{i}" for i in indices]
 
 
-def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, Any]]]:
+def _default_z(requested: Mapping[str, Any], z: Optional[float]) -> float:
+    """The section of a run's metrics: ``z``, or ``2 l / 3`` of its requested length (NaN when
+    that is not a number)."""
+    if z is not None:
+        return z
+    return 2.0 * _as_float(requested.get("length")) / 3.0
+
+
+def parameter_columns(task: ChunkTask) -> pd.DataFrame:
+    """The requested parameters of a chunk's runs as table columns (``c1``, ``c2``, ... for
+    ``initial_velocities``) and ``z``, indexed by run number: the part of a chunk's rows that
+    its plan fixes (a resumed sweep checks stored chunks against it)."""
+    pd = _require_pandas()
+    n = len(task.runs)
+    data: dict[str, Any] = {}
+    for name in Parameters.field_names():
+        if name == "initial_velocities":
+            block = np.array(
+                [_velocity_row(r.get(name), task.velocity_columns) for r in task.runs], dtype=float
+            ).reshape(n, task.velocity_columns)
+            for i in range(task.velocity_columns):
+                data[f"c{i + 1}"] = block[:, i]
+        elif name == "k5_variant":
+            data[name] = pd.array([str(r.get(name)) for r in task.runs], dtype="str")
+        else:
+            data[name] = np.array([_as_float(r.get(name)) for r in task.runs], dtype=float)
+    data["z"] = np.array([_default_z(r, task.z) for r in task.runs], dtype=float)
+    return pd.DataFrame(data, index=pd.RangeIndex(task.start, task.start + n))
+
+
+def _run_inputs(
+    requested: Mapping[str, Any],
+    task: ChunkTask,
+    indices: list[int],
+    material: dict[tuple[Any, ...], tuple[float, ...]],
+) -> tuple[tuple[float, ...], float, list[float], float]:
+    """``k1..k6``, length, initial modal velocities and section of one run; raises
+    ValidationError (or any other error: the row becomes ``"invalid"`` with its message)."""
+    params = Parameters(**requested)
+    try:
+        k = _coefficients(params, material)
+    except OverflowError as exc:
+        raise ValidationError(
+            "omega", params.omega, "a rotation speed whose k6 = rho I_p omega^2 is a finite number"
+        ) from exc
+    c = params.initial_velocities
+    velocities = [c[i - 1] if 1 <= i <= len(c) else 0.0 for i in indices]
+    section = 2.0 * params.length / 3.0 if task.z is None else float(task.z)
+    return k, params.length, velocities, section
+
+
+def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, Any]], Optional[BaseException]]:
+    """Solves a chunk: its rows, its trajectories (when kept) and the exception that
+    interrupted it (Ctrl-C; the rows of the runs that did not finish then have status
+    ``"interrupted"``), or None."""
     pd = _require_pandas()
     solver = task.solver
     integrals = dimensionless_integrals(solver["modes"], solver["rigid_mode"])
@@ -206,7 +279,6 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
     unstable = np.full(n, -1, dtype=np.int64)
     nfev = np.zeros(n, dtype=np.int64)
     shares = np.full((n, m), math.nan)
-    z_column = np.full(n, math.nan)
 
     material: dict[tuple[Any, ...], tuple[float, ...]] = {}
     valid: list[int] = []
@@ -215,24 +287,19 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
     velocities: list[list[float]] = []
     sections: list[float] = []
     for j, requested in enumerate(task.runs):
-        z = task.z
-        if z is None and isinstance(requested.get("length"), Real):
-            z = 2.0 * float(requested["length"]) / 3.0
-        z_column[j] = math.nan if z is None else z
         try:
-            params = Parameters(**requested)
+            k, length, c, section = _run_inputs(requested, task, indices, material)
         except ValidationError as exc:
             message[j] = str(exc)
             continue
-        except TypeError as exc:  # pragma: no cover - keys are checked when the sweep is planned
-            message[j] = f"invalid parameters: {exc}"
+        except Exception as exc:  # any other problem of this run is its row, not the sweep's
+            message[j] = f"invalid parameters ({type(exc).__name__}): {exc}"
             continue
-        c = params.initial_velocities
         valid.append(j)
-        k_rows.append(_coefficients(params, material))
-        lengths.append(params.length)
-        velocities.append([c[i - 1] if 1 <= i <= len(c) else 0.0 for i in indices])
-        sections.append(2.0 * params.length / 3.0 if task.z is None else float(task.z))
+        k_rows.append(k)
+        lengths.append(length)
+        velocities.append(c)
+        sections.append(section)
 
     raw: Optional[dict[str, Any]] = None
     if valid:
@@ -255,6 +322,7 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
             max_steps=solver["max_steps"],
             keep_trajectories=task.keep_trajectories,
             threads=task.threads,
+            memory_budget=memory_budget(),
         )
         rows = np.asarray(valid)
         status[rows] = raw["status"]
@@ -265,19 +333,7 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
         nfev[rows] = raw["nfev"]
         shares[rows] = raw["max_share"]
 
-    data: dict[str, Any] = {}
-    for name in Parameters.field_names():
-        if name == "initial_velocities":
-            block = np.array(
-                [_velocity_row(r.get(name), task.velocity_columns) for r in task.runs], dtype=float
-            ).reshape(n, task.velocity_columns)
-            for i in range(task.velocity_columns):
-                data[f"c{i + 1}"] = block[:, i]
-        elif name == "k5_variant":
-            data[name] = pd.array([str(r.get(name)) for r in task.runs], dtype="str")
-        else:
-            data[name] = np.array([_as_float(r.get(name)) for r in task.runs], dtype=float)
-    data["z"] = z_column
+    data: dict[str, Any] = {name: column.array for name, column in parameter_columns(task).items()}
     data["status"] = pd.array(status.tolist(), dtype="str")
     data["message"] = pd.array(message.tolist(), dtype="str")
     data.update(metrics)
@@ -298,7 +354,8 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
             y[rows] = raw["y"]
             theta[rows] = raw["theta"]
         trajectories = {"t": t, "y": y, "theta": theta}
-    return frame, trajectories
+    interrupt = raw.get("interrupt") if raw is not None else None
+    return frame, trajectories, interrupt
 
 
 def solve_chunk(task: ChunkTask) -> pd.DataFrame:
@@ -495,7 +552,7 @@ def sweep(
     ImportError
         Without pandas (``drillstring[sweep]``), or dask for ``client`` (``drillstring[dask]``).
     """
-    pd = _require_pandas()
+    _require_pandas()
     base = _base(base_params)
     axes, fulls = _plan(base, grid, runs)
     method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(method, t_end, rtol, atol, dt, max_steps)
@@ -504,13 +561,16 @@ def sweep(
     size = _check_count("chunk_size", chunk_size, 1)
     threads_i = _check_count("threads", threads, 1, allow_none=True)
     if z is not None:
-        if isinstance(z, bool) or not isinstance(z, Real) or not math.isfinite(z):
-            raise ValidationError("z", z, "a finite section position in m, or None for 2l/3")
-        z = float(z)
+        z = as_float("z", z, "a finite section position in m, or None for 2l/3")
     if not isinstance(trajectories, bool):
         raise ValidationError("trajectories", trajectories, "True or False")
     if trajectories and (out_dir is not None or client is not None):
         raise ValidationError("trajectories", True, "False with out_dir or client (trajectories stay in memory)")
+    m = integrals.indices.size
+    # Threads (1..=MAX_THREADS) and the memory of one chunk, then of every kept trajectory.
+    _core.batch_plan(m, samples_i, min(size, len(fulls)), threads_i, trajectories, memory_budget())
+    if trajectories:
+        _core.batch_plan(m, samples_i, len(fulls), threads_i, True, memory_budget())
     solver = {
         "modes": int(modes),
         "rigid_mode": bool(rigid_mode),
@@ -526,12 +586,14 @@ def sweep(
         [1] + [len(f["initial_velocities"]) for f in fulls if isinstance(f.get("initial_velocities"), (list, tuple))]
     )
     names = columns(velocity_columns, integrals.indices.tolist())
+    check_table_size(len(fulls), len(names), velocity_columns)
     tasks = [
         ChunkTask(i, start, tuple(fulls[start : start + size]), solver, z, velocity_columns, threads_i, trajectories)
         for i, start in enumerate(range(0, len(fulls), size))
     ]
 
     store = None
+    fingerprint = ""
     if out_dir is not None:
         from .sweep_store import SweepStore
 
@@ -546,58 +608,161 @@ def sweep(
             "velocity_columns": velocity_columns,
             "runs": len(fulls),
         }
-        digest = hashlib.sha256(json.dumps({**identity, "parameters": fulls}, sort_keys=True, default=repr).encode())
-        manifest = {**identity, "fingerprint": digest.hexdigest(), "chunks": len(tasks), "axes": list(axes)}
+        fingerprint = _digest({**identity, "parameters": fulls})
+        manifest = {**identity, "fingerprint": fingerprint, "chunks": len(tasks), "axes": list(axes)}
         store = SweepStore.open(out_dir, manifest)
-
-    frames: list[Any] = [None] * len(tasks)
-    raws: list[Any] = [None] * len(tasks)
-    bar = _Progress(len(fulls), sys.stderr.isatty() if progress is None else bool(progress))
-    pending = []
-    for task in tasks:
-        frame = store.load_chunk(task.index, len(task.runs), names) if store is not None else None
-        if frame is None:
-            pending.append(task)
-        else:
-            frames[task.index] = frame
-            bar.update(len(task.runs))
-
-    def finished(task: ChunkTask, frame: Any) -> None:
-        if store is not None:
-            store.save_chunk(task.index, frame)
-        frames[task.index] = frame
-        bar.update(len(task.runs))
-
     try:
-        if client is not None and pending:
-            _run_on_dask(client, pending, finished)
-        else:
-            for task in pending:  # a Ctrl-C surfaces here, between chunks
-                frame, raws[task.index] = _solve_chunk_raw(task)
-                finished(task, frame)
+        table, raws = _run_tasks(tasks, names, store, fingerprint, client, len(fulls), progress)
+        if store is not None:
+            store.save_results(table)
     finally:
-        bar.close()
-
-    table = pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0].reset_index(drop=True)
-    if store is not None:
-        store.save_results(table)
+        if store is not None:
+            store.close()
     table.attrs["axes"] = {key: values for key, values in axes.items()}
     table.attrs["solver"] = dict(solver)
     if not trajectories:
         return table
-    y = np.concatenate([r["y"] for r in raws], axis=0)
-    m = integrals.indices.size
+    t = raws[0]["t"]
     traj = SweepTrajectories(
-        t=raws[0]["t"],
-        theta=np.concatenate([r["theta"] for r in raws], axis=0),
-        q=np.ascontiguousarray(y[:, :, :m].transpose(0, 2, 1)),
-        qdot=np.ascontiguousarray(y[:, :, m:].transpose(0, 2, 1)),
+        t=t,
+        theta=np.empty((len(fulls), t.size)),
+        q=np.empty((len(fulls), m, t.size)),
+        qdot=np.empty((len(fulls), m, t.size)),
         indices=integrals.indices,
     )
+    for task in tasks:  # fill the arrays chunk by chunk, dropping each chunk's copy
+        rows = slice(task.start, task.start + len(task.runs))
+        raw = raws[task.index]
+        traj.theta[rows] = raw["theta"]
+        traj.q[rows] = raw["y"][:, :, :m].transpose(0, 2, 1)
+        traj.qdot[rows] = raw["y"][:, :, m:].transpose(0, 2, 1)
+        raws[task.index] = None
     return table, traj
 
 
-def _run_on_dask(client: Any, tasks: list[ChunkTask], finished: Any) -> None:
+def _digest(value: Any) -> str:
+    """SHA-256 of a JSON-able value (sorted keys; anything else by its repr)."""
+    return hashlib.sha256(json.dumps(value, sort_keys=True, default=repr).encode()).hexdigest()
+
+
+def chunk_plan(fingerprint: str, task: ChunkTask) -> str:
+    """The plan digest of a stored chunk: the sweep's fingerprint, the chunk's position and its
+    runs' parameters (a chunk file written for any other chunk or sweep has another)."""
+    return _digest({"fingerprint": fingerprint, "index": task.index, "start": task.start, "runs": list(task.runs)})
+
+
+@dataclass
+class _Job:
+    """A chunk to solve: all its runs, or (resuming an interrupted chunk) the rows ``rows`` of
+    the stored ``frame``."""
+
+    task: ChunkTask
+    frame: Any = None
+    rows: Any = None
+
+    def solve_task(self) -> ChunkTask:
+        if self.rows is None:
+            return self.task
+        runs = tuple(self.task.runs[i] for i in self.rows)
+        return ChunkTask(self.task.index, 0, runs, self.task.solver, self.task.z, self.task.velocity_columns,
+                         self.task.threads, self.task.keep_trajectories)
+
+    def merge(self, solved: Any) -> Any:
+        """The chunk's rows: ``solved`` itself, or the stored rows with ``solved`` in place of
+        the interrupted ones."""
+        if self.rows is None:
+            return solved
+        pd = _require_pandas()
+        solved = solved.set_axis(self.frame.index[self.rows])
+        return pd.concat([self.frame.drop(index=solved.index), solved]).sort_index()
+
+
+def _resume(
+    tasks: list[ChunkTask], names: list[str], store: Any, fingerprint: str
+) -> tuple[list[Any], list[_Job], dict[str, Any]]:
+    """What a store already holds: verified chunks (complete ones are reused, interrupted runs
+    become jobs), the chunks to solve, and a summary for ``attrs["resume"]``. Chunks that fail
+    verification are recomputed, with a :class:`ResumeWarning` naming them and why."""
+    frames: list[Any] = [None] * len(tasks)
+    jobs: list[_Job] = []
+    summary: dict[str, Any] = {"reused": [], "recomputed": {}, "resumed_runs": 0}
+    for task in tasks:
+        if store is None:
+            jobs.append(_Job(task))
+            continue
+        frame, reason = store.load_chunk(task.index, chunk_plan(fingerprint, task), parameter_columns(task), names)
+        if frame is None:
+            if reason is not None:
+                summary["recomputed"][task.index] = reason
+            jobs.append(_Job(task))
+            continue
+        interrupted = np.flatnonzero((frame["status"] == "interrupted").to_numpy())
+        if interrupted.size:
+            summary["resumed_runs"] += int(interrupted.size)
+            jobs.append(_Job(task, frame, interrupted))
+        else:
+            summary["reused"].append(task.index)
+            frames[task.index] = frame
+    if summary["recomputed"]:
+        from .errors import ResumeWarning
+
+        reasons = "; ".join(f"chunk {i}: {why}" for i, why in summary["recomputed"].items())
+        warnings.warn(
+            f"resuming the sweep in {store.root}: {len(summary['recomputed'])} stored chunk(s) failed verification "
+            f"and are recomputed ({reasons})",
+            ResumeWarning,
+            stacklevel=3,
+        )
+    return frames, jobs, summary
+
+
+def _run_tasks(
+    tasks: list[ChunkTask],
+    names: list[str],
+    store: Any,
+    fingerprint: str,
+    client: Any,
+    total: int,
+    progress: Optional[bool],
+) -> tuple[Any, list[Any]]:
+    """Solves what the store does not hold (locally, or on Dask), saving each chunk as it
+    finishes; returns the table and each chunk's trajectories (None unless kept).
+
+    A Ctrl-C during a local chunk stops its runs within a fraction of a second; the chunk is
+    saved with its finished runs (the others have status ``"interrupted"`` and are solved by
+    the next resume) and the interrupt is raised.
+    """
+    pd = _require_pandas()
+    frames, jobs, summary = _resume(tasks, names, store, fingerprint)
+    raws: list[Any] = [None] * len(tasks)
+    bar = _Progress(total, sys.stderr.isatty() if progress is None else bool(progress))
+    bar.update(total - sum(len(j.task.runs) if j.rows is None else len(j.rows) for j in jobs))
+
+    def finished(job: _Job, solved: Any) -> None:
+        frame = job.merge(solved)
+        complete = not bool((frame["status"] == "interrupted").any())
+        if store is not None:
+            store.save_chunk(job.task.index, chunk_plan(fingerprint, job.task), frame, complete)
+        frames[job.task.index] = frame
+        bar.update(len(solved))
+
+    try:
+        if client is not None and jobs:
+            _run_on_dask(client, jobs, finished)
+        else:
+            for job in jobs:
+                solved, raws[job.task.index], interrupt = _solve_chunk_raw(job.solve_task())
+                finished(job, solved)
+                if interrupt is not None:
+                    raise interrupt
+    finally:
+        bar.close()
+    table = pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0].reset_index(drop=True)
+    table.attrs["resume"] = summary
+    return table, raws
+
+
+def _run_on_dask(client: Any, jobs: list[_Job], finished: Any) -> None:
     """Submit every chunk as a task and hand each result to ``finished`` as it completes."""
     distributed = _require_distributed()
     own = None
@@ -605,8 +770,8 @@ def _run_on_dask(client: Any, tasks: list[ChunkTask], finished: Any) -> None:
         own = client = distributed.Client(client)
     try:
         futures = {}
-        for task in tasks:
-            futures[client.submit(solve_chunk, task, pure=False)] = task
+        for job in jobs:
+            futures[client.submit(solve_chunk, job.solve_task(), pure=False)] = job
         try:
             for future in distributed.as_completed(list(futures)):
                 finished(futures[future], future.result())

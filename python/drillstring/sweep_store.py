@@ -1,65 +1,113 @@
-"""Chunked, resumable, atomic storage of a sweep's results in a directory.
+"""Chunked, resumable, verified storage of a sweep's results in a directory.
 
 Layout of ``DIR``::
 
-    manifest.json              what the sweep is (fingerprint, solver options, run count, ...)
-    chunks/chunk-00000.parquet one file per finished chunk of runs
-    results.parquet            the whole table, in run order (written at the end)
-    results.csv                the same as CSV
+    manifest.json               what the sweep is (fingerprint, solver options, run count, ...)
+    .lock                       held (``flock``) by the process writing the sweep
+    chunks/chunk-00000.parquet  one file per chunk of runs, written as it finishes
+    chunks/chunk-00000.json     its record: the chunk's plan digest, row count, SHA-256 of the
+                                parquet file, and whether every run in it finished
+    results.parquet             the whole table, in run order (written at the end)
+    results.csv                 the same as CSV
 
-Every file is written to a temporary name in its final directory, flushed to disk and then
-renamed over its final name (``os.replace``, atomic on POSIX and Windows), so a reader never
-sees a half-written file: after an interruption a chunk file is either complete or absent.
-A re-run with the same directory skips the chunks whose files exist; a different sweep (other
-runs, solver options, chunking or drillstring build) is refused, since mixing chunks of two
-sweeps would give a table equal to neither.
+Guarantees
+----------
+* **Atomic files.** Every file is written through :mod:`drillstring._output`: to a temporary
+  name in its final directory, flushed to disk and renamed over its final name, so a reader
+  never sees a half-written file: after an interruption a chunk file is either complete or
+  absent.
+* **One writer.** Opening a store takes an exclusive lock on ``DIR/.lock`` (POSIX ``flock``,
+  released by the system when the process ends, even on ``kill -9``). A second process that
+  opens the same directory is refused with a message naming the process that holds it; only
+  the holder removes temporary files left by interrupted writes.
+* **Verified resume.** A re-run with the same directory reuses a chunk only if its record
+  exists and matches the plan (the digest of this sweep's fingerprint, the chunk's position and
+  its runs' parameters), its file has the recorded SHA-256 and row count, and its parameter
+  columns equal the planned runs'. A chunk that fails any check (altered bytes, a file of
+  another chunk or sweep, swapped, copied or linked) is recomputed, and the sweep says which
+  and why (a :class:`ResumeWarning`). A chunk whose runs were interrupted keeps its finished
+  runs; only the interrupted ones are solved again.
+* **One sweep per directory.** A different sweep (other runs, solver options, chunking or
+  drillstring build) is refused, since mixing chunks of two sweeps would give a table equal to
+  neither.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
-import uuid
+import socket
+import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional
+from typing import IO, TYPE_CHECKING, Any, Optional
 
-from .errors import ValidationError
+from ._output import write_bytes
+from .errors import ResumeWarning, ValidationError
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["SweepStore", "MANIFEST", "RESULTS_PARQUET", "RESULTS_CSV"]
+__all__ = ["SweepStore", "ResumeWarning", "MANIFEST", "RESULTS_PARQUET", "RESULTS_CSV", "LOCK"]
 
 MANIFEST = "manifest.json"
 RESULTS_PARQUET = "results.parquet"
 RESULTS_CSV = "results.csv"
 CHUNKS = "chunks"
+LOCK = ".lock"
 
 
 def _atomic_write(path: Path, data: bytes) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    write_bytes(path, data, field="out_dir")
+
+
+def _sha256(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def _lock(root: Path) -> IO[str]:
+    """Takes the exclusive lock of ``root`` (see the module docstring); returns the open lock file."""
+    path = root / LOCK
     try:
-        with open(tmp, "wb") as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+        handle = open(path, "a+", encoding="utf-8")
+    except OSError as exc:
+        raise ValidationError("out_dir", str(root), f"a directory where {LOCK} can be created ({exc})") from exc
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows: no advisory locks, one writer is on the user
+        return handle
+    try:
+        fcntl.flock(handle.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError as exc:
+        handle.seek(0)
+        holder = handle.read().strip() or "another process"
+        handle.close()
+        raise ValidationError(
+            "out_dir",
+            str(root),
+            f"a directory no other sweep is writing to: it is locked by {holder} ({path}). Wait for that "
+            "sweep to finish (then re-run to resume or reuse it) or choose another output directory",
+        ) from exc
+    handle.seek(0)
+    handle.truncate()
+    handle.write(f"process {os.getpid()} on {socket.gethostname()} since {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
+    handle.flush()
+    return handle
 
 
 class SweepStore:
     """The output directory of one sweep (see the module docstring).
 
     Open with :meth:`open`, which creates the directory and its manifest or checks that an
-    existing manifest describes the same sweep.
+    existing manifest describes the same sweep, and takes the directory's lock; :meth:`close`
+    releases it (also a ``with`` block).
     """
 
-    def __init__(self, root: Path, manifest: dict[str, Any]) -> None:
+    def __init__(self, root: Path, manifest: dict[str, Any], lock: Optional[IO[str]] = None) -> None:
         self.root = root
         self.manifest = manifest
         self.chunks = root / CHUNKS
+        self._lock = lock
 
     @classmethod
     def open(cls, out_dir: Any, manifest: dict[str, Any]) -> SweepStore:
@@ -70,28 +118,31 @@ class SweepStore:
         ------
         ValidationError
             ``field="out_dir"``: the directory holds another sweep, or files that are not a
-            sweep's, or cannot be created.
+            sweep's, or an unreadable manifest, or cannot be created, or another process is
+            writing to it.
         """
         root = Path(os.fspath(out_dir))
         try:
             root.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise ValidationError("out_dir", str(root), f"a directory that can be created ({exc})") from exc
+        lock = _lock(root)
+        try:
+            cls._check_manifest(root, manifest)
+            store = cls(root, manifest, lock)
+            store.chunks.mkdir(exist_ok=True)
+            for folder in (root, store.chunks):  # temporary files of interrupted writes (we hold the lock)
+                for stale in folder.glob(".*.tmp*"):
+                    stale.unlink(missing_ok=True)
+        except BaseException:
+            lock.close()
+            raise
+        return store
+
+    @staticmethod
+    def _check_manifest(root: Path, manifest: dict[str, Any]) -> None:
         path = root / MANIFEST
-        if path.exists():
-            try:
-                existing = json.loads(path.read_text(encoding="utf-8"))
-            except (OSError, ValueError) as exc:
-                raise ValidationError("out_dir", str(root), f"a readable {MANIFEST} ({exc})") from exc
-            if existing.get("fingerprint") != manifest["fingerprint"]:
-                raise ValidationError(
-                    "out_dir",
-                    str(root),
-                    "a new directory, or one holding this same sweep to resume; it holds a different "
-                    f"sweep ({_difference(existing, manifest)}). Choose another output directory or "
-                    "delete this one",
-                )
-        else:
+        if not path.exists():
             strays = sorted(p.name for p in root.iterdir() if p.name in (CHUNKS, RESULTS_PARQUET, RESULTS_CSV))
             if strays:
                 raise ValidationError(
@@ -99,34 +150,96 @@ class SweepStore:
                     f"(found {', '.join(strays)} without one); choose another output directory"
                 )
             _atomic_write(path, (json.dumps(manifest, indent=1, sort_keys=True) + "\n").encode())
-        store = cls(root, manifest)
-        store.chunks.mkdir(exist_ok=True)
-        for stale in store.chunks.glob(".*.tmp"):  # left by an interrupted write
-            stale.unlink(missing_ok=True)
-        return store
+            return
+        try:
+            existing = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError, RecursionError) as exc:
+            raise ValidationError("out_dir", str(root), f"a readable {MANIFEST} ({exc})") from exc
+        if not isinstance(existing, dict) or not isinstance(existing.get("fingerprint"), str):
+            raise ValidationError(
+                "out_dir", str(root), f"a {MANIFEST} written by a drillstring sweep (a JSON object with a "
+                f"fingerprint; found {type(existing).__name__}); choose another output directory"
+            )
+        if existing["fingerprint"] != manifest["fingerprint"]:
+            raise ValidationError(
+                "out_dir",
+                str(root),
+                "a new directory, or one holding this same sweep to resume; it holds a different "
+                f"sweep ({_difference(existing, manifest)}). Choose another output directory or "
+                "delete this one",
+            )
+
+    def close(self) -> None:
+        """Releases the directory's lock."""
+        if self._lock is not None:
+            self._lock.close()
+            self._lock = None
+
+    def __enter__(self) -> SweepStore:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
 
     def chunk_path(self, index: int) -> Path:
         return self.chunks / f"chunk-{index:05d}.parquet"
 
-    def load_chunk(self, index: int, rows: int, columns: list[str]) -> Optional[pd.DataFrame]:
-        """The finished chunk ``index`` if its file exists and has ``rows`` rows and exactly
-        ``columns``; ``None`` otherwise (then it is recomputed and rewritten)."""
+    def record_path(self, index: int) -> Path:
+        return self.chunks / f"chunk-{index:05d}.json"
+
+    def load_chunk(
+        self, index: int, plan: str, parameters: pd.DataFrame, columns: list[str]
+    ) -> tuple[Optional[pd.DataFrame], Optional[str]]:
+        """The stored chunk ``index`` if it passes every check of the module docstring.
+
+        ``plan`` is the chunk's plan digest, ``parameters`` the parameter columns its rows must
+        hold, ``columns`` the table's columns. Returns ``(frame, None)`` for a verified chunk,
+        ``(None, None)`` when nothing is stored, ``(None, reason)`` when what is stored fails a
+        check (it is then recomputed and rewritten).
+        """
         import pandas as pd
 
-        path = self.chunk_path(index)
-        if not path.exists():
-            return None
+        path, record_path = self.chunk_path(index), self.record_path(index)
+        if not path.exists() and not record_path.exists():
+            return None, None
         try:
-            frame = pd.read_parquet(path)
-        except Exception:  # unreadable: recompute it (atomic writes make this unexpected)
-            return None
-        if len(frame) != rows or list(frame.columns) != columns:
-            return None
-        return frame
+            record = json.loads(record_path.read_text(encoding="utf-8"))
+        except FileNotFoundError:
+            return None, "it has no record of its checksum"
+        except (OSError, ValueError, RecursionError) as exc:
+            return None, f"its record is unreadable ({exc})"
+        if not isinstance(record, dict):
+            return None, "its record is not a chunk record"
+        if record.get("plan") != plan:
+            return None, "it was written for other runs (its plan differs: a file of another chunk or sweep)"
+        if not path.exists():
+            return None, "its file is missing"
+        try:
+            data = path.read_bytes()
+        except OSError as exc:
+            return None, f"its file is unreadable ({exc})"
+        if _sha256(data) != record.get("sha256"):
+            return None, "its bytes differ from those written (SHA-256 mismatch)"
+        try:
+            import io
 
-    def save_chunk(self, index: int, frame: pd.DataFrame) -> None:
-        """Write chunk ``index`` atomically."""
-        _atomic_write(self.chunk_path(index), frame.to_parquet())
+            frame = pd.read_parquet(io.BytesIO(data))
+        except Exception as exc:  # a file with the right checksum that parquet refuses: recompute
+            return None, f"its file is not a readable table ({exc})"
+        if len(frame) != len(parameters) or list(frame.columns) != columns or record.get("rows") != len(frame):
+            return None, "its rows or columns differ from the plan"
+        frame.index = parameters.index
+        mine = frame[list(parameters.columns)]
+        if not mine.equals(parameters):
+            return None, "its parameter columns differ from the planned runs"
+        return frame, None
+
+    def save_chunk(self, index: int, plan: str, frame: pd.DataFrame, complete: bool) -> None:
+        """Write chunk ``index`` and then its record, each atomically."""
+        data = frame.to_parquet()
+        _atomic_write(self.chunk_path(index), data)
+        record = {"chunk": index, "plan": plan, "rows": len(frame), "sha256": _sha256(data), "complete": complete}
+        _atomic_write(self.record_path(index), (json.dumps(record, indent=1, sort_keys=True) + "\n").encode())
 
     def save_results(self, frame: pd.DataFrame) -> tuple[Path, Path]:
         """Write ``results.parquet`` and ``results.csv`` atomically; returns their paths."""

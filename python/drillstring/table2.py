@@ -10,13 +10,16 @@ difference ``delta_A = |A_h - A_ref| / A_ref * 100 %`` (eq. 22).
 from __future__ import annotations
 
 import csv
+import io
 import json
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
+from pathlib import Path
 from typing import Any, Optional
 
 import numpy as np
 
+from ._output import write_text
 from .parameters import Parameters, preset
 from .simulate import simulate
 
@@ -98,9 +101,13 @@ def table2_json(rows: Sequence[Table2Row]) -> str:
     return json.dumps([asdict(row) for row in rows], indent=2)
 
 
-def write_table2_csv(rows: Sequence[Table2Row], path: Any) -> None:
-    with open(path, "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(["method", "dt", "max_amplitude", "difference_percent"])
-        for row in rows:
-            writer.writerow([row.method, repr(row.dt), repr(row.max_amplitude), repr(row.difference_percent)])
+def write_table2_csv(rows: Sequence[Table2Row], path: Any) -> Path:
+    """Writes the rows as CSV (method, dt, max_amplitude, difference_percent) to ``path`` and
+    returns it (see :mod:`drillstring._output` for how existing files, symlinks, devices and
+    ``"-"`` are treated)."""
+    text = io.StringIO(newline="")
+    writer = csv.writer(text)
+    writer.writerow(["method", "dt", "max_amplitude", "difference_percent"])
+    for row in rows:
+        writer.writerow([row.method, repr(row.dt), repr(row.max_amplitude), repr(row.difference_percent)])
+    return write_text(path, text.getvalue())

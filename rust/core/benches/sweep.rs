@@ -66,6 +66,7 @@ fn bench(c: &mut Criterion) {
         t_end: 1.0,
         samples: 1024,
         keep_trajectories: false,
+        memory_budget: None,
     };
     let check = batch_solve(&integrals, &specs, &opts, None).expect("valid options");
     assert!(check.iter().all(|r| r.status.is_success()));

@@ -35,3 +35,83 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// A number as messages show it: ten significant digits at most, trailing zeros dropped,
+/// plain notation for `1e-4 <= |x| < 1e15` and exponent notation otherwise, with Python's
+/// exponent style (`2.5e-05`, `0.1`, `1e+20`, `nan`, `inf`).
+///
+/// ```
+/// use drillstring_core::Num;
+/// assert_eq!(Num(2.5e-5).to_string(), "2.5e-05");
+/// assert_eq!(Num(0.1 + 0.2).to_string(), "0.3");
+/// assert_eq!(Num(1234.5).to_string(), "1234.5");
+/// assert_eq!(Num(-1e300).to_string(), "-1e+300");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        const DIGITS: i32 = 10;
+        let x = self.0;
+        if !x.is_finite() {
+            return f.write_str(if x.is_nan() {
+                "nan"
+            } else if x > 0.0 {
+                "inf"
+            } else {
+                "-inf"
+            });
+        }
+        if x == 0.0 {
+            return f.write_str(if x.is_sign_negative() { "-0" } else { "0" });
+        }
+        let sci = format!("{:.*e}", (DIGITS - 1) as usize, x);
+        let (mantissa, exponent) = sci.split_once('e').unwrap_or((sci.as_str(), "0"));
+        let exponent: i32 = exponent.parse().unwrap_or(0);
+        let trim = |s: &str| -> String {
+            if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                s.to_string()
+            }
+        };
+        if (-4..15).contains(&exponent) {
+            let decimals = (DIGITS - 1 - exponent).max(0) as usize;
+            f.write_str(&trim(&format!("{x:.decimals$}")))
+        } else {
+            let sign = if exponent < 0 { '-' } else { '+' };
+            write!(f, "{}e{sign}{:02}", trim(mantissa), exponent.abs())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Num;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        let cases = [
+            (2.5e-5, "2.5e-05"),
+            (2.5e-5 * (1.0 + f64::EPSILON), "2.5e-05"),
+            (0.1 + 0.2, "0.3"),
+            (1.0, "1"),
+            (-3.0, "-3"),
+            (100.0, "100"),
+            (1e-5, "1e-05"),
+            (1e-4, "0.0001"),
+            (1.5e-6, "1.5e-06"),
+            (123456789012345.0, "123456789012345"),
+            (1e15, "1e+15"),
+            (1e-300, "1e-300"),
+            (f64::MAX, "1.797693135e+308"),
+            (2.0 / 3.0, "0.6666666667"),
+            (f64::NAN, "nan"),
+            (f64::NEG_INFINITY, "-inf"),
+        ];
+        for (x, want) in cases {
+            assert_eq!(Num(x).to_string(), want, "{x:e}");
+        }
+    }
+}

@@ -32,7 +32,7 @@ pub mod solution;
 pub mod sweep;
 pub mod system;
 
-pub use error::{Error, Result};
+pub use error::{Error, Num, Result};
 pub use interrupt::{CancelFlag, Interrupt};
 pub use options::{AdaptiveOptions, FixedOptions, Output};
 pub use solution::{Solution, Stats, Status};

@@ -14,6 +14,7 @@
 //! coefficients are generated in the Python layer (`drillstring.galerkin`) from exact
 //! trigonometric integrals and passed here.
 
+use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::system::SecondOrderSystem;
 
@@ -107,12 +108,12 @@ impl ModalSystem {
         }
         for (i, &m) in mass.iter().enumerate() {
             if !(m.is_finite() && m > 0.0) {
-                return Err(Error::invalid(format!("mass[{i}]"), m, "a finite number > 0"));
+                return Err(Error::invalid(format!("mass[{i}]"), Num(m), "a finite number > 0"));
             }
         }
         for (i, &k) in stiffness.iter().enumerate() {
             if !k.is_finite() {
-                return Err(Error::invalid(format!("stiffness[{i}]"), k, "a finite number"));
+                return Err(Error::invalid(format!("stiffness[{i}]"), Num(k), "a finite number"));
             }
         }
         for (t, term) in terms.iter().enumerate() {
@@ -120,7 +121,7 @@ impl ModalSystem {
                 return Err(Error::invalid(format!("quartic_index[{t}]"), bad, format!("mode positions in 0..{n}")));
             }
             if !term.coef.is_finite() {
-                return Err(Error::invalid(format!("quartic_coef[{t}]"), term.coef, "a finite number"));
+                return Err(Error::invalid(format!("quartic_coef[{t}]"), Num(term.coef), "a finite number"));
             }
         }
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();

@@ -1,5 +1,6 @@
 //! Solver options and the output request, validated before any work is done.
 
+use crate::error::Num;
 use crate::error::{Error, Result};
 
 /// Where the solution is sampled.
@@ -45,7 +46,7 @@ impl AdaptiveOptions {
             positive("first_step", h)?;
         }
         if self.max_step.is_nan() || self.max_step <= 0.0 {
-            return Err(Error::invalid("max_step", self.max_step, "> 0 (or infinity)"));
+            return Err(Error::invalid("max_step", Num(self.max_step), "> 0 (or infinity)"));
         }
         Ok(())
     }
@@ -77,10 +78,10 @@ impl FixedOptions {
 /// Checks the time span and output request shared by every method.
 pub fn validate_span(t0: f64, t_end: f64, output: &Output) -> Result<()> {
     if !t0.is_finite() {
-        return Err(Error::invalid("t0", t0, "a finite number"));
+        return Err(Error::invalid("t0", Num(t0), "a finite number"));
     }
     if !(t_end.is_finite() && t_end > t0) {
-        return Err(Error::invalid("t_end", t_end, format!("a finite number > t0 = {t0}")));
+        return Err(Error::invalid("t_end", Num(t_end), format!("a finite number > t0 = {}", Num(t0))));
     }
     if let Output::Times(times) = output {
         let mut prev = t0;
@@ -88,14 +89,14 @@ pub fn validate_span(t0: f64, t_end: f64, output: &Output) -> Result<()> {
             if !t.is_finite() || t < t0 || t > t_end {
                 return Err(Error::invalid(
                     "t_eval",
-                    format!("t_eval[{k}] = {t}"),
-                    format!("finite values in [{t0}, {t_end}]"),
+                    format!("t_eval[{k}] = {}", Num(t)),
+                    format!("finite values in [{}, {}]", Num(t0), Num(t_end)),
                 ));
             }
             if t < prev {
                 return Err(Error::invalid(
                     "t_eval",
-                    format!("t_eval[{k}] = {t} < t_eval[{}] = {prev}", k.saturating_sub(1)),
+                    format!("t_eval[{k}] = {} < t_eval[{}] = {}", Num(t), k.saturating_sub(1), Num(prev)),
                     "non-decreasing values",
                 ));
             }
@@ -109,6 +110,6 @@ fn positive(field: &'static str, value: f64) -> Result<()> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Error::invalid(field, value, "a finite number > 0"))
+        Err(Error::invalid(field, Num(value), "a finite number > 0"))
     }
 }

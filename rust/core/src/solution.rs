@@ -15,6 +15,9 @@ pub enum Status {
     NonFinite,
     /// Stopped on request (an [`crate::interrupt::Interrupt`] hook: Ctrl-C, a cancelled sweep).
     Interrupted,
+    /// The samples could not be stored: the system refused the memory (the samples recorded
+    /// before are kept).
+    OutOfMemory,
 }
 
 impl Status {
@@ -26,11 +29,12 @@ impl Status {
             Status::StepSizeUnderflow => 2,
             Status::NonFinite => 3,
             Status::Interrupted => 4,
+            Status::OutOfMemory => 5,
         }
     }
 
     /// A stable short name (`"success"`, `"max_steps"`, `"step_size_underflow"`, `"non_finite"`,
-    /// `"interrupted"`).
+    /// `"interrupted"`, `"out_of_memory"`).
     pub fn name(self) -> &'static str {
         match self {
             Status::Success => "success",
@@ -38,6 +42,7 @@ impl Status {
             Status::StepSizeUnderflow => "step_size_underflow",
             Status::NonFinite => "non_finite",
             Status::Interrupted => "interrupted",
+            Status::OutOfMemory => "out_of_memory",
         }
     }
 
@@ -63,6 +68,13 @@ pub struct Stats {
     pub nreject: u64,
 }
 
+/// A sample could not be stored: the system refused memory for `bytes` bytes of samples
+/// (the vector's size after the sample; the request doubles it when it grows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutOfMemory {
+    pub bytes: usize,
+}
+
 /// The samples of one solve: `t[k]` and the state `y[k * dim .. (k + 1) * dim]`.
 ///
 /// When the solve stops early (any status other than [`Status::Success`]) the samples
@@ -80,23 +92,35 @@ pub struct Solution {
 }
 
 impl Solution {
-    /// An empty solution for a state of length `dim`, with room for `capacity` samples.
+    /// An empty solution for a state of length `dim`, with room for `capacity` samples
+    /// (less, down to none, when the system refuses that memory: the vectors then grow by
+    /// [`Solution::try_push`]).
     pub fn with_capacity(dim: usize, capacity: usize) -> Self {
-        Solution {
+        let mut sol = Solution {
             dim,
-            t: Vec::with_capacity(capacity),
-            y: Vec::with_capacity(capacity * dim),
+            t: Vec::new(),
+            y: Vec::new(),
             status: Status::Success,
             message: String::new(),
             stats: Stats::default(),
+        };
+        let values = capacity.saturating_mul(dim);
+        if sol.t.try_reserve_exact(capacity).is_err() || sol.y.try_reserve_exact(values).is_err() {
+            sol.t = Vec::new();
+            sol.y = Vec::new();
         }
+        sol
     }
 
-    /// Appends one sample.
-    pub fn push(&mut self, t: f64, y: &[f64]) {
+    /// Appends one sample; `Err` (nothing appended) when the memory for it cannot be had.
+    /// Growing never aborts the process: the allocation is fallible.
+    pub fn try_push(&mut self, t: f64, y: &[f64]) -> std::result::Result<(), OutOfMemory> {
         debug_assert_eq!(y.len(), self.dim);
+        self.t.try_reserve(1).map_err(|_| OutOfMemory { bytes: 8 * (self.t.len() + 1) })?;
+        self.y.try_reserve(y.len()).map_err(|_| OutOfMemory { bytes: 8 * (self.y.len() + y.len()) })?;
         self.t.push(t);
         self.y.extend_from_slice(y);
+        Ok(())
     }
 
     /// Number of samples.

@@ -28,6 +28,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<pde::PdeSystem>()?;
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::batch_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::batch_plan, m)?)?;
+    m.add("MAX_THREADS", drillstring_core::sweep::MAX_THREADS)?;
     m.add_function(wrap_pyfunction!(sweep::scale_integrals, m)?)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -7,7 +7,7 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{no_panic, to_vec, validation_error};
+use crate::convert::{integer, no_panic, to_vec, validation_error, SignalCheck};
 
 fn invalid(py: Python<'_>, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> PyErr {
     validation_error(py, core::Error::invalid(field, value, allowed))
@@ -74,6 +74,71 @@ pub(crate) fn scale_integrals<'py>(
     Ok(out)
 }
 
+fn threads_allowed() -> String {
+    format!("an integer in 1..={} (or None for all cores)", sweep::MAX_THREADS)
+}
+
+/// The shared options of a batch, as `batch_solve` takes them.
+#[allow(clippy::too_many_arguments)]
+fn sweep_options(
+    py: Python<'_>,
+    t_end: f64,
+    samples: usize,
+    method: &str,
+    rtol: f64,
+    atol: f64,
+    dt: Option<f64>,
+    max_steps: Option<u64>,
+    first_step: Option<f64>,
+    max_step: f64,
+    keep_trajectories: bool,
+    memory_budget: Option<u64>,
+) -> PyResult<SweepOptions> {
+    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
+    Ok(SweepOptions {
+        solve: SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step },
+        t_end,
+        samples,
+        keep_trajectories,
+        memory_budget,
+    })
+}
+
+/// Checks a planned batch before any work: `threads` (1..=`MAX_THREADS`, or None for every
+/// core) and the memory `runs` runs of `modes` coordinates with `samples` samples would need
+/// against `memory_budget` bytes. Returns `{"threads": resolved count, "bytes": the estimate}`;
+/// raises ValidationError naming `threads` or `samples`.
+#[pyfunction]
+#[pyo3(signature = (modes, samples, runs, threads=None, keep_trajectories=false, memory_budget=None))]
+pub(crate) fn batch_plan<'py>(
+    py: Python<'py>,
+    modes: usize,
+    samples: &Bound<'py, PyAny>,
+    runs: usize,
+    threads: Option<&Bound<'py, PyAny>>,
+    keep_trajectories: bool,
+    memory_budget: Option<u64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let samples: usize = integer(py, "samples", samples, "an integer >= 4")?;
+    let threads: Option<usize> = match threads {
+        Some(t) if !t.is_none() => Some(integer(py, "threads", t, &threads_allowed())?),
+        _ => None,
+    };
+    let threads = sweep::resolve_threads(threads).map_err(|e| validation_error(py, e))?;
+    let opts = SweepOptions {
+        solve: SolveOptions::new(Method::Dop853),
+        t_end: 1.0,
+        samples,
+        keep_trajectories,
+        memory_budget,
+    };
+    opts.check_memory(modes, runs, threads).map_err(|e| validation_error(py, e))?;
+    let out = PyDict::new(py);
+    out.set_item("threads", threads)?;
+    out.set_item("bytes", opts.memory_bytes(modes, runs, threads))?;
+    Ok(out)
+}
+
 /// Solves `R` runs of one Galerkin basis in parallel (GIL released) and returns columns.
 ///
 /// Inputs: `k` (R, 6) = k1..k6, `length` (R,), `initial_velocities` (R, m) = qdot(0) per
@@ -85,8 +150,13 @@ pub(crate) fn scale_integrals<'py>(
 /// `unstable_modes` (R,) int (-1 for an invalid run), `nfev` (R,) int, `max_share` (R, m);
 /// with `keep_trajectories`, also `t` (S,), `y` (R, S, 2m) and `theta` (R, S), NaN past the
 /// end of a run that stopped early.
+///
+/// Ctrl-C (an exception raised by a Python signal handler) stops the runs under way within a
+/// few tens of ms; the dict is still returned, with status `"interrupted"` for the runs that
+/// did not finish, and the exception under `"interrupt"` (None otherwise) for the caller to
+/// raise once it has kept the finished runs.
 #[pyfunction]
-#[pyo3(signature = (k, length, initial_velocities, z, indices, quartic_index, cos4, mixed, sin4, t_end, samples, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, keep_trajectories=false, threads=None))]
+#[pyo3(signature = (k, length, initial_velocities, z, indices, quartic_index, cos4, mixed, sin4, t_end, samples, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, keep_trajectories=false, threads=None, memory_budget=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn batch_solve<'py>(
     py: Python<'py>,
@@ -110,8 +180,22 @@ pub(crate) fn batch_solve<'py>(
     max_step: f64,
     keep_trajectories: bool,
     threads: Option<usize>,
+    memory_budget: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
+    let opts = sweep_options(
+        py,
+        t_end,
+        samples,
+        method,
+        rtol,
+        atol,
+        dt,
+        max_steps,
+        first_step,
+        max_step,
+        keep_trajectories,
+        memory_budget,
+    )?;
     let integrals = integrals_from_arrays(py, &indices, &quartic_index, &cos4, &mixed, &sin4)?;
     let m = integrals.modes();
 
@@ -139,16 +223,12 @@ pub(crate) fn batch_solve<'py>(
             z: z[i],
         })
         .collect();
-    let opts = SweepOptions {
-        solve: SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step },
-        t_end,
-        samples,
-        keep_trajectories,
-    };
-    let solved = py.detach(|| no_panic(|| sweep::batch_solve(&integrals, &runs, &opts, threads)))?;
+    let signals = SignalCheck::new(py);
+    let solved = py.detach(|| no_panic(|| sweep::batch_solve_with(&integrals, &runs, &opts, threads, &signals)))?;
     let records = solved.map_err(|e| validation_error(py, e))?;
 
     let out = PyDict::new(py);
+    out.set_item("interrupt", signals.finish().err().map(|e| e.into_value(py)))?;
     let column = |f: &dyn Fn(&sweep::RunRecord) -> f64| records.iter().map(f).collect::<Vec<f64>>();
     out.set_item("status", records.iter().map(|r| r.status.name()).collect::<Vec<_>>())?;
     out.set_item("message", records.iter().map(|r| r.message.as_str()).collect::<Vec<_>>())?;

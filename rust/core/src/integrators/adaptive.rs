@@ -32,8 +32,9 @@
 use std::marker::PhantomData;
 
 use super::form::Form;
-use super::sampling::{interpolation_failure, Sampler};
+use super::sampling::{record_failure, RecordError, Sampler};
 use super::tableau::{all_finite, Stages, Tableau};
+use crate::error::Num;
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, AdaptiveOptions, Output};
@@ -267,7 +268,11 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
     }
 
     fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) {
-        sampler.start(sol, self.t, &self.y);
+        if let Err(err) = sampler.start(sol, self.t, &self.y) {
+            let (status, message) = record_failure(err, self.t, self.t);
+            sol.fail(status, message);
+            return;
+        }
         let h = match self.opts.first_step {
             Some(h) => h.min(self.hmax),
             None => self.hinit(),
@@ -290,13 +295,18 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
             if poller.poll() {
                 let msg = format!(
                     "interrupted at t = {} before t_end = {} after {attempts} step attempts",
-                    self.t, self.t_end
+                    Num(self.t),
+                    Num(self.t_end)
                 );
                 return Outcome::Failed(Status::Interrupted, msg);
             }
             if h.is_nan() || h < self.min_step() {
-                let msg =
-                    format!("step size h = {h:e} fell below 10*eps*|t| = {:e} at t = {}", self.min_step(), self.t);
+                let msg = format!(
+                    "step size h = {} fell below 10*eps*|t| = {} at t = {}",
+                    Num(h),
+                    Num(self.min_step()),
+                    Num(self.t)
+                );
                 return Outcome::Failed(Status::StepSizeUnderflow, msg);
             }
             let (h_step, last) = self.clip_to_end(h);
@@ -316,12 +326,13 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
                 facold = err.max(1e-4);
                 let t_new = if last { self.t_end } else { self.t + h };
                 if !all_finite(&self.y_new) {
-                    let msg = format!("state became non-finite in the step from t = {} to t = {t_new}", self.t);
+                    let msg =
+                        format!("state became non-finite in the step from t = {} to t = {}", Num(self.t), Num(t_new));
                     return Outcome::Failed(Status::NonFinite, msg);
                 }
                 let t_old = self.t;
-                if let Err(t_out) = self.accept(h, t_new, sampler, sol) {
-                    let (status, message) = interpolation_failure(t_out, t_old, t_new);
+                if let Err(err) = self.accept(h, t_new, sampler, sol) {
+                    let (status, message) = record_failure(err, t_old, t_new);
                     return Outcome::Failed(status, message);
                 }
                 if last {
@@ -358,7 +369,9 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
     fn max_steps_message(&self) -> String {
         format!(
             "reached t = {} before t_end = {}: max_steps = {} step attempts (accepted + rejected) used",
-            self.t, self.t_end, self.opts.max_steps
+            Num(self.t),
+            Num(self.t_end),
+            self.opts.max_steps
         )
     }
 
@@ -384,15 +397,15 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
     }
 
     /// Accepts the attempted step of size `h` ending at `t_new`: FSAL derivative, output
-    /// samples, and the move to the new state. `Err(t_out)`: the dense output overflowed at
-    /// the output time `t_out` (see [`Sampler::record`]).
+    /// samples, and the move to the new state. `Err`: a sample could not be recorded (see
+    /// [`Sampler::record`]).
     pub fn accept(
         &mut self,
         h: f64,
         t_new: f64,
         sampler: &mut Sampler,
         sol: &mut Solution,
-    ) -> std::result::Result<(), f64> {
+    ) -> std::result::Result<(), RecordError> {
         self.stats.naccept += 1;
         if !P::FSAL_IN_ERROR {
             self.eval_fsal(t_new);

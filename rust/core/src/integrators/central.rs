@@ -14,7 +14,7 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::{interpolation_failure, Sampler};
+use super::sampling::{record_failure, RecordError, Sampler};
 use super::tableau::all_finite;
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
@@ -104,7 +104,7 @@ impl Run {
         sol: &mut Solution,
         poller: &mut Poller,
     ) -> std::result::Result<(), (Status, String)> {
-        sampler.start(sol, grid.t0, &self.state_prev);
+        sampler.start(sol, grid.t0, &self.state_prev).map_err(|err| record_failure(err, grid.t0, grid.t0))?;
         for n in 1..=grid.steps {
             grid.before_step(n - 1, max_steps, poller)?;
             let t = grid.time(n);
@@ -114,7 +114,7 @@ impl Run {
             }
             self.stats.naccept += 1;
             let t_prev = grid.time(n - 1);
-            self.record(t_prev, t, sampler, sol).map_err(|t_out| interpolation_failure(t_out, t_prev, t))?;
+            self.record(t_prev, t, sampler, sol).map_err(|err| record_failure(err, t_prev, t))?;
         }
         Ok(())
     }
@@ -139,7 +139,7 @@ impl Run {
         t_new: f64,
         sampler: &mut Sampler,
         sol: &mut Solution,
-    ) -> std::result::Result<(), f64> {
+    ) -> std::result::Result<(), RecordError> {
         let (dof, h) = (self.dof, self.dt);
         let (q0, v0) = self.state_prev.split_at(dof);
         let (q1, v1) = self.state.split_at(dof);

@@ -6,6 +6,7 @@
 //! Grid times are computed as `t_n = t0 + n dt_eff`, never accumulated, and `t_N = t_end`
 //! exactly.
 
+use crate::error::Num;
 use crate::interrupt::Poller;
 use crate::solution::Status;
 
@@ -36,13 +37,16 @@ impl Grid {
         let t = self.time(done);
         if done >= max_steps {
             let msg = format!(
-                "reached t = {t} before t_end = {}: max_steps = {max_steps} steps used of the {} needed with dt = {}",
-                self.t_end, self.steps, self.dt
+                "reached t = {} before t_end = {}: max_steps = {max_steps} steps used of the {} needed with dt = {}",
+                Num(t),
+                Num(self.t_end),
+                self.steps,
+                Num(self.dt)
             );
             return Err((Status::MaxStepsReached, msg));
         }
         if poller.poll() {
-            let msg = format!("interrupted at t = {t} before t_end = {} after {done} steps", self.t_end);
+            let msg = format!("interrupted at t = {} before t_end = {} after {done} steps", Num(t), Num(self.t_end));
             return Err((Status::Interrupted, msg));
         }
         Ok(())
@@ -52,8 +56,8 @@ impl Grid {
     pub fn non_finite(&self, step: u64) -> (Status, String) {
         let msg = format!(
             "state became non-finite in the step from t = {} to t = {} (step {step})",
-            self.time(step - 1),
-            self.time(step)
+            Num(self.time(step - 1)),
+            Num(self.time(step))
         );
         (Status::NonFinite, msg)
     }

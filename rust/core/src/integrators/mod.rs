@@ -24,7 +24,7 @@ mod sampling;
 mod tableau;
 mod verlet;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Never};
 use crate::options::{AdaptiveOptions, FixedOptions, Output};
 use crate::solution::Solution;
@@ -298,7 +298,7 @@ fn check_state(field: &'static str, values: &[f64], dim: usize) -> Result<()> {
         return Err(Error::invalid(field, format!("length {}", values.len()), format!("length {dim}")));
     }
     if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-        return Err(Error::invalid(field, format!("{field}[{i}] = {v}"), "finite values"));
+        return Err(Error::invalid(field, format!("{field}[{i}] = {}", Num(*v)), "finite values"));
     }
     Ok(())
 }

@@ -12,7 +12,7 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::{interpolation_failure, Sampler};
+use super::sampling::{record_failure, RecordError, Sampler};
 use super::tableau::{all_finite, Stages, RK4};
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
@@ -84,7 +84,7 @@ impl Run {
         sol: &mut Solution,
         poller: &mut Poller,
     ) -> std::result::Result<(), (Status, String)> {
-        sampler.start(sol, grid.t0, &self.y);
+        sampler.start(sol, grid.t0, &self.y).map_err(|err| record_failure(err, grid.t0, grid.t0))?;
         for n in 0..grid.steps {
             grid.before_step(n, max_steps, poller)?;
             let (t, t_new) = (grid.time(n), grid.time(n + 1));
@@ -93,8 +93,7 @@ impl Run {
                 return Err(grid.non_finite(n + 1));
             }
             self.stats.naccept += 1;
-            self.record(sys, t, t_new, grid.dt, sampler, sol)
-                .map_err(|t_out| interpolation_failure(t_out, t, t_new))?;
+            self.record(sys, t, t_new, grid.dt, sampler, sol).map_err(|err| record_failure(err, t, t_new))?;
         }
         Ok(())
     }
@@ -119,7 +118,7 @@ impl Run {
         h: f64,
         sampler: &mut Sampler,
         sol: &mut Solution,
-    ) -> std::result::Result<(), f64> {
+    ) -> std::result::Result<(), RecordError> {
         if sampler.needs_interpolant(t_new) {
             sys.rhs(t_new, &self.y_new, &mut self.f_new);
             self.stats.nfev += 1;

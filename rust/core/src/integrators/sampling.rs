@@ -3,6 +3,17 @@
 
 use crate::options::Output;
 use crate::solution::{Solution, Status};
+use crate::Num;
+
+/// Why a sample could not be recorded; the solve must end (see [`record_failure`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum RecordError {
+    /// The interpolant was not finite at this output time (an overflow inside a step whose
+    /// end points are finite).
+    NonFinite(f64),
+    /// The memory for the sample at this time could not be had (`bytes` of samples).
+    OutOfMemory { t: f64, bytes: usize },
+}
 
 /// Largest number of values preallocated for the samples (the vectors grow past it).
 const MAX_PREALLOCATED_VALUES: usize = 1 << 24;
@@ -32,14 +43,15 @@ impl<'a> Sampler<'a> {
     }
 
     /// Records the initial state: every-step output and requested times equal to `t0`.
-    pub fn start(&mut self, sol: &mut Solution, t0: f64, y0: &[f64]) {
+    pub fn start(&mut self, sol: &mut Solution, t0: f64, y0: &[f64]) -> Result<(), RecordError> {
         match self.times {
-            None => sol.push(t0, y0),
+            None => push(sol, t0, y0),
             Some(times) => {
                 while self.next < times.len() && times[self.next] <= t0 {
-                    sol.push(times[self.next], y0);
+                    push(sol, times[self.next], y0)?;
                     self.next += 1;
                 }
+                Ok(())
             }
         }
     }
@@ -56,9 +68,9 @@ impl<'a> Sampler<'a> {
     /// Records the step ending at `(t_new, y_new)`. Requested times equal to `t_new` get
     /// `y_new` exactly; earlier ones are evaluated by `interp(t, buf)` into `buf`.
     ///
-    /// `Err(t)`: the interpolant was not finite at the requested time `t` (an overflow inside a
-    /// step whose end points are finite); nothing is recorded from `t` on and the solve must
-    /// end (see [`interpolation_failure`]).
+    /// `Err`: the interpolant was not finite at a requested time, or the memory for a sample
+    /// could not be had; nothing is recorded from there on and the solve must end (see
+    /// [`record_failure`]).
     pub fn record(
         &mut self,
         sol: &mut Solution,
@@ -66,21 +78,20 @@ impl<'a> Sampler<'a> {
         y_new: &[f64],
         buf: &mut [f64],
         mut interp: impl FnMut(f64, &mut [f64]),
-    ) -> Result<(), f64> {
+    ) -> Result<(), RecordError> {
         let Some(times) = self.times else {
-            sol.push(t_new, y_new);
-            return Ok(());
+            return push(sol, t_new, y_new);
         };
         while self.next < times.len() && times[self.next] <= t_new {
             let t = times[self.next];
             if t == t_new {
-                sol.push(t, y_new);
+                push(sol, t, y_new)?;
             } else {
                 interp(t, buf);
                 if !buf.iter().all(|v| v.is_finite()) {
-                    return Err(t);
+                    return Err(RecordError::NonFinite(t));
                 }
-                sol.push(t, buf);
+                push(sol, t, buf)?;
             }
             self.next += 1;
         }
@@ -88,13 +99,30 @@ impl<'a> Sampler<'a> {
     }
 }
 
-/// The status and message of a solve whose output interpolant overflowed at `t_out` inside the
-/// step `t -> t_new`.
-pub(crate) fn interpolation_failure(t_out: f64, t: f64, t_new: f64) -> (Status, String) {
-    (
-        Status::NonFinite,
-        format!("the interpolated state became non-finite at the output time {t_out} (step from t = {t} to {t_new})"),
-    )
+fn push(sol: &mut Solution, t: f64, y: &[f64]) -> Result<(), RecordError> {
+    sol.try_push(t, y).map_err(|e| RecordError::OutOfMemory { t, bytes: e.bytes })
+}
+
+/// The status and message of a solve that could not record a sample in the step `t -> t_new`.
+pub(crate) fn record_failure(err: RecordError, t: f64, t_new: f64) -> (Status, String) {
+    let (t, t_new) = (Num(t), Num(t_new));
+    match err {
+        RecordError::NonFinite(t_out) => (
+            Status::NonFinite,
+            format!(
+                "the interpolated state became non-finite at the output time {} (step from t = {t} to {t_new})",
+                Num(t_out)
+            ),
+        ),
+        RecordError::OutOfMemory { t: t_out, bytes } => (
+            Status::OutOfMemory,
+            format!(
+                "out of memory at the output time {}: the system refused {bytes} bytes for the samples; \
+                 request fewer output samples",
+                Num(t_out)
+            ),
+        ),
+    }
 }
 
 #[cfg(test)]
@@ -107,7 +135,7 @@ mod tests {
         let mut s = Sampler::new(&output);
         let mut sol = s.solution(1, 0);
         let mut buf = [0.0];
-        s.start(&mut sol, 0.0, &[7.0]);
+        s.start(&mut sol, 0.0, &[7.0]).unwrap();
         assert_eq!(sol.t, [0.0, 0.0]);
         assert!(s.needs_interpolant(1.0));
         s.record(&mut sol, 1.0, &[1.0], &mut buf, |t, out| out[0] = -t).unwrap();
@@ -123,7 +151,7 @@ mod tests {
         let output = Output::EveryStep;
         let mut s = Sampler::new(&output);
         let mut sol = s.solution(1, 4);
-        s.start(&mut sol, 0.0, &[1.0]);
+        s.start(&mut sol, 0.0, &[1.0]).unwrap();
         assert!(!s.needs_interpolant(1.0));
         s.record(&mut sol, 1.0, &[2.0], &mut [0.0], |_, _| panic!("no interpolation")).unwrap();
         assert_eq!(sol.t, [0.0, 1.0]);
@@ -135,11 +163,11 @@ mod tests {
         let output = Output::Times(vec![0.5, 0.7, 1.0]);
         let mut s = Sampler::new(&output);
         let mut sol = s.solution(1, 0);
-        s.start(&mut sol, 0.0, &[0.0]);
+        s.start(&mut sol, 0.0, &[0.0]).unwrap();
         let got = s.record(&mut sol, 1.0, &[1.0], &mut [0.0], |t, out| out[0] = if t > 0.6 { f64::NAN } else { t });
-        assert_eq!(got, Err(0.7));
+        assert_eq!(got, Err(RecordError::NonFinite(0.7)));
         assert_eq!(sol.t, [0.5]);
-        let (status, message) = interpolation_failure(0.7, 0.0, 1.0);
+        let (status, message) = record_failure(RecordError::NonFinite(0.7), 0.0, 1.0);
         assert_eq!(status, Status::NonFinite);
         assert!(message.contains("0.7"), "{message}");
     }

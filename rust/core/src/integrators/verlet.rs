@@ -18,7 +18,7 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::{interpolation_failure, Sampler};
+use super::sampling::{record_failure, RecordError, Sampler};
 use super::tableau::all_finite;
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
@@ -97,7 +97,7 @@ impl Run {
         sol: &mut Solution,
         poller: &mut Poller,
     ) -> std::result::Result<(), (Status, String)> {
-        sampler.start(sol, grid.t0, &self.state);
+        sampler.start(sol, grid.t0, &self.state).map_err(|err| record_failure(err, grid.t0, grid.t0))?;
         for n in 0..grid.steps {
             grid.before_step(n, max_steps, poller)?;
             let (t, t_new) = (grid.time(n), grid.time(n + 1));
@@ -106,7 +106,7 @@ impl Run {
                 return Err(grid.non_finite(n + 1));
             }
             self.stats.naccept += 1;
-            self.record(t, t_new, grid.dt, sampler, sol).map_err(|t_out| interpolation_failure(t_out, t, t_new))?;
+            self.record(t, t_new, grid.dt, sampler, sol).map_err(|err| record_failure(err, t, t_new))?;
         }
         Ok(())
     }
@@ -136,7 +136,7 @@ impl Run {
         h: f64,
         sampler: &mut Sampler,
         sol: &mut Solution,
-    ) -> std::result::Result<(), f64> {
+    ) -> std::result::Result<(), RecordError> {
         let dof = self.dof;
         let (q0, v0) = self.state.split_at(dof);
         let (q1, v1) = self.state_new.split_at(dof);

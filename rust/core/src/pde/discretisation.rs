@@ -1,6 +1,7 @@
 //! The nodal system [`PdeSystem`]: grid, discrete energy `H_h` and its Euler-Lagrange
 //! accelerations (derivation in the module docs of [`crate::pde`]).
 
+use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::simd::{dispatch_len, Kernel, MulAdd};
 use crate::system::SecondOrderSystem;
@@ -38,10 +39,10 @@ impl PdeCoefficients {
             let field = ["k1", "k2", "k3", "k4", "k5", "k6"][i];
             if i < 2 {
                 if !(k.is_finite() && k > 0.0) {
-                    return Err(Error::invalid(field, k, "a finite number > 0"));
+                    return Err(Error::invalid(field, Num(k), "a finite number > 0"));
                 }
             } else if !k.is_finite() {
-                return Err(Error::invalid(field, k, "a finite number"));
+                return Err(Error::invalid(field, Num(k), "a finite number"));
             }
         }
         Ok(())
@@ -72,7 +73,7 @@ impl PdeSystem {
             return Err(Error::invalid("nodes", nodes, format!("an integer in 3..={MAX_NODES}")));
         }
         if !(length.is_finite() && length > 0.0) {
-            return Err(Error::invalid("length", length, "a finite number > 0"));
+            return Err(Error::invalid("length", Num(length), "a finite number > 0"));
         }
         k.validate()?;
         let h = length / (nodes - 1) as f64;

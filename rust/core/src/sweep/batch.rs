@@ -1,15 +1,49 @@
 //! The batch solve: many runs of one Galerkin basis in parallel, one [`RunRecord`] each.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::mpsc;
+use std::time::Duration;
 
 use rayon::prelude::*;
 
 use super::integrals::GalerkinIntegrals;
 use super::metrics::{self, FftBuffers, FrequencyEstimator};
-use crate::error::{Error, Result};
+use crate::error::{Error, Num, Result};
 use crate::integrators::{self, SolveOptions};
+use crate::interrupt::{CancelFlag, Interrupt, Never};
 use crate::options::{validate_span, Output};
 use crate::solution::Status;
+
+/// Largest number of threads of one batch solve.
+pub const MAX_THREADS: usize = 1024;
+
+/// How often the thread that started a batch asks its [`Interrupt`] hook while the runs go on.
+const HOOK_INTERVAL: Duration = Duration::from_millis(5);
+
+/// The threads a batch solve uses: `threads`, or every core the system offers for `None`.
+///
+/// Errors for `Some(0)` or more than [`MAX_THREADS`].
+pub fn resolve_threads(threads: Option<usize>) -> Result<usize> {
+    match threads {
+        None => Ok(std::thread::available_parallelism().map_or(1, usize::from).min(MAX_THREADS)),
+        Some(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        Some(n) => {
+            Err(Error::invalid("threads", n, format!("an integer in 1..={MAX_THREADS} (or None for all cores)")))
+        }
+    }
+}
+
+/// `n` bytes as `"1.5 GiB"` (binary units, three significant digits).
+fn human_bytes(n: u64) -> String {
+    let mut value = n as f64;
+    for unit in ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB"] {
+        if value < 1024.0 || unit == "PiB" {
+            return if unit == "bytes" { format!("{n} bytes") } else { format!("{value:.3} {unit}") };
+        }
+        value /= 1024.0;
+    }
+    unreachable!()
+}
 
 /// One run of a sweep: the PDE coefficients, the length, the initial modal velocities and the
 /// section `z` where `theta(z, t)` is measured. The run starts at `q = 0`.
@@ -38,6 +72,9 @@ pub struct SweepOptions {
     pub samples: usize,
     /// Keep each run's samples in [`RunRecord::trajectory`].
     pub keep_trajectories: bool,
+    /// Largest peak memory, in bytes, that a batch may need ([`SweepOptions::memory_bytes`]);
+    /// `None` for no limit. A batch that would need more is refused before any work.
+    pub memory_budget: Option<u64>,
 }
 
 impl SweepOptions {
@@ -48,6 +85,57 @@ impl SweepOptions {
         let mut t: Vec<f64> = (0..n).map(|j| j as f64 * step).collect();
         t[n - 1] = self.t_end;
         t
+    }
+
+    /// An estimate of the peak memory, in bytes, of a batch of `runs` runs of `modes` retained
+    /// coordinates on `threads` threads (saturating; an upper estimate):
+    ///
+    /// * shared: the output times, the Hann window and the FFT plan, `8 S + 8 S + 16 F`;
+    /// * per thread, one run at a time: its samples `8 S (2m + 1)`, `theta(z, t)` `8 S` and
+    ///   the FFT buffers `32 F`;
+    /// * per run: its record, `8 m + 256`; with kept trajectories also its samples twice (the
+    ///   record's and the caller's arrays), `2 * 8 S (2m + 1)`;
+    ///
+    /// with `S` samples and `F = next_power_of_two(8 S)` the FFT length.
+    pub fn memory_bytes(&self, modes: usize, runs: usize, threads: usize) -> u64 {
+        let (s, m, runs) = (self.samples as u128, modes as u128, runs as u128);
+        let fft = (self.samples.saturating_mul(metrics::PAD))
+            .checked_next_power_of_two()
+            .map_or(u128::from(u64::MAX), |f| f as u128);
+        let shared = 16 * s + 16 * fft;
+        let per_thread = 8 * s * (2 * m + 1) + 8 * s + 32 * fft;
+        let kept = if self.keep_trajectories { 2 * 8 * s * (2 * m + 1) } else { 0 };
+        let per_run = 8 * m + 256 + kept;
+        let total = shared
+            .saturating_add(per_thread.saturating_mul(threads.min(runs.max(1) as usize) as u128))
+            .saturating_add(per_run.saturating_mul(runs));
+        u64::try_from(total).unwrap_or(u64::MAX)
+    }
+
+    /// Refuses (naming `samples`) a batch whose [`SweepOptions::memory_bytes`] exceeds
+    /// [`SweepOptions::memory_budget`].
+    pub fn check_memory(&self, modes: usize, runs: usize, threads: usize) -> Result<()> {
+        let Some(budget) = self.memory_budget else { return Ok(()) };
+        let need = self.memory_bytes(modes, runs, threads);
+        if need <= budget {
+            return Ok(());
+        }
+        let what = if self.keep_trajectories {
+            format!("{runs} runs with their trajectories of {} values per sample", 2 * modes + 1)
+        } else {
+            format!("{runs} runs on {} threads", threads.min(runs.max(1)))
+        };
+        Err(Error::invalid(
+            "samples",
+            self.samples,
+            format!(
+                "a number of samples whose batch fits the memory budget of {} (DRILLSTRING_MEMORY_BUDGET): \
+                 {what} would need {} ({need} bytes); request fewer samples{}",
+                human_bytes(budget),
+                human_bytes(need),
+                if self.keep_trajectories { ", runs or no trajectories" } else { ", runs per chunk or threads" },
+            ),
+        ))
     }
 
     pub fn validate(&self) -> Result<()> {
@@ -150,45 +238,78 @@ struct Shared<'a> {
     output: Output,
     dt: f64,
     estimator: FrequencyEstimator,
+    /// Raised when the batch is interrupted: every run polls it.
+    cancel: &'a CancelFlag,
 }
 
-/// Solves every run of `runs` (in parallel on `threads` threads, or rayon's global pool
-/// when `None`) and returns one record per run, in input order.
+/// Solves every run of `runs` in parallel on `threads` threads (every core for `None`, see
+/// [`resolve_threads`]) and returns one record per run, in input order.
 ///
-/// Errors only for invalid shared input (`opts`, `threads = Some(0)`); a bad run becomes a
-/// record with status [`RunStatus::Invalid`], a failed solve a record with its status, and
-/// neither affects the other runs.
+/// Errors only for invalid shared input (`opts`, `threads`, a batch over
+/// [`SweepOptions::memory_budget`]); a bad run becomes a record with status
+/// [`RunStatus::Invalid`], a failed solve a record with its status, and neither affects the
+/// other runs.
 pub fn batch_solve(
     integrals: &GalerkinIntegrals,
     runs: &[RunSpec],
     opts: &SweepOptions,
     threads: Option<usize>,
 ) -> Result<Vec<RunRecord>> {
+    batch_solve_with(integrals, runs, opts, threads, &Never)
+}
+
+/// [`batch_solve`] that asks `interrupt` every few milliseconds while the runs go on (from the
+/// calling thread only, which waits for the pool: a hook that must run on a given thread,
+/// such as Python's signal check, works). When it answers `true`, the runs under way stop
+/// within a few milliseconds with [`Status::Interrupted`], the runs not yet started are
+/// records with that status too, and the finished runs keep their results.
+///
+/// The runs go on a thread pool made for this call and dropped after it (never rayon's global
+/// pool), so a process that forks after a batch can run batches in the child.
+pub fn batch_solve_with(
+    integrals: &GalerkinIntegrals,
+    runs: &[RunSpec],
+    opts: &SweepOptions,
+    threads: Option<usize>,
+    interrupt: &dyn Interrupt,
+) -> Result<Vec<RunRecord>> {
     opts.validate()?;
+    let threads = resolve_threads(threads)?;
+    opts.check_memory(integrals.modes(), runs.len(), threads)?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.min(runs.len().max(1)))
+        .build()
+        .map_err(|e| Error::invalid("threads", threads, format!("a thread count the system allows ({e})")))?;
     let times = opts.times();
+    let cancel = CancelFlag::new();
     let shared = Shared {
         integrals,
         opts,
         dt: opts.t_end / (opts.samples - 1) as f64,
         estimator: FrequencyEstimator::new(opts.samples),
         output: Output::Times(times),
+        cancel: &cancel,
     };
     let work = || {
         runs.par_iter()
             .map_init(|| shared.estimator.buffers(), |buf, spec| run_guarded(&shared, spec, buf))
             .collect::<Vec<_>>()
     };
-    match threads {
-        None => Ok(work()),
-        Some(0) => Err(Error::invalid("threads", 0, "an integer >= 1 (or None for all cores)")),
-        Some(n) => {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| Error::invalid("threads", n, format!("a thread count the system allows ({e})")))?;
-            Ok(pool.install(work))
+    let records = std::thread::scope(|scope| {
+        let (done, finished) = mpsc::channel();
+        let worker = scope.spawn(move || {
+            let records = pool.install(work);
+            let _ = done.send(());
+            records
+        });
+        while let Err(mpsc::RecvTimeoutError::Timeout) = finished.recv_timeout(HOOK_INTERVAL) {
+            if !cancel.is_cancelled() && interrupt.interrupted() {
+                cancel.cancel();
+            }
         }
-    }
+        worker.join()
+    });
+    records.map_err(|_| Error::invalid("runs", runs.len(), "runs the batch solver can finish (internal error)"))
 }
 
 /// [`run_one`], with a panic turned into a record of this run only.
@@ -215,6 +336,10 @@ fn default_dt(mass: &[f64], stiffness: &[f64]) -> f64 {
 
 fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunRecord {
     let m = shared.integrals.modes();
+    if shared.cancel.is_cancelled() {
+        let message = "interrupted before this run started".to_string();
+        return RunRecord::failed(RunStatus::Solved(Status::Interrupted), message, m);
+    }
     let invalid = |e: Error| RunRecord::failed(RunStatus::Invalid, e.to_string(), m);
     let sys = match shared.integrals.scale(&spec.k, spec.length) {
         Ok(sys) => sys,
@@ -228,14 +353,14 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
         ));
     }
     if !(spec.z.is_finite() && (0.0..=spec.length).contains(&spec.z)) {
-        return invalid(Error::invalid("z", spec.z, format!("0 <= z <= length = {}", spec.length)));
+        return invalid(Error::invalid("z", Num(spec.z), format!("0 <= z <= length = {}", Num(spec.length))));
     }
     let mut solve = shared.opts.solve;
     if !solve.method.is_adaptive() && solve.dt.is_none() {
         solve.dt = Some(default_dt(sys.mass(), sys.stiffness()));
     }
     let q0 = vec![0.0; m];
-    let sol = match integrators::solve_second_order(
+    let sol = match integrators::solve_second_order_with(
         &sys,
         0.0,
         &q0,
@@ -243,6 +368,7 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
         shared.opts.t_end,
         &shared.output,
         &solve,
+        shared.cancel,
     ) {
         Ok(sol) => sol,
         Err(e) => return invalid(e),

@@ -15,6 +15,7 @@
 
 use std::f64::consts::PI;
 
+use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::modal::{ModalSystem, QuarticTerm};
 
@@ -65,7 +66,7 @@ impl GalerkinIntegrals {
                 ));
             }
             if let Some(t) = values.iter().position(|v| !v.is_finite()) {
-                return Err(Error::invalid(format!("{name}[{t}]"), values[t], "a finite number"));
+                return Err(Error::invalid(format!("{name}[{t}]"), Num(values[t]), "a finite number"));
             }
         }
         for (t, idx) in quartic_index.iter().enumerate() {
@@ -114,13 +115,13 @@ impl GalerkinIntegrals {
     /// refuses).
     pub fn scale(&self, k: &[f64; 6], length: f64) -> Result<ModalSystem> {
         if let Some(j) = k.iter().position(|v| !v.is_finite()) {
-            return Err(Error::invalid(format!("k{}", j + 1), k[j], "a finite number"));
+            return Err(Error::invalid(format!("k{}", j + 1), Num(k[j]), "a finite number"));
         }
         if k[0] <= 0.0 {
-            return Err(Error::invalid("k1", k[0], "a finite number > 0"));
+            return Err(Error::invalid("k1", Num(k[0]), "a finite number > 0"));
         }
         if !(length.is_finite() && length > 0.0) {
-            return Err(Error::invalid("length", length, "a finite number > 0"));
+            return Err(Error::invalid("length", Num(length), "a finite number > 0"));
         }
         let [k1, k2, k3, k4, k5, k6] = *k;
         let c3 = k3 * length / 4.0;

@@ -11,7 +11,10 @@ pub mod batch;
 pub mod integrals;
 pub mod metrics;
 
-pub use batch::{batch_solve, RunRecord, RunSpec, RunStatus, SweepOptions, Trajectory};
+pub use batch::{
+    batch_solve, batch_solve_with, resolve_threads, RunRecord, RunSpec, RunStatus, SweepOptions, Trajectory,
+    MAX_THREADS,
+};
 pub use integrals::GalerkinIntegrals;
 
 #[cfg(test)]

@@ -3,6 +3,8 @@
 use super::*;
 use crate::integrators::{Method, SolveOptions};
 use crate::solution::Status;
+use crate::sweep::batch::{batch_solve_with, resolve_threads, MAX_THREADS};
+use std::time::Duration;
 
 /// One mode `i = 1`: `cos4 = 3/8`, `mixed = 1/8`, `sin4 = 3/8` (galerkin.dimensionless_integrals(1)).
 fn one_mode() -> GalerkinIntegrals {
@@ -25,6 +27,7 @@ fn options(rtol: f64) -> SweepOptions {
         t_end: 1.0,
         samples: 1024,
         keep_trajectories: false,
+        memory_budget: None,
     }
 }
 
@@ -167,4 +170,83 @@ fn shared_input_errors() {
     opts.t_end = f64::NAN;
     assert_eq!(batch_solve(&g, &[], &opts, None).unwrap_err().field(), "t_end");
     assert!(batch_solve(&g, &[], &options(1e-8), None).unwrap().is_empty());
+}
+
+#[test]
+fn thread_counts_are_bounded() {
+    let g = one_mode();
+    let opts = options(1e-8);
+    for bad in [0, MAX_THREADS + 1, 1_000_000] {
+        let err = batch_solve(&g, &[spec(100.0, 0.1)], &opts, Some(bad)).unwrap_err();
+        assert_eq!(err.field(), "threads");
+        assert!(err.to_string().contains(&format!("1..={MAX_THREADS}")), "{err}");
+    }
+    assert_eq!(resolve_threads(Some(3)).unwrap(), 3);
+    assert!((1..=MAX_THREADS).contains(&resolve_threads(None).unwrap()));
+}
+
+#[test]
+fn a_batch_over_the_memory_budget_is_refused_before_any_allocation() {
+    // 1e9 samples: the FFT buffers alone would need tens of GiB (this aborted the process
+    // before the check): an error naming samples, computed without allocating them.
+    let g = one_mode();
+    let mut opts = options(1e-8);
+    opts.samples = 1_000_000_000;
+    opts.memory_budget = Some(2 << 30);
+    let err = batch_solve(&g, &[spec(100.0, 0.1)], &opts, None).unwrap_err();
+    assert_eq!(err.field(), "samples");
+    assert!(err.to_string().contains("memory budget of 2.000 GiB"), "{err}");
+    // The estimate: 1024 samples, one mode, one run, one thread.
+    opts.samples = 1024;
+    let fft = 8192u64;
+    let want = 16 * 1024 + 16 * fft + (8 * 1024 * 3 + 8 * 1024 + 32 * fft) + (8 + 256);
+    assert_eq!(opts.memory_bytes(1, 1, 4), want);
+    // Kept trajectories scale with the runs; a budget just below the need refuses.
+    opts.keep_trajectories = true;
+    let need = opts.memory_bytes(1, 1000, 2);
+    assert_eq!(need - opts.memory_bytes(1, 999, 2), 8 + 256 + 2 * 8 * 1024 * 3);
+    opts.memory_budget = Some(need - 1);
+    let runs = vec![spec(100.0, 0.1); 1000];
+    let err = batch_solve(&g, &runs, &opts, Some(2)).unwrap_err();
+    assert!(err.to_string().contains("1000 runs with their trajectories"), "{err}");
+    opts.memory_budget = Some(need);
+    assert_eq!(batch_solve(&g, &runs[..10], &opts, Some(2)).unwrap().len(), 10);
+    // Absurd sizes saturate instead of overflowing.
+    opts.samples = usize::MAX;
+    assert_eq!(opts.memory_bytes(256, usize::MAX, MAX_THREADS), u64::MAX);
+}
+
+#[test]
+fn an_interrupt_stops_the_runs_under_way_and_keeps_the_finished_ones() {
+    // Short runs (l = 1e5 m: 0.03 Hz, ~1e3 steps over 200 s) and long ones (l = 10 m: 311 Hz,
+    // ~1e6 steps, a few hundred ms at least); the hook fires after 30 ms.
+    let g = one_mode();
+    let mut opts = options(1e-10);
+    opts.t_end = 200.0;
+    let runs: Vec<RunSpec> = [1e5, 1e5, 1e5, 10.0, 1e5, 1e5, 10.0, 1e5].iter().map(|&l| spec(l, 0.1)).collect();
+    let start = std::time::Instant::now();
+    let hook = || start.elapsed() > Duration::from_millis(30);
+    let recs = batch_solve_with(&g, &runs, &opts, Some(2), &hook).unwrap();
+    for (rec, run) in recs.iter().zip(&runs) {
+        match rec.status {
+            // A finished run is exactly the run solved alone.
+            RunStatus::Solved(Status::Success) => {
+                assert_eq!(rec, &batch_solve(&g, std::slice::from_ref(run), &opts, Some(1)).unwrap()[0])
+            }
+            RunStatus::Solved(Status::Interrupted) => {
+                assert!(rec.message.contains("interrupted"), "{}", rec.message);
+                assert!(rec.max_theta.is_nan());
+            }
+            other => panic!("{other:?}: {}", rec.message),
+        }
+    }
+    for long in [3, 6] {
+        assert_eq!(recs[long].status, RunStatus::Solved(Status::Interrupted), "{}", recs[long].message);
+    }
+    // A hook that never fires changes nothing.
+    let short = &runs[..3];
+    assert_eq!(
+        batch_solve_with(&g, short, &opts, Some(2), &|| false).unwrap(),
+        batch_solve(&g, short, &opts, Some(1)).unwrap()
+    );
 }

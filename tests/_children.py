@@ -1,0 +1,137 @@
+"""Child Python processes for tests that send them signals (shared by the test modules).
+
+A test that signals a child must not depend on how pytest itself was started. Started in the
+background (``nohup``, ``setsid ... &``, a CI runner), a process inherits SIGINT *ignored*, and a
+Python interpreter that starts with SIGINT ignored keeps it ignored: Ctrl-C would never reach
+the child, whose long solve then runs on after the test has given up. So:
+
+* every child sets its own SIGINT disposition: its script starts with
+  ``signal.signal(SIGINT, signal.default_int_handler)`` (what an interactive ``python`` has),
+  before it can print its "ready" line;
+* every child runs in its own session and process group (``start_new_session``), gets SIGINT
+  the way a terminal sends Ctrl-C (to its whole group), and
+* is always killed with its whole group (SIGKILL) and reaped when the ``with`` block ends --
+  after a failed assertion or a timeout too -- so no CPU-heavy process outlives its test.
+
+Usage::
+
+    with python_child(script, cwd=tmp_path) as child:   # returns once the child printed "ready"
+        child.interrupt()                                # SIGINT to the child's group
+        out, err = child.communicate(timeout=60)
+"""
+
+from __future__ import annotations
+
+import os
+import selectors
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Optional, Union
+
+__all__ = ["CHILD_PROLOGUE", "Child", "python_child"]
+
+#: Prepended to every child script: the SIGINT disposition of an interactive interpreter,
+#: whatever the test run inherited.
+CHILD_PROLOGUE = "import signal as _signal; _signal.signal(_signal.SIGINT, _signal.default_int_handler)\n"
+
+#: Seconds a child may take to start and print its first line (imports on a loaded machine).
+START_TIMEOUT = 120.0
+
+
+class Child:
+    """A running child process in its own process group; see :func:`python_child`."""
+
+    def __init__(self, proc: subprocess.Popen[bytes]) -> None:
+        self.proc = proc
+        self._stdout = b""  # read from the pipe before communicate()
+
+    @property
+    def pid(self) -> int:
+        return self.proc.pid
+
+    def read_line(self, timeout: float = START_TIMEOUT) -> str:
+        """The next line the child writes to stdout (without the newline); ``AssertionError`` if
+        none comes within ``timeout`` seconds or the child exits first (with its stderr)."""
+        assert self.proc.stdout is not None
+        deadline = time.monotonic() + timeout
+        fd = self.proc.stdout.fileno()
+        with selectors.DefaultSelector() as selector:
+            selector.register(fd, selectors.EVENT_READ)
+            while b"\n" not in self._stdout:
+                left = deadline - time.monotonic()
+                assert left > 0, f"no line from the child within {timeout:g} s; stdout so far {self._stdout!r}"
+                if not selector.select(left):
+                    continue
+                chunk = os.read(fd, 65536)
+                if not chunk:
+                    self.proc.wait(timeout=10)
+                    raise AssertionError(
+                        f"the child exited ({self.proc.returncode}) before writing a line; stdout "
+                        f"{self._stdout!r}, stderr {self._stderr_so_far()!r}"
+                    )
+                self._stdout += chunk
+        line, self._stdout = self._stdout.split(b"\n", 1)
+        return line.decode()
+
+    def _stderr_so_far(self) -> str:
+        if self.proc.stderr is None or self.proc.poll() is None:
+            return ""
+        return self.proc.stderr.read().decode(errors="replace")
+
+    def interrupt(self) -> float:
+        """Ctrl-C: SIGINT to the child's process group, as a terminal sends it. Returns the
+        ``time.monotonic()`` just before sending."""
+        assert self.proc.poll() is None, "the child ended before the signal"
+        sent = time.monotonic()
+        os.killpg(self.proc.pid, signal.SIGINT)
+        return sent
+
+    def communicate(self, timeout: float) -> tuple[str, str]:
+        """The rest of stdout and stderr once the child has exited (``subprocess.TimeoutExpired``
+        after ``timeout`` seconds; the ``with`` block then kills it)."""
+        out, err = self.proc.communicate(timeout=timeout)
+        text = (self._stdout + out).decode()
+        self._stdout = b""
+        return text, err.decode()
+
+    def kill(self) -> None:
+        """SIGKILL to the child's whole process group (its own children too); reaps the child."""
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+        except ProcessLookupError:  # the group is gone: every member has exited
+            pass
+        try:
+            self.proc.communicate(timeout=30)  # reap, close the pipes
+        except subprocess.TimeoutExpired:  # pragma: no cover - SIGKILL cannot be ignored
+            pass
+
+
+@contextmanager
+def python_child(
+    script: str, cwd: Union[str, Path], *, ready: Optional[str] = "ready", timeout: float = START_TIMEOUT
+) -> Iterator[Child]:
+    """Runs ``python -c script`` (dedented, after :data:`CHILD_PROLOGUE`) in ``cwd`` in a new
+    session, waits for the line ``ready`` on its stdout (unless ``ready`` is ``None``) and yields
+    it; the child and its process group are killed when the block ends, however it ends."""
+    proc = subprocess.Popen(
+        [sys.executable, "-c", CHILD_PROLOGUE + textwrap.dedent(script)],
+        cwd=cwd,
+        stdin=subprocess.DEVNULL,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        start_new_session=True,  # own session and process group: killpg reaches exactly the child's
+    )
+    child = Child(proc)
+    try:
+        if ready is not None:
+            line = child.read_line(timeout)
+            assert line.strip() == ready, (line, child._stderr_so_far())
+        yield child
+    finally:
+        child.kill()
