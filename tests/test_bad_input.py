@@ -545,3 +545,23 @@ def test_the_case_table_is_large() -> None:
     assert total >= 40
     names = [c[0] for c in OPTION_CASES] + [c[0] for c in CORE_CASES] + [c[0] for c in CLI_CASES]
     assert len(set(names)) >= 40
+
+
+def test_numbers_in_solver_messages_have_at_most_ten_significant_digits() -> None:
+    # Before: the core printed every float in full ("t = 0.0006103515625000001" and, for tiny
+    # steps, hundreds of digits); now as Python's ".10g" would, e.g. "t = 2.5e-05".
+    import re
+
+    messages = [
+        ds.simulate(ds.preset("aluminum"), t_end=1.0, max_steps=7, check=False).message,
+        ds.simulate(ds.preset("aluminum"), t_end=1.0 / 3.0, method="rk4", dt=1e-5, max_steps=3, check=False).message,
+        ds.solve_pde(ds.preset("aluminum"), nodes=20, t_end=0.1, max_steps=5, check=False).message,
+    ]
+    for message in messages:
+        numbers = re.findall(r"\d[\d.]*(?:e[+-]\d+)?", message)
+        assert numbers and "t = " in message, message
+        for number in numbers:
+            digits = re.sub(r"e[+-]\d+$", "", number).replace(".", "").lstrip("0")
+            assert len(digits) <= 10, (number, message)
+    # the grid's step is t_end / ceil(t_end / dt): 3 steps end at 2.999940001e-05
+    assert "t = 2.999940001e-05 before t_end = 0.3333333333:" in messages[1], messages[1]

@@ -1,4 +1,4 @@
-"""What an output does to whatever is at its path (issue #11, items 1, 9 and 10).
+"""What an output does to whatever is at its path (files, symlinks, devices, FIFOs, standard output).
 
 * a regular file or a new path: replaced atomically (temporary file beside it, fsync, rename);
 * a symlink (a chain, a dangling one): written through, the link stays a link;

@@ -34,6 +34,7 @@ def test_defaults_are_table_1() -> None:
     assert p.omega == pytest.approx(math.pi, rel=1e-15)
     assert p.initial_velocities == (0.1,)
     assert p.k5_variant == "paper"
+    assert p.model == "paper"
 
 
 def test_field_names_are_exactly_the_specified_ones() -> None:
@@ -47,6 +48,7 @@ def test_field_names_are_exactly_the_specified_ones() -> None:
         "omega",
         "initial_velocities",
         "k5_variant",
+        "model",
     ]
 
 
@@ -178,6 +180,11 @@ BAD_VALUES += [
     ("k5_variant", ""),
     ("k5_variant", None),
     ("k5_variant", 1),
+    ("model", "Paper"),
+    ("model", "classical"),
+    ("model", ""),
+    ("model", None),
+    ("model", 0),
 ]
 
 
@@ -249,6 +256,7 @@ def test_steel_example_is_steel_preset() -> None:
             omega=-2 * math.pi * 6,
             initial_velocities=(1e-300, -5e-7, 1.0 / 7.0, 12345678901234567890.0),
             k5_variant="energy",
+            model="consistent",
         ),
         Parameters(initial_velocities=()),
     ],
@@ -326,6 +334,7 @@ def test_missing_file(tmp_path: Path) -> None:
         ('[parameters]\ninitial_velocities = [0.1, "x"]\n', "initial_velocities"),
         ("[parameters]\nomega = nan\n", "omega"),
         ("[parameters]\nk5_variant = 2\n", "k5_variant"),
+        ('[parameters]\nmodel = "exact"\n', "model"),
         ('[parameters]\npreset = "copper"\n', "preset"),
         ("[parameters]\ninner_diameter = 0.3\n", "inner_diameter"),
         ("[solver]\nmodes = 3\n", "parameters"),
@@ -340,3 +349,16 @@ def test_bad_toml_values_name_file_and_key(tmp_path: Path, text: str, field: str
     assert field in message
     assert str(path) in message
     assert info.value.source == str(path)
+
+
+def test_model_field(tmp_path: Path) -> None:
+    p = preset("steel").replace(model="consistent")
+    assert p.model == "consistent" and p.youngs_modulus == 2.1e11
+    assert p.to_dict()["model"] == "consistent"
+    assert Parameters.from_dict(p.to_dict()) == p
+    assert 'model = "consistent"' in p.to_toml().splitlines()
+    path = _write(tmp_path, '[parameters]\npreset = "steel"\nmodel = "consistent"\n')
+    assert load(path) == p
+    with pytest.raises(ValidationError) as info:
+        Parameters(model="exact")
+    assert info.value.field == "model" and "'paper', 'consistent'" in str(info.value)

@@ -168,3 +168,107 @@ def test_bad_mode_numbers() -> None:
         c.frequency_squared(-1)
     with pytest.raises(ValidationError, match="indices"):
         c.critical_speed([1, math.nan])
+
+
+# ------------------------------------------------------------------ Rust vs the paper's formulas
+
+def _paper_oracle(p: Parameters) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Eqs. 8 and 17 in Python, operation for operation as the package evaluated them before the
+    formulas moved to the Rust core (``x**n`` is the C library's ``pow``, like Rust's ``powf``):
+    the Rust values must equal these bit for bit, so that every paper result is unchanged."""
+    r_out, r_in = p.outer_diameter / 2.0, p.inner_diameter / 2.0
+    r6 = r_out**6 - r_in**6
+    area = math.pi * (r_out**2 - r_in**2)
+    ip = math.pi * (r_out**4 - r_in**4) / 2.0
+    i_r, i_x2y2 = math.pi * r6 / 4.0, math.pi * r6 / 24.0
+    nu = p.poisson_ratio
+    g = p.youngs_modulus / (2.0 * (1.0 + nu))
+    sign = -1.0 if p.k5_variant == "paper" else 1.0
+    k = (
+        p.density * ip,
+        4.0 * g * ip,
+        2.0 * area * g / (1.0 - 2.0 * nu),
+        g * ip * (5.0 - 6.0 * nu) / (4.0 * (1.0 - 2.0 * nu)),
+        g * (i_r + sign * i_x2y2 * (5.0 - 6.0 * nu)) / (8.0 * (1.0 - 2.0 * nu)),
+        p.density * ip * p.omega**2,
+    )
+    return (area, ip, i_r, i_x2y2), k
+
+
+def _random_parameters(count: int) -> list[Parameters]:
+    rng = np.random.default_rng(12)
+    sets = [preset("aluminum"), preset("steel"), Parameters(length=250.0, omega=2 * math.pi * 6),
+            Parameters(inner_diameter=0.0, k5_variant="energy")]
+    for _ in range(count):
+        outer = float(rng.uniform(0.01, 3.0))
+        sets.append(Parameters(
+            youngs_modulus=float(10 ** rng.uniform(8, 12)),
+            density=float(rng.uniform(500, 20000)),
+            poisson_ratio=float(rng.uniform(-0.99, 0.499)),
+            outer_diameter=outer,
+            inner_diameter=float(outer * rng.uniform(0.0, 0.99)),
+            omega=float(rng.normal() * 100),
+            k5_variant=str(rng.choice(["paper", "energy"])),
+        ))
+    return sets
+
+
+def test_rust_paper_coefficients_equal_the_formulas_bit_for_bit() -> None:
+    for p in _random_parameters(300):
+        section, k = _paper_oracle(p)
+        s = Section.annulus(p.outer_diameter, p.inner_diameter)
+        assert (s.area, s.polar_moment, s.i_r, s.i_x2y2) == section, p
+        c = PDECoefficients.from_parameters(p)
+        assert c.as_tuple() == k, p
+        assert c.k6_per_omega_squared == c.k1  # k6 = k1 Omega^2
+        g = p.youngs_modulus / (2.0 * (1.0 + p.poisson_ratio))
+        assert shear_modulus(p.youngs_modulus, p.poisson_ratio) == g
+        # the critical speed as before: (i pi / l) sqrt(k2 / k1)
+        assert c.critical_speed(2) == 2 * math.pi / p.length * math.sqrt(k[1] / k[0])
+
+
+def test_j4_is_the_fourth_polar_moment() -> None:
+    for big, small in [(0.20, 0.12), (0.3, 0.0), (2.5, 1.0)]:
+        s = Section.annulus(big, small)
+        assert s.j4 is not None
+        r_out, r_in = big / 2, small / 2
+        assert s.j4 == pytest.approx(_polar_integral(lambda x, y: (x**2 + y**2) ** 2, r_in, r_out), rel=1e-10)
+        assert s.j4 == pytest.approx(s.i_r + 2 * s.i_x2y2, rel=1e-15)
+
+
+def test_consistent_coefficients_closed_form() -> None:
+    """k1 = rho I_p, k2 = G I_p, k3 = k4 = k6 = 0, k5 = M J4 / 2 with M = lambda + 2 mu."""
+    for p in _random_parameters(20):
+        c = PDECoefficients.from_parameters(p.replace(model="consistent"))
+        e, nu = p.youngs_modulus, p.poisson_ratio
+        g = e / (2 * (1 + nu))
+        lam = e * nu / ((1 + nu) * (1 - 2 * nu))
+        r6 = (p.outer_diameter / 2) ** 6 - (p.inner_diameter / 2) ** 6
+        ip = math.pi * ((p.outer_diameter / 2) ** 4 - (p.inner_diameter / 2) ** 4) / 2
+        assert c.k1 == pytest.approx(p.density * ip, rel=1e-14)
+        assert c.k2 == pytest.approx(g * ip, rel=1e-14)
+        assert (c.k3, c.k4, c.k6, c.k6_per_omega_squared) == (0.0, 0.0, 0.0, 0.0)
+        assert c.k5 == pytest.approx((lam + 2 * g) * (math.pi * r6 / 3) / 2, rel=1e-13)
+        assert c.wave_speed == pytest.approx(math.sqrt(g / p.density), rel=1e-14)
+        paper = PDECoefficients.from_parameters(p)
+        assert paper.wave_speed == pytest.approx(2 * c.wave_speed, rel=1e-14)
+        # no rotation softening: no critical speed for any mode
+        assert np.all(np.isinf(c.critical_speed([0, 1, 5])))
+        assert math.isinf(c.critical_speed(1))
+
+
+def test_coefficients_given_directly_keep_the_paper_critical_speed() -> None:
+    c = PDECoefficients(k1=2.0, k2=8.0, k3=0.0, k4=0.0, k5=0.0, k6=1.0, length=math.pi)
+    assert c.k6_per_omega_squared is None
+    assert c.critical_speed(3) == pytest.approx(3 * 2.0)
+    with pytest.raises(ValidationError, match="k6_per_omega_squared"):
+        PDECoefficients(k1=1.0, k2=1.0, k3=0.0, k4=0.0, k5=0.0, k6=0.0, length=1.0, k6_per_omega_squared=-1.0)
+
+
+def test_overflowing_diameter_is_named() -> None:
+    with pytest.raises(ValidationError) as info:
+        Section.annulus(1e100, 0.0)
+    assert info.value.field == "outer_diameter"
+    with pytest.raises(ValidationError) as info:
+        PDECoefficients.from_parameters(Parameters(outer_diameter=1e100, inner_diameter=0.0))
+    assert info.value.field == "parameters" and "outer_diameter" in str(info.value)

@@ -10,6 +10,7 @@ pytest.importorskip("pyarrow")
 import importlib  # noqa: E402
 
 import drillstring as ds  # noqa: E402
+from drillstring.errors import ResumeWarning  # noqa: E402
 
 # the module (``drillstring.sweep`` the attribute is the function)
 sweep_module = importlib.import_module("drillstring.sweep")
@@ -64,7 +65,8 @@ def test_deleted_chunks_are_recomputed_and_the_table_is_unchanged(tmp_path, coun
     for i in (1, 5):
         (out / "chunks" / f"chunk-{i:05d}.parquet").unlink()
     count_chunks["solved"] = []
-    again = ds.sweep(BASE, GRID, out_dir=out, **OPTIONS)
+    with pytest.warns(ResumeWarning, match="chunk 1: its file is missing; chunk 5: its file is missing"):
+        again = ds.sweep(BASE, GRID, out_dir=out, **OPTIONS)
     assert count_chunks["solved"] == [1, 5]
     pd.testing.assert_frame_equal(again, first)
     count_chunks["solved"] = []
@@ -94,7 +96,7 @@ def test_trajectories_stay_in_memory(tmp_path):
         ds.sweep(BASE, {"length": [100.0]}, out_dir=tmp_path / "x", trajectories=True, **OPTIONS)
 
 
-# ------------------------------------------------------------------ verified resume (issue: trust)
+# ------------------------------------------------------------------ verified resume
 
 import json  # noqa: E402
 import os  # noqa: E402
@@ -102,8 +104,6 @@ import shutil  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
 import warnings  # noqa: E402
-
-from drillstring.sweep_store import ResumeWarning  # noqa: E402
 
 
 def _chunk(out, i, ext="parquet"):

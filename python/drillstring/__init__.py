@@ -12,11 +12,34 @@ Quick start
 >>> theta_k = res.theta(2 * params.length / 3)  # twist at z_k = 2l/3, rad
 >>> res.energy_drift() < 1e-6
 True
+
+The API
+-------
+``__all__`` lists the functions, classes and constants above; the modules behind them
+(``analysis``, ``coefficients``, ``convergence``, ``galerkin``, ``grid``, ``limits``, ``paper``,
+``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
+``ds.sweep`` and ``ds.table2`` are the functions, which share their names with their modules:
+reach the modules with ``from drillstring.sweep import SweepTrajectories`` or
+``importlib.import_module("drillstring.sweep")`` (``import drillstring.sweep as m`` binds the
+package attribute, the function).
 """
 
 from __future__ import annotations
 
-from . import analysis, coefficients, convergence, galerkin, limits, paper, pde, plots, section, stability
+from typing import TYPE_CHECKING
+
+# The modules, re-exported as attributes (``x as x``), not part of ``__all__``.
+from . import analysis as analysis
+from . import coefficients as coefficients
+from . import convergence as convergence
+from . import galerkin as galerkin
+from . import grid as grid
+from . import limits as limits
+from . import paper as paper
+from . import pde as pde
+from . import plots as plots
+from . import section as section
+from . import stability as stability
 from ._core import __version__, simd_path
 from .coefficients import PDECoefficients
 from .errors import DrillstringError, SolveError, ValidationError
@@ -24,13 +47,98 @@ from .galerkin import ModalCoefficients, project
 from .grid import linspace, logspace
 from .parameters import PRESETS, Parameters, load, preset
 from .pde import PdeSolution, solve_pde
-from .simulate import METHODS, Simulation, SolverStats, simulate
-from .sweep import SweepTrajectories, sweep
+from .simulate import METHODS, Method, Simulation, SolverStats, simulate
+from .sweep import SweepTrajectories
 from .table2 import Table2Row, table2
+
+if TYPE_CHECKING:  # pragma: no cover
+    # The return type of sweep() follows ``trajectories`` (the runtime function is sweep.sweep;
+    # tests/test_api.py checks that these signatures match it).
+    from collections.abc import Iterable, Mapping
+    from typing import Any, Literal, Optional, Union, overload
+
+    import pandas as pd
+
+    @overload
+    def sweep(
+        base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
+        *,
+        runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
+        modes: int = ...,
+        rigid_mode: bool = ...,
+        t_end: float = ...,
+        method: Method = ...,
+        rtol: float = ...,
+        atol: float = ...,
+        dt: Optional[float] = ...,
+        max_steps: Optional[int] = ...,
+        samples: int = ...,
+        z: Optional[float] = ...,
+        threads: Optional[int] = ...,
+        chunk_size: int = ...,
+        out_dir: Any = ...,
+        client: Any = ...,
+        progress: Optional[bool] = ...,
+        trajectories: Literal[False] = ...,
+    ) -> pd.DataFrame: ...
+
+    @overload
+    def sweep(
+        base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
+        *,
+        runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
+        modes: int = ...,
+        rigid_mode: bool = ...,
+        t_end: float = ...,
+        method: Method = ...,
+        rtol: float = ...,
+        atol: float = ...,
+        dt: Optional[float] = ...,
+        max_steps: Optional[int] = ...,
+        samples: int = ...,
+        z: Optional[float] = ...,
+        threads: Optional[int] = ...,
+        chunk_size: int = ...,
+        out_dir: Any = ...,
+        client: Any = ...,
+        progress: Optional[bool] = ...,
+        trajectories: Literal[True],
+    ) -> tuple[pd.DataFrame, SweepTrajectories]: ...
+
+    @overload
+    def sweep(
+        base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
+        *,
+        runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
+        modes: int = ...,
+        rigid_mode: bool = ...,
+        t_end: float = ...,
+        method: Method = ...,
+        rtol: float = ...,
+        atol: float = ...,
+        dt: Optional[float] = ...,
+        max_steps: Optional[int] = ...,
+        samples: int = ...,
+        z: Optional[float] = ...,
+        threads: Optional[int] = ...,
+        chunk_size: int = ...,
+        out_dir: Any = ...,
+        client: Any = ...,
+        progress: Optional[bool] = ...,
+        trajectories: bool = ...,
+    ) -> Union[pd.DataFrame, tuple[pd.DataFrame, SweepTrajectories]]: ...
+
+    def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only
+else:
+    from .sweep import sweep
 
 __all__ = [
     "__version__",
     "simd_path",
+    # parameters and coefficients
     "Parameters",
     "PRESETS",
     "preset",
@@ -38,29 +146,24 @@ __all__ = [
     "PDECoefficients",
     "ModalCoefficients",
     "project",
+    # solvers and their results
     "simulate",
     "solve_pde",
-    "PdeSolution",
-    "pde",
-    "convergence",
     "Simulation",
+    "PdeSolution",
     "SolverStats",
     "METHODS",
+    "Method",
+    # sweeps
+    "sweep",
+    "SweepTrajectories",
+    "linspace",
+    "logspace",
+    # the paper
     "table2",
     "Table2Row",
+    # errors
     "DrillstringError",
     "ValidationError",
     "SolveError",
-    "coefficients",
-    "galerkin",
-    "section",
-    "analysis",
-    "paper",
-    "plots",
-    "stability",
-    "limits",
-    "sweep",
-    "linspace",
-    "logspace",
-    "SweepTrajectories",
 ]

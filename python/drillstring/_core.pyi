@@ -49,6 +49,47 @@ def solve_modal(
     max_step: float = ...,
 ) -> SolveOutput: ...
 
+class SectionProperties(TypedDict):
+    area: float
+    polar_moment: float
+    i_r: float
+    i_x2y2: float
+    j4: float
+
+def section(outer_diameter: float, inner_diameter: float) -> SectionProperties:
+    """Annulus ``D > 0``, ``0 <= d < D`` (m): ``A``, ``I_p``, ``I_r``, ``I_x2y2`` (eq. 8) and
+    ``J4 = int r^4 dA``; ``ValidationError`` naming the diameter otherwise."""
+
+def shear_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
+    """``G = E / (2 (1 + nu))``, Pa."""
+
+def p_wave_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
+    """``lambda + 2 mu = E (1 - nu) / ((1 + nu) (1 - 2 nu))``, Pa."""
+
+class Coefficients(TypedDict):
+    k1: float
+    k2: float
+    k3: float
+    k4: float
+    k5: float
+    k6: float
+    k6_per_omega_squared: float
+
+def coefficients(
+    youngs_modulus: float,
+    density: float,
+    poisson_ratio: float,
+    outer_diameter: float,
+    inner_diameter: float,
+    omega: float,
+    k5_variant: str,
+    model: str,
+) -> Coefficients:
+    """``k1..k6`` of ``model`` (``"paper"``: eq. 17 with ``k5_variant`` ``"paper"`` or
+    ``"energy"``; ``"consistent"``: ``rho I_p, G I_p, 0, 0, M J4 / 2, 0``) and ``k6 / Omega^2``;
+    ``ValidationError`` naming the input, or ``parameters`` when a coefficient is not finite
+    (or ``k1``, ``k2`` not ``> 0``)."""
+
 class PdeSystem:
     """The torsion PDE on ``nodes`` grid points ``z_j = j l / (nodes - 1)`` (lumped-mass linear
     finite elements; the discrete energy ``H_h`` is conserved by the semi-discrete system)."""

@@ -26,9 +26,10 @@ from typing import Any, NoReturn, Optional, TextIO
 
 from . import __version__
 from ._output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
+from ._progress import on_terminal
 from .errors import DrillstringError, DrillstringWarning, ValidationError
 from .limits import as_float
-from .parameters import PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
+from .parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
 from .simulate import METHODS, PDE_METHODS, simulate
 from .table2 import format_table2, table2, table2_json
 
@@ -95,6 +96,8 @@ def _add_model_arguments(p: argparse.ArgumentParser, methods: Sequence[str]) -> 
     p.add_argument("--omega", type=float, help="rotation speed Omega, rad/s")
     p.add_argument("--initial-velocities", type=_floats, metavar="C1,C2,...", help="initial modal velocities, rad/s")
     p.add_argument("--k5-variant", choices=("paper", "energy"), help="k5 as printed or re-derived")
+    p.add_argument("--model", choices=MODELS,
+                   help="equations of motion: 'paper' as printed (default) or 'consistent' (finite strain)")
     p.add_argument("--t-end", type=float, help="end time, s (default 1)")
     p.add_argument("--method", choices=methods, help="integrator (default dop853)")
     p.add_argument("--rtol", type=float, help="relative tolerance (default 1e-9)")
@@ -116,6 +119,7 @@ def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parame
         "omega": args.omega,
         "initial_velocities": args.initial_velocities,
         "k5_variant": args.k5_variant,
+        "model": args.model,
     }
     params = params.replace(**{k: v for k, v in overrides.items() if v is not None})
     for key in keys:
@@ -187,6 +191,15 @@ def _summary(result: Any, z: float, what: str, file: TextIO) -> None:
     )
 
 
+def _add_progress(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress on stderr (default: when stderr is a terminal)")
+
+
+def _show_progress(args: argparse.Namespace) -> bool:
+    return on_terminal() if args.progress is None else bool(args.progress)
+
+
 def _add_simulate(sub: Any) -> None:
     p = sub.add_parser(
         "simulate",
@@ -199,6 +212,7 @@ def _add_simulate(sub: Any) -> None:
     p.add_argument("--rigid-mode", action="store_true", default=None, help="include the rigid mode i = 0")
     p.add_argument("--plot", help="write a time-history and phase-portrait PNG "
                    "(format from the extension; .png is appended to a name without one)")
+    _add_progress(p)
     p.set_defaults(func=_cmd_simulate)
 
 
@@ -219,7 +233,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     plot = _plot_target(args)
     info = _check_outputs({"--out": args.out, "--plot": plot})
     try:
-        result = simulate(params, **solver)
+        result = simulate(params, progress=_show_progress(args), **solver)
     except ValidationError as exc:
         raise _from_config(exc, args) from exc
     _summary(result, z, f"modes {', '.join(map(str, result.indices))}", info)
@@ -247,6 +261,7 @@ def _add_pde(sub: Any) -> None:
     p.add_argument("--save-field-every", type=int, help="keep every k-th output sample in --field (default 1)")
     p.add_argument("--plot", help="write a space-time map of theta(z, t) and theta(z_k, t) as PNG "
                    "(format from the extension; .png is appended to a name without one)")
+    _add_progress(p)
     p.set_defaults(func=_cmd_pde)
 
 
@@ -262,7 +277,7 @@ def _cmd_pde(args: argparse.Namespace) -> int:
     info = _check_outputs({"--out": args.out, "--field": field, "--plot": plot})
     every = args.save_field_every if args.save_field_every is not None else (1 if args.field or args.plot else None)
     try:
-        result = solve_pde(params, save_field_every=every, **solver)
+        result = solve_pde(params, save_field_every=every, progress=_show_progress(args), **solver)
     except ValidationError as exc:
         raise _from_config(exc, args) from exc
     _summary(result, z, f"{result.nodes} nodes", info)
@@ -292,6 +307,7 @@ def _add_convergence(sub: Any) -> None:
     p.add_argument("--modes", type=_ints, default=None, metavar="1,2,3,...", help="Galerkin sizes to measure")
     p.add_argument("--max-nodes", type=int, default=1921, help="largest PDE grid (default 1921)")
     p.add_argument("--tol", type=float, default=1e-4, help="agreement of successive grids (default 1e-4)")
+    _add_progress(p)
     p.set_defaults(func=_cmd_convergence)
 
 
@@ -312,7 +328,7 @@ def _cmd_convergence(args: argparse.Namespace) -> int:
     kwargs: dict[str, Any] = {"t_end": args.t_end, "max_nodes": args.max_nodes, "tol": args.tol}
     if args.modes:
         kwargs["modes"] = args.modes
-    result = convergence.study(params, progress=lambda line: print(line, file=sys.stderr, flush=True), **kwargs)
+    result = convergence.study(params, progress=_show_progress(args), **kwargs)
     for path in convergence.write(result, args.out):
         _wrote(path, sys.stdout)
     _say("\n".join(convergence.summary(result)))
@@ -348,6 +364,7 @@ def _add_paper(sub: Any) -> None:
                    help="short test run: times x0.1 and 1000 samples per second (numbers are not the paper's)")
     p.add_argument("--t-end-scale", type=float, metavar="X",
                    help="multiply every time span by X (default 1, or 0.1 with --quick)")
+    _add_progress(p)
     p.set_defaults(func=_cmd_paper)
 
 
@@ -360,7 +377,8 @@ def _cmd_paper(args: argparse.Namespace) -> int:
     command = f"drillstring paper --out {args.out}" + (" --quick" if args.quick else "") + (
         f" --t-end-scale {args.t_end_scale:g}" if args.t_end_scale is not None else "")
     check_destination(args.out, field="--out", directory=True, files=paper.output_names())
-    report = paper.reproduce(args.out, t_end_scale=scale, samples_per_second=per_second, command=command)
+    report = paper.reproduce(args.out, t_end_scale=scale, samples_per_second=per_second, command=command,
+                             progress=_show_progress(args))
     verdicts = [f.verdict for f in report.figures]
     _say(f"wrote {len(report.files)} files to {report.out_dir} in {report.total_seconds:.1f} s")
     _say(f"figure claims: {verdicts.count('supported')} supported, "
@@ -451,7 +469,8 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
             from distributed import Client
         except ImportError as exc:
             raise ValidationError(
-                "--scheduler", args.scheduler, "dask.distributed installed: pip install 'drillstring[dask]'"
+                "--scheduler", args.scheduler,
+                "dask.distributed installed: pip install '.[dask]' in the drillstring checkout",
             ) from exc
         client = Client(args.scheduler)
     options: dict[str, Any] = {"threads": args.threads, "progress": args.progress}
@@ -532,7 +551,7 @@ def _drop_failed_stdout() -> None:
     cannot be written), so that the interpreter's flush at exit does not fail a second time
     with a traceback. Other streams (a test's capture) are left alone."""
     stream = sys.stdout
-    if stream is None or stream is not sys.__stdout__:
+    if stream is not sys.__stdout__ or stream is None:
         return
     try:
         stream.flush()

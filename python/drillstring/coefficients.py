@@ -1,23 +1,33 @@
-"""Coefficients ``k1..k6`` of the torsional PDE (paper eqs. 17, 18).
+"""Coefficients ``k1..k6`` of the torsional PDE (paper eqs. 17, 18) for each model.
 
 The compact form of the equation of motion (eq. 18, with ``theta(z, t)`` the twist angle)::
 
     k1 theta_tt = k2 theta_zz - k3 theta^3 + k4 (theta^2 theta_zz + theta theta_z^2)
                   + k5 d/dz (theta_z^3) + k6 theta,          0 < z < l,
 
-with ``theta_z = 0`` at ``z = 0`` and ``z = l`` (eq. 14), and
+with ``theta_z = 0`` at ``z = 0`` and ``z = l`` (eq. 14). ``Parameters.model`` selects the
+coefficients:
+
+``"paper"`` (eq. 17 as printed)
 
 * ``k1 = rho I_p``
 * ``k2 = 4 G I_p``
 * ``k3 = 2 A G / (1 - 2 nu)``
 * ``k4 = G I_p (5 - 6 nu) / (4 (1 - 2 nu))``
-* ``k5 = G (I_r -+ I_{x^2y^2} (5 - 6 nu)) / (8 (1 - 2 nu))`` (``-``: ``"paper"``, eq. 17 as
+* ``k5 = G (I_r -+ I_{x^2y^2} (5 - 6 nu)) / (8 (1 - 2 nu))`` (``-``: ``k5_variant="paper"``, as
   printed; ``+``: ``"energy"``, re-derived from eqs. 5-7, model notes erratum 2)
 * ``k6 = rho I_p Omega^2``
 
-where ``G = E / (2 (1 + nu))`` and ``A, I_p, I_r, I_{x^2y^2}`` are the section properties of
-eq. 8 (:class:`~drillstring.section.Section`). Eq. 18 is the Euler-Lagrange equation of the
-energy ``H = int_0^l [k1/2 theta_t^2 + k2/2 theta_z^2 + k3/4 theta^4
+``"consistent"`` (finite-strain torsion of rigidly rotating circular sections, Green-Lagrange
+strain, St Venant-Kirchhoff energy, kinetic energy ``rho I_p (Omega + theta_t)^2 / 2``)
+
+* ``k1 = rho I_p``, ``k2 = G I_p``, ``k3 = k4 = k6 = 0``, ``k5 = M J4 / 2`` with
+  ``M = lambda + 2 mu = E (1 - nu) / ((1 + nu) (1 - 2 nu))`` and ``J4 = int r^4 dA``.
+
+where ``G = E / (2 (1 + nu))`` and ``A, I_p, I_r, I_{x^2y^2}, J4`` are the section properties
+(:class:`~drillstring.section.Section`). The formulas are evaluated in the Rust core
+(``drillstring_core::model``). Eq. 18 is the Euler-Lagrange equation of the energy
+``H = int_0^l [k1/2 theta_t^2 + k2/2 theta_z^2 + k3/4 theta^4
 + k4/2 theta^2 theta_z^2 + k5/4 theta_z^4 - k6/2 theta^2] dz``, which it conserves.
 """
 
@@ -25,14 +35,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import _core
 from .errors import ValidationError
 from .limits import as_float
-from .section import Section
 
 if TYPE_CHECKING:
     from .parameters import Parameters
@@ -44,7 +54,7 @@ FloatOrArray = Union[float, NDArray[np.float64]]
 
 def shear_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
     """Shear modulus ``G = E / (2 (1 + nu))`` in Pa (isotropic Hooke's law)."""
-    return youngs_modulus / (2.0 * (1.0 + poisson_ratio))
+    return float(_core.shear_modulus(youngs_modulus, poisson_ratio))
 
 
 def _finite(name: str, value: Any) -> float:
@@ -60,26 +70,31 @@ def _mode_numbers(indices: ArrayLike) -> NDArray[np.float64]:
 
 @dataclass(frozen=True)
 class PDECoefficients:
-    """The constants of eq. 18 for one parameter set.
+    """The constants of eq. 18 for one parameter set (module docstring: both models).
 
     Attributes
     ----------
     k1:
         ``rho I_p`` (kg m): torsional inertia per unit length.
     k2:
-        ``4 G I_p`` (N m^2): linear torsional stiffness.
+        ``4 G I_p`` (paper) or ``G I_p`` (consistent) (N m^2): linear torsional stiffness.
     k3:
-        ``2 A G / (1 - 2 nu)`` (N): coefficient of ``theta^3``.
+        ``2 A G / (1 - 2 nu)`` (paper) or 0 (N): coefficient of ``theta^3``.
     k4:
-        ``G I_p (5 - 6 nu) / (4 (1 - 2 nu))`` (N m^2): coefficient of
+        ``G I_p (5 - 6 nu) / (4 (1 - 2 nu))`` (paper) or 0 (N m^2): coefficient of
         ``theta^2 theta_zz + theta theta_z^2``.
     k5:
-        ``G (I_r -+ I_{x^2y^2} (5 - 6 nu)) / (8 (1 - 2 nu))`` (N m^4): coefficient of
-        ``(theta_z^3)_z``; may be negative for the ``"paper"`` variant.
+        ``G (I_r -+ I_{x^2y^2} (5 - 6 nu)) / (8 (1 - 2 nu))`` (paper; may be negative for the
+        ``"paper"`` variant) or ``M J4 / 2`` (consistent) (N m^4): coefficient of
+        ``(theta_z^3)_z``.
     k6:
-        ``rho I_p Omega^2`` (N): rotation (softening) term.
+        ``rho I_p Omega^2`` (paper) or 0 (N): rotation (softening) term.
     length:
         ``l`` (m).
+    k6_per_omega_squared:
+        ``k6 / Omega^2`` of the model (kg m): ``rho I_p`` (paper), 0 (consistent: no rotation
+        softening, no critical speed). ``None`` for coefficients given directly, which the
+        critical speeds then take to be ``k1`` (``k6 = k1 Omega^2``, as in eq. 17).
     """
 
     k1: float
@@ -89,10 +104,17 @@ class PDECoefficients:
     k5: float
     k6: float
     length: float
+    k6_per_omega_squared: Optional[float] = None
 
     def __post_init__(self) -> None:
         for name in ("k1", "k2", "k3", "k4", "k5", "k6", "length"):
             object.__setattr__(self, name, _finite(name, getattr(self, name)))
+        rate = self.k6_per_omega_squared
+        if rate is not None:
+            rate = _finite("k6_per_omega_squared", rate)
+            if rate < 0.0:
+                raise ValidationError("k6_per_omega_squared", rate, "None or 0 <= k6_per_omega_squared < inf")
+            object.__setattr__(self, "k6_per_omega_squared", rate)
         if self.k1 <= 0.0:
             raise ValidationError("k1", self.k1, "0 < k1 < inf")
         if self.length <= 0.0:
@@ -100,7 +122,8 @@ class PDECoefficients:
 
     @classmethod
     def from_parameters(cls, params: Parameters) -> PDECoefficients:
-        """Evaluate eq. 17 (with ``params.k5_variant`` for the sign in ``k5``).
+        """The coefficients of ``params.model`` (with ``params.k5_variant`` for the sign in
+        ``k5`` of the paper model), evaluated in the Rust core.
 
         Raises
         ------
@@ -109,23 +132,18 @@ class PDECoefficients:
             (or ``k1`` underflow to 0), e.g. ``omega=1e200``; the message names the coefficient.
         """
         try:
-            section = Section.annulus(params.outer_diameter, params.inner_diameter)
-            nu = params.poisson_ratio
-            g = shear_modulus(params.youngs_modulus, nu)
-            ip = section.polar_moment
-            sign = -1.0 if params.k5_variant == "paper" else 1.0
-            return cls(
-                k1=params.density * ip,
-                k2=4.0 * g * ip,
-                k3=2.0 * section.area * g / (1.0 - 2.0 * nu),
-                k4=g * ip * (5.0 - 6.0 * nu) / (4.0 * (1.0 - 2.0 * nu)),
-                k5=g
-                * (section.i_r + sign * section.i_x2y2 * (5.0 - 6.0 * nu))
-                / (8.0 * (1.0 - 2.0 * nu)),
-                k6=params.density * ip * params.omega**2,
-                length=params.length,
+            k = _core.coefficients(
+                params.youngs_modulus,
+                params.density,
+                params.poisson_ratio,
+                params.outer_diameter,
+                params.inner_diameter,
+                params.omega,
+                params.k5_variant,
+                params.model,
             )
-        except (OverflowError, ZeroDivisionError, ValidationError) as exc:
+            return cls(**k, length=params.length)
+        except ValidationError as exc:
             raise ValidationError(
                 "parameters",
                 params,
@@ -152,13 +170,26 @@ class PDECoefficients:
         result = np.sqrt(np.where(w2 >= 0.0, w2, np.nan))
         return float(result) if result.ndim == 0 else result
 
+    @property
+    def wave_speed(self) -> float:
+        """Linear torsional wave speed ``c = sqrt(k2 / k1)`` (m/s): ``2 sqrt(G / rho)`` in the
+        paper model, ``sqrt(G / rho)`` in the consistent one; ``nan`` if ``k2 < 0``."""
+        return math.sqrt(self.k2 / self.k1) if self.k2 >= 0.0 else math.nan
+
     def critical_speed(self, indices: ArrayLike) -> FloatOrArray:
-        """``Omega_i = (i pi / l) sqrt(k2 / k1) = (i pi / l) sqrt(4 G / rho)`` (rad/s).
+        """``Omega_i = (i pi / l) sqrt(k2 / (k6 / Omega^2))`` (rad/s); paper model:
+        ``(i pi / l) sqrt(k2 / k1) = (i pi / l) sqrt(4 G / rho)``.
 
         The rotation speed at which ``w_i^2`` changes sign, i.e. mode ``i`` loses linear
-        stability (``k6 = k1 Omega^2``, independent of the section). ``nan`` if ``k2 < 0``.
+        stability (``k6 = k1 Omega^2`` in the paper model, independent of the section). ``inf``
+        for every mode when the model has no rotation softening (``k6_per_omega_squared == 0``,
+        the consistent model); ``nan`` if ``k2 < 0``.
         """
         i = _mode_numbers(indices)
-        speed = math.sqrt(self.k2 / self.k1) if self.k2 >= 0.0 else math.nan
-        result = i * math.pi / self.length * speed
+        rate = self.k1 if self.k6_per_omega_squared is None else self.k6_per_omega_squared
+        if rate == 0.0:
+            result = np.full(i.shape, math.inf)
+        else:
+            speed = math.sqrt(self.k2 / rate) if self.k2 >= 0.0 else math.nan
+            result = i * math.pi / self.length * speed
         return float(result) if result.ndim == 0 else result

@@ -13,15 +13,18 @@ from __future__ import annotations
 
 import csv
 import io
+import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Optional
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 
 from ._output import make_directory, write_bytes
+from ._progress import bar as progress_bar
+from ._progress import on_terminal
 from .parameters import Parameters, preset
 from .pde import solve_pde
 from .simulate import simulate
@@ -103,7 +106,7 @@ def study(
     max_nodes: int = 1921,
     tol: float = 1e-4,
     rtol: float = 1e-10,
-    progress: Optional[Callable[[str], None]] = None,
+    progress: Union[bool, Callable[[str], None], None] = None,
 ) -> ConvergenceStudy:
     """Runs the truncation study (default: Table 1, C = (0.1, 0.05, 0.02), 0 <= t <= 1).
 
@@ -113,13 +116,25 @@ def study(
         Intervals of the coarsest grid; each level doubles them up to ``max_nodes`` nodes.
     tol : float
         Agreement of two successive (extrapolated) grids that counts as converged.
-    progress : callable, optional
-        Called with one line per solve.
+    progress : bool or callable, optional
+        ``True``: one line per solve on stderr, under a tqdm bar of the solves when stderr is a
+        terminal; a callable is called with each line instead.
     """
     params = preset("aluminum") if params is None else params
     z = 2 * params.length / 3 if z is None else float(z)
     t_eval = np.linspace(0.0, t_end, samples)
-    say = progress or (lambda _line: None)
+    levels = 0
+    while cells * 2**levels + 1 <= max_nodes:
+        levels += 1
+    bar = progress_bar(levels + len(modes), "convergence", "solves", enabled=progress is True and on_terminal())
+
+    def say(line: str) -> None:
+        if callable(progress):
+            progress(line)
+        elif progress:
+            bar.write(line, file=sys.stderr)
+        bar.update(1)
+
     grids: list[GridLevel] = []
     previous: Optional[NDArray[np.float64]] = None
     previous_r: Optional[NDArray[np.float64]] = None
@@ -141,6 +156,7 @@ def study(
         reference = theta if r is None else r
         if (diff is not None and diff < tol) or (r_diff is not None and r_diff < tol):
             converged = True
+            bar.total = len(grids) + len(modes)
             break
         previous, previous_r = theta, r
         n *= 2
@@ -158,6 +174,7 @@ def study(
                 result.curves[f"3 modes{' + rigid' if rigid else ''}"] = theta
         say(f"Galerkin {count:2d} modes: error {result.error(count, False):.2e} without, "
             f"{result.error(count, True):.2e} with the rigid mode")
+    bar.close()
     return result
 
 

@@ -39,6 +39,7 @@ import numpy as np
 from . import analysis, plots
 from . import convergence as _convergence
 from ._output import check_destination, make_directory, write_bytes, write_text
+from ._progress import bar as progress_bar
 from .errors import ValidationError
 from .galerkin import project
 from .parameters import Parameters, preset
@@ -1266,10 +1267,15 @@ def reproduce(
     files: list[Path] = []
     images: dict[str, bytes] = {}
 
+    # On a terminal a tqdm bar of the steps under the lines; elsewhere the lines alone.
+    bar = progress_bar(len(FIGURES) + (4 if convergence else 3), "paper", "steps",
+                       enabled=stream is not None and bool(getattr(stream, "isatty", lambda: False)()))
+
     def tick(label: str, seconds: float) -> None:
         timings[label] = seconds
         if stream is not None:
-            print(f"{label} ... {seconds:.1f} s", file=stream, flush=True)
+            bar.write(f"{label} ... {seconds:.1f} s", file=stream)
+            bar.update(1)
 
     t0 = time.perf_counter()
     ctx = _context(runs)
@@ -1312,9 +1318,10 @@ def reproduce(
     study = None
     if convergence:
         t0 = time.perf_counter()
+        quick: dict[str, Any] = {} if scale == 1.0 else {"cells": 60, "max_nodes": 241, "tol": 1e-3,
+                                                          "modes": (1, 2, 3, 6)}
         study = _convergence.study(preset("aluminum"), t_end=scale, samples=max(201, int(1000 * scale) + 1),
-                                   **({} if scale == 1.0 else {"cells": 60, "max_nodes": 241, "tol": 1e-3,
-                                                              "modes": (1, 2, 3, 6)}))
+                                   **quick)
         rendered = _convergence.render(study)
         files += [write_bytes(out / name, data, field="out_dir") for name, data in rendered.items()]
         images.update((name, data) for name, data in rendered.items() if name.endswith(".png"))
@@ -1328,6 +1335,7 @@ def reproduce(
     write_text(rep.report_html, _html(doc, images), field="out_dir")
     files += [rep.report_md, rep.report_html]
     tick("        report.md, report.html", time.perf_counter() - t0)
+    bar.close()
     rep.total_seconds = time.perf_counter() - start
     return rep
 

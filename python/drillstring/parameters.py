@@ -14,6 +14,7 @@ TOML format (see ``examples/reference.toml``)::
     length = 100.0
     initial_velocities = [0.1, 0.05, 0.02]
     k5_variant = "paper"
+    model = "paper"       # or "consistent": the finite-strain re-derivation
 
 Other tables (e.g. ``[solver]``) may be present; :func:`load` reads only ``[parameters]``,
 :func:`load_toml` returns the whole document.
@@ -40,6 +41,7 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
 
 __all__ = [
     "K5_VARIANTS",
+    "MODELS",
     "PRESETS",
     "Parameters",
     "load",
@@ -56,6 +58,12 @@ PRESETS: tuple[str, ...] = ("aluminum", "steel")
 
 #: Accepted values of :attr:`Parameters.k5_variant`.
 K5_VARIANTS: tuple[str, ...] = ("paper", "energy")
+
+#: Accepted values of :attr:`Parameters.model`.
+MODELS: tuple[str, ...] = ("paper", "consistent")
+
+#: Fields whose values are names (strings), not numbers.
+CHOICE_FIELDS: dict[str, tuple[str, ...]] = {"k5_variant": K5_VARIANTS, "model": MODELS}
 
 _PRESET_ALIASES = {"aluminium": "aluminum"}
 
@@ -96,6 +104,15 @@ class Parameters:
     k5_variant:
         ``"paper"``: ``k5 = G (I_r - I_{x^2y^2} (5 - 6 nu)) / (8 (1 - 2 nu))`` as printed in
         eq. 17; ``"energy"``: the re-derived ``k5`` with a plus sign (model notes, erratum 2).
+        Used by the ``"paper"`` model only.
+    model:
+        ``"paper"`` (default): eq. 12 / 17 as printed, which reproduces the paper's results
+        (``k2 = 4 G I_p``: wave speed ``2 sqrt(G / rho)``, rotation softening ``k6``).
+        ``"consistent"``: finite-strain torsion of rigidly rotating circular sections
+        (Green-Lagrange strain, St Venant-Kirchhoff energy): ``k2 = G I_p``,
+        ``k3 = k4 = k6 = 0``, ``k5 = M J4 / 2``; wave speed ``sqrt(G / rho)``, no force from a
+        uniform twist, independent of a constant ``Omega``
+        (:mod:`drillstring.coefficients`).
 
     Raises
     ------
@@ -112,6 +129,7 @@ class Parameters:
     omega: float = 2.0 * math.pi * 0.5
     initial_velocities: tuple[float, ...] = field(default=(0.1,))
     k5_variant: str = "paper"
+    model: str = "paper"
 
     def __post_init__(self) -> None:
         def set_(name: str, value: Any) -> None:
@@ -150,10 +168,10 @@ class Parameters:
             coerced.append(as_float(f"initial_velocities[{i}]", value, "a finite real number (rad/s)"))
         set_("initial_velocities", tuple(coerced))
 
-        if not isinstance(self.k5_variant, str) or self.k5_variant not in K5_VARIANTS:
-            raise ValidationError(
-                "k5_variant", self.k5_variant, "one of " + ", ".join(map(repr, K5_VARIANTS))
-            )
+        for name, choices in CHOICE_FIELDS.items():
+            value = getattr(self, name)
+            if not isinstance(value, str) or value not in choices:
+                raise ValidationError(name, value, "one of " + ", ".join(map(repr, choices)))
 
     # ------------------------------------------------------------------ copies and dicts
 
@@ -241,7 +259,7 @@ class Parameters:
             value = getattr(self, name)
             if name == "initial_velocities":
                 text = "[" + ", ".join(_toml_float(v) for v in value) + "]"
-            elif name == "k5_variant":
+            elif name in CHOICE_FIELDS:
                 text = f'"{value}"'
             else:
                 text = _toml_float(value)

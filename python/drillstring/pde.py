@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
@@ -21,11 +21,12 @@ import numpy as np
 
 from . import _core
 from ._output import is_stream, write_to
+from ._progress import ProgressOption, SolveProgress, check_progress
 from .coefficients import PDECoefficients
 from .errors import SolveError, ValidationError
 from .parameters import Parameters
 from .result import TrajectoryResult
-from .simulate import FIXED_STEP_METHODS, PDE_METHODS, _count, _output_times, check_solver_options
+from .simulate import FIXED_STEP_METHODS, PDE_METHODS, Method, _count, _output_times, check_solver_options
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import ArrayLike, NDArray
@@ -91,7 +92,7 @@ class PdeSolution(TrajectoryResult):
     """
 
     def __init__(
-        self, params: Parameters, system: Any, method: str, raw: dict[str, Any], save_field_every: Optional[int]
+        self, params: Parameters, system: Any, method: str, raw: Mapping[str, Any], save_field_every: Optional[int]
     ) -> None:
         super().__init__(params, system, method, raw)
         self.z: NDArray[np.float64] = np.asarray(system.z)
@@ -120,6 +121,9 @@ class PdeSolution(TrajectoryResult):
 
     def _state_columns(self) -> list[str]:
         return []
+
+    def _state_dimension(self) -> tuple[str, NDArray[Any], dict[str, str], str, str]:
+        return "z", self.z, {"units": "m", "long_name": "node position"}, "theta", "theta_dot"
 
     def save_field(self, path: Any) -> Optional[Path]:
         """Writes ``t``, ``z`` and ``theta`` (nodes x samples; the saved field, else every sample)
@@ -156,10 +160,10 @@ def solve_pde(
     params: Parameters,
     nodes: int = 240,
     t_end: float = 1.0,
-    method: str = "dop853",
+    method: Method = "dop853",
     rtol: float = 1e-9,
     atol: float = 1e-12,
-    t_eval: Optional[Sequence[float]] = None,
+    t_eval: Optional[ArrayLike] = None,
     save_field_every: Optional[int] = None,
     *,
     dt: Optional[float] = None,
@@ -168,6 +172,7 @@ def solve_pde(
     initial_velocity: InitialField = None,
     max_steps: Optional[int] = None,
     check: bool = True,
+    progress: ProgressOption = False,
 ) -> PdeSolution:
     """Solves the nonlinear torsion PDE (eq. 18, Neumann ends) on ``nodes`` grid points.
 
@@ -178,7 +183,7 @@ def solve_pde(
         ``theta(z, 0) = 0`` and ``theta_t(z, 0) = sum_i C_i cos(i pi z / l)`` (eq. 13).
     nodes : int
         Grid points ``N >= 3`` including both ends.
-    t_end, method, rtol, atol, t_eval, dt, samples, max_steps, check
+    t_end, method, rtol, atol, t_eval, dt, samples, max_steps, check, progress
         As :func:`~drillstring.simulate.simulate`; ``method`` may also be ``"verlet"``
         (symplectic, fixed step). Fixed-step methods default to half the CFL limit ``h / c``.
     save_field_every : int, optional
@@ -201,6 +206,7 @@ def solve_pde(
     )
     if not isinstance(check, bool):
         raise ValidationError("check", check, "True or False")
+    progress = check_progress(progress)
     every = None if save_field_every is None else _count("save_field_every", save_field_every, 1)
     system = pde_system(params, nodes)
     z = np.asarray(system.z)
@@ -215,8 +221,11 @@ def solve_pde(
         t_eval, samples, t_end_f, method, state_dim=2 * z.size, dt=dt_f, max_steps=steps,
         default_field="nodes", default_value=nodes,
     )
-    raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps)
-    result = PdeSolution(params, system, method, raw, every)
+    with SolveProgress(progress, t_end_f, "solve_pde") as bar:
+        raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps,
+                              **bar.core_kwargs(_core.solve_pde))
+        result = PdeSolution(params, system, method, raw, every)
+        bar.finish(result)
     if check and not result.success:
         raise SolveError(result.status, result.message, result)
     return result

@@ -489,6 +489,7 @@ SWEEP_LABELS = {
     "inner_diameter": "d, m",
     "omega": r"$\Omega$, rad/s",
     "k5_variant": "k5 variant",
+    "model": "model",
     "initial_velocities": "initial velocities C, rad/s",
     "z": "z, m",
     "max_theta": r"max $|\theta(z_k, t)|$, rad",
@@ -549,11 +550,21 @@ def _edges(centres: np.ndarray, log: bool) -> np.ndarray:
 
 
 def _critical_speeds(table: Any, length: np.ndarray, count: int) -> list[np.ndarray]:
-    """``Omega_crit,i(l) = (i pi / l) sqrt(4 G / rho)`` for i = 1..count, G and rho of the first row."""
+    """The critical speeds ``Omega_crit,i(l)`` of :meth:`PDECoefficients.critical_speed` for
+    i = 1..count at each length, for the material and section of the first row; none when a run
+    uses a model without rotation softening (``model="consistent"``: no critical speed)."""
+    from .coefficients import PDECoefficients
+    from .parameters import Parameters
+
+    if "model" in table and (table["model"].astype(str) != "paper").any():
+        return []
     row = table.iloc[0]
-    g = float(row["youngs_modulus"]) / (2.0 * (1.0 + float(row["poisson_ratio"])))
-    speed = np.sqrt(4.0 * g / float(row["density"]))
-    return [i * np.pi / length * speed for i in range(1, count + 1)]
+    fields = ("youngs_modulus", "density", "poisson_ratio", "outer_diameter", "inner_diameter")
+    base = Parameters(**{name: float(row[name]) for name in fields}, k5_variant=str(row.get("k5_variant", "paper")))
+    modes = np.arange(1, count + 1)
+    speeds = np.array([PDECoefficients.from_parameters(base.replace(length=float(l))).critical_speed(modes)
+                       for l in np.atleast_1d(length)])  # (lengths, modes)
+    return [speeds[:, i].reshape(np.shape(length)) for i in range(count)]
 
 
 def sweep_metric(
@@ -573,7 +584,8 @@ def sweep_metric(
     When ``omega`` and ``length`` are both swept, the critical speeds
     ``Omega_crit,i(l) = (i pi / l) sqrt(4 G / rho)`` of the retained elastic modes are drawn
     (``G``, ``rho`` of the first row): above ``Omega_crit,i`` mode ``i`` is linearly unstable.
-    A sweep of ``omega`` alone at one length marks them as vertical lines.
+    A sweep of ``omega`` alone at one length marks them as vertical lines. Not drawn when a run
+    uses the ``"consistent"`` model, which has no critical speed.
 
     Parameters
     ----------
@@ -667,7 +679,8 @@ def sweep_metric(
                 ax.plot(*xy, color="k", lw=0.6 if i == 0 else 0.4, ls="-" if i == 0 else "--")
             ax.set_xlim(xlim)
             ax.set_ylim(ylim)
-            ax.legend(loc="upper right", fontsize=8, framealpha=0.8)
+            if ax.get_legend_handles_labels()[0]:
+                ax.legend(loc="upper right", fontsize=8, framealpha=0.8)
     suffix = f" (max over {', '.join(names[2:])})" if len(names) > 2 else ""
     ax.set_title(title or f"{_sweep_label(metric)}{suffix}", fontsize=10)
     return fig

@@ -9,25 +9,27 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, Optional
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Literal, Optional, get_args
 
 import numpy as np
 
 from . import _core, limits
+from ._progress import ProgressOption, SolveProgress, check_progress
 from .errors import SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .parameters import Parameters
 from .result import SolverStats, TrajectoryResult
 
 if TYPE_CHECKING:  # pragma: no cover
-    from numpy.typing import NDArray
+    from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["METHODS", "SolverStats", "Simulation", "simulate", "check_solver_options"]
+__all__ = ["METHODS", "Method", "SolverStats", "Simulation", "simulate", "check_solver_options"]
 
 #: Integration methods: adaptive Dormand-Prince 8(5,3) and 5(4), fixed-step classical RK4, the
 #: explicit central-difference scheme of the paper's Table 2 and symplectic Stormer-Verlet.
-METHODS = ("dop853", "dopri5", "rk4", "central", "verlet")
+Method = Literal["dop853", "dopri5", "rk4", "central", "verlet"]
+METHODS: tuple[Method, ...] = get_args(Method)
 FIXED_STEP_METHODS = ("rk4", "central", "verlet")
 #: Methods of the PDE solver (every method applies to both).
 PDE_METHODS = METHODS
@@ -56,14 +58,15 @@ def check_solver_options(
     atol: Any,
     dt: Any,
     max_steps: Any = None,
-    methods: Sequence[str] = METHODS,
-) -> tuple[str, float, float, float, Optional[float], Optional[int]]:
+    methods: Sequence[Method] = METHODS,
+) -> tuple[Method, float, float, float, Optional[float], Optional[int]]:
     """Validates the solver options shared by every solver; returns them normalised.
 
     Raises :class:`~drillstring.errors.ValidationError` naming the option and its range.
     """
     if method not in methods:
         raise ValidationError("method", method, "one of " + ", ".join(repr(m) for m in methods))
+    name: Method = method
     t_end_f = _positive("t_end", t_end)
     rtol_f = _positive("rtol", rtol)
     assert t_end_f is not None and rtol_f is not None
@@ -75,7 +78,7 @@ def check_solver_options(
     if dt_f is not None and dt_f > t_end_f:
         raise ValidationError("dt", dt, f"0 < dt <= t_end = {t_end_f}")
     steps = None if max_steps is None else _count("max_steps", max_steps, 1)
-    return method, t_end_f, rtol_f, atol_f, dt_f, steps
+    return name, t_end_f, rtol_f, atol_f, dt_f, steps
 
 
 def _output_times(
@@ -175,7 +178,7 @@ class Simulation(TrajectoryResult):
         coefficients: ModalCoefficients,
         system: Any,
         method: str,
-        raw: dict[str, Any],
+        raw: Mapping[str, Any],
     ) -> None:
         self.coefficients = coefficients
         super().__init__(params, system, method, raw)
@@ -190,6 +193,10 @@ class Simulation(TrajectoryResult):
     def _state_columns(self) -> list[str]:
         return [f"q{i}" for i in self.indices]
 
+    def _state_dimension(self) -> tuple[str, NDArray[Any], dict[str, str], str, str]:
+        attrs = {"long_name": "mode number i of the basis cos(i pi z / l)"}
+        return "mode", self.indices, attrs, "q", "qdot"
+
     def __repr__(self) -> str:
         return (
             f"Simulation(method={self.method!r}, modes={list(self.indices)}, "
@@ -202,16 +209,17 @@ def simulate(
     modes: int = 3,
     rigid_mode: bool = False,
     t_end: float = 1.0,
-    method: str = "dop853",
+    method: Method = "dop853",
     rtol: float = 1e-9,
     atol: float = 1e-12,
     dt: Optional[float] = None,
-    t_eval: Optional[Sequence[float]] = None,
+    t_eval: Optional[ArrayLike] = None,
     *,
     samples: Optional[int] = None,
     max_steps: Optional[int] = None,
     nonlinear: bool = True,
     check: bool = True,
+    progress: ProgressOption = False,
 ) -> Simulation:
     """Integrates the ``modes``-mode Galerkin model of ``params`` over ``0 <= t <= t_end``.
 
@@ -248,6 +256,11 @@ def simulate(
     check : bool
         Raise :class:`~drillstring.errors.SolveError` when the solve stops early (default);
         with ``check=False`` the partial result is returned with its ``status``.
+    progress : bool or callable
+        ``True``: a tqdm bar of the solve time reached, on stderr; a callable is called as
+        ``f(t_reached, t_end)``. The solve runs in the Rust core, which reports the time reached
+        while it steps when it supports it (:func:`drillstring._progress.core_reports_progress`);
+        otherwise the report comes at ``t = 0`` and when the solve ends. Never changes the result.
 
     Examples
     --------
@@ -266,6 +279,7 @@ def simulate(
         raise ValidationError("nonlinear", nonlinear, "True or False")
     if not isinstance(check, bool):
         raise ValidationError("check", check, "True or False")
+    progress = check_progress(progress)
     coefficients = project(params, modes=modes, rigid_mode=rigid_mode)
     if not nonlinear:
         coefficients = dataclasses.replace(
@@ -283,10 +297,13 @@ def simulate(
         coefficients.quartic_coef,
     )
     q0, v0 = coefficients.initial_state(params)
-    raw = _core.solve_modal(
-        system, q0, v0, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps
-    )
-    result = Simulation(params, coefficients, system, method, raw)
+    with SolveProgress(progress, t_end_f, "simulate") as bar:
+        raw = _core.solve_modal(
+            system, q0, v0, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps,
+            **bar.core_kwargs(_core.solve_modal),
+        )
+        result = Simulation(params, coefficients, system, method, raw)
+        bar.finish(result)
     if check and not result.success:
         raise SolveError(result.status, result.message, result)
     return result

@@ -22,6 +22,10 @@ Since ``K_ii / M_ii = (k2/k1) (i pi / l)^2 - Omega^2``, mode ``i`` loses linear 
 the rotation speed exceeds the critical speed ``Omega_crit,i = (i pi / l) sqrt(k2 / k1) =
 (i pi / l) sqrt(4 G / rho)``, which does not depend on the cross-section. The rigid mode
 ``i = 0`` has ``Omega_crit,0 = 0``: it is a saddle for any ``Omega != 0``.
+
+The ``"consistent"`` model (:attr:`Parameters.model`) has no rotation softening (``k6 = 0``):
+``K_ii / M_ii = (k2/k1) (i pi / l)^2`` for every ``Omega``, no mode has a critical speed
+(``inf``), and the rigid mode is neutral (``K_00 = 0``: ``"degenerate"``).
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ from typing import TYPE_CHECKING, Optional, Union
 
 import numpy as np
 
+from .coefficients import PDECoefficients
 from .errors import ValidationError
 from .galerkin import ModalCoefficients, project
 from .parameters import Parameters
@@ -104,7 +109,8 @@ class Stability:
     omega: Optional[float]
     """Rotation speed ``Omega`` (rad/s) the model was built for, when known."""
     critical_speeds: Optional[NDArray[np.float64]]
-    """``(m,)`` ``Omega_crit,i = (i pi / l) sqrt(k2 / k1)`` (rad/s), when ``omega`` is known."""
+    """``(m,)`` ``Omega_crit,i = (i pi / l) sqrt(k2 / k1)`` (rad/s), when ``omega`` is known;
+    ``inf`` for a model without rotation softening (``"consistent"``)."""
 
     @property
     def linear_frequencies_hz(self) -> NDArray[np.float64]:
@@ -137,7 +143,10 @@ def analyse(
     omega : float, optional
         Rotation speed of a :class:`ModalCoefficients` source. Needed only for the critical
         speeds: ``K_ii / M_ii + Omega^2 = (k2/k1) (i pi/l)^2`` gives ``k2/k1`` and
-        ``Omega_crit,i = (i pi / l) sqrt(k2/k1)`` (exactly 0 for the rigid mode).
+        ``Omega_crit,i = (i pi / l) sqrt(k2/k1)`` (exactly 0 for the rigid mode); that is, a
+        :class:`ModalCoefficients` source is taken to have the paper model's ``k6 = k1 Omega^2``.
+        For a :class:`Parameters` source whose model has no rotation softening
+        (``"consistent"``) every critical speed is ``inf``.
 
     Examples
     --------
@@ -146,11 +155,13 @@ def analyse(
     >>> s.classification, round(float(s.mode_eigenvalues[0].imag), 2)
     ('centre', 195.4)
     """
+    softening = True
     if isinstance(source, Parameters):
         if omega is not None and float(omega) != source.omega:
             raise ValidationError("omega", omega, f"omitted or equal to params.omega = {source.omega}")
         omega = source.omega
         coefficients = project(source, modes=modes, rigid_mode=rigid_mode)
+        softening = PDECoefficients.from_parameters(source).k6_per_omega_squared != 0.0
     elif isinstance(source, ModalCoefficients):
         coefficients = source
     else:
@@ -168,7 +179,9 @@ def analyse(
     mode_class = tuple(_classify_mu(np.array([m]), scale) for m in mu)
     overall = _classify_mu(mu, scale)
     critical = None
-    if omega is not None:
+    if omega is not None and not softening:
+        critical = np.full(mu.shape, math.inf)  # k6 = 0 for every Omega: no critical speed
+    elif omega is not None:
         # (k2/k1) from the elastic modes: K_ii/M_ii + Omega^2 = (k2/k1) (i pi / l)^2
         wave = coefficients.indices * (math.pi / coefficients.length)
         elastic = coefficients.indices > 0

@@ -39,7 +39,7 @@ Columns
 -------
 The parameters of each run as requested (``length``, ``youngs_modulus``, ``density``,
 ``poisson_ratio``, ``outer_diameter``, ``inner_diameter``, ``omega``, ``c1``, ``c2``, ... for
-``initial_velocities``, ``k5_variant``), ``z`` (the section of the metrics, m), then
+``initial_velocities``, ``k5_variant``, ``model``), ``z`` (the section of the metrics, m), then
 
 * ``status``: ``"success"``, ``"invalid"`` (the parameter set was refused; no solve),
   ``"max_steps"``, ``"step_size_underflow"``, ``"non_finite"``, ``"out_of_memory"``,
@@ -57,8 +57,8 @@ The parameters of each run as requested (``length``, ``youngs_modulus``, ``densi
   energy ``E_i = (M_i qdot_i^2 + K_i q_i^2) / 2`` in ``sum_j E_j`` that mode ``i`` reached
   (modal energy exchange; with a negative ``K_i`` a share may be negative or exceed 1).
 
-Metrics are NaN for runs that did not succeed. pandas (and pyarrow for ``out_dir``) are the
-optional extra ``drillstring[sweep]``; dask is ``drillstring[dask]``.
+Metrics are NaN for runs that did not succeed. pandas and pyarrow are dependencies of
+drillstring; dask is the extra ``dask`` (``pip install '.[dask]'`` in a drillstring checkout).
 """
 
 from __future__ import annotations
@@ -67,8 +67,6 @@ import hashlib
 import json
 import math
 import os
-import sys
-import time
 import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -78,12 +76,14 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 import numpy as np
 
 from . import _core
+from ._progress import bar as progress_bar
+from ._progress import on_terminal
 from .coefficients import PDECoefficients
 from .errors import ValidationError
 from .galerkin import dimensionless_integrals
 from .grid import apply_overrides, expand_grid, linspace, logspace, run_overrides
 from .limits import as_float, check_table_size, memory_budget
-from .parameters import Parameters, preset
+from .parameters import CHOICE_FIELDS, Parameters, preset
 from .simulate import FIXED_STEP_METHODS, check_solver_options
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -111,7 +111,7 @@ DEFAULT_CHUNK_SIZE = 500
 _FORMAT = 1
 
 _NUMERIC_FIELDS = tuple(
-    name for name in Parameters.field_names() if name not in ("initial_velocities", "k5_variant")
+    name for name in Parameters.field_names() if name != "initial_velocities" and name not in CHOICE_FIELDS
 )
 
 
@@ -120,8 +120,8 @@ def _require_pandas() -> Any:
         import pandas as pd
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError(
-            "drillstring.sweep needs pandas (and pyarrow to write results): "
-            "pip install 'drillstring[sweep]'"
+            "drillstring.sweep needs pandas, a dependency of drillstring: "
+            "reinstall it with pip install . in the drillstring checkout"
         ) from exc
     return pd
 
@@ -131,7 +131,8 @@ def _require_pyarrow() -> None:
         import pyarrow  # noqa: F401
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError(
-            "writing sweep results (out_dir) needs pyarrow: pip install 'drillstring[sweep]'"
+            "writing sweep results (out_dir) needs pyarrow, a dependency of drillstring: "
+            "reinstall it with pip install . in the drillstring checkout"
         ) from exc
 
 
@@ -140,7 +141,8 @@ def _require_distributed() -> Any:
         import distributed
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError(
-            "running a sweep on a Dask cluster needs dask.distributed: pip install 'drillstring[dask]'"
+            "running a sweep on a Dask cluster needs dask.distributed: "
+            "pip install '.[dask]' in the drillstring checkout"
         ) from exc
     return distributed
 
@@ -175,7 +177,7 @@ def _as_float(value: Any) -> float:
         try:
             return float(value)
         except OverflowError:
-            return math.inf if value > 0 else -math.inf
+            return math.inf if value > 0 else -math.inf  # type: ignore[operator]  # a Real int
     return math.nan
 
 
@@ -190,15 +192,16 @@ def _coefficients(params: Parameters, cache: dict[tuple[Any, ...], tuple[float, 
     """``k1..k6`` of ``params``, exactly as :meth:`PDECoefficients.from_parameters`.
 
     ``k1..k5`` do not depend on ``length`` and ``omega`` (the axes most sweeps vary): they are
-    computed once per material and section, and ``k6 = (rho I_p) Omega^2`` per run.
+    computed once per material, section and model, and ``k6 = (k6 / Omega^2) Omega^2`` per run
+    (``rho I_p Omega^2`` in the paper model, 0 in the consistent one).
     """
     key = (params.youngs_modulus, params.density, params.poisson_ratio, params.outer_diameter,
-           params.inner_diameter, params.k5_variant)
+           params.inner_diameter, params.k5_variant, params.model)
     fixed = cache.get(key)
     if fixed is None:
         k = PDECoefficients.from_parameters(params.replace(omega=0.0))
-        fixed = cache[key] = (k.k1, k.k2, k.k3, k.k4, k.k5, k.k1)  # k1 = rho I_p
-    return (*fixed[:5], fixed[5] * params.omega**2)
+        fixed = cache[key] = (k.k1, k.k2, k.k3, k.k4, k.k5, k.k6_per_omega_squared or 0.0)
+    return (*fixed[:5], fixed[5] * params.omega**2 if fixed[5] else 0.0)
 
 
 def columns(velocity_columns: int, indices: Sequence[int]) -> list[str]:
@@ -234,7 +237,7 @@ def parameter_columns(task: ChunkTask) -> pd.DataFrame:
             ).reshape(n, task.velocity_columns)
             for i in range(task.velocity_columns):
                 data[f"c{i + 1}"] = block[:, i]
-        elif name == "k5_variant":
+        elif name in CHOICE_FIELDS:
             data[name] = pd.array([str(r.get(name)) for r in task.runs], dtype="str")
         else:
             data[name] = np.array([_as_float(r.get(name)) for r in task.runs], dtype=float)
@@ -301,7 +304,7 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
         velocities.append(c)
         sections.append(section)
 
-    raw: Optional[dict[str, Any]] = None
+    raw: Optional[_core.BatchOutput] = None
     if valid:
         raw = _core.batch_solve(
             np.asarray(k_rows, dtype=float).reshape(-1, 6),
@@ -327,13 +330,15 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
         rows = np.asarray(valid)
         status[rows] = raw["status"]
         message[rows] = raw["message"]
-        for name in metrics:
-            metrics[name][rows] = raw[name]
+        metrics["max_theta"][rows] = raw["max_theta"]
+        metrics["rms_theta"][rows] = raw["rms_theta"]
+        metrics["dominant_frequency_hz"][rows] = raw["dominant_frequency_hz"]
+        metrics["energy_drift"][rows] = raw["energy_drift"]
         unstable[rows] = raw["unstable_modes"]
         nfev[rows] = raw["nfev"]
         shares[rows] = raw["max_share"]
 
-    data: dict[str, Any] = {name: column.array for name, column in parameter_columns(task).items()}
+    data: dict[str, Any] = {str(name): column.array for name, column in parameter_columns(task).items()}
     data["status"] = pd.array(status.tolist(), dtype="str")
     data["message"] = pd.array(message.tolist(), dtype="str")
     data.update(metrics)
@@ -394,38 +399,11 @@ class SweepTrajectories:
     indices: NDArray[np.int64]
 
 
-class _Progress:
-    """A one-line progress bar on stderr (no dependency), updated per chunk."""
-
-    WIDTH = 30
-
-    def __init__(self, total: int, enabled: bool, stream: Any = None) -> None:
-        self.total = max(total, 1)
-        self.done = 0
-        self.enabled = enabled
-        self.stream = stream if stream is not None else sys.stderr
-        self.start = time.perf_counter()
-
-    def update(self, runs: int) -> None:
-        self.done += runs
-        if not self.enabled:
-            return
-        frac = min(self.done / self.total, 1.0)
-        filled = int(round(frac * self.WIDTH))
-        elapsed = time.perf_counter() - self.start
-        rate = self.done / elapsed if elapsed > 0 else 0.0
-        eta = (self.total - self.done) / rate if rate > 0 else math.inf
-        eta_text = f", {eta:.0f} s left" if math.isfinite(eta) and self.done < self.total else ""
-        self.stream.write(
-            f"\rsweep [{'#' * filled}{'.' * (self.WIDTH - filled)}] {self.done}/{self.total} runs "
-            f"{elapsed:.1f} s ({rate:.0f} runs/s{eta_text})  "
-        )
-        self.stream.flush()
-
-    def close(self) -> None:
-        if self.enabled:
-            self.stream.write("\n")
-            self.stream.flush()
+def _progress_bar(total: int, enabled: bool) -> Any:
+    """A tqdm bar of the runs on stderr, updated per chunk (prints nothing unless ``enabled``)."""
+    return progress_bar(total, "sweep", "runs", enabled=enabled, every_update=True,
+                        bar_format="{desc}: {percentage:3.0f}%|{bar}| {n_fmt}/{total_fmt} runs "
+                        "[{elapsed}<{remaining}, {rate_fmt}]")
 
 
 def _core_build() -> str:
@@ -439,11 +417,9 @@ def _core_build() -> str:
     return digest.hexdigest()[:16]
 
 
-def _check_count(field: str, value: Any, minimum: int, *, allow_none: bool = False) -> Optional[int]:
-    if value is None and allow_none:
-        return None
+def _check_count(field: str, value: Any, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValidationError(field, value, f"an integer >= {minimum}" + (" or None" if allow_none else ""))
+        raise ValidationError(field, value, f"an integer >= {minimum}")
     return int(value)
 
 
@@ -550,7 +526,8 @@ def sweep(
         For bad shared input (solver options, grid keys, a foreign ``out_dir``); a bad
         parameter set is a row, not an error.
     ImportError
-        Without pandas (``drillstring[sweep]``), or dask for ``client`` (``drillstring[dask]``).
+        Without pandas (a dependency), or dask for ``client`` (``pip install '.[dask]'`` in the
+        drillstring checkout).
     """
     _require_pandas()
     base = _base(base_params)
@@ -559,7 +536,7 @@ def sweep(
     samples_i = _check_count("samples", samples, 4)
     integrals = dimensionless_integrals(modes, rigid_mode)
     size = _check_count("chunk_size", chunk_size, 1)
-    threads_i = _check_count("threads", threads, 1, allow_none=True)
+    threads_i = None if threads is None else _check_count("threads", threads, 1)
     if z is not None:
         z = as_float("z", z, "a finite section position in m, or None for 2l/3")
     if not isinstance(trajectories, bool):
@@ -735,7 +712,7 @@ def _run_tasks(
     pd = _require_pandas()
     frames, jobs, summary = _resume(tasks, names, store, fingerprint)
     raws: list[Any] = [None] * len(tasks)
-    bar = _Progress(total, sys.stderr.isatty() if progress is None else bool(progress))
+    bar = _progress_bar(total, on_terminal() if progress is None else bool(progress))
     bar.update(total - sum(len(j.task.runs) if j.rows is None else len(j.rows) for j in jobs))
 
     def finished(job: _Job, solved: Any) -> None:

@@ -21,7 +21,7 @@ import numpy as np
 
 from ._output import write_text
 from .parameters import Parameters, preset
-from .simulate import simulate
+from .simulate import Method, simulate
 
 __all__ = ["Table2Row", "PAPER_TABLE2", "table2", "format_table2", "write_table2_csv", "table2_json"]
 
@@ -50,7 +50,7 @@ class Table2Row:
     """|A_h - A_ref| / A_ref * 100."""
 
 
-def _max_amplitude(params: Parameters, method: str, dt: float, t_end: float) -> float:
+def _max_amplitude(params: Parameters, method: Method, dt: float, t_end: float) -> float:
     # t_eval=None: every step, so the maximum is over all step values as in the paper.
     result = simulate(params, modes=1, t_end=t_end, method=method, dt=dt)
     return float(np.max(np.abs(result.q[0])))

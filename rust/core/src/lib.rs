@@ -25,6 +25,7 @@ pub mod error;
 pub mod integrators;
 pub mod interrupt;
 pub mod modal;
+pub mod model;
 pub mod options;
 pub mod pde;
 pub mod simd;

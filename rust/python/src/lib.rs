@@ -11,6 +11,7 @@ use pyo3::prelude::*;
 
 mod convert;
 mod modal;
+mod model;
 mod pde;
 mod sweep;
 
@@ -25,6 +26,10 @@ fn simd_path() -> &'static str {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<modal::ModalSystem>()?;
     m.add_function(wrap_pyfunction!(modal::solve_modal, m)?)?;
+    m.add_function(wrap_pyfunction!(model::section, m)?)?;
+    m.add_function(wrap_pyfunction!(model::shear_modulus, m)?)?;
+    m.add_function(wrap_pyfunction!(model::p_wave_modulus, m)?)?;
+    m.add_function(wrap_pyfunction!(model::coefficients, m)?)?;
     m.add_class::<pde::PdeSystem>()?;
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::batch_solve, m)?)?;

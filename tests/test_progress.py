@@ -1,0 +1,116 @@
+"""Progress reports of single solves, sweeps and the command line (tqdm)."""
+
+import inspect
+import io
+import sys
+
+import numpy as np
+import pytest
+
+import drillstring as ds
+from drillstring import _core, _progress
+from drillstring.cli import main
+
+ALUMINUM = ds.preset("aluminum")
+
+
+def test_callable_gets_start_and_end_and_results_are_unchanged():
+    calls = []
+    plain = ds.simulate(ALUMINUM, modes=3, t_end=0.2, samples=21)
+    watched = ds.simulate(ALUMINUM, modes=3, t_end=0.2, samples=21, progress=lambda t, end: calls.append((t, end)))
+    assert calls[0] == (0.0, 0.2) and calls[-1] == (0.2, 0.2)
+    assert [t for t, _ in calls] == sorted(t for t, _ in calls)
+    assert np.array_equal(plain.q, watched.q) and plain.stats == watched.stats
+
+
+def test_pde_bar_on_stderr_reaches_t_end(capsys):
+    plain = ds.solve_pde(ALUMINUM, nodes=30, t_end=0.05, samples=11)
+    shown = ds.solve_pde(ALUMINUM, nodes=30, t_end=0.05, samples=11, progress=True)
+    err = capsys.readouterr().err
+    assert "solve_pde: 100%" in err and "t = 0.05/0.05 s" in err
+    assert np.array_equal(plain.q, shown.q)
+    ds.solve_pde(ALUMINUM, nodes=30, t_end=0.05, samples=11)
+    assert capsys.readouterr().err == ""  # off by default
+
+
+def test_a_stopped_solve_reports_where_it_stopped():
+    calls = []
+    res = ds.simulate(ALUMINUM, t_end=1.0, max_steps=20, check=False, progress=lambda t, end: calls.append(t))
+    assert res.status == "max_steps"
+    assert calls[-1] == pytest.approx(float(res.t[-1])) and 0 < calls[-1] < 1.0
+
+
+@pytest.mark.parametrize("bad", ["yes", 1, None])
+def test_bad_progress_names_the_option(bad):
+    with pytest.raises(ds.ValidationError, match="progress.*True, False or a callable"):
+        ds.simulate(ALUMINUM, t_end=0.01, progress=bad)
+    with pytest.raises(ds.ValidationError, match="progress"):
+        ds.solve_pde(ALUMINUM, nodes=10, t_end=0.01, progress=bad)
+
+
+def test_a_core_that_reports_time_feeds_the_callable(monkeypatch):
+    """When the core's solve takes ``progress``, the time it reports reaches the caller."""
+    real = _core.solve_modal
+
+    def reporting(system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, progress=None):
+        for t in (0.25 * t_end, 0.5 * t_end, 0.4 * t_end):  # a step back is never shown
+            progress(t)
+        return real(system, q0, v0, t_end, t_eval, method, rtol, atol, dt=dt, max_steps=max_steps)
+
+    assert not _progress.core_reports_progress(real) or "progress" in inspect.signature(real).parameters
+    assert _progress.core_reports_progress(reporting)
+    monkeypatch.setattr(_core, "solve_modal", reporting)
+    calls = []
+    ds.simulate(ALUMINUM, t_end=0.2, samples=5, progress=lambda t, end: calls.append(t))
+    assert calls == [0.0, 0.05, 0.1, 0.2]
+
+
+def test_sweep_bar_counts_runs(capsys):
+    ds.sweep(ALUMINUM, {"length": [100.0, 120.0, 140.0]}, chunk_size=1, progress=True, modes=1, t_end=0.01)
+    err = capsys.readouterr().err
+    assert "sweep:" in err and "1/3 runs" in err and "3/3 runs" in err and "runs/s" in err
+
+
+@pytest.mark.parametrize("command", [["simulate", "--preset", "aluminum", "--modes", "1"],
+                                     ["pde", "--preset", "aluminum", "--nodes", "20"]])
+def test_command_line_progress_flag(command, capsys):
+    assert main([*command, "--t-end", "0.01", "--progress"]) == 0
+    assert "100%" in capsys.readouterr().err
+    assert main([*command, "--t-end", "0.01", "--no-progress"]) == 0
+    assert capsys.readouterr().err == ""
+    assert main([*command, "--t-end", "0.01"]) == 0  # stderr is not a terminal here
+    assert capsys.readouterr().err == ""
+
+
+def test_convergence_progress_lines(capsys):
+    from drillstring import convergence
+
+    convergence.study(ALUMINUM, t_end=0.01, samples=11, modes=(1,), cells=8, max_nodes=33, progress=True)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("PDE N =     9:") and lines[-1].startswith("Galerkin  1 modes: error")
+    convergence.study(ALUMINUM, t_end=0.01, samples=11, modes=(1,), cells=8, max_nodes=33)
+    assert capsys.readouterr().err == ""
+
+
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+def test_on_a_terminal_commands_show_bars_by_default(monkeypatch):
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    assert main(["simulate", "--preset", "aluminum", "--modes", "1", "--t-end", "0.01"]) == 0
+    assert "simulate: 100%" in terminal.getvalue() and "t = 0.01/0.01 s" in terminal.getvalue()
+
+
+def test_convergence_bar_on_a_terminal_counts_solves(monkeypatch):
+    from drillstring import convergence
+
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    convergence.study(ALUMINUM, t_end=0.01, samples=11, modes=(1, 2), cells=8, max_nodes=33, progress=True)
+    text = terminal.getvalue()
+    # 3 grid levels and 2 Galerkin sizes; each line is written above the bar
+    assert "convergence: 100%" in text and "5/5" in text
+    assert "PDE N =    33:" in text and "Galerkin  2 modes: error" in text
