@@ -80,7 +80,7 @@ def test_readme_python_examples_run(tmp_path, monkeypatch, capsys):
     exec(compile(PYTHON_EXAMPLES[0], "README example 1", "exec"), first)
     assert first["res"].status == "success" and first["res"].indices.tolist() == list(range(9))
     assert 1e-4 < float(np.abs(first["theta"]).max()) < 1e-3
-    assert first["df"].shape == (1001, 2) and first["data"]["q"].shape == (3, 1001)
+    assert first["df"].shape == (1868, 2) and first["data"]["q"].shape == (3, 1868)  # the default samples
     sweep: dict = {}
     exec(compile(PYTHON_EXAMPLES[1], "README example 2", "exec"), sweep)
     assert sweep["df"].shape[0] == 41 * 41 and set(sweep["df"]["status"]) == {"success"}
@@ -116,13 +116,13 @@ def test_nfev_counts_as_the_readme_says():
     default = ds.simulate(params).stats
     assert (two.naccept, two.nreject) == (default.naccept, default.nreject) == (1217, 218)
     assert two.nfev == 2 + 12 * two.naccept + 11 * two.nreject == 17004
-    assert default.nfev == 20001  # + 3 for each of the 999 steps with an output time inside
+    assert default.nfev == 20652  # + 3 for each of the 1216 steps with an output time inside
     dense = ds.simulate(params, samples=20001).stats
     assert dense.nfev - two.nfev == 3 * dense.naccept  # every step holds an output time
-    for samples in (2, 1001):
+    for samples in (2, 1868):
         s = ds.simulate(params, method="dopri5", samples=samples).stats
         assert s.nfev == 2 + 6 * (s.naccept + s.nreject)
-    assert "17004 with `samples=2` and 20001 with the default 1001 samples" in README.replace("\n  ", " ")
+    assert "17004 with `samples=2` and 20652 with the default 1868 samples" in README.replace("\n  ", " ")
 
 
 def test_plain_install_has_what_the_readme_uses():

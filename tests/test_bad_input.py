@@ -62,6 +62,12 @@ PARAMETER_CASES += [
     ("initial_velocities-string", {"initial_velocities": "0.1"}),
     ("initial_velocities-none", {"initial_velocities": None}),
     ("initial_velocities-nested", {"initial_velocities": [[0.1]]}),
+    ("damping_rate-nan", {"damping_rate": NAN}),
+    ("damping_rate-inf", {"damping_rate": INF}),
+    ("damping_rate-negative", {"damping_rate": -0.1}),
+    ("damping_rate-string", {"damping_rate": "0.5"}),
+    ("damping_rate-bool", {"damping_rate": True}),
+    ("damping_rate-10**400", {"damping_rate": HUGE}),
     ("k5_variant-unknown", {"k5_variant": "minus"}),
     ("k5_variant-int", {"k5_variant": 2}),
     # integers too large for a float: the same refusal as 1e400, not OverflowError
@@ -212,6 +218,15 @@ OPTION_CASES: list[tuple[str, Callable[[], Any], type, str]] = [
     ("grid-key-c257", lambda: expand_grid({"c257": [0.1]}), ValidationError, "grid"),  # no model has mode 257
     ("from_dict-10**400", lambda: ds.Parameters.from_dict({"preset": "steel", "length": HUGE}), ValidationError,
      "length"),
+    # methods that advance q'' = a(q) only refuse velocity-dependent (damping) forces
+    ("damped-central", lambda: ds.simulate(P.replace(damping_rate=1.0), method="central", t_end=0.01),
+     ValidationError, "method"),
+    ("damped-verlet", lambda: ds.simulate(P.replace(damping_rate=1.0), method="verlet", t_end=0.01),
+     ValidationError, "method"),
+    ("pde-damped-verlet", lambda: ds.solve_pde(P.replace(damping_rate=1.0), nodes=20, method="verlet", t_end=0.01),
+     ValidationError, "method"),
+    ("stability-damping-negative", lambda: ds.stability.analyse(ds.project(P, modes=1), damping_rate=-1.0),
+     ValidationError, "damping_rate"),
 ]
 
 
@@ -377,6 +392,9 @@ CLI_CASES = [
     ("nodes-two", ["pde", "--nodes", "2"], "nodes"),
     ("length-zero", ["simulate", "--length", "0"], "length"),
     ("omega-inf", ["simulate", "--omega", "inf"], "omega"),
+    ("damping_rate-negative", ["simulate", "--damping-rate", "-1"], "damping_rate"),
+    ("damping_rate-nan", ["pde", "--nodes", "20", "--damping-rate", "nan"], "damping_rate"),
+    ("damped-central", ["simulate", "--damping-rate", "1", "--method", "central", "--t-end", "0.01"], "method"),
     ("velocities-nan", ["simulate", "--initial-velocities", "0.1,nan"], "initial_velocities"),
     ("z-outside", ["simulate", "--t-end", "0.01", "--z", "-1"], "z"),
     ("config-and-preset", ["simulate", "examples/reference.toml", "--preset", "steel"], "--preset"),
@@ -470,6 +488,10 @@ def _solve(**changes: Any) -> Any:
 CORE_CASES: list[tuple[str, Callable[[], Any], type, str]] = [
     ("mass-float32", lambda: _core.ModalSystem(np.ones(2, np.float32), np.ones(2), NO_TERMS, np.zeros(0)),
      TypeError, "mass"),
+    ("modal-damping-negative", lambda: _core.ModalSystem(np.ones(2), np.ones(2), NO_TERMS, np.zeros(0), -1.0),
+     ValidationError, "damping_rate"),
+    ("pde-damping-nan", lambda: _core.PdeSystem(1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 5, damping_rate=NAN),
+     ValidationError, "damping_rate"),
     ("mass-int", lambda: _core.ModalSystem(np.ones(2, np.int64), np.ones(2), NO_TERMS, np.zeros(0)),
      TypeError, "mass"),
     ("mass-2d", lambda: _core.ModalSystem(np.ones((2, 1)), np.ones(2), NO_TERMS, np.zeros(0)), TypeError, "mass"),

@@ -124,7 +124,10 @@ def test_cli_ctrl_c_exits_130_and_writes_no_partial_files(tmp_path: Path) -> Non
         sent = _interrupt(child)
         out, err = child.communicate(timeout=EXIT_TIMEOUT)
     assert child.proc.returncode == 130, (out, err)
-    assert err == "drillstring: interrupted\n"
+    # 11 samples over 1000 s cannot resolve the motion: one warning line says so before the solve
+    warning, interrupted = err.splitlines()
+    assert warning.startswith("drillstring: warning: under-resolved output: samples = 11") and err.endswith("\n")
+    assert interrupted == "drillstring: interrupted"
     latency = float(out.split()[0]) - sent
     print(f"CLI exits {1000 * latency:.1f} ms after SIGINT")
     assert 0 <= latency < 1.0

@@ -159,7 +159,9 @@ def test_report_html_is_self_contained(quick):
     assert text.count('src="data:image/png;base64,') == 16  # 15 figures and the truncation study
     assert "http://" not in text and "https://" not in text
     assert "<link" not in text and "<script" not in text
-    assert text.count("<table>") >= 17  # one per figure, Table 2, stability, timings
+    # one per figure with its own curves (a phase portrait refers to its response's table), Table 2,
+    # stability, the truncation study, timings
+    assert text.count("<table>") == 8 + 4
 
 
 def test_report_md_states_claims_numbers_errata_and_commands(quick):
@@ -181,7 +183,7 @@ def test_progress_lines_and_report_object(tmp_path, monkeypatch):
     monkeypatch.setattr(paper, "FIGURES", paper.FIGURES[:2])
     err = io.StringIO()
     with contextlib.redirect_stderr(err):
-        rep = paper.reproduce(tmp_path, t_end_scale=0.3, samples_per_second=1000, progress=True)
+        rep = paper.reproduce(tmp_path, t_end_scale=0.3, samples_per_second=SPS, progress=True)
     lines = err.getvalue().splitlines()
     assert re.fullmatch(r"\[ 1/2\] fig01 one-mode response \.\.\. \d+\.\d s", lines[1])
     assert re.fullmatch(r"\[ 2/2\] fig02 one-mode phase portrait \.\.\. \d+\.\d s", lines[2])
@@ -219,3 +221,114 @@ def test_report_has_the_truncation_study(quick):
     errors = {(int(r[0]), r[1] == "True"): float(r[2]) for r in rows}
     # the rigid mode matters once an even mode moves: 3 modes with it beat 3 modes without it
     assert errors[3, True] < errors[3, False]
+
+
+def _prose(text):
+    """The report without code blocks and inline code."""
+    return re.sub(r"`[^`]*`", "", re.sub(r"```.*?```", "", text, flags=re.S))
+
+
+def test_every_verdict_states_its_criterion_and_quick_verdicts_are_indicative(quick):
+    text = (quick[0] / "report.md").read_text(encoding="utf-8")
+    verdicts = re.findall(r"\*\*Here \(([^)]*)\):\*\* criterion: (\w[^\n]*)", text)
+    assert len(verdicts) == 17  # 15 figures, Table 2, stability
+    assert sum(v.endswith(", indicative: quick run") for v, _ in verdicts) == 15
+    for number, criterion in paper.CRITERIA.items():
+        assert f"criterion: {criterion}" in text, number
+    assert "verdicts are indicative only" in text and "Fig. 14's does" in text
+
+
+def test_shared_runs_are_reported_once(quick):
+    text = (quick[0] / "report.md").read_text(encoding="utf-8")
+    bullets = [line for line in text.splitlines() if line.startswith("- ") and not line.startswith("- As Fig.")]
+    assert len(bullets) == len(set(bullets))  # no finding repeated verbatim (references to them aside)
+    for key in paper.RUNS:
+        if key != "two_mode_linear":  # a reference run, not behind a figure's curves
+            assert text.count(f"\n{key} = ds.simulate(") == 1, key
+    assert "- As Fig. 1 above (same runs): Amplitude max |θ_1|" in text
+    assert "Curves: the table of Fig. 14 (same runs and window)." in text
+    assert "# three_mode: as Fig. 8\n# steel: as Fig. 14\n" in text
+
+
+def test_report_prose_spells_aluminium(quick):
+    prose = _prose((quick[0] / "report.md").read_text(encoding="utf-8"))
+    assert "aluminum" not in prose and "aluminium" in prose
+    assert not [spec.number for spec in paper.FIGURES if "aluminum" in spec.caption + spec.claim]  # PNG titles
+    assert ds.preset("aluminium") == ds.preset("aluminum")
+
+
+def test_no_truncation_error_is_reported_below_the_reference_accuracy(quick):
+    text = (quick[0] / "report.md").read_text(encoding="utf-8")
+    section = text.split("## Beyond the paper")[1].split("\n## ")[0]
+    accuracy = float(re.search(r"the reference itself is accurate to (\S+) ", section).group(1))
+    cells = [row.split(" | ")[1:3] for row in section.splitlines() if re.match(r"\| \d+ \|", row)]
+    assert len(cells) == 4
+    _, rows = read_csv(quick[0] / "convergence.csv")
+    for cell in (c.strip(" |") for pair in cells for c in pair):
+        if cell.startswith("<"):
+            assert cell == f"< {accuracy:.1e} (reference accuracy)"
+        else:
+            assert float(cell) >= accuracy
+    below = [float(r[2]) for r in rows if float(r[2]) < accuracy]
+    assert section.count("(reference accuracy)") == len(below)
+
+
+def _covered(fig, ax):
+    """Points of the axes' data lines (densified along each segment) inside its legend box."""
+    fig.canvas.draw()
+    legend = ax.get_legend()
+    if legend is None:
+        return 0
+    box = legend.get_window_extent()
+    count = 0
+    for line in ax.get_lines():
+        xy = ax.transData.transform(np.column_stack(line.get_data()).astype(float))
+        xy = xy[np.all(np.isfinite(xy), axis=1)]
+        for a, b in zip(xy[:-1], xy[1:]):
+            pts = a + np.linspace(0.0, 1.0, 40)[:, None] * (b - a)
+            count += int(np.sum(box.contains_points(pts) if hasattr(box, "contains_points") else
+                                [box.contains(*p) for p in pts]))
+    return count
+
+
+def test_convergence_legends_cover_no_curve():
+    from drillstring import convergence
+
+    params = ds.preset("aluminum")
+    t = np.linspace(0.0, 1.0, 1001)
+    reference = 3e-4 * np.sin(2 * np.pi * 31.65 * t)
+    grids = [convergence.GridLevel(121, 0.1, None, None, 1e-14), convergence.GridLevel(241, 0.2, 2.2e-2, None, 1e-14),
+             convergence.GridLevel(481, 0.5, 5.5e-3, 8.9e-4, 1e-14),
+             convergence.GridLevel(961, 1.5, 1.4e-3, 6.5e-5, 1e-14)]
+    errors = {1: (0.42, 0.42), 2: (0.28, 0.16), 3: (0.16, 1.9e-2), 4: (0.16, 1.2e-2), 6: (0.17, 9.0e-4),
+              8: (0.17, 1.9e-4), 12: (0.17, 4.5e-6), 16: (0.17, 4.4e-6)}  # the README's study
+    models = [convergence.ModelError(n, rigid, pair[rigid], 0.01) for n, pair in errors.items() for rigid in (0, 1)]
+    curves = {"3 modes": 1.1 * reference, "3 modes + rigid": reference}
+    study = convergence.ConvergenceStudy(params, 200 / 3, t, reference, True, 1e-4, grids, models, curves)
+    assert study.accuracy == 6.5e-5 and study.shown_error(4.5e-6) == "< 6.5e-05 (reference accuracy)"
+    assert study.shown_error(1.9e-4) == "1.9e-04"
+    fig = convergence.figure(study)
+    assert [_covered(fig, ax) for ax in fig.axes] == [0, 0, 0]
+    labels = fig.axes[0].get_legend().get_texts()
+    assert "below the reference\naccuracy 6.5e-05" in [text.get_text() for text in labels]
+
+
+def test_sweep_maps_label_each_critical_speed():
+    import pandas as pd
+
+    from drillstring import plots
+
+    base = ds.preset("aluminum")
+    rows = [dict(base.to_dict(), length=l, omega=w, max_theta=1e-3 + l * w * 1e-9, share_mode_1=0.5,
+                 share_mode_2=0.3, share_mode_3=0.2)
+            for l in np.linspace(100.0, 500.0, 9) for w in np.linspace(0.0, 250.0, 9)]
+    table = pd.DataFrame(rows)
+    fig = plots.sweep_metric(table, "max_theta", axes=["length", "omega"])
+    labels = sorted(text.get_text() for text in fig.axes[0].texts)
+    assert labels == [r"$\Omega_{crit,1}$", r"$\Omega_{crit,2}$", r"$\Omega_{crit,3}$"]
+    # each label sits on its curve at the right edge: Omega_crit,i(l) = i * 37.2 rad/s at l = 525 m
+    right = fig.axes[0].get_xlim()[1]
+    crit = ds.coefficients.PDECoefficients.from_parameters(base.replace(length=right)).critical_speed([1, 2, 3])
+    positions = sorted(text.xy for text in fig.axes[0].texts)
+    assert [x for x, _ in positions] == pytest.approx([right] * 3, rel=1e-6) and right == 525.0
+    assert sorted(y for _, y in positions) == pytest.approx(list(crit), rel=1e-2)

@@ -32,9 +32,25 @@ def test_defaults_are_table_1() -> None:
     assert p.outer_diameter == 0.20
     assert p.inner_diameter == 0.12
     assert p.omega == pytest.approx(math.pi, rel=1e-15)
-    assert p.initial_velocities == (0.1,)
+    assert p.initial_velocities == (0.1, 0.05, 0.02)
     assert p.k5_variant == "paper"
     assert p.model == "paper"
+
+
+def test_defaults_are_the_aluminium_preset_and_the_readme_table() -> None:
+    assert Parameters() == preset("aluminum") == preset("aluminium")
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    table = readme.split("<!-- DEFAULTS -->")[1].split("\n## ")[0]
+    rows = dict(line.split("|")[1:3] for line in table.splitlines() if line.startswith("| `"))
+    shown = {key.strip().strip("`"): value.strip() for key, value in rows.items()}
+    p = Parameters()
+    assert set(shown) == set(Parameters.field_names())  # every field has its row
+    assert shown["length"] == f"{p.length:g}" and shown["youngs_modulus"] == f"{p.youngs_modulus:g}"
+    assert shown["density"] == f"{p.density:g}" and shown["poisson_ratio"] == f"{p.poisson_ratio:g}"
+    assert shown["outer_diameter"] == f"{p.outer_diameter:g}" and shown["inner_diameter"] == f"{p.inner_diameter:g}"
+    assert shown["omega"].startswith(f"{p.omega:.6g}") and "2π · 0.5" in shown["omega"]
+    assert shown["initial_velocities"] == str(p.initial_velocities)
+    assert shown["k5_variant"] == f'"{p.k5_variant}"' and shown["model"] == f'"{p.model}"'
 
 
 def test_field_names_are_exactly_the_specified_ones() -> None:
@@ -49,6 +65,7 @@ def test_field_names_are_exactly_the_specified_ones() -> None:
         "initial_velocities",
         "k5_variant",
         "model",
+        "damping_rate",
     ]
 
 
@@ -94,7 +111,7 @@ def test_replace() -> None:
     q = p.replace(length=500.0, initial_velocities=[0.2])
     assert q.length == 500.0 and q.initial_velocities == (0.2,)
     assert p.length == 100.0
-    assert q.replace(length=100.0, initial_velocities=(0.1,)) == p
+    assert q.replace(length=100.0, initial_velocities=(0.1, 0.05, 0.02)) == p
     with pytest.raises(ValidationError, match="length"):
         p.replace(length=-1.0)
 

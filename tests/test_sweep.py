@@ -160,7 +160,7 @@ def test_table_columns_and_velocity_keys():
     table = ds.sweep(ALUMINUM, {"c1": [0.05, 0.1], "k5_variant": ["paper", "energy"]}, modes=2, **FAST)
     assert list(table.columns) == [
         "length", "youngs_modulus", "density", "poisson_ratio", "outer_diameter", "inner_diameter", "omega",
-        "c1", "c2", "c3", "k5_variant", "model", "z", "status", "message", "max_theta", "rms_theta",
+        "c1", "c2", "c3", "k5_variant", "model", "damping_rate", "z", "status", "message", "max_theta", "rms_theta",
         "dominant_frequency_hz", "energy_drift", "unstable_modes", "nfev", "share_mode_1", "share_mode_2",
     ]
     assert table["c1"].tolist() == [0.05, 0.05, 0.1, 0.1]

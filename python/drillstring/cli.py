@@ -91,19 +91,22 @@ def _from_config(exc: ValidationError, args: argparse.Namespace) -> ValidationEr
 def _add_model_arguments(p: argparse.ArgumentParser, methods: Sequence[str]) -> None:
     """Arguments shared by `simulate` and `pde`: the configuration, overrides and outputs."""
     p.add_argument("config", nargs="?", help="TOML file with [parameters] and optional [solver] tables")
-    p.add_argument("--preset", choices=PRESETS, help="start from a preset (default: aluminum)")
+    p.add_argument("--preset", choices=(*PRESETS, "aluminium"), help="start from a preset (default: aluminum)")
     p.add_argument("--length", type=float, help="string length l, m")
     p.add_argument("--omega", type=float, help="rotation speed Omega, rad/s")
     p.add_argument("--initial-velocities", type=_floats, metavar="C1,C2,...", help="initial modal velocities, rad/s")
     p.add_argument("--k5-variant", choices=("paper", "energy"), help="k5 as printed or re-derived")
     p.add_argument("--model", choices=MODELS,
                    help="equations of motion: 'paper' as printed (default) or 'consistent' (finite strain)")
+    p.add_argument("--damping-rate", type=float, metavar="C",
+                   help="viscous damping rate c, 1/s (default 0: undamped; linear modes decay as exp(-c t/2))")
     p.add_argument("--t-end", type=float, help="end time, s (default 1)")
     p.add_argument("--method", choices=methods, help="integrator (default dop853)")
     p.add_argument("--rtol", type=float, help="relative tolerance (default 1e-9)")
     p.add_argument("--atol", type=float, help="absolute tolerance (default 1e-12)")
     p.add_argument("--dt", type=float, help="step of the fixed-step methods, s")
-    p.add_argument("--samples", type=int, help="number of uniform output times (default 1001)")
+    p.add_argument("--samples", type=int, help="number of uniform output times (default: 20 per period of the "
+                   "fastest retained mode, at least 1001)")
     p.add_argument("--z", type=float, help="section z, m (default 2l/3)")
     p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,... ('-': standard output)")
 
@@ -120,6 +123,7 @@ def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parame
         "initial_velocities": args.initial_velocities,
         "k5_variant": args.k5_variant,
         "model": args.model,
+        "damping_rate": args.damping_rate,
     }
     params = params.replace(**{k: v for k, v in overrides.items() if v is not None})
     for key in keys:
@@ -184,7 +188,8 @@ def _summary(result: Any, z: float, what: str, file: TextIO) -> None:
     _say(
         f"{result.method}: {result.t.size} samples over 0 <= t <= {result.t[-1]:g} s, {what}\n"
         f"max |theta(z={z:.4g} m)| = {abs(theta).max():.6e} rad, "
-        f"energy drift {result.energy_drift():.2e}, "
+        f"{'energy balance error' if result.dissipated is not None else 'energy drift'} "
+        f"{result.energy_drift():.2e}, "
         f"{result.stats.nfev} rhs evaluations, {result.stats.naccept} steps "
         f"({result.stats.nreject} rejected)",
         file,
@@ -301,7 +306,7 @@ def _add_convergence(sub: Any) -> None:
         epilog="example: drillstring convergence --out convergence",
     )
     p.add_argument("config", nargs="?", help="TOML file with a [parameters] table (default: the aluminium preset)")
-    p.add_argument("--preset", choices=PRESETS, help="start from a preset (default: aluminum)")
+    p.add_argument("--preset", choices=(*PRESETS, "aluminium"), help="start from a preset (default: aluminum)")
     p.add_argument("--out", required=True, help="output folder")
     p.add_argument("--t-end", type=float, default=1.0, help="end time, s (default 1)")
     p.add_argument("--modes", type=_ints, default=None, metavar="1,2,3,...", help="Galerkin sizes to measure")
@@ -361,7 +366,7 @@ def _add_paper(sub: Any) -> None:
     )
     p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
     p.add_argument("--quick", action="store_true",
-                   help="short test run: times x0.1 and 1000 samples per second (numbers are not the paper's)")
+                   help="short test run: times x0.1 and 2000 samples per second (numbers are not the paper's)")
     p.add_argument("--t-end-scale", type=float, metavar="X",
                    help="multiply every time span by X (default 1, or 0.1 with --quick)")
     _add_progress(p)

@@ -14,7 +14,9 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["DrillstringError", "ValidationError", "SolveError", "DrillstringWarning", "ResumeWarning"]
+__all__ = [
+    "DrillstringError", "ValidationError", "SolveError", "DrillstringWarning", "ResumeWarning", "SamplingWarning",
+]
 
 
 class DrillstringError(Exception):
@@ -77,3 +79,10 @@ class ResumeWarning(DrillstringWarning):
     """A resumed sweep found a stored chunk that failed verification (altered bytes, a file of
     another chunk or sweep, a missing checksum record) and recomputed it; the message names the
     chunk and the reason."""
+
+
+class SamplingWarning(DrillstringWarning):
+    """Output times too sparse to resolve the fastest retained mode: fewer than
+    :data:`~drillstring.limits.SAMPLES_PER_PERIOD` samples per period (plots become polygonal,
+    peak amplitudes are cut, and below 2 an FFT of the output finds an alias). The message gives
+    the samples per period and the samples needed."""

@@ -74,8 +74,9 @@ _TOML_HEADER = "# drillstring parameters: Table 1 of the paper (aluminium refere
 class Parameters:
     """Physical parameters of the rotating drill string, SI units.
 
-    Defaults are Table 1 of the paper (aluminium reference) with the one-mode initial
-    condition ``C_1 = 0.1``; :func:`preset` gives the sets used for the paper's figures.
+    Defaults are Table 1 of the paper (aluminium reference) with ``C = (0.1, 0.05, 0.02)``:
+    ``Parameters()`` is ``preset("aluminum")``; :func:`preset` gives the sets used for the
+    paper's figures.
 
     Parameters
     ----------
@@ -113,6 +114,13 @@ class Parameters:
         ``k3 = k4 = k6 = 0``, ``k5 = M J4 / 2``; wave speed ``sqrt(G / rho)``, no force from a
         uniform twist, independent of a constant ``Omega``
         (:mod:`drillstring.coefficients`).
+    damping_rate:
+        Viscous damping rate ``c`` in 1/s, finite and ``>= 0`` (default 0: the paper's
+        undamped model). Adds the force ``-rho I_p c theta_t`` per unit length (the convention
+        of the Aarsnes-Shor torsional model), so every linear mode decays as
+        ``exp(-c t / 2)``. With ``c > 0`` the energy is no longer conserved: the diagnostic is
+        the energy balance ``H(t) + dissipated(t) = H(0)``, and the fixed-step methods
+        ``"central"`` and ``"verlet"`` (which advance ``q'' = a(q)`` only) are refused.
 
     Raises
     ------
@@ -127,9 +135,10 @@ class Parameters:
     outer_diameter: float = 0.20
     inner_diameter: float = 0.12
     omega: float = 2.0 * math.pi * 0.5
-    initial_velocities: tuple[float, ...] = field(default=(0.1,))
+    initial_velocities: tuple[float, ...] = field(default=(0.1, 0.05, 0.02))
     k5_variant: str = "paper"
     model: str = "paper"
+    damping_rate: float = 0.0
 
     def __post_init__(self) -> None:
         def set_(name: str, value: Any) -> None:
@@ -155,6 +164,7 @@ class Parameters:
         set_("poisson_ratio", nu)
 
         set_("omega", as_float("omega", self.omega, "a finite real number (rad/s, any sign)"))
+        set_("damping_rate", check_damping_rate(self.damping_rate))
 
         velocities = self.initial_velocities
         if isinstance(velocities, (str, bytes, Mapping)) or not hasattr(velocities, "__iter__"):
@@ -206,7 +216,7 @@ class Parameters:
 
         An optional ``"preset"`` key selects the starting set (see :func:`preset`); the other
         keys override its fields. Without ``"preset"`` the start is the default
-        :class:`Parameters` (Table 1, ``C = (0.1,)``).
+        :class:`Parameters` (Table 1, ``C = (0.1, 0.05, 0.02)``, the ``"aluminum"`` preset).
 
         Parameters
         ----------
@@ -275,6 +285,16 @@ class Parameters:
         return write_text(path, self.to_toml())
 
 
+def check_damping_rate(value: Any) -> float:
+    """A viscous damping rate (1/s) as a float: finite and ``>= 0``, else
+    :class:`~drillstring.errors.ValidationError` naming ``damping_rate``."""
+    allowed = "a finite real number >= 0 (1/s)"
+    damping = as_float("damping_rate", value, allowed)
+    if not damping >= 0.0:
+        raise ValidationError("damping_rate", value, allowed)
+    return damping
+
+
 def _toml_float(value: float) -> str:
     # repr is the shortest exact round-trip form; '1e-05', '1e+16', '0.1', '100.0' are all
     # valid TOML floats (finite values only: validation refuses inf and nan).
@@ -284,7 +304,8 @@ def _toml_float(value: float) -> str:
 def preset(name: str) -> Parameters:
     """A named parameter set.
 
-    * ``"aluminum"`` (alias ``"aluminium"``): Table 1 with ``C = (0.1, 0.05, 0.02)``.
+    * ``"aluminum"`` (alias ``"aluminium"``): Table 1 with ``C = (0.1, 0.05, 0.02)``, the
+      defaults of :class:`Parameters`.
     * ``"steel"``: Table 3 (``E = 2.1e11`` Pa, ``rho = 7.8e3`` kg/m^3, ``nu = 0.28``) on the
       geometry, ``Omega`` and ``C`` of the aluminium set.
 
@@ -294,7 +315,7 @@ def preset(name: str) -> Parameters:
         For an unknown name (the message lists the valid ones).
     """
     key = _PRESET_ALIASES.get(name, name) if isinstance(name, str) else name
-    aluminum = Parameters(initial_velocities=(0.1, 0.05, 0.02))
+    aluminum = Parameters()
     if key == "aluminum":
         return aluminum
     if key == "steel":

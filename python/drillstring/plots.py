@@ -567,6 +567,17 @@ def _critical_speeds(table: Any, length: np.ndarray, count: int) -> list[np.ndar
     return [speeds[:, i].reshape(np.shape(length)) for i in range(count)]
 
 
+def _label_curve(ax: Axes, x: np.ndarray, y: np.ndarray, text: str, xlim: Any, ylim: Any) -> None:
+    """Writes ``text`` on a curve at its last point inside the axes (the right or top edge)."""
+    inside = np.nonzero((x >= min(xlim)) & (x <= max(xlim)) & (y >= min(ylim)) & (y <= max(ylim)))[0]
+    if inside.size == 0:
+        return
+    k = int(inside[-1])
+    ax.annotate(text, (float(x[k]), float(y[k])), xytext=(-3, 4), textcoords="offset points", ha="right",
+                va="bottom", fontsize=9, color="k",
+                bbox={"boxstyle": "round,pad=0.15", "fc": "w", "ec": "none", "alpha": 0.8})
+
+
 def sweep_metric(
     table: Any,
     metric: str,
@@ -677,6 +688,7 @@ def sweep_metric(
                 label = r"$\Omega_{crit,i}(l) = (i\pi/l)\sqrt{4G/\rho}$" if i == 0 else None
                 ax.plot(*xy, color="w", lw=1.6 if i == 0 else 1.0, ls="-" if i == 0 else "--", label=label)
                 ax.plot(*xy, color="k", lw=0.6 if i == 0 else 0.4, ls="-" if i == 0 else "--")
+                _label_curve(ax, np.asarray(xy[0]), np.asarray(xy[1]), rf"$\Omega_{{crit,{i + 1}}}$", xlim, ylim)
             ax.set_xlim(xlim)
             ax.set_ylim(ylim)
             if ax.get_legend_handles_labels()[0]:

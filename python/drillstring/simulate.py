@@ -90,6 +90,7 @@ def _output_times(
     state_dim: int,
     dt: Optional[float],
     max_steps: Optional[int],
+    fastest: tuple[float, str],
     default_field: str = "samples",
     default_value: Any = None,
 ) -> Optional[NDArray[np.float64]]:
@@ -99,8 +100,12 @@ def _output_times(
     :data:`~drillstring.limits.FIXED_MAX_STEPS`
     steps without an explicit ``max_steps`` is refused (field ``dt``), and so is an output larger
     than :func:`~drillstring.limits.memory_budget` (field ``t_eval``, ``samples``, ``dt`` for every-step output, or
-    ``default_field`` for the default 1001 samples, e.g. ``nodes`` for the PDE).
+    ``default_field`` for the default samples, e.g. ``nodes`` for the PDE). ``fastest`` is the
+    frequency (Hz) of the fastest mode to resolve and its description: the default samples
+    resolve it (:func:`~drillstring.limits.default_samples`) and output times too sparse for it
+    are warned about (:func:`~drillstring.limits.check_sampling`).
     """
+    frequency_hz, mode = fastest
     if method in FIXED_STEP_METHODS:
         assert dt is not None
         steps = limits.fixed_steps(t_end, dt)
@@ -117,12 +122,16 @@ def _output_times(
             return None  # every step
     if t_eval is None:
         if samples is None:
-            n = 1001
+            n = limits.default_samples(t_end, frequency_hz, state_dim)
             limits.check_output_size(default_field, default_value, n, state_dim, f"the default {n} samples")
+            request = None
         else:
             n = _count("samples", samples, 2)
             limits.check_output_size("samples", samples, n, state_dim, "samples")
-        return np.linspace(0.0, t_end, n)
+            request = f"samples = {n}"
+        uniform = np.linspace(0.0, t_end, n)
+        limits.check_sampling(uniform, t_end, frequency_hz, mode, request)
+        return uniform
     if isinstance(t_eval, (str, bytes)):
         raise ValidationError("t_eval", t_eval, "a 1-D array of floats")
     try:
@@ -136,7 +145,18 @@ def _output_times(
     if times.size == 0:
         raise ValidationError("t_eval", "an empty array", "at least one output time")
     limits.check_output_size("t_eval", f"{times.size} times", times.size, state_dim, "len(t_eval)")
+    if times.size >= 3 and np.all(np.isfinite(times)) and np.all(np.diff(times) >= 0.0):  # else refused later
+        limits.check_sampling(times, t_end, frequency_hz, mode, "t_eval")
     return np.ascontiguousarray(times)
+
+
+def fastest_mode(coefficients: ModalCoefficients) -> tuple[float, str]:
+    """The fastest retained linear mode of a Galerkin system: ``max sqrt(|K_ii / M_ii|) / 2 pi``
+    (Hz; the growth rate of a mode beyond its critical speed counts as its frequency) and
+    ``"mode i"``. The default output times resolve it (:func:`~drillstring.limits.default_samples`)."""
+    rates = np.sqrt(np.abs(coefficients.stiffness / coefficients.mass))
+    k = int(np.argmax(rates))
+    return float(rates[k]) / (2 * math.pi), f"mode {int(coefficients.indices[k])}"
 
 
 def _default_dt(coefficients: ModalCoefficients) -> float:
@@ -236,6 +256,8 @@ def simulate(
     method : {"dop853", "dopri5", "rk4", "central", "verlet"}
         Adaptive DOP853 (default) or Dormand-Prince 5(4) with dense output; fixed-step classical
         RK4, the explicit central-difference scheme of Table 2 or symplectic Stormer-Verlet.
+        With ``params.damping_rate > 0`` only the first three apply ("central" and "verlet"
+        advance ``q'' = a(q)`` only and raise ValidationError naming ``method``).
     rtol, atol : float
         Tolerances of the adaptive methods (Hairer's scaled RMS error norm).
     dt : float, optional
@@ -243,9 +265,13 @@ def simulate(
         1/100 of the shortest linear period if shorter.
     t_eval : array_like, optional
         Output times in ``[0, t_end]``, non-decreasing. Default: ``samples`` uniform times for
-        adaptive methods (1001 when ``samples`` is None), every step for fixed-step methods.
+        adaptive methods, every step for fixed-step methods.
     samples : int, optional
-        Number of uniform output times when ``t_eval`` is None.
+        Number of uniform output times when ``t_eval`` is None. Default: 20 samples per period of
+        the fastest retained linear mode (:func:`fastest_mode`), at least 1001, at most a quarter
+        of the memory budget (:func:`~drillstring.limits.default_samples`): 1868 for 3 modes of
+        the aluminium preset over 1 s. Output times giving fewer than 20 samples per period of
+        that mode (three or more of them) issue a :class:`~drillstring.errors.SamplingWarning`.
     max_steps : int, optional
         Step limit: accepted + rejected steps of the adaptive methods (default 10^7), steps of the
         fixed-step ones (default 10^8; their step count is known up front and a request needing
@@ -288,13 +314,15 @@ def simulate(
     if method in FIXED_STEP_METHODS and dt_f is None:
         dt_f = _default_dt(coefficients)
     times = _output_times(
-        t_eval, samples, t_end_f, method, state_dim=2 * coefficients.n_modes, dt=dt_f, max_steps=steps
+        t_eval, samples, t_end_f, method, state_dim=2 * coefficients.n_modes, dt=dt_f, max_steps=steps,
+        fastest=fastest_mode(coefficients),
     )
     system = _core.ModalSystem(
         coefficients.mass,
         coefficients.stiffness,
         np.ascontiguousarray(coefficients.quartic_index, dtype=np.int64),
         coefficients.quartic_coef,
+        damping_rate=params.damping_rate,
     )
     q0, v0 = coefficients.initial_state(params)
     with SolveProgress(progress, t_end_f, "simulate") as bar:

@@ -23,6 +23,14 @@ the rotation speed exceeds the critical speed ``Omega_crit,i = (i pi / l) sqrt(k
 (i pi / l) sqrt(4 G / rho)``, which does not depend on the cross-section. The rigid mode
 ``i = 0`` has ``Omega_crit,0 = 0``: it is a saddle for any ``Omega != 0``.
 
+With viscous damping (:attr:`Parameters.damping_rate` ``c > 0``, force ``-c M qdot``) the
+Jacobian is ``J = [[0, I], [-M^-1 K, -c I]]`` and mode ``i`` has the eigenvalues
+``lambda = -c/2 +- sqrt(c^2/4 - mu_i)``: a centre becomes a ``"stable focus"`` (``mu_i > c^2/4``,
+decaying oscillation ``exp(-c t / 2)``) or, overdamped (``0 < mu_i <= c^2/4``), a
+``"stable node"``; ``mu_i < 0`` stays a saddle and ``mu_i = 0`` degenerate (a zero eigenvalue).
+The whole equilibrium is a ``"stable focus"`` when every mode is stable and some mode
+oscillates, a ``"stable node"`` when none does.
+
 The ``"consistent"`` model (:attr:`Parameters.model`) has no rotation softening (``k6 = 0``):
 ``K_ii / M_ii = (k2/k1) (i pi / l)^2`` for every ``Omega``, no mode has a critical speed
 (``inf``), and the rigid mode is neutral (``K_00 = 0``: ``"degenerate"``).
@@ -39,7 +47,7 @@ import numpy as np
 from .coefficients import PDECoefficients
 from .errors import ValidationError
 from .galerkin import ModalCoefficients, project
-from .parameters import Parameters
+from .parameters import Parameters, check_damping_rate
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import NDArray
@@ -47,25 +55,30 @@ if TYPE_CHECKING:  # pragma: no cover
 __all__ = ["CLASSIFICATIONS", "Stability", "jacobian", "classify", "analyse"]
 
 #: Possible values of :attr:`Stability.classification`.
-CLASSIFICATIONS = ("centre", "saddle", "degenerate")
+CLASSIFICATIONS = ("centre", "stable focus", "stable node", "saddle", "degenerate")
 
 
-def jacobian(coefficients: ModalCoefficients) -> NDArray[np.float64]:
-    """``J = [[0, I], [-M^-1 K, 0]]`` (2m, 2m) of the first-order system at ``q = qdot = 0``."""
+def jacobian(coefficients: ModalCoefficients, damping_rate: float = 0.0) -> NDArray[np.float64]:
+    """``J = [[0, I], [-M^-1 K, -c I]]`` (2m, 2m) of the first-order system at ``q = qdot = 0``
+    (``c`` = ``damping_rate``, 1/s; the damping force ``-c M qdot`` gives ``-c I``)."""
+    c = check_damping_rate(damping_rate)
     m = coefficients.n_modes
     jac = np.zeros((2 * m, 2 * m))
     jac[:m, m:] = np.eye(m)
     jac[m:, :m] = -np.linalg.solve(coefficients.mass_matrix, coefficients.stiffness_matrix)
+    jac[m:, m:] = -c * np.eye(m)
     return jac
 
 
-def _classify_mu(mu: NDArray[np.float64], scale: float) -> str:
+def _classify_mu(mu: NDArray[np.float64], scale: float, damping_rate: float = 0.0) -> str:
     tol = 1e-12 * scale
     if np.any(mu < -tol):
         return "saddle"
     if np.any(np.abs(mu) <= tol):
         return "degenerate"
-    return "centre"
+    if damping_rate == 0.0:
+        return "centre"
+    return "stable focus" if np.any(mu > 0.25 * damping_rate**2) else "stable node"
 
 
 def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
@@ -73,9 +86,9 @@ def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
 
     Real parts with ``|Re| <= rtol * max |lambda|`` count as zero (round-off of the eigen
     solver). ``"saddle"`` if some real part is positive, ``"degenerate"`` if some eigenvalue
-    is zero (below the same tolerance), otherwise ``"centre"`` (all purely imaginary).
-    Only meaningful for the Hamiltonian ``J`` of this module, whose spectrum is symmetric
-    under ``lambda -> -lambda``.
+    is zero (below the same tolerance); if every real part is negative (damping) ``"stable
+    focus"`` when some eigenvalue is complex, else ``"stable node"``; otherwise ``"centre"``.
+    Meant for the Jacobians of this module (:func:`jacobian`).
     """
     lam = np.asarray(eigenvalues, dtype=complex)
     scale = float(np.max(np.abs(lam))) if lam.size else 0.0
@@ -84,6 +97,8 @@ def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
         return "saddle"
     if np.any(np.abs(lam) <= tol):
         return "degenerate"
+    if lam.size and np.all(lam.real < -tol):
+        return "stable focus" if np.any(np.abs(lam.imag) > tol) else "stable node"
     return "centre"
 
 
@@ -98,30 +113,37 @@ class Stability:
     eigenvalues: NDArray[np.complex128]
     """``(2m,)`` eigenvalues of :attr:`jacobian` (numpy), sorted by imaginary then real part."""
     mode_eigenvalues: NDArray[np.complex128]
-    """``(m,)`` per mode the eigenvalue ``sqrt(-K_ii / M_ii)`` with ``Im >= 0`` (and ``Re >= 0``);
-    the mode contributes the pair ``+-`` it. ``i w_i`` for a stable mode, ``+-s_i`` real for an
-    unstable one."""
+    """``(m,)`` per mode the eigenvalue ``-c/2 + sqrt(c^2/4 - K_ii / M_ii)`` (principal root,
+    ``Im >= 0``); without damping the mode contributes the pair ``+-`` it (``i w_i`` for a
+    stable mode, ``+-s_i`` real for an unstable one), with damping ``c`` the pair
+    ``-c/2 +- sqrt(c^2/4 - K_ii / M_ii)``."""
     mode_classification: tuple[str, ...]
-    """Per mode ``"centre"``, ``"saddle"`` or ``"degenerate"`` (from the sign of ``K_ii``)."""
+    """Per mode ``"centre"``, ``"stable focus"``, ``"stable node"``, ``"saddle"`` or
+    ``"degenerate"`` (from the sign of ``K_ii`` and the damping)."""
     classification: str
     """Of the whole equilibrium: ``"saddle"`` if any mode is, else ``"degenerate"`` if any mode
-    is, else ``"centre"``."""
+    is, else ``"centre"`` without damping and ``"stable focus"`` (some mode oscillates) or
+    ``"stable node"`` with it."""
     omega: Optional[float]
     """Rotation speed ``Omega`` (rad/s) the model was built for, when known."""
     critical_speeds: Optional[NDArray[np.float64]]
     """``(m,)`` ``Omega_crit,i = (i pi / l) sqrt(k2 / k1)`` (rad/s), when ``omega`` is known;
     ``inf`` for a model without rotation softening (``"consistent"``)."""
+    damping_rate: float = 0.0
+    """The viscous damping rate ``c`` (1/s) of the linearisation."""
 
     @property
     def linear_frequencies_hz(self) -> NDArray[np.float64]:
-        """``w_i / (2 pi)`` (Hz) of the stable modes, ``nan`` for unstable or degenerate ones."""
+        """``w_i / (2 pi)`` (Hz) of the oscillating stable modes (with damping the damped
+        frequency ``sqrt(w_i^2 - c^2/4)``), ``nan`` for unstable, degenerate or overdamped ones."""
         lam = self.mode_eigenvalues
-        return np.where((lam.real == 0) & (lam.imag > 0), lam.imag / (2 * math.pi), np.nan)
+        stable = (lam.real == -0.5 * self.damping_rate) & (lam.imag > 0)
+        return np.where(stable, lam.imag / (2 * math.pi), np.nan)
 
     @property
     def stable(self) -> bool:
-        """True for a centre."""
-        return self.classification == "centre"
+        """True for a centre or (with damping) a stable focus or node."""
+        return self.classification in ("centre", "stable focus", "stable node")
 
 
 def analyse(
@@ -130,6 +152,7 @@ def analyse(
     rigid_mode: bool = False,
     *,
     omega: Optional[float] = None,
+    damping_rate: Optional[float] = None,
 ) -> Stability:
     """Jacobian, eigenvalues, classification and critical speeds of a Galerkin model.
 
@@ -147,6 +170,9 @@ def analyse(
         :class:`ModalCoefficients` source is taken to have the paper model's ``k6 = k1 Omega^2``.
         For a :class:`Parameters` source whose model has no rotation softening
         (``"consistent"``) every critical speed is ``inf``.
+    damping_rate : float, optional
+        Viscous damping rate ``c`` (1/s, ``>= 0``) of a :class:`ModalCoefficients` source
+        (default 0); a :class:`Parameters` source uses ``source.damping_rate``.
 
     Examples
     --------
@@ -160,6 +186,11 @@ def analyse(
         if omega is not None and float(omega) != source.omega:
             raise ValidationError("omega", omega, f"omitted or equal to params.omega = {source.omega}")
         omega = source.omega
+        if damping_rate is not None and check_damping_rate(damping_rate) != source.damping_rate:
+            raise ValidationError(
+                "damping_rate", damping_rate, f"omitted or equal to params.damping_rate = {source.damping_rate}"
+            )
+        damping_rate = source.damping_rate
         coefficients = project(source, modes=modes, rigid_mode=rigid_mode)
         softening = PDECoefficients.from_parameters(source).k6_per_omega_squared != 0.0
     elif isinstance(source, ModalCoefficients):
@@ -170,14 +201,18 @@ def analyse(
         )
     if omega is not None and not math.isfinite(float(omega)):
         raise ValidationError("omega", omega, "a finite rotation speed, rad/s")
-    jac = jacobian(coefficients)
+    c = check_damping_rate(0.0 if damping_rate is None else damping_rate)
+    jac = jacobian(coefficients, c)
     eig = np.linalg.eigvals(jac)
     eig = eig[np.lexsort((eig.real, eig.imag))]
     mu = coefficients.stiffness / coefficients.mass  # eigenvalues of M^-1 K (diagonal)
     scale = float(np.max(np.abs(mu))) if mu.size else 0.0
-    mode_eig = np.sqrt(-mu + 0j)  # principal root: Re >= 0, Im >= 0
-    mode_class = tuple(_classify_mu(np.array([m]), scale) for m in mu)
-    overall = _classify_mu(mu, scale)
+    if c == 0.0:
+        mode_eig = np.sqrt(-mu + 0j)  # principal root: Re >= 0, Im >= 0
+    else:
+        mode_eig = -0.5 * c + np.sqrt(0.25 * c * c - mu + 0j)
+    mode_class = tuple(_classify_mu(np.array([m]), scale, c) for m in mu)
+    overall = _classify_mu(mu, scale, c)
     critical = None
     if omega is not None and not softening:
         critical = np.full(mu.shape, math.inf)  # k6 = 0 for every Omega: no critical speed
@@ -196,4 +231,5 @@ def analyse(
         classification=overall,
         omega=None if omega is None else float(omega),
         critical_speeds=critical,
+        damping_rate=c,
     )

@@ -49,7 +49,8 @@ The parameters of each run as requested (``length``, ``youngs_modulus``, ``densi
 * ``dominant_frequency_hz``: the strongest peak of the Hann-windowed spectrum of
   ``theta(z, t)`` (zero-padded x8, log-parabolic interpolation;
   :func:`drillstring.analysis.dominant_frequencies`);
-* ``energy_drift`` = ``max |H - H(0)| / |H(0)|`` over the samples;
+* ``energy_drift`` = ``max |H - H(0)| / |H(0)|`` over the samples (with ``damping_rate > 0``
+  the energy balance error ``max |H + dissipated - H(0)| / |H(0)|``);
 * ``unstable_modes``: the number of retained modes with ``K_ii < 0`` (linearly unstable at the
   equilibrium; the rigid mode counts whenever ``omega != 0``); ``<NA>`` for invalid runs;
 * ``nfev``: right-hand-side evaluations;
@@ -250,8 +251,8 @@ def _run_inputs(
     task: ChunkTask,
     indices: list[int],
     material: dict[tuple[Any, ...], tuple[float, ...]],
-) -> tuple[tuple[float, ...], float, list[float], float]:
-    """``k1..k6``, length, initial modal velocities and section of one run; raises
+) -> tuple[tuple[float, ...], float, list[float], float, float]:
+    """``k1..k6``, length, initial modal velocities, section and damping rate of one run; raises
     ValidationError (or any other error: the row becomes ``"invalid"`` with its message)."""
     params = Parameters(**requested)
     try:
@@ -263,7 +264,7 @@ def _run_inputs(
     c = params.initial_velocities
     velocities = [c[i - 1] if 1 <= i <= len(c) else 0.0 for i in indices]
     section = 2.0 * params.length / 3.0 if task.z is None else float(task.z)
-    return k, params.length, velocities, section
+    return k, params.length, velocities, section, params.damping_rate
 
 
 def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, Any]], Optional[BaseException]]:
@@ -289,9 +290,10 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
     lengths: list[float] = []
     velocities: list[list[float]] = []
     sections: list[float] = []
+    dampings: list[float] = []
     for j, requested in enumerate(task.runs):
         try:
-            k, length, c, section = _run_inputs(requested, task, indices, material)
+            k, length, c, section, damping = _run_inputs(requested, task, indices, material)
         except ValidationError as exc:
             message[j] = str(exc)
             continue
@@ -303,6 +305,7 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
         lengths.append(length)
         velocities.append(c)
         sections.append(section)
+        dampings.append(damping)
 
     raw: Optional[_core.BatchOutput] = None
     if valid:
@@ -326,6 +329,7 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
             keep_trajectories=task.keep_trajectories,
             threads=task.threads,
             memory_budget=memory_budget(),
+            damping_rate=np.asarray(dampings, dtype=float),
         )
         rows = np.asarray(valid)
         status[rows] = raw["status"]

@@ -53,7 +53,7 @@ fn runs(count: usize) -> Vec<RunSpec> {
             let omega = 2.0 * PI * 2.0 * (r % side) as f64 / side as f64;
             let mut k = K;
             k[5] = K[0] * omega * omega;
-            RunSpec { k, length, initial_velocities: vec![0.1, 0.05, 0.02], z: 2.0 * length / 3.0 }
+            RunSpec { k, length, initial_velocities: vec![0.1, 0.05, 0.02], z: 2.0 * length / 3.0, damping_rate: 0.0 }
         })
         .collect()
 }
@@ -96,7 +96,7 @@ fn bench(c: &mut Criterion) {
     c.bench_function("sweep/all metrics, 1024 samples", |b| {
         b.iter(|| {
             let theta = metrics::section_twist(black_box(&sol.y), &basis);
-            metrics::compute(&sys, &sol.y, &theta, dt, &estimator, &mut buf)
+            metrics::compute(&sys, &sol.y, &sol.dissipated, &theta, dt, &estimator, &mut buf)
         })
     });
 

@@ -8,7 +8,8 @@
 //! ```
 //!
 //! reduced by Bubnov-Galerkin projection on `cos(i pi z / l)` to the modal system
-//! `M q'' + K q + N(q) = 0` ([`modal::ModalSystem`]) and integrated by the explicit
+//! `M q'' + c M q' + K q + N(q) = 0` ([`modal::ModalSystem`], `c` an optional viscous damping
+//! rate, 0 for the paper's model) and integrated by the explicit
 //! Runge-Kutta methods and the central-difference scheme in [`integrators`].
 //!
 //! Invalid input is an [`Error`]; numerical failure (step limit, step-size underflow,
@@ -37,4 +38,4 @@ pub use error::{Error, Num, Result};
 pub use interrupt::{CancelFlag, Interrupt};
 pub use options::{AdaptiveOptions, FixedOptions, Output};
 pub use solution::{Solution, Stats, Status};
-pub use system::{FirstOrder, OdeSystem, SecondOrderSystem};
+pub use system::{Dissipating, FirstOrder, OdeSystem, SecondOrderSystem};

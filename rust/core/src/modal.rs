@@ -1,4 +1,4 @@
-//! The modal (Bubnov-Galerkin) system `M q'' + K q + N(q) = 0`.
+//! The modal (Bubnov-Galerkin) system `M q'' + c M q' + K q + N(q) = 0`.
 //!
 //! With the twist expanded as `theta(z, t) = sum_i q_i(t) cos(i pi z / l)` the basis is
 //! orthogonal, so the mass matrix `M` and the linear stiffness `K` are diagonal:
@@ -13,10 +13,14 @@
 //! which is the compact, symmetry-exploiting form of the cubic coupling tensor. The
 //! coefficients are generated in the Python layer (`drillstring.galerkin`) from exact
 //! trigonometric integrals and passed here.
+//!
+//! Viscous damping `-k1 c th_t` per unit length projects, like the inertia `k1 th_tt`, onto
+//! the mass: the modal damping force is `-c M_i q_i'` ([`ModalSystem::with_damping`]), and
+//! the power it dissipates is `c q'^T M q'`.
 
 use crate::error::Num;
 use crate::error::{Error, Result};
-use crate::system::SecondOrderSystem;
+use crate::system::{check_damping_rate, SecondOrderSystem};
 
 /// One term `coef * q[a] q[b] q[c] q[d]` of the quartic potential.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,7 +36,8 @@ struct CubicMonomial {
     coef: f64,
 }
 
-/// `M q'' + K q + grad V(q) = 0` with diagonal `M`, `K`.
+/// `M q'' + c M q' + K q + grad V(q) = 0` with diagonal `M`, `K` and damping rate `c >= 0`
+/// (0 unless set by [`ModalSystem::with_damping`]).
 ///
 /// The gradient is stored row by row (compressed rows: `grad_start[j] .. grad_start[j + 1]`
 /// index the monomials of `dV/dq_j`, duplicates merged), so each component is accumulated
@@ -45,6 +50,7 @@ pub struct ModalSystem {
     terms: Vec<QuarticTerm>,
     grad: Vec<CubicMonomial>,
     grad_start: Vec<usize>,
+    damping_rate: f64,
 }
 
 /// The monomials of `grad V` grouped by component: `d/dq_j` of each term, merged.
@@ -126,7 +132,20 @@ impl ModalSystem {
         }
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let (grad, grad_start) = gradient_rows(n, &terms);
-        Ok(ModalSystem { inv_mass, mass, stiffness, terms, grad, grad_start })
+        Ok(ModalSystem { inv_mass, mass, stiffness, terms, grad, grad_start, damping_rate: 0.0 })
+    }
+
+    /// The same system with the viscous damping rate `c` (1/s, finite, `>= 0`; field
+    /// `"damping_rate"`): the damping force `-c M q'`, so every linear mode decays as
+    /// `exp(-c t / 2)`. `c = 0` is the undamped system, solved exactly as without this call.
+    pub fn with_damping(mut self, c: f64) -> Result<Self> {
+        self.damping_rate = check_damping_rate(c)?;
+        Ok(self)
+    }
+
+    /// The viscous damping rate `c`, 1/s.
+    pub fn damping_rate(&self) -> f64 {
+        self.damping_rate
     }
 
     /// Number of modal coordinates.
@@ -169,8 +188,9 @@ impl ModalSystem {
             .sum()
     }
 
-    /// The conserved energy `H = q'^T M q' / 2 + q^T K q / 2 + V(q)` (model notes), i.e. the
-    /// PDE energy evaluated on the Galerkin expansion.
+    /// The energy `H = q'^T M q' / 2 + q^T K q / 2 + V(q)` (model notes), i.e. the PDE energy
+    /// evaluated on the Galerkin expansion: conserved without damping, decreasing by the
+    /// dissipated energy ([`SecondOrderSystem::dissipated_power`]) with it.
     pub fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
         let quadratic: f64 =
             (0..self.modes()).map(|i| 0.5 * (self.mass[i] * v[i] * v[i] + self.stiffness[i] * q[i] * q[i])).sum();
@@ -189,6 +209,27 @@ impl SecondOrderSystem for ModalSystem {
         for (a, &im) in acc.iter_mut().zip(&self.inv_mass) {
             *a = -*a * im;
         }
+    }
+
+    fn velocity_dependent(&self) -> bool {
+        self.damping_rate != 0.0
+    }
+
+    /// `-M^-1 (K q + grad V(q)) - c q'`.
+    #[inline]
+    fn acceleration_full(&self, _t: f64, q: &[f64], v: &[f64], acc: &mut [f64]) {
+        self.acceleration(q, acc);
+        if self.damping_rate != 0.0 {
+            let c = self.damping_rate;
+            for (a, &vi) in acc.iter_mut().zip(v) {
+                *a -= c * vi;
+            }
+        }
+    }
+
+    /// `c q'^T M q'`.
+    fn dissipated_power(&self, _q: &[f64], v: &[f64]) -> f64 {
+        self.damping_rate * self.mass.iter().zip(v).map(|(m, vi)| m * vi * vi).sum::<f64>()
     }
 }
 

@@ -89,6 +89,10 @@ pub struct Solution {
     /// Human-readable explanation of the status (empty on success).
     pub message: String,
     pub stats: Stats,
+    /// For a second-order system with velocity-dependent forces: the energy they dissipated
+    /// from the start to each sample (one value per sample, integrated with the state, see
+    /// [`crate::system::Dissipating`]). Empty for a conservative system.
+    pub dissipated: Vec<f64>,
 }
 
 impl Solution {
@@ -103,6 +107,7 @@ impl Solution {
             status: Status::Success,
             message: String::new(),
             stats: Stats::default(),
+            dissipated: Vec::new(),
         };
         let values = capacity.saturating_mul(dim);
         if sol.t.try_reserve_exact(capacity).is_err() || sol.y.try_reserve_exact(values).is_err() {

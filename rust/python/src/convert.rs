@@ -69,8 +69,9 @@ pub(crate) fn to_vec(a: &PyReadonlyArray1<'_, f64>) -> Vec<f64> {
 }
 
 /// The dict every solve returns: `t` (samples,), `y` (samples, dim), `status`, `message`,
-/// `nfev`, `naccept`, `nreject`.
-pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: Solution) -> PyResult<Bound<'py, PyDict>> {
+/// `nfev`, `naccept`, `nreject`, `dissipated` (samples,), or None for a system whose forces do
+/// not depend on the velocity (`dissipative` false).
+pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: Solution, dissipative: bool) -> PyResult<Bound<'py, PyDict>> {
     let samples = sol.len();
     let dim = sol.dim;
     let out = PyDict::new(py);
@@ -81,6 +82,11 @@ pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: Solution) -> PyResult<Bou
     out.set_item("nfev", sol.stats.nfev)?;
     out.set_item("naccept", sol.stats.naccept)?;
     out.set_item("nreject", sol.stats.nreject)?;
+    if dissipative {
+        out.set_item("dissipated", PyArray1::from_vec(py, sol.dissipated))?;
+    } else {
+        out.set_item("dissipated", py.None())?;
+    }
     Ok(out)
 }
 
@@ -200,5 +206,5 @@ pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
     })?;
     signals.finish()?;
     let sol = solved.map_err(|e| validation_error(py, e))?;
-    solution_dict(py, sol)
+    solution_dict(py, sol, sys.velocity_dependent())
 }

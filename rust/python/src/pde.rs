@@ -19,6 +19,7 @@ pub(crate) struct PdeSystem {
 #[pymethods]
 impl PdeSystem {
     #[new]
+    #[pyo3(signature = (k1, k2, k3, k4, k5, k6, length, nodes, damping_rate=0.0))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
@@ -30,11 +31,14 @@ impl PdeSystem {
         k6: f64,
         length: f64,
         nodes: &Bound<'_, PyAny>,
+        damping_rate: f64,
     ) -> PyResult<Self> {
         let allowed = format!("an integer in 3..={}", core::pde::MAX_NODES);
         let nodes: usize = integer(py, "nodes", nodes, &allowed)?;
         let k = PdeCoefficients { k1, k2, k3, k4, k5, k6 };
-        let inner = CorePdeSystem::new(k, length, nodes).map_err(|e| validation_error(py, e))?;
+        let inner = CorePdeSystem::new(k, length, nodes)
+            .and_then(|sys| sys.with_damping(damping_rate))
+            .map_err(|e| validation_error(py, e))?;
         Ok(PdeSystem { inner })
     }
 
@@ -56,6 +60,12 @@ impl PdeSystem {
         self.inner.spacing()
     }
 
+    /// The viscous damping rate `c` (1/s): force `-k1 c theta_t` per unit length.
+    #[getter]
+    fn damping_rate(&self) -> f64 {
+        self.inner.damping_rate()
+    }
+
     /// `(k1, k2, k3, k4, k5, k6)`.
     #[getter]
     fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
@@ -75,7 +85,8 @@ impl PdeSystem {
         PyArray1::from_vec(py, self.inner.weights())
     }
 
-    /// Accelerations `theta_j'' = -(dV_h/dtheta_j) / (w_j k1)` at one state `q` (shape (N,)).
+    /// Accelerations `theta_j'' = -(dV_h/dtheta_j) / (w_j k1)` at one state `q` (shape (N,)),
+    /// without the damping term.
     fn acceleration<'py>(&self, py: Python<'py>, q: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let q = to_vec(&q);
         self.check_len(py, "q", q.len())?;
@@ -165,9 +176,10 @@ impl PdeSystem {
 /// Integrates the PDE system from nodal `(q0, v0) = (theta, theta_t)(z_j, 0)` to `t_end`.
 ///
 /// Returns a dict with `t` (samples,), `y` (samples, 2N) holding `[theta, theta_t]` at the
-/// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`. `t_eval=None` samples every
-/// step. Any method (`"dop853"`, `"dopri5"`, `"rk4"`, `"central"`, `"verlet"`); the
-/// fixed-step ones need `dt`.
+/// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`, `dissipated` (samples,) (the
+/// energy the damping took out, None without damping). `t_eval=None` samples every step. Any
+/// method (`"dop853"`, `"dopri5"`, `"rk4"`, `"central"`, `"verlet"`; with damping only the
+/// first three); the fixed-step ones need `dt`.
 ///
 /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
 /// within ~20 ms and is raised here.

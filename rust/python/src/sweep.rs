@@ -143,7 +143,9 @@ pub(crate) fn batch_plan<'py>(
 ///
 /// Inputs: `k` (R, 6) = k1..k6, `length` (R,), `initial_velocities` (R, m) = qdot(0) per
 /// retained coordinate, `z` (R,); the dimensionless integrals of the basis (`indices` (m,),
-/// `quartic_index` (T, 4), `cos4`, `mixed`, `sin4` (T,)); the shared solver options.
+/// `quartic_index` (T, 4), `cos4`, `mixed`, `sin4` (T,)); the shared solver options;
+/// `damping_rate` (R,), the viscous damping rate of each run (None: all 0, undamped). With
+/// damping `energy_drift` is the error of the energy balance `H + dissipated - H(0)`.
 ///
 /// Returns a dict: `status`, `message` (lists of str), `max_theta`, `rms_theta`,
 /// `dominant_frequency_hz`, `energy_drift` (R,) float (NaN unless successful),
@@ -156,7 +158,7 @@ pub(crate) fn batch_plan<'py>(
 /// did not finish, and the exception under `"interrupt"` (None otherwise) for the caller to
 /// raise once it has kept the finished runs.
 #[pyfunction]
-#[pyo3(signature = (k, length, initial_velocities, z, indices, quartic_index, cos4, mixed, sin4, t_end, samples, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, keep_trajectories=false, threads=None, memory_budget=None))]
+#[pyo3(signature = (k, length, initial_velocities, z, indices, quartic_index, cos4, mixed, sin4, t_end, samples, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, keep_trajectories=false, threads=None, memory_budget=None, damping_rate=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn batch_solve<'py>(
     py: Python<'py>,
@@ -181,6 +183,7 @@ pub(crate) fn batch_solve<'py>(
     keep_trajectories: bool,
     threads: Option<usize>,
     memory_budget: Option<u64>,
+    damping_rate: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let opts = sweep_options(
         py,
@@ -215,12 +218,25 @@ pub(crate) fn batch_solve<'py>(
             format!("k (R, 6), length (R,), initial_velocities (R, {m}), z (R,) for one R"),
         ));
     }
+    let damping = match &damping_rate {
+        Some(c) => to_vec(c),
+        None => vec![0.0; r],
+    };
+    if damping.len() != r {
+        return Err(invalid(
+            py,
+            "damping_rate",
+            format!("length {}", damping.len()),
+            format!("length {r} (one per run)"),
+        ));
+    }
     let runs: Vec<RunSpec> = (0..r)
         .map(|i| RunSpec {
             k: [k[(i, 0)], k[(i, 1)], k[(i, 2)], k[(i, 3)], k[(i, 4)], k[(i, 5)]],
             length: length[i],
             initial_velocities: c.row(i).to_vec(),
             z: z[i],
+            damping_rate: damping[i],
         })
         .collect();
     let signals = SignalCheck::new(py);

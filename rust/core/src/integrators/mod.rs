@@ -28,7 +28,7 @@ use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Never};
 use crate::options::{AdaptiveOptions, FixedOptions, Output};
 use crate::solution::Solution;
-use crate::system::{FirstOrder, OdeSystem, SecondOrderSystem};
+use crate::system::{Dissipating, FirstOrder, OdeSystem, SecondOrderSystem};
 use form::{Nystrom, Plain};
 
 /// DOP853 (Dormand-Prince order 8 with 5th/3rd-order error estimate and 7th-order dense
@@ -74,6 +74,7 @@ pub fn rk4<S: OdeSystem + ?Sized>(
 /// `q[1] = q[0] + dt v0` (exactly this start: it is what the published table used).
 /// The state in the [`Solution`] is `[q, v]` with `v` the central-difference velocity
 /// `(q[n+1] - q[n-1]) / (2 dt)` (`v0` at `n = 0`). `Stats::nfev` counts evaluations of `a`.
+/// A [`SecondOrderSystem::velocity_dependent`] system is refused (an [`Error`] naming `method`).
 pub fn central_difference<S: SecondOrderSystem + ?Sized>(
     sys: &S,
     t0: f64,
@@ -89,7 +90,8 @@ pub fn central_difference<S: SecondOrderSystem + ?Sized>(
 /// Velocity (Stormer-)Verlet, the symplectic kick-drift-kick scheme
 /// `v+ = v + dt/2 a(q)`, `q1 = q + dt v+`, `v1 = v+ + dt/2 a(q1)`: second order, bounded
 /// energy error without drift. The state in the [`Solution`] is `[q, v]`; `Stats::nfev`
-/// counts evaluations of `a` (one per step plus one at the start).
+/// counts evaluations of `a` (one per step plus one at the start). A
+/// [`SecondOrderSystem::velocity_dependent`] system is refused (an [`Error`] naming `method`).
 pub fn verlet<S: SecondOrderSystem + ?Sized>(
     sys: &S,
     t0: f64,
@@ -206,8 +208,15 @@ impl Default for SolveOptions {
     }
 }
 
-/// Solves a second-order system `q'' = a(q)` from `(q0, v0)` with any method; the state in
-/// the [`Solution`] is `y = [q, v]`. Never interrupted: see [`solve_second_order_with`].
+/// Solves a second-order system `q'' = a(t, q, v)` from `(q0, v0)`; the state in the
+/// [`Solution`] is `y = [q, v]`. Never interrupted: see [`solve_second_order_with`].
+///
+/// The form is chosen from [`SecondOrderSystem::velocity_dependent`]: a system whose forces
+/// do not depend on the velocity is advanced through `a(q)` by any method (the
+/// Runge-Kutta-Nystrom form for [`NYSTROM_MIN_DOF`] coordinates or more); one whose forces
+/// do goes through the first-order form with the dissipated energy appended
+/// ([`Dissipating`], reported in [`Solution::dissipated`]) by DOP853, DOPRI5 or RK4, and
+/// central differences and Verlet refuse it (an [`Error`] naming `method`).
 pub fn solve_second_order<S: SecondOrderSystem + ?Sized>(
     sys: &S,
     t0: f64,
@@ -250,6 +259,9 @@ pub fn solve_second_order_with<S: SecondOrderSystem + ?Sized>(
 ) -> Result<Solution> {
     check_state("q0", q0, sys.dof())?;
     check_state("v0", v0, sys.dof())?;
+    if sys.velocity_dependent() {
+        return solve_dissipating(sys, t0, q0, v0, t_end, output, opts, interrupt);
+    }
     let first_order = FirstOrder(sys);
     let y0 = || [q0, v0].concat();
     match opts.method {
@@ -263,6 +275,62 @@ pub fn solve_second_order_with<S: SecondOrderSystem + ?Sized>(
         Method::Central => central::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
         Method::Verlet => verlet::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
     }
+}
+
+/// A velocity-dependent system by DOP853, DOPRI5 or RK4 on `y = [q, v, D]` ([`Dissipating`]):
+/// the dissipated energy `D` is one more component of the state, so it is integrated to the
+/// same order and, by the adaptive methods, under the same error control as the motion. It is
+/// moved out of the samples into [`Solution::dissipated`].
+#[allow(clippy::too_many_arguments)]
+fn solve_dissipating<S: SecondOrderSystem + ?Sized>(
+    sys: &S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &SolveOptions,
+    interrupt: &dyn Interrupt,
+) -> Result<Solution> {
+    if matches!(opts.method, Method::Central | Method::Verlet) {
+        return Err(refuse_velocity_dependent(opts.method));
+    }
+    let form = Dissipating(sys);
+    let y0 = [q0, v0, &[0.0]].concat();
+    let mut sol = match opts.method {
+        Method::Dop853 => {
+            adaptive::integrate::<dop853::Dop853, _>(&Plain(&form), t0, &y0, t_end, output, &opts.adaptive(), interrupt)
+        }
+        Method::Dopri5 => {
+            adaptive::integrate::<dopri5::Dopri5, _>(&Plain(&form), t0, &y0, t_end, output, &opts.adaptive(), interrupt)
+        }
+        _ => rk4::integrate(&form, t0, &y0, t_end, output, &opts.fixed()?, interrupt),
+    }?;
+    split_dissipated(&mut sol);
+    Ok(sol)
+}
+
+/// Moves the last state component of every sample into [`Solution::dissipated`].
+fn split_dissipated(sol: &mut Solution) {
+    let (dim, samples) = (sol.dim, sol.len());
+    let kept = dim - 1;
+    sol.dissipated = (0..samples).map(|k| sol.y[k * dim + kept]).collect();
+    for k in 0..samples {
+        sol.y.copy_within(k * dim..k * dim + kept, k * kept);
+    }
+    sol.y.truncate(samples * kept);
+    sol.dim = kept;
+}
+
+/// The error of a method that advances `q'' = a(q)` only (central differences, Verlet)
+/// asked to solve a system with velocity-dependent forces.
+pub(crate) fn refuse_velocity_dependent(method: Method) -> Error {
+    Error::invalid(
+        "method",
+        method.name(),
+        "\"dop853\", \"dopri5\" or \"rk4\" for forces that depend on the velocity (damping_rate > 0): \
+         central differences and Verlet advance q'' = a(q) only",
+    )
 }
 
 /// Second-order systems with at least this many coordinates go through the adaptive pairs in
@@ -303,5 +371,7 @@ fn check_state(field: &'static str, values: &[f64], dim: usize) -> Result<()> {
     Ok(())
 }
 
+#[cfg(test)]
+mod damping_tests;
 #[cfg(test)]
 mod tests;

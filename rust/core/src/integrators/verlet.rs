@@ -38,6 +38,9 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
     opts: &FixedOptions,
     interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
+    if sys.velocity_dependent() {
+        return Err(super::refuse_velocity_dependent(super::Method::Verlet));
+    }
     validate_span(t0, t_end, output)?;
     opts.validate()?;
     super::check_state("q0", q0, sys.dof())?;

@@ -4,7 +4,7 @@
 use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::simd::{dispatch_len, Kernel, MulAdd};
-use crate::system::SecondOrderSystem;
+use crate::system::{check_damping_rate, SecondOrderSystem};
 
 /// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
 /// this length; far beyond any grid an explicit method can step through).
@@ -60,6 +60,8 @@ pub struct PdeSystem {
     nodes: usize,
     /// The spacing `h = l / (N - 1)`.
     h: f64,
+    /// Viscous damping rate `c`, 1/s (force `-k1 c th_t` per unit length).
+    damping_rate: f64,
 }
 
 impl PdeSystem {
@@ -84,7 +86,21 @@ impl PdeSystem {
                 format!("a grid spacing h = l / {} with 1 / (h k1) finite", nodes - 1),
             ));
         }
-        Ok(PdeSystem { k, length, nodes, h })
+        Ok(PdeSystem { k, length, nodes, h, damping_rate: 0.0 })
+    }
+
+    /// The same system with viscous damping: the force `-k1 c th_t` per unit length, lumped
+    /// like the inertia (`-w_j k1 c v_j` on node `j`), so `q_j'' = ... - c v_j` and the
+    /// dissipated power is `c sum_j w_j k1 v_j^2`. `c` (1/s) finite and `>= 0` (field
+    /// `"damping_rate"`); `c = 0` is the undamped system, solved exactly as without this call.
+    pub fn with_damping(mut self, c: f64) -> Result<Self> {
+        self.damping_rate = check_damping_rate(c)?;
+        Ok(self)
+    }
+
+    /// The viscous damping rate `c`, 1/s.
+    pub fn damping_rate(&self) -> f64 {
+        self.damping_rate
     }
 
     pub fn coefficients(&self) -> PdeCoefficients {
@@ -181,7 +197,7 @@ impl PdeSystem {
         nodal + self.h * cells
     }
 
-    /// The discrete energy `H_h(q, v)`, conserved by the semi-discrete system.
+    /// The discrete energy `H_h(q, v)`, conserved by the semi-discrete system without damping.
     pub fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
         let kinetic: f64 =
             v[..self.nodes].iter().enumerate().map(|(j, &vj)| self.weight(j) * 0.5 * self.k.k1 * vj * vj).sum();
@@ -325,5 +341,27 @@ impl SecondOrderSystem for PdeSystem {
     fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
         // 1 / (w_j k1): 1 / (h k1) inside, twice that at the ends.
         dispatch_len(self.nodes, Sweep { sys: self, q, out: acc, scale: -1.0 / (self.h * self.k.k1), end_factor: 2.0 });
+    }
+
+    fn velocity_dependent(&self) -> bool {
+        self.damping_rate != 0.0
+    }
+
+    /// `-(dV_h/dth_j) / (w_j k1) - c v_j`.
+    #[inline]
+    fn acceleration_full(&self, _t: f64, q: &[f64], v: &[f64], acc: &mut [f64]) {
+        self.acceleration(q, acc);
+        if self.damping_rate != 0.0 {
+            let c = self.damping_rate;
+            for (a, &vj) in acc[..self.nodes].iter_mut().zip(v) {
+                *a -= c * vj;
+            }
+        }
+    }
+
+    /// `c k1 sum_j w_j v_j^2`.
+    fn dissipated_power(&self, _q: &[f64], v: &[f64]) -> f64 {
+        let sum: f64 = v[..self.nodes].iter().enumerate().map(|(j, &vj)| self.weight(j) * vj * vj).sum();
+        self.damping_rate * self.k.k1 * sum
     }
 }

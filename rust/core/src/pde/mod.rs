@@ -37,6 +37,10 @@
 //! exactly by the ODE and up to the time integrator's error by a solve (boundedly so by
 //! the symplectic [`crate::integrators::verlet`]).
 //!
+//! Viscous damping ([`PdeSystem::with_damping`]) adds `-k1 c th_t` per unit length, lumped like
+//! the inertia: `q_j'' = -(dV_h/dth_j) / (w_j k1) - c v_j`, dissipating `c sum_j w_j k1 v_j^2`,
+//! so `H_h + dissipated` is conserved (see [`crate::system::Dissipating`]).
+//!
 //! A solve is just [`crate::integrators::solve_second_order`] on a [`PdeSystem`] with the
 //! nodal values `q = th(z_j)` and `v = th_t(z_j)` as state: any method, and memory that
 //! grows only with the saved samples. Explicit methods are stable for steps up to about

@@ -58,6 +58,9 @@ pub struct RunSpec {
     pub initial_velocities: Vec<f64>,
     /// Section of the metrics, `0 <= z <= l`.
     pub z: f64,
+    /// Viscous damping rate `c`, 1/s (`>= 0`; 0 for the undamped model), see
+    /// [`crate::modal::ModalSystem::with_damping`].
+    pub damping_rate: f64,
 }
 
 /// Options shared by every run of a batch.
@@ -341,7 +344,7 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
         return RunRecord::failed(RunStatus::Solved(Status::Interrupted), message, m);
     }
     let invalid = |e: Error| RunRecord::failed(RunStatus::Invalid, e.to_string(), m);
-    let sys = match shared.integrals.scale(&spec.k, spec.length) {
+    let sys = match shared.integrals.scale(&spec.k, spec.length).and_then(|sys| sys.with_damping(spec.damping_rate)) {
         Ok(sys) => sys,
         Err(e) => return invalid(e),
     };
@@ -381,7 +384,7 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
     record.unstable_modes = Some(unstable);
     record.nfev = sol.stats.nfev;
     if status.is_success() {
-        let metrics = metrics::compute(&sys, &sol.y, &theta, shared.dt, &shared.estimator, buf);
+        let metrics = metrics::compute(&sys, &sol.y, &sol.dissipated, &theta, shared.dt, &shared.estimator, buf);
         record.max_theta = metrics.max_theta;
         record.rms_theta = metrics.rms_theta;
         record.dominant_frequency_hz = metrics.dominant_frequency_hz;

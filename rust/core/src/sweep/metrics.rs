@@ -11,7 +11,8 @@
 //!   reached. With a negative `K_i` (the rigid mode under rotation, or a mode above its
 //!   critical speed) `E_i` may be negative and the other shares may exceed 1;
 //! * the energy drift `max |H(t) - H(0)| / |H(0)|` with `H` = [`ModalSystem::energy`]
-//!   (0 when `H(0) = 0`);
+//!   (0 when `H(0) = 0`); with damping the error of the energy balance,
+//!   `max |H(t) + D(t) - H(0)| / |H(0)|` with `D` the dissipated energy of the solve;
 //! * the number of linearly unstable modes at the equilibrium, `#{K_i < 0}`.
 
 use std::sync::Arc;
@@ -127,9 +128,13 @@ pub fn section_twist(y: &[f64], basis: &[f64]) -> Vec<f64> {
 
 /// The metrics of a run of `sys` whose row-major states `[q, qdot]` are `y`, sampled every
 /// `dt` seconds, with `theta` = [`section_twist`] at the section.
+/// `dissipated`: the energy dissipated up to each sample ([`crate::Solution::dissipated`]),
+/// empty for an undamped run.
+#[allow(clippy::too_many_arguments)]
 pub fn compute(
     sys: &ModalSystem,
     y: &[f64],
+    dissipated: &[f64],
     theta: &[f64],
     dt: f64,
     estimator: &FrequencyEstimator,
@@ -161,7 +166,7 @@ pub fn compute(
                 max_share[i] = max_share[i].max(energies[i] / total);
             }
         }
-        let h = sys.energy(q, v);
+        let h = sys.energy(q, v) + dissipated.get(j).copied().unwrap_or(0.0);
         if j == 0 {
             h0 = h;
         } else if h0 != 0.0 {
@@ -204,7 +209,7 @@ mod tests {
         assert_eq!(theta, vec![0.0, 1.0]);
         let est = FrequencyEstimator::new(2);
         let mut buf = est.buffers();
-        let m = compute(&sys, &y, &theta, 0.1, &est, &mut buf);
+        let m = compute(&sys, &y, &[], &theta, 0.1, &est, &mut buf);
         assert!((m.max_share[0] - 1.0).abs() < 1e-15);
         assert!((m.max_share[1] - 0.5).abs() < 1e-15);
         assert!(m.energy_drift < 1e-15);

@@ -32,7 +32,7 @@ fn options(rtol: f64) -> SweepOptions {
 }
 
 fn spec(length: f64, c: f64) -> RunSpec {
-    RunSpec { k: K_REF, length, initial_velocities: vec![c], z: 2.0 * length / 3.0 }
+    RunSpec { k: K_REF, length, initial_velocities: vec![c], z: 2.0 * length / 3.0, damping_rate: 0.0 }
 }
 
 #[test]
