@@ -1,6 +1,5 @@
 """Progress reports of single solves, sweeps and the command line (tqdm)."""
 
-import inspect
 import io
 import sys
 
@@ -8,7 +7,6 @@ import numpy as np
 import pytest
 
 import drillstring as ds
-from drillstring import _core, _progress
 from drillstring.cli import main
 
 ALUMINUM = ds.preset("aluminum")
@@ -48,21 +46,26 @@ def test_bad_progress_names_the_option(bad):
         ds.solve_pde(ALUMINUM, nodes=10, t_end=0.01, progress=bad)
 
 
-def test_a_core_that_reports_time_feeds_the_callable(monkeypatch):
-    """When the core's solve takes ``progress``, the time it reports reaches the caller."""
-    real = _core.solve_modal
+def test_the_core_reports_the_time_reached_while_it_steps():
+    # a solve of a few hundred ms: the core reports every ~20 ms, times rise, results unchanged
+    for solve in (lambda **kw: ds.simulate(ALUMINUM, modes=8, rigid_mode=True, t_end=20.0, samples=101, **kw),
+                  lambda **kw: ds.solve_pde(ALUMINUM, nodes=400, t_end=3.0, samples=11, **kw)):
+        calls: list = []
+        watched = solve(progress=lambda t, end, calls=calls: calls.append(t))
+        plain = solve()
+        inside = [t for t in calls if 0.0 < t < calls[-1]]
+        assert len(inside) >= 3, calls
+        assert calls == sorted(calls) and calls[0] == 0.0
+        assert np.array_equal(plain.q, watched.q) and plain.stats == watched.stats
 
-    def reporting(system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, progress=None):
-        for t in (0.25 * t_end, 0.5 * t_end, 0.4 * t_end):  # a step back is never shown
-            progress(t)
-        return real(system, q0, v0, t_end, t_eval, method, rtol, atol, dt=dt, max_steps=max_steps)
 
-    assert not _progress.core_reports_progress(real) or "progress" in inspect.signature(real).parameters
-    assert _progress.core_reports_progress(reporting)
-    monkeypatch.setattr(_core, "solve_modal", reporting)
-    calls = []
-    ds.simulate(ALUMINUM, t_end=0.2, samples=5, progress=lambda t, end: calls.append(t))
-    assert calls == [0.0, 0.05, 0.1, 0.2]
+def test_an_exception_of_the_callable_stops_the_solve():
+    def stop(t, end):
+        if t > 0.0:
+            raise RuntimeError(f"stop at {t}")
+
+    with pytest.raises(RuntimeError, match="stop at"):
+        ds.simulate(ALUMINUM, modes=8, rigid_mode=True, t_end=1e4, samples=11, progress=stop)
 
 
 def test_sweep_bar_counts_runs(capsys):

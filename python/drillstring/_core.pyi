@@ -1,6 +1,6 @@
 """Type stubs of the compiled module ``drillstring._core`` (Rust, PyO3)."""
 
-from typing import Optional, TypedDict
+from typing import Callable, Optional, TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
@@ -53,6 +53,7 @@ def solve_modal(
     max_steps: Optional[int] = None,
     first_step: Optional[float] = None,
     max_step: float = ...,
+    progress: Optional[Callable[[float], object]] = None,
 ) -> SolveOutput: ...
 
 class SectionProperties(TypedDict):
@@ -144,6 +145,7 @@ def solve_pde(
     max_steps: Optional[int] = None,
     first_step: Optional[float] = None,
     max_step: float = ...,
+    progress: Optional[Callable[[float], object]] = None,
 ) -> SolveOutput: ...
 
 class BatchOutput(TypedDict, total=False):

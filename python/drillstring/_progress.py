@@ -2,14 +2,13 @@
 
 ``progress`` options of the solvers are ``False`` (nothing), ``True`` (a tqdm bar of the solve time
 reached, on stderr) or a callable ``f(t_reached, t_end)``. The solves run in the Rust core with
-the GIL released; a core whose solve functions accept a ``progress`` argument calls it with the
-time reached while it steps (:func:`core_reports_progress`). Otherwise the report comes at the
-start (``t = 0``) and at the end of the solve.
+the GIL released; the core calls back with the time reached about every 20 ms while it steps
+(its interrupt hook re-attaches to the interpreter that often anyway), and the report also comes
+at the start (``t = 0``) and at the end of the solve.
 """
 
 from __future__ import annotations
 
-import inspect
 import sys
 from typing import Any, Callable, Optional, Union
 
@@ -17,7 +16,7 @@ from tqdm import tqdm
 
 from .errors import ValidationError
 
-__all__ = ["ProgressOption", "SolveProgress", "check_progress", "core_reports_progress", "on_terminal", "bar"]
+__all__ = ["ProgressOption", "SolveProgress", "check_progress", "on_terminal", "bar"]
 
 #: What a ``progress=`` option of a solver accepts.
 ProgressOption = Union[bool, Callable[[float, float], Any]]
@@ -44,15 +43,6 @@ def check_progress(value: Any) -> ProgressOption:
     if isinstance(value, bool) or callable(value):
         return value
     raise ValidationError("progress", value, "True, False or a callable f(t_reached, t_end)")
-
-
-def core_reports_progress(solve: Any) -> bool:
-    """Whether the core solve function ``solve`` takes a ``progress`` callback (called with the
-    time reached while it steps)."""
-    try:
-        return "progress" in inspect.signature(solve).parameters
-    except (TypeError, ValueError):  # no signature available
-        return False
 
 
 class SolveProgress:
@@ -88,9 +78,9 @@ class SolveProgress:
         if self._callback is not None:
             self._callback(t, self.t_end)
 
-    def core_kwargs(self, solve: Any) -> dict[str, Any]:
-        """``{"progress": self.report}`` when ``solve`` reports progress and a report is wanted."""
-        return {"progress": self.report} if self.enabled and core_reports_progress(solve) else {}
+    def core_kwargs(self) -> dict[str, Any]:
+        """The core solve's ``progress`` argument: :meth:`report` when a report is wanted."""
+        return {"progress": self.report} if self.enabled else {}
 
     def finish(self, result: Any) -> None:
         """Reports where a solve ended: ``t_end`` on success, else its last sample's time."""

@@ -264,7 +264,7 @@ def solve_pde(
     )
     with SolveProgress(progress, t_end_f, "solve_pde") as bar:
         raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps,
-                              **bar.core_kwargs(_core.solve_pde))
+                              **bar.core_kwargs())
         result = PdeSolution(params, system, method, raw, every)
         bar.finish(result)
     if check and not result.success:

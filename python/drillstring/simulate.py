@@ -284,9 +284,9 @@ def simulate(
         with ``check=False`` the partial result is returned with its ``status``.
     progress : bool or callable
         ``True``: a tqdm bar of the solve time reached, on stderr; a callable is called as
-        ``f(t_reached, t_end)``. The solve runs in the Rust core, which reports the time reached
-        while it steps when it supports it (:func:`drillstring._progress.core_reports_progress`);
-        otherwise the report comes at ``t = 0`` and when the solve ends. Never changes the result.
+        ``f(t_reached, t_end)``. The Rust core reports the time reached about every 20 ms while
+        it steps, and at ``t = 0`` and when the solve ends. Never changes the result; an
+        exception the callable raises stops the solve and is raised.
 
     Examples
     --------
@@ -328,7 +328,7 @@ def simulate(
     with SolveProgress(progress, t_end_f, "simulate") as bar:
         raw = _core.solve_modal(
             system, q0, v0, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps,
-            **bar.core_kwargs(_core.solve_modal),
+            **bar.core_kwargs(),
         )
         result = Simulation(params, coefficients, system, method, raw)
         bar.finish(result)

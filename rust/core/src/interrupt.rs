@@ -26,6 +26,14 @@ use std::time::{Duration, Instant};
 pub trait Interrupt: Sync {
     /// Whether the solve should stop now.
     fn interrupted(&self) -> bool;
+
+    /// Whether the solve, which has reached time `t`, should stop now: integrators ask this
+    /// (a hook may report the progress of the solve from it). By default
+    /// [`Interrupt::interrupted`].
+    fn interrupted_at(&self, t: f64) -> bool {
+        let _ = t;
+        self.interrupted()
+    }
 }
 
 /// The hook that never interrupts.
@@ -117,19 +125,20 @@ impl<'a> Poller<'a> {
         Poller { hook, countdown: 1, stride: 1, last: Instant::now() }
     }
 
-    /// Counts one step; `true` when the hook asked to stop.
+    /// Counts one step of a solve that has reached time `t`; `true` when the hook asked to
+    /// stop ([`Interrupt::interrupted_at`]).
     #[inline]
-    pub fn poll(&mut self) -> bool {
+    pub fn poll(&mut self, t: f64) -> bool {
         self.countdown -= 1;
         if self.countdown > 0 {
             return false;
         }
-        self.read_clock_and_ask()
+        self.read_clock_and_ask(t)
     }
 
     #[cold]
     #[inline(never)]
-    fn read_clock_and_ask(&mut self) -> bool {
+    fn read_clock_and_ask(&mut self, t: f64) -> bool {
         let now = Instant::now();
         let elapsed = now.duration_since(self.last);
         self.last = now;
@@ -139,7 +148,7 @@ impl<'a> Poller<'a> {
             self.stride = (self.stride / 2).max(1);
         }
         self.countdown = self.stride;
-        self.hook.interrupted()
+        self.hook.interrupted_at(t)
     }
 }
 
@@ -178,7 +187,7 @@ mod tests {
         // Fast steps: the stride grows to MAX_STRIDE, so few calls.
         let steps = 1_000_000u64;
         for _ in 0..steps {
-            assert!(!poller.poll());
+            assert!(!poller.poll(0.0));
         }
         let fast_calls = calls.load(Ordering::Relaxed);
         assert!(fast_calls >= steps / u64::from(MAX_STRIDE), "{fast_calls}");
@@ -188,7 +197,7 @@ mod tests {
         let mut poller = Poller::new(&hook);
         for _ in 0..20 {
             std::thread::sleep(Duration::from_millis(5));
-            poller.poll();
+            poller.poll(0.0);
         }
         assert!(calls.load(Ordering::Relaxed) >= 18, "{}", calls.load(Ordering::Relaxed));
     }
@@ -197,10 +206,10 @@ mod tests {
     fn poller_reports_the_hook() {
         let flag = CancelFlag::new();
         let mut poller = Poller::new(&flag);
-        assert!(!poller.poll());
+        assert!(!poller.poll(0.0));
         flag.cancel();
         let mut n = 0;
-        while !poller.poll() {
+        while !poller.poll(0.0) {
             n += 1;
             assert!(n <= MAX_STRIDE, "not noticed");
         }

@@ -162,3 +162,37 @@ fn hooks_that_never_fire_leave_results_bit_identical() {
     }
     assert!(polls.load(Ordering::Relaxed) > 0, "the hook was polled");
 }
+
+/// A hook that records the times it is asked at (the progress of the solve).
+struct Recorder(std::sync::Mutex<Vec<f64>>);
+
+impl drillstring_core::Interrupt for Recorder {
+    fn interrupted(&self) -> bool {
+        false
+    }
+    fn interrupted_at(&self, t: f64) -> bool {
+        self.0.lock().unwrap().push(t);
+        false
+    }
+}
+
+#[test]
+fn the_hook_sees_the_time_reached_by_every_method() {
+    // Each method is asked with non-decreasing times inside the span, often enough to follow
+    // a long solve, and the numbers are those of a solve without the hook.
+    let sys = modal();
+    let t_end = 200.0;
+    let output = Output::Times(vec![0.0, t_end]);
+    for method in Method::ALL {
+        let opts = options(method);
+        let hook = Recorder(std::sync::Mutex::new(Vec::new()));
+        let sol =
+            solve_second_order_with(&sys, 0.0, &[0.0; 3], &[0.1, 0.0, 0.0], t_end, &output, &opts, &hook).unwrap();
+        let plain = solve_second_order(&sys, 0.0, &[0.0; 3], &[0.1, 0.0, 0.0], t_end, &output, &opts).unwrap();
+        assert_eq!(sol, plain, "{method:?}");
+        let times = hook.0.into_inner().unwrap();
+        assert!(times.len() >= 2, "{method:?}: asked {} times", times.len());
+        assert!(times.windows(2).all(|w| w[0] <= w[1]), "{method:?}");
+        assert!(times.iter().all(|&t| (0.0..=t_end).contains(&t)), "{method:?}");
+    }
+}

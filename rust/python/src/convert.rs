@@ -94,15 +94,17 @@ pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: Solution, dissipative: bo
 const SIGNAL_CHECK_INTERVAL: Duration = Duration::from_millis(20);
 
 /// The interrupt hook of a solve started from Python: at most every
-/// [`SIGNAL_CHECK_INTERVAL`] it re-attaches to the interpreter briefly and calls
-/// `PyErr_CheckSignals` (`Python::check_signals`), which runs the Python-level signal handlers.
-/// An exception they raise (`KeyboardInterrupt` for Ctrl-C) is stored and stops the solve;
+/// [`SIGNAL_CHECK_INTERVAL`] it re-attaches to the interpreter briefly, calls
+/// `PyErr_CheckSignals` (`Python::check_signals`), which runs the Python-level signal handlers,
+/// and reports the solve time reached to the `progress` callable, if any. An exception they
+/// raise (`KeyboardInterrupt` for Ctrl-C, or the callable's) is stored and stops the solve;
 /// [`SignalCheck::finish`] then raises it.
 ///
 /// Python runs signal handlers only in the main thread, so a solve started from another thread
-/// never re-attaches (solves on several threads keep running in parallel).
+/// only re-attaches to report progress (solves on several threads keep running in parallel).
 pub(crate) struct SignalCheck {
     main_thread: bool,
+    progress: Option<Py<PyAny>>,
     last: Mutex<Instant>,
     error: Mutex<Option<PyErr>>,
 }
@@ -110,10 +112,21 @@ pub(crate) struct SignalCheck {
 impl SignalCheck {
     /// A hook for a solve about to be started by the current thread.
     pub(crate) fn new(py: Python<'_>) -> Self {
-        SignalCheck { main_thread: is_main_thread(py), last: Mutex::new(Instant::now()), error: Mutex::new(None) }
+        Self::with_progress(py, None)
     }
 
-    /// Raises the exception a signal handler raised during the solve, if any.
+    /// A hook that also calls `progress(t)` with the time reached (every ~20 ms).
+    pub(crate) fn with_progress(py: Python<'_>, progress: Option<Py<PyAny>>) -> Self {
+        SignalCheck {
+            main_thread: is_main_thread(py),
+            progress: progress.filter(|p| !p.is_none(py)),
+            last: Mutex::new(Instant::now()),
+            error: Mutex::new(None),
+        }
+    }
+
+    /// Raises the exception a signal handler or the progress callable raised during the
+    /// solve, if any.
     pub(crate) fn finish(self) -> PyResult<()> {
         match self.error.into_inner() {
             Ok(Some(err)) => Err(err),
@@ -124,7 +137,12 @@ impl SignalCheck {
 
 impl Interrupt for SignalCheck {
     fn interrupted(&self) -> bool {
-        if !self.main_thread {
+        self.interrupted_at(f64::NAN)
+    }
+
+    fn interrupted_at(&self, t: f64) -> bool {
+        let report = self.progress.as_ref().filter(|_| t.is_finite());
+        if !self.main_thread && report.is_none() {
             return false;
         }
         {
@@ -134,7 +152,15 @@ impl Interrupt for SignalCheck {
             }
             *last = Instant::now();
         }
-        let checked = Python::try_attach(|py| py.check_signals());
+        let checked = Python::try_attach(|py| -> PyResult<()> {
+            if self.main_thread {
+                py.check_signals()?;
+            }
+            if let Some(progress) = report {
+                progress.call1(py, (t,))?;
+            }
+            Ok(())
+        });
         match checked {
             Some(Err(err)) => {
                 if let Ok(mut slot) = self.error.lock() {
@@ -172,6 +198,8 @@ pub(crate) struct SolveArgs<'a, 'py> {
     pub max_steps: Option<&'a Bound<'py, PyAny>>,
     pub first_step: Option<f64>,
     pub max_step: f64,
+    /// Called with the solve time reached, every ~20 ms (None: no report).
+    pub progress: Option<Py<PyAny>>,
 }
 
 /// Solves `sys` from `(q0, v0)` at `t = 0` without the GIL and returns [`solution_dict`].
@@ -200,7 +228,7 @@ pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
         max_step: args.max_step,
     };
     let t_end = args.t_end;
-    let signals = SignalCheck::new(py);
+    let signals = SignalCheck::with_progress(py, args.progress);
     let solved = py.detach(|| {
         no_panic(|| integrators::solve_second_order_with(sys, 0.0, &q0, &v0, t_end, &output, &opts, &signals))
     })?;

@@ -184,7 +184,7 @@ impl PdeSystem {
 /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
 /// within ~20 ms and is raised here.
 #[pyfunction]
-#[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY))]
+#[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, progress=None))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_pde<'py>(
     py: Python<'py>,
@@ -200,8 +200,9 @@ pub(crate) fn solve_pde<'py>(
     max_steps: Option<&Bound<'py, PyAny>>,
     first_step: Option<f64>,
     max_step: f64,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let sys: &CorePdeSystem = &system.get().inner;
-    let args = SolveArgs { q0, v0, t_end, t_eval, method, rtol, atol, dt, max_steps, first_step, max_step };
+    let args = SolveArgs { q0, v0, t_end, t_eval, method, rtol, atol, dt, max_steps, first_step, max_step, progress };
     solve_to_dict(py, sys, args)
 }

@@ -292,7 +292,7 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
             if attempts >= self.opts.max_steps {
                 return Outcome::Failed(Status::MaxStepsReached, self.max_steps_message());
             }
-            if poller.poll() {
+            if poller.poll(self.t) {
                 let msg = format!(
                     "interrupted at t = {} before t_end = {} after {attempts} step attempts",
                     Num(self.t),

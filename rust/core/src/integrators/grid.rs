@@ -45,7 +45,7 @@ impl Grid {
             );
             return Err((Status::MaxStepsReached, msg));
         }
-        if poller.poll() {
+        if poller.poll(t) {
             let msg = format!("interrupted at t = {} before t_end = {} after {done} steps", Num(t), Num(self.t_end));
             return Err((Status::Interrupted, msg));
         }
