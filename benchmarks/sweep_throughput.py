@@ -5,7 +5,7 @@ string length l = 100..500 m and rotation speed Omega = 0..100 rad/s (mode 1 is 
 unstable above Omega_crit,1 = (pi/l) sqrt(4G/rho), i.e. for l > 195 m in the upper part of the
 grid), DOP853 with rtol 1e-8, atol 1e-12, metrics from 1024 samples at z_k = 2l/3.
 
-Measured end to end through ``drillstring.sweep`` (planning, parameter validation, the Rust
+Measured end to end through ``drillstring.sweeps`` (planning, parameter validation, the Rust
 batch solves, the table): runs per second on 1 and 2 threads and the parallel efficiency
 ``rate_2 / (2 rate_1)``, with the time spent inside the Rust batch solve shown separately.
 The baseline is a Python loop of ``scipy.integrate.solve_ivp(method="DOP853")`` over the same
@@ -31,7 +31,7 @@ import numpy as np
 import drillstring as ds
 from drillstring.analysis import dominant_frequencies
 
-sweep_module = importlib.import_module("drillstring.sweep")
+sweep_module = importlib.import_module("drillstring.sweeps")
 
 
 def machine_cpu() -> tuple[float, float]:

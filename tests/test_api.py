@@ -31,11 +31,15 @@ def test_all_lists_functions_classes_and_constants_not_modules():
 
 
 def test_sweep_and_table2_are_functions_and_their_modules_are_importable():
-    sweep_module = importlib.import_module("drillstring.sweep")
+    # the sweep module has its own name: importing it gives the module, never the function
+    import drillstring.sweeps as sweeps
+
+    assert isinstance(sweeps, types.ModuleType) and ds.sweep is sweeps.sweep
+    sweep_module = importlib.import_module("drillstring.sweeps")
     table2_module = importlib.import_module("drillstring.table2")
     assert isinstance(sweep_module, types.ModuleType) and ds.sweep is sweep_module.sweep
     assert isinstance(table2_module, types.ModuleType) and ds.table2 is table2_module.table2
-    from drillstring.sweep import SweepTrajectories
+    from drillstring.sweeps import SweepTrajectories
 
     assert ds.SweepTrajectories is SweepTrajectories
 

@@ -412,7 +412,7 @@ def test_an_unwritable_directory_is_refused_before_solving(capsys, monkeypatch, 
         ("pde", "drillstring.pde", "solve_pde", ["--plot", "{bad}/map.png"]),
         ("convergence", "drillstring.convergence", "study", ["--out", "{bad}/dir"]),
         ("paper", "drillstring.paper", "reproduce", ["--out", "{bad}/dir"]),
-        ("sweep", "drillstring.sweep", "sweep", ["--out", "{bad}/dir"]),
+        ("sweep", "drillstring.sweeps", "sweep", ["--out", "{bad}/dir"]),
     ],
 )
 def test_a_destination_under_a_regular_file_is_refused_before_any_work(
@@ -436,7 +436,7 @@ def test_a_destination_under_a_regular_file_is_refused_before_any_work(
 @pytest.mark.parametrize("command", ["convergence", "paper", "sweep"])
 def test_an_output_directory_that_is_a_file_or_holds_a_directory_is_refused(tmp_path, capsys, monkeypatch, command):
     module, name = {"convergence": ("drillstring.convergence", "study"), "paper": ("drillstring.paper", "reproduce"),
-                    "sweep": ("drillstring.sweep", "sweep")}[command]
+                    "sweep": ("drillstring.sweeps", "sweep")}[command]
     refuse_call(monkeypatch, module, name)
     prefix = []
     if command == "sweep":

@@ -191,7 +191,7 @@ def test_progress_bar_on_request(capsys):
 def test_per_run_coefficients_are_those_of_the_parameters():
     import importlib
 
-    sweep_module = importlib.import_module("drillstring.sweep")
+    sweep_module = importlib.import_module("drillstring.sweeps")
     cache: dict = {}
     for params in (ALUMINUM, ALUMINUM.replace(omega=-7.3, length=3.0), ds.preset("steel").replace(k5_variant="energy"),
                    ALUMINUM.replace(omega=123.4, inner_diameter=0.0)):

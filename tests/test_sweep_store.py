@@ -12,8 +12,8 @@ import importlib  # noqa: E402
 import drillstring as ds  # noqa: E402
 from drillstring.errors import ResumeWarning  # noqa: E402
 
-# the module (``drillstring.sweep`` the attribute is the function)
-sweep_module = importlib.import_module("drillstring.sweep")
+# the module (``drillstring.sweeps`` the attribute is the function)
+sweep_module = importlib.import_module("drillstring.sweeps")
 
 GRID = {"length": ds.linspace(100.0, 200.0, 5), "omega": [0.0, 30.0, 60.0, 90.0]}  # 20 runs
 OPTIONS = {"t_end": 0.2, "samples": 256, "chunk_size": 3}  # 7 chunks, the last one short

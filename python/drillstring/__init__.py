@@ -18,9 +18,9 @@ The API
 ``__all__`` lists the functions, classes and constants above; the modules behind them
 (``analysis``, ``coefficients``, ``convergence``, ``galerkin``, ``grid``, ``limits``, ``paper``,
 ``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
-``ds.sweep`` and ``ds.table2`` are the functions, which share their names with their modules:
-reach the modules with ``from drillstring.sweep import SweepTrajectories`` or
-``importlib.import_module("drillstring.sweep")`` (``import drillstring.sweep as m`` binds the
+``ds.sweep`` is the function; its module is ``drillstring.sweeps`` (``import drillstring.sweeps``).
+``ds.table2`` is the function and shares its name with its module: reach the module with
+``importlib.import_module("drillstring.table2")`` (``import drillstring.table2 as m`` binds the
 package attribute, the function).
 """
 
@@ -48,11 +48,11 @@ from .grid import linspace, logspace
 from .parameters import PRESETS, Parameters, load, preset
 from .pde import PdeSolution, solve_pde
 from .simulate import METHODS, Method, Simulation, SolverStats, simulate
-from .sweep import SweepTrajectories
+from .sweeps import SweepTrajectories
 from .table2 import Table2Row, table2
 
 if TYPE_CHECKING:  # pragma: no cover
-    # The return type of sweep() follows ``trajectories`` (the runtime function is sweep.sweep;
+    # The return type of sweep() follows ``trajectories`` (the runtime function is sweeps.sweep;
     # tests/test_api.py checks that these signatures match it).
     from collections.abc import Iterable, Mapping
     from typing import Any, Literal, Optional, Union, overload
@@ -133,7 +133,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only
 else:
-    from .sweep import sweep
+    from .sweeps import sweep
 
 __all__ = [
     "__version__",

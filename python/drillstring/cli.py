@@ -463,8 +463,8 @@ def _sweep_config(path: str) -> tuple[Parameters, dict[str, Any], dict[str, Any]
 def _cmd_sweep(args: argparse.Namespace) -> int:
     import time
 
-    from .sweep import sweep
     from .sweep_store import MANIFEST, RESULTS_CSV, RESULTS_PARQUET
+    from .sweeps import sweep
 
     base, solver, grid = _sweep_config(args.config)
     check_destination(args.out, field="--out", directory=True, files=(MANIFEST, RESULTS_PARQUET, RESULTS_CSV))

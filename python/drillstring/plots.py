@@ -601,7 +601,7 @@ def sweep_metric(
     Parameters
     ----------
     table : pandas.DataFrame
-        A :func:`drillstring.sweep` table.
+        A :func:`drillstring.sweep` table (:mod:`drillstring.sweeps`).
     metric : str
         A column, e.g. ``"max_theta"``, ``"dominant_frequency_hz"``, ``"share_mode_1"``.
     axes : sequence of str, optional
@@ -704,7 +704,7 @@ def sweep_plots(table: Any, out_dir: object, axes: Optional[Sequence[str]] = Non
     Nothing is written when the sweep has no varying axis."""
     import os
 
-    from .sweep import METRICS
+    from .sweeps import METRICS
 
     if not _sweep_axes(table, axes):
         return []

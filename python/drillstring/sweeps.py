@@ -121,7 +121,7 @@ def _require_pandas() -> Any:
         import pandas as pd
     except ImportError as exc:  # pragma: no cover - depends on the environment
         raise ImportError(
-            "drillstring.sweep needs pandas, a dependency of drillstring: "
+            "drillstring.sweeps needs pandas, a dependency of drillstring: "
             "reinstall it with pip install . in the drillstring checkout"
         ) from exc
     return pd
