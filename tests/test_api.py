@@ -36,7 +36,10 @@ def test_sweep_and_table2_are_functions_and_their_modules_are_importable():
 
     assert isinstance(sweeps, types.ModuleType) and ds.sweep is sweeps.sweep
     sweep_module = importlib.import_module("drillstring.sweeps")
-    table2_module = importlib.import_module("drillstring.table2")
+    import drillstring.paper.table2 as table2_module_imported
+
+    assert ds.table2 is table2_module_imported.table2
+    table2_module = importlib.import_module("drillstring.paper.table2")
     assert isinstance(sweep_module, types.ModuleType) and ds.sweep is sweep_module.sweep
     assert isinstance(table2_module, types.ModuleType) and ds.table2 is table2_module.table2
     from drillstring.sweeps import SweepTrajectories

@@ -34,7 +34,7 @@ import pytest
 import drillstring as ds
 from drillstring._output import OutputError, atomic_write, check_destination, command_inputs, write_bytes
 from drillstring.cli import main
-from drillstring.table2 import Table2Row, write_table2_csv
+from drillstring.paper.table2 import Table2Row, write_table2_csv
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX special files")
 

@@ -160,8 +160,9 @@ def test_report_html_is_self_contained(quick):
     assert "http://" not in text and "https://" not in text
     assert "<link" not in text and "<script" not in text
     # one per figure with its own curves (a phase portrait refers to its response's table), Table 2,
-    # stability, the truncation study, timings
-    assert text.count("<table>") == 8 + 4
+    # stability, the truncation study, the physics notes, timings
+    assert text.count("<table>") == 8 + 5
+    assert "<em>Modeling of Drill String Torsional Vibrations" in text
 
 
 def test_report_md_states_claims_numbers_errata_and_commands(quick):
@@ -180,7 +181,7 @@ def test_report_md_states_claims_numbers_errata_and_commands(quick):
 
 
 def test_progress_lines_and_report_object(tmp_path, monkeypatch):
-    monkeypatch.setattr(paper, "FIGURES", paper.FIGURES[:2])
+    monkeypatch.setattr(paper.specs, "FIGURES", paper.FIGURES[:2])
     err = io.StringIO()
     with contextlib.redirect_stderr(err):
         rep = paper.reproduce(tmp_path, t_end_scale=0.3, samples_per_second=SPS, progress=True)
@@ -332,3 +333,69 @@ def test_sweep_maps_label_each_critical_speed():
     positions = sorted(text.xy for text in fig.axes[0].texts)
     assert [x for x, _ in positions] == pytest.approx([right] * 3, rel=1e-6) and right == 525.0
     assert sorted(y for _, y in positions) == pytest.approx(list(crit), rel=1e-2)
+
+
+def test_report_has_physics_notes_with_the_functions_numbers(quick):
+    text = (quick[0] / "report.md").read_text(encoding="utf-8")
+    section = text.split("## Physics notes")[1].split("\n## ")[0]
+    assert "Khajiyeva, M.M. Jantassova, A.K. Kudaibergenov" in section
+    assert "*Modeling of Drill String Torsional Vibrations Taking into Account Finite Deformations*" in section
+    al, steel = ds.preset("aluminum"), ds.preset("steel")
+
+    def coef(p, model):
+        return ds.PDECoefficients.from_parameters(p.replace(model=model))
+
+    notes = paper.physics_notes()
+    for model in ("paper", "consistent"):
+        assert notes.wave_speed_aluminium[model] == coef(al, model).wave_speed
+        assert notes.wave_speed_steel[model] == coef(steel, model).wave_speed
+        hz = np.asarray(coef(al.replace(omega=0.0), model).linear_frequencies([1, 2, 3])) / (2 * np.pi)
+        assert notes.frequencies_hz[model] == tuple(hz)
+    # the paper model's shear energy is four times the classical one: twice the wave speed, exactly
+    assert notes.wave_speed_aluminium["paper"] / notes.wave_speed_aluminium["consistent"] == 2.0
+    assert notes.wave_speed_steel["paper"] / notes.wave_speed_steel["consistent"] == 2.0
+    assert notes.frequencies_hz["paper"] == pytest.approx(tuple(2 * f for f in notes.frequencies_hz["consistent"]),
+                                                          rel=1e-14)
+    crit_al = coef(al, "paper").critical_speed(1)
+    crit_st = coef(steel.replace(length=2000.0), "paper").critical_speed(1)
+    assert notes.critical_speed_aluminium == {"paper": crit_al, "consistent": np.inf}
+    assert notes.critical_speed_steel_2000 == {"paper": crit_st, "consistent": np.inf}
+    # the table shows those numbers (the consistent model has no critical speed)
+    c_al, c_st = notes.wave_speed_aluminium, notes.wave_speed_steel
+    f = notes.frequencies_hz
+    assert (f"| wave speed √(k2/k1), aluminium / steel | {c_al['paper']:.0f} / {c_st['paper']:.0f} m/s | "
+            f"{c_al['consistent']:.0f} / {c_st['consistent']:.0f} m/s |") in section
+    shown = [", ".join(f"{x:.2f}" for x in f[m]) + " Hz" for m in ("paper", "consistent")]
+    assert f"| free-free f1, f2, f3, 100 m aluminium (Ω = 0) | {shown[0]} | {shown[1]} |" in section
+    assert f"| Ω_crit,1, 100 m aluminium (Table 1) | {crit_al:.1f} rad/s | none |" in section
+    assert f"| Ω_crit,1, 2000 m steel (Table 3 geometry) | {crit_st:.2f} rad/s | none |" in section
+    assert "(6221 m/s for the aluminium, 2x the classical 3110 m/s)" in section  # the README's values
+    assert "| 195.4 rad/s |" in section and "| 10.19 rad/s |" in section
+
+
+def test_every_figure_has_one_checker_stating_its_criterion():
+    numbers = [n for check in paper.checks.CHECKS for n in check.criteria]
+    assert sorted(numbers) == [spec.number for spec in paper.FIGURES]  # each figure checked exactly once
+    for check in paper.checks.CHECKS:
+        assert check.assess.__doc__  # what the checker decides, in words
+        for criterion in check.criteria.values():
+            assert criterion.startswith("supported if every curve is bounded")
+
+
+def test_markdown_and_html_rendering_of_the_blocks():
+    from drillstring.paper import document as d
+    from drillstring.paper import render
+
+    doc = [d.h1("Title <x>"), d.p("See `a|b` and **bold**, *it* [f](f.csv)."), d.ul(["one", "two"]),
+           d.ol(["first"]), d.img("f.png", "a figure"), d.code("x = 1 < 2"), d.table(["h|1", "h2"], [[1, "a|b"]])]
+    md = render.markdown(doc)
+    assert md == ("# Title <x>\n\nSee `a|b` and **bold**, *it* [f](f.csv).\n\n- one\n- two\n\n1. first\n\n"
+                  "![a figure](f.png)\n\n```\nx = 1 < 2\n```\n\n| h\\|1 | h2 |\n|---|---|\n| 1 | a\\|b |\n")
+    page = render.html(doc, {"f.png": b"PNG"})
+    assert "<title>Title &lt;x&gt;</title>" in page and "<h1>Title &lt;x&gt;</h1>" in page
+    assert ("<p>See <code>a|b</code> and <strong>bold</strong>, <em>it</em> <a href=\"f.csv\">f</a>.</p>"
+            in page)
+    assert "<ul><li>one</li><li>two</li></ul>" in page and "<ol><li>first</li></ol>" in page
+    assert '<img src="data:image/png;base64,UE5H" alt="a figure">' in page
+    assert "<pre><code>x = 1 &lt; 2</code></pre>" in page
+    assert "<th>h|1</th>" in page and "<td>a|b</td>" in page

@@ -19,9 +19,7 @@ The API
 (``analysis``, ``coefficients``, ``convergence``, ``galerkin``, ``grid``, ``limits``, ``paper``,
 ``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
 ``ds.sweep`` is the function; its module is ``drillstring.sweeps`` (``import drillstring.sweeps``).
-``ds.table2`` is the function and shares its name with its module: reach the module with
-``importlib.import_module("drillstring.table2")`` (``import drillstring.table2 as m`` binds the
-package attribute, the function).
+``ds.table2`` is the function; its module is ``drillstring.paper.table2``.
 """
 
 from __future__ import annotations
@@ -45,11 +43,11 @@ from .coefficients import PDECoefficients
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .grid import linspace, logspace
+from .paper.table2 import Table2Row, table2
 from .parameters import PRESETS, Parameters, load, preset
 from .pde import PdeSolution, solve_pde
 from .simulate import METHODS, Method, Simulation, SolverStats, simulate
 from .sweeps import SweepTrajectories
-from .table2 import Table2Row, table2
 
 if TYPE_CHECKING:  # pragma: no cover
     # The return type of sweep() follows ``trajectories`` (the runtime function is sweeps.sweep;

@@ -247,3 +247,48 @@ def scale_integrals(
 ) -> ScaledSystem:
     """The modal system of one sweep run: the dimensionless integrals scaled by k1..k6 and l."""
     ...
+
+SPECTRAL_PAD: int
+"""Default zero-padding factor of :func:`spectral_peaks`."""
+PEAK_THRESHOLD: float
+"""Default relative threshold of :func:`spectral_peaks`."""
+
+def spectral_peaks(
+    x: NDArray[np.float64], dt: float, count: int, pad: int, threshold: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ``count`` strongest peaks of the Hann-windowed, ``pad``-times zero-padded spectrum of
+    the record ``x`` sampled every ``dt`` s, strongest first: ``(frequencies in Hz, sine
+    amplitudes)``. Empty for fewer than 4 samples, a non-finite record or ``dt``, or a spectrum
+    without a peak (the same peaks as a sweep's ``dominant_frequency_hz``, the first one).
+
+    Raises
+    ------
+    ValidationError
+        ``count`` or ``pad`` not an integer >= 1, or ``len(x) * pad`` too large.
+    """
+    ...
+
+def energy_drift(energy: NDArray[np.float64], dissipated: Optional[NDArray[np.float64]] = None) -> float:
+    """``max |H + D - H(0)| / |H(0)|`` of the energies of the samples and the energies the damping
+    took out up to each (None undamped); 0 when ``H(0) = 0`` or without samples, NaN when a term
+    is NaN (a sweep's ``energy_drift``).
+
+    Raises
+    ------
+    ValidationError
+        ``dissipated`` not of the length of ``energy``.
+    """
+    ...
+
+def modal_energies(
+    mass: NDArray[np.float64], stiffness: NDArray[np.float64], q: NDArray[np.float64], qdot: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """The quadratic energy ``(M_i qdot_i^2 + K_i q_i^2) / 2`` of each mode (rows) at each sample
+    (columns), shape (m, samples) like ``q`` and ``qdot`` (the terms of a sweep's modal shares).
+
+    Raises
+    ------
+    ValidationError
+        ``q`` and ``qdot`` not of equal shape (m, samples), ``stiffness`` not of length m.
+    """
+    ...

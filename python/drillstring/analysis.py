@@ -6,7 +6,9 @@ takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed).
 * :func:`spectral_peaks` / :func:`dominant_frequencies`: Hann-windowed real FFT (zero-padded),
   local maxima of the magnitude, each refined by a parabola through the logarithms of the three
   bins around it (Gaussian interpolation, exact for a Gaussian peak and accurate to well below
-  1e-3 bin for the Hann main lobe once zero-padded).
+  1e-3 bin for the Hann main lobe once zero-padded). Computed by the core
+  (``drillstring_core::metrics``), the same function that gives a sweep's
+  ``dominant_frequency_hz``.
 * :func:`phase_shift`: accumulated phase of one oscillation relative to another, from their
   zero-crossing times (see the function for why zero crossings rather than the analytic signal).
 * :func:`amplitude_growth` / :func:`is_bounded`: finite, and the largest ``|x|`` over the last
@@ -27,6 +29,7 @@ from typing import TYPE_CHECKING, NamedTuple, Optional, Union
 
 import numpy as np
 
+from . import _core
 from .errors import ValidationError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -49,10 +52,10 @@ __all__ = [
 ]
 
 #: Default zero-padding factor of the FFT (the bin spacing is ``1 / (pad * duration)``).
-DEFAULT_PAD = 8
+DEFAULT_PAD: int = _core.SPECTRAL_PAD
 
-#: Hann main-lobe half width in bins of the unpadded record: peaks closer than this are merged.
-_HANN_HALF_WIDTH = 2
+#: Default relative threshold of :func:`spectral_peaks`.
+DEFAULT_THRESHOLD: float = _core.PEAK_THRESHOLD
 
 
 class SpectralPeak(NamedTuple):
@@ -82,9 +85,11 @@ def _record(t: ArrayLike, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np
     return ta, xa, dt
 
 
-def _hann_leakage(distance: float) -> float:
-    """Envelope of the Hann window's side lobes relative to its peak, ``distance`` in bins."""
-    return 1.0 / (math.pi * distance * abs(distance * distance - 1.0))
+def _peaks(
+    t: ArrayLike, x: ArrayLike, count: int, pad: int, threshold: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    _, xa, dt = _record(t, x)
+    return _core.spectral_peaks(xa, dt, count, pad, threshold)
 
 
 def spectral_peaks(
@@ -93,7 +98,7 @@ def spectral_peaks(
     count: int = 3,
     *,
     pad: int = DEFAULT_PAD,
-    threshold: float = 1e-3,
+    threshold: float = DEFAULT_THRESHOLD,
 ) -> list[SpectralPeak]:
     """The ``count`` strongest peaks of the Hann-windowed spectrum of ``x(t)``, strongest first.
 
@@ -117,54 +122,12 @@ def spectral_peaks(
         peaks; empty for a constant signal. Peaks closer than two unpadded bins
         (``2 / duration``) to a stronger one are not resolved from it and are dropped.
     """
-    _, xa, dt = _record(t, x)
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
-        raise ValidationError("count", count, "an integer >= 1")
-    if isinstance(pad, bool) or not isinstance(pad, (int, np.integer)) or pad < 1:
-        raise ValidationError("pad", pad, "an integer >= 1")
-    n = xa.size
-    window = np.hanning(n)
-    # remove the window-weighted mean: the DC bin is then exactly zero
-    signal = (xa - np.dot(window, xa) / window.sum()) * window
-    nfft = 1 << int(math.ceil(math.log2(n * pad)))
-    magnitude = np.abs(np.fft.rfft(signal, nfft))
-    top = float(magnitude.max()) if magnitude.size else 0.0
-    if top <= 0.0:
-        return []
-    # local maxima over the interior bins, strongest first
-    inner = magnitude[1:-1]
-    is_peak = (inner > magnitude[:-2]) & (inner >= magnitude[2:]) & (inner >= threshold * top)
-    candidates = np.nonzero(is_peak)[0] + 1
-    candidates = candidates[np.argsort(magnitude[candidates])[::-1]]
-    bin_hz = 1.0 / (nfft * dt)
-    gain = window.sum() / 2.0  # |X| of a unit sine at its bin
-    chosen: list[int] = []
-    peaks: list[SpectralPeak] = []
-    for k in candidates.tolist():
-        distances = [abs(k - j) / (nfft / n) for j in chosen]  # in unpadded bins
-        if any(d < _HANN_HALF_WIDTH for d in distances):
-            continue
-        # a side lobe of the stronger peaks or of their images at negative frequency: below
-        # twice their summed Hann leakage envelope
-        leakage = sum(
-            magnitude[j] * (_hann_leakage(d) + _hann_leakage((k + j) / (nfft / n)))
-            for j, d in zip(chosen, distances)
-        )
-        if magnitude[k] <= 2.0 * leakage:
-            continue
-        chosen.append(k)
-        a, b, c = (math.log(max(v, 1e-300)) for v in magnitude[k - 1 : k + 2])
-        denom = a - 2.0 * b + c
-        delta = 0.5 * (a - c) / denom if denom < 0 else 0.0
-        log_peak = b - 0.25 * (a - c) * delta
-        peaks.append(SpectralPeak((k + delta) * bin_hz, math.exp(log_peak) / gain))
-        if len(peaks) == count:
-            break
-    return peaks
+    frequencies, amplitudes = _peaks(t, x, count, pad, threshold)
+    return [SpectralPeak(f, a) for f, a in zip(frequencies.tolist(), amplitudes.tolist())]
 
 
 def dominant_frequencies(
-    t: ArrayLike, x: ArrayLike, count: int = 3, *, pad: int = DEFAULT_PAD, threshold: float = 1e-3
+    t: ArrayLike, x: ArrayLike, count: int = 3, *, pad: int = DEFAULT_PAD, threshold: float = DEFAULT_THRESHOLD
 ) -> NDArray[np.float64]:
     """Frequencies (Hz) of the ``count`` strongest spectral peaks of ``x(t)``, strongest first.
 
@@ -177,8 +140,7 @@ def dominant_frequencies(
     >>> round(float(dominant_frequencies(t, np.sin(2 * np.pi * 31.3 * t), 1)[0]), 3)
     31.3
     """
-    peaks = spectral_peaks(t, x, count, pad=pad, threshold=threshold)
-    return np.array([p.frequency for p in peaks], dtype=float)
+    return _peaks(t, x, count, pad, threshold)[0]
 
 
 def crossing_phase(t: ArrayLike, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -29,9 +29,9 @@ from ._output import STDOUT, OutputError, check_destination, command_inputs, is_
 from ._progress import on_terminal
 from .errors import DrillstringError, DrillstringWarning, ValidationError
 from .limits import as_float
+from .paper.table2 import format_table2, table2, table2_json
 from .parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
 from .simulate import METHODS, PDE_METHODS, simulate
-from .table2 import format_table2, table2, table2_json
 
 __all__ = ["main"]
 

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
+from . import _core
 from ._output import atomic_write, write_to
 from .errors import ValidationError
 
@@ -129,13 +130,9 @@ class TrajectoryResult:
         """``max |H(t) - H(0)| / |H(0)|`` over the samples (0 when H(0) = 0).
 
         With damping, the error of the energy balance: ``max |H(t) + D(t) - H(0)| / |H(0)|``
-        with ``D`` = :attr:`dissipated`; it closes to the order of the solve's tolerance."""
-        h = self.energy
-        if self.dissipated is not None:
-            h = h + self.dissipated
-        if h.size == 0 or h[0] == 0:
-            return 0.0
-        return float(np.max(np.abs(h - h[0])) / abs(h[0]))
+        with ``D`` = :attr:`dissipated`; it closes to the order of the solve's tolerance.
+        Computed by the core, as a sweep's ``energy_drift``."""
+        return _core.energy_drift(self.energy, self.dissipated)
 
     def table(self, z: float) -> tuple[list[str], NDArray[np.float64]]:
         """Columns ``t, theta, theta_dot`` at section ``z``, then the state rows that have column

@@ -10,7 +10,7 @@ use std::hint::black_box;
 use criterion::{criterion_group, criterion_main, Criterion};
 use drillstring_core::integrators::solve_second_order;
 use drillstring_core::integrators::{Method, SolveOptions};
-use drillstring_core::sweep::metrics::{self, FrequencyEstimator};
+use drillstring_core::metrics::{self, FrequencyEstimator};
 use drillstring_core::sweep::{batch_solve, GalerkinIntegrals, RunSpec, SweepOptions};
 use drillstring_core::Output;
 

@@ -25,6 +25,7 @@
 pub mod error;
 pub mod integrators;
 pub mod interrupt;
+pub mod metrics;
 pub mod modal;
 pub mod model;
 pub mod options;
@@ -33,6 +34,7 @@ pub mod simd;
 pub mod solution;
 pub mod sweep;
 pub mod system;
+pub mod terms;
 
 pub use error::{Error, Num, Result};
 pub use interrupt::{CancelFlag, Interrupt};

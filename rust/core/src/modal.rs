@@ -20,7 +20,8 @@
 
 use crate::error::Num;
 use crate::error::{Error, Result};
-use crate::system::{check_damping_rate, SecondOrderSystem};
+use crate::system::SecondOrderSystem;
+use crate::terms::ViscousDamping;
 
 /// One term `coef * q[a] q[b] q[c] q[d]` of the quartic potential.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,7 +51,7 @@ pub struct ModalSystem {
     terms: Vec<QuarticTerm>,
     grad: Vec<CubicMonomial>,
     grad_start: Vec<usize>,
-    damping_rate: f64,
+    damping: ViscousDamping,
 }
 
 /// The monomials of `grad V` grouped by component: `d/dq_j` of each term, merged.
@@ -132,20 +133,20 @@ impl ModalSystem {
         }
         let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
         let (grad, grad_start) = gradient_rows(n, &terms);
-        Ok(ModalSystem { inv_mass, mass, stiffness, terms, grad, grad_start, damping_rate: 0.0 })
+        Ok(ModalSystem { inv_mass, mass, stiffness, terms, grad, grad_start, damping: ViscousDamping::default() })
     }
 
     /// The same system with the viscous damping rate `c` (1/s, finite, `>= 0`; field
     /// `"damping_rate"`): the damping force `-c M q'`, so every linear mode decays as
     /// `exp(-c t / 2)`. `c = 0` is the undamped system, solved exactly as without this call.
     pub fn with_damping(mut self, c: f64) -> Result<Self> {
-        self.damping_rate = check_damping_rate(c)?;
+        self.damping = ViscousDamping::new(c)?;
         Ok(self)
     }
 
     /// The viscous damping rate `c`, 1/s.
     pub fn damping_rate(&self) -> f64 {
-        self.damping_rate
+        self.damping.rate()
     }
 
     /// Number of modal coordinates.
@@ -212,24 +213,19 @@ impl SecondOrderSystem for ModalSystem {
     }
 
     fn velocity_dependent(&self) -> bool {
-        self.damping_rate != 0.0
+        self.damping.is_active()
     }
 
     /// `-M^-1 (K q + grad V(q)) - c q'`.
     #[inline]
     fn acceleration_full(&self, _t: f64, q: &[f64], v: &[f64], acc: &mut [f64]) {
         self.acceleration(q, acc);
-        if self.damping_rate != 0.0 {
-            let c = self.damping_rate;
-            for (a, &vi) in acc.iter_mut().zip(v) {
-                *a -= c * vi;
-            }
-        }
+        self.damping.add_acceleration(v, acc);
     }
 
     /// `c q'^T M q'`.
     fn dissipated_power(&self, _q: &[f64], v: &[f64]) -> f64 {
-        self.damping_rate * self.mass.iter().zip(v).map(|(m, vi)| m * vi * vi).sum::<f64>()
+        self.damping.power(self.mass.iter().copied(), v)
     }
 }
 

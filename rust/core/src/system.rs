@@ -13,20 +13,6 @@
 //! first-order form of `a(t, q, v)`, with the energy they dissipate integrated alongside
 //! ([`Dissipating`]).
 
-use crate::error::{Error, Num, Result};
-
-/// Checks a viscous damping rate `c` (1/s): finite and `>= 0` (field `"damping_rate"`).
-///
-/// The damping force per unit length is `-rho I_p c th_t` (`-k1 c th_t`), so every linear mode
-/// decays as `exp(-c t / 2)`; `c = 0` is the undamped model.
-pub fn check_damping_rate(c: f64) -> Result<f64> {
-    if c.is_finite() && c >= 0.0 {
-        Ok(c)
-    } else {
-        Err(Error::invalid("damping_rate", Num(c), "a finite number >= 0 (1/s)"))
-    }
-}
-
 /// A first-order system of ordinary differential equations `y' = f(t, y)`.
 ///
 /// `rhs` must not allocate: it is called in the integrators' inner loop.

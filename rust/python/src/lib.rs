@@ -10,6 +10,7 @@
 use pyo3::prelude::*;
 
 mod convert;
+mod metrics;
 mod modal;
 mod model;
 mod pde;
@@ -36,6 +37,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::batch_plan, m)?)?;
     m.add("MAX_THREADS", drillstring_core::sweep::MAX_THREADS)?;
     m.add_function(wrap_pyfunction!(sweep::scale_integrals, m)?)?;
+    m.add_function(wrap_pyfunction!(metrics::spectral_peaks, m)?)?;
+    m.add_function(wrap_pyfunction!(metrics::energy_drift, m)?)?;
+    m.add_function(wrap_pyfunction!(metrics::modal_energies, m)?)?;
+    m.add("SPECTRAL_PAD", drillstring_core::metrics::PAD)?;
+    m.add("PEAK_THRESHOLD", drillstring_core::metrics::PEAK_THRESHOLD)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

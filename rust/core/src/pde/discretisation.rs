@@ -4,7 +4,8 @@
 use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::simd::{dispatch_len, Kernel, MulAdd};
-use crate::system::{check_damping_rate, SecondOrderSystem};
+use crate::system::SecondOrderSystem;
+use crate::terms::ViscousDamping;
 
 /// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
 /// this length; far beyond any grid an explicit method can step through).
@@ -61,7 +62,7 @@ pub struct PdeSystem {
     /// The spacing `h = l / (N - 1)`.
     h: f64,
     /// Viscous damping rate `c`, 1/s (force `-k1 c th_t` per unit length).
-    damping_rate: f64,
+    damping: ViscousDamping,
 }
 
 impl PdeSystem {
@@ -86,7 +87,7 @@ impl PdeSystem {
                 format!("a grid spacing h = l / {} with 1 / (h k1) finite", nodes - 1),
             ));
         }
-        Ok(PdeSystem { k, length, nodes, h, damping_rate: 0.0 })
+        Ok(PdeSystem { k, length, nodes, h, damping: ViscousDamping::default() })
     }
 
     /// The same system with viscous damping: the force `-k1 c th_t` per unit length, lumped
@@ -94,13 +95,13 @@ impl PdeSystem {
     /// dissipated power is `c sum_j w_j k1 v_j^2`. `c` (1/s) finite and `>= 0` (field
     /// `"damping_rate"`); `c = 0` is the undamped system, solved exactly as without this call.
     pub fn with_damping(mut self, c: f64) -> Result<Self> {
-        self.damping_rate = check_damping_rate(c)?;
+        self.damping = ViscousDamping::new(c)?;
         Ok(self)
     }
 
     /// The viscous damping rate `c`, 1/s.
     pub fn damping_rate(&self) -> f64 {
-        self.damping_rate
+        self.damping.rate()
     }
 
     pub fn coefficients(&self) -> PdeCoefficients {
@@ -344,24 +345,19 @@ impl SecondOrderSystem for PdeSystem {
     }
 
     fn velocity_dependent(&self) -> bool {
-        self.damping_rate != 0.0
+        self.damping.is_active()
     }
 
     /// `-(dV_h/dth_j) / (w_j k1) - c v_j`.
     #[inline]
     fn acceleration_full(&self, _t: f64, q: &[f64], v: &[f64], acc: &mut [f64]) {
         self.acceleration(q, acc);
-        if self.damping_rate != 0.0 {
-            let c = self.damping_rate;
-            for (a, &vj) in acc[..self.nodes].iter_mut().zip(v) {
-                *a -= c * vj;
-            }
-        }
+        self.damping.add_acceleration(&v[..self.nodes], &mut acc[..self.nodes]);
     }
 
     /// `c k1 sum_j w_j v_j^2`.
     fn dissipated_power(&self, _q: &[f64], v: &[f64]) -> f64 {
-        let sum: f64 = v[..self.nodes].iter().enumerate().map(|(j, &vj)| self.weight(j) * vj * vj).sum();
-        self.damping_rate * self.k.k1 * sum
+        let masses = (0..self.nodes).map(|j| self.k.k1 * self.weight(j));
+        self.damping.power(masses, &v[..self.nodes])
     }
 }

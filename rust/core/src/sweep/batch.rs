@@ -7,10 +7,10 @@ use std::time::Duration;
 use rayon::prelude::*;
 
 use super::integrals::GalerkinIntegrals;
-use super::metrics::{self, FftBuffers, FrequencyEstimator};
 use crate::error::{Error, Num, Result};
 use crate::integrators::{self, SolveOptions};
 use crate::interrupt::{CancelFlag, Interrupt, Never};
+use crate::metrics::{self, FftBuffers, FrequencyEstimator};
 use crate::options::{validate_span, Output};
 use crate::solution::Status;
 

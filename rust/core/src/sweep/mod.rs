@@ -4,12 +4,11 @@
 //!   once per sweep and scaled to each run's [`crate::modal::ModalSystem`] (a few
 //!   multiplications per term);
 //! * [`batch_solve`]: solves a slice of [`RunSpec`]s on a rayon pool, one [`RunRecord`]
-//!   per run in input order (status, message, metrics of [`metrics`], work counters);
+//!   per run in input order (status, message, metrics of [`crate::metrics`], work counters);
 //!   an invalid spec or a failed solve is a record, never an error of the batch.
 
 pub mod batch;
 pub mod integrals;
-pub mod metrics;
 
 pub use batch::{
     batch_solve, batch_solve_with, resolve_threads, RunRecord, RunSpec, RunStatus, SweepOptions, Trajectory,

@@ -19,9 +19,9 @@ from typing import Any, Optional
 
 import numpy as np
 
-from ._output import write_text
-from .parameters import Parameters, preset
-from .simulate import Method, simulate
+from .._output import write_text
+from ..parameters import Parameters, preset
+from ..simulate import Method, simulate
 
 __all__ = ["Table2Row", "PAPER_TABLE2", "table2", "format_table2", "write_table2_csv", "table2_json"]
 
