@@ -5,6 +5,13 @@ scipy gets the fastest numpy right-hand side we could write for it (precomputed 
 M^-1 K, the quartic terms as index arrays). Both solutions are compared; times are the best of
 several repeats; the ratio is scipy time / drillstring time.
 
+Each side also gets its floor: nfev x the measured cost of one right-hand-side evaluation, and
+the ratio total / floor (how much of the solve is not spent evaluating the right-hand side).
+scipy's evaluation is its numpy rhs called from Python (best per-call time in a loop).
+drillstring's is timed inside the Rust solver: a fixed-step RK4 solve of the
+same modal system minus the same solve of a same-size system without quartic terms, per
+evaluation (``_evalcost.py``): a lower bound of the evaluation cost.
+
     python benchmarks/compare_scipy.py [--repeat 5]
 """
 
@@ -16,9 +23,11 @@ import platform
 import time
 
 import numpy as np
+from _evalcost import evaluation_cost, per_call_time
 from scipy.integrate import solve_ivp
 
 import drillstring as ds
+from drillstring import _core
 
 
 def best_of(repeat: int, fn):
@@ -65,6 +74,14 @@ def main() -> None:
     t_ds, res = best_of(args.repeat, lambda: ds.simulate(params, modes=3, t_eval=t_eval, rtol=tol, atol=tol))
     diff = np.abs(res.q - ref.y[:m]).max()
     scale = np.abs(ref.y[:m]).max()
+    # cost of one evaluation at a state from the middle of the solution
+    y_mid = ref.y[:, ref.y.shape[1] // 2].copy()
+    cost_sp = per_call_time(lambda: rhs(0.5, y_mid))
+    system = _core.ModalSystem(
+        coeff.mass, coeff.stiffness, np.ascontiguousarray(idx, dtype=np.int64), coeff.quartic_coef
+    )
+    cost_ds, timed = evaluation_cost(system, q0, v0, 1e-4)
+    floor_sp, floor_ds = ref.nfev * cost_sp, res.stats.nfev * cost_ds
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"numpy {np.__version__}, python {platform.python_version()}, core kernels {ds.simd_path()}")
     print("case: 3 modes, Table 1, C = (0.1, 0.05, 0.02), 0 <= t <= 1, DOP853, rtol = atol = 1e-12")
@@ -73,6 +90,14 @@ def main() -> None:
           f"{res.stats.naccept} steps)")
     print(f"max |q_drillstring - q_scipy| = {diff:.3e} rad ({diff / scale:.2e} of max |q|)")
     print(f"speed-up (scipy / drillstring): {t_scipy / t_ds:.0f}x")
+    print("floor = nfev x cost of one rhs evaluation (measured in this run):")
+    print(f"  scipy       : {cost_sp * 1e6:8.3f} us/eval -> floor {floor_sp * 1e3:9.3f} ms, "
+          f"total {t_scipy * 1e3:9.3f} ms, total/floor {t_scipy / floor_sp:5.2f}")
+    print(f"  drillstring : {cost_ds * 1e6:8.3f} us/eval -> floor {floor_ds * 1e3:9.3f} ms, "
+          f"total {t_ds * 1e3:9.3f} ms, total/floor "
+          + (f"{t_ds / floor_ds:5.2f}" if floor_ds > 0 else "n/a (cost below resolution)"))
+    print(f"  (drillstring's cost: RK4 solve of this system minus that of a {m}-coordinate system without "
+          f"quartic terms, {timed} evaluations each, best of 5)")
 
 
 if __name__ == "__main__":

@@ -4,7 +4,8 @@ Table 1 parameters, N = 240 nodes, C = (0.1, 0.05, 0.02) on modes 1-3, 0 <= t <=
 rtol = 1e-10 (atol = 1e-13), 101 output times. scipy gets a vectorised numpy right-hand side of
 exactly the energy-conserving scheme that drillstring integrates (cell fluxes, trapezoid node
 weights). Both solutions are compared; times are the best of the repeats; the ratio is
-scipy / drillstring, also per right-hand-side evaluation. The machine line names the code
+scipy / drillstring, also per right-hand-side evaluation; scipy's floor (nfev x the cost of one
+call of its rhs) is printed next to its total. The machine line names the code
 path of the core's kernels (``avx2+fma`` or ``baseline``; ``DRILLSTRING_SIMD=baseline`` pins the
 latter). Peak resident memory of a drillstring solve for N = 240 and N = 2400 is
 measured in a fresh subprocess each (ru_maxrss of the solve minus that of the set-up).
@@ -22,6 +23,7 @@ import sys
 import time
 
 import numpy as np
+from _evalcost import per_call_time
 
 import drillstring as ds
 from drillstring.coefficients import PDECoefficients
@@ -116,6 +118,13 @@ def main() -> None:
     per_sp, per_ds = t_sp / ref.nfev, t_ds / sol.stats.nfev
     print(f"per rhs evaluation (stages included): scipy {per_sp * 1e6:.1f} us, drillstring {per_ds * 1e6:.2f} us "
           f"({per_sp / per_ds:.1f}x)")
+    # scipy's floor: nfev x its numpy rhs called from Python (best per-call time in a loop).
+    # drillstring's evaluation is not timed here: from Python its ~0.5 us call overhead is as large
+    # as the evaluation; `cargo bench -p drillstring-core --bench pde` times it in Rust alone.
+    y_mid = ref.y[:, ref.y.shape[1] // 2].copy()
+    cost_sp = per_call_time(lambda: rhs(0.5, y_mid))
+    print(f"scipy floor = nfev x {cost_sp * 1e6:.1f} us per rhs evaluation = {ref.nfev * cost_sp:.3f} s "
+          f"(total/floor {t_sp / (ref.nfev * cost_sp):.2f})")
     if not args.no_memory:
         for n in (240, 2400):
             extra, total, steps = peak_memory(n)

@@ -88,3 +88,38 @@ def max_modal_shares(mass: NDArray[np.float64], stiffness: NDArray[np.float64], 
     if not keep.any():
         return np.full(mass.size, math.nan)
     return np.max(e[:, keep] / total[keep], axis=1)
+
+
+def modal_potential(quartic_index: NDArray[np.int64], quartic_coef: NDArray[np.float64],
+                    q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Quartic potential ``V(q) = sum_t C_t q_a q_b q_c q_d``: ``q`` (m,) -> (), (m, S) -> (S,)."""
+    factors = np.asarray(q, dtype=float)[quartic_index]  # (T, 4) or (T, 4, S)
+    return np.asarray(np.tensordot(quartic_coef, factors.prod(axis=1), axes=(0, 0)))
+
+
+def modal_energy(mass: NDArray[np.float64], stiffness: NDArray[np.float64],
+                 quartic_index: NDArray[np.int64], quartic_coef: NDArray[np.float64],
+                 q: NDArray[np.float64], qdot: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``H = 1/2 q'^T M q' + 1/2 q^T K q + V(q)``: ``q``, ``qdot`` (m,) -> (), (m, S) -> (S,)."""
+    qa, va = np.asarray(q, dtype=float), np.asarray(qdot, dtype=float)
+    shape = (-1,) + (1,) * (qa.ndim - 1)
+    quadratic = 0.5 * np.sum(mass.reshape(shape) * va**2 + stiffness.reshape(shape) * qa**2, axis=0)
+    return np.asarray(quadratic + modal_potential(quartic_index, quartic_coef, qa))
+
+
+def galerkin_scaling(k: tuple[float, float, float, float, float, float], length: float,
+                     indices: NDArray[np.int64], cos4: NDArray[np.float64], mixed: NDArray[np.float64],
+                     sin4: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """``(mass, stiffness, quartic_coef)`` of the modal system: the dimensionless integrals
+    scaled by ``k1..k6`` and ``l`` (``drillstring.galerkin`` module docstring)."""
+    k1, k2, k3, k4, k5, k6 = k
+    i = indices.astype(float)
+    norm = np.where(indices == 0, length, length / 2.0)  # int_0^l phi_i^2 dz
+    mass = k1 * norm
+    stiffness = k2 * (i * math.pi / length) ** 2 * norm - k6 * norm
+    coef = (
+        (k3 * length / 4.0) * cos4
+        + (k4 * math.pi**2 / (2.0 * length)) * mixed
+        + (k5 * math.pi**4 / (4.0 * length**3)) * sin4
+    )
+    return mass, stiffness, coef

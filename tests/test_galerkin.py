@@ -5,10 +5,12 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+import pickle
 import time
 from typing import Any
 
 import numpy as np
+import oracles
 import pytest
 import sympy as sp
 
@@ -484,3 +486,85 @@ def test_model_without_quartic_terms_is_linear() -> None:
     assert linear.potential(q) == 0.0
     assert linear.energy(q, q) == pytest.approx(0.5 * np.sum((model.mass + model.stiffness) * q**2))
     assert linear.energy(q, q) != model.energy(q, q)
+
+
+# ------------------------------------------------------------------------ the core's numbers
+
+
+@pytest.mark.parametrize(("modes", "rigid"), [(1, False), (3, False), (4, True), (9, False)])
+def test_energy_and_potential_match_numpy_oracle(modes: int, rigid: bool) -> None:
+    rng = np.random.default_rng(RNG_SEED + modes)
+    model = project(_random_coefficients(rng), modes, rigid)
+    m = model.n_modes
+    q, v = rng.normal(size=(m, 11)), rng.normal(size=(m, 11))
+    args = (model.quartic_index, model.quartic_coef)
+    scale = oracles.modal_potential(model.quartic_index, np.abs(model.quartic_coef), np.abs(q))
+    assert np.all(np.abs(model.potential(q) - oracles.modal_potential(*args, q)) <= 1e-14 * scale)
+    h = oracles.modal_energy(model.mass, model.stiffness, *args, q, v)
+    quadratic = oracles.modal_energies(np.abs(model.mass), np.abs(model.stiffness), q, v).sum(axis=0)
+    assert np.all(np.abs(model.energy(q, v) - h) <= 1e-14 * (quadratic + scale))
+    for s in (0, 10):  # one state -> float
+        assert isinstance(model.potential(q[:, s]), float)
+        assert model.energy(q[:, s], v[:, s]) == model.energy(q, v)[s]
+        assert model.potential(q[:, s]) == model.potential(q)[s]
+    # non-contiguous views give the same numbers
+    assert np.array_equal(model.energy(q[:, ::2], v[:, ::2]), model.energy(q, v)[::2])
+    # the model stays a plain value
+    assert np.array_equal(pickle.loads(pickle.dumps(model)).energy(q, v), model.energy(q, v))
+
+
+def test_core_system_energy_equals_model_energy() -> None:
+    model = project(preset("steel"), 3)
+    rng = np.random.default_rng(RNG_SEED)
+    q, v = rng.normal(size=(3, 5)), rng.normal(size=(3, 5))
+    assert np.array_equal(model.core_system(0.5).energy(q, v), model.energy(q, v))
+    assert np.array_equal(model.core_system().potential(q), model.potential(q))
+    with pytest.raises(ValidationError) as info:
+        model.core_system().potential(np.zeros((2, 5)))
+    assert info.value.field == "q"
+
+
+@pytest.mark.parametrize("name", ["aluminum", "steel"])
+@pytest.mark.parametrize("model_name", ["paper", "consistent"])
+@pytest.mark.parametrize(("modes", "rigid"), [(1, False), (3, False), (6, True)])
+def test_projection_scaling_of_presets_is_the_numpy_one(name: str, model_name: str, modes: int, rigid: bool) -> None:
+    """The core's scaling of the integrals (the one a sweep uses) gives the numpy numbers,
+    bit for bit at the presets' lengths."""
+    params = preset(name).replace(model=model_name)
+    k = PDECoefficients.from_parameters(params)
+    g = dimensionless_integrals(modes, rigid)
+    expected = oracles.galerkin_scaling(k.as_tuple(), k.length, g.indices, g.cos4, g.mixed, g.sin4)
+    model = project(params, modes, rigid)
+    for got, want in zip((model.mass, model.stiffness, model.quartic_coef), expected):
+        assert np.array_equal(got, want)
+
+
+def test_projection_of_random_coefficients_matches_numpy_oracle() -> None:
+    """Equal to rounding: the core takes ``l^3`` as ``l * l * l``, numpy as ``pow(l, 3)``."""
+    rng = np.random.default_rng(RNG_SEED)
+    eps = np.finfo(float).eps
+    for _ in range(200):
+        k = _random_coefficients(rng)
+        k = dataclasses.replace(k, length=float(10 ** rng.uniform(-1.0, 4.0)))
+        modes, rigid = int(rng.integers(1, 9)), bool(rng.random() < 0.5)
+        g = dimensionless_integrals(modes, rigid)
+        mass, stiffness, coef = oracles.galerkin_scaling(k.as_tuple(), k.length, g.indices, g.cos4, g.mixed, g.sin4)
+        *_, scale = oracles.galerkin_scaling(
+            tuple(abs(x) for x in k.as_tuple()), k.length, g.indices, g.cos4, np.abs(g.mixed), np.abs(g.sin4)
+        )
+        model = project(k, modes, rigid)
+        assert np.array_equal(model.mass, mass) and np.array_equal(model.stiffness, stiffness)
+        assert np.all(np.abs(model.quartic_coef - coef) <= 8 * eps * scale)
+
+
+@pytest.mark.parametrize(
+    "change",
+    [{"k1": 1e308, "length": 1e10}, {"k2": 1e300, "length": 1e-10}, {"k3": 1e300, "length": 1e300},
+     {"k5": 1.0, "length": 1e-120}],
+)
+def test_projection_that_overflows_names_the_coefficients(change: dict[str, float]) -> None:
+    k = dataclasses.replace(PDECoefficients(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, length=1.0), **change)
+    with pytest.raises(ValidationError) as info:
+        project(k, 2)
+    assert info.value.field == "coefficients"
+    assert "Galerkin projection is finite" in str(info.value)

@@ -38,7 +38,10 @@ class ModalSystem:
     @property
     def damping_rate(self) -> float: ...
     def acceleration(self, q: NDArray[np.float64]) -> NDArray[np.float64]: ...
-    def energy(self, q: NDArray[np.float64], qdot: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    def energy(self, q: NDArray[np.float64], qdot: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``H = q'^T M q' / 2 + q^T K q / 2 + V(q)`` of each sample: ``q``, ``qdot`` (m, samples)."""
+    def potential(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The quartic potential ``V(q)`` of each sample: ``q`` of shape (m, samples)."""
 
 def solve_modal(
     system: ModalSystem,
@@ -245,7 +248,15 @@ def scale_integrals(
     mixed: NDArray[np.float64],
     sin4: NDArray[np.float64],
 ) -> ScaledSystem:
-    """The modal system of one sweep run: the dimensionless integrals scaled by k1..k6 and l."""
+    """The modal system of a Galerkin model (a sweep run, or :func:`drillstring.galerkin.project`):
+    the dimensionless integrals scaled by k1..k6 and l.
+
+    Raises
+    ------
+    ValidationError
+        Bad integrals, ``k`` not finite, ``k1 <= 0``, ``length <= 0``, or a mass, stiffness
+        or quartic coefficient of the result not finite.
+    """
     ...
 
 SPECTRAL_PAD: int

@@ -20,7 +20,8 @@ gives the Ritz equations of the modal energy::
 
 with ``int_0^l phi^2 = l/2`` (``i >= 1``) or ``l`` (``i = 0``), ``int_0^l phi'^2 = (i pi)^2/(2 l)``;
 ``M`` and ``K`` are diagonal. The modal energy ``1/2 q'^T M q' + 1/2 q^T K q + V(q)`` equals
-``H`` of the Galerkin field and is conserved by the reduced equations.
+``H`` of the Galerkin field and is conserved by the reduced equations. The core builds ``M``,
+``K`` and the ``C_t`` below from the integrals of this module, and evaluates ``H`` and ``V``.
 
 Quartic potential
 -----------------
@@ -61,6 +62,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import _core
 from .coefficients import PDECoefficients
 from .errors import ValidationError
 from .limits import as_float, as_int
@@ -332,6 +334,9 @@ class ModalCoefficients:
     ) -> ModalCoefficients:
         """Project eq. 18 with the given ``k1..k6`` and ``l`` onto ``modes`` cosine modes.
 
+        The dimensionless integrals (:func:`dimensionless_integrals`) are scaled to ``M``,
+        ``K`` and ``C_t`` in the core (``_core.scale_integrals``), as for every run of a sweep.
+
         Raises
         ------
         ValidationError
@@ -339,39 +344,30 @@ class ModalCoefficients:
             whose projection overflows (a mass, stiffness or quartic coefficient not finite).
         """
         integrals = dimensionless_integrals(modes, rigid_mode)
-        k1, k2, k3, k4, k5, k6 = coefficients.as_tuple()
-        length = coefficients.length
-        i = integrals.indices.astype(float)
         try:
-            with np.errstate(all="ignore"):
-                norm = np.where(integrals.indices == 0, length, length / 2.0)  # int_0^l phi_i^2 dz
-                mass = k1 * norm
-                stiffness = k2 * (i * math.pi / length) ** 2 * norm - k6 * norm
-                coef = (
-                    (k3 * length / 4.0) * integrals.cos4
-                    + (k4 * math.pi**2 / (2.0 * length)) * integrals.mixed
-                    + (k5 * math.pi**4 / (4.0 * length**3)) * integrals.sin4
-                )
-        except (OverflowError, ZeroDivisionError) as exc:
+            scaled = _core.scale_integrals(
+                np.array(coefficients.as_tuple(), dtype=float),
+                coefficients.length,
+                integrals.indices,
+                integrals.quartic_index,
+                integrals.cos4,
+                integrals.mixed,
+                integrals.sin4,
+            )
+        except ValidationError as exc:
             raise ValidationError(
-                "coefficients", coefficients, f"magnitudes whose Galerkin projection is finite ({exc})"
+                "coefficients",
+                coefficients,
+                "magnitudes whose Galerkin projection is finite with masses > 0"
+                f" ({exc.field} is {exc.value})",
             ) from exc
-        for name, values in (("mass", mass), ("stiffness", stiffness), ("quartic coefficient", coef)):
-            ok = np.isfinite(values) & ((values > 0) if name == "mass" else True)
-            if not np.all(ok):
-                bad = float(np.asarray(values)[~ok][0])
-                raise ValidationError(
-                    "coefficients",
-                    coefficients,
-                    f"magnitudes whose Galerkin projection is finite with masses > 0 (a {name} is {bad!r})",
-                )
         return cls(
             indices=integrals.indices,
-            length=length,
-            mass=mass,
-            stiffness=stiffness,
+            length=coefficients.length,
+            mass=scaled["mass"],
+            stiffness=scaled["stiffness"],
             quartic_index=integrals.quartic_index,
-            quartic_coef=coef,
+            quartic_coef=scaled["quartic_coef"],
         )
 
     @classmethod
@@ -427,12 +423,31 @@ class ModalCoefficients:
     def _factors(self, q: FloatArray) -> FloatArray:
         return q[self.quartic_index]  # (T, 4) or (T, 4, S)
 
+    def core_system(self, damping_rate: float = 0.0) -> _core.ModalSystem:
+        """This model as the core's modal system, with the viscous damping rate ``c`` (1/s).
+
+        Raises
+        ------
+        ValidationError
+            For a model the core refuses (a mass not finite and > 0, a stiffness or quartic
+            coefficient not finite) or a bad ``damping_rate``.
+        """
+        return _core.ModalSystem(
+            self.mass,
+            self.stiffness,
+            np.ascontiguousarray(self.quartic_index, dtype=np.int64),
+            self.quartic_coef,
+            damping_rate=damping_rate,
+        )
+
     def potential(self, q: ArrayLike) -> FloatOrArray:
-        """Quartic potential ``V(q)``; ``q`` of shape ``(m,)`` -> float, ``(m, S)`` -> ``(S,)``."""
+        """Quartic potential ``V(q)``; ``q`` of shape ``(m,)`` -> float, ``(m, S)`` -> ``(S,)``.
+
+        Evaluated by the core (:meth:`core_system`), as :meth:`energy` is.
+        """
         qa = _as_state("q", q, self.n_modes)
-        f = self._factors(qa)
-        value = np.tensordot(self.quartic_coef, f.prod(axis=1), axes=(0, 0))
-        return float(value) if qa.ndim == 1 else np.asarray(value)
+        value = self.core_system().potential(qa.reshape(self.n_modes, -1))
+        return float(value[0]) if qa.ndim == 1 else value
 
     def cubic_force(self, q: ArrayLike) -> FloatArray:
         """``grad V(q)``, the cubic generalised force; same shape as ``q``."""
@@ -488,12 +503,8 @@ class ModalCoefficients:
         va = _as_state("qdot", qdot, self.n_modes)
         if qa.shape != va.shape:
             raise ValidationError("qdot", f"array of shape {va.shape}", f"shape {qa.shape}")
-        shape = (-1,) + (1,) * (qa.ndim - 1)
-        mass = self.mass.reshape(shape)
-        stiffness = self.stiffness.reshape(shape)
-        quadratic = 0.5 * np.sum(mass * va**2 + stiffness * qa**2, axis=0)
-        total = quadratic + self.potential(qa)
-        return float(total) if qa.ndim == 1 else np.asarray(total)
+        total = self.core_system().energy(qa.reshape(self.n_modes, -1), va.reshape(self.n_modes, -1))
+        return float(total[0]) if qa.ndim == 1 else total
 
     def duffing(self) -> DuffingCoefficients:
         """``a1, a2, a3`` of eq. 19 for a one-mode model (divided by ``int phi_1^2 = l/2``).

@@ -317,13 +317,7 @@ def simulate(
         t_eval, samples, t_end_f, method, state_dim=2 * coefficients.n_modes, dt=dt_f, max_steps=steps,
         fastest=fastest_mode(coefficients),
     )
-    system = _core.ModalSystem(
-        coefficients.mass,
-        coefficients.stiffness,
-        np.ascontiguousarray(coefficients.quartic_index, dtype=np.int64),
-        coefficients.quartic_coef,
-        damping_rate=params.damping_rate,
-    )
+    system = coefficients.core_system(params.damping_rate)
     q0, v0 = coefficients.initial_state(params)
     with SolveProgress(progress, t_end_f, "simulate") as bar:
         raw = _core.solve_modal(

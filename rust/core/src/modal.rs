@@ -20,7 +20,7 @@
 
 use crate::error::Num;
 use crate::error::{Error, Result};
-use crate::system::SecondOrderSystem;
+use crate::system::{Energy, SecondOrderSystem};
 use crate::terms::ViscousDamping;
 
 /// One term `coef * q[a] q[b] q[c] q[d]` of the quartic potential.
@@ -196,6 +196,17 @@ impl ModalSystem {
         let quadratic: f64 =
             (0..self.modes()).map(|i| 0.5 * (self.mass[i] * v[i] * v[i] + self.stiffness[i] * q[i] * q[i])).sum();
         quadratic + self.quartic_potential(q)
+    }
+}
+
+impl Energy for ModalSystem {
+    fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        ModalSystem::energy(self, q, v)
+    }
+
+    /// The quartic potential [`ModalSystem::quartic_potential`].
+    fn potential(&self, q: &[f64]) -> f64 {
+        self.quartic_potential(q)
     }
 }
 

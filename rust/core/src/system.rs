@@ -12,6 +12,11 @@
 //! and central differences need; those that do (viscous damping) go through the
 //! first-order form of `a(t, q, v)`, with the energy they dissipate integrated alongside
 //! ([`Dissipating`]).
+//!
+//! A system with an energy of its state implements [`Energy`]; [`energy_history`] and
+//! [`potential_history`] evaluate it at every sample of a run.
+
+use crate::error::{Error, Result};
 
 /// A first-order system of ordinary differential equations `y' = f(t, y)`.
 ///
@@ -102,5 +107,118 @@ impl<S: OdeSystem + ?Sized> OdeSystem for &S {
     }
     fn rhs(&self, t: f64, y: &[f64], dydt: &mut [f64]) {
         (**self).rhs(t, y, dydt)
+    }
+}
+
+/// A [`SecondOrderSystem`] with an energy `H(q, v)` of its state and its potential part `V(q)`.
+pub trait Energy: SecondOrderSystem {
+    /// The energy `H(q, v)` of one state (`q`, `v` of length [`SecondOrderSystem::dof`]).
+    fn energy(&self, q: &[f64], v: &[f64]) -> f64;
+    /// The potential `V(q)` of one configuration: the part of [`Energy::energy`] that is
+    /// neither kinetic nor quadratic in `q` where the system says so (see its docs).
+    fn potential(&self, q: &[f64]) -> f64;
+}
+
+/// The samples of row-major `(dof, samples)` arrays: `samples`, or an error naming `q` unless
+/// every array holds `dof * samples` values.
+fn sample_count(dof: usize, arrays: &[&[f64]]) -> Result<usize> {
+    let len = arrays[0].len();
+    let ok = arrays.iter().all(|a| a.len() == len) && if dof == 0 { len == 0 } else { len % dof == 0 };
+    if !ok {
+        let lens: Vec<String> = arrays.iter().map(|a| a.len().to_string()).collect();
+        return Err(Error::invalid(
+            "q",
+            format!("{} values", lens.join(" and ")),
+            format!("arrays of equal shape ({dof}, samples)"),
+        ));
+    }
+    Ok(len.checked_div(dof).unwrap_or(0))
+}
+
+/// Calls `f` with each sample (column) of the row-major `(dof, samples)` arrays gathered into
+/// contiguous states.
+fn per_sample<const N: usize>(
+    dof: usize,
+    arrays: [&[f64]; N],
+    mut f: impl FnMut([&[f64]; N]) -> f64,
+) -> Result<Vec<f64>> {
+    let samples = sample_count(dof, &arrays)?;
+    let mut states = [(); N].map(|_| vec![0.0; dof]);
+    let mut out = Vec::with_capacity(samples);
+    for k in 0..samples {
+        for (state, array) in states.iter_mut().zip(&arrays) {
+            for (i, x) in state.iter_mut().enumerate() {
+                *x = array[i * samples + k];
+            }
+        }
+        let mut views: [&[f64]; N] = [&[]; N];
+        for (view, state) in views.iter_mut().zip(&states) {
+            *view = state;
+        }
+        out.push(f(views));
+    }
+    Ok(out)
+}
+
+/// [`Energy::energy`] of `sys` at every sample: `q` and `v` row-major `(dof, samples)` (one row
+/// per coordinate). An error naming `q` unless both hold `dof * samples` values.
+pub fn energy_history<S: Energy + ?Sized>(sys: &S, q: &[f64], v: &[f64]) -> Result<Vec<f64>> {
+    per_sample(sys.dof(), [q, v], |[q, v]| sys.energy(q, v))
+}
+
+/// [`Energy::potential`] of `sys` at every sample of the row-major `(dof, samples)` `q`.
+pub fn potential_history<S: Energy + ?Sized>(sys: &S, q: &[f64]) -> Result<Vec<f64>> {
+    per_sample(sys.dof(), [q], |[q]| sys.potential(q))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `q'' = -q` with `H = (v^2 + q^2) / 2 + q^4` per coordinate.
+    struct Toy(usize);
+
+    impl SecondOrderSystem for Toy {
+        fn dof(&self) -> usize {
+            self.0
+        }
+        fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
+            for (a, &x) in acc.iter_mut().zip(q) {
+                *a = -x;
+            }
+        }
+    }
+
+    impl Energy for Toy {
+        fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
+            q.iter().zip(v).map(|(&q, &v)| 0.5 * (v * v + q * q)).sum::<f64>() + self.potential(q)
+        }
+        fn potential(&self, q: &[f64]) -> f64 {
+            q.iter().map(|&q| q.powi(4)).sum()
+        }
+    }
+
+    #[test]
+    fn histories_gather_the_columns() {
+        // two coordinates, three samples, row-major
+        let q = [1.0, 0.0, 2.0, 0.0, 1.0, 1.0];
+        let v = [0.0, 2.0, 0.0, 1.0, 0.0, 1.0];
+        let sys = Toy(2);
+        let e = energy_history(&sys, &q, &v).unwrap();
+        for k in 0..3 {
+            assert_eq!(e[k], sys.energy(&[q[k], q[3 + k]], &[v[k], v[3 + k]]));
+        }
+        assert_eq!(e, vec![2.0, 3.5, 20.0]);
+        assert_eq!(potential_history(&sys, &q).unwrap(), vec![1.0, 1.0, 17.0]);
+        assert!(energy_history(&sys, &[], &[]).unwrap().is_empty());
+    }
+
+    #[test]
+    fn histories_reject_bad_shapes() {
+        let sys = Toy(2);
+        assert_eq!(energy_history(&sys, &[1.0; 3], &[1.0; 3]).unwrap_err().field(), "q");
+        assert_eq!(energy_history(&sys, &[1.0; 4], &[1.0; 2]).unwrap_err().field(), "q");
+        assert_eq!(potential_history(&sys, &[1.0]).unwrap_err().field(), "q");
+        assert_eq!(potential_history(&Toy(0), &[1.0]).unwrap_err().field(), "q");
     }
 }

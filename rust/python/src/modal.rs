@@ -99,17 +99,25 @@ impl ModalSystem {
                 ),
             ));
         }
-        let samples = q.ncols();
-        let mut qk = vec![0.0; m];
-        let mut vk = vec![0.0; m];
-        let mut out = Vec::with_capacity(samples);
-        for k in 0..samples {
-            for i in 0..m {
-                qk[i] = q[(i, k)];
-                vk[i] = v[(i, k)];
-            }
-            out.push(self.inner.energy(&qk, &vk));
+        let (q, v): (Vec<f64>, Vec<f64>) = (q.iter().copied().collect(), v.iter().copied().collect());
+        let out =
+            no_panic(|| core::system::energy_history(&self.inner, &q, &v))?.map_err(|e| validation_error(py, e))?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// The quartic potential V of each sample: `q` of shape (m, samples).
+    fn potential<'py>(&self, py: Python<'py>, q: PyReadonlyArray2<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let q = q.as_array();
+        let m = self.inner.modes();
+        if q.nrows() != m {
+            return Err(validation_error(
+                py,
+                core::Error::invalid("q", format!("shape {:?}", q.shape()), format!("shape ({m}, samples)")),
+            ));
         }
+        let q: Vec<f64> = q.iter().copied().collect();
+        let out =
+            no_panic(|| core::system::potential_history(&self.inner, &q))?.map_err(|e| validation_error(py, e))?;
         Ok(PyArray1::from_vec(py, out))
     }
 }

@@ -114,19 +114,9 @@ impl PdeSystem {
                 ),
             ));
         }
-        let out = no_panic(|| {
-            let mut qk = vec![0.0; n];
-            let mut vk = vec![0.0; n];
-            (0..q.ncols())
-                .map(|k| {
-                    for i in 0..n {
-                        qk[i] = q[(i, k)];
-                        vk[i] = v[(i, k)];
-                    }
-                    self.inner.energy(&qk, &vk)
-                })
-                .collect::<Vec<f64>>()
-        })?;
+        let (q, v): (Vec<f64>, Vec<f64>) = (q.iter().copied().collect(), v.iter().copied().collect());
+        let out =
+            no_panic(|| core::system::energy_history(&self.inner, &q, &v))?.map_err(|e| validation_error(py, e))?;
         Ok(PyArray1::from_vec(py, out))
     }
 

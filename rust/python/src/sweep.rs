@@ -46,9 +46,10 @@ fn integrals_from_arrays(
     .map_err(|e| validation_error(py, e))
 }
 
-/// The modal system of one run as the batch solve builds it: the integrals scaled by `k`
-/// (6,) = k1..k6 and `length`. Returns a dict of `mass`, `stiffness` (m,) and `quartic_coef`
-/// (T,) in the order of `quartic_index` (for checks against `drillstring.galerkin.project`).
+/// The modal system of a Galerkin model as the batch solve builds it for each run: the
+/// integrals scaled by `k` (6,) = k1..k6 and `length`. Returns a dict of `mass`, `stiffness`
+/// (m,) and `quartic_coef` (T,) in the order of `quartic_index` (`drillstring.galerkin.project`
+/// builds every single-solve model with it).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn scale_integrals<'py>(

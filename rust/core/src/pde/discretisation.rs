@@ -4,7 +4,7 @@
 use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::simd::{dispatch_len, Kernel, MulAdd};
-use crate::system::SecondOrderSystem;
+use crate::system::{Energy, SecondOrderSystem};
 use crate::terms::ViscousDamping;
 
 /// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
@@ -329,6 +329,17 @@ impl CellTerms {
         let g2 = g * g;
         let flux = g * (self.k2 + self.half_k4 * (a * a + b * b) + self.k5 * g2);
         (flux, self.h * self.half_k4 * g2)
+    }
+}
+
+impl Energy for PdeSystem {
+    fn energy(&self, q: &[f64], v: &[f64]) -> f64 {
+        PdeSystem::energy(self, q, v)
+    }
+
+    /// The discrete potential [`PdeSystem::potential`].
+    fn potential(&self, q: &[f64]) -> f64 {
+        PdeSystem::potential(self, q)
     }
 }
 

@@ -10,8 +10,10 @@
 //! ```
 //!
 //! with `cos4`, `mixed`, `sin4` exact dimensionless integrals of the `cos(i pi s)` basis,
-//! generated once per sweep (`drillstring.galerkin.dimensionless_integrals`). Scaling them
+//! generated once per basis (`drillstring.galerkin.dimensionless_integrals`). Scaling them
 //! is a few multiplications per term, so the per-run set-up of a sweep is negligible.
+//! [`GalerkinIntegrals::scale`] is the one place of this scaling: sweeps call it per run and
+//! single solves through `drillstring.galerkin.project` (`_core.scale_integrals`).
 
 use std::f64::consts::PI;
 
@@ -108,8 +110,8 @@ impl GalerkinIntegrals {
             .collect()
     }
 
-    /// The modal system for `k = (k1, ..., k6)` and length `l`, with exactly the formulas
-    /// of `drillstring.galerkin.ModalCoefficients.from_coefficients`.
+    /// The modal system for `k = (k1, ..., k6)` and length `l` (the formulas of the module
+    /// docs), for sweeps and single solves alike.
     ///
     /// Errors for non-finite `k`, `k1 <= 0` or `l <= 0` (and whatever [`ModalSystem::new`]
     /// refuses).
@@ -160,7 +162,7 @@ mod tests {
     }
 
     #[test]
-    fn scales_like_the_python_formulas() {
+    fn scales_by_the_documented_formulas() {
         let g = two_modes();
         let k = [2.0, 3.0, 5.0, 7.0, 11.0, 13.0];
         let l = 1.7;
