@@ -116,27 +116,6 @@ _NUMERIC_FIELDS = tuple(
 )
 
 
-def _require_pandas() -> Any:
-    try:
-        import pandas as pd
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise ImportError(
-            "drillstring.sweeps needs pandas, a dependency of drillstring: "
-            "reinstall it with pip install . in the drillstring checkout"
-        ) from exc
-    return pd
-
-
-def _require_pyarrow() -> None:
-    try:
-        import pyarrow  # noqa: F401
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise ImportError(
-            "writing sweep results (out_dir) needs pyarrow, a dependency of drillstring: "
-            "reinstall it with pip install . in the drillstring checkout"
-        ) from exc
-
-
 def _require_distributed() -> Any:
     try:
         import distributed
@@ -228,7 +207,7 @@ def parameter_columns(task: ChunkTask) -> pd.DataFrame:
     """The requested parameters of a chunk's runs as table columns (``c1``, ``c2``, ... for
     ``initial_velocities``) and ``z``, indexed by run number: the part of a chunk's rows that
     its plan fixes (a resumed sweep checks stored chunks against it)."""
-    pd = _require_pandas()
+    import pandas as pd
     n = len(task.runs)
     data: dict[str, Any] = {}
     for name in Parameters.field_names():
@@ -271,7 +250,7 @@ def _solve_chunk_raw(task: ChunkTask) -> tuple[pd.DataFrame, Optional[dict[str, 
     """Solves a chunk: its rows, its trajectories (when kept) and the exception that
     interrupted it (Ctrl-C; the rows of the runs that did not finish then have status
     ``"interrupted"``), or None."""
-    pd = _require_pandas()
+    import pandas as pd
     solver = task.solver
     integrals = dimensionless_integrals(solver["modes"], solver["rigid_mode"])
     indices = integrals.indices.tolist()
@@ -530,10 +509,8 @@ def sweep(
         For bad shared input (solver options, grid keys, a foreign ``out_dir``); a bad
         parameter set is a row, not an error.
     ImportError
-        Without pandas (a dependency), or dask for ``client`` (``pip install '.[dask]'`` in the
-        drillstring checkout).
+        Without dask for ``client`` (``pip install '.[dask]'`` in the drillstring checkout).
     """
-    _require_pandas()
     base = _base(base_params)
     axes, fulls = _plan(base, grid, runs)
     method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(method, t_end, rtol, atol, dt, max_steps)
@@ -578,7 +555,6 @@ def sweep(
     if out_dir is not None:
         from .sweep_store import SweepStore
 
-        _require_pyarrow()
         identity = {
             "format": _FORMAT,
             "drillstring_version": _core.__version__,
@@ -653,7 +629,7 @@ class _Job:
         the interrupted ones."""
         if self.rows is None:
             return solved
-        pd = _require_pandas()
+        import pandas as pd
         solved = solved.set_axis(self.frame.index[self.rows])
         return pd.concat([self.frame.drop(index=solved.index), solved]).sort_index()
 
@@ -713,7 +689,7 @@ def _run_tasks(
     saved with its finished runs (the others have status ``"interrupted"`` and are solved by
     the next resume) and the interrupt is raised.
     """
-    pd = _require_pandas()
+    import pandas as pd
     frames, jobs, summary = _resume(tasks, names, store, fingerprint)
     raws: list[Any] = [None] * len(tasks)
     bar = _progress_bar(total, on_terminal() if progress is None else bool(progress))

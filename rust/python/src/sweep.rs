@@ -79,32 +79,6 @@ fn threads_allowed() -> String {
     format!("an integer in 1..={} (or None for all cores)", sweep::MAX_THREADS)
 }
 
-/// The shared options of a batch, as `batch_solve` takes them.
-#[allow(clippy::too_many_arguments)]
-fn sweep_options(
-    py: Python<'_>,
-    t_end: f64,
-    samples: usize,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    dt: Option<f64>,
-    max_steps: Option<u64>,
-    first_step: Option<f64>,
-    max_step: f64,
-    keep_trajectories: bool,
-    memory_budget: Option<u64>,
-) -> PyResult<SweepOptions> {
-    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
-    Ok(SweepOptions {
-        solve: SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step },
-        t_end,
-        samples,
-        keep_trajectories,
-        memory_budget,
-    })
-}
-
 /// Checks a planned batch before any work: `threads` (1..=`MAX_THREADS`, or None for every
 /// core) and the memory `runs` runs of `modes` coordinates with `samples` samples would need
 /// against `memory_budget` bytes. Returns `{"threads": resolved count, "bytes": the estimate}`;
@@ -186,20 +160,14 @@ pub(crate) fn batch_solve<'py>(
     memory_budget: Option<u64>,
     damping_rate: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let opts = sweep_options(
-        py,
+    let method = Method::parse(method).map_err(|e| validation_error(py, e))?;
+    let opts = SweepOptions {
+        solve: SolveOptions { method, rtol, atol, dt, max_steps, first_step, max_step },
         t_end,
         samples,
-        method,
-        rtol,
-        atol,
-        dt,
-        max_steps,
-        first_step,
-        max_step,
         keep_trajectories,
         memory_budget,
-    )?;
+    };
     let integrals = integrals_from_arrays(py, &indices, &quartic_index, &cos4, &mixed, &sin4)?;
     let m = integrals.modes();
 
