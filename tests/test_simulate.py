@@ -210,3 +210,15 @@ def test_linearised_model_is_harmonic():
     assert res.energy_drift() < 1e-10
     nonlinear = ds.simulate(REF, modes=1, t_end=1.0)
     assert np.abs(nonlinear.q[0] - res.q[0]).max() > 1e-5  # the cubic term shifts the phase visibly
+
+
+def test_dense_output_evaluations_are_counted_apart():
+    # the same steps with 2 or 1001 output times: nfev differs only by the dense-output stages
+    sparse = ds.simulate(ds.preset("aluminum"), t_end=1.0, samples=2)
+    dense = ds.simulate(ds.preset("aluminum"), t_end=1.0, samples=1001)
+    assert sparse.stats.naccept == dense.stats.naccept and sparse.stats.nreject == dense.stats.nreject
+    assert sparse.stats.ndense == 0  # output times only at step ends
+    assert 0 < dense.stats.ndense <= 3 * dense.stats.naccept and dense.stats.ndense % 3 == 0
+    assert dense.stats.nfev - dense.stats.ndense == sparse.stats.nfev - sparse.stats.ndense
+    assert dense.stats.nfev == 2 + 12 * dense.stats.naccept + 11 * dense.stats.nreject + dense.stats.ndense
+    assert ds.simulate(ds.preset("aluminum"), t_end=0.1, method="dopri5", samples=101).stats.ndense == 0

@@ -18,6 +18,7 @@ class SolveOutput(TypedDict):
     nfev: int
     naccept: int
     nreject: int
+    ndense: int
     #: Energy taken out by the damping up to each sample; None without damping.
     dissipated: Optional[NDArray[np.float64]]
 
@@ -301,5 +302,57 @@ def modal_energies(
     ------
     ValidationError
         ``q`` and ``qdot`` not of equal shape (m, samples), ``stiffness`` not of length m.
+    """
+    ...
+
+STICK_SPEED: float
+"""Default stick threshold speed of :func:`stick_slip_metrics`, rad/s."""
+
+class StickSlipDict(TypedDict):
+    t_start: float
+    t_end: float
+    severity: float
+    stuck_fraction: float
+    rpm_min: float
+    rpm_max: float
+    rpm_mean: float
+    torque_min: float
+    torque_max: float
+    cycle_period: float
+
+def stick_slip_metrics(
+    t: NDArray[np.float64],
+    omega_bit: NDArray[np.float64],
+    motor_torque: Optional[NDArray[np.float64]] = None,
+    *,
+    window: Optional[tuple[float, float]] = None,
+    stick_speed: float = ...,
+) -> StickSlipDict:
+    """Stick-slip metrics of the bit speed ``omega_bit`` (rad/s) and optionally the motor torque
+    sampled at the strictly increasing times ``t`` over the samples with
+    ``t_start <= t <= t_end`` (``window``; None: all): severity ``(max - min) / (2 |mean|)``
+    (NaN for a zero mean), the time fraction with ``|omega_bit| <= stick_speed``, bit rpm
+    min / max / time-weighted mean, motor torque min / max and cycle period (mean interval
+    between upward crossings of its time-weighted mean; NaN with fewer than two cycles or
+    without a torque series).
+
+    Raises
+    ------
+    ValidationError
+        ``t`` not finite and strictly increasing (or fewer than 2 samples), ``omega_bit`` or
+        ``motor_torque`` not finite or of another length, ``window`` not ``t_start < t_end`` or
+        holding fewer than 2 samples, ``stick_speed`` not finite and >= 0.
+    """
+    ...
+
+def break_off_torque(depth: NDArray[np.float64], limit: NDArray[np.float64]) -> float:
+    """The static break-off torque of a well, N m: the trapezoidal integral of the friction
+    limit per metre ``limit`` (N m/m) over the strictly increasing measured depths ``depth`` (m).
+
+    Raises
+    ------
+    ValidationError
+        ``depth`` not finite and strictly increasing (or fewer than 2 samples), ``limit`` not
+        finite and >= 0 or of another length.
     """
     ...

@@ -17,6 +17,10 @@ takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed).
   area of the convex hull of a phase-plane trajectory (how wide a region it occupies);
   :func:`phase_fill`: the fraction of that region the trajectory actually passes through (a
   closed curve fills little of it, a precessing multi-mode orbit much more).
+* :func:`stick_slip_metrics` (:class:`StickSlipMetrics`), :func:`break_off_torque`: stick-slip
+  metrics of any bit-speed and motor-torque series (uniformly or non-uniformly sampled) and the
+  static break-off torque of a well, computed by the core
+  (``drillstring_core::metrics::stickslip``).
 * :func:`duffing_amplitude`, :func:`duffing_frequency`: exact reference values of the one-mode
   model ``x'' + w2 x + beta x^3 = 0`` (complete elliptic integral by the arithmetic-geometric
   mean, no scipy).
@@ -25,6 +29,7 @@ takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple, Optional, Union
 
 import numpy as np
@@ -49,6 +54,10 @@ __all__ = [
     "ellipk",
     "duffing_amplitude",
     "duffing_frequency",
+    "STICK_SPEED",
+    "StickSlipMetrics",
+    "stick_slip_metrics",
+    "break_off_torque",
 ]
 
 #: Default zero-padding factor of the FFT (the bin spacing is ``1 / (pad * duration)``).
@@ -356,3 +365,115 @@ def duffing_frequency(omega2: float, beta: float, amplitude: float) -> float:
         raise ValidationError("amplitude", amplitude, "omega2 + beta A^2 > 0")
     m = beta * amplitude * amplitude / (2.0 * stiff)
     return math.sqrt(stiff) / (4.0 * ellipk(m))
+
+
+#: Default stick threshold speed of :func:`stick_slip_metrics`, rad/s (about 0.1 rpm).
+STICK_SPEED: float = _core.STICK_SPEED
+
+
+@dataclass(frozen=True)
+class StickSlipMetrics:
+    """Stick-slip metrics of one window (see :func:`stick_slip_metrics`)."""
+
+    t_start: float
+    """First sample time in the window, s."""
+    t_end: float
+    """Last sample time in the window, s."""
+    severity: float
+    """``(max - min) / (2 |mean|)`` of the bit speed (NaN when the mean is 0)."""
+    stuck_fraction: float
+    """Fraction of the window's time with ``|omega_bit| <= stick_speed``."""
+    rpm_min: float
+    rpm_max: float
+    rpm_mean: float
+    """Time-weighted (trapezoidal) mean bit speed, rpm."""
+    torque_min: float
+    """Motor torque minimum (NaN without a torque series)."""
+    torque_max: float
+    cycle_period: float
+    """Mean interval between upward mean-crossings of the motor torque, s (NaN with fewer than
+    two cycles or without a torque series)."""
+
+
+def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:
+    xa = np.ascontiguousarray(x, dtype=float)
+    if xa.ndim != 1:
+        raise ValidationError(name, f"an array of shape {xa.shape}", "a 1-D array")
+    return xa
+
+
+def stick_slip_metrics(
+    t: ArrayLike,
+    omega_bit: ArrayLike,
+    motor_torque: Optional[ArrayLike] = None,
+    *,
+    window: Optional[tuple[float, float]] = None,
+    stick_speed: float = STICK_SPEED,
+) -> StickSlipMetrics:
+    """Stick-slip metrics of a bit-speed series (and optionally the motor torque).
+
+    Works on any series, uniformly or non-uniformly sampled (a simulation, another simulator,
+    field data); the series is taken as linear between samples and means are time-weighted
+    (trapezoidal rule). Computed by the core; nothing is recomputed here.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times, s, finite and strictly increasing.
+    omega_bit : array_like
+        Bit angular speed, rad/s, one per time.
+    motor_torque : array_like, optional
+        Motor torque (any unit), one per time.
+    window : (t_start, t_end), optional
+        Only the samples with ``t_start <= t <= t_end`` (at least 2); None: all.
+    stick_speed : float
+        The bit counts as stuck while ``|omega_bit| <= stick_speed`` (rad/s, >= 0).
+
+    Returns
+    -------
+    StickSlipMetrics
+        Severity ``SSI = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
+        min / max / mean, motor torque min / max and its cycle period (the mean interval
+        between upward crossings of its mean).
+
+    Raises
+    ------
+    ValidationError
+        Naming the argument: ``t`` not strictly increasing, series of other lengths or not
+        finite, a window holding fewer than 2 samples, a negative ``stick_speed``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 10001)
+    >>> omega = np.maximum(0.0, 10.0 * (1.0 + 2.0 * np.sin(2 * np.pi * 0.5 * t)))
+    >>> m = stick_slip_metrics(t, omega, window=(2.0, 10.0))
+    >>> round(m.stuck_fraction, 3)  # arccos(1/2) / pi
+    0.333
+    """
+    ta = _series("t", t)
+    torque = None if motor_torque is None else _series("motor_torque", motor_torque)
+    span = None if window is None else (float(window[0]), float(window[1]))
+    d = _core.stick_slip_metrics(
+        ta, _series("omega_bit", omega_bit), torque, window=span, stick_speed=float(stick_speed)
+    )
+    return StickSlipMetrics(**d)
+
+
+def break_off_torque(depth: ArrayLike, limit: ArrayLike) -> float:
+    """The static break-off torque of a well, N m: the integral over measured depth of the
+    friction limit per metre (trapezoidal rule).
+
+    Parameters
+    ----------
+    depth : array_like
+        Measured depths, m, strictly increasing.
+    limit : array_like
+        Friction limit per metre at each depth, N m/m (>= 0).
+
+    Examples
+    --------
+    >>> break_off_torque([0.0, 1000.0, 2500.0], [4.0, 4.0, 4.0])
+    10000.0
+    """
+    return _core.break_off_torque(_series("depth", depth), _series("limit", limit))

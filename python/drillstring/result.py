@@ -50,6 +50,10 @@ class SolverStats:
     """Accepted steps."""
     nreject: int
     """Rejected steps (0 for fixed-step methods)."""
+    ndense: int = 0
+    """Of ``nfev``, the evaluations made only for the dense output (DOP853's 3 extra stages for
+    each accepted step with an output time strictly inside it; 0 for the other methods):
+    ``nfev - ndense`` is the same whatever the output times."""
 
 
 class TrajectoryResult:
@@ -71,7 +75,7 @@ class TrajectoryResult:
         self.qdot: NDArray[np.float64] = np.ascontiguousarray(y[:, m:].T)
         self.status: str = raw["status"]
         self.message: str = raw["message"]
-        self.stats = SolverStats(int(raw["nfev"]), int(raw["naccept"]), int(raw["nreject"]))
+        self.stats = SolverStats(int(raw["nfev"]), int(raw["naccept"]), int(raw["nreject"]), int(raw.get("ndense", 0)))
         self._energy: Optional[NDArray[np.float64]] = None
         dissipated = raw.get("dissipated")
         #: With damping: the energy (J) the damping took out from ``t = 0`` to each sample,

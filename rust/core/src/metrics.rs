@@ -19,7 +19,9 @@
 //!   energies `H` of the samples (0 when `H(0) = 0`, NaN when a term is NaN); with damping the
 //!   error of the energy balance, `max |H(t) + D(t) - H(0)| / |H(0)|` with `D` the energy
 //!   dissipated up to each sample;
-//! * [`compute`]: all of them for one run of a [`ModalSystem`] (what a sweep reports).
+//! * [`compute`]: all of them for one run of a [`ModalSystem`] (what a sweep reports);
+//! * [`stickslip`]: stick-slip metrics of any bit-speed and motor-torque series, and the
+//!   static break-off torque of a well.
 
 use std::sync::Arc;
 
@@ -28,6 +30,9 @@ use realfft::{RealFftPlanner, RealToComplex};
 
 use crate::error::{Error, Result};
 use crate::modal::ModalSystem;
+
+pub mod stickslip;
+pub use stickslip::{break_off_torque, stick_slip, StickSlip, STICK_SPEED};
 
 /// Default zero-padding factor of the FFT (the bin spacing is `1 / (pad * duration)`).
 pub const PAD: usize = 8;

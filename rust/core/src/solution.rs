@@ -66,6 +66,10 @@ pub struct Stats {
     pub naccept: u64,
     /// Rejected steps (always 0 for fixed-step methods).
     pub nreject: u64,
+    /// Of `nfev`, the evaluations made only for the dense output (DOP853's extra stages for
+    /// output times strictly inside a step; 0 for the other methods): `nfev - ndense` does not
+    /// depend on the output times.
+    pub ndense: u64,
 }
 
 /// A sample could not be stored: the system refused memory for `bytes` bytes of samples

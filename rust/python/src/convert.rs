@@ -81,6 +81,7 @@ pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: Solution, dissipative: bo
     out.set_item("message", sol.message)?;
     out.set_item("nfev", sol.stats.nfev)?;
     out.set_item("naccept", sol.stats.naccept)?;
+    out.set_item("ndense", sol.stats.ndense)?;
     out.set_item("nreject", sol.stats.nreject)?;
     if dissipative {
         out.set_item("dissipated", PyArray1::from_vec(py, sol.dissipated))?;

@@ -40,6 +40,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(metrics::spectral_peaks, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::energy_drift, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::modal_energies, m)?)?;
+    m.add_function(wrap_pyfunction!(metrics::stick_slip_metrics, m)?)?;
+    m.add_function(wrap_pyfunction!(metrics::break_off_torque, m)?)?;
+    m.add("STICK_SPEED", drillstring_core::metrics::STICK_SPEED)?;
     m.add("SPECTRAL_PAD", drillstring_core::metrics::PAD)?;
     m.add("PEAK_THRESHOLD", drillstring_core::metrics::PEAK_THRESHOLD)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;

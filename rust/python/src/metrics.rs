@@ -4,7 +4,7 @@ use drillstring_core as core;
 use drillstring_core::metrics::FrequencyEstimator;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyBool;
+use pyo3::types::{PyBool, PyDict};
 
 use crate::convert::{integer, no_panic, to_vec, validation_error};
 
@@ -107,4 +107,47 @@ pub(crate) fn modal_energies<'py>(
     let energies = no_panic(|| core::metrics::modal_energy_history(&to_vec(&mass), &to_vec(&stiffness), &q, &v))?
         .map_err(|e| validation_error(py, e))?;
     PyArray1::from_vec(py, energies).reshape([m, samples])
+}
+
+/// The stick-slip metrics (`drillstring_core::metrics::stickslip`) of the bit speed
+/// `omega_bit` (rad/s) and optionally the motor torque sampled at the strictly increasing
+/// times `t`, over the samples in `window = (t_start, t_end)` (None: all), as a dict.
+#[pyfunction]
+#[pyo3(signature = (t, omega_bit, motor_torque=None, *, window=None, stick_speed=core::metrics::STICK_SPEED))]
+pub(crate) fn stick_slip_metrics<'py>(
+    py: Python<'py>,
+    t: PyReadonlyArray1<'py, f64>,
+    omega_bit: PyReadonlyArray1<'py, f64>,
+    motor_torque: Option<PyReadonlyArray1<'py, f64>>,
+    window: Option<(f64, f64)>,
+    stick_speed: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (t, omega) = (to_vec(&t), to_vec(&omega_bit));
+    let torque = motor_torque.map(|m| to_vec(&m));
+    let m = no_panic(|| core::metrics::stick_slip(&t, &omega, torque.as_deref(), window, stick_speed))?
+        .map_err(|e| validation_error(py, e))?;
+    let d = PyDict::new(py);
+    d.set_item("t_start", m.t_start)?;
+    d.set_item("t_end", m.t_end)?;
+    d.set_item("severity", m.severity)?;
+    d.set_item("stuck_fraction", m.stuck_fraction)?;
+    d.set_item("rpm_min", m.rpm_min)?;
+    d.set_item("rpm_max", m.rpm_max)?;
+    d.set_item("rpm_mean", m.rpm_mean)?;
+    d.set_item("torque_min", m.torque_min)?;
+    d.set_item("torque_max", m.torque_max)?;
+    d.set_item("cycle_period", m.cycle_period)?;
+    Ok(d)
+}
+
+/// The static break-off torque of a well, N m: the trapezoidal integral of the friction limit
+/// per metre `limit` (N m/m) over the strictly increasing measured depths `depth` (m).
+#[pyfunction]
+pub(crate) fn break_off_torque(
+    py: Python<'_>,
+    depth: PyReadonlyArray1<'_, f64>,
+    limit: PyReadonlyArray1<'_, f64>,
+) -> PyResult<f64> {
+    let (depth, limit) = (to_vec(&depth), to_vec(&limit));
+    no_panic(|| core::metrics::break_off_torque(&depth, &limit))?.map_err(|e| validation_error(py, e))
 }

@@ -411,7 +411,7 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
             self.eval_fsal(t_new);
         }
         if sampler.needs_interpolant(t_new) {
-            self.stats.nfev += P::dense_prepare(
+            let extra = P::dense_prepare(
                 self.form,
                 self.t,
                 h,
@@ -421,6 +421,8 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
                 &mut self.ytmp,
                 &mut self.dense,
             );
+            self.stats.nfev += extra;
+            self.stats.ndense += extra;
         }
         let (t, y, dense) = (self.t, &self.y, &self.dense);
         sampler.record(sol, t_new, &self.y_new, &mut self.ytmp, |t_out, out| {
