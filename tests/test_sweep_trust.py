@@ -160,15 +160,14 @@ def test_sample_counts_beyond_memory_are_refused_before_any_work(monkeypatch) ->
 
 
 def test_grids_too_large_to_plan_are_refused_before_listing_their_runs() -> None:
-    # Before: a 10^4 x 10^4 grid listed 10^8 runs (tens of GB) before anything else happened.
-    start = time.perf_counter()
+    # Before: a 10^4 x 10^4 grid listed 10^8 runs (tens of GB) before anything else happened;
+    # the size is checked from the axis lengths (limits.check_run_count) before the product.
     with pytest.raises(ds.ValidationError, match=r"invalid grid: got '10000 length x 10000 omega'.*at most"):
         ds.sweep(BASE, {"length": ds.linspace(100.0, 200.0, 10**4), "omega": ds.linspace(0.0, 1.0, 10**4)})
     with pytest.raises(ds.ValidationError, match=r"grid.length.count"):
         ds.sweep(BASE, {"length": ds.linspace(100.0, 200.0, 10**12)})
     with pytest.raises(ds.ValidationError, match="grid"):
         ds.sweep(BASE, {"c1000000": [0.1]})  # a velocity column per mode up to a million: refused
-    assert time.perf_counter() - start < 30
 
 
 def test_the_memory_estimate_follows_the_budget(monkeypatch) -> None:
@@ -182,8 +181,8 @@ def test_the_memory_estimate_follows_the_budget(monkeypatch) -> None:
 
 
 @pytest.mark.parametrize("threads", [0, core.MAX_THREADS + 1, 10**6, 10**400, -1])
-def test_thread_counts_out_of_range_are_refused_at_once(threads: int) -> None:
-    start = time.perf_counter()
+def test_thread_counts_out_of_range_are_refused_at_once(threads: int, monkeypatch) -> None:
+    # Before: 10**6 spent 208 s spawning threads before failing; now refused before any solve.
+    monkeypatch.setattr(core, "batch_solve", lambda *a, **k: pytest.fail("a batch was started"))
     with pytest.raises(ds.ValidationError, match="threads"):
         ds.sweep(BASE, {"length": [100.0]}, t_end=0.05, samples=64, threads=threads)
-    assert time.perf_counter() - start < 30  # was 208 s for 10**6 (spawning the threads)
