@@ -6,6 +6,7 @@ core gives the same numbers to rounding.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -123,3 +124,65 @@ def galerkin_scaling(k: tuple[float, float, float, float, float, float], length:
         + (k5 * math.pi**4 / (4.0 * length**3)) * sin4
     )
     return mass, stiffness, coef
+
+
+# --------------------------------------------------------------------------- Galerkin integrals
+# The former generator of ``drillstring.galerkin.dimensionless_integrals`` (now in the core,
+# ``drillstring_core::galerkin``): integer arithmetic over the sign patterns, exact.
+
+# distinct-ordering count of a sorted quadruple, indexed by (a==b)*4 + (b==c)*2 + (c==d)
+_MULTIPLICITY = np.array([24, 12, 12, 4, 12, 6, 4, 1], dtype=np.int64)
+_SIGNS = np.array(
+    [(1, *rest) for rest in itertools.product((1, -1), repeat=3)], dtype=np.int64
+)  # (8, 4), e_a = +1
+_PAIRS = tuple(itertools.combinations(range(4), 2))
+
+
+def _integer_integrals(quad: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """``8 x (cos4, mixed, sin4)`` for sorted mode-number quadruples ``quad`` (K, 4)."""
+    hit = (quad @ _SIGNS.T == 0).astype(np.int64)  # (K, 8): N(e)
+    eq = (quad[:, :-1] == quad[:, 1:]).astype(np.int64)
+    mult = _MULTIPLICITY[eq[:, 0] * 4 + eq[:, 1] * 2 + eq[:, 2]]
+    cos4 = mult * hit.sum(axis=1)
+    pair_sum = np.zeros(quad.shape[0], dtype=np.int64)
+    for i, j in _PAIRS:
+        # sine pair at (i, j), cosines at the other two
+        pair_sum += quad[:, i] * quad[:, j] * (hit @ (-_SIGNS[:, i] * _SIGNS[:, j]))
+    # sum over the 24 permutations = 4 * pair_sum; distinct orderings = mult/24 of that
+    numerator = mult * pair_sum
+    assert not np.any(numerator % 6), "mixed quartic integral is not a multiple of 1/8"
+    mixed = numerator // 6
+    sin4 = mult * quad.prod(axis=1) * (hit @ _SIGNS.prod(axis=1))
+    return cos4, mixed, sin4
+
+
+def galerkin_integrals(modes: int, rigid_mode: bool) -> tuple[NDArray[np.int64], NDArray[np.int64],
+                                                             NDArray[np.float64], NDArray[np.float64],
+                                                             NDArray[np.float64]]:
+    """``(indices, quartic_index, cos4, mixed, sin4)`` of the ``cos(i pi s)`` basis."""
+    indices = np.arange(0 if rigid_mode else 1, modes + 1, dtype=np.int64)
+    first = int(indices[0])
+    top = modes
+    base = top + 1
+    keys: list[NDArray[np.int64]] = []
+    for a in range(first, top + 1):
+        # b = a + u, c = a + v with 0 <= u <= v <= top - a
+        u, v = np.triu_indices(top - a + 1)
+        b = a + u.astype(np.int64)
+        c = a + v.astype(np.int64)
+        # candidates d = +-a +- b +- c with c <= d <= top
+        cand = a * _SIGNS[:, 1, None] + b * _SIGNS[:, 2, None] + c * _SIGNS[:, 3, None]
+        ok = (cand >= c) & (cand <= top)
+        (rows,) = np.nonzero(ok.ravel())
+        col = rows % b.size
+        d = cand.ravel()[rows]
+        key = ((a * base + b[col]) * base + c[col]) * base + d
+        keys.append(np.unique(key))
+    key = np.concatenate(keys) if keys else np.zeros(0, dtype=np.int64)
+    quad = np.empty((key.size, 4), dtype=np.int64)
+    rest = key
+    for col in (3, 2, 1, 0):
+        quad[:, col] = rest % base
+        rest = rest // base
+    cos4, mixed, sin4 = _integer_integrals(quad)
+    return indices, quad - first, cos4 / 8.0, mixed / 8.0, sin4 / 8.0

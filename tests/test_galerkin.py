@@ -539,6 +539,19 @@ def test_projection_scaling_of_presets_is_the_numpy_one(name: str, model_name: s
         assert np.array_equal(got, want)
 
 
+@pytest.mark.parametrize(
+    ("modes", "rigid"), [(1, False), (1, True), (2, False), (3, True), (7, False), (16, True), (33, False)]
+)
+def test_core_integrals_equal_the_numpy_generator(modes: int, rigid: bool) -> None:
+    """The core's integrals are the former numpy generator's, exactly (same terms, same order)."""
+    g = dimensionless_integrals(modes, rigid)
+    indices, quartic_index, cos4, mixed, sin4 = oracles.galerkin_integrals(modes, rigid)
+    assert g.indices.dtype == np.int64 and g.quartic_index.dtype == np.int64
+    assert np.array_equal(g.indices, indices) and np.array_equal(g.quartic_index, quartic_index)
+    for got, want in zip((g.cos4, g.mixed, g.sin4), (cos4, mixed, sin4)):
+        assert got.dtype == np.float64 and np.array_equal(got, want)
+
+
 def test_projection_of_random_coefficients_matches_numpy_oracle() -> None:
     """Equal to rounding: the core takes ``l^3`` as ``l * l * l``, numpy as ``pow(l, 3)``."""
     rng = np.random.default_rng(RNG_SEED)

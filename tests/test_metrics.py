@@ -138,3 +138,22 @@ def test_sweep_metrics_are_the_single_solve_metrics() -> None:
     np.testing.assert_allclose([row[f"share_mode_{i}"] for i in (1, 2, 3)], shares, rtol=1e-8)
     assert row["max_theta"] == pytest.approx(np.max(np.abs(theta)), rel=1e-8)
     assert row["rms_theta"] == pytest.approx(np.sqrt(np.mean(theta**2)), rel=1e-8)
+
+
+@pytest.mark.parametrize("model", ["paper", "consistent"])
+def test_quartic_share_is_the_numpy_formula(model: str) -> None:
+    """The report's quartic energy share, computed in the core, is max |V| / |H(0)|."""
+    res = ds.simulate(ds.preset("aluminum").replace(model=model), modes=3, t_end=0.2)
+    core = res.coefficients.core_system()
+    h0 = float(res.energy[0])
+    want = float(np.max(np.abs(res.coefficients.potential(res.q)))) / abs(h0)
+    assert core.quartic_share(res.q, h0) == want
+    assert math.isnan(core.quartic_share(res.q, 0.0))
+    with pytest.raises(ValidationError) as info:
+        core.quartic_share(res.q[:2], h0)
+    assert info.value.field == "q"
+
+
+def test_bar_speed_is_sqrt_e_over_rho() -> None:
+    al = ds.preset("aluminum")
+    assert _core.bar_speed(al.youngs_modulus, al.density) == math.sqrt(al.youngs_modulus / al.density)

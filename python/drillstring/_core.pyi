@@ -43,6 +43,9 @@ class ModalSystem:
         """``H = q'^T M q' / 2 + q^T K q / 2 + V(q)`` of each sample: ``q``, ``qdot`` (m, samples)."""
     def potential(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
         """The quartic potential ``V(q)`` of each sample: ``q`` of shape (m, samples)."""
+    def quartic_share(self, q: NDArray[np.float64], energy0: float) -> float:
+        """``max_t |V(q_t)| / |H(0)|`` of the samples ``q`` (m, samples) of a run whose first
+        sample has the energy ``energy0``; ``nan`` when ``energy0 == 0``."""
 
 def solve_modal(
     system: ModalSystem,
@@ -76,6 +79,9 @@ def shear_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
 
 def p_wave_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
     """``lambda + 2 mu = E (1 - nu) / ((1 + nu) (1 - 2 nu))``, Pa."""
+
+def bar_speed(youngs_modulus: float, density: float) -> float:
+    """Longitudinal bar speed ``sqrt(E / rho)``, m/s."""
 
 class Coefficients(TypedDict):
     k1: float
@@ -234,6 +240,25 @@ def batch_plan(
         ``memory_budget`` bytes (or ``samples`` is not an integer the core can hold).
     """
     ...
+
+class IntegralArrays(TypedDict):
+    indices: NDArray[np.int64]
+    quartic_index: NDArray[np.int64]
+    cos4: NDArray[np.float64]
+    mixed: NDArray[np.float64]
+    sin4: NDArray[np.float64]
+
+def galerkin_integrals(modes: int, rigid_mode: bool) -> IntegralArrays:
+    """The exact dimensionless quartic integrals of the free-end basis ``cos(i pi s)``
+    (``drillstring.galerkin.GalerkinIntegrals``), generated in the core.
+
+    Raises
+    ------
+    ValidationError
+        ``modes`` outside ``1..=GALERKIN_MAX_MODES``.
+    """
+
+GALERKIN_MAX_MODES: int
 
 class ScaledSystem(TypedDict):
     mass: NDArray[np.float64]

@@ -47,6 +47,10 @@ each position repeats). The integrals are exact: writing ``cos x = (e^{ix} + e^{
 
 All three sets are integer multiples of 1/8 (computed in ``int64``, exact in ``float64``). A term
 is nonzero only if ``i_d = +-i_a +- i_b +- i_c`` (then ``cos4_t > 0``); only those are stored.
+They are generated in the Rust core (``drillstring_core::galerkin``, ``_core.galerkin_integrals``),
+which discretises each term of the model with them (``K`` from the terms with ``p + r = 2``, ``C_t``
+from those with ``p + r = 4``: ``cos4``, ``mixed``, ``sin4`` are the integrals of ``theta^4``,
+``theta^2 theta_z^2``, ``theta_z^4``); ``tests/oracles.py`` keeps the former numpy generator.
 Consequences: ``theta -> -theta`` symmetry (only quartic terms) and the selection rule
 ``i_a + i_b + i_c + i_d`` even, so that odd modes alone never force even modes.
 """
@@ -80,8 +84,8 @@ __all__ = [
     "project",
 ]
 
-#: Largest accepted number of elastic modes ``n``.
-MAX_MODES = 256
+#: Largest accepted number of elastic modes ``n`` (the core's limit).
+MAX_MODES: int = _core.GALERKIN_MAX_MODES
 
 #: Largest number of retained modes for which :meth:`ModalCoefficients.cubic_tensor` builds
 #: the dense ``(m, m, m, m)`` tensor.
@@ -160,66 +164,15 @@ class GalerkinIntegrals:
         return int(self.quartic_index.shape[0])
 
 
-# distinct-ordering count of a sorted quadruple, indexed by (a==b)*4 + (b==c)*2 + (c==d)
-_MULTIPLICITY = np.array([24, 12, 12, 4, 12, 6, 4, 1], dtype=np.int64)
-_SIGNS = np.array(
-    [(1, *rest) for rest in itertools.product((1, -1), repeat=3)], dtype=np.int64
-)  # (8, 4), e_a = +1
-_PAIRS = tuple(itertools.combinations(range(4), 2))
-
-
-def _integer_integrals(quad: IntArray) -> tuple[IntArray, IntArray, IntArray]:
-    """``8 x (cos4, mixed, sin4)`` for sorted mode-number quadruples ``quad`` (K, 4)."""
-    hit = (quad @ _SIGNS.T == 0).astype(np.int64)  # (K, 8): N(e)
-    eq = (quad[:, :-1] == quad[:, 1:]).astype(np.int64)
-    mult = _MULTIPLICITY[eq[:, 0] * 4 + eq[:, 1] * 2 + eq[:, 2]]
-    cos4 = mult * hit.sum(axis=1)
-    pair_sum = np.zeros(quad.shape[0], dtype=np.int64)
-    for i, j in _PAIRS:
-        # sine pair at (i, j), cosines at the other two
-        pair_sum += quad[:, i] * quad[:, j] * (hit @ (-_SIGNS[:, i] * _SIGNS[:, j]))
-    # sum over the 24 permutations = 4 * pair_sum; distinct orderings = mult/24 of that
-    numerator = mult * pair_sum
-    if np.any(numerator % 6):  # pragma: no cover - an arithmetic invariant
-        raise AssertionError("mixed quartic integral is not a multiple of 1/8")
-    mixed = numerator // 6
-    sin4 = mult * quad.prod(axis=1) * (hit @ _SIGNS.prod(axis=1))
-    return cos4, mixed, sin4
-
-
 @functools.lru_cache(maxsize=64)
 def _cached_integrals(modes: int, rigid_mode: bool) -> GalerkinIntegrals:
-    indices = np.arange(0 if rigid_mode else 1, modes + 1, dtype=np.int64)
-    first = int(indices[0])
-    top = modes
-    base = top + 1
-    keys: list[IntArray] = []
-    for a in range(first, top + 1):
-        # b = a + u, c = a + v with 0 <= u <= v <= top - a
-        u, v = np.triu_indices(top - a + 1)
-        b = a + u.astype(np.int64)
-        c = a + v.astype(np.int64)
-        # candidates d = +-a +- b +- c with c <= d <= top
-        cand = a * _SIGNS[:, 1, None] + b * _SIGNS[:, 2, None] + c * _SIGNS[:, 3, None]
-        ok = (cand >= c) & (cand <= top)
-        (rows,) = np.nonzero(ok.ravel())
-        col = rows % b.size
-        d = cand.ravel()[rows]
-        key = ((a * base + b[col]) * base + c[col]) * base + d
-        keys.append(np.unique(key))
-    key = np.concatenate(keys) if keys else np.zeros(0, dtype=np.int64)
-    quad = np.empty((key.size, 4), dtype=np.int64)
-    rest = key
-    for col in (3, 2, 1, 0):
-        quad[:, col] = rest % base
-        rest = rest // base
-    cos4, mixed, sin4 = _integer_integrals(quad)
+    arrays = _core.galerkin_integrals(modes, rigid_mode)
     return GalerkinIntegrals(
-        indices=_readonly(indices),
-        quartic_index=_readonly(quad - first),
-        cos4=_readonly(cos4 / 8.0),
-        mixed=_readonly(mixed / 8.0),
-        sin4=_readonly(sin4 / 8.0),
+        indices=_readonly(arrays["indices"]),
+        quartic_index=_readonly(arrays["quartic_index"]),
+        cos4=_readonly(arrays["cos4"]),
+        mixed=_readonly(arrays["mixed"]),
+        sin4=_readonly(arrays["sin4"]),
     )
 
 

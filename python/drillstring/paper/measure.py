@@ -117,9 +117,9 @@ def _modal_exchange(res: Simulation) -> float:
 
 
 def _quartic_share(res: Simulation) -> float:
-    """max over t of V(q) / H: the share of the energy in the quartic (nonlinear) potential."""
-    h0 = float(res.energy[0])
-    return float(np.max(np.abs(res.coefficients.potential(res.q)))) / abs(h0) if h0 else math.nan
+    """max over t of |V(q)| / |H(0)|: the share of the energy in the quartic (nonlinear)
+    potential (computed in the core)."""
+    return float(res.coefficients.core_system().quartic_share(res.q, float(res.energy[0])))
 
 
 def measure(spec: FigureSpec, runs: Runs, window: tuple[float, float]) -> list[CurveMetrics]:
@@ -309,7 +309,7 @@ def physics_notes() -> PhysicsNotes:
     return PhysicsNotes(
         wave_speed_aluminium={m: coef(al, m).wave_speed for m in NOTE_MODELS},
         wave_speed_steel={m: coef(steel, m).wave_speed for m in NOTE_MODELS},
-        bar_speed_aluminium=math.sqrt(al.youngs_modulus / al.density),
+        bar_speed_aluminium=_core.bar_speed(al.youngs_modulus, al.density),
         frequencies_hz={m: hz(al.replace(omega=0.0), m) for m in NOTE_MODELS},
         critical_speed_aluminium={m: float(coef(al, m).critical_speed(1)) for m in NOTE_MODELS},
         critical_speed_steel_2000={m: float(coef(steel.replace(length=2000.0), m).critical_speed(1))

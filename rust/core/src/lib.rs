@@ -7,10 +7,13 @@
 //! th_z(0, t) = th_z(l, t) = 0,
 //! ```
 //!
-//! reduced by Bubnov-Galerkin projection on `cos(i pi z / l)` to the modal system
-//! `M q'' + c M q' + K q + N(q) = 0` ([`modal::ModalSystem`], `c` an optional viscous damping
-//! rate, 0 for the paper's model) and integrated by the explicit
-//! Runge-Kutta methods and the central-difference scheme in [`integrators`].
+//! written once as composable physics terms ([`terms`]: the inertia `k1`, one energy monomial
+//! per conservative term, the viscous damping, the boundary), each discretised by the
+//! Bubnov-Galerkin projection on `cos(i pi z / l)` ([`galerkin`], [`sweep::GalerkinIntegrals`])
+//! to the modal system `M q'' + c M q' + K q + N(q) = 0` ([`modal::ModalSystem`], `c` an
+//! optional viscous damping rate, 0 for the paper's model) or by finite differences ([`pde`]),
+//! and integrated by the explicit Runge-Kutta methods and the central-difference scheme in
+//! [`integrators`].
 //!
 //! Invalid input is an [`Error`]; numerical failure (step limit, step-size underflow,
 //! non-finite state) ends a solve with a [`Status`] and a message. Nothing here panics on
@@ -23,6 +26,7 @@
 #![forbid(unsafe_code)]
 
 pub mod error;
+pub mod galerkin;
 pub mod integrators;
 pub mod interrupt;
 pub mod metrics;

@@ -15,6 +15,7 @@
 //!   `E_i / sum_j E_j` at every sample (samples whose total is not positive are skipped) and the
 //!   largest share each mode reached. With a negative `K_i` (the rigid mode under rotation, or a mode above its
 //!   critical speed) `E_i` may be negative and the other shares may exceed 1;
+//! * the quartic energy share ([`quartic_share`], [`quartic_share_of`]) `max |V(t)| / |H(0)|`;
 //! * the energy drift ([`energy_drift`], [`EnergyDrift`]) `max |H(t) - H(0)| / |H(0)|` of the
 //!   energies `H` of the samples (0 when `H(0) = 0`, NaN when a term is NaN); with damping the
 //!   error of the energy balance, `max |H(t) + D(t) - H(0)| / |H(0)|` with `D` the energy
@@ -30,6 +31,7 @@ use realfft::{RealFftPlanner, RealToComplex};
 
 use crate::error::{Error, Result};
 use crate::modal::ModalSystem;
+use crate::system::{potential_history, Energy};
 
 pub mod stickslip;
 pub use stickslip::{break_off_torque, stick_slip, StickSlip, STICK_SPEED};
@@ -288,6 +290,25 @@ pub fn energy_drift(energy: &[f64], dissipated: &[f64]) -> f64 {
     drift.value()
 }
 
+/// The quartic energy share `max_t |V(t)| / |H(0)|`: the largest share of the initial energy
+/// in the quartic (nonlinear) potential, from the potentials `potential` of the samples and
+/// the energy `energy0` of the first; NaN when `H(0) = 0`, without samples, or if a `V` is NaN.
+pub fn quartic_share(potential: &[f64], energy0: f64) -> f64 {
+    if energy0 == 0.0 || potential.is_empty() {
+        return f64::NAN;
+    }
+    let largest =
+        potential.iter().fold(0.0f64, |acc, v| if acc.is_nan() || v.is_nan() { f64::NAN } else { acc.max(v.abs()) });
+    largest / energy0.abs()
+}
+
+/// [`quartic_share`] of a run of `sys`: the potentials ([`crate::system::potential_history`])
+/// of the row-major `(dof, samples)` positions `q`, over the energy `energy0` of the first
+/// sample. An error naming `q` for a bad shape.
+pub fn quartic_share_of<S: Energy + ?Sized>(sys: &S, q: &[f64], energy0: f64) -> Result<f64> {
+    Ok(quartic_share(&potential_history(sys, q)?, energy0))
+}
+
 /// The quadratic energy `(M v^2 + K q^2) / 2` of one mode of mass `M` and stiffness `K`.
 #[inline]
 pub fn modal_energy(mass: f64, stiffness: f64, q: f64, v: f64) -> f64 {
@@ -496,5 +517,22 @@ mod tests {
         assert!(modal_energy_history(&[1.0], &[1.0, 2.0], &[], &[]).is_err());
         assert!(modal_energy_history(&[1.0, 1.0], &[1.0, 2.0], &[1.0; 3], &[1.0; 3]).is_err());
         assert_eq!(modal_energy_history(&[], &[], &[], &[]).unwrap(), Vec::<f64>::new());
+    }
+}
+
+#[cfg(test)]
+mod quartic_share_tests {
+    use super::*;
+    use crate::modal::QuarticTerm;
+
+    #[test]
+    fn quartic_share_is_the_largest_potential_over_the_initial_energy() {
+        assert_eq!(quartic_share(&[0.1, -0.3, 0.2], -2.0), 0.15);
+        assert!(quartic_share(&[0.1], 0.0).is_nan());
+        assert!(quartic_share(&[], 1.0).is_nan());
+        assert!(quartic_share(&[0.1, f64::NAN, 0.2], 1.0).is_nan());
+        // V = 2 q0^4 on one mode, samples q0 = 1, -0.5 (row-major (1, 2))
+        let sys = ModalSystem::new(vec![1.0], vec![1.0], vec![QuarticTerm { idx: [0; 4], coef: 2.0 }]).unwrap();
+        assert_eq!(quartic_share_of(&sys, &[1.0, -0.5], 4.0).unwrap(), 0.5);
     }
 }

@@ -11,8 +11,9 @@
 //! ```
 //!
 //! which is the compact, symmetry-exploiting form of the cubic coupling tensor. The
-//! coefficients are generated in the Python layer (`drillstring.galerkin`) from exact
-//! trigonometric integrals and passed here.
+//! coefficients come from the model's terms ([`crate::terms`]) discretised with the exact
+//! dimensionless integrals of the basis ([`crate::galerkin`]) by
+//! [`crate::sweep::GalerkinIntegrals::discretise`].
 //!
 //! Viscous damping `-k1 c th_t` per unit length projects, like the inertia `k1 th_tt`, onto
 //! the mass: the modal damping force is `-c M_i q_i'` ([`ModalSystem::with_damping`]), and

@@ -24,6 +24,7 @@
 
 use crate::error::{Error, Num, Result};
 use crate::pde::PdeCoefficients;
+use crate::terms::ModelTerms;
 use std::f64::consts::PI;
 
 /// Which equations of motion: the paper's as printed, or the finite-strain re-derivation.
@@ -155,6 +156,12 @@ pub fn p_wave_modulus(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
     youngs_modulus * (1.0 - poisson_ratio) / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio))
 }
 
+/// Longitudinal bar speed `sqrt(E / rho)`, m/s: the speed of extensional waves in a thin bar,
+/// the scale the torsional wave speeds are compared with.
+pub fn bar_speed(youngs_modulus: f64, density: f64) -> f64 {
+    (youngs_modulus / density).sqrt()
+}
+
 /// The physical inputs of the coefficients (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Physical {
@@ -179,6 +186,15 @@ pub struct Coefficients {
     pub k: PdeCoefficients,
     /// `k6 = k6_per_omega_squared * Omega^2`.
     pub k6_per_omega_squared: f64,
+}
+
+impl Coefficients {
+    /// The model as terms ([`ModelTerms::from_coefficients`]): `k1` and the conservative terms
+    /// of eq. 18 whose coefficient is not 0 (the consistent model: linear and nonlinear
+    /// elasticity only), undamped, free ends.
+    pub fn terms(&self) -> Result<ModelTerms> {
+        ModelTerms::from_coefficients(self.k)
+    }
 }
 
 fn check_physical(p: &Physical) -> Result<()> {
@@ -313,6 +329,23 @@ mod tests {
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         assert!(close(p_wave_modulus(e, nu), lambda + 2.0 * shear_modulus(e, nu), 1e-15));
         assert_eq!(p_wave_modulus(e, 0.0), e);
+        assert_eq!(bar_speed(0.7e11, 2.7e3), (0.7e11f64 / 2.7e3).sqrt());
+        assert!(close(bar_speed(2.1e11, 7.85e3), 5172.19, 1e-5));
+    }
+
+    #[test]
+    fn model_terms_of_each_variant() {
+        let coefficients = |m| coefficients(&ALUMINIUM, m, K5Variant::Paper).unwrap();
+        let names = |m| -> Vec<&str> {
+            coefficients(m).terms().unwrap().conservative().iter().map(|t| t.spec().coefficient).collect()
+        };
+        assert_eq!(names(Model::Paper), ["k2", "k3", "k4", "k5", "k6"]);
+        assert_eq!(names(Model::Consistent), ["k2", "k5"]);
+        let paper = coefficients(Model::Paper);
+        let terms = paper.terms().unwrap();
+        assert_eq!(terms.inertia(), paper.k.k1);
+        let k: Vec<f64> = terms.conservative().iter().map(|t| t.coefficient()).collect();
+        assert_eq!(k, paper.k.to_array()[1..].to_vec());
     }
 
     #[test]

@@ -10,6 +10,7 @@
 use pyo3::prelude::*;
 
 mod convert;
+mod galerkin;
 mod metrics;
 mod modal;
 mod model;
@@ -30,6 +31,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::section, m)?)?;
     m.add_function(wrap_pyfunction!(model::shear_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(model::p_wave_modulus, m)?)?;
+    m.add_function(wrap_pyfunction!(model::bar_speed, m)?)?;
     m.add_function(wrap_pyfunction!(model::coefficients, m)?)?;
     m.add_class::<pde::PdeSystem>()?;
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
@@ -37,6 +39,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::batch_plan, m)?)?;
     m.add("MAX_THREADS", drillstring_core::sweep::MAX_THREADS)?;
     m.add_function(wrap_pyfunction!(sweep::scale_integrals, m)?)?;
+    m.add_function(wrap_pyfunction!(galerkin::galerkin_integrals, m)?)?;
+    m.add("GALERKIN_MAX_MODES", drillstring_core::galerkin::MAX_MODES)?;
     m.add_function(wrap_pyfunction!(metrics::spectral_peaks, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::energy_drift, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::modal_energies, m)?)?;

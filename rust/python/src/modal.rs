@@ -120,6 +120,21 @@ impl ModalSystem {
             no_panic(|| core::system::potential_history(&self.inner, &q))?.map_err(|e| validation_error(py, e))?;
         Ok(PyArray1::from_vec(py, out))
     }
+
+    /// The quartic energy share `max_t |V(t)| / |H(0)|` of the samples `q` (m, samples) of a
+    /// run whose first sample has the energy `energy0` (NaN when `energy0 == 0`).
+    fn quartic_share<'py>(&self, py: Python<'py>, q: PyReadonlyArray2<'py, f64>, energy0: f64) -> PyResult<f64> {
+        let q = q.as_array();
+        let m = self.inner.modes();
+        if q.nrows() != m {
+            return Err(validation_error(
+                py,
+                core::Error::invalid("q", format!("shape {:?}", q.shape()), format!("shape ({m}, samples)")),
+            ));
+        }
+        let q: Vec<f64> = q.iter().copied().collect();
+        no_panic(|| core::metrics::quartic_share_of(&self.inner, &q, energy0))?.map_err(|e| validation_error(py, e))
+    }
 }
 
 impl ModalSystem {

@@ -35,6 +35,12 @@ pub(crate) fn p_wave_modulus(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
     model::p_wave_modulus(youngs_modulus, poisson_ratio)
 }
 
+/// Longitudinal bar speed `sqrt(E / rho)`, m/s.
+#[pyfunction]
+pub(crate) fn bar_speed(youngs_modulus: f64, density: f64) -> f64 {
+    model::bar_speed(youngs_modulus, density)
+}
+
 /// `k1 .. k6` and `k6_per_omega_squared` of `model` (`"paper"`, `"consistent"`) for the
 /// physical inputs, with the sign of `k5` of the paper model from `k5_variant`.
 #[pyfunction]

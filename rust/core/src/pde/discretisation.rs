@@ -1,11 +1,17 @@
 //! The nodal system [`PdeSystem`]: grid, discrete energy `H_h` and its Euler-Lagrange
 //! accelerations (derivation in the module docs of [`crate::pde`]).
+//!
+//! [`PdeSystem::discretise`] takes a [`ModelTerms`] and discretises every conservative term by
+//! one rule, the cell energy `h weight (a^p + b^p) / 2 g^r` ([`EnergyTerm::cell_energy`]), and
+//! collects the terms' coefficients into the fused kernel ([`PdeSystem::force`]) once, at
+//! construction: the kernel evaluates the shapes `th^2`, `th^4` (nodal), `th_z^2`, `th_z^4`
+//! and `th^2 th_z^2` (cell), whatever the number of terms; a term of another shape is refused.
 
 use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::simd::{dispatch_len, Kernel, MulAdd};
 use crate::system::{Energy, SecondOrderSystem};
-use crate::terms::ViscousDamping;
+use crate::terms::{Boundary, EnergyTerm, ModelTerms, ViscousDamping};
 
 /// Largest number of nodes [`PdeSystem::new`] accepts (a solve holds a few dozen vectors of
 /// this length; far beyond any grid an explicit method can step through).
@@ -50,6 +56,41 @@ impl PdeCoefficients {
     }
 }
 
+/// `nodes` in `3..=MAX_NODES` (`"nodes"`), `length` finite and `> 0` (`"length"`).
+fn check_grid(length: f64, nodes: usize) -> Result<()> {
+    if !(3..=MAX_NODES).contains(&nodes) {
+        return Err(Error::invalid("nodes", nodes, format!("an integer in 3..={MAX_NODES}")));
+    }
+    if !(length.is_finite() && length > 0.0) {
+        return Err(Error::invalid("length", Num(length), "a finite number > 0"));
+    }
+    Ok(())
+}
+
+/// Adds `term` to the kernel coefficients `k` (eq. 18's names) by its shape: the
+/// Euler-Lagrange force of the cell energy `h weight (a^p + b^p) / 2 g^r` is what the kernel
+/// evaluates with `k3 = 4 weight` (`th^4`), `k6 = -2 weight` (`th^2`), `k2 = 2 weight`
+/// (`th_z^2`), `k5 = 4 weight` (`th_z^4`), `k4 = 2 weight` (`th^2 th_z^2`).
+fn collect(k: &mut PdeCoefficients, term: &EnergyTerm) -> Result<()> {
+    // n weight as (n factor) k: n factor is +-1 for eq. 18's terms, so the slot is exactly +-k
+    let times = |n: f64| n * term.spec().factor() * term.coefficient();
+    match term.exponents() {
+        (4, 0) => k.k3 += times(4.0),
+        (2, 0) => k.k6 -= times(2.0),
+        (0, 2) => k.k2 += times(2.0),
+        (0, 4) => k.k5 += times(4.0),
+        (2, 2) => k.k4 += times(2.0),
+        (p, r) => {
+            return Err(Error::invalid(
+                term.spec().coefficient,
+                format!("the {} term th^{p} th_z^{r}", term.name()),
+                "a shape of the finite-difference kernel: th^2, th^4, th_z^2, th_z^4 or th^2 th_z^2",
+            ))
+        }
+    }
+    Ok(())
+}
+
 /// The semi-discrete PDE on `N` nodes: `q_j = th(z_j)`, `q_j'' = -(dV_h/dth_j) / (w_j k1)`.
 ///
 /// Holds only scalars: [`SecondOrderSystem::acceleration`] is one allocation-free pass over
@@ -67,16 +108,33 @@ pub struct PdeSystem {
 
 impl PdeSystem {
     /// The discretisation of the PDE with coefficients `k` on `[0, length]` with `nodes`
-    /// nodes (ends included). Refuses `nodes < 3` or `> MAX_NODES` (field `"nodes"`),
-    /// a non-finite or non-positive `length` (`"length"`), non-finite `k` (`"k1"` ..
-    /// `"k6"`) and `k1 <= 0` or `k2 <= 0`.
+    /// nodes (ends included): [`PdeSystem::discretise`] of [`ModelTerms::from_coefficients`].
+    /// Refuses `nodes < 3` or `> MAX_NODES` (field `"nodes"`), a non-finite or non-positive
+    /// `length` (`"length"`), non-finite `k` (`"k1"` .. `"k6"`) and `k1 <= 0` or `k2 <= 0`.
     pub fn new(k: impl Into<PdeCoefficients>, length: f64, nodes: usize) -> Result<Self> {
         let k = k.into();
-        if !(3..=MAX_NODES).contains(&nodes) {
-            return Err(Error::invalid("nodes", nodes, format!("an integer in 3..={MAX_NODES}")));
+        check_grid(length, nodes)?;
+        k.validate()?;
+        PdeSystem::discretise(&ModelTerms::from_coefficients(k)?, length, nodes)
+    }
+
+    /// The finite differences of `model` on `[0, length]` with `nodes` nodes (ends included):
+    /// each term's cell energy, its coefficient collected into the kernel slot of its shape;
+    /// the model's damping, lumped like the inertia; the model's boundary at the end nodes
+    /// ([`Boundary::Free`]: natural ends).
+    ///
+    /// Errors: the grid (as [`PdeSystem::new`]), a term of a shape the kernel does not
+    /// evaluate (field: its coefficient, naming the term), and collected coefficients with
+    /// `k2 <= 0` (no wave propagation: field `"k2"`).
+    pub fn discretise(model: &ModelTerms, length: f64, nodes: usize) -> Result<Self> {
+        check_grid(length, nodes)?;
+        match model.boundary() {
+            // the kernel's end nodes drop the missing cells: th_z = 0 is natural
+            Boundary::Free => {}
         }
-        if !(length.is_finite() && length > 0.0) {
-            return Err(Error::invalid("length", Num(length), "a finite number > 0"));
+        let mut k = PdeCoefficients { k1: model.inertia(), k2: 0.0, k3: 0.0, k4: 0.0, k5: 0.0, k6: 0.0 };
+        for term in model.conservative() {
+            collect(&mut k, term)?;
         }
         k.validate()?;
         let h = length / (nodes - 1) as f64;
@@ -87,7 +145,7 @@ impl PdeSystem {
                 format!("a grid spacing h = l / {} with 1 / (h k1) finite", nodes - 1),
             ));
         }
-        Ok(PdeSystem { k, length, nodes, h, damping: ViscousDamping::default() })
+        Ok(PdeSystem { k, length, nodes, h, damping: model.damping() })
     }
 
     /// The same system with viscous damping: the force `-k1 c th_t` per unit length, lumped

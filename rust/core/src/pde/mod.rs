@@ -41,6 +41,13 @@
 //! the inertia: `q_j'' = -(dV_h/dth_j) / (w_j k1) - c v_j`, dissipating `c sum_j w_j k1 v_j^2`,
 //! so `H_h + dissipated` is conserved (see [`crate::system::Dissipating`]).
 //!
+//! The system is built from the model's terms ([`PdeSystem::discretise`] of a
+//! [`crate::terms::ModelTerms`]): each conservative term `weight th^p th_z^r` contributes the
+//! cell energy `h weight (a^p + b^p) / 2 g^r` (for `r = 0` the trapezoid nodal term above, for
+//! `p = 0` the cell term, for `p = r = 2` the `k4` term), and its coefficient is collected into
+//! the fused kernel once, at construction. The free ends ([`crate::terms::Boundary::Free`]) are
+//! the natural ends of the sweep.
+//!
 //! A solve is just [`crate::integrators::solve_second_order`] on a [`PdeSystem`] with the
 //! nodal values `q = th(z_j)` and `v = th_t(z_j)` as state: any method, and memory that
 //! grows only with the saved samples. Explicit methods are stable for steps up to about

@@ -398,3 +398,75 @@ fn divergence_ends_with_a_status_not_a_panic() {
     assert_eq!((sol.len(), sol.dim, sol.y.len()), (11, 60, 11 * 60));
     assert!(sol.stats.naccept > 11);
 }
+
+/// The potential as the sum over the model's terms of the one finite-difference rule, the cell
+/// energy `h weight (a^p + b^p) / 2 g^r`, and its gradient from the terms' cell gradients.
+fn potential_by_terms(model: &crate::terms::ModelTerms, q: &[f64], h: f64) -> (f64, Vec<f64>) {
+    let mut energy = 0.0;
+    let mut grad = vec![0.0; q.len()];
+    for term in model.conservative() {
+        for c in 0..q.len() - 1 {
+            energy += term.cell_energy(q[c], q[c + 1], h);
+            let (da, db) = term.cell_gradient(q[c], q[c + 1], h);
+            grad[c] += da;
+            grad[c + 1] += db;
+        }
+    }
+    (energy, grad)
+}
+
+#[test]
+fn the_fused_kernel_is_the_sum_of_the_terms_cell_energies() {
+    let k = reference_coefficients();
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    for nodes in [3, 7, 40, 101] {
+        let model = crate::terms::ModelTerms::from_coefficients(k).unwrap();
+        let sys = PdeSystem::discretise(&model, LENGTH, nodes).unwrap();
+        assert_eq!(sys, PdeSystem::new(k, LENGTH, nodes).unwrap());
+        assert_eq!(sys.coefficients(), k, "the kernel collects each coefficient exactly");
+        let q: Vec<f64> = (0..nodes).map(|_| 0.3 * uniform(&mut state)).collect();
+        let (energy, grad) = potential_by_terms(&model, &q, sys.spacing());
+        let potential = sys.potential(&q);
+        assert!((energy - potential).abs() <= 1e-13 * potential.abs(), "{energy} vs {potential}");
+        let mut force = vec![0.0; nodes];
+        sys.force(&q, &mut force);
+        let scale = force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+        for j in 0..nodes {
+            assert!((force[j] - grad[j]).abs() <= 1e-12 * scale, "node {j}: {} vs {}", force[j], grad[j]);
+        }
+    }
+}
+
+#[test]
+fn the_consistent_model_has_two_terms_and_damping_comes_from_the_model() {
+    let k = PdeCoefficients { k1: 0.4, k2: 2.0e9, k3: 0.0, k4: 0.0, k5: 3.0e3, k6: 0.0 };
+    let model = crate::terms::ModelTerms::from_coefficients(k).unwrap().with_damping(0.25).unwrap();
+    assert_eq!(model.conservative().len(), 2);
+    let sys = PdeSystem::discretise(&model, LENGTH, 11).unwrap();
+    assert_eq!(sys.coefficients(), k);
+    assert_eq!(sys.damping_rate(), 0.25);
+    assert_eq!(sys, PdeSystem::new(k, LENGTH, 11).unwrap().with_damping(0.25).unwrap());
+}
+
+static SLOPE_TWIST: crate::terms::TermSpec = crate::terms::TermSpec {
+    name: "slope twist",
+    equation: "none (a test shape)",
+    coefficient: "k7",
+    factor: (1, 2),
+    p: 1,
+    r: 1,
+};
+
+#[test]
+fn a_shape_the_kernel_does_not_evaluate_is_refused_by_name() {
+    let mut terms =
+        crate::terms::ModelTerms::from_coefficients(reference_coefficients()).unwrap().conservative().to_vec();
+    terms.push(SLOPE_TWIST.with(1.0).unwrap());
+    let model = crate::terms::ModelTerms::new(1.0, terms).unwrap();
+    let err = PdeSystem::discretise(&model, LENGTH, 11).unwrap_err();
+    assert_eq!(err.field(), "k7");
+    assert!(err.to_string().contains("slope twist"), "{err}");
+    // without an elastic term there is no wave propagation
+    let model = crate::terms::ModelTerms::new(1.0, vec![]).unwrap();
+    assert_eq!(PdeSystem::discretise(&model, LENGTH, 11).unwrap_err().field(), "k2");
+}

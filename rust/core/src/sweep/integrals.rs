@@ -1,25 +1,32 @@
-//! The dimensionless Galerkin integrals of a basis, scaled to a [`ModalSystem`] per run.
+//! The dimensionless Galerkin integrals of a basis, and the discretisation of a model's terms
+//! with them into a [`ModalSystem`], per run.
 //!
-//! The modal system of eq. 18 depends on the parameters only through `k1..k6` and `l`
-//! (`drillstring.galerkin`, module docs):
+//! The modal system of a [`ModelTerms`] depends on the parameters only through its
+//! coefficients and `l` (`drillstring.galerkin`, module docs). Term by term
+//! ([`GalerkinIntegrals::discretise`]), with `N_i = int_0^l phi_i^2 dz` (`l / 2`, `l` for the
+//! rigid mode `i = 0`):
 //!
 //! ```text
-//! M_kk = k1 l / 2            (k1 l for the rigid mode i = 0)
-//! K_kk = k2 (i pi)^2 / (2 l) - k6 l / 2        (-k6 l for i = 0)
-//! C_t  = k3 l / 4 cos4_t + k4 pi^2 / (2 l) mixed_t + k5 pi^4 / (4 l^3) sin4_t
+//! M_ii  = k1 N_i
+//! K_ii  = sum over terms with p + r = 2 of 2 weight (i pi / l)^r N_i
+//!       = k2 (i pi)^2 / (2 l) - k6 l / 2          (eq. 18; -k6 l for i = 0)
+//! C_t   = sum over terms with p + r = 4 of weight l (pi / l)^r I^(p,r)_t
+//!       = k3 l / 4 cos4_t + k4 pi^2 / (2 l) mixed_t + k5 pi^4 / (4 l^3) sin4_t
 //! ```
 //!
-//! with `cos4`, `mixed`, `sin4` exact dimensionless integrals of the `cos(i pi s)` basis,
-//! generated once per basis (`drillstring.galerkin.dimensionless_integrals`). Scaling them
-//! is a few multiplications per term, so the per-run set-up of a sweep is negligible.
-//! [`GalerkinIntegrals::scale`] is the one place of this scaling: sweeps call it per run and
-//! single solves through `drillstring.galerkin.project` (`_core.scale_integrals`).
+//! with `I^(4,0) = cos4`, `I^(2,2) = mixed`, `I^(0,4) = sin4` the exact dimensionless integrals of
+//! the basis, generated once per basis in [`crate::galerkin`]. Scaling them is a few
+//! multiplications per term, so the per-run set-up of a sweep is negligible.
+//! [`GalerkinIntegrals::discretise`] is the one place of this scaling: sweeps call it per run
+//! (through [`GalerkinIntegrals::scale`]) and single solves through `drillstring.galerkin.project`
+//! (`_core.scale_integrals`).
 
 use std::f64::consts::PI;
 
 use crate::error::Num;
 use crate::error::{Error, Result};
 use crate::modal::{ModalSystem, QuarticTerm};
+use crate::terms::{Boundary, EnergyTerm, ModelTerms};
 
 /// The dimensionless quartic integrals of the retained basis `cos(i_k pi z / l)`.
 #[derive(Debug, Clone, PartialEq)]
@@ -35,9 +42,12 @@ pub struct GalerkinIntegrals {
     pub mixed: Vec<f64>,
     /// `mult_t i_a i_b i_c i_d int_0^1 s_a s_b s_c s_d ds` per term.
     pub sin4: Vec<f64>,
+    /// The boundary conditions whose basis these are the integrals of.
+    pub boundary: Boundary,
 }
 
 impl GalerkinIntegrals {
+    /// The integrals of the cosine basis of free ends ([`Boundary::Free`]) from their arrays.
     /// Checks the shapes and values: at least one mode, strictly increasing mode numbers,
     /// positions inside the basis, equal lengths and finite integrals.
     pub fn new(
@@ -76,7 +86,7 @@ impl GalerkinIntegrals {
                 return Err(Error::invalid(format!("quartic_index[{t}]"), bad, format!("positions in 0..{m}")));
             }
         }
-        Ok(GalerkinIntegrals { indices, quartic_index, cos4, mixed, sin4 })
+        Ok(GalerkinIntegrals { indices, quartic_index, cos4, mixed, sin4, boundary: Boundary::Free })
     }
 
     /// Number of retained modal coordinates.
@@ -100,42 +110,104 @@ impl GalerkinIntegrals {
 
     /// The diagonal of `K` for `k2`, `k6` and `l` (negative entries: linearly unstable modes).
     pub fn stiffness(&self, k2: f64, k6: f64, length: f64) -> Vec<f64> {
+        let terms: Vec<EnergyTerm> =
+            [(&crate::terms::energy::LINEAR_ELASTIC, k2), (&crate::terms::energy::ROTATION, k6)]
+                .into_iter()
+                .filter(|&(_, k)| k != 0.0)
+                .filter_map(|(spec, k)| spec.with(k).ok())
+                .collect();
+        let quadratic: Vec<&EnergyTerm> = terms.iter().collect();
+        self.stiffness_of(&quadratic, length)
+    }
+
+    /// The diagonal stiffness of the quadratic terms: `sum 2 weight (i pi / l)^r N_i`.
+    fn stiffness_of(&self, quadratic: &[&EnergyTerm], length: f64) -> Vec<f64> {
         self.indices
             .iter()
             .map(|&i| {
                 let norm = Self::norm(i, length);
                 let wave = f64::from(i) * PI / length;
-                k2 * (wave * wave) * norm - k6 * norm
+                quadratic.iter().fold(0.0, |acc, term| {
+                    let wave_r = if term.spec().r == 2 { wave * wave } else { 1.0 };
+                    // 2 factor is +-1: exactly +-k
+                    acc + 2.0 * term.spec().factor() * term.coefficient() * wave_r * norm
+                })
             })
             .collect()
     }
 
-    /// The modal system for `k = (k1, ..., k6)` and length `l` (the formulas of the module
-    /// docs), for sweeps and single solves alike.
+    /// The dimensionless integrals `I^(p,r)` of a quartic monomial, `None` unless `p + r = 4`
+    /// with `r` even.
+    pub fn quartic_integrals(&self, p: u32, r: u32) -> Option<&[f64]> {
+        match (p, r) {
+            (4, 0) => Some(&self.cos4),
+            (2, 2) => Some(&self.mixed),
+            (0, 4) => Some(&self.sin4),
+            _ => None,
+        }
+    }
+
+    /// The modal system for `k = (k1, ..., k6)` and length `l`: [`GalerkinIntegrals::discretise`]
+    /// of [`ModelTerms::from_coefficients`], for sweeps and single solves alike.
     ///
     /// Errors for non-finite `k`, `k1 <= 0` or `l <= 0` (and whatever [`ModalSystem::new`]
     /// refuses).
     pub fn scale(&self, k: &[f64; 6], length: f64) -> Result<ModalSystem> {
-        if let Some(j) = k.iter().position(|v| !v.is_finite()) {
-            return Err(Error::invalid(format!("k{}", j + 1), Num(k[j]), "a finite number"));
-        }
-        if k[0] <= 0.0 {
-            return Err(Error::invalid("k1", Num(k[0]), "a finite number > 0"));
-        }
+        self.discretise(&ModelTerms::from_coefficients(*k)?, length)
+    }
+
+    /// The modal system of `model` on `[0, length]` (the formulas of the module docs), term by
+    /// term: each term with `p + r = 2` adds to the diagonal stiffness, each with `p + r = 4`
+    /// to the quartic coefficients; the damping is the model's.
+    ///
+    /// Errors: `l` not finite and `> 0` (`"length"`), a model whose boundary is not the one of
+    /// the basis (`"boundary"`), a term of another shape (field: its coefficient, naming the
+    /// term), and whatever [`ModalSystem::new`] refuses.
+    pub fn discretise(&self, model: &ModelTerms, length: f64) -> Result<ModalSystem> {
         if !(length.is_finite() && length > 0.0) {
             return Err(Error::invalid("length", Num(length), "a finite number > 0"));
         }
-        let [k1, k2, k3, k4, k5, k6] = *k;
-        let c3 = k3 * length / 4.0;
-        let c4 = k4 * PI.powi(2) / (2.0 * length);
-        let c5 = k5 * PI.powi(4) / (4.0 * length.powi(3));
+        if model.boundary() != self.boundary {
+            return Err(Error::invalid(
+                "boundary",
+                model.boundary().name(),
+                format!("the boundary of the basis, {}", self.boundary.name()),
+            ));
+        }
+        let mut quadratic = Vec::new();
+        let mut quartic: Vec<(f64, &[f64])> = Vec::new();
+        for term in model.conservative() {
+            let (p, r) = term.exponents();
+            match (p + r, self.quartic_integrals(p, r)) {
+                (2, _) if r % 2 == 0 => quadratic.push(term),
+                (4, Some(integrals)) => {
+                    // weight l (pi / l)^r, evaluated as eq. 18's hand-written k l / 4,
+                    // k pi^2 / (2 l), k pi^4 / (4 l^3) (same rounding, same overflow)
+                    let (k, d) = (term.coefficient(), term.spec().divisor());
+                    let scale = match r {
+                        0 => k * length / d,
+                        2 => k * PI.powi(2) / (d * length),
+                        _ => k * PI.powi(4) / (d * length.powi(3)),
+                    };
+                    quartic.push((scale, integrals));
+                }
+                _ => {
+                    return Err(Error::invalid(
+                        term.spec().coefficient,
+                        format!("the {} term th^{p} th_z^{r}", term.name()),
+                        "a Galerkin energy monomial with p + r = 2 or 4 and r even",
+                    ))
+                }
+            }
+        }
         let terms = (0..self.quartic_index.len())
             .map(|t| QuarticTerm {
                 idx: self.quartic_index[t],
-                coef: c3 * self.cos4[t] + c4 * self.mixed[t] + c5 * self.sin4[t],
+                coef: quartic.iter().fold(0.0, |acc, &(scale, integrals)| acc + scale * integrals[t]),
             })
             .collect();
-        ModalSystem::new(self.mass(k1, length), self.stiffness(k2, k6, length), terms)
+        ModalSystem::new(self.mass(model.inertia(), length), self.stiffness_of(&quadratic, length), terms)?
+            .with_damping(model.damping().rate())
     }
 
     /// `cos(i_k pi z / l)` for every retained mode: theta at section `z` is the dot product
@@ -196,5 +268,84 @@ mod tests {
         assert_eq!(g.scale(&[0.0, 1.0, 1.0, 1.0, 1.0, 1.0], 1.0).unwrap_err().field(), "k1");
         assert_eq!(g.scale(&[1.0, 1.0, f64::NAN, 1.0, 1.0, 1.0], 1.0).unwrap_err().field(), "k3");
         assert_eq!(g.scale(&[1.0; 6], -1.0).unwrap_err().field(), "length");
+    }
+
+    /// The scaling as written before the terms existed: eq. 18's coefficients by hand.
+    fn scale_by_hand(g: &GalerkinIntegrals, k: &[f64; 6], length: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let [k1, k2, k3, k4, k5, k6] = *k;
+        let norm = |i: u32| if i == 0 { length } else { length / 2.0 };
+        let mass = g.indices.iter().map(|&i| k1 * norm(i)).collect();
+        let stiffness = g
+            .indices
+            .iter()
+            .map(|&i| {
+                let wave = f64::from(i) * PI / length;
+                k2 * (wave * wave) * norm(i) - k6 * norm(i)
+            })
+            .collect();
+        let c3 = k3 * length / 4.0;
+        let c4 = k4 * PI.powi(2) / (2.0 * length);
+        let c5 = k5 * PI.powi(4) / (4.0 * length.powi(3));
+        let coef = (0..g.quartic_index.len()).map(|t| c3 * g.cos4[t] + c4 * g.mixed[t] + c5 * g.sin4[t]).collect();
+        (mass, stiffness, coef)
+    }
+
+    #[test]
+    fn composing_the_terms_reproduces_the_hand_written_system_bit_for_bit() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let paper = [0.369, 5.4e9, 3.3e8, 1.6e9, -2.2e5, 3.64];
+        let consistent = [0.369, 1.35e9, 0.0, 0.0, 7.7e5, 0.0];
+        for (modes, rigid) in [(1, false), (3, false), (5, true), (16, true)] {
+            let g = crate::galerkin::integrals(Boundary::Free, modes, rigid).unwrap();
+            for k in [paper, consistent, [2.0, 3.0, 5.0, 7.0, 11.0, 13.0]] {
+                for length in [100.0, 1.7, 2000.0] {
+                    let sys = g.scale(&k, length).unwrap();
+                    let (mass, stiffness, coef) = scale_by_hand(&g, &k, length);
+                    assert_eq!(bits(sys.mass()), bits(&mass));
+                    assert_eq!(bits(sys.stiffness()), bits(&stiffness), "{modes} {rigid} {k:?} {length}");
+                    let got: Vec<f64> = sys.terms().iter().map(|t| t.coef).collect();
+                    // the sign of a zero may differ (0 + -0)
+                    let got: Vec<f64> = got.iter().map(|&c| if c == 0.0 { 0.0 } else { c }).collect();
+                    let coef: Vec<f64> = coef.iter().map(|&c| if c == 0.0 { 0.0 } else { c }).collect();
+                    assert_eq!(bits(&got), bits(&coef), "{modes} {rigid} {k:?} {length}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn overflow_is_refused_where_the_hand_written_system_overflowed() {
+        let g = crate::galerkin::integrals(Boundary::Free, 3, true).unwrap();
+        for k in [
+            [1.0, 1e305, 1e307, 1e300, 1e300, 1.0],
+            [1.0, 1e300, 0.0, 0.0, 1e305, 0.0],
+            [1.0, 1e307, 1.0, 1.0, 1.0, 1.0],
+        ] {
+            for length in [100.0, 1e-3] {
+                let (mass, stiffness, coef) = scale_by_hand(&g, &k, length);
+                let finite = mass.iter().chain(&stiffness).chain(&coef).all(|x| x.is_finite());
+                assert_eq!(g.scale(&k, length).is_ok(), finite, "{k:?} {length}");
+            }
+        }
+    }
+
+    #[test]
+    fn damping_and_refusals_come_from_the_model() {
+        let g = two_modes();
+        let model = ModelTerms::from_coefficients([2.0, 3.0, 5.0, 7.0, 11.0, 13.0]).unwrap().with_damping(0.5).unwrap();
+        let sys = g.discretise(&model, 1.7).unwrap();
+        assert_eq!(sys.damping_rate(), 0.5);
+        assert_eq!(g.discretise(&model, f64::NAN).unwrap_err().field(), "length");
+        static SLOPE: crate::terms::TermSpec = crate::terms::TermSpec {
+            name: "slope",
+            equation: "none (a test shape)",
+            coefficient: "k7",
+            factor: (1, 2),
+            p: 3,
+            r: 1,
+        };
+        let odd = ModelTerms::new(1.0, vec![SLOPE.with(1.0).unwrap()]).unwrap();
+        let err = g.discretise(&odd, 1.0).unwrap_err();
+        assert!(err.field() == "k7" && err.to_string().contains("slope"), "{err}");
     }
 }

@@ -1,4 +1,4 @@
-//! Physics terms written once and shared by the discretisations.
+//! Viscous damping, the one dissipative term.
 //!
 //! Every discretisation here has a diagonal mass: the Galerkin modal masses `M_i` (the basis
 //! is orthogonal) and the lumped masses of the finite differences. A term whose force per unit
