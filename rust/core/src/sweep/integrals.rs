@@ -108,19 +108,8 @@ impl GalerkinIntegrals {
         self.indices.iter().map(|&i| k1 * Self::norm(i, length)).collect()
     }
 
-    /// The diagonal of `K` for `k2`, `k6` and `l` (negative entries: linearly unstable modes).
-    pub fn stiffness(&self, k2: f64, k6: f64, length: f64) -> Vec<f64> {
-        let terms: Vec<EnergyTerm> =
-            [(&crate::terms::energy::LINEAR_ELASTIC, k2), (&crate::terms::energy::ROTATION, k6)]
-                .into_iter()
-                .filter(|&(_, k)| k != 0.0)
-                .filter_map(|(spec, k)| spec.with(k).ok())
-                .collect();
-        let quadratic: Vec<&EnergyTerm> = terms.iter().collect();
-        self.stiffness_of(&quadratic, length)
-    }
-
-    /// The diagonal stiffness of the quadratic terms: `sum 2 weight (i pi / l)^r N_i`.
+    /// The diagonal of `K` of the quadratic terms, `sum 2 weight (i pi / l)^r N_i` (negative
+    /// entries: linearly unstable modes).
     fn stiffness_of(&self, quadratic: &[&EnergyTerm], length: f64) -> Vec<f64> {
         self.indices
             .iter()
