@@ -112,9 +112,10 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         f"{cfg.friction.model})",
         f"- Top drive: {td.rpm:g} rpm, {td.controller.type} controller, inertia {td.inertia:g} kg m²",
         f"- Bit: {on_bottom}",
-        f"- Numerics: {cfg.numerics.cells} cells, {cfg.numerics.duration:g} s"
-        + (f"; {result.stats.get('substeps')} substeps of {_fmt(float(result.stats['dt']))} s"
-           if "dt" in result.stats and "substeps" in result.stats else ""),
+        f"- Numerics: {cfg.numerics.cells} cells asked"
+        + (f" ({result.stats['cells']} used), {cfg.numerics.duration:g} s in {result.stats['steps']} steps of "
+           f"{_fmt(float(result.stats['dt']))} s" if {"cells", "steps", "dt"} <= set(result.stats)
+           else f", {cfg.numerics.duration:g} s"),
         "",
         f"## Stick-slip (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)",
         "",

@@ -40,6 +40,20 @@ UNITS: dict[str, str] = {
 }
 
 
+#: The names of the core's metrics (those of :class:`drillstring.analysis.StickSlipMetrics`) by
+#: the names of :class:`DrillMetrics`.
+_CORE_METRICS = {
+    "ssi": "severity",
+    "period_s": "cycle_period",
+    "bit_rpm_min": "rpm_min",
+    "bit_rpm_max": "rpm_max",
+    "bit_rpm_mean": "rpm_mean",
+    "motor_torque_min_Nm": "torque_min",
+    "motor_torque_max_Nm": "torque_max",
+    "breakoff_torque_Nm": "breakoff_torque",
+}
+
+
 def _number(value: Any) -> float:
     return float("nan") if value is None else float(value)
 
@@ -72,8 +86,14 @@ class DrillMetrics:
 
     @classmethod
     def from_core(cls, metrics: Mapping[str, Any]) -> DrillMetrics:
-        """From the ``metrics`` dict of ``_core.drill_solve`` (``None`` read as NaN)."""
-        return cls(**{f.name: _number(metrics.get(f.name)) for f in dataclasses.fields(cls)})
+        """From the ``metrics`` dict of ``_core.drill_solve`` (the names of
+        :func:`drillstring.analysis.stick_slip_metrics`: ``severity``, ``rpm_min``, ...;
+        ``None`` read as NaN)."""
+        values = {}
+        for f in dataclasses.fields(cls):
+            core = _CORE_METRICS.get(f.name, f.name)
+            values[f.name] = _number(metrics[core] if core in metrics else metrics.get(f.name))
+        return cls(**values)
 
     @property
     def window(self) -> tuple[float, float]:

@@ -69,8 +69,11 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
     option = check_progress(False if progress is None else progress)
     text = cfg.to_json()
     profile = DrillProfile.from_core(_core.drill_profile(text))
-    with SolveProgress(option, cfg.numerics.duration, "drill") as bar:
-        raw = _core.drill_solve(text, bar.report if bar.enabled else None)
+    duration = cfg.numerics.duration
+    with SolveProgress(option, duration, "drill") as bar:
+        # the core reports the fraction of the duration done
+        report = (lambda fraction: bar.report(fraction * duration)) if bar.enabled else None
+        raw = _core.drill_solve(text, report)
         result = DrillResult(cfg, raw, profile)
         bar.finish(result)
     if check and not result.success:
