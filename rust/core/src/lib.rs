@@ -22,6 +22,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod drilling;
 pub mod error;
 pub mod integrators;
 pub mod interrupt;
