@@ -367,7 +367,10 @@ class DrillConfig:
 
         ``assignments`` is a list of ``"key=value"`` strings, as ``drillstring drill --set``
         takes them (the value is TOML: ``60``, ``3.5e4``, ``true``, ``"pi"``, ``[0, 30]``, and a
-        bare word such as ``soft_torque`` is a string), or a mapping of dotted keys to values::
+        bare word such as ``soft_torque`` is a string, ``null`` unsets an optional field such as
+        ``top_drive.torque_limit``), or a mapping of dotted keys to values. Setting
+        ``well.inclination_deg`` to one number (a constant inclination) without ``well.md``
+        drops the survey stations::
 
             cfg.with_overrides(["top_drive.rpm=60", "sections[0].length=3000", "bit.on_bottom=true"])
             cfg.with_overrides({"top_drive.controller.type": "soft_torque"})
@@ -380,10 +383,14 @@ class DrillConfig:
             range, or a value of the wrong type or refused by the core (naming the field).
         """
         data = self.to_dict()
-        items = assignments.items() if isinstance(assignments, Mapping) else (
-            _split_assignment(a) for a in _assignment_list(assignments))
+        items = list(assignments.items() if isinstance(assignments, Mapping) else (
+            _split_assignment(a) for a in _assignment_list(assignments)))
         for key, value in items:
             _assign(data, key, value)
+        keys = {str(key).replace(" ", "") for key, _ in items}
+        if "well.inclination_deg" in keys and "well.md" not in keys and not isinstance(
+                data["well"]["inclination_deg"], (list, tuple)):
+            data["well"]["md"] = None  # a constant inclination replaces the survey
         return type(self).from_dict(data)
 
 
@@ -506,6 +513,8 @@ def _build(cls: type, value: Any, path: str, *, construct: bool = False) -> Any:
         what = f"a table [{path}]" if path else "a table of the configuration"
         raise ValidationError(path or "config", value, f"{what} with the keys {_keys_text(cls)}")
     checked = _check_fields(cls, value, path)
+    if cls is Well and "md" not in value and isinstance(checked.get("inclination_deg"), float):
+        checked["md"] = None  # one constant inclination: no survey stations (TOML has no null)
     for f in dataclasses.fields(cls):
         no_default = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
         if no_default and f.name not in checked:
@@ -658,7 +667,7 @@ def _split_assignment(text: Any) -> tuple[str, Any]:
     except (ValueError, RecursionError):  # tomllib.TOMLDecodeError: maybe a bare word
         if not _BARE_WORD.match(raw):
             raise ValidationError("--set", text, _SET_FORM + " (number, true/false, \"string\", [list])") from None
-        value = raw
+        value = None if raw == "null" else raw  # null: unset an optional field (TOML has no null)
     return key, value
 
 

@@ -129,7 +129,9 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         f"| break-off torque, kN m | {_fmt(m.breakoff_torque_Nm / 1e3)} |",
     ]
     if result.energy:
-        lines += ["", "## Energy balance, J", "", "| term | value |", "|---|---:|"]
+        lines += ["", "## Energy balance, J", "",
+                  "Motor work and losses from the start; kinetic, elastic, top-drive and BHA energies at the end.",
+                  "", "| term | value |", "|---|---:|"]
         lines += [f"| {name.replace('_', ' ')} | {_fmt(value, 6)} |" for name, value in result.energy.items()]
     lines += ["", "## Files", "",
               "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque",

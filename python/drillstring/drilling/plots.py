@@ -59,7 +59,7 @@ def time_histories(result: DrillResult, title: Optional[str] = None) -> Figure:
     ax_torque.plot(result.t, result.bit_torque * _KN, lw=1.0, color="tab:orange", ls="--", label="bit")
     breakoff = result.profile.breakoff_torque
     if np.isfinite(breakoff) and breakoff > 0:
-        ax_torque.axhline(breakoff * _KN, color="k", lw=0.8, ls=":", label="break-off torque")
+        ax_torque.axhline(breakoff * _KN, color="k", lw=0.8, ls=":", label="break-off torque (wall friction)")
     ax_torque.set_ylabel("torque, kN m")
     ax_torque.set_xlabel("t, s")
     ax_torque.legend(loc="upper right", fontsize=9)
