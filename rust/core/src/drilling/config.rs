@@ -475,7 +475,15 @@ impl DrillConfig {
                 }
             }
         }
-        serde_json::from_value(user).map_err(|e| Error::invalid("config", e.to_string(), "a valid configuration"))
+        let constant_without_md =
+            user.pointer("/well/md").is_none() && user.pointer("/well/inclination_deg").is_some_and(Value::is_number);
+        let mut cfg: DrillConfig = serde_json::from_value(user)
+            .map_err(|e| Error::invalid("config", e.to_string(), "a valid configuration"))?;
+        if constant_without_md {
+            // A constant inclination needs no survey depths (the default ones are a table's).
+            cfg.well.md = None;
+        }
+        Ok(cfg)
     }
 
     /// The configuration as JSON, every default filled in.

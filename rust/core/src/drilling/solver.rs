@@ -17,10 +17,15 @@
 //!    each gives the ghost invariant entering its neighbouring cell (`alpha = 2 omega - beta`);
 //! 2. first-order upwind transport, `alpha_j <- alpha_j - C (alpha_j - alpha_{j-1})` (exact
 //!    shift at Courant number `C = 1`);
-//! 3. the sources, added to both invariants: damping `-dt d omega_j^n`, and friction: when
-//!    `|omega_j^n| < stick_speed` the torque that stops the cell in this step, clipped to the
-//!    static limit, else the kinetic limit against `omega_j^n` (set-valued, as
-//!    torsionalWaveStep.m), or `tanh(omega_j^n / v_r)` times the kinetic limit (regularised).
+//! 3. the sources, added to both invariants, evaluated at the transported speed
+//!    `omega*_j = (alpha*_j + beta*_j) / 2` (the material now in the cell): damping
+//!    `-dt d omega*_j`, and friction: when `|omega*_j| < stick_speed` the torque that stops the
+//!    cell in this step, clipped to the static limit (a stopped cell gets `omega = 0` exactly,
+//!    its torque kept), else the kinetic limit against `omega*_j` (the set-valued resolution
+//!    of torsionalWaveStep.m, which evaluates the threshold and direction at the speed before
+//!    transport; with the speed after it, friction cannot pump energy into the grid-scale
+//!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
+//!    the kinetic limit (regularised).
 //!
 //! # Energy
 //!
@@ -60,9 +65,14 @@ pub struct EnergyBalance {
     pub friction_loss: f64,
     pub damping_loss: f64,
     pub bit_loss: f64,
-    /// Upwind dissipation (0 at Courant number 1) plus the implicit-Euler dissipation of the
-    /// top-drive and BHA inertias.
+    /// `upwind_loss + inertia_loss`.
     pub numerical_loss: f64,
+    /// Dissipation of the first-order upwind transport, `e C (1 - C) (d alpha^2 + d beta^2)`
+    /// per cell and step (0 at Courant number 1).
+    pub upwind_loss: f64,
+    /// Dissipation of the implicit Euler steps of the top-drive and BHA inertias,
+    /// `I (Omega' - Omega)^2 / 2` per step (first order in `dt`).
+    pub inertia_loss: f64,
     /// `(motor_work - (final - initial) - losses) / scale`, `scale` the largest of
     /// `|motor_work|`, the energies and the losses.
     pub balance_error: f64,
@@ -198,7 +208,8 @@ struct Losses {
     friction: f64,
     damping: f64,
     bit: f64,
-    numerical: f64,
+    upwind: f64,
+    inertia: f64,
 }
 
 impl<'c> Simulation<'c> {
@@ -412,7 +423,7 @@ impl<'c> Simulation<'c> {
         }
         self.alpha[first.offset] = 2.0 * omega1 - beta1;
         self.losses.motor += dt * motor * omega1;
-        self.losses.numerical += 0.5 * inertia * (omega1 - omega) * (omega1 - omega);
+        self.losses.inertia += 0.5 * inertia * (omega1 - omega) * (omega1 - omega);
         self.omega_top = omega1;
 
         // Bit.
@@ -438,7 +449,7 @@ impl<'c> Simulation<'c> {
         };
         self.beta[last.offset + last.cells + 1] = 2.0 * wb1 - alpha_n;
         self.losses.bit += dt * tbit * wb1;
-        self.losses.numerical += 0.5 * ib * (wb1 - wb) * (wb1 - wb);
+        self.losses.inertia += 0.5 * ib * (wb1 - wb) * (wb1 - wb);
         self.omega_bit = wb1;
 
         // Junctions.
@@ -470,7 +481,7 @@ impl<'c> Simulation<'c> {
                 sp.courant,
                 &sources,
             );
-            self.losses.numerical += sp.e * sp.courant * (1.0 - sp.courant) * sums.jumps;
+            self.losses.upwind += sp.e * sp.courant * (1.0 - sp.courant) * sums.jumps;
             self.losses.friction -= 4.0 * sp.e * sums.friction;
             self.losses.damping -= 4.0 * sp.e * sums.damping;
         }
@@ -529,7 +540,7 @@ impl<'c> Simulation<'c> {
             run.status = Status::OutOfMemory;
             run.message = format!(
                 "the outputs ({} MiB) could not be allocated",
-                (n_series * SERIES + n_fields * (2 * nz + 1)) * 8 >> 20
+                ((n_series * SERIES + n_fields * (2 * nz + 1)) * 8) >> 20
             );
             return run;
         }
@@ -595,8 +606,9 @@ impl<'c> Simulation<'c> {
         let (kin, ela, td, bha) = self.energies();
         let l = self.losses;
         let change = kin + ela + td + bha - initial;
-        let residual = l.motor - change - l.friction - l.damping - l.bit - l.numerical;
-        let scale = [l.motor, initial, kin + ela + td + bha, l.friction, l.damping, l.bit, l.numerical]
+        let numerical = l.upwind + l.inertia;
+        let residual = l.motor - change - l.friction - l.damping - l.bit - numerical;
+        let scale = [l.motor, initial, kin + ela + td + bha, l.friction, l.damping, l.bit, numerical]
             .iter()
             .fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
         run.energy = EnergyBalance {
@@ -609,7 +621,9 @@ impl<'c> Simulation<'c> {
             friction_loss: l.friction,
             damping_loss: l.damping,
             bit_loss: l.bit,
-            numerical_loss: l.numerical,
+            numerical_loss: numerical,
+            upwind_loss: l.upwind,
+            inertia_loss: l.inertia,
             balance_error: residual / scale,
         };
         if run.status == Status::Success && !(residual.is_finite() && scale.is_finite()) {
@@ -666,24 +680,30 @@ fn transport(a: &[f64], b: &[f64], stop: &[f64], an: &mut [f64], bn: &mut [f64],
     for j in 1..=n {
         let lane = j & 3;
         let (aj, bj) = (a[j], b[j]);
-        let w0 = 0.5 * (aj + bj);
         let da = aj - a[j - 1];
         let db = bj - b[j + 1];
         let a1 = aj - c * da;
         let b1 = bj - c * db;
         jumps[lane] += da * da + db * db;
         let w1 = 0.5 * (a1 + b1);
-        let dd = -src.damping * w0;
+        let dd = -src.damping * w1;
         let lim = stop[j];
+        let wd = w1 + dd;
+        if src.regularised.is_none() && w1.abs() < vs && wd.abs() <= lim {
+            // Stuck: the friction stops the cell exactly (omega = 0 with the torque kept).
+            let df = -wd;
+            let s1 = 0.5 * (a1 - b1);
+            let wbar = 0.5 * w1;
+            fric[lane] += df * wbar;
+            damp[lane] += dd * wbar;
+            an[j] = s1;
+            bn[j] = -s1;
+            continue;
+        }
         let df = match src.regularised {
-            None => {
-                if w0.abs() < vs {
-                    -(w1 + dd).clamp(-lim, lim)
-                } else {
-                    -kr * lim * w0.signum()
-                }
-            }
-            Some(vr) => -kr * lim * (w0 / vr).tanh(),
+            None if w1.abs() < vs => -lim * wd.signum(),
+            None => -kr * lim * w1.signum(),
+            Some(vr) => -kr * lim * (w1 / vr).tanh(),
         };
         let d = dd + df;
         let wbar = w1 + 0.5 * d;
