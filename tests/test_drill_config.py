@@ -113,6 +113,21 @@ def test_overrides() -> None:
     assert cfg == rich()  # the original is unchanged
     assert cfg.with_overrides({"top_drive.controller": {"kp": 1.0}}).top_drive.controller.type == "soft_torque"
     assert cfg.with_overrides([]) == cfg
+    # null unsets an optional field; one inclination number replaces the survey
+    assert cfg.top_drive.torque_limit == 4.0e4
+    assert cfg.with_overrides(["top_drive.torque_limit=null"]).top_drive.torque_limit is None
+    flat = cfg.with_overrides(["well.inclination_deg=20"])
+    assert flat.well.md is None and flat.well.inclination_deg == 20.0
+    assert fails(lambda: cfg.with_overrides(["top_drive.rpm=null"])).field == "top_drive.rpm"
+
+
+def test_a_constant_inclination_in_toml(tmp_path: Path) -> None:
+    cfg = load_drill_config(write(tmp_path, GOOD + "\n[well]\ninclination_deg = 30.0\n"))
+    assert cfg.well.md is None and cfg.well.inclination_deg == 30.0
+    assert load_drill_config(cfg.save(tmp_path / "again.toml")) == cfg
+    survey = "\n[well]\nmd = [0.0, 100.0]\ninclination_deg = 30.0\n"
+    error = fails(lambda: load_drill_config(write(tmp_path, GOOD + survey)))
+    assert error.field == "well.inclination_deg" and error.line == 26
 
 
 def fails(call: Any) -> ValidationError:

@@ -296,7 +296,7 @@ class DrillConfig:
 
     def __post_init__(self) -> None:
         checked = _check_fields(type(self), {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}, "")
-        normal = json.loads(_core.drill_validate(json.dumps(_plain(checked), allow_nan=False)))
+        normal = json.loads(_core.drill_validate(json.dumps(_unset_left_out(_plain(checked)), allow_nan=False)))
         rebuilt = _build(type(self), normal, "")  # the fields of the normalised config
         for f in dataclasses.fields(self):
             object.__setattr__(self, f.name, rebuilt[f.name])
@@ -314,8 +314,8 @@ class DrillConfig:
         return _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
 
     def to_json(self) -> str:
-        """:meth:`to_dict` as JSON: what the core receives."""
-        return json.dumps(self.to_dict(), allow_nan=False)
+        """:meth:`to_dict` as JSON, unset optional fields left out: what the core receives."""
+        return json.dumps(_unset_left_out(self.to_dict()), allow_nan=False)
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: Optional[str] = None) -> DrillConfig:
@@ -525,6 +525,16 @@ def _build(cls: type, value: Any, path: str, *, construct: bool = False) -> Any:
         # inside DrillConfig.__post_init__: the fields only (constructing would validate again)
         return checked
     return cls(**checked)
+
+
+def _unset_left_out(value: Any) -> Any:
+    """The plain config without its ``None`` (unset) fields: the core fills them (an unset
+    ``well.md`` with one inclination number means no survey stations)."""
+    if isinstance(value, dict):
+        return {k: _unset_left_out(v) for k, v in value.items() if v is not None}
+    if isinstance(value, list):
+        return [_unset_left_out(v) for v in value]
+    return value
 
 
 def _plain(value: Any) -> Any:
