@@ -24,7 +24,7 @@ from drillstring.drilling import (
     load_drill_config,
 )
 from drillstring.drilling.plots import space_time_maps, time_histories, torque_depth
-from drillstring.errors import SolveError
+from drillstring.errors import SolveError, ValidationError
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -167,6 +167,12 @@ def test_outputs_and_figures_of_a_result_built_from_arrays(tmp_path: Path) -> No
     object.__setattr__(empty.metrics, "period_s", math.nan)
     empty.save(tmp_path / "empty", plots=True)
     assert json.loads((tmp_path / "empty" / "metrics.json").read_text())["period_s"] is None
+    # a destination that cannot be written is refused before any file is
+    (tmp_path / "bad" / "report.md").mkdir(parents=True)
+    with pytest.raises(ValidationError) as err:
+        res.save(tmp_path / "bad")
+    assert err.value.field == "out_dir" and "report.md" in str(err.value)
+    assert [p.name for p in (tmp_path / "bad").iterdir()] == ["report.md"]
     assert (tmp_path / "empty" / "space_time.png").read_bytes()[:4] == b"\x89PNG"
     with np.load(tmp_path / "empty" / "fields.npz") as data:
         assert data["omega_rpm"].shape == (0, 100)

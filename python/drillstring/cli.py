@@ -541,14 +541,13 @@ def _add_drill(sub: Any) -> None:
 def _cmd_drill(args: argparse.Namespace) -> int:
     import time
 
-    from .drilling import FILES, drill, load_drill_config
-    from .drilling.output import PLOT_FILES
+    from .drilling import drill, load_drill_config
+    from .drilling.output import output_names
 
     config = load_drill_config(args.config)
     if args.overrides:
         config = config.with_overrides(args.overrides)
-    files = [name for name in FILES if not (args.no_plots and name in PLOT_FILES)]
-    check_destination(args.out, field="--out", directory=True, files=files)
+    check_destination(args.out, field="--out", directory=True, files=output_names(not args.no_plots))
     start = time.perf_counter()
     result = drill(config, progress=_show_progress(args))
     seconds = time.perf_counter() - start

@@ -8,16 +8,16 @@ import json
 import math
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
-from .._output import atomic_write, make_directory, write_bytes, write_text
+from .._output import atomic_write, check_destination, make_directory, write_bytes, write_text
 
 if TYPE_CHECKING:  # pragma: no cover
     from .result import DrillResult
 
-__all__ = ["DATA_FILES", "FILES", "PLOT_FILES", "report_markdown", "write_outputs"]
+__all__ = ["DATA_FILES", "FILES", "PLOT_FILES", "output_names", "report_markdown", "write_outputs"]
 
 #: The data files of an output folder, in the order they are written.
 DATA_FILES: tuple[str, ...] = ("series.parquet", "series.csv", "metrics.json", "fields.npz", "config.toml")
@@ -39,9 +39,17 @@ def _json_ready(value: Any) -> Any:
     return value
 
 
-def write_outputs(result: DrillResult, out_dir: Any, *, plots: bool = True) -> list[Path]:
+def output_names(plots: bool = True) -> tuple[str, ...]:
+    """The files an output folder gets (:data:`FILES`, without the figures with ``plots=False``)."""
+    return FILES if plots else tuple(name for name in FILES if name not in PLOT_FILES)
+
+
+def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
     """Writes the run's files into ``out_dir`` (created if needed; see :data:`FILES`) and
-    returns their paths."""
+    returns their paths. The folder and every file destination in it are checked first
+    (:func:`~drillstring._output.check_destination`): a refused one raises
+    :class:`~drillstring.errors.ValidationError` before anything is written."""
+    check_destination(out_dir, field="out_dir", directory=True, files=output_names(plots))
     directory = make_directory(out_dir)
     written: list[Path] = []
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
@@ -216,11 +217,12 @@ class DrillResult:
         out["stats"] = self.stats
         return out
 
-    def save(self, out_dir: Any, *, plots: bool = True) -> list[Path]:
+    def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
         """Writes the run into the folder ``out_dir`` (created if needed) and returns the paths
         written: ``series.parquet``, ``series.csv``, ``metrics.json``, ``fields.npz``,
         ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
-        ``report.md``. Every file is written atomically (see :mod:`drillstring._output`)."""
+        ``report.md``. The destinations are checked before anything is written; every file is
+        written atomically (see :mod:`drillstring._output`)."""
         from .output import write_outputs
 
         return write_outputs(self, out_dir, plots=plots)
