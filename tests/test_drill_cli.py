@@ -196,8 +196,9 @@ def test_ctrl_c_stops_the_run_with_status_130_and_no_files(tmp_path: Path) -> No
         import sys
         from drillstring.cli import main
         print("ready", flush=True)
-        sys.exit(main(["drill", {str(EXAMPLE)!r}, "--out", {str(out)!r}, "--set", "numerics.duration=3000",
-                       "--no-progress"]))
+        sys.exit(main(["drill", {str(EXAMPLE)!r}, "--out", {str(out)!r}, "--set", "numerics.duration=86400",
+                       "--set", "numerics.output_interval=1", "--set", "numerics.field_interval=0",
+                       "--set", "numerics.cells=2000", "--no-progress"]))  # minutes of solving
     """
     with python_child(script, cwd=tmp_path) as child:
         time.sleep(1.5)
