@@ -423,8 +423,12 @@ class DrillEnergy(TypedDict):
     friction_loss: float
     damping_loss: float
     bit_loss: float
-    #: Upwind dissipation (0 at Courant number 1) plus implicit-Euler dissipation of the inertias.
+    #: upwind_loss + inertia_loss.
     numerical_loss: float
+    #: Dissipation of the first-order upwind transport (0 at Courant number 1).
+    upwind_loss: float
+    #: Dissipation of the implicit Euler steps of the top-drive and BHA inertias.
+    inertia_loss: float
     #: Relative residual of the balance.
     balance_error: float
 

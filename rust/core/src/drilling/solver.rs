@@ -671,49 +671,177 @@ struct Sums {
 }
 
 /// Upwind transport and sources of one section: `a`, `b`, `stop` padded (`[ghost, cells, ghost]`),
-/// the new invariants written to the cells of `an`, `bn`.
+/// the new invariants written to the cells of `an`, `bn`. Runs through
+/// [`crate::simd::dispatch`] (AVX2 when available; no fused multiply-adds, so both paths give
+/// the same bits).
 fn transport(a: &[f64], b: &[f64], stop: &[f64], an: &mut [f64], bn: &mut [f64], c: f64, src: &Sources) -> Sums {
     let n = a.len() - 2;
-    let mut sums = Sums::default();
-    let (vs, kr) = (src.stick_speed, src.kinetic_ratio);
-    let (mut jumps, mut fric, mut damp) = ([0.0; 4], [0.0; 4], [0.0; 4]);
-    for j in 1..=n {
-        let lane = j & 3;
-        let (aj, bj) = (a[j], b[j]);
-        let da = aj - a[j - 1];
-        let db = bj - b[j + 1];
-        let a1 = aj - c * da;
-        let b1 = bj - c * db;
-        jumps[lane] += da * da + db * db;
-        let w1 = 0.5 * (a1 + b1);
-        let dd = -src.damping * w1;
-        let lim = stop[j];
-        let wd = w1 + dd;
-        if src.regularised.is_none() && w1.abs() < vs && wd.abs() <= lim {
-            // Stuck: the friction stops the cell exactly (omega = 0 with the torque kept).
-            let df = -wd;
-            let s1 = 0.5 * (a1 - b1);
-            let wbar = 0.5 * w1;
-            fric[lane] += df * wbar;
-            damp[lane] += dd * wbar;
-            an[j] = s1;
-            bn[j] = -s1;
-            continue;
+    let kernel = Transport {
+        a_prev: &a[..n],
+        a: &a[1..=n],
+        b: &b[1..=n],
+        b_next: &b[2..],
+        stop: &stop[1..=n],
+        an: &mut an[1..=n],
+        bn: &mut bn[1..=n],
+        c,
+        src,
+    };
+    crate::simd::dispatch(kernel)
+}
+
+struct Transport<'a> {
+    a_prev: &'a [f64],
+    a: &'a [f64],
+    b: &'a [f64],
+    b_next: &'a [f64],
+    stop: &'a [f64],
+    an: &'a mut [f64],
+    bn: &'a mut [f64],
+    c: f64,
+    src: &'a Sources,
+}
+
+/// Lanes of the summation (independent accumulators, vectorisable).
+const LANES: usize = 4;
+
+/// `sum x` with [`LANES`] accumulators.
+#[inline(always)]
+fn lane_sum(x: &[f64]) -> f64 {
+    let mut acc = [0.0; LANES];
+    let blocks = x.chunks_exact(LANES);
+    let rest = blocks.remainder();
+    for blk in blocks {
+        for l in 0..LANES {
+            acc[l] += blk[l];
         }
-        let df = match src.regularised {
-            None if w1.abs() < vs => -lim * wd.signum(),
-            None => -kr * lim * w1.signum(),
-            Some(vr) => -kr * lim * (w1 / vr).tanh(),
-        };
-        let d = dd + df;
-        let wbar = w1 + 0.5 * d;
-        fric[lane] += df * wbar;
-        damp[lane] += dd * wbar;
-        an[j] = a1 + d;
-        bn[j] = b1 + d;
     }
-    sums.jumps = jumps.iter().sum();
-    sums.friction = fric.iter().sum();
-    sums.damping = damp.iter().sum();
-    sums
+    acc.iter().sum::<f64>() + rest.iter().sum::<f64>()
+}
+
+impl crate::simd::Kernel for Transport<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        // Specialised on the model and on which energy terms are non-zero (fewer stores).
+        match (self.src.regularised.is_some(), self.c < 1.0, self.src.damping > 0.0) {
+            (false, false, false) => self.cells::<false, false, false>(),
+            (false, false, true) => self.cells::<false, false, true>(),
+            (false, true, false) => self.cells::<false, true, false>(),
+            (false, true, true) => self.cells::<false, true, true>(),
+            (true, false, false) => self.cells::<true, false, false>(),
+            (true, false, true) => self.cells::<true, false, true>(),
+            (true, true, false) => self.cells::<true, true, false>(),
+            (true, true, true) => self.cells::<true, true, true>(),
+        }
+    }
+}
+
+impl Transport<'_> {
+    /// The update loop (no reductions: it vectorises) over blocks of [`BLOCK`] cells whose
+    /// energy terms stay in L1 on the stack, each block then summed.
+    #[inline(always)]
+    fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(self) -> Sums {
+        let Transport { a_prev, a, b, b_next, stop, an, bn, c, src } = self;
+        let n = a.len();
+        let k = Consts {
+            c,
+            damping: src.damping,
+            vs: src.stick_speed,
+            kr: src.kinetic_ratio,
+            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
+        };
+        let mut sums = Sums::default();
+        let mut jump = [0.0; BLOCK];
+        let mut fric = [0.0; BLOCK];
+        let mut damp = [0.0; BLOCK];
+        let mut start = 0;
+        while start < n {
+            let m = BLOCK.min(n - start);
+            let r = start..start + m;
+            let (ap, aa, bb, bx, st) =
+                (&a_prev[r.clone()], &a[r.clone()], &b[r.clone()], &b_next[r.clone()], &stop[r.clone()]);
+            let (an, bn) = (&mut an[r.clone()], &mut bn[r]);
+            let (jump, fric, damp) = (&mut jump[..m], &mut fric[..m], &mut damp[..m]);
+            for j in 0..m {
+                let cell = update::<REGULARISED>(ap[j], aa[j], bb[j], bx[j], st[j], &k);
+                an[j] = cell.an;
+                bn[j] = cell.bn;
+                if UPWIND {
+                    jump[j] = cell.jump;
+                }
+                fric[j] = cell.friction;
+                if DAMPED {
+                    damp[j] = cell.damping;
+                }
+            }
+            if UPWIND {
+                sums.jumps += lane_sum(jump);
+            }
+            sums.friction += lane_sum(fric);
+            if DAMPED {
+                sums.damping += lane_sum(damp);
+            }
+            start += m;
+        }
+        sums
+    }
+}
+
+/// Cells per block of [`Transport::cells`].
+const BLOCK: usize = 128;
+
+/// What one cell's update adds and writes.
+struct Cell {
+    an: f64,
+    bn: f64,
+    jump: f64,
+    friction: f64,
+    damping: f64,
+}
+
+/// The constants of [`update`].
+struct Consts {
+    c: f64,
+    damping: f64,
+    vs: f64,
+    kr: f64,
+    inv_vr: f64,
+}
+
+/// One cell: upwind transport of the invariants from `(a_prev, a)` and `(b, b_next)`, then
+/// the damping and friction sources (see the module); branch-free (selects) so that blocks
+/// vectorise.
+#[inline(always)]
+fn update<const REGULARISED: bool>(a_prev: f64, a: f64, b: f64, b_next: f64, lim: f64, k: &Consts) -> Cell {
+    let da = a - a_prev;
+    let db = b - b_next;
+    let a1 = a - k.c * da;
+    let b1 = b - k.c * db;
+    let w1 = 0.5 * (a1 + b1);
+    let dd = -k.damping * w1;
+    let wd = w1 + dd;
+    let (df, stuck) = if REGULARISED {
+        (-k.kr * lim * (w1 * k.inv_vr).tanh(), false)
+    } else {
+        // A cell at rest counts as slow even with stick_speed 0 (then the sign below is never
+        // that of a zero). Selects only, so that the loop vectorises.
+        let slow = (w1.abs() < k.vs) | (w1 == 0.0);
+        let clipped = if wd > lim { lim } else { wd };
+        let clipped = if clipped < -lim { -lim } else { clipped };
+        let df = if slow { -clipped } else { -(k.kr * lim).copysign(w1) };
+        (df, slow & (wd.abs() <= lim))
+    };
+    let d = dd + df;
+    let wbar = w1 + 0.5 * d;
+    // Stuck: stopped exactly (omega = 0), the torque kept.
+    let s1 = 0.5 * (a1 - b1);
+    Cell {
+        an: if stuck { s1 } else { a1 + d },
+        bn: if stuck { -s1 } else { b1 + d },
+        jump: da * da + db * db,
+        friction: df * wbar,
+        damping: dd * wbar,
+    }
 }

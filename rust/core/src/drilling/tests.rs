@@ -500,3 +500,33 @@ fn soft_torque_gains_from_impedance_and_first_mode() {
     let c = (p.shear_modulus / p.density).sqrt();
     assert!((run.stats.first_mode_hz / (c / (4.0 * p.length)) - 1.0).abs() < 1e-9);
 }
+
+#[test]
+fn setpoint_ramps_and_steps() {
+    // Ideal speed control: the top speed is the setpoint, a first-order approach of the target
+    // (rpm until the first step, then each step's) with the ramp time constant.
+    let mut cfg = frictionless(vec![section(1000.0, 0.14, 0.1)], 100, 6.0);
+    cfg.top_drive.rpm = 40.0;
+    cfg.top_drive.ramp_time = 0.5;
+    cfg.top_drive.steps = vec![[3.0, 60.0], [4.5, 0.0]];
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let dt = run.stats.dt;
+    let exact = |t: f64| {
+        let at3 = 40.0 * (1.0 - (-3.0f64 / 0.5).exp());
+        let at45 = 60.0 + (at3 - 60.0) * (-1.5f64 / 0.5).exp();
+        if t <= 3.0 {
+            40.0 * (1.0 - (-t / 0.5).exp())
+        } else if t <= 4.5 {
+            60.0 + (at3 - 60.0) * (-(t - 3.0) / 0.5).exp()
+        } else {
+            at45 * (-(t - 4.5) / 0.5).exp()
+        }
+    };
+    for (t, rpm) in run.t.iter().zip(&run.surface_rpm) {
+        // The target changes at the first step end at or after the step time.
+        if (t - 3.0).abs() < 2.0 * dt || (t - 4.5).abs() < 2.0 * dt {
+            continue;
+        }
+        assert!((rpm - exact(*t)).abs() < 0.2, "t = {t}: {rpm} vs {}", exact(*t));
+    }
+}
