@@ -12,7 +12,10 @@
 //!
 //! 1. boundaries from the state at `t_n`: the top speed `Omega'` (top-drive inertia, implicit
 //!    in the string torque `Z (Omega' - beta_1)`, or imposed by an ideal controller), the
-//!    bit speed (BHA inertia, implicit likewise; bit torque with a stick phase), the junctions
+//!    bit speed (BHA inertia, implicit likewise; on bottom the Navarro-Lopez torque
+//!    `W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)` at the speed of the step start, with a
+//!    stick phase: below `bit.stick_speed`, or when the slip torque would reverse the bit, the
+//!    torque that stops it in this step if within `W r mu_s`, else `W r mu_s`), the junctions
 //!    (continuity of speed and torque: `omega = (Z_a alpha_a + Z_b beta_b) / (Z_a + Z_b)`);
 //!    each gives the ghost invariant entering its neighbouring cell (`alpha = 2 omega - beta`);
 //! 2. first-order upwind transport, `alpha_j <- alpha_j - C (alpha_j - alpha_{j-1})` (exact
@@ -36,7 +39,8 @@
 //! friction and damping terms are the work of their sources (`4 e delta (omega* + delta / 2)`
 //! per cell), and `numerical` the upwind dissipation `e C (1 - C) (d alpha^2 + d beta^2)` (0 at
 //! `C = 1`) plus the implicit-Euler dissipation `I (Omega' - Omega)^2 / 2` of the top drive and
-//! BHA. The motor work is `sum dt tau_m Omega'`.
+//! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
+//! it). The motor work is `sum dt tau_m Omega'`.
 
 use std::f64::consts::PI;
 
@@ -434,22 +438,44 @@ impl<'c> Simulation<'c> {
         let ib = b.bha_inertia;
         let wb = self.omega_bit;
         let drive = ib * wb / dt + zl * alpha_n;
+        let denom = ib / dt + zl;
         let (wb1, tbit) = if b.on_bottom && b.weight_on_bit > 0.0 {
             let wr = b.weight_on_bit * b.radius;
-            let mu = |w: f64| b.mu_kinetic + (b.mu_static - b.mu_kinetic) * (-b.decay * w.abs()).exp();
-            if wb.abs() < b.stick_speed && drive.abs() <= wr * b.mu_static {
-                (0.0, drive)
+            // Stick: the torque that stops the bit in this step, if within the static limit.
+            let stick = |drive: f64| {
+                let hold = wr * b.mu_static;
+                if drive.abs() <= hold {
+                    (0.0, drive)
+                } else {
+                    let tb = hold.copysign(drive);
+                    ((drive - tb) / denom, tb)
+                }
+            };
+            if wb.abs() < b.stick_speed {
+                stick(drive)
             } else {
-                let dir = if wb.abs() < b.stick_speed { drive.signum() } else { wb.signum() };
-                let tb = dir * wr * mu(wb);
-                ((drive - tb) / (ib / dt + zl), tb)
+                let mu = b.mu_kinetic + (b.mu_static - b.mu_kinetic) * (-b.decay * wb.abs()).exp();
+                let tb = (wr * mu).copysign(wb);
+                let w = (drive - tb) / denom;
+                // A slip torque that would reverse the bit stops it instead (set-valued at 0).
+                if w * wb < 0.0 {
+                    stick(drive)
+                } else {
+                    (w, tb)
+                }
             }
         } else {
-            (drive / (ib / dt + zl), 0.0)
+            (drive / denom, 0.0)
         };
         self.beta[last.offset + last.cells + 1] = 2.0 * wb1 - alpha_n;
         self.losses.bit += dt * tbit * wb1;
-        self.losses.inertia += 0.5 * ib * (wb1 - wb) * (wb1 - wb);
+        // A bit stopped in this step: the BHA's kinetic energy is taken by the bit torque.
+        let stop = 0.5 * ib * (wb1 - wb) * (wb1 - wb);
+        if wb1 == 0.0 && tbit != 0.0 {
+            self.losses.bit += stop;
+        } else {
+            self.losses.inertia += stop;
+        }
         self.omega_bit = wb1;
 
         // Junctions.

@@ -530,3 +530,23 @@ fn setpoint_ramps_and_steps() {
         assert!((rpm - exact(*t)).abs() < 0.2, "t = {t}: {rpm} vs {}", exact(*t));
     }
 }
+
+#[test]
+fn bit_on_bottom_sticks_and_slips_with_positive_bit_work() {
+    for bha in [0.0, 100.0] {
+        let mut cfg = loaded(FrictionModel::SetValued);
+        cfg.bit = Bit { on_bottom: true, weight_on_bit: 1e5, bha_inertia: bha, ..Bit::default() };
+        cfg.top_drive.torque_limit = None;
+        let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        let (m, e) = (run.metrics.unwrap(), run.energy);
+        eprintln!(
+            "on bottom, BHA {bha}: SSI {:.3}, stuck {:.3}, bit rpm {:.1}..{:.1}, bit loss {:.4e} J, balance {:.1e}",
+            m.severity, m.stuck_fraction, m.rpm_min, m.rpm_max, e.bit_loss, e.balance_error
+        );
+        assert_eq!(run.status, Status::Success);
+        assert!(e.bit_loss > 0.0 && e.balance_error.abs() < 1e-11, "{e:?}");
+        // The bit never turns backwards (it sticks instead), its torque at most W r mu_s.
+        assert!(m.rpm_min >= -1e-9, "{}", m.rpm_min);
+        assert!(run.bit_torque.iter().all(|t| t.abs() <= 1e5 * 0.1 * 0.8 * (1.0 + 1e-12)));
+    }
+}
