@@ -573,8 +573,10 @@ impl<'c> Simulation<'c> {
 
         let out_dt = cfg.numerics.output_interval;
         let field_dt = cfg.numerics.field_interval;
-        if n_fields > 0 {
-            self.snapshot(&mut run, 0.0);
+        if n_fields > 0 && !self.snapshot(&mut run, 0.0) {
+            run.status = Status::NonFinite;
+            run.message = "the initial state is not finite".into();
+            return run;
         }
         let mut poller = Poller::new(interrupt);
         let stride = (steps / 1000).max(1);
@@ -621,7 +623,11 @@ impl<'c> Simulation<'c> {
                 break;
             }
             if next_field < n_fields && t >= next_field as f64 * field_dt - 0.5 * dt {
-                self.snapshot(&mut run, t);
+                if !self.snapshot(&mut run, t) {
+                    run.status = Status::NonFinite;
+                    run.message = format!("the state became non-finite before t = {} s", Num(t));
+                    break;
+                }
                 next_field += 1;
             }
             prev = cur;
@@ -664,8 +670,9 @@ impl<'c> Simulation<'c> {
         run
     }
 
-    fn snapshot(&self, run: &mut DrillRun, t: f64) {
-        run.field_t.push(t);
+    /// Appends the fields at `t`; `false` (nothing appended) when a value is not finite.
+    fn snapshot(&self, run: &mut DrillRun, t: f64) -> bool {
+        let start = run.omega_field.len();
         for sp in &self.spans {
             for j in 1..=sp.cells {
                 let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
@@ -673,6 +680,14 @@ impl<'c> Simulation<'c> {
                 run.torque_field.push(0.5 * sp.impedance * (a - b));
             }
         }
+        let finite = run.omega_field[start..].iter().chain(&run.torque_field[start..]).all(|v| v.is_finite());
+        if finite {
+            run.field_t.push(t);
+        } else {
+            run.omega_field.truncate(start);
+            run.torque_field.truncate(start);
+        }
+        finite
     }
 }
 

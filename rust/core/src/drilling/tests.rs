@@ -550,3 +550,17 @@ fn bit_on_bottom_sticks_and_slips_with_positive_bit_work() {
         assert!(run.bit_torque.iter().all(|t| t.abs() <= 1e5 * 0.1 * 0.8 * (1.0 + 1e-12)));
     }
 }
+
+#[test]
+fn overflow_ends_with_a_status_not_a_panic() {
+    let mut cfg = frictionless(vec![section(1000.0, 0.14, 0.1)], 50, 1.0);
+    cfg.numerics.field_interval = 0.1;
+    let mut sim = Simulation::new(&cfg).unwrap();
+    let n = sim.grid().cells();
+    sim.set_state(&vec![1e307; n], &vec![1e308; n], 0.0, 0.0).unwrap();
+    let run = sim.run(&Never, &mut |_| {});
+    assert_eq!(run.status, Status::NonFinite, "{}", run.message);
+    assert!(!run.message.is_empty());
+    assert!(run.bit_rpm.iter().chain(&run.omega_field).chain(&run.torque_field).all(|v| v.is_finite()));
+    assert_eq!(run.omega_field.len(), run.field_t.len() * n);
+}
