@@ -101,6 +101,16 @@ def test_drill_takes_a_path_a_mapping_and_reports_progress(tmp_path: Path) -> No
         np.testing.assert_array_equal(other.torque_field, res.torque_field)
 
 
+def test_progress_bar_on_stderr(capsys: pytest.CaptureFixture[str]) -> None:
+    cfg = load_drill_config(ON_BOTTOM).with_overrides(["numerics.cells=40", "numerics.duration=2"])
+    ds.drill(cfg, progress=True)
+    err = capsys.readouterr().err
+    assert "drill:" in err and "100%" in err and "t = 2/2 s" in err
+    with pytest.raises(ValidationError) as bad:
+        ds.drill(cfg, progress="yes")  # type: ignore[arg-type]
+    assert bad.value.field == "progress"
+
+
 def test_a_failed_solve_raises_solve_error_with_the_partial_result(monkeypatch: pytest.MonkeyPatch) -> None:
     cfg = load_drill_config(ON_BOTTOM).with_overrides(["numerics.cells=40", "numerics.duration=2"])
     real = _core.drill_solve
