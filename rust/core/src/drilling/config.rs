@@ -18,7 +18,7 @@ use super::grid::Grid;
 /// Largest number of cells a run may have (`numerics.max_cells` may lower it).
 pub const MAX_CELLS: usize = 10_000_000;
 /// Largest number of string sections.
-pub const MAX_SECTIONS: usize = 10_000;
+pub const MAX_SECTIONS: usize = 1_000;
 /// Longest simulated duration, s (one day).
 pub const MAX_DURATION: f64 = 86_400.0;
 /// Largest memory of a run's outputs (series and field snapshots), bytes (512 MiB).

@@ -227,12 +227,12 @@ pub fn first_natural_frequency(props: &[SectionProps], bha_inertia: f64) -> f64 
     };
     let travel: f64 = props.iter().map(|p| p.length / p.wave_speed).sum();
     let quarter = PI / (2.0 * travel);
-    let step = quarter / 400.0;
+    let step = quarter / 100.0;
     let mut lo = step * 1e-3;
     let mut r_lo = residual(lo);
-    // The first root lies below the uniform string's ~ (pi / 2) / travel times the largest
-    // impedance contrast; scan far enough for any string.
-    for _ in 0..400 * 400 {
+    // Scan up to 100 times the uniform string's (pi / 2) / travel (the first root of a string
+    // of any impedances lies far below), in steps of 1/100 of it, then bisect.
+    for _ in 0..100 * 100 {
         let hi = lo + step;
         let r_hi = residual(hi);
         if r_lo == 0.0 {

@@ -30,6 +30,28 @@
 //!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
 //!    the kinetic limit (regularised).
 //!
+//! # Controllers
+//!
+//! * `pi`: `tau_m = kp e + ki int e`, `e = setpoint - Omega`, sampled in a zero-order hold at
+//!   `control_interval`, as MAIN.m of Aarsnes & Shor (their `38e3`, `100e3`);
+//! * `soft_torque`: the same PI with `kp = z_factor Z_top` and `ki = (2 pi f)^2 I_TD`, so that
+//!   at the tuning frequency `f` the top drive's inertia and the integral cancel and it presents
+//!   the damping `kp` to the string (Kyllingstad & Nessjøen, SPE/IADC 119660, 2009); the gains
+//!   as in Open-Source-Drilling-Community/Simulator4nDOF, `Simulator/TopdriveController.cs`
+//!   (commit b14d6c2, controller type 2, without its inertia compensation), `f` by default the
+//!   string's first natural frequency;
+//! * `z_torque`: impedance matching (ZTorque, Dwars, SPE/IADC 173037, 2015; Simulator4nDOF
+//!   controller type 3, whose speed setpoint is lowered by the high-passed string torque over
+//!   `Z`): here the ideal form, the top speed `Omega = w_ref - (tau_top - tau_slow) / (z Z_top)`
+//!   every step (`tau_slow` the string torque low-passed with `torque_highpass_time`), which
+//!   absorbs an incident torque wave completely at `z_factor = 1`;
+//! * `speed`: the top speed is the setpoint.
+//!
+//! `speed` and `z_torque` impose the top speed and infer the motor torque
+//! (`I_TD dOmega/dt + tau_top`); with a `torque_limit` exceeded they fall back to the clipped
+//! torque. The setpoint approaches its target (`rpm`, then `steps`) as a first-order lag of time
+//! constant `ramp_time`, exactly over each step.
+//!
 //! # Energy
 //!
 //! With `e = rho J h / 4` per cell the discrete energy is `sum e (alpha^2 + beta^2)` (kinetic
