@@ -30,6 +30,11 @@
 //!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
 //!    the kinetic limit (regularised).
 //!
+//! A stopped cell's new torque comes from its neighbours' invariants: at `C = 1` it is
+//! `(tau_{j-1} + tau_{j+1}) / 2 + Z (omega_{j-1} - omega_{j+1}) / 2`, so inside a stuck region
+//! the torque relaxes towards a linear profile (over `n` stuck cells in ~`n^2` steps) instead of
+//! staying frozen as in the continuum; the scheme of torsionalWaveStep.m does the same.
+//!
 //! # Controllers
 //!
 //! * `pi`: `tau_m = kp e + ki int e`, `e = setpoint - Omega`, sampled in a zero-order hold at
