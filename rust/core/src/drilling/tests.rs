@@ -564,3 +564,34 @@ fn overflow_ends_with_a_status_not_a_panic() {
     assert!(run.bit_rpm.iter().chain(&run.omega_field).chain(&run.torque_field).all(|v| v.is_finite()));
     assert_eq!(run.omega_field.len(), run.field_t.len() * n);
 }
+
+#[test]
+fn well_b_agrees_with_the_published_model() {
+    // Aarsnes & Shor's Well B (MAIN.m, parameters_WellB.m, MD 2500 m, 40 rpm, 60 s) in the form
+    // with the same continuum equations as their scheme (collar: their Jc with its extra pi,
+    // Ac, Gc = 67 GPa, density rho Gc / Gp so that its wave speed is the pipe's; damping rate
+    // 2 kt dt_sub). Reference: their code run in GNU Octave 7.3 (tests/data/aarsnes_shor/
+    // reference.json), metrics over 30..60 s.
+    let json = r#"{
+      "sections": [
+        {"length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
+         "shear_modulus": 61e9, "density": 7850.0},
+        {"length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.09285466808235807,
+         "shear_modulus": 67e9, "density": 8622.131147540984,
+         "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
+      "damping_rate": 0.08333333333333334,
+      "numerics": {"cells": 1000, "duration": 60.0, "field_interval": 0}
+    }"#;
+    let cfg = DrillConfig::from_json(json).unwrap();
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let m = run.metrics.unwrap();
+    let (torque_min, torque_max, period, rpm_max, rpm_mean) = (6132.67, 24925.16, 10.0047, 120.325, 39.735);
+    eprintln!(
+        "Well B: motor torque {:.0}..{:.0} N m (Octave {torque_min:.0}..{torque_max:.0}), period {:.3} s ({period}), \
+         bit rpm max {:.1} ({rpm_max}), mean {:.2} ({rpm_mean}), balance {:.1e}",
+        m.torque_min, m.torque_max, m.cycle_period, m.rpm_max, m.rpm_mean, run.energy.balance_error
+    );
+    let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+    assert!(rel(m.torque_min, torque_min) < 0.05 && rel(m.torque_max, torque_max) < 0.02);
+    assert!(rel(m.cycle_period, period) < 0.02 && rel(m.rpm_max, rpm_max) < 0.02 && rel(m.rpm_mean, rpm_mean) < 0.01);
+}
