@@ -267,8 +267,9 @@ impl Default for Bit {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Numerics {
-    /// Target number of cells: `dt = sum(L_i / c_i) / cells`, section `i` gets
-    /// `max(1, floor(L_i / (c_i dt)))` cells (Courant number `<= 1`, `= 1` when uniform).
+    /// Target number of cells: `dt = min(sum(L_i / c_i) / cells, min_i L_i / c_i)`, section `i`
+    /// gets `floor(L_i / (c_i dt)) >= 1` cells (Courant number `<= 1`, `= 1` when uniform); a
+    /// section shorter than a cell of the others raises the count.
     pub cells: usize,
     /// Simulated time, s.
     pub duration: f64,

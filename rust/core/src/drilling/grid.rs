@@ -107,7 +107,10 @@ impl Grid {
         let props: Vec<SectionProps> =
             cfg.sections.iter().map(|s| SectionProps::new(s, cfg.well.mud_density)).collect();
         let travel: f64 = props.iter().map(|p| p.length / p.wave_speed).sum();
-        let dt = travel / cfg.numerics.cells as f64;
+        // Every section gets at least one cell at a Courant number <= 1: the step is also
+        // limited by the shortest section's travel time.
+        let shortest = props.iter().map(|p| p.length / p.wave_speed).fold(f64::INFINITY, f64::min);
+        let dt = (travel / cfg.numerics.cells as f64).min(shortest);
         let mut counts = Vec::with_capacity(props.len());
         let mut courant = Vec::with_capacity(props.len());
         let mut spacing = Vec::with_capacity(props.len());
@@ -118,7 +121,7 @@ impl Grid {
             if (c - 1.0).abs() < 1e-9 {
                 c = 1.0;
             }
-            // A section shorter than one step's travel keeps one cell: it cannot be stable.
+            // Cannot happen with dt <= the shortest travel time (a guard against rounding).
             if c > 1.0 {
                 return Err(Error::invalid(
                     "numerics.cells",
@@ -140,8 +143,10 @@ impl Grid {
                 "numerics.cells",
                 cfg.numerics.cells,
                 format!(
-                    "a count giving at most numerics.max_cells = {} cells ({total} needed)",
-                    cfg.numerics.max_cells
+                    "a count giving at most numerics.max_cells = {} cells ({total} needed; the time step is at most \
+                     the travel time of the shortest section, {} s)",
+                    cfg.numerics.max_cells,
+                    Num(shortest)
                 ),
             ));
         }

@@ -595,3 +595,20 @@ fn well_b_agrees_with_the_published_model() {
     assert!(rel(m.torque_min, torque_min) < 0.05 && rel(m.torque_max, torque_max) < 0.02);
     assert!(rel(m.cycle_period, period) < 0.02 && rel(m.rpm_max, rpm_max) < 0.02 && rel(m.rpm_mean, rpm_mean) < 0.01);
 }
+
+#[test]
+fn a_short_section_gets_a_cell_and_a_stable_step() {
+    // A 1 m sub between pipes: shorter than one cell of a 100-cell string.
+    let sections = vec![section(500.0, 0.14, 0.1), section(1.0, 0.2, 0.07), section(500.0, 0.14, 0.1)];
+    let mut cfg = frictionless(sections, 100, 2.0);
+    cfg.top_drive.rpm = 30.0;
+    let grid = Grid::new(&cfg).unwrap();
+    assert_eq!(grid.counts[1], 1);
+    assert!(grid.courant.iter().all(|&c| c > 0.0 && c <= 1.0), "{:?}", grid.courant);
+    assert!(grid.cells() > 100);
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, Status::Success);
+    assert!(run.energy.balance_error.abs() < 1e-12);
+    cfg.numerics.max_cells = 200;
+    assert_eq!(cfg.validate().unwrap_err().field(), "numerics.cells");
+}
