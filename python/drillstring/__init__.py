@@ -16,10 +16,14 @@ True
 The API
 -------
 ``__all__`` lists the functions, classes and constants above; the modules behind them
-(``analysis``, ``coefficients``, ``convergence``, ``galerkin``, ``grid``, ``limits``, ``paper``,
-``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
+(``analysis``, ``coefficients``, ``convergence``, ``drilling``, ``galerkin``, ``grid``, ``limits``,
+``paper``, ``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
 ``ds.sweep`` is the function; its module is ``drillstring.sweeps`` (``import drillstring.sweeps``).
 ``ds.table2`` is the function; its module is ``drillstring.paper.table2``.
+
+The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
+``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
+:class:`DrillResult`; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
 """
 
 from __future__ import annotations
@@ -30,6 +34,7 @@ from typing import TYPE_CHECKING
 from . import analysis as analysis
 from . import coefficients as coefficients
 from . import convergence as convergence
+from . import drilling as drilling
 from . import galerkin as galerkin
 from . import grid as grid
 from . import limits as limits
@@ -40,6 +45,7 @@ from . import section as section
 from . import stability as stability
 from ._core import __version__, simd_path
 from .coefficients import PDECoefficients
+from .drilling import DrillConfig, DrillMetrics, DrillResult, drill, load_drill_config
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .grid import linspace, logspace
@@ -157,6 +163,12 @@ __all__ = [
     "SweepTrajectories",
     "linspace",
     "logspace",
+    # the drilling system (stick-slip)
+    "drill",
+    "DrillConfig",
+    "DrillResult",
+    "DrillMetrics",
+    "load_drill_config",
     # the paper
     "table2",
     "Table2Row",

@@ -381,3 +381,123 @@ def break_off_torque(depth: NDArray[np.float64], limit: NDArray[np.float64]) -> 
         finite and >= 0 or of another length.
     """
     ...
+
+# --- The drilling system (issue #13): configuration as JSON, see /work/drill-contract.md ---
+
+def drill_defaults() -> str:
+    """The default drilling configuration as JSON (``sections`` holds one template section;
+    ``length``, ``outer_diameter`` and ``inner_diameter`` of each section are required)."""
+
+def drill_validate(config_json: str) -> str:
+    """The configuration with every default filled in, as JSON.
+
+    Raises
+    ------
+    ValidationError
+        naming the dotted field (``sections[1].outer_diameter``, ``top_drive.controller.kp``)
+        of an unknown key, a wrong type, a missing required value or a value out of range,
+        or ``numerics.output_interval`` / ``numerics.field_interval`` when the outputs would
+        exceed the memory limit (512 MiB).
+    """
+
+class DrillProfile(TypedDict):
+    #: Cell centres (measured depth from the top), m.
+    z: NDArray[np.float64]
+    #: Static friction limit per metre at the cell centres, N m/m.
+    limit_per_m: NDArray[np.float64]
+    #: Static friction torque of the string below each cell centre (from the bit up), N m.
+    cumulative: NDArray[np.float64]
+    #: Integral of the limit over the string (refined quadrature), N m.
+    breakoff_torque: float
+
+def drill_profile(config_json: str) -> DrillProfile:
+    """The friction profile and static break-off torque of a configuration.
+
+    Raises
+    ------
+    ValidationError
+        as :func:`drill_validate`.
+    """
+
+class DrillMetrics(TypedDict):
+    #: First and last sample of the window, s (NaN when it holds fewer than 2 samples).
+    t_start: float
+    t_end: float
+    #: The window asked for (default: the last half of the run), s.
+    window_start: float
+    window_end: float
+    severity: float
+    stuck_fraction: float
+    rpm_min: float
+    rpm_max: float
+    rpm_mean: float
+    torque_min: float
+    torque_max: float
+    cycle_period: float
+    breakoff_torque: float
+
+class DrillEnergy(TypedDict):
+    #: J, from the start to the end reached: motor work = (final - initial) + losses.
+    motor_work: float
+    initial: float
+    #: At the end: string kinetic, string elastic, top-drive and BHA kinetic energy.
+    kinetic: float
+    elastic: float
+    top_drive: float
+    bha: float
+    friction_loss: float
+    damping_loss: float
+    bit_loss: float
+    #: upwind_loss + inertia_loss.
+    numerical_loss: float
+    #: Dissipation of the first-order upwind transport (0 at Courant number 1).
+    upwind_loss: float
+    #: Dissipation of the implicit Euler steps of the top-drive and BHA inertias.
+    inertia_loss: float
+    #: Relative residual of the balance.
+    balance_error: float
+
+class DrillStats(TypedDict):
+    cells: int
+    steps: int
+    dt: float
+    courant_min: float
+    courant_max: float
+    #: Controller gains used (soft_torque: the tuned ones).
+    kp: float
+    ki: float
+    #: First natural frequency (fixed top, bit free or with the BHA), Hz.
+    first_mode_hz: float
+
+class DrillOutput(TypedDict):
+    #: Series at k * output_interval.
+    t: NDArray[np.float64]
+    surface_rpm: NDArray[np.float64]
+    bit_rpm: NDArray[np.float64]
+    motor_torque: NDArray[np.float64]
+    bit_torque: NDArray[np.float64]
+    #: Snapshot times (nearest step to k * field_interval), s.
+    field_t: NDArray[np.float64]
+    #: Cell centres, m.
+    z: NDArray[np.float64]
+    #: (len(field_t), len(z)): speed rpm and torque N m.
+    omega_field: NDArray[np.float64]
+    torque_field: NDArray[np.float64]
+    #: "success", "interrupted", "non_finite" or "out_of_memory".
+    status: str
+    message: str
+    metrics: DrillMetrics
+    energy: DrillEnergy
+    stats: DrillStats
+
+def drill_solve(config_json: str, progress: Optional[Callable[[float], object]] = None) -> DrillOutput:
+    """Runs the drilling system from rest; ``progress(fraction)`` is called every ~20 ms.
+    Runs without the GIL.
+
+    Raises
+    ------
+    ValidationError
+        as :func:`drill_validate`, or ``damping_rate`` above ``1 / dt``.
+    KeyboardInterrupt
+        Ctrl-C during the solve (or any exception raised by ``progress``).
+    """

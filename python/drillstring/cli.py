@@ -2,6 +2,7 @@
 
     drillstring simulate [CONFIG.toml] [--preset NAME] [overrides] [--out FILE.csv] [--plot FILE.png]
     drillstring table2 [--json]
+    drillstring drill CONFIG.toml --out DIR [--set key=value ...] [--no-plots]
 
 Errors are reported as one line on stderr with exit status 2 (no traceback); an error in a
 TOML file names the file, the line and the key. Ctrl-C stops a run within a fraction of a second
@@ -516,6 +517,52 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_drill(sub: Any) -> None:
+    p = sub.add_parser(
+        "drill",
+        help="stick-slip of the drilling system: a string in a well, top drive, wall friction, bit",
+        description="Solve the torsional waves of a drill string in a deviated well (sections from the top, "
+        "Coulomb wall friction, a top drive with its speed controller, the bit off or on bottom) and write the "
+        "time series (series.parquet, series.csv), the stick-slip metrics (metrics.json), the space-time fields "
+        "(fields.npz), figures, the configuration solved (config.toml) and report.md into DIR.",
+        epilog="example: drillstring drill examples/on-bottom-3000m.toml --out drill-run --set top_drive.rpm=120",
+    )
+    p.add_argument("config", metavar="CONFIG.toml", help="drilling-system configuration (examples/*.toml)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="change a field: dotted key with indices and a TOML value, e.g. top_drive.rpm=60, "
+                   "sections[0].length=3000, bit.on_bottom=true, top_drive.controller.type=soft_torque "
+                   "(repeatable)")
+    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    _add_progress(p)
+    p.set_defaults(func=_cmd_drill)
+
+
+def _cmd_drill(args: argparse.Namespace) -> int:
+    import time
+
+    from .drilling import drill, load_drill_config
+    from .drilling.output import output_names
+
+    config = load_drill_config(args.config)
+    if args.overrides:
+        config = config.with_overrides(args.overrides)
+    check_destination(args.out, field="--out", directory=True, files=output_names(not args.no_plots))
+    start = time.perf_counter()
+    result = drill(config, progress=_show_progress(args))
+    seconds = time.perf_counter() - start
+    m = result.metrics
+    _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
+         f"simulated in {seconds:.2g} s ({result.status})")
+    _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
+         f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), "
+         f"motor torque {m.motor_torque_min_Nm / 1e3:.4g}..{m.motor_torque_max_Nm / 1e3:.4g} kN m, "
+         f"break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m")
+    written = result.save(args.out, plots=not args.no_plots)
+    _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
+    return 0
+
+
 class _Parser(argparse.ArgumentParser):
     """Usage errors as one line (``prog: error: ...``) with exit status 2."""
 
@@ -537,6 +584,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_table2(sub)
     _add_paper(sub)
     _add_sweep(sub)
+    _add_drill(sub)
     return parser
 
 

@@ -25,6 +25,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod drilling;
 pub mod error;
 pub mod galerkin;
 pub mod integrators;

@@ -10,6 +10,7 @@
 use pyo3::prelude::*;
 
 mod convert;
+mod drilling;
 mod galerkin;
 mod metrics;
 mod modal;
@@ -49,6 +50,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("STICK_SPEED", drillstring_core::metrics::STICK_SPEED)?;
     m.add("SPECTRAL_PAD", drillstring_core::metrics::PAD)?;
     m.add("PEAK_THRESHOLD", drillstring_core::metrics::PEAK_THRESHOLD)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_validate, m)?)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

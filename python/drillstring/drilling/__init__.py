@@ -1,0 +1,55 @@
+"""The drilling system: torsional stick-slip of a whole drill string in a well.
+
+A string of sections (drill pipe, collars) in a deviated well, driven at the top by a top drive
+with a speed controller, with Coulomb friction against the wall along its length and, on
+bottom, a velocity-weakening bit-rock torque. The Rust core (``drillstring_core::drilling``)
+solves the torsional wave equation on a grid along the string, and computes the friction
+profile, the break-off torque, the stick-slip metrics and the energy balance; this package
+configures it and renders what it returns.
+
+>>> import drillstring as ds
+>>> cfg = ds.load_drill_config("examples/on-bottom-3000m.toml")          # doctest: +SKIP
+>>> res = ds.drill(cfg.with_overrides(["numerics.duration=20"]))          # doctest: +SKIP
+>>> res.metrics.ssi, res.metrics.stuck_fraction                          # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+from .config import (
+    Bit,
+    Controller,
+    DrillConfig,
+    Friction,
+    MetricsConfig,
+    Numerics,
+    Section,
+    TopDrive,
+    Well,
+    defaults,
+    load_drill_config,
+)
+from .output import FILES
+from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
+from .solve import drill, friction_profile
+
+__all__ = [
+    "FILES",
+    "SERIES",
+    "UNITS",
+    "DrillMetrics",
+    "DrillProfile",
+    "DrillResult",
+    "drill",
+    "friction_profile",
+    "Bit",
+    "Controller",
+    "DrillConfig",
+    "Friction",
+    "MetricsConfig",
+    "Numerics",
+    "Section",
+    "TopDrive",
+    "Well",
+    "defaults",
+    "load_drill_config",
+]

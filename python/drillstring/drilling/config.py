@@ -1,0 +1,723 @@
+"""Configuration of the drilling-system simulator: frozen dataclasses, TOML, ``--set`` overrides.
+
+A :class:`DrillConfig` mirrors the configuration of the Rust core (``drillstring_core::drilling``):
+the string as :class:`Section` s from the top, the :class:`Well` survey, the side-wall
+:class:`Friction`, the :class:`TopDrive` and its :class:`Controller`, the :class:`Bit`, the
+:class:`Numerics` and where the stick-slip metrics are measured (:class:`MetricsConfig`). SI units;
+angles in degrees and speeds in rpm where the field name says so.
+
+Every default and every allowed range lives once, in Rust: the dataclass defaults are read from
+``_core.drill_defaults()``, and constructing a :class:`DrillConfig` sends it to
+``_core.drill_validate``, which fills what is unset and refuses a bad value with a
+:class:`~drillstring.errors.ValidationError` naming the dotted field (``sections[1].outer_diameter``,
+``top_drive.controller.kp``). Python checks only the structure: unknown keys (the message lists the
+allowed ones) and types (numbers through :func:`drillstring.limits.as_float` / ``as_int``).
+A :class:`DrillConfig` is therefore always valid and normalised.
+
+TOML (``examples/on-bottom-3000m.toml``)::
+
+    damping_rate = 0.0            # top-level scalars first
+
+    [[sections]]                  # one table per section, from the top
+    name = "drill pipe"
+    length = 3000.0
+    outer_diameter = 0.127
+    inner_diameter = 0.1086
+
+    [well]
+    md = [0.0, 500.0, 1600.0, 4000.0]
+    inclination_deg = [0.0, 0.0, 60.0, 60.0]
+
+    [top_drive]
+    rpm = 40.0
+
+    [top_drive.controller]
+    type = "pi"
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import os
+import re
+import sys
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional, Union
+
+from .. import _core
+from ..errors import ValidationError
+from ..limits import as_float, as_int
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python < 3.11 only
+    import tomli as tomllib
+
+__all__ = [
+    "Bit",
+    "Controller",
+    "DrillConfig",
+    "Friction",
+    "MetricsConfig",
+    "Numerics",
+    "Section",
+    "TopDrive",
+    "Well",
+    "defaults",
+    "load_drill_config",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+#: The default configuration of the core (``_core.drill_defaults()``), as parsed JSON.
+_DEFAULTS: dict[str, Any] = json.loads(_core.drill_defaults())
+
+
+def defaults() -> dict[str, Any]:
+    """The core's default configuration as a plain dict (a fresh copy): what every unset field takes."""
+    return json.loads(_core.drill_defaults())
+
+
+def _frozen(value: Any) -> Any:
+    """JSON lists as tuples (hashable dataclass defaults)."""
+    if isinstance(value, list):
+        return tuple(_frozen(v) for v in value)
+    return value
+
+
+def _section_defaults() -> Mapping[str, Any]:
+    sections = _DEFAULTS.get("sections") or [{}]
+    return sections[0] if isinstance(sections[0], Mapping) else {}
+
+
+def _default(table: Optional[str], key: str, *, unit: str, kind: str, doc: str = "") -> Any:
+    """A dataclass field whose default is the core's (``table.key`` of :func:`defaults`; ``table``
+    ``"sections"`` reads the first default section; no default when the core has none)."""
+    if table == "sections":
+        source: Mapping[str, Any] = _section_defaults()
+    elif table is None:
+        source = _DEFAULTS
+    else:
+        source = _DEFAULTS
+        for part in table.split("."):
+            source = source.get(part, {})
+    metadata = {"kind": kind, "unit": unit, "doc": doc}
+    if key not in source:
+        return field(metadata=metadata)
+    return field(default=_frozen(source[key]), metadata=metadata)
+
+
+# --------------------------------------------------------------------------- the dataclasses
+
+
+@dataclass(frozen=True)
+class Section:
+    """One section of the string (drill pipe, heavy-weight pipe, collars), listed from the top.
+
+    The polar moment ``J`` and area ``A`` follow from the diameters (``pi/32 (OD^4 - ID^4)``,
+    ``pi/4 (OD^2 - ID^2)``) unless given; the friction lever arm is ``contact_diameter / 2``
+    (default the outer diameter). Unset fields take the core's defaults.
+    """
+
+    length: float = field(metadata={"kind": "float", "unit": "m"})
+    """Measured length of the section, m (required)."""
+    outer_diameter: float = field(metadata={"kind": "float", "unit": "m"})
+    """Outer diameter, m (required)."""
+    inner_diameter: float = field(metadata={"kind": "float", "unit": "m"})
+    """Inner diameter, m (required)."""
+    name: str = _default("sections", "name", unit="", kind="str")
+    """A label for tables and plots."""
+    shear_modulus: float = _default("sections", "shear_modulus", unit="Pa", kind="float")
+    """Shear modulus G, Pa."""
+    density: float = _default("sections", "density", unit="kg/m^3", kind="float")
+    """Density of the steel, kg/m^3."""
+    contact_diameter: Optional[float] = _default("sections", "contact_diameter", unit="m", kind="float?")
+    """Diameter at which the wall friction acts, m (None: the outer diameter)."""
+    polar_moment: Optional[float] = _default("sections", "polar_moment", unit="m^4", kind="float?")
+    """Override of the polar moment of area J, m^4 (None: from the diameters)."""
+    area: Optional[float] = _default("sections", "area", unit="m^2", kind="float?")
+    """Override of the cross-section area A, m^2 (None: from the diameters)."""
+
+
+@dataclass(frozen=True)
+class Well:
+    """The well path: inclination against measured depth (linear between survey stations,
+    constant beyond them), and the fluid and gravity that set the side force."""
+
+    md: Optional[tuple[float, ...]] = _default("well", "md", unit="m", kind="floats?")
+    """Measured depths of the survey stations, m (None with a constant inclination)."""
+    inclination_deg: Union[float, tuple[float, ...]] = _default("well", "inclination_deg", unit="deg",
+                                                                kind="float|floats")
+    """Inclination at each station, degrees (one number: constant, without ``md``)."""
+    mud_density: float = _default("well", "mud_density", unit="kg/m^3", kind="float")
+    """Mud density for buoyancy, kg/m^3 (0: none)."""
+    gravity: float = _default("well", "gravity", unit="m/s^2", kind="float")
+    """Acceleration of gravity, m/s^2."""
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Coulomb friction between the string and the wall (per metre: ``static * w(z) * r_contact``,
+    ``w`` the buoyed weight per metre times sin(inclination))."""
+
+    static: float = _default("friction", "static", unit="", kind="float")
+    """Static friction coefficient."""
+    kinetic_ratio: float = _default("friction", "kinetic_ratio", unit="", kind="float")
+    """Kinetic over static friction."""
+    stick_speed: float = _default("friction", "stick_speed", unit="rad/s", kind="float")
+    """Speed below which a cell sticks (Aarsnes-Shor ``o_thres``), rad/s."""
+    model: str = _default("friction", "model", unit="", kind="str")
+    """``"set_valued"`` (stick / slip switch) or ``"regularised"`` (smooth, ``tanh``-like)."""
+    regularisation_speed: float = _default("friction", "regularisation_speed", unit="rad/s", kind="float")
+    """Speed scale of the regularised model, rad/s."""
+
+
+@dataclass(frozen=True)
+class Controller:
+    """The top-drive speed controller."""
+
+    type: str = _default("top_drive.controller", "type", unit="", kind="str")
+    """``"pi"``, ``"soft_torque"``, ``"z_torque"`` or ``"speed"`` (ideal speed source)."""
+    kp: float = _default("top_drive.controller", "kp", unit="N m s/rad", kind="float")
+    """Proportional gain, N m s/rad."""
+    ki: float = _default("top_drive.controller", "ki", unit="N m/rad", kind="float")
+    """Integral gain, N m/rad."""
+    tuning_frequency: Optional[float] = _default("top_drive.controller", "tuning_frequency", unit="Hz",
+                                                 kind="float?")
+    """Soft-torque tuning frequency, Hz (None: the string's first mode)."""
+    z_factor: float = _default("top_drive.controller", "z_factor", unit="", kind="float")
+    """Soft-torque / Z-torque damping as a multiple of the top section's impedance ``J sqrt(G rho)``."""
+    torque_highpass_time: float = _default("top_drive.controller", "torque_highpass_time", unit="s", kind="float")
+    """Z-torque: time constant of the low-pass that takes the mean string torque out of the
+    impedance feedback, s."""
+
+
+@dataclass(frozen=True)
+class TopDrive:
+    """The top drive: its inertia, torque limit, speed setpoint and controller."""
+
+    inertia: float = _default("top_drive", "inertia", unit="kg m^2", kind="float")
+    """Rotor inertia, kg m^2."""
+    torque_limit: Optional[float] = _default("top_drive", "torque_limit", unit="N m", kind="float?")
+    """Largest motor torque, N m (None: unlimited)."""
+    rpm: float = _default("top_drive", "rpm", unit="rpm", kind="float")
+    """Speed setpoint, rpm."""
+    ramp_time: float = _default("top_drive", "ramp_time", unit="s", kind="float")
+    """Time constant of the first-order approach of the setpoint from 0, s (0: a step)."""
+    steps: tuple[tuple[float, float], ...] = _default("top_drive", "steps", unit="s, rpm", kind="pairs")
+    """Setpoint changes ``(time s, rpm)``."""
+    controller: Controller = field(default_factory=Controller, metadata={"kind": "table", "unit": "", "doc": ""})
+    """The speed controller."""
+    control_interval: float = _default("top_drive", "control_interval", unit="s", kind="float")
+    """Zero-order-hold period of the controller, s."""
+
+
+@dataclass(frozen=True)
+class Bit:
+    """The bit: off bottom (free end) or on bottom with a velocity-weakening bit-rock torque
+    ``T = W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)``."""
+
+    on_bottom: bool = _default("bit", "on_bottom", unit="", kind="bool")
+    """Whether the bit cuts (bit-rock torque) or hangs free."""
+    weight_on_bit: float = _default("bit", "weight_on_bit", unit="N", kind="float")
+    """Weight on bit W, N."""
+    radius: float = _default("bit", "radius", unit="m", kind="float")
+    """Bit radius r, m."""
+    mu_static: float = _default("bit", "mu_static", unit="", kind="float")
+    """Static bit-rock friction coefficient."""
+    mu_kinetic: float = _default("bit", "mu_kinetic", unit="", kind="float")
+    """Kinetic bit-rock friction coefficient."""
+    decay: float = _default("bit", "decay", unit="s/rad", kind="float")
+    """Velocity-weakening rate, 1/(rad/s)."""
+    stick_speed: float = _default("bit", "stick_speed", unit="rad/s", kind="float")
+    """Speed below which the bit sticks, rad/s."""
+    bha_inertia: float = _default("bit", "bha_inertia", unit="kg m^2", kind="float")
+    """Extra lumped inertia at the bit, kg m^2."""
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """Grid, duration and output sampling."""
+
+    cells: int = _default("numerics", "cells", unit="", kind="int")
+    """Cells along the whole string."""
+    duration: float = _default("numerics", "duration", unit="s", kind="float")
+    """Simulated time, s."""
+    output_interval: float = _default("numerics", "output_interval", unit="s", kind="float")
+    """Spacing of the time series, s."""
+    field_interval: float = _default("numerics", "field_interval", unit="s", kind="float")
+    """Spacing of the space-time snapshots, s (0: none)."""
+    max_cells: int = _default("numerics", "max_cells", unit="", kind="int")
+    """Largest ``cells`` accepted (a guard against typos)."""
+
+
+@dataclass(frozen=True)
+class MetricsConfig:
+    """Where and how the stick-slip metrics are measured."""
+
+    window: Optional[tuple[float, float]] = _default("metrics", "window", unit="s", kind="pair?")
+    """``(t_start, t_end)`` of the metrics window, s (None: the last half of the run)."""
+    stick_speed: float = _default("metrics", "stick_speed", unit="rad/s", kind="float")
+    """The bit counts as stuck at or below this speed, rad/s."""
+
+
+def _table(cls: type) -> Any:
+    return field(default_factory=cls, metadata={"kind": "table", "unit": "", "doc": ""})
+
+
+@dataclass(frozen=True)
+class DrillConfig:
+    """A whole drilling system: string, well, friction, top drive, bit and numerics.
+
+    Constructing one validates and normalises it in the core: every unset field takes the
+    core's default and a bad value raises :class:`~drillstring.errors.ValidationError` naming
+    the dotted field. Sub-tables may be given as the dataclasses or as mappings
+    (``DrillConfig(sections=[{"length": 1000.0}], top_drive={"rpm": 60.0})``).
+
+    Build one from TOML with :func:`load_drill_config`, from a dict with :meth:`from_dict`;
+    change fields with :meth:`with_overrides` (``["top_drive.rpm=60"]``) or
+    :func:`dataclasses.replace`.
+    """
+
+    sections: tuple[Section, ...]
+    """The string from the top (at least one section)."""
+    well: Well = _table(Well)
+    friction: Friction = _table(Friction)
+    damping_rate: float = _default(None, "damping_rate", unit="1/s", kind="float")
+    """Viscous damping rate c, 1/s: force ``-rho J c omega`` per unit length."""
+    top_drive: TopDrive = _table(TopDrive)
+    bit: Bit = _table(Bit)
+    numerics: Numerics = _table(Numerics)
+    metrics: MetricsConfig = _table(MetricsConfig)
+
+    def __post_init__(self) -> None:
+        checked = _check_fields(type(self), {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}, "")
+        normal = json.loads(_core.drill_validate(json.dumps(_unset_left_out(_plain(checked)), allow_nan=False)))
+        rebuilt = _build(type(self), normal, "")  # the fields of the normalised config
+        for f in dataclasses.fields(self):
+            object.__setattr__(self, f.name, rebuilt[f.name])
+
+    # ------------------------------------------------------------------ dicts and JSON
+
+    @property
+    def length(self) -> float:
+        """Total measured length of the string, m (the sum of the section lengths)."""
+        return math.fsum(s.length for s in self.sections)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The configuration as nested plain dicts and lists (unset optional fields are ``None``),
+        JSON-ready; :meth:`from_dict` of it gives an equal config."""
+        return _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON, unset optional fields left out: what the core receives."""
+        return json.dumps(_unset_left_out(self.to_dict()), allow_nan=False)
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], source: Optional[str] = None) -> DrillConfig:
+        """Builds a config from nested mappings (a parsed TOML or JSON document).
+
+        Unknown keys raise :class:`~drillstring.errors.ValidationError` naming the key and listing
+        the allowed ones; so do values of the wrong type and values the core refuses. ``source``
+        (a file name) is attached to the error, with the line of the key when it can be found.
+        """
+        try:
+            if not isinstance(data, Mapping):
+                raise ValidationError("config", data, "a table/mapping of the configuration")
+            return _build(cls, data, "", construct=True)
+        except ValidationError as exc:
+            if source is None or exc.source is not None:
+                raise
+            raise ValidationError(exc.field, exc.value, exc.allowed, source=source,
+                                  line=_toml_line(source, exc.field)) from exc
+
+    # ------------------------------------------------------------------ TOML
+
+    def to_toml(self) -> str:
+        """The configuration as a TOML document (:func:`load_drill_config` reads it back equal;
+        floats are written with ``repr``, so bit for bit). Unset optional fields are left out."""
+        lines = ["# drillstring drilling-system configuration (SI units; angles in degrees, speeds in rpm)"]
+        plain = self.to_dict()
+        for key, value in plain.items():
+            if not isinstance(value, (dict, list)) and value is not None:
+                lines.append(f"{key} = {_toml_value(value)}")
+        for section in plain["sections"]:
+            lines += ["", "[[sections]]", *_toml_pairs(section)]
+        for key, value in plain.items():
+            if isinstance(value, dict):
+                lines += _toml_table(key, value)
+        return "\n".join(lines) + "\n"
+
+    def save(self, path: Any) -> Path:
+        """Writes :meth:`to_toml` to ``path`` and returns the path written (atomic replacement,
+        symlinks written through, devices and ``"-"`` streamed into; see
+        :mod:`drillstring._output`)."""
+        from .._output import write_text
+
+        return write_text(path, self.to_toml())
+
+    # ------------------------------------------------------------------ overrides
+
+    def with_overrides(self, assignments: Union[Iterable[str], Mapping[str, Any]]) -> DrillConfig:
+        """A copy with some fields changed, by dotted keys with indices.
+
+        ``assignments`` is a list of ``"key=value"`` strings, as ``drillstring drill --set``
+        takes them (the value is TOML: ``60``, ``3.5e4``, ``true``, ``"pi"``, ``[0, 30]``, and a
+        bare word such as ``soft_torque`` is a string, ``null`` unsets an optional field such as
+        ``top_drive.torque_limit``), or a mapping of dotted keys to values. Setting
+        ``well.inclination_deg`` to one number (a constant inclination) without ``well.md``
+        drops the survey stations::
+
+            cfg.with_overrides(["top_drive.rpm=60", "sections[0].length=3000", "bit.on_bottom=true"])
+            cfg.with_overrides({"top_drive.controller.type": "soft_torque"})
+
+        Raises
+        ------
+        ValidationError
+            A malformed assignment or key (``field="--set"``), a key that is not in the
+            configuration (naming it and listing the keys allowed there), an index out of
+            range, or a value of the wrong type or refused by the core (naming the field).
+        """
+        data = self.to_dict()
+        items = list(assignments.items() if isinstance(assignments, Mapping) else (
+            _split_assignment(a) for a in _assignment_list(assignments)))
+        for key, value in items:
+            _assign(data, key, value)
+        keys = {str(key).replace(" ", "") for key, _ in items}
+        if "well.inclination_deg" in keys and "well.md" not in keys and not isinstance(
+                data["well"]["inclination_deg"], (list, tuple)):
+            data["well"]["md"] = None  # a constant inclination replaces the survey
+        return type(self).from_dict(data)
+
+
+# --------------------------------------------------------------------------- structure checks
+
+_KIND_TEXT = {
+    "float": "a number",
+    "float?": "a number",
+    "int": "an integer",
+    "bool": "true or false",
+    "str": "a string",
+    "floats?": "a list of numbers",
+    "float|floats": "a number or a list of numbers",
+    "pairs": "a list of [time, rpm] pairs of numbers",
+    "pair?": "a list of two numbers [start, end]",
+}
+
+
+def _expected(kind: str, unit: str) -> str:
+    text = _KIND_TEXT[kind]
+    return f"{text} ({unit})" if unit and kind not in ("bool", "str") else text
+
+
+def _join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def _number_list(value: Any, path: str, allowed: str) -> tuple[float, ...]:
+    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence):
+        raise ValidationError(path, value, allowed)
+    return tuple(as_float(f"{path}[{i}]", v, allowed) for i, v in enumerate(value))
+
+
+def _convert(kind: str, unit: str, value: Any, path: str) -> Any:
+    """One field's value in its Python type, or ``ValidationError`` naming ``path`` (types only:
+    ranges are the core's)."""
+    allowed = _expected(kind, unit)
+    if kind == "float":
+        return as_float(path, value, allowed)
+    if kind == "float?":
+        return None if value is None else as_float(path, value, allowed)
+    if kind == "int":
+        return as_int(path, value, -(2**63), 2**63 - 1, allowed)
+    if kind == "bool":
+        if not isinstance(value, bool):
+            raise ValidationError(path, value, allowed)
+        return value
+    if kind == "str":
+        if not isinstance(value, str):
+            raise ValidationError(path, value, allowed)
+        return value
+    if kind == "floats?":
+        return None if value is None else _number_list(value, path, allowed)
+    if kind == "float|floats":
+        if isinstance(value, Sequence) and not isinstance(value, (str, bytes)):
+            return _number_list(value, path, allowed)
+        return as_float(path, value, allowed)
+    if kind == "pair?":
+        if value is None:
+            return None
+        numbers = _number_list(value, path, allowed)
+        if len(numbers) != 2:
+            raise ValidationError(path, value, allowed)
+        return numbers
+    if kind == "pairs":
+        if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence):
+            raise ValidationError(path, value, allowed)
+        pairs = []
+        for i, pair in enumerate(value):
+            numbers = _number_list(pair, f"{path}[{i}]", allowed)
+            if len(numbers) != 2:
+                raise ValidationError(f"{path}[{i}]", pair, allowed)
+            pairs.append((numbers[0], numbers[1]))
+        return tuple(pairs)
+    raise AssertionError(kind)  # pragma: no cover
+
+
+_TABLES: dict[str, type] = {}  # field name -> dataclass of a sub-table (filled below)
+
+
+def _keys_text(cls: type) -> str:
+    return ", ".join(f.name for f in dataclasses.fields(cls))
+
+
+def _check_fields(cls: type, values: Mapping[str, Any], path: str) -> dict[str, Any]:
+    """The fields of ``cls`` given in ``values`` (a mapping of field names), each converted:
+    sub-tables become their dataclasses (from an instance or a mapping), numbers floats or ints.
+    Unknown keys raise ``ValidationError`` naming the key and listing the allowed ones."""
+    names = {f.name: f for f in dataclasses.fields(cls)}
+    out: dict[str, Any] = {}
+    for key, value in values.items():
+        where = _join(path, str(key))
+        f = names.get(key) if isinstance(key, str) else None
+        if f is None:
+            what = f"[{path}]" if path else "the configuration"
+            raise ValidationError(where, value, f"a key of {what}: one of {_keys_text(cls)}")
+        if key == "sections":
+            out[key] = _sections(value, where)
+        elif f.metadata.get("kind") == "table":
+            out[key] = _build(_TABLES[key], value, where)
+        else:
+            out[key] = _convert(f.metadata["kind"], f.metadata["unit"], value, where)
+    return out
+
+
+def _sections(value: Any, path: str) -> tuple[Section, ...]:
+    allowed = "a list of sections (tables with length, outer_diameter, inner_diameter, ...)"
+    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence):
+        raise ValidationError(path, value, allowed)
+    return tuple(_build(Section, item, f"{path}[{i}]") for i, item in enumerate(value))
+
+
+def _build(cls: type, value: Any, path: str, *, construct: bool = False) -> Any:
+    """An instance of the dataclass ``cls`` from an instance or a mapping, its fields checked
+    (see :func:`_check_fields`). Missing fields take the dataclass defaults; a missing field
+    without a default raises ``ValidationError`` naming it."""
+    if dataclasses.is_dataclass(value) and isinstance(value, cls):
+        value = {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
+    if not isinstance(value, Mapping):
+        what = f"a table [{path}]" if path else "a table of the configuration"
+        raise ValidationError(path or "config", value, f"{what} with the keys {_keys_text(cls)}")
+    checked = _check_fields(cls, value, path)
+    if cls is Well and "md" not in value and isinstance(checked.get("inclination_deg"), float):
+        checked["md"] = None  # one constant inclination: no survey stations (TOML has no null)
+    for f in dataclasses.fields(cls):
+        no_default = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
+        if no_default and f.name not in checked:
+            allowed = ("at least one section: [[sections]] tables (length, outer_diameter, inner_diameter, ...)"
+                       if f.name == "sections" else "a value (required)")
+            raise ValidationError(_join(path, f.name), None, allowed)
+    if cls is DrillConfig and not construct:
+        # inside DrillConfig.__post_init__: the fields only (constructing would validate again)
+        return checked
+    return cls(**checked)
+
+
+def _unset_left_out(value: Any) -> Any:
+    """The plain config without its ``None`` (unset) fields: the core fills them (an unset
+    ``well.md`` with one inclination number means no survey stations)."""
+    if isinstance(value, dict):
+        return {k: _unset_left_out(v) for k, v in value.items() if v is not None}
+    if isinstance(value, list):
+        return [_unset_left_out(v) for v in value]
+    return value
+
+
+def _plain(value: Any) -> Any:
+    """Dataclasses as dicts, tuples as lists (JSON / TOML-ready)."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {f.name: _plain(getattr(value, f.name)) for f in dataclasses.fields(value)}
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value
+
+
+_TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Controller, bit=Bit, numerics=Numerics,
+               metrics=MetricsConfig)
+
+
+# --------------------------------------------------------------------------- TOML writing
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)  # shortest exact round trip; finite (validated)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise TypeError(f"no TOML form for {value!r}")  # pragma: no cover
+
+
+def _toml_pairs(table: Mapping[str, Any]) -> list[str]:
+    keys = sorted(table, key=lambda k: k != "name")  # a section's name first
+    return [f"{k} = {_toml_value(table[k])}" for k in keys if table[k] is not None and not isinstance(table[k], dict)]
+
+
+def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
+    lines = ["", f"[{name}]", *_toml_pairs(table)]
+    for key, value in table.items():
+        if isinstance(value, dict):
+            lines += _toml_table(f"{name}.{key}", value)
+    return lines
+
+
+# --------------------------------------------------------------------------- TOML reading
+
+
+def _load_document(path: PathLike) -> dict[str, Any]:
+    from ..parameters import load_toml
+
+    return load_toml(path)
+
+
+def load_drill_config(path: PathLike) -> DrillConfig:
+    """Reads a drilling-system configuration from a TOML file (see the module docstring).
+
+    Raises
+    ------
+    ValidationError
+        A file that cannot be read or is not valid TOML, an unknown key, a value of the wrong
+        type or refused by the core; the message names the file, the line when it can be found,
+        and the dotted field.
+    """
+    source = os.fspath(path)
+    return DrillConfig.from_dict(_load_document(source), source=source)
+
+
+_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")
+_NAME = r"""(?:"[^"]*"|'[^']*'|[A-Za-z0-9_-]+)"""
+_KEY_LINE = re.compile(rf"^\s*({_NAME}(?:\s*\.\s*{_NAME})*)\s*=")
+_TOKEN = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
+
+
+def _tokens(dotted: str) -> list[Union[str, int]]:
+    return [int(index) if index else name for name, index in _TOKEN.findall(dotted)]
+
+
+def _toml_line(path: PathLike, dotted: str) -> Optional[int]:
+    """The 1-based line of the TOML file ``path`` that sets the field ``dotted``
+    (``sections[1].length``, ``top_drive.controller.kp``, ``well.md[2]``), or of its table; None
+    when not found (or unreadable)."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            lines = handle.read().splitlines()
+    except (OSError, UnicodeDecodeError):
+        return None
+    target = _tokens(dotted)
+    counts: dict[tuple[Union[str, int], ...], int] = {}
+    table: list[Union[str, int]] = []
+    best: tuple[int, Optional[int]] = (0, None)
+
+    def consider(full: list[Union[str, int]], number: int) -> tuple[int, Optional[int]]:
+        if full and target[: len(full)] == full and len(full) > best[0]:
+            return len(full), number
+        return best
+
+    for number, line in enumerate(lines, 1):
+        header = _HEADER.match(line)
+        if header:
+            names = [re.sub(r"""["'\s]""", "", part) for part in header.group(2).split(".")]
+            table = list(names)
+            if header.group(1) == "[[":
+                key = tuple(names)
+                counts[key] = counts.get(key, -1) + 1
+                table.append(counts[key])
+            best = consider(table, number)
+            continue
+        match = _KEY_LINE.match(line)
+        if match:
+            names = [re.sub(r"""["'\s]""", "", part) for part in match.group(1).split(".")]
+            best = consider([*table, *names], number)
+    return best[1]
+
+
+# --------------------------------------------------------------------------- overrides
+
+_PATH = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(\[\d+\])*(\.[A-Za-z_][A-Za-z0-9_]*(\[\d+\])*)*$")
+_BARE_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_-]*$")
+_SET_FORM = "key=value with a dotted key (top_drive.rpm, sections[0].length) and a TOML value"
+
+
+def _assignment_list(assignments: Iterable[str]) -> list[str]:
+    if isinstance(assignments, (str, bytes)):
+        raise ValidationError("--set", assignments, "a list of key=value strings")
+    return list(assignments)
+
+
+def _split_assignment(text: Any) -> tuple[str, Any]:
+    if not isinstance(text, str) or "=" not in text:
+        raise ValidationError("--set", text, _SET_FORM)
+    key, _, raw = text.partition("=")
+    key, raw = key.strip(), raw.strip()
+    if not raw:
+        raise ValidationError("--set", text, _SET_FORM + " (the value is empty)")
+    try:
+        value = tomllib.loads(f"value = {raw}")["value"]
+    except (ValueError, RecursionError):  # tomllib.TOMLDecodeError: maybe a bare word
+        if not _BARE_WORD.match(raw):
+            raise ValidationError("--set", text, _SET_FORM + " (number, true/false, \"string\", [list])") from None
+        value = None if raw == "null" else raw  # null: unset an optional field (TOML has no null)
+    return key, value
+
+
+def _assign(data: dict[str, Any], key: Any, value: Any) -> None:
+    """Sets ``data[key path] = value`` in the nested plain config ``data``; unknown keys and
+    indices out of range raise ``ValidationError`` naming the dotted key so far."""
+    if not isinstance(key, str) or not _PATH.match(key):
+        raise ValidationError("--set", key, _SET_FORM)
+    tokens = _tokens(key)
+    node: Any = data
+    where = ""
+    for position, token in enumerate(tokens):
+        last = position == len(tokens) - 1
+        if isinstance(token, int):
+            if not isinstance(node, list):
+                raise ValidationError(f"{where}[{token}]", value, f"a key without an index: {where} is not a list")
+            if not 0 <= token < len(node):
+                allowed = f"an index 0..{len(node) - 1} of {where}" if node else f"no index: {where} is empty"
+                raise ValidationError(f"{where}[{token}]", value, allowed)
+            where = f"{where}[{token}]"
+            if last:
+                node[token] = value
+            else:
+                node = node[token]
+            continue
+        name = _join(where, token)
+        if not isinstance(node, dict) or token not in node:
+            if isinstance(node, dict):
+                what = f"[{where}]" if where else "the configuration"
+                keys = ", ".join(node)
+                raise ValidationError(name, value, f"a key of {what}: one of {keys}")
+            if isinstance(node, list):
+                raise ValidationError(name, value, f"an index first: {where} is a list of {len(node)} "
+                                      f"({where}[0].{token})")
+            raise ValidationError(name, value, f"a key of a table: {where} is {node!r}, not a table")
+        where = name
+        if last:
+            if isinstance(node[token], dict) and isinstance(value, Mapping):
+                node[token].update(value)
+            else:
+                node[token] = value
+        else:
+            node = node[token]

@@ -1,0 +1,152 @@
+"""The output folder of a drilling-system run (``drillstring drill --out DIR``,
+:meth:`DrillResult.save`). Every file goes through :mod:`drillstring._output`: written to a
+temporary file and renamed into place, never over an input of the command."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Union
+
+import numpy as np
+
+from .._output import atomic_write, check_destination, make_directory, write_bytes, write_text
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .result import DrillResult
+
+__all__ = ["DATA_FILES", "FILES", "PLOT_FILES", "output_names", "report_markdown", "write_outputs"]
+
+#: The data files of an output folder, in the order they are written.
+DATA_FILES: tuple[str, ...] = ("series.parquet", "series.csv", "metrics.json", "fields.npz", "config.toml")
+#: The figures (skipped with ``--no-plots``).
+PLOT_FILES: tuple[str, ...] = ("time_histories.png", "space_time.png", "torque_depth.png")
+#: Every file an output folder gets (``report.md`` last).
+FILES: tuple[str, ...] = (*DATA_FILES, *PLOT_FILES, "report.md")
+
+
+def _json_ready(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {str(k): _json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_ready(v) for v in value]
+    if isinstance(value, np.generic):
+        return _json_ready(value.item())
+    return value
+
+
+def output_names(plots: bool = True) -> tuple[str, ...]:
+    """The files an output folder gets (:data:`FILES`, without the figures with ``plots=False``)."""
+    return FILES if plots else tuple(name for name in FILES if name not in PLOT_FILES)
+
+
+def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
+    """Writes the run's files into ``out_dir`` (created if needed; see :data:`FILES`) and
+    returns their paths. The folder and every file destination in it are checked first
+    (:func:`~drillstring._output.check_destination`): a refused one raises
+    :class:`~drillstring.errors.ValidationError` before anything is written."""
+    check_destination(out_dir, field="out_dir", directory=True, files=output_names(plots))
+    directory = make_directory(out_dir)
+    written: list[Path] = []
+
+    def path(name: str) -> str:
+        return os.path.join(os.fspath(directory), name)
+
+    frame = result.to_pandas()
+    frame.attrs = {}  # parquet keeps attrs as JSON metadata; the config and metrics have their own files
+    written.append(atomic_write(path("series.parquet"), lambda tmp: frame.to_parquet(tmp), suffix=".parquet"))
+    written.append(atomic_write(path("series.csv"), lambda tmp: frame.to_csv(tmp, float_format="%.10g"),
+                                suffix=".csv"))
+    text = json.dumps(_json_ready(result.summary()), indent=2, allow_nan=False) + "\n"
+    written.append(write_text(path("metrics.json"), text))
+    profile = result.profile
+
+    def save_fields(tmp: str) -> None:
+        with open(tmp, "wb") as handle:
+            np.savez_compressed(
+                handle, t=result.field_t, z=result.z, omega_rpm=result.omega_field, torque_Nm=result.torque_field,
+                profile_z=profile.z, limit_per_m=profile.limit_per_m, cumulative_Nm=profile.cumulative,
+                breakoff_torque_Nm=np.float64(profile.breakoff_torque),
+            )
+
+    written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
+    written.append(write_text(path("config.toml"), result.config.to_toml()))
+    if plots:
+        from ..plots import save
+        from .plots import space_time_maps, time_histories, torque_depth
+
+        for name, make in zip(PLOT_FILES, (time_histories, space_time_maps, torque_depth)):
+            written.append(Path(os.fsdecode(os.fspath(save(make(result), path(name))))))
+    written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots).encode("utf-8")))
+    return written
+
+
+def _fmt(value: float, digits: int = 4) -> str:
+    return "–" if not math.isfinite(value) else f"{value:.{digits}g}"
+
+
+def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
+    """A short Markdown report of the run: the system, how the solve ended, the metrics, the
+    energy balance and the files."""
+    cfg = result.config
+    m = result.metrics
+    td = cfg.top_drive
+    bit = cfg.bit
+    lines = [
+        "# Drilling-system run",
+        "",
+        f"Status: **{result.status}**" + (f" ({result.message})" if result.message else ""),
+        "",
+        "## System",
+        "",
+        "| section | length, m | OD, m | ID, m | G, GPa | density, kg/m³ |",
+        "|---|---:|---:|---:|---:|---:|",
+    ]
+    for s in cfg.sections:
+        lines.append(f"| {s.name} | {s.length:.6g} | {s.outer_diameter:.6g} | {s.inner_diameter:.6g} | "
+                     f"{s.shear_modulus / 1e9:.4g} | {s.density:.6g} |")
+    inclination = cfg.well.inclination_deg
+    survey = (f"{inclination:g}° constant" if isinstance(inclination, float) else
+              ", ".join(f"{i:g}° at {md:g} m" for md, i in zip(cfg.well.md or (), inclination)))
+    on_bottom = (f"on bottom, WOB {bit.weight_on_bit / 1e3:.4g} kN, r {bit.radius:g} m, "
+                 f"mu_s {bit.mu_static:g}, mu_k {bit.mu_kinetic:g}" if bit.on_bottom else "off bottom")
+    lines += [
+        "",
+        f"- Well: {survey}; wall friction mu {cfg.friction.static:g} (kinetic x{cfg.friction.kinetic_ratio:g}, "
+        f"{cfg.friction.model})",
+        f"- Top drive: {td.rpm:g} rpm, {td.controller.type} controller, inertia {td.inertia:g} kg m²",
+        f"- Bit: {on_bottom}",
+        f"- Numerics: {cfg.numerics.cells} cells asked"
+        + (f" ({result.stats['cells']} used), {cfg.numerics.duration:g} s in {result.stats['steps']} steps of "
+           f"{_fmt(float(result.stats['dt']))} s" if {"cells", "steps", "dt"} <= set(result.stats)
+           else f", {cfg.numerics.duration:g} s"),
+        "",
+        f"## Stick-slip (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)",
+        "",
+        "| metric | value |",
+        "|---|---:|",
+        f"| severity SSI = (max − min) / (2 mean) | {_fmt(m.ssi, 3)} |",
+        f"| stuck fraction | {_fmt(m.stuck_fraction, 3)} |",
+        f"| period, s | {_fmt(m.period_s)} |",
+        f"| bit speed min / mean / max, rpm | {_fmt(m.bit_rpm_min)} / {_fmt(m.bit_rpm_mean)} / {_fmt(m.bit_rpm_max)} |",
+        f"| motor torque min / max, kN m | {_fmt(m.motor_torque_min_Nm / 1e3)} / {_fmt(m.motor_torque_max_Nm / 1e3)} |",
+        f"| break-off torque, kN m | {_fmt(m.breakoff_torque_Nm / 1e3)} |",
+    ]
+    if result.energy:
+        lines += ["", "## Energy balance, J", "",
+                  "Motor work and losses from the start; kinetic, elastic, top-drive and BHA energies at the end.",
+                  "", "| term | value |", "|---|---:|"]
+        lines += [f"| {name.replace('_', ' ')} | {_fmt(value, 6)} |" for name, value in result.energy.items()]
+    lines += ["", "## Files", "",
+              "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque",
+              "- `metrics.json`: the metrics above, window, status, energy balance",
+              "- `fields.npz`: t, z, omega_rpm[t, z], torque_Nm[t, z] and the friction profile",
+              "- `config.toml`: the configuration solved (normalised: every default filled)"]
+    if plots:
+        lines += ["", "## Figures", ""]
+        lines += [f"![{name[:-4].replace('_', ' ')}]({name})" for name in PLOT_FILES]
+    return "\n".join(lines) + "\n"

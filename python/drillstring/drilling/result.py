@@ -1,0 +1,228 @@
+"""What a drilling-system solve returns: time series, space-time fields, the friction profile,
+stick-slip metrics and the energy balance, all computed by the core; exports."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Optional, Union
+
+import numpy as np
+
+from .config import DrillConfig
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+    from numpy.typing import NDArray
+
+__all__ = ["SERIES", "UNITS", "DrillMetrics", "DrillProfile", "DrillResult"]
+
+#: The time series of a run, in the order of the tables (``t`` is the index).
+SERIES: tuple[str, ...] = ("surface_rpm", "bit_rpm", "motor_torque", "bit_torque")
+
+#: Units of the series, fields, profile and metrics.
+UNITS: dict[str, str] = {
+    "t": "s",
+    "surface_rpm": "rpm",
+    "bit_rpm": "rpm",
+    "motor_torque": "N m",
+    "bit_torque": "N m",
+    "z": "m",
+    "field_t": "s",
+    "omega_field": "rpm",
+    "torque_field": "N m",
+    "limit_per_m": "N m/m",
+    "cumulative": "N m",
+    "breakoff_torque": "N m",
+}
+
+
+#: The names of the core's metrics (those of :class:`drillstring.analysis.StickSlipMetrics`) by
+#: the names of :class:`DrillMetrics`.
+_CORE_METRICS = {
+    "ssi": "severity",
+    "period_s": "cycle_period",
+    "bit_rpm_min": "rpm_min",
+    "bit_rpm_max": "rpm_max",
+    "bit_rpm_mean": "rpm_mean",
+    "motor_torque_min_Nm": "torque_min",
+    "motor_torque_max_Nm": "torque_max",
+    "breakoff_torque_Nm": "breakoff_torque",
+}
+
+
+def _number(value: Any) -> float:
+    return float("nan") if value is None else float(value)
+
+
+@dataclass(frozen=True)
+class DrillMetrics:
+    """Stick-slip metrics of a run over its window, as the core computes them
+    (``drillstring_core::metrics::stickslip``, the function behind
+    :func:`drillstring.analysis.stick_slip_metrics`). NaN where a metric is undefined (no full
+    cycle in the window: no period)."""
+
+    window_start: float
+    """Start of the window the metrics cover, s (by default the last half of the run)."""
+    window_end: float
+    """End of the window, s."""
+    ssi: float
+    """Stick-slip severity ``(max - min) / (2 |mean|)`` of the bit speed."""
+    stuck_fraction: float
+    """Fraction of the window's time the bit is stuck."""
+    period_s: float
+    """Stick-slip period: mean interval between upward mean-crossings of the motor torque, s."""
+    bit_rpm_min: float
+    bit_rpm_max: float
+    bit_rpm_mean: float
+    """Time-weighted mean bit speed, rpm."""
+    motor_torque_min_Nm: float
+    motor_torque_max_Nm: float
+    breakoff_torque_Nm: float
+    """Static break-off torque of the string in the well (the integral of the friction limit), N m."""
+
+    @classmethod
+    def from_core(cls, metrics: Mapping[str, Any]) -> DrillMetrics:
+        """From the ``metrics`` dict of ``_core.drill_solve`` (the names of
+        :func:`drillstring.analysis.stick_slip_metrics`: ``severity``, ``rpm_min``, ...;
+        ``None`` read as NaN)."""
+        values = {}
+        for f in dataclasses.fields(cls):
+            core = _CORE_METRICS.get(f.name, f.name)
+            values[f.name] = _number(metrics[core] if core in metrics else metrics.get(f.name))
+        return cls(**values)
+
+    @property
+    def window(self) -> tuple[float, float]:
+        """``(window_start, window_end)``, s."""
+        return (self.window_start, self.window_end)
+
+    def to_dict(self) -> dict[str, Optional[float]]:
+        """``{name: value}`` with NaN as ``None`` (JSON-ready)."""
+        return {f.name: (None if math.isnan(v := getattr(self, f.name)) else v) for f in dataclasses.fields(self)}
+
+
+@dataclass(frozen=True)
+class DrillProfile:
+    """The static friction profile of the string in the well (``_core.drill_profile``)."""
+
+    z: NDArray[np.float64]
+    """Measured depth of the cell centres, m."""
+    limit_per_m: NDArray[np.float64]
+    """Static friction torque limit per metre, N m/m."""
+    cumulative: NDArray[np.float64]
+    """Static friction torque from the bit up to ``z`` (the torque the string must carry at ``z``
+    to turn everything below it from rest), N m."""
+    breakoff_torque: float
+    """Its value at the surface: the break-off torque, N m."""
+
+    @classmethod
+    def from_core(cls, raw: Mapping[str, Any]) -> DrillProfile:
+        return cls(z=np.asarray(raw["z"], dtype=np.float64),
+                   limit_per_m=np.asarray(raw["limit_per_m"], dtype=np.float64),
+                   cumulative=np.asarray(raw["cumulative"], dtype=np.float64),
+                   breakoff_torque=float(raw["breakoff_torque"]))
+
+
+class DrillResult:
+    """One run of the drilling system.
+
+    Attributes
+    ----------
+    config : DrillConfig
+        The normalised configuration that was solved.
+    t : ndarray
+        Sample times of the series, s.
+    surface_rpm, bit_rpm : ndarray
+        Top-drive and bit speed, rpm.
+    motor_torque, bit_torque : ndarray
+        Motor torque and bit-rock torque, N m.
+    z : ndarray
+        Measured depth of the grid cells, m.
+    field_t : ndarray
+        Times of the space-time snapshots, s (empty with ``numerics.field_interval = 0``).
+    omega_field, torque_field : ndarray
+        Speed (rpm) and torque (N m) along the string, shape ``(field_t.size, z.size)``.
+    profile : DrillProfile
+        The static friction profile and break-off torque.
+    metrics : DrillMetrics
+        Stick-slip metrics over the window.
+    energy : dict
+        The energy balance, J: ``motor_work, kinetic, elastic, friction_loss, damping_loss,
+        bit_loss, balance_error``.
+    stats : dict
+        ``cells``, ``substeps``, ``dt`` of the solve.
+    status, message : str
+        How the solve ended (``"success"`` or a failure status, see :class:`~drillstring.errors.SolveError`).
+    """
+
+    def __init__(self, config: DrillConfig, raw: Mapping[str, Any], profile: DrillProfile) -> None:
+        self.config = config
+        self.t: NDArray[np.float64] = np.asarray(raw["t"], dtype=np.float64)
+        self.surface_rpm: NDArray[np.float64] = np.asarray(raw["surface_rpm"], dtype=np.float64)
+        self.bit_rpm: NDArray[np.float64] = np.asarray(raw["bit_rpm"], dtype=np.float64)
+        self.motor_torque: NDArray[np.float64] = np.asarray(raw["motor_torque"], dtype=np.float64)
+        self.bit_torque: NDArray[np.float64] = np.asarray(raw["bit_torque"], dtype=np.float64)
+        self.z: NDArray[np.float64] = np.asarray(raw["z"], dtype=np.float64)
+        self.field_t: NDArray[np.float64] = np.asarray(raw["field_t"], dtype=np.float64)
+        self.omega_field: NDArray[np.float64] = np.asarray(raw["omega_field"], dtype=np.float64).reshape(
+            self.field_t.size, self.z.size)
+        self.torque_field: NDArray[np.float64] = np.asarray(raw["torque_field"], dtype=np.float64).reshape(
+            self.field_t.size, self.z.size)
+        self.profile = profile
+        self.metrics = DrillMetrics.from_core(raw["metrics"])
+        self.energy: dict[str, float] = {str(k): float(v) for k, v in dict(raw.get("energy") or {}).items()}
+        self.stats: dict[str, Any] = dict(raw.get("stats") or {})
+        self.status: str = str(raw["status"])
+        self.message: str = str(raw["message"])
+
+    @property
+    def success(self) -> bool:
+        """True when the solve reached ``numerics.duration``."""
+        return self.status == "success"
+
+    def __repr__(self) -> str:
+        m = self.metrics
+        return (f"<DrillResult {self.status}: {self.t.size} samples to t = {self.t[-1] if self.t.size else 0:g} s, "
+                f"SSI {m.ssi:.3g}, stuck {m.stuck_fraction:.3g}, period {m.period_s:.3g} s>")
+
+    def series(self) -> dict[str, NDArray[np.float64]]:
+        """``{"t": ..., "surface_rpm": ..., ...}``: the time series by name."""
+        return {"t": self.t, **{name: getattr(self, name) for name in SERIES}}
+
+    def to_pandas(self) -> pd.DataFrame:
+        """The time series as a :class:`pandas.DataFrame` indexed by ``t`` (s), with the columns
+        ``surface_rpm``, ``bit_rpm`` (rpm), ``motor_torque``, ``bit_torque`` (N m); ``df.attrs``
+        holds ``units``, ``status``, ``metrics`` and the ``config`` (:meth:`DrillConfig.to_dict`)."""
+        import pandas as pd
+
+        frame = pd.DataFrame({name: getattr(self, name) for name in SERIES}, index=pd.Index(self.t, name="t"))
+        frame.attrs.update(
+            units={key: UNITS[key] for key in ("t", *SERIES)}, status=self.status,
+            metrics=self.metrics.to_dict(), config=self.config.to_dict(),
+        )
+        return frame
+
+    def summary(self) -> dict[str, Any]:
+        """What ``metrics.json`` holds: the metrics, the window, the status and message, the
+        energy balance and the solver counters (NaN as ``None``)."""
+        out: dict[str, Any] = {"status": self.status, "message": self.message}
+        out.update(self.metrics.to_dict())
+        out["window"] = [self.metrics.window_start, self.metrics.window_end]
+        out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}
+        out["stats"] = self.stats
+        return out
+
+    def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
+        """Writes the run into the folder ``out_dir`` (created if needed) and returns the paths
+        written: ``series.parquet``, ``series.csv``, ``metrics.json``, ``fields.npz``,
+        ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
+        ``report.md``. The destinations are checked before anything is written; every file is
+        written atomically (see :mod:`drillstring._output`)."""
+        from .output import write_outputs
+
+        return write_outputs(self, out_dir, plots=plots)

@@ -1,0 +1,81 @@
+"""``drill``: one run of the drilling system in the core."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from typing import Any, Optional, Union
+
+from .. import _core
+from .._progress import ProgressOption, SolveProgress, check_progress
+from ..errors import SolveError, ValidationError
+from .config import DrillConfig, load_drill_config
+from .result import DrillProfile, DrillResult
+
+__all__ = ["drill", "friction_profile"]
+
+ConfigLike = Union[DrillConfig, Mapping[str, Any], str, "os.PathLike[str]"]
+
+
+def _config(config: Any) -> DrillConfig:
+    if isinstance(config, DrillConfig):
+        return config
+    if isinstance(config, Mapping):
+        return DrillConfig.from_dict(config)
+    if isinstance(config, (str, os.PathLike)):
+        return load_drill_config(config)
+    raise ValidationError("config", type(config).__name__, "a DrillConfig, a mapping or the path of a TOML file")
+
+
+def friction_profile(config: ConfigLike) -> DrillProfile:
+    """The static friction profile of ``config``'s string in its well (``_core.drill_profile``):
+    the limit per metre at the cell centres, its integral from the bit up, the break-off torque."""
+    return DrillProfile.from_core(_core.drill_profile(_config(config).to_json()))
+
+
+def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, check: bool = True) -> DrillResult:
+    """Solves the drilling system ``config`` over ``numerics.duration`` in the core.
+
+    Parameters
+    ----------
+    config : DrillConfig, mapping or path
+        The configuration, a mapping of it (:meth:`DrillConfig.from_dict`) or a TOML file
+        (:func:`~drillstring.drilling.load_drill_config`).
+    progress : bool or callable, optional
+        ``True``: a tqdm bar of the simulated time on stderr; a callable is called as
+        ``f(t_reached, duration)`` (about every 20 ms while the core steps, at the start and at
+        the end). Never changes the result.
+    check : bool
+        Raise :class:`~drillstring.errors.SolveError` (with ``.result``) when the solve stops
+        early (default); ``False`` returns the partial result with its ``status``.
+
+    Returns
+    -------
+    DrillResult
+        Series, space-time fields, friction profile, metrics and energy balance.
+
+    Raises
+    ------
+    ValidationError
+        A configuration the core refuses (naming the dotted field).
+    SolveError
+        The solve ended early (``status`` and the partial ``result``), with ``check=True``.
+    KeyboardInterrupt
+        Ctrl-C (the core stops within a few tens of milliseconds).
+    """
+    cfg = _config(config)
+    if not isinstance(check, bool):
+        raise ValidationError("check", check, "True or False")
+    option = check_progress(False if progress is None else progress)
+    text = cfg.to_json()
+    profile = DrillProfile.from_core(_core.drill_profile(text))
+    duration = cfg.numerics.duration
+    with SolveProgress(option, duration, "drill") as bar:
+        # the core reports the fraction of the duration done
+        report = (lambda fraction: bar.report(fraction * duration)) if bar.enabled else None
+        raw = _core.drill_solve(text, report)
+        result = DrillResult(cfg, raw, profile)
+        bar.finish(result)
+    if check and not result.success:
+        raise SolveError(result.status, result.message, result)
+    return result

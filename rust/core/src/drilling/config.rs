@@ -1,0 +1,739 @@
+//! The configuration of a drilling-system run: JSON in (every field optional except
+//! `sections` and each section's `length`, `outer_diameter`, `inner_diameter`), defaults from
+//! the `Default` impls below (one place each), validation naming dotted fields
+//! (`sections[1].outer_diameter`, `top_drive.controller.kp`), the limits of a run
+//! ([`MAX_CELLS`], [`MAX_DURATION`], [`MAX_OUTPUT_BYTES`], [`MAX_SECTIONS`]).
+//!
+//! Units: SI, except angles in degrees (`inclination_deg`) and speeds in rpm (`rpm`, `steps`);
+//! stick speeds are rad/s.
+
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value};
+
+use crate::error::{Error, Num, Result};
+use crate::metrics::STICK_SPEED;
+
+use super::grid::Grid;
+
+/// Largest number of cells a run may have (`numerics.max_cells` may lower it).
+pub const MAX_CELLS: usize = 10_000_000;
+/// Largest number of string sections.
+pub const MAX_SECTIONS: usize = 1_000;
+/// Longest simulated duration, s (one day).
+pub const MAX_DURATION: f64 = 86_400.0;
+/// Largest memory of a run's outputs (series and field snapshots), bytes (512 MiB).
+pub const MAX_OUTPUT_BYTES: usize = 512 << 20;
+/// Number of output series stored per sample (`t`, surface and bit speed, motor and bit torque).
+pub(crate) const SERIES: usize = 5;
+
+/// One section of the string, from the top.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Section {
+    pub name: String,
+    /// m (required in JSON).
+    pub length: f64,
+    /// m (required in JSON).
+    pub outer_diameter: f64,
+    /// m (required in JSON).
+    pub inner_diameter: f64,
+    /// Pa.
+    pub shear_modulus: f64,
+    /// kg/m^3.
+    pub density: f64,
+    /// m; the friction lever arm is half of it. None: `outer_diameter`.
+    pub contact_diameter: Option<f64>,
+    /// m^4; None: `pi/32 (OD^4 - ID^4)`.
+    pub polar_moment: Option<f64>,
+    /// m^2; None: `pi/4 (OD^2 - ID^2)`.
+    pub area: Option<f64>,
+}
+
+impl Default for Section {
+    /// A template (the Aarsnes-Shor Well B drill pipe, 5 1/2", steel); `length` and the
+    /// diameters are required in a configuration.
+    fn default() -> Self {
+        Section {
+            name: "drill pipe".into(),
+            length: 2500.0,
+            outer_diameter: 0.146529,
+            inner_diameter: 0.123024,
+            shear_modulus: 79.3e9,
+            density: 7850.0,
+            contact_diameter: None,
+            polar_moment: None,
+            area: None,
+        }
+    }
+}
+
+/// The inclination: one constant angle, or a table at the measured depths `well.md`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Inclination {
+    Constant(f64),
+    Table(Vec<f64>),
+}
+
+/// The well: survey (linear interpolation in measured depth, constant beyond the ends), mud.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Well {
+    /// Measured depths of the survey stations, m (strictly increasing); None with a constant
+    /// inclination.
+    pub md: Option<Vec<f64>>,
+    /// Degrees.
+    pub inclination_deg: Inclination,
+    /// kg/m^3 (buoyancy of the string: weight `(rho - mud_density) g A` per metre).
+    pub mud_density: f64,
+    /// m/s^2.
+    pub gravity: f64,
+}
+
+impl Default for Well {
+    /// The Aarsnes-Shor Well B survey: vertical to 500 m, build to 60 deg at 1600 m.
+    fn default() -> Self {
+        Well {
+            md: Some(vec![0.0, 500.0, 1600.0, 4000.0]),
+            inclination_deg: Inclination::Table(vec![0.0, 0.0, 60.0, 60.0]),
+            mud_density: 0.0,
+            gravity: 9.81,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionModel {
+    /// Set-valued Coulomb friction with a true stick phase (Aarsnes & Shor).
+    SetValued,
+    /// `tanh(omega / regularisation_speed)` times the kinetic limit.
+    Regularised,
+}
+
+/// Along-string Coulomb friction (soft-string contact).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Friction {
+    /// Static friction coefficient.
+    #[serde(rename = "static")]
+    pub static_coefficient: f64,
+    /// Kinetic / static.
+    pub kinetic_ratio: f64,
+    /// rad/s: a cell slower than this sticks if the torque needed to stop it is within the
+    /// static limit (Aarsnes-Shor `o_thres`).
+    pub stick_speed: f64,
+    pub model: FrictionModel,
+    /// rad/s, for `regularised`.
+    pub regularisation_speed: f64,
+}
+
+impl Default for Friction {
+    /// Aarsnes & Shor (2018), MAIN.m: `mu = 0.3`, `fRat = 0.65`, `oThres = 1.5`.
+    fn default() -> Self {
+        Friction {
+            static_coefficient: 0.3,
+            kinetic_ratio: 0.65,
+            stick_speed: 1.5,
+            model: FrictionModel::SetValued,
+            regularisation_speed: 0.1,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ControllerKind {
+    /// Ideal speed control: the top speed is the setpoint (motor torque inferred).
+    Speed,
+    /// Motor torque `kp e + ki int e` in a zero-order hold.
+    Pi,
+    /// PI tuned from the string impedance and a tuning frequency (SoftTorque).
+    SoftTorque,
+    /// Impedance matching (ZTorque): the top drive acts as a damper `z_factor Z` to the string.
+    ZTorque,
+}
+
+impl ControllerKind {
+    pub const NAMES: [&'static str; 4] = ["speed", "pi", "soft_torque", "z_torque"];
+}
+
+/// The top-drive controller.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Controller {
+    #[serde(rename = "type")]
+    pub kind: ControllerKind,
+    /// `pi`: N m s/rad.
+    pub kp: f64,
+    /// `pi`: N m/rad.
+    pub ki: f64,
+    /// `soft_torque`: Hz; None: the string's first natural frequency (fixed top, bit free or
+    /// with the BHA inertia).
+    pub tuning_frequency: Option<f64>,
+    /// `soft_torque`, `z_torque`: the damping the top drive presents, in units of the top
+    /// section's impedance `Z = J sqrt(G rho)`.
+    pub z_factor: f64,
+    /// `z_torque`: time constant of the low-pass that takes the mean string torque out of the
+    /// impedance feedback (so that only the torque waves reduce the speed), s. Default
+    /// `20 / (2 pi)` s: the torque high-pass of the ZTorque controller of Simulator4nDOF.
+    pub torque_highpass_time: f64,
+}
+
+impl Default for Controller {
+    /// Aarsnes & Shor (2018), MAIN.m: PI with `kp = 38e3`, `ki = 100e3`.
+    fn default() -> Self {
+        Controller {
+            kind: ControllerKind::Pi,
+            kp: 38e3,
+            ki: 100e3,
+            tuning_frequency: None,
+            z_factor: 1.0,
+            torque_highpass_time: 20.0 / (2.0 * std::f64::consts::PI),
+        }
+    }
+}
+
+/// The top drive: inertia, setpoint and controller.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TopDrive {
+    /// kg m^2.
+    pub inertia: f64,
+    /// N m; None: unlimited. The motor torque is clipped to `[-limit, limit]` (anti-windup).
+    pub torque_limit: Option<f64>,
+    /// Setpoint, rpm.
+    pub rpm: f64,
+    /// Time constant of the first-order approach of the setpoint from 0, s (0: a step).
+    pub ramp_time: f64,
+    /// `[time s, rpm]` changes of the setpoint target (approached with `ramp_time` too).
+    pub steps: Vec<[f64; 2]>,
+    pub controller: Controller,
+    /// Period of the zero-order hold of `pi` and `soft_torque`, s.
+    pub control_interval: f64,
+}
+
+impl Default for TopDrive {
+    /// Aarsnes & Shor (2018): `I_TD = 2900` kg m^2, 40 rpm reached with a 1 s time constant,
+    /// controller period 0.01 s.
+    fn default() -> Self {
+        TopDrive {
+            inertia: 2900.0,
+            torque_limit: None,
+            rpm: 40.0,
+            ramp_time: 1.0,
+            steps: Vec::new(),
+            controller: Controller::default(),
+            control_interval: 0.01,
+        }
+    }
+}
+
+/// The bit: off bottom (free end or a lumped BHA inertia) or on bottom (Navarro-Lopez torque).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Bit {
+    pub on_bottom: bool,
+    /// N.
+    pub weight_on_bit: f64,
+    /// m.
+    pub radius: f64,
+    pub mu_static: f64,
+    pub mu_kinetic: f64,
+    /// 1/(rad/s): `T = W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)`.
+    pub decay: f64,
+    /// rad/s: below it the bit sticks while the holding torque is within `W r mu_s`.
+    pub stick_speed: f64,
+    /// Lumped inertia at the bit, kg m^2 (0: none).
+    pub bha_inertia: f64,
+}
+
+impl Default for Bit {
+    fn default() -> Self {
+        Bit {
+            on_bottom: false,
+            weight_on_bit: 0.0,
+            radius: 0.1,
+            mu_static: 0.8,
+            mu_kinetic: 0.5,
+            decay: 1.0,
+            stick_speed: STICK_SPEED,
+            bha_inertia: 0.0,
+        }
+    }
+}
+
+/// Discretisation and outputs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Numerics {
+    /// Target number of cells: `dt = min(sum(L_i / c_i) / cells, min_i L_i / c_i)`, section `i`
+    /// gets `floor(L_i / (c_i dt)) >= 1` cells (Courant number `<= 1`, `= 1` when uniform); a
+    /// section shorter than a cell of the others raises the count.
+    pub cells: usize,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// Sampling of the series, s.
+    pub output_interval: f64,
+    /// Sampling of the space-time snapshots, s (0: none).
+    pub field_interval: f64,
+    /// A ceiling on `cells` (at most [`MAX_CELLS`]).
+    pub max_cells: usize,
+}
+
+impl Default for Numerics {
+    /// Aarsnes & Shor (2018), parameters_WellB.m and MAIN.m: 1000 cells, 60 s.
+    fn default() -> Self {
+        Numerics { cells: 1000, duration: 60.0, output_interval: 0.01, field_interval: 0.5, max_cells: 1_000_000 }
+    }
+}
+
+/// The metrics window.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MetricsConfig {
+    /// `[t_start, t_end]`, s; None: the last half of the run.
+    pub window: Option<[f64; 2]>,
+    /// rad/s: the bit counts as stuck at or below it.
+    pub stick_speed: f64,
+}
+
+impl Default for MetricsConfig {
+    fn default() -> Self {
+        MetricsConfig { window: None, stick_speed: STICK_SPEED }
+    }
+}
+
+/// A drilling-system run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct DrillConfig {
+    /// From the top; at least one (required in JSON).
+    pub sections: Vec<Section>,
+    pub well: Well,
+    pub friction: Friction,
+    /// 1/s: viscous force `-rho J c omega` per unit length.
+    pub damping_rate: f64,
+    pub top_drive: TopDrive,
+    pub bit: Bit,
+    pub numerics: Numerics,
+    pub metrics: MetricsConfig,
+}
+
+impl Default for DrillConfig {
+    /// One template section ([`Section::default`]); every other part its own default.
+    fn default() -> Self {
+        DrillConfig {
+            sections: vec![Section::default()],
+            well: Well::default(),
+            friction: Friction::default(),
+            damping_rate: 0.0,
+            top_drive: TopDrive::default(),
+            bit: Bit::default(),
+            numerics: Numerics::default(),
+            metrics: MetricsConfig::default(),
+        }
+    }
+}
+
+/// Keys that must be present in a configuration's JSON.
+const REQUIRED_TOP: [&str; 1] = ["sections"];
+const REQUIRED_SECTION: [&str; 3] = ["length", "outer_diameter", "inner_diameter"];
+
+fn join(path: &str, key: &str) -> String {
+    if path.is_empty() {
+        key.to_string()
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
+    }
+}
+
+fn shown(v: &Value) -> String {
+    let s = v.to_string();
+    if s.len() > 60 {
+        format!("{}...", &s[..s.char_indices().take(57).last().map_or(0, |(i, c)| i + c.len_utf8())])
+    } else {
+        s
+    }
+}
+
+/// Checks the keys and value types of `user` against the serialised defaults `template`,
+/// naming the dotted path of the first mismatch (serde's own errors carry no path).
+fn check_shape(path: &str, user: &Value, template: &Value) -> Result<()> {
+    match template {
+        Value::Object(t) => {
+            let Value::Object(u) = user else {
+                return Err(Error::invalid(path, shown(user), "an object"));
+            };
+            for (k, v) in u {
+                let Some(tv) = t.get(k) else {
+                    let keys: Vec<&str> = t.keys().map(String::as_str).collect();
+                    return Err(Error::invalid(
+                        join(path, k),
+                        "an unknown field",
+                        format!("one of {}", keys.join(", ")),
+                    ));
+                };
+                check_shape(&join(path, k), v, tv)?;
+            }
+            Ok(())
+        }
+        Value::Array(t) => match user {
+            Value::Array(u) => {
+                if path == "top_drive.steps" {
+                    for (i, step) in u.iter().enumerate() {
+                        let ok = matches!(step, Value::Array(p) if p.len() == 2 && p.iter().all(Value::is_number));
+                        if !ok {
+                            return Err(Error::invalid(format!("{path}[{i}]"), shown(step), "[time s, rpm]"));
+                        }
+                    }
+                    return Ok(());
+                }
+                for (i, v) in u.iter().enumerate() {
+                    let p = format!("{path}[{i}]");
+                    match t.first() {
+                        Some(first @ Value::Object(_)) => check_shape(&p, v, first)?,
+                        _ if !v.is_number() => return Err(Error::invalid(p, shown(v), "a number")),
+                        _ => {}
+                    }
+                }
+                Ok(())
+            }
+            Value::Number(_) if path == "well.inclination_deg" => Ok(()),
+            _ => Err(Error::invalid(path, shown(user), "an array")),
+        },
+        Value::Number(_) if !user.is_number() => Err(Error::invalid(path, shown(user), "a number")),
+        Value::Bool(_) if !user.is_boolean() => Err(Error::invalid(path, shown(user), "true or false")),
+        Value::String(_) if !user.is_string() => Err(Error::invalid(path, shown(user), "a string")),
+        // Optional fields (default None): null, a number or an array of numbers.
+        Value::Null => match user {
+            Value::Null | Value::Number(_) => Ok(()),
+            Value::Array(u) => match u.iter().position(|v| !v.is_number()) {
+                Some(i) => Err(Error::invalid(format!("{path}[{i}]"), shown(&u[i]), "a number")),
+                None => Ok(()),
+            },
+            _ => Err(Error::invalid(path, shown(user), "null or a number")),
+        },
+        _ => Ok(()),
+    }
+}
+
+fn require(path: &str, map: &Map<String, Value>, keys: &[&str]) -> Result<()> {
+    for k in keys {
+        if !map.contains_key(*k) {
+            return Err(Error::invalid(join(path, k), "missing", "a value (required)"));
+        }
+    }
+    Ok(())
+}
+
+impl DrillConfig {
+    /// Parses a configuration (JSON object), filling defaults; an error names the dotted field
+    /// of an unknown key, a wrong type or a missing required value. Does not validate ranges
+    /// ([`DrillConfig::validate`]).
+    pub fn from_json(json: &str) -> Result<DrillConfig> {
+        let user: Value = serde_json::from_str(json)
+            .map_err(|e| Error::invalid("config", format!("text that is not JSON ({e})"), "a JSON object"))?;
+        let Value::Object(map) = &user else {
+            return Err(Error::invalid("config", kind(&user), "a JSON object"));
+        };
+        require("", map, &REQUIRED_TOP)?;
+        if let Some(Value::Array(sections)) = map.get("sections") {
+            for (i, s) in sections.iter().enumerate() {
+                if let Value::Object(s) = s {
+                    require(&format!("sections[{i}]"), s, &REQUIRED_SECTION)?;
+                }
+            }
+        }
+        let template = serde_json::to_value(DrillConfig::default())
+            .map_err(|e| Error::invalid("config", e.to_string(), "serialisable defaults"))?;
+        check_shape("", &user, &template)?;
+        for (path, value, names) in [
+            ("top_drive.controller.type", user.pointer("/top_drive/controller/type"), &ControllerKind::NAMES[..]),
+            ("friction.model", user.pointer("/friction/model"), &["set_valued", "regularised"][..]),
+        ] {
+            if let Some(v) = value {
+                if !v.as_str().is_some_and(|s| names.contains(&s)) {
+                    return Err(Error::invalid(path, shown(v), format!("one of {}", names.join(", "))));
+                }
+            }
+        }
+        for (path, pointer) in [("numerics.cells", "/numerics/cells"), ("numerics.max_cells", "/numerics/max_cells")] {
+            if let Some(v) = user.pointer(pointer) {
+                if v.as_u64().is_none() {
+                    return Err(Error::invalid(path, shown(v), "a positive integer"));
+                }
+            }
+        }
+        let constant_without_md =
+            user.pointer("/well/md").is_none() && user.pointer("/well/inclination_deg").is_some_and(Value::is_number);
+        let mut cfg: DrillConfig = serde_json::from_value(user)
+            .map_err(|e| Error::invalid("config", e.to_string(), "a valid configuration"))?;
+        if constant_without_md {
+            // A constant inclination needs no survey depths (the default ones are a table's).
+            cfg.well.md = None;
+        }
+        Ok(cfg)
+    }
+
+    /// The configuration as JSON, every default filled in.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|_| "{}".into())
+    }
+
+    /// Checks every value's range, naming the dotted field; also the discretisation (cell
+    /// count, time step) and the output size against [`MAX_OUTPUT_BYTES`].
+    pub fn validate(&self) -> Result<()> {
+        self.validate_values()?;
+        let grid = Grid::new(self)?;
+        self.check_outputs(&grid)
+    }
+
+    fn validate_values(&self) -> Result<()> {
+        fn pos(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
+            if x.is_finite() && x > 0.0 {
+                Ok(())
+            } else {
+                Err(Error::invalid(field, Num(x), format!("a finite number > 0 ({unit})")))
+            }
+        }
+        fn nonneg(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
+            if x.is_finite() && x >= 0.0 {
+                Ok(())
+            } else {
+                Err(Error::invalid(field, Num(x), format!("a finite number >= 0 ({unit})")))
+            }
+        }
+        fn within(field: impl Into<String>, x: f64, lo: f64, hi: f64, unit: &str) -> Result<()> {
+            if x.is_finite() && (lo..=hi).contains(&x) {
+                Ok(())
+            } else {
+                Err(Error::invalid(field, Num(x), format!("a number in [{}, {}] ({unit})", Num(lo), Num(hi))))
+            }
+        }
+        fn finite(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
+            if x.is_finite() {
+                Ok(())
+            } else {
+                Err(Error::invalid(field, Num(x), format!("a finite number ({unit})")))
+            }
+        }
+        let n = self.sections.len();
+        if !(1..=MAX_SECTIONS).contains(&n) {
+            return Err(Error::invalid("sections", format!("{n} sections"), format!("1..={MAX_SECTIONS} sections")));
+        }
+        let mut min_density = f64::INFINITY;
+        for (i, s) in self.sections.iter().enumerate() {
+            let f = |k: &str| format!("sections[{i}].{k}");
+            pos(f("length"), s.length, "m")?;
+            pos(f("outer_diameter"), s.outer_diameter, "m")?;
+            if !(s.inner_diameter.is_finite() && s.inner_diameter >= 0.0 && s.inner_diameter < s.outer_diameter) {
+                return Err(Error::invalid(
+                    f("inner_diameter"),
+                    Num(s.inner_diameter),
+                    format!("a finite number in [0, outer_diameter = {}) (m)", Num(s.outer_diameter)),
+                ));
+            }
+            pos(f("shear_modulus"), s.shear_modulus, "Pa")?;
+            pos(f("density"), s.density, "kg/m^3")?;
+            for (k, v, unit) in [
+                ("contact_diameter", s.contact_diameter, "m"),
+                ("polar_moment", s.polar_moment, "m^4"),
+                ("area", s.area, "m^2"),
+            ] {
+                if let Some(v) = v {
+                    pos(f(k), v, &format!("{unit}, or null for the default"))?;
+                }
+            }
+            min_density = min_density.min(s.density);
+        }
+        let w = &self.well;
+        match (&w.md, &w.inclination_deg) {
+            (None, Inclination::Constant(x)) => within("well.inclination_deg", *x, 0.0, 180.0, "degrees")?,
+            (Some(_), Inclination::Constant(_)) => {
+                return Err(Error::invalid(
+                    "well.inclination_deg",
+                    "a single number with well.md given",
+                    "a list of one inclination per well.md station (or null well.md)",
+                ))
+            }
+            (None, Inclination::Table(_)) => {
+                return Err(Error::invalid("well.md", "null", "the measured depths of the inclination table"))
+            }
+            (Some(md), Inclination::Table(inc)) => {
+                if md.is_empty() {
+                    return Err(Error::invalid("well.md", "an empty list", "at least one station"));
+                }
+                for (j, d) in md.iter().enumerate() {
+                    finite(format!("well.md[{j}]"), *d, "m")?;
+                    if j > 0 && *d <= md[j - 1] {
+                        return Err(Error::invalid(
+                            format!("well.md[{j}]"),
+                            Num(*d),
+                            format!("strictly increasing depths (> well.md[{}] = {})", j - 1, Num(md[j - 1])),
+                        ));
+                    }
+                }
+                if inc.len() != md.len() {
+                    return Err(Error::invalid(
+                        "well.inclination_deg",
+                        format!("{} values", inc.len()),
+                        format!("{} values (one per well.md station)", md.len()),
+                    ));
+                }
+                for (j, x) in inc.iter().enumerate() {
+                    within(format!("well.inclination_deg[{j}]"), *x, 0.0, 180.0, "degrees")?;
+                }
+            }
+        }
+        if !(w.mud_density.is_finite() && w.mud_density >= 0.0 && w.mud_density < min_density) {
+            return Err(Error::invalid(
+                "well.mud_density",
+                Num(w.mud_density),
+                format!("a finite number in [0, {}) kg/m^3 (below every section's density)", Num(min_density)),
+            ));
+        }
+        nonneg("well.gravity", w.gravity, "m/s^2")?;
+        let fr = &self.friction;
+        nonneg("friction.static", fr.static_coefficient, "-")?;
+        within("friction.kinetic_ratio", fr.kinetic_ratio, 0.0, 1.0, "-")?;
+        nonneg("friction.stick_speed", fr.stick_speed, "rad/s")?;
+        pos("friction.regularisation_speed", fr.regularisation_speed, "rad/s")?;
+        nonneg("damping_rate", self.damping_rate, "1/s")?;
+        let td = &self.top_drive;
+        pos("top_drive.inertia", td.inertia, "kg m^2")?;
+        if let Some(l) = td.torque_limit {
+            pos("top_drive.torque_limit", l, "N m, or null for unlimited")?;
+        }
+        finite("top_drive.rpm", td.rpm, "rpm")?;
+        nonneg("top_drive.ramp_time", td.ramp_time, "s")?;
+        for (i, [t, rpm]) in td.steps.iter().enumerate() {
+            nonneg(format!("top_drive.steps[{i}][0]"), *t, "s")?;
+            if i > 0 && *t < td.steps[i - 1][0] {
+                return Err(Error::invalid(format!("top_drive.steps[{i}][0]"), Num(*t), "times in increasing order"));
+            }
+            finite(format!("top_drive.steps[{i}][1]"), *rpm, "rpm")?;
+        }
+        let c = &td.controller;
+        nonneg("top_drive.controller.kp", c.kp, "N m s/rad")?;
+        nonneg("top_drive.controller.ki", c.ki, "N m/rad")?;
+        if let Some(f) = c.tuning_frequency {
+            pos("top_drive.controller.tuning_frequency", f, "Hz, or null for the string's first mode")?;
+        }
+        pos("top_drive.controller.z_factor", c.z_factor, "-")?;
+        pos("top_drive.controller.torque_highpass_time", c.torque_highpass_time, "s")?;
+        pos("top_drive.control_interval", td.control_interval, "s")?;
+        let b = &self.bit;
+        nonneg("bit.weight_on_bit", b.weight_on_bit, "N")?;
+        pos("bit.radius", b.radius, "m")?;
+        nonneg("bit.mu_static", b.mu_static, "-")?;
+        within("bit.mu_kinetic", b.mu_kinetic, 0.0, b.mu_static, "-, at most bit.mu_static")?;
+        nonneg("bit.decay", b.decay, "s/rad")?;
+        nonneg("bit.stick_speed", b.stick_speed, "rad/s")?;
+        nonneg("bit.bha_inertia", b.bha_inertia, "kg m^2")?;
+        let nu = &self.numerics;
+        if !(1..=MAX_CELLS).contains(&nu.max_cells) {
+            return Err(Error::invalid("numerics.max_cells", nu.max_cells, format!("an integer in 1..={MAX_CELLS}")));
+        }
+        if !(1..=nu.max_cells).contains(&nu.cells) {
+            return Err(Error::invalid(
+                "numerics.cells",
+                nu.cells,
+                format!("an integer in 1..={} (numerics.max_cells)", nu.max_cells),
+            ));
+        }
+        if !(nu.duration.is_finite() && nu.duration > 0.0 && nu.duration <= MAX_DURATION) {
+            return Err(Error::invalid(
+                "numerics.duration",
+                Num(nu.duration),
+                format!("a number in (0, {MAX_DURATION}] s"),
+            ));
+        }
+        if !(nu.output_interval.is_finite() && nu.output_interval > 0.0 && nu.output_interval <= nu.duration) {
+            return Err(Error::invalid(
+                "numerics.output_interval",
+                Num(nu.output_interval),
+                format!("a number in (0, numerics.duration = {}] s", Num(nu.duration)),
+            ));
+        }
+        nonneg("numerics.field_interval", nu.field_interval, "s, 0 for no snapshots")?;
+        let m = &self.metrics;
+        if let Some([a, b]) = m.window {
+            if !(a.is_finite() && b.is_finite() && a < b) {
+                return Err(Error::invalid(
+                    "metrics.window",
+                    format!("[{}, {}]", Num(a), Num(b)),
+                    "[t_start, t_end] with t_start < t_end (s), or null for the last half of the run",
+                ));
+            }
+        }
+        nonneg("metrics.stick_speed", m.stick_speed, "rad/s")?;
+        Ok(())
+    }
+
+    /// Number of series samples (`t = k output_interval <= duration`).
+    pub(crate) fn series_samples(&self) -> usize {
+        samples(self.numerics.duration, self.numerics.output_interval)
+    }
+
+    /// Number of field snapshots (0 without).
+    pub(crate) fn field_samples(&self) -> usize {
+        if self.numerics.field_interval > 0.0 {
+            samples(self.numerics.duration, self.numerics.field_interval)
+        } else {
+            0
+        }
+    }
+
+    fn check_outputs(&self, grid: &Grid) -> Result<()> {
+        let series = self.series_samples().saturating_mul(SERIES).saturating_mul(8);
+        if series > MAX_OUTPUT_BYTES {
+            return Err(Error::invalid(
+                "numerics.output_interval",
+                Num(self.numerics.output_interval),
+                format!(
+                    "an interval giving at most {} MiB of series ({} samples need {} MiB)",
+                    MAX_OUTPUT_BYTES >> 20,
+                    self.series_samples(),
+                    series >> 20
+                ),
+            ));
+        }
+        let fields = self.field_samples().saturating_mul(2 * grid.cells() + 1).saturating_mul(8);
+        if series.saturating_add(fields) > MAX_OUTPUT_BYTES {
+            return Err(Error::invalid(
+                "numerics.field_interval",
+                Num(self.numerics.field_interval),
+                format!(
+                    "an interval giving at most {} MiB of outputs ({} snapshots of {} cells need {} MiB)",
+                    MAX_OUTPUT_BYTES >> 20,
+                    self.field_samples(),
+                    grid.cells(),
+                    fields >> 20
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Samples `k interval` for `k = 0, 1, ...` up to `duration` (with a relative tolerance).
+fn samples(duration: f64, interval: f64) -> usize {
+    let n = (duration / interval * (1.0 + 1e-12)).floor();
+    if n.is_finite() && n < usize::MAX as f64 / 2.0 {
+        n as usize + 1
+    } else {
+        usize::MAX
+    }
+}

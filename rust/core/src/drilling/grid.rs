@@ -1,0 +1,262 @@
+//! The string discretised in cells: section properties, the common time step, the friction
+//! limit of every cell, the survey, and the string's first natural frequency.
+
+use std::f64::consts::PI;
+
+use crate::error::{Error, Num, Result};
+
+use super::config::{DrillConfig, Inclination, Section};
+
+/// Subdivisions of each interval between breakpoints (section ends, survey stations) in the
+/// quadrature of the break-off torque (trapezoidal on this and half as many, extrapolated:
+/// relative error ~ `(b h)^4` for an inclination changing at `b` rad/m).
+const BREAKOFF_SUBDIVISIONS: usize = 512;
+
+/// The properties of one section.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionProps {
+    pub length: f64,
+    /// Polar moment J, m^4.
+    pub polar_moment: f64,
+    /// Cross-section A, m^2.
+    pub area: f64,
+    /// Wave speed `c = sqrt(G / rho)`, m/s.
+    pub wave_speed: f64,
+    /// Impedance `Z = J sqrt(G rho)`, N m s.
+    pub impedance: f64,
+    /// Rotational inertia per length `rho J`, kg m.
+    pub inertia_per_length: f64,
+    /// Friction lever arm, m.
+    pub contact_radius: f64,
+    /// `(rho - rho_mud) A`, kg/m.
+    pub buoyed_mass_per_length: f64,
+}
+
+impl SectionProps {
+    pub fn new(s: &Section, mud_density: f64) -> Self {
+        let (od, id) = (s.outer_diameter, s.inner_diameter);
+        let j = s.polar_moment.unwrap_or(PI / 32.0 * (od.powi(4) - id.powi(4)));
+        let a = s.area.unwrap_or(PI / 4.0 * (od * od - id * id));
+        let (g, rho) = (s.shear_modulus, s.density);
+        SectionProps {
+            length: s.length,
+            polar_moment: j,
+            area: a,
+            wave_speed: (g / rho).sqrt(),
+            impedance: j * (g * rho).sqrt(),
+            inertia_per_length: rho * j,
+            contact_radius: s.contact_diameter.unwrap_or(od) / 2.0,
+            buoyed_mass_per_length: (rho - mud_density) * a,
+        }
+    }
+
+    /// Static friction limit per metre at inclination `inc` (rad), N m/m: the soft-string
+    /// normal force `g sin(inc) (rho - rho_mud) A` times `mu_s` times the contact radius
+    /// (Aarsnes & Shor 2018, parameters_WellB.m `P_thresProfile`).
+    pub fn friction_limit(&self, mu_static: f64, gravity: f64, inc: f64) -> f64 {
+        (mu_static * gravity * inc.sin() * self.buoyed_mass_per_length * self.contact_radius).max(0.0)
+    }
+}
+
+/// The inclination (rad) at a measured depth: linear between stations, constant beyond.
+pub fn inclination(cfg: &DrillConfig, md: f64) -> f64 {
+    let deg = match (&cfg.well.md, &cfg.well.inclination_deg) {
+        (_, Inclination::Constant(x)) => *x,
+        (Some(d), Inclination::Table(inc)) if !d.is_empty() && d.len() == inc.len() => {
+            let k = d.partition_point(|&x| x <= md);
+            if k == 0 {
+                inc[0]
+            } else if k == d.len() {
+                inc[d.len() - 1]
+            } else {
+                let w = (md - d[k - 1]) / (d[k] - d[k - 1]);
+                inc[k - 1] + w * (inc[k] - inc[k - 1])
+            }
+        }
+        _ => 0.0,
+    };
+    deg.to_radians()
+}
+
+/// The cells of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    pub props: Vec<SectionProps>,
+    /// The common time step, s.
+    pub dt: f64,
+    /// Cells of each section.
+    pub counts: Vec<usize>,
+    /// Courant number `c_i dt / h_i` of each section (`<= 1`; exactly 1 when the section's
+    /// travel time is a whole number of steps).
+    pub courant: Vec<f64>,
+    /// Cell length of each section, m.
+    pub spacing: Vec<f64>,
+    /// Cell centres (measured depth from the top), m.
+    pub z: Vec<f64>,
+    /// Section of each cell.
+    pub section_of: Vec<usize>,
+    /// Static friction limit per metre at each cell centre, N m/m.
+    pub limit: Vec<f64>,
+}
+
+impl Grid {
+    /// The discretisation of a configuration whose values are valid (see
+    /// [`DrillConfig::validate`]); an error names `numerics.cells` when the cells exceed
+    /// `numerics.max_cells`.
+    pub fn new(cfg: &DrillConfig) -> Result<Grid> {
+        let props: Vec<SectionProps> =
+            cfg.sections.iter().map(|s| SectionProps::new(s, cfg.well.mud_density)).collect();
+        let travel: f64 = props.iter().map(|p| p.length / p.wave_speed).sum();
+        // Every section gets at least one cell at a Courant number <= 1: the step is also
+        // limited by the shortest section's travel time.
+        let shortest = props.iter().map(|p| p.length / p.wave_speed).fold(f64::INFINITY, f64::min);
+        let dt = (travel / cfg.numerics.cells as f64).min(shortest);
+        let mut counts = Vec::with_capacity(props.len());
+        let mut courant = Vec::with_capacity(props.len());
+        let mut spacing = Vec::with_capacity(props.len());
+        for p in &props {
+            let exact = p.length / (p.wave_speed * dt);
+            let n = ((exact * (1.0 + 1e-9)).floor()).max(1.0);
+            let mut c = n / exact;
+            if (c - 1.0).abs() < 1e-9 {
+                c = 1.0;
+            }
+            // Cannot happen with dt <= the shortest travel time (a guard against rounding).
+            if c > 1.0 {
+                return Err(Error::invalid(
+                    "numerics.cells",
+                    cfg.numerics.cells,
+                    format!(
+                        "more cells: a section of travel time {} s is shorter than the time step {} s",
+                        Num(p.length / p.wave_speed),
+                        Num(dt)
+                    ),
+                ));
+            }
+            counts.push(n as usize);
+            courant.push(c);
+            spacing.push(p.length / n);
+        }
+        let total: usize = counts.iter().sum();
+        if total > cfg.numerics.max_cells {
+            return Err(Error::invalid(
+                "numerics.cells",
+                cfg.numerics.cells,
+                format!(
+                    "a count giving at most numerics.max_cells = {} cells ({total} needed; the time step is at most \
+                     the travel time of the shortest section, {} s)",
+                    cfg.numerics.max_cells,
+                    Num(shortest)
+                ),
+            ));
+        }
+        let mut z = Vec::with_capacity(total);
+        let mut section_of = Vec::with_capacity(total);
+        let mut limit = Vec::with_capacity(total);
+        let mut top = 0.0;
+        for (s, p) in props.iter().enumerate() {
+            let h = spacing[s];
+            for j in 0..counts[s] {
+                let zc = top + (j as f64 + 0.5) * h;
+                z.push(zc);
+                section_of.push(s);
+                limit.push(p.friction_limit(cfg.friction.static_coefficient, cfg.well.gravity, inclination(cfg, zc)));
+            }
+            top += p.length;
+        }
+        Ok(Grid { props, dt, counts, courant, spacing, z, section_of, limit })
+    }
+
+    /// Total number of cells.
+    pub fn cells(&self) -> usize {
+        self.z.len()
+    }
+
+    /// Total length, m.
+    pub fn length(&self) -> f64 {
+        self.props.iter().map(|p| p.length).sum()
+    }
+}
+
+/// The static break-off torque, N m: the integral of the friction limit over the string,
+/// section by section (limits jump at section ends) through
+/// [`crate::metrics::break_off_torque`] on grids refined between the survey stations
+/// (two grids, Richardson-extrapolated).
+pub fn breakoff_torque(cfg: &DrillConfig) -> Result<f64> {
+    let mut top = 0.0;
+    let mut total = 0.0;
+    let stations: &[f64] = cfg.well.md.as_deref().unwrap_or(&[]);
+    for s in &cfg.sections {
+        let p = SectionProps::new(s, cfg.well.mud_density);
+        let bottom = top + p.length;
+        let mut breaks = vec![top];
+        breaks.extend(stations.iter().copied().filter(|&d| d > top && d < bottom));
+        breaks.push(bottom);
+        // Trapezoidal rule on n and n/2 subdivisions, Richardson-extrapolated (Simpson's rule).
+        let mut fine = 0.0;
+        let mut coarse = 0.0;
+        for (n, sum) in [(BREAKOFF_SUBDIVISIONS, &mut fine), (BREAKOFF_SUBDIVISIONS / 2, &mut coarse)] {
+            let mut depth = Vec::with_capacity((breaks.len() - 1) * n + 1);
+            for w in breaks.windows(2) {
+                for k in 0..n {
+                    depth.push(w[0] + (w[1] - w[0]) * k as f64 / n as f64);
+                }
+            }
+            depth.push(bottom);
+            let limit: Vec<f64> = depth
+                .iter()
+                .map(|&d| p.friction_limit(cfg.friction.static_coefficient, cfg.well.gravity, inclination(cfg, d)))
+                .collect();
+            *sum = crate::metrics::break_off_torque(&depth, &limit)?;
+        }
+        total += (4.0 * fine - coarse) / 3.0;
+        top = bottom;
+    }
+    Ok(total)
+}
+
+/// The lowest natural angular frequency (rad/s) of the string with the top fixed and the bit
+/// free (or carrying the BHA inertia `bha_inertia`): the first root of the transfer-matrix
+/// frequency equation `q(L) - I_bha w^2 theta(L) = 0` from `theta(0) = 0`, `q(0) = 1`
+/// (`q = G J theta_z`; across a section of wave speed `c` and impedance `Z`,
+/// `theta' = theta cos(kL) + q sin(kL)/(Z w)`, `q' = -Z w theta sin(kL) + q cos(kL)`, `k = w/c`).
+pub fn first_natural_frequency(props: &[SectionProps], bha_inertia: f64) -> f64 {
+    let residual = |w: f64| {
+        let (mut theta, mut q) = (0.0, 1.0);
+        for p in props {
+            let (s, c) = (w * p.length / p.wave_speed).sin_cos();
+            let zw = p.impedance * w;
+            (theta, q) = (theta * c + q * s / zw, -zw * theta * s + q * c);
+        }
+        q - bha_inertia * w * w * theta
+    };
+    let travel: f64 = props.iter().map(|p| p.length / p.wave_speed).sum();
+    let quarter = PI / (2.0 * travel);
+    let step = quarter / 100.0;
+    let mut lo = step * 1e-3;
+    let mut r_lo = residual(lo);
+    // Scan up to 100 times the uniform string's (pi / 2) / travel (the first root of a string
+    // of any impedances lies far below), in steps of 1/100 of it, then bisect.
+    for _ in 0..100 * 100 {
+        let hi = lo + step;
+        let r_hi = residual(hi);
+        if r_lo == 0.0 {
+            return lo;
+        }
+        if r_lo.signum() != r_hi.signum() {
+            let (mut a, mut b, mut ra) = (lo, hi, r_lo);
+            for _ in 0..100 {
+                let m = 0.5 * (a + b);
+                let rm = residual(m);
+                if rm.signum() == ra.signum() {
+                    (a, ra) = (m, rm);
+                } else {
+                    b = m;
+                }
+            }
+            return 0.5 * (a + b);
+        }
+        (lo, r_lo) = (hi, r_hi);
+    }
+    quarter
+}

@@ -1,0 +1,30 @@
+//! The drilling system (issue #13): torsional stick-slip of a multi-section drill string
+//! driven by a top drive, with along-string Coulomb friction and a bit on or off bottom.
+//!
+//! The string is the linear torsional wave equation in Riemann invariants (characteristics),
+//! after Aarsnes & Shor, "Torsional vibrations with bit off bottom: Modeling, characterization
+//! and field data validation", J. Pet. Sci. Eng. 163 (2018) 712-721, and their open model
+//! (Open-Source-Drilling-Community/Aarsnes-and-Shor-Torsional-Model, `torsionalWaveStep.m`):
+//! per section the wave speed `c = sqrt(G / rho)` and impedance `Z = J sqrt(G rho)`, one time
+//! step for all sections (Courant number `<= 1`, `= 1` for a uniform string, where the upwind
+//! update is exact transport), exact continuity of speed and torque at section changes, the
+//! top drive an inertia driven by a controller, the bit a free end, a lumped BHA inertia or the
+//! Navarro-Lopez velocity-weakening bit torque with a stick phase; soft-string Coulomb friction
+//! with the set-valued stick resolution of that code (or a regularised form); viscous damping.
+//!
+//! * [`config`]: [`DrillConfig`] (JSON, defaults, validation with dotted field names, limits);
+//! * [`grid`]: section properties, the time step and cells, the friction limit, the string's
+//!   first natural frequency, the break-off torque;
+//! * [`solver`]: the time stepping, controllers, outputs, energy balance and metrics
+//!   ([`solve`], [`friction_profile`]).
+
+pub mod config;
+pub mod grid;
+pub mod solver;
+
+#[cfg(test)]
+mod tests;
+
+pub use config::{DrillConfig, MAX_CELLS, MAX_DURATION, MAX_OUTPUT_BYTES, MAX_SECTIONS};
+pub use grid::{breakoff_torque, Grid};
+pub use solver::{friction_profile, solve, DrillRun, DrillStats, EnergyBalance, Profile, Simulation};

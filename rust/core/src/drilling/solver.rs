@@ -1,0 +1,915 @@
+//! The time stepping of the drilling system: Riemann invariants on the cells, the impedance
+//! junctions, the top drive and the bit, the controllers, the outputs and the energy balance.
+//!
+//! # The scheme
+//!
+//! With `tau` the torque carried down the string (`tau = -G J theta_z`) and `Z = J sqrt(G rho)`
+//! the impedance, the invariants `alpha = omega + tau / Z` (travelling down at `c`) and
+//! `beta = omega - tau / Z` (travelling up) obey
+//! `alpha_t + c alpha_z = beta_t - c beta_z = -(f / (rho J) + d omega)` with `f` the friction
+//! torque per metre and `d` the damping rate (Aarsnes & Shor 2018, eqs. 5-8 and
+//! torsionalWaveStep.m). Each step (`dt`, common to all sections):
+//!
+//! 1. boundaries from the state at `t_n`: the top speed `Omega'` (top-drive inertia, implicit
+//!    in the string torque `Z (Omega' - beta_1)`, or imposed by an ideal controller), the
+//!    bit speed (BHA inertia, implicit likewise; on bottom the Navarro-Lopez torque
+//!    `W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)` at the speed of the step start, with a
+//!    stick phase: below `bit.stick_speed`, or when the slip torque would reverse the bit, the
+//!    torque that stops it in this step if within `W r mu_s`, else `W r mu_s`), the junctions
+//!    (continuity of speed and torque: `omega = (Z_a alpha_a + Z_b beta_b) / (Z_a + Z_b)`);
+//!    each gives the ghost invariant entering its neighbouring cell (`alpha = 2 omega - beta`);
+//! 2. first-order upwind transport, `alpha_j <- alpha_j - C (alpha_j - alpha_{j-1})` (exact
+//!    shift at Courant number `C = 1`);
+//! 3. the sources, added to both invariants, evaluated at the transported speed
+//!    `omega*_j = (alpha*_j + beta*_j) / 2` (the material now in the cell): damping
+//!    `-dt d omega*_j`, and friction: when `|omega*_j| < stick_speed` the torque that stops the
+//!    cell in this step, clipped to the static limit (a stopped cell gets `omega = 0` exactly,
+//!    its torque kept), else the kinetic limit against `omega*_j` (the set-valued resolution
+//!    of torsionalWaveStep.m, which evaluates the threshold and direction at the speed before
+//!    transport; with the speed after it, friction cannot pump energy into the grid-scale
+//!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
+//!    the kinetic limit (regularised).
+//!
+//! A stopped cell's new torque comes from its neighbours' invariants: at `C = 1` it is
+//! `(tau_{j-1} + tau_{j+1}) / 2 + Z (omega_{j-1} - omega_{j+1}) / 2`, so inside a stuck region
+//! the torque relaxes towards a linear profile (over `n` stuck cells in ~`n^2` steps) instead of
+//! staying frozen as in the continuum; the scheme of torsionalWaveStep.m does the same.
+//!
+//! # Controllers
+//!
+//! * `pi`: `tau_m = kp e + ki int e`, `e = setpoint - Omega`, sampled in a zero-order hold at
+//!   `control_interval`, as MAIN.m of Aarsnes & Shor (their `38e3`, `100e3`);
+//! * `soft_torque`: the same PI with `kp = z_factor Z_top` and `ki = (2 pi f)^2 I_TD`, so that
+//!   at the tuning frequency `f` the top drive's inertia and the integral cancel and it presents
+//!   the damping `kp` to the string (Kyllingstad & Nessjøen, SPE/IADC 119660, 2009); the gains
+//!   as in Open-Source-Drilling-Community/Simulator4nDOF, `Simulator/TopdriveController.cs`
+//!   (commit b14d6c2, controller type 2, without its inertia compensation), `f` by default the
+//!   string's first natural frequency;
+//! * `z_torque`: impedance matching (ZTorque, Dwars, SPE/IADC 173037, 2015; Simulator4nDOF
+//!   controller type 3, whose speed setpoint is lowered by the high-passed string torque over
+//!   `Z`): here the ideal form, the top speed `Omega = w_ref - (tau_top - tau_slow) / (z Z_top)`
+//!   every step (`tau_slow` the string torque low-passed with `torque_highpass_time`), which
+//!   absorbs an incident torque wave completely at `z_factor = 1`;
+//! * `speed`: the top speed is the setpoint.
+//!
+//! `speed` and `z_torque` impose the top speed and infer the motor torque
+//! (`I_TD dOmega/dt + tau_top`); with a `torque_limit` exceeded they fall back to the clipped
+//! torque. The setpoint approaches its target (`rpm`, then `steps`) as a first-order lag of time
+//! constant `ramp_time`, exactly over each step.
+//!
+//! # Energy
+//!
+//! With `e = rho J h / 4` per cell the discrete energy is `sum e (alpha^2 + beta^2)` (kinetic
+//! `e (alpha + beta)^2 / 2`, elastic `e (alpha - beta)^2 / 2`) plus the top-drive and BHA
+//! kinetic energies. Every step satisfies exactly (up to rounding)
+//! `dt tau_m Omega' = dE + dt T_bit omega_bit' + friction + damping + numerical`, where the
+//! friction and damping terms are the work of their sources (`4 e delta (omega* + delta / 2)`
+//! per cell), and `numerical` the upwind dissipation `e C (1 - C) (d alpha^2 + d beta^2)` (0 at
+//! `C = 1`) plus the implicit-Euler dissipation `I (Omega' - Omega)^2 / 2` of the top drive and
+//! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
+//! it). The motor work is `sum dt tau_m Omega'`.
+
+use std::f64::consts::PI;
+
+use crate::error::{Error, Num, Result};
+use crate::interrupt::{Interrupt, Poller};
+use crate::metrics::{stick_slip, StickSlip};
+use crate::solution::Status;
+
+use super::config::{ControllerKind, DrillConfig, FrictionModel, SERIES};
+use super::grid::{breakoff_torque, first_natural_frequency, Grid};
+
+const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
+
+/// The energy balance of a run, J (from the start to the end reached).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EnergyBalance {
+    /// `sum dt tau_m Omega'`.
+    pub motor_work: f64,
+    /// Total energy at the start (string, top drive, BHA).
+    pub initial: f64,
+    /// At the end: string kinetic and elastic, top-drive and BHA kinetic.
+    pub kinetic: f64,
+    pub elastic: f64,
+    pub top_drive: f64,
+    pub bha: f64,
+    pub friction_loss: f64,
+    pub damping_loss: f64,
+    pub bit_loss: f64,
+    /// `upwind_loss + inertia_loss`.
+    pub numerical_loss: f64,
+    /// Dissipation of the first-order upwind transport, `e C (1 - C) (d alpha^2 + d beta^2)`
+    /// per cell and step (0 at Courant number 1).
+    pub upwind_loss: f64,
+    /// Dissipation of the implicit Euler steps of the top-drive and BHA inertias,
+    /// `I (Omega' - Omega)^2 / 2` per step (first order in `dt`).
+    pub inertia_loss: f64,
+    /// `(motor_work - (final - initial) - losses) / scale`, `scale` the largest of
+    /// `|motor_work|`, the energies and the losses.
+    pub balance_error: f64,
+}
+
+/// Counters and discretisation of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DrillStats {
+    pub cells: usize,
+    /// Time steps taken.
+    pub steps: u64,
+    pub dt: f64,
+    /// Smallest and largest Courant number of the sections.
+    pub courant_min: f64,
+    pub courant_max: f64,
+    /// The controller gains used (for `soft_torque`, the tuned ones), N m s/rad and N m/rad.
+    pub kp: f64,
+    pub ki: f64,
+    /// First natural frequency of the string (fixed top, bit free or with the BHA), Hz.
+    pub first_mode_hz: f64,
+}
+
+/// The result of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrillRun {
+    /// Series at `k output_interval`: time s, top-drive and bit speed rpm, motor and bit torque N m.
+    pub t: Vec<f64>,
+    pub surface_rpm: Vec<f64>,
+    pub bit_rpm: Vec<f64>,
+    pub motor_torque: Vec<f64>,
+    pub bit_torque: Vec<f64>,
+    /// Snapshot times (the step nearest to `k field_interval`), s.
+    pub field_t: Vec<f64>,
+    /// Cell centres, m.
+    pub z: Vec<f64>,
+    /// `field_t.len() x z.len()`, row-major: speed rpm, torque N m.
+    pub omega_field: Vec<f64>,
+    pub torque_field: Vec<f64>,
+    pub energy: EnergyBalance,
+    /// Stick-slip metrics over the window (None when the window holds fewer than 2 samples).
+    pub metrics: Option<StickSlip>,
+    /// The window `[t_start, t_end]` asked for.
+    pub window: [f64; 2],
+    pub breakoff_torque: f64,
+    pub status: Status,
+    pub message: String,
+    pub stats: DrillStats,
+}
+
+/// The friction profile of a configuration.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Profile {
+    /// Cell centres, m.
+    pub z: Vec<f64>,
+    /// Static friction limit per metre, N m/m.
+    pub limit_per_m: Vec<f64>,
+    /// Static friction torque of the string below each cell centre (from the bit up), N m.
+    pub cumulative: Vec<f64>,
+    /// The integral of the limit over the string, N m.
+    pub breakoff_torque: f64,
+}
+
+/// The friction profile at the cell centres and the break-off torque of a valid configuration.
+pub fn friction_profile(cfg: &DrillConfig) -> Result<Profile> {
+    cfg.validate()?;
+    let grid = Grid::new(cfg)?;
+    let n = grid.cells();
+    let mut cumulative = vec![0.0; n];
+    let mut below = 0.0;
+    for j in (0..n).rev() {
+        let piece = grid.limit[j] * grid.spacing[grid.section_of[j]];
+        cumulative[j] = below + 0.5 * piece;
+        below += piece;
+    }
+    Ok(Profile { z: grid.z, limit_per_m: grid.limit, cumulative, breakoff_torque: breakoff_torque(cfg)? })
+}
+
+/// Runs a configuration (validated first) from rest; see [`Simulation`].
+pub fn solve(cfg: &DrillConfig, interrupt: &dyn Interrupt, progress: &mut dyn FnMut(f64)) -> Result<DrillRun> {
+    Ok(Simulation::new(cfg)?.run(interrupt, progress))
+}
+
+/// One section's slice of the padded state: `[ghost alpha, cells..., ghost beta]`.
+#[derive(Debug, Clone, Copy)]
+struct Span {
+    /// Index of the top ghost.
+    offset: usize,
+    cells: usize,
+    courant: f64,
+    /// `rho J h / 4`.
+    e: f64,
+    impedance: f64,
+}
+
+/// The state of the controller.
+#[derive(Debug, Clone, Copy)]
+struct Control {
+    kind: ControllerKind,
+    kp: f64,
+    ki: f64,
+    limit: f64,
+    integral: f64,
+    torque: f64,
+    next: f64,
+    z_factor: f64,
+    /// `z_torque`: low-passed string torque at the top.
+    slow_torque: f64,
+    slow_factor: f64,
+}
+
+/// A drilling-system run being set up (initial state) and run.
+pub struct Simulation<'c> {
+    cfg: &'c DrillConfig,
+    grid: Grid,
+    spans: Vec<Span>,
+    alpha: Vec<f64>,
+    beta: Vec<f64>,
+    alpha_next: Vec<f64>,
+    beta_next: Vec<f64>,
+    /// `dt limit / (rho J)` per padded index (0 at the ghosts).
+    stop: Vec<f64>,
+    omega_top: f64,
+    omega_bit: f64,
+    setpoint: f64,
+    control: Control,
+    losses: Losses,
+    first_mode: f64,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Losses {
+    motor: f64,
+    friction: f64,
+    damping: f64,
+    bit: f64,
+    upwind: f64,
+    inertia: f64,
+}
+
+impl<'c> Simulation<'c> {
+    /// Validates `cfg` and sets the system at rest.
+    pub fn new(cfg: &'c DrillConfig) -> Result<Self> {
+        cfg.validate()?;
+        let grid = Grid::new(cfg)?;
+        let dt = grid.dt;
+        if cfg.damping_rate * dt > 1.0 {
+            return Err(Error::invalid(
+                "damping_rate",
+                Num(cfg.damping_rate),
+                format!("at most 1 / dt = {} 1/s for this time step (more cells allow more)", Num(1.0 / dt)),
+            ));
+        }
+        let mut spans = Vec::with_capacity(grid.props.len());
+        let mut offset = 0;
+        let mut stop = Vec::with_capacity(grid.cells() + 2 * grid.props.len());
+        let mut cell = 0;
+        for (s, p) in grid.props.iter().enumerate() {
+            let n = grid.counts[s];
+            spans.push(Span {
+                offset,
+                cells: n,
+                courant: grid.courant[s],
+                e: 0.25 * p.inertia_per_length * grid.spacing[s],
+                impedance: p.impedance,
+            });
+            stop.push(0.0);
+            for _ in 0..n {
+                stop.push(dt * grid.limit[cell] / p.inertia_per_length);
+                cell += 1;
+            }
+            stop.push(0.0);
+            offset += n + 2;
+        }
+        let len = offset;
+        let td = &cfg.top_drive;
+        let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
+        let c = &td.controller;
+        let (kp, ki) = match c.kind {
+            ControllerKind::SoftTorque => {
+                // Simulator4nDOF TopdriveController.cs (type 2, no inertia compensation):
+                // kp = factor * Z_pipe, ki = (2 pi f_tune)^2 * I_TD.
+                let w = c.tuning_frequency.map_or(first_mode, |f| 2.0 * PI * f);
+                (c.z_factor * grid.props[0].impedance, w * w * td.inertia)
+            }
+            _ => (c.kp, c.ki),
+        };
+        let control = Control {
+            kind: c.kind,
+            kp,
+            ki,
+            limit: td.torque_limit.unwrap_or(f64::INFINITY),
+            integral: 0.0,
+            torque: 0.0,
+            next: 0.0,
+            z_factor: c.z_factor,
+            slow_torque: 0.0,
+            slow_factor: 1.0 - (-dt / c.torque_highpass_time).exp(),
+        };
+        Ok(Simulation {
+            cfg,
+            grid,
+            spans,
+            alpha: vec![0.0; len],
+            beta: vec![0.0; len],
+            alpha_next: vec![0.0; len],
+            beta_next: vec![0.0; len],
+            stop,
+            omega_top: 0.0,
+            omega_bit: 0.0,
+            setpoint: 0.0,
+            control,
+            losses: Losses::default(),
+            first_mode,
+        })
+    }
+
+    /// The discretisation.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// Sets the initial state: the speed (rad/s) and torque (N m) of every cell (top to
+    /// bottom, `grid().cells()` each), the top-drive and the bit speed (rad/s).
+    pub fn set_state(&mut self, omega: &[f64], torque: &[f64], omega_top: f64, omega_bit: f64) -> Result<()> {
+        let n = self.grid.cells();
+        for (name, x) in [("omega", omega), ("torque", torque)] {
+            if x.len() != n {
+                return Err(Error::invalid(name, format!("length {}", x.len()), format!("length {n} (the cells)")));
+            }
+            if let Some(v) = x.iter().find(|v| !v.is_finite()) {
+                return Err(Error::invalid(name, Num(*v), "finite values"));
+            }
+        }
+        if !(omega_top.is_finite() && omega_bit.is_finite()) {
+            return Err(Error::invalid("omega_top", Num(omega_top + omega_bit), "finite speeds"));
+        }
+        let mut k = 0;
+        for sp in &self.spans {
+            for j in 1..=sp.cells {
+                let s = torque[k] / sp.impedance;
+                self.alpha[sp.offset + j] = omega[k] + s;
+                self.beta[sp.offset + j] = omega[k] - s;
+                k += 1;
+            }
+        }
+        self.omega_top = omega_top;
+        self.omega_bit = omega_bit;
+        Ok(())
+    }
+
+    /// Speeds (rad/s) and torques (N m) of the cells.
+    pub fn fields(&self) -> (Vec<f64>, Vec<f64>) {
+        let mut w = Vec::with_capacity(self.grid.cells());
+        let mut t = Vec::with_capacity(self.grid.cells());
+        for sp in &self.spans {
+            for j in 1..=sp.cells {
+                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
+                w.push(0.5 * (a + b));
+                t.push(0.5 * sp.impedance * (a - b));
+            }
+        }
+        (w, t)
+    }
+
+    /// `(string kinetic, string elastic, top drive, BHA)` energies, J.
+    fn energies(&self) -> (f64, f64, f64, f64) {
+        let (mut kin, mut ela) = (0.0, 0.0);
+        for sp in &self.spans {
+            let (mut k, mut e) = (0.0, 0.0);
+            for j in 1..=sp.cells {
+                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
+                k += (a + b) * (a + b);
+                e += (a - b) * (a - b);
+            }
+            kin += 0.5 * sp.e * k;
+            ela += 0.5 * sp.e * e;
+        }
+        let td = 0.5 * self.cfg.top_drive.inertia * self.omega_top * self.omega_top;
+        let bha = 0.5 * self.cfg.bit.bha_inertia * self.omega_bit * self.omega_bit;
+        (kin, ela, td, bha)
+    }
+
+    /// The setpoint target at time `t`, rad/s.
+    fn target(&self, t: f64) -> f64 {
+        let td = &self.cfg.top_drive;
+        let rpm = td.steps.iter().rev().find(|s| s[0] <= t).map_or(td.rpm, |s| s[1]);
+        rpm / RPM_PER_RAD_S
+    }
+
+    /// One step from `t` (start of the step); returns `(motor torque, bit torque)` applied.
+    fn step(&mut self, t: f64) -> (f64, f64) {
+        let dt = self.grid.dt;
+        let cfg = self.cfg;
+        let t1 = t + dt;
+        // Setpoint: first-order approach of the target (exact over the step).
+        let ramp = cfg.top_drive.ramp_time;
+        let target = self.target(t1);
+        self.setpoint =
+            if ramp > 0.0 { self.setpoint + (target - self.setpoint) * (1.0 - (-dt / ramp).exp()) } else { target };
+
+        // Top drive.
+        let first = self.spans[0];
+        let z0 = first.impedance;
+        let beta1 = self.beta[first.offset + 1];
+        let inertia = cfg.top_drive.inertia;
+        let omega = self.omega_top;
+        let implicit = |tm: f64| (inertia * omega / dt + tm + z0 * beta1) / (inertia / dt + z0);
+        let ctl = &mut self.control;
+        let (omega1, motor) = match ctl.kind {
+            ControllerKind::Pi | ControllerKind::SoftTorque => {
+                if t + 0.5 * dt >= ctl.next {
+                    let mut holds = 0.0;
+                    while ctl.next <= t + 0.5 * dt {
+                        ctl.next += cfg.top_drive.control_interval;
+                        holds += 1.0;
+                    }
+                    let e = self.setpoint - omega;
+                    let raw = ctl.kp * e + ctl.ki * ctl.integral;
+                    ctl.torque = raw.clamp(-ctl.limit, ctl.limit);
+                    // Anti-windup: no integration while saturated in the error's direction.
+                    if !((raw > ctl.limit && e > 0.0) || (raw < -ctl.limit && e < 0.0)) {
+                        ctl.integral += holds * cfg.top_drive.control_interval * e;
+                    }
+                }
+                (implicit(ctl.torque), ctl.torque)
+            }
+            ControllerKind::Speed | ControllerKind::ZTorque => {
+                let wanted = if ctl.kind == ControllerKind::Speed {
+                    self.setpoint
+                } else {
+                    // The top presents the damper z Z to torque waves: Omega = w_ref - (tau - tau_slow) / (z Z)
+                    // with tau = Z (Omega - beta_1).
+                    let z = ctl.z_factor;
+                    (z * self.setpoint + beta1 + ctl.slow_torque / z0) / (z + 1.0)
+                };
+                let tm = inertia * (wanted - omega) / dt + z0 * (wanted - beta1);
+                if tm.abs() <= ctl.limit {
+                    (wanted, tm)
+                } else {
+                    let tm = tm.clamp(-ctl.limit, ctl.limit);
+                    (implicit(tm), tm)
+                }
+            }
+        };
+        let tau_top = z0 * (omega1 - beta1);
+        if ctl.kind == ControllerKind::ZTorque {
+            ctl.slow_torque += (tau_top - ctl.slow_torque) * ctl.slow_factor;
+        }
+        self.alpha[first.offset] = 2.0 * omega1 - beta1;
+        self.losses.motor += dt * motor * omega1;
+        self.losses.inertia += 0.5 * inertia * (omega1 - omega) * (omega1 - omega);
+        self.omega_top = omega1;
+
+        // Bit.
+        let last = *self.spans.last().expect("at least one section");
+        let zl = last.impedance;
+        let alpha_n = self.alpha[last.offset + last.cells];
+        let b = &cfg.bit;
+        let ib = b.bha_inertia;
+        let wb = self.omega_bit;
+        let drive = ib * wb / dt + zl * alpha_n;
+        let denom = ib / dt + zl;
+        let (wb1, tbit) = if b.on_bottom && b.weight_on_bit > 0.0 {
+            let wr = b.weight_on_bit * b.radius;
+            // Stick: the torque that stops the bit in this step, if within the static limit.
+            let stick = |drive: f64| {
+                let hold = wr * b.mu_static;
+                if drive.abs() <= hold {
+                    (0.0, drive)
+                } else {
+                    let tb = hold.copysign(drive);
+                    ((drive - tb) / denom, tb)
+                }
+            };
+            if wb.abs() < b.stick_speed {
+                stick(drive)
+            } else {
+                let mu = b.mu_kinetic + (b.mu_static - b.mu_kinetic) * (-b.decay * wb.abs()).exp();
+                let tb = (wr * mu).copysign(wb);
+                let w = (drive - tb) / denom;
+                // A slip torque that would reverse the bit stops it instead (set-valued at 0).
+                if w * wb < 0.0 {
+                    stick(drive)
+                } else {
+                    (w, tb)
+                }
+            }
+        } else {
+            (drive / denom, 0.0)
+        };
+        self.beta[last.offset + last.cells + 1] = 2.0 * wb1 - alpha_n;
+        self.losses.bit += dt * tbit * wb1;
+        // A bit stopped in this step: the BHA's kinetic energy is taken by the bit torque.
+        let stop = 0.5 * ib * (wb1 - wb) * (wb1 - wb);
+        if wb1 == 0.0 && tbit != 0.0 {
+            self.losses.bit += stop;
+        } else {
+            self.losses.inertia += stop;
+        }
+        self.omega_bit = wb1;
+
+        // Junctions.
+        for k in 1..self.spans.len() {
+            let (a, bl) = (self.spans[k - 1], self.spans[k]);
+            let alpha_a = self.alpha[a.offset + a.cells];
+            let beta_b = self.beta[bl.offset + 1];
+            let w = (a.impedance * alpha_a + bl.impedance * beta_b) / (a.impedance + bl.impedance);
+            self.beta[a.offset + a.cells + 1] = 2.0 * w - alpha_a;
+            self.alpha[bl.offset] = 2.0 * w - beta_b;
+        }
+
+        // Cells.
+        let fr = &cfg.friction;
+        let sources = Sources {
+            damping: dt * cfg.damping_rate,
+            stick_speed: fr.stick_speed,
+            kinetic_ratio: fr.kinetic_ratio,
+            regularised: (fr.model == FrictionModel::Regularised).then_some(fr.regularisation_speed),
+        };
+        for sp in &self.spans {
+            let r = sp.offset..sp.offset + sp.cells + 2;
+            let sums = transport(
+                &self.alpha[r.clone()],
+                &self.beta[r.clone()],
+                &self.stop[r.clone()],
+                &mut self.alpha_next[r.clone()],
+                &mut self.beta_next[r],
+                sp.courant,
+                &sources,
+            );
+            self.losses.upwind += sp.e * sp.courant * (1.0 - sp.courant) * sums.jumps;
+            self.losses.friction -= 4.0 * sp.e * sums.friction;
+            self.losses.damping -= 4.0 * sp.e * sums.damping;
+        }
+        std::mem::swap(&mut self.alpha, &mut self.alpha_next);
+        std::mem::swap(&mut self.beta, &mut self.beta_next);
+        (motor, tbit)
+    }
+
+    /// Runs to `numerics.duration` (or until `interrupt` asks to stop, or a non-finite value),
+    /// calling `progress` with the fraction done (every ~0.1 %).
+    pub fn run(mut self, interrupt: &dyn Interrupt, progress: &mut dyn FnMut(f64)) -> DrillRun {
+        let cfg = self.cfg;
+        let dt = self.grid.dt;
+        let duration = cfg.numerics.duration;
+        let steps = ((duration / dt) * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+        let n_series = cfg.series_samples();
+        let n_fields = cfg.field_samples();
+        let nz = self.grid.cells();
+        let (k0, e0, t0, b0) = self.energies();
+        let initial = k0 + e0 + t0 + b0;
+
+        let mut run = DrillRun {
+            t: Vec::new(),
+            surface_rpm: Vec::new(),
+            bit_rpm: Vec::new(),
+            motor_torque: Vec::new(),
+            bit_torque: Vec::new(),
+            field_t: Vec::new(),
+            z: self.grid.z.clone(),
+            omega_field: Vec::new(),
+            torque_field: Vec::new(),
+            energy: EnergyBalance::default(),
+            metrics: None,
+            window: cfg.metrics.window.unwrap_or([0.5 * duration, duration]),
+            breakoff_torque: breakoff_torque(cfg).unwrap_or(f64::NAN),
+            status: Status::Success,
+            message: String::new(),
+            stats: DrillStats {
+                cells: nz,
+                steps: 0,
+                dt,
+                courant_min: self.grid.courant.iter().copied().fold(f64::INFINITY, f64::min),
+                courant_max: self.grid.courant.iter().copied().fold(0.0, f64::max),
+                kp: self.control.kp,
+                ki: self.control.ki,
+                first_mode_hz: self.first_mode / (2.0 * PI),
+            },
+        };
+        let reserved = [&mut run.t, &mut run.surface_rpm, &mut run.bit_rpm, &mut run.motor_torque, &mut run.bit_torque]
+            .into_iter()
+            .all(|v| v.try_reserve_exact(n_series).is_ok())
+            && run.field_t.try_reserve_exact(n_fields).is_ok()
+            && run.omega_field.try_reserve_exact(n_fields * nz).is_ok()
+            && run.torque_field.try_reserve_exact(n_fields * nz).is_ok();
+        if !reserved {
+            run.status = Status::OutOfMemory;
+            run.message = format!(
+                "the outputs ({} MiB) could not be allocated",
+                ((n_series * SERIES + n_fields * (2 * nz + 1)) * 8) >> 20
+            );
+            return run;
+        }
+
+        let out_dt = cfg.numerics.output_interval;
+        let field_dt = cfg.numerics.field_interval;
+        if n_fields > 0 && !self.snapshot(&mut run, 0.0) {
+            run.status = Status::NonFinite;
+            run.message = "the initial state is not finite".into();
+            return run;
+        }
+        let mut poller = Poller::new(interrupt);
+        let stride = (steps / 1000).max(1);
+        // (t, omega_top, omega_bit, motor, bit) at the previous step end.
+        let mut prev = [0.0, self.omega_top, self.omega_bit, f64::NAN, f64::NAN];
+        let mut next_series = 0usize;
+        let mut next_field = 1usize;
+        let mut t = 0.0;
+        for n in 0..steps {
+            if poller.poll(t) {
+                run.status = Status::Interrupted;
+                run.message = format!("interrupted at t = {} s", Num(t));
+                break;
+            }
+            let (motor, bit) = self.step(t);
+            t = (n + 1) as f64 * dt;
+            run.stats.steps = n + 1;
+            let cur = [t, self.omega_top, self.omega_bit, motor, bit];
+            if n == 0 {
+                prev[3] = motor;
+                prev[4] = bit;
+            }
+            while next_series < n_series {
+                let ts = next_series as f64 * out_dt;
+                if ts > t * (1.0 + 1e-12) {
+                    break;
+                }
+                let w = if cur[0] > prev[0] { ((ts - prev[0]) / (cur[0] - prev[0])).clamp(0.0, 1.0) } else { 1.0 };
+                let at = |k: usize| prev[k] + w * (cur[k] - prev[k]);
+                let sample = [ts, at(1) * RPM_PER_RAD_S, at(2) * RPM_PER_RAD_S, at(3), at(4)];
+                if sample.iter().any(|v| !v.is_finite()) {
+                    run.status = Status::NonFinite;
+                    run.message = format!("the state became non-finite before t = {} s", Num(t));
+                    break;
+                }
+                run.t.push(sample[0]);
+                run.surface_rpm.push(sample[1]);
+                run.bit_rpm.push(sample[2]);
+                run.motor_torque.push(sample[3]);
+                run.bit_torque.push(sample[4]);
+                next_series += 1;
+            }
+            if run.status != Status::Success {
+                break;
+            }
+            if next_field < n_fields && t >= next_field as f64 * field_dt - 0.5 * dt {
+                if !self.snapshot(&mut run, t) {
+                    run.status = Status::NonFinite;
+                    run.message = format!("the state became non-finite before t = {} s", Num(t));
+                    break;
+                }
+                next_field += 1;
+            }
+            prev = cur;
+            if (n + 1) % stride == 0 {
+                progress((n + 1) as f64 / steps as f64);
+            }
+        }
+        let (kin, ela, td, bha) = self.energies();
+        let l = self.losses;
+        let change = kin + ela + td + bha - initial;
+        let numerical = l.upwind + l.inertia;
+        let residual = l.motor - change - l.friction - l.damping - l.bit - numerical;
+        let scale = [l.motor, initial, kin + ela + td + bha, l.friction, l.damping, l.bit, numerical]
+            .iter()
+            .fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+        run.energy = EnergyBalance {
+            motor_work: l.motor,
+            initial,
+            kinetic: kin,
+            elastic: ela,
+            top_drive: td,
+            bha,
+            friction_loss: l.friction,
+            damping_loss: l.damping,
+            bit_loss: l.bit,
+            numerical_loss: numerical,
+            upwind_loss: l.upwind,
+            inertia_loss: l.inertia,
+            balance_error: residual / scale,
+        };
+        if run.status == Status::Success && !(residual.is_finite() && scale.is_finite()) {
+            run.status = Status::NonFinite;
+            run.message = format!("the energy became non-finite by t = {} s", Num(t));
+        }
+        let [a, b] = run.window;
+        let stuck = cfg.metrics.stick_speed;
+        let omega_bit: Vec<f64> = run.bit_rpm.iter().map(|r| r / RPM_PER_RAD_S).collect();
+        run.metrics = stick_slip(&run.t, &omega_bit, Some(&run.motor_torque), Some((a, b)), stuck).ok();
+        progress(1.0);
+        run
+    }
+
+    /// Appends the fields at `t`; `false` (nothing appended) when a value is not finite.
+    fn snapshot(&self, run: &mut DrillRun, t: f64) -> bool {
+        let start = run.omega_field.len();
+        for sp in &self.spans {
+            for j in 1..=sp.cells {
+                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
+                run.omega_field.push(0.5 * (a + b) * RPM_PER_RAD_S);
+                run.torque_field.push(0.5 * sp.impedance * (a - b));
+            }
+        }
+        let finite = run.omega_field[start..].iter().chain(&run.torque_field[start..]).all(|v| v.is_finite());
+        if finite {
+            run.field_t.push(t);
+        } else {
+            run.omega_field.truncate(start);
+            run.torque_field.truncate(start);
+        }
+        finite
+    }
+}
+
+/// The per-step constants of the sources.
+struct Sources {
+    /// `dt d`.
+    damping: f64,
+    stick_speed: f64,
+    kinetic_ratio: f64,
+    /// `Some(v_r)` for the regularised friction.
+    regularised: Option<f64>,
+}
+
+/// Sums over a section's cells in one step.
+#[derive(Default)]
+struct Sums {
+    /// `sum (d alpha^2 + d beta^2)` of the upwind differences.
+    jumps: f64,
+    /// `sum delta_f (omega* + delta / 2)` and the same for the damping.
+    friction: f64,
+    damping: f64,
+}
+
+/// Upwind transport and sources of one section: `a`, `b`, `stop` padded (`[ghost, cells, ghost]`),
+/// the new invariants written to the cells of `an`, `bn`. Runs through
+/// [`crate::simd::dispatch`] (AVX2 when available; no fused multiply-adds, so both paths give
+/// the same bits).
+fn transport(a: &[f64], b: &[f64], stop: &[f64], an: &mut [f64], bn: &mut [f64], c: f64, src: &Sources) -> Sums {
+    let n = a.len() - 2;
+    let kernel = Transport {
+        a_prev: &a[..n],
+        a: &a[1..=n],
+        b: &b[1..=n],
+        b_next: &b[2..],
+        stop: &stop[1..=n],
+        an: &mut an[1..=n],
+        bn: &mut bn[1..=n],
+        c,
+        src,
+    };
+    crate::simd::dispatch(kernel)
+}
+
+struct Transport<'a> {
+    a_prev: &'a [f64],
+    a: &'a [f64],
+    b: &'a [f64],
+    b_next: &'a [f64],
+    stop: &'a [f64],
+    an: &'a mut [f64],
+    bn: &'a mut [f64],
+    c: f64,
+    src: &'a Sources,
+}
+
+/// Lanes of the summation (independent accumulators, vectorisable).
+const LANES: usize = 4;
+
+/// `sum x` with [`LANES`] accumulators.
+#[inline(always)]
+fn lane_sum(x: &[f64]) -> f64 {
+    let mut acc = [0.0; LANES];
+    let blocks = x.chunks_exact(LANES);
+    let rest = blocks.remainder();
+    for blk in blocks {
+        for l in 0..LANES {
+            acc[l] += blk[l];
+        }
+    }
+    acc.iter().sum::<f64>() + rest.iter().sum::<f64>()
+}
+
+impl crate::simd::Kernel for Transport<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        // Specialised on the model and on which energy terms are non-zero (fewer stores).
+        match (self.src.regularised.is_some(), self.c < 1.0, self.src.damping > 0.0) {
+            (false, false, false) => self.cells::<false, false, false>(),
+            (false, false, true) => self.cells::<false, false, true>(),
+            (false, true, false) => self.cells::<false, true, false>(),
+            (false, true, true) => self.cells::<false, true, true>(),
+            (true, false, false) => self.cells::<true, false, false>(),
+            (true, false, true) => self.cells::<true, false, true>(),
+            (true, true, false) => self.cells::<true, true, false>(),
+            (true, true, true) => self.cells::<true, true, true>(),
+        }
+    }
+}
+
+impl Transport<'_> {
+    /// The update loop (no reductions: it vectorises) over blocks of [`BLOCK`] cells whose
+    /// energy terms stay in L1 on the stack, each block then summed.
+    #[inline(always)]
+    fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(self) -> Sums {
+        let Transport { a_prev, a, b, b_next, stop, an, bn, c, src } = self;
+        let n = a.len();
+        let k = Consts {
+            c,
+            damping: src.damping,
+            vs: src.stick_speed,
+            kr: src.kinetic_ratio,
+            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
+        };
+        let mut sums = Sums::default();
+        let mut jump = [0.0; BLOCK];
+        let mut fric = [0.0; BLOCK];
+        let mut damp = [0.0; BLOCK];
+        let mut start = 0;
+        while start < n {
+            let m = BLOCK.min(n - start);
+            let r = start..start + m;
+            let (ap, aa, bb, bx, st) =
+                (&a_prev[r.clone()], &a[r.clone()], &b[r.clone()], &b_next[r.clone()], &stop[r.clone()]);
+            let (an, bn) = (&mut an[r.clone()], &mut bn[r]);
+            let (jump, fric, damp) = (&mut jump[..m], &mut fric[..m], &mut damp[..m]);
+            for j in 0..m {
+                let cell = update::<REGULARISED>(ap[j], aa[j], bb[j], bx[j], st[j], &k);
+                an[j] = cell.an;
+                bn[j] = cell.bn;
+                if UPWIND {
+                    jump[j] = cell.jump;
+                }
+                fric[j] = cell.friction;
+                if DAMPED {
+                    damp[j] = cell.damping;
+                }
+            }
+            if UPWIND {
+                sums.jumps += lane_sum(jump);
+            }
+            sums.friction += lane_sum(fric);
+            if DAMPED {
+                sums.damping += lane_sum(damp);
+            }
+            start += m;
+        }
+        sums
+    }
+}
+
+/// Cells per block of [`Transport::cells`].
+const BLOCK: usize = 128;
+
+/// What one cell's update adds and writes.
+struct Cell {
+    an: f64,
+    bn: f64,
+    jump: f64,
+    friction: f64,
+    damping: f64,
+}
+
+/// The constants of [`update`].
+struct Consts {
+    c: f64,
+    damping: f64,
+    vs: f64,
+    kr: f64,
+    inv_vr: f64,
+}
+
+/// One cell: upwind transport of the invariants from `(a_prev, a)` and `(b, b_next)`, then
+/// the damping and friction sources (see the module); branch-free (selects) so that blocks
+/// vectorise.
+#[inline(always)]
+fn update<const REGULARISED: bool>(a_prev: f64, a: f64, b: f64, b_next: f64, lim: f64, k: &Consts) -> Cell {
+    let da = a - a_prev;
+    let db = b - b_next;
+    let a1 = a - k.c * da;
+    let b1 = b - k.c * db;
+    let w1 = 0.5 * (a1 + b1);
+    let dd = -k.damping * w1;
+    let wd = w1 + dd;
+    let (df, stuck) = if REGULARISED {
+        (-k.kr * lim * (w1 * k.inv_vr).tanh(), false)
+    } else {
+        // A cell at rest counts as slow even with stick_speed 0 (then the sign below is never
+        // that of a zero). Selects only, so that the loop vectorises.
+        let slow = (w1.abs() < k.vs) | (w1 == 0.0);
+        let clipped = if wd > lim { lim } else { wd };
+        let clipped = if clipped < -lim { -lim } else { clipped };
+        let df = if slow { -clipped } else { -(k.kr * lim).copysign(w1) };
+        (df, slow & (wd.abs() <= lim))
+    };
+    let d = dd + df;
+    let wbar = w1 + 0.5 * d;
+    // Stuck: stopped exactly (omega = 0), the torque kept.
+    let s1 = 0.5 * (a1 - b1);
+    Cell {
+        an: if stuck { s1 } else { a1 + d },
+        bn: if stuck { -s1 } else { b1 + d },
+        jump: da * da + db * db,
+        friction: df * wbar,
+        damping: dd * wbar,
+    }
+}

@@ -1,0 +1,614 @@
+//! Tests of the drilling system against independently computed numbers (closed forms, the
+//! frequency equations solved here by bisection, energies summed here from the outputs).
+
+use std::f64::consts::PI;
+
+use super::config::*;
+use super::*;
+use crate::interrupt::{CancelFlag, Never};
+use crate::solution::Status;
+
+const RPM: f64 = 60.0 / (2.0 * PI);
+const G: f64 = 79.3e9;
+const RHO: f64 = 7850.0;
+
+fn section(length: f64, od: f64, id: f64) -> Section {
+    Section { name: String::new(), length, outer_diameter: od, inner_diameter: id, ..Section::default() }
+}
+
+fn polar(od: f64, id: f64) -> f64 {
+    PI / 32.0 * (od.powi(4) - id.powi(4))
+}
+
+/// A frictionless vertical string, ideal speed-controlled top at rest, bit off bottom.
+fn frictionless(sections: Vec<Section>, cells: usize, duration: f64) -> DrillConfig {
+    let mut cfg = DrillConfig { sections, ..DrillConfig::default() };
+    cfg.well.md = None;
+    cfg.well.inclination_deg = Inclination::Constant(0.0);
+    cfg.friction.static_coefficient = 0.0;
+    cfg.top_drive.controller.kind = ControllerKind::Speed;
+    cfg.top_drive.rpm = 0.0;
+    cfg.top_drive.ramp_time = 0.0;
+    cfg.numerics.cells = cells;
+    cfg.numerics.duration = duration;
+    cfg.numerics.output_interval = 1e-4;
+    cfg.numerics.field_interval = 0.0;
+    cfg
+}
+
+/// Runs `cfg` from the cell speeds 0 and the torque `torque(z)`.
+fn released(cfg: &DrillConfig, torque: impl Fn(f64) -> f64) -> DrillRun {
+    let mut sim = Simulation::new(cfg).unwrap();
+    let z = sim.grid().z.clone();
+    let tau: Vec<f64> = z.iter().map(|&z| torque(z)).collect();
+    sim.set_state(&vec![0.0; z.len()], &tau, 0.0, 0.0).unwrap();
+    let run = sim.run(&Never, &mut |_| {});
+    assert_eq!(run.status, Status::Success, "{}", run.message);
+    run
+}
+
+/// Mean interval between upward zero crossings (linear interpolation).
+fn crossing_period(t: &[f64], x: &[f64]) -> f64 {
+    let mut times = Vec::new();
+    for k in 1..t.len() {
+        if x[k - 1] < 0.0 && x[k] >= 0.0 {
+            times.push(t[k - 1] + (t[k] - t[k - 1]) * (-x[k - 1]) / (x[k] - x[k - 1]));
+        }
+    }
+    if times.len() < 3 {
+        let step = (t.len() / 40).max(1);
+        for k in (0..t.len()).step_by(step) {
+            eprintln!("{:8.4} {:12.6}", t[k], x[k]);
+        }
+    }
+    assert!(times.len() >= 3, "{} crossings", times.len());
+    (times[times.len() - 1] - times[0]) / (times.len() - 1) as f64
+}
+
+/// First root of `f` on `(0, hi]` by a scan and bisection.
+fn first_root(f: impl Fn(f64) -> f64, hi: f64) -> f64 {
+    let n = 100_000;
+    let mut lo = hi / n as f64;
+    for k in 2..=n {
+        let x = hi * k as f64 / n as f64;
+        if f(lo).signum() != f(x).signum() {
+            let (mut a, mut b) = (lo, x);
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if f(m).signum() == f(a).signum() {
+                    a = m
+                } else {
+                    b = m
+                }
+            }
+            return 0.5 * (a + b);
+        }
+        lo = x;
+    }
+    panic!("no root")
+}
+
+#[test]
+fn fixed_top_free_bit_frequencies_are_odd_quarter_waves() {
+    let (l, od, id) = (1000.0, 0.14, 0.1);
+    let c = (G / RHO).sqrt();
+    let cfg = frictionless(vec![section(l, od, id)], 500, 8.0);
+    for n in 1..=3 {
+        let k = (2 * n - 1) as f64 * PI / (2.0 * l);
+        let run = released(&cfg, |z| 1e3 * (k * z).cos());
+        let f = 1.0 / crossing_period(&run.t, &run.bit_rpm);
+        let exact = (2 * n - 1) as f64 * c / (4.0 * l);
+        eprintln!("mode {n}: f = {f} Hz, exact {exact} Hz, rel {:.2e}", f / exact - 1.0);
+        assert!((f / exact - 1.0).abs() < 1e-4, "mode {n}: {f} vs {exact}");
+        assert!((run.stats.first_mode_hz / (c / (4.0 * l)) - 1.0).abs() < 1e-9);
+        assert_eq!((run.stats.courant_min, run.stats.courant_max), (1.0, 1.0));
+    }
+}
+
+#[test]
+fn bha_inertia_frequency_solves_z_tan_z() {
+    let (l, od, id) = (1000.0, 0.14, 0.1);
+    let c = (G / RHO).sqrt();
+    let i_string = RHO * polar(od, id) * l;
+    for ratio in [1.0, 0.25] {
+        let mut cfg = frictionless(vec![section(l, od, id)], 500, 40.0);
+        cfg.bit.bha_inertia = i_string / ratio;
+        // z tan z = I_string / I_BHA, z = w L / c
+        let z = first_root(|z: f64| z * z.tan() - ratio, PI / 2.0 - 1e-12);
+        let w = z * c / l;
+        let run = released(&cfg, |x| 1e3 * (w / c * x).cos());
+        let f = 1.0 / crossing_period(&run.t, &run.bit_rpm);
+        let exact = w / (2.0 * PI);
+        eprintln!("I_s/I_b = {ratio}: z = {z}, f = {f} Hz, exact {exact} Hz, rel {:.2e}", f / exact - 1.0);
+        assert!((f / exact - 1.0).abs() < 2e-3, "{f} vs {exact}");
+        assert!((run.stats.first_mode_hz / exact - 1.0).abs() < 1e-9, "{}", run.stats.first_mode_hz);
+    }
+}
+
+#[test]
+fn two_section_string_matches_its_frequency_equation() {
+    // Travel times 3:1 so that 400 cells give Courant number 1 in both sections.
+    let (od1, id1, od2, id2) = (0.14, 0.1, 0.2, 0.07);
+    let c1 = (G / RHO).sqrt();
+    let rho2 = 2.0 * RHO;
+    let c2 = (G / rho2).sqrt();
+    let (l1, t1) = (1500.0, 1500.0 / c1);
+    let t2 = t1 / 3.0;
+    let l2 = c2 * t2;
+    let z1 = polar(od1, id1) * (G * RHO).sqrt();
+    let z2 = polar(od2, id2) * (G * rho2).sqrt();
+    let mut lower = section(l2, od2, id2);
+    lower.density = rho2;
+    let cfg = frictionless(vec![section(l1, od1, id1), lower], 400, 40.0);
+    // Fixed top, free end: cos(w t1) cos(w t2) - (Z2 / Z1) sin(w t1) sin(w t2) = 0.
+    let w = first_root(|w: f64| (w * t1).cos() * (w * t2).cos() - z2 / z1 * (w * t1).sin() * (w * t2).sin(), 20.0);
+    // The mode: q = G J theta_z with theta(0) = 0, q(0) = 1, through the junction.
+    let theta1 = (w * t1).sin() / (z1 * w);
+    let q1 = (w * t1).cos();
+    let mode = move |z: f64| {
+        if z <= l1 {
+            1e3 * (w * z / c1).cos()
+        } else {
+            let x = (z - l1) / c2;
+            1e3 * (-z2 * w * theta1 * (w * x).sin() + q1 * (w * x).cos())
+        }
+    };
+    let run = released(&cfg, mode);
+    assert_eq!((run.stats.courant_min, run.stats.courant_max), (1.0, 1.0));
+    let f = 1.0 / crossing_period(&run.t, &run.bit_rpm);
+    let exact = w / (2.0 * PI);
+    eprintln!("two sections (Z2/Z1 = {:.3}): f = {f} Hz, exact {exact} Hz, rel {:.2e}", z2 / z1, f / exact - 1.0);
+    assert!((f / exact - 1.0).abs() < 1e-4, "{f} vs {exact}");
+    assert!((run.stats.first_mode_hz / exact - 1.0).abs() < 1e-9);
+    // No energy is made or lost at the junction (Courant 1, no friction, no damping).
+    assert!(run.energy.numerical_loss.abs() < 1e-12 * run.energy.initial, "{:?}", run.energy);
+    assert!(((run.energy.kinetic + run.energy.elastic) / run.energy.initial - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn top_speed_step_gives_a_square_wave_at_the_bit() {
+    let (l, od, id) = (1000.0, 0.14, 0.1);
+    let c = (G / RHO).sqrt();
+    let mut cfg = frictionless(vec![section(l, od, id)], 200, 3.0);
+    cfg.top_drive.rpm = 60.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let (t_travel, dt) = (l / c, run.stats.dt);
+    let mut checked = 0;
+    for (t, rpm) in run.t.iter().zip(&run.bit_rpm) {
+        let phase = t / t_travel; // 0 for phase in (0, 1), 120 rpm in (1, 3), 0 in (3, 5), ...
+        let nearest_odd = 2.0 * ((phase - 1.0) / 2.0).round() + 1.0;
+        if (phase - nearest_odd).abs() * t_travel < 3.0 * dt {
+            continue;
+        }
+        let expected = if phase < 1.0 || ((phase - 1.0) / 2.0).floor() as i64 % 2 == 1 { 0.0 } else { 120.0 };
+        assert!((rpm - expected).abs() < 1e-9, "t = {t}: {rpm} rpm, expected {expected}");
+        checked += 1;
+    }
+    assert!(checked > run.t.len() * 9 / 10);
+    // The period of the bit speed is 4 L / c.
+    let centred: Vec<f64> = run.bit_rpm.iter().map(|r| r - 60.0).collect();
+    let period = crossing_period(&run.t, &centred);
+    assert!((period / (4.0 * t_travel) - 1.0).abs() < 1e-3, "{period} vs {}", 4.0 * t_travel);
+}
+
+/// String energy summed here from the snapshot `k` of a run: `sum h (rho J w^2 + tau^2 / (G J)) / 2`.
+fn field_energy(run: &DrillRun, k: usize, h: f64, j: f64) -> f64 {
+    let nz = run.z.len();
+    (0..nz)
+        .map(|i| {
+            let w = run.omega_field[k * nz + i] / RPM;
+            let tau = run.torque_field[k * nz + i];
+            0.5 * h * (RHO * j * w * w + tau * tau / (G * j))
+        })
+        .sum()
+}
+
+#[test]
+fn z_torque_absorbs_the_incident_wave() {
+    let (l, od, id) = (1000.0, 0.14, 0.1);
+    let c = (G / RHO).sqrt();
+    let (j, cells) = (polar(od, id), 500);
+    let z = j * (G * RHO).sqrt();
+    // (z_factor, torque high-pass time, expected reflected energy fraction ((1 - z) / (1 + z))^2)
+    for (z_factor, highpass, expected) in [(1.0, 20.0 / (2.0 * PI), 0.0), (1.0, 1e12, 0.0), (3.0, 1e12, 0.25)] {
+        let mut cfg = frictionless(vec![section(l, od, id)], cells, 0.8 * l / c);
+        cfg.top_drive.controller.kind = ControllerKind::ZTorque;
+        cfg.top_drive.controller.z_factor = z_factor;
+        cfg.top_drive.controller.torque_highpass_time = highpass;
+        cfg.numerics.field_interval = cfg.numerics.duration;
+        // An upward pulse: alpha = 0, beta = B exp(-((z - L/4) / (L/40))^2): omega = beta/2, tau = -Z beta/2.
+        let pulse = |x: f64| 0.5 * (-((x - 0.25 * l) / (0.025 * l)).powi(2)).exp();
+        let mut sim = Simulation::new(&cfg).unwrap();
+        let zc = sim.grid().z.clone();
+        let w: Vec<f64> = zc.iter().map(|&x| pulse(x)).collect();
+        let tau: Vec<f64> = w.iter().map(|w| -z * w).collect();
+        sim.set_state(&w, &tau, 0.0, 0.0).unwrap();
+        let run = sim.run(&Never, &mut |_| {});
+        assert_eq!(run.field_t.len(), 2);
+        let h = l / cells as f64;
+        let ratio = field_energy(&run, 1, h, j) / field_energy(&run, 0, h, j);
+        eprintln!(
+            "z_factor {z_factor}, high-pass {highpass} s: reflected energy fraction {ratio:.3e}, expected {expected}"
+        );
+        if expected == 0.0 {
+            // The slow-torque feedback (the high-pass) reflects a little of the pulse's mean.
+            let bound = if highpass < 1e3 { 1e-3 } else { 1e-12 };
+            assert!(ratio < bound, "reflection {ratio}");
+        } else {
+            assert!((ratio / expected - 1.0).abs() < 0.02, "{ratio}");
+        }
+    }
+}
+
+#[test]
+fn break_off_torque_is_the_integral_of_the_friction_limit() {
+    let (od, id) = (0.146529, 0.123024);
+    let area = PI / 4.0 * (od * od - id * id);
+    let (mu, g) = (0.3, 9.81);
+    let per_sin = mu * g * RHO * area * od / 2.0;
+    // Constant 30 degrees.
+    let mut cfg = DrillConfig { sections: vec![section(2500.0, od, id)], ..DrillConfig::default() };
+    cfg.well.md = None;
+    cfg.well.inclination_deg = Inclination::Constant(30.0);
+    let exact = per_sin * 0.5 * 2500.0;
+    let got = breakoff_torque(&cfg).unwrap();
+    assert!((got / exact - 1.0).abs() < 1e-12, "{got} vs {exact}");
+    // Well B survey: 0 to 500 m vertical, linear to 60 deg at 1600 m, 60 deg beyond.
+    let cfg = DrillConfig { sections: vec![section(2500.0, od, id)], ..DrillConfig::default() };
+    let b = (PI / 3.0) / 1100.0;
+    let exact = per_sin * ((1.0 - (PI / 3.0).cos()) / b + (PI / 3.0).sin() * 900.0);
+    let got = breakoff_torque(&cfg).unwrap();
+    eprintln!("Well B survey: break-off {got} N m, exact {exact}, rel {:.2e}", got / exact - 1.0);
+    assert!((got / exact - 1.0).abs() < 1e-9, "{got} vs {exact}");
+    // Two sections with mud: each its own buoyed weight and lever arm.
+    let mut cfg = DrillConfig { sections: vec![section(2000.0, od, id), section(500.0, 0.2, 0.08)], ..cfg };
+    cfg.well.mud_density = 1200.0;
+    let a2 = PI / 4.0 * (0.04 - 0.0064);
+    let lower = mu * g * (RHO - 1200.0) * a2 * 0.1 * (PI / 3.0).sin() * 500.0;
+    let upper = mu * g * (RHO - 1200.0) * area * od / 2.0 * ((1.0 - (PI / 3.0).cos()) / b + (PI / 3.0).sin() * 400.0);
+    let got = breakoff_torque(&cfg).unwrap();
+    assert!((got / (upper + lower) - 1.0).abs() < 1e-9, "{got} vs {}", upper + lower);
+    // The profile's cumulative torque at the top cell is the break-off torque to cell accuracy.
+    let profile = friction_profile(&cfg).unwrap();
+    assert_eq!(profile.breakoff_torque, got);
+    assert!((profile.cumulative[0] / got - 1.0).abs() < 1e-3, "{} vs {got}", profile.cumulative[0]);
+    assert!(profile.limit_per_m[..100].iter().all(|&x| x == 0.0)); // vertical top
+}
+
+/// A loaded case: two sections with Courant numbers < 1, friction, damping, PI, bit on bottom
+/// with a BHA inertia.
+fn loaded(model: FrictionModel) -> DrillConfig {
+    let mut collar = section(230.0, 0.2, 0.07);
+    collar.shear_modulus = 67e9;
+    let mut cfg = DrillConfig { sections: vec![section(2270.0, 0.146529, 0.123024), collar], ..DrillConfig::default() };
+    cfg.friction.model = model;
+    cfg.damping_rate = 0.05;
+    cfg.bit = Bit { on_bottom: true, weight_on_bit: 5e4, bha_inertia: 50.0, ..Bit::default() };
+    cfg.top_drive.torque_limit = Some(30e3);
+    cfg.numerics.cells = 700;
+    cfg.numerics.duration = 30.0;
+    cfg
+}
+
+#[test]
+fn energy_balance_closes() {
+    for model in [FrictionModel::SetValued, FrictionModel::Regularised] {
+        let cfg = loaded(model);
+        let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        let e = run.energy;
+        eprintln!("{model:?}: {e:?} courant {}..{}", run.stats.courant_min, run.stats.courant_max);
+        assert!(run.stats.courant_min < 1.0);
+        assert!(e.balance_error.abs() < 1e-11, "{e:?}");
+        assert!(e.motor_work > 0.0 && e.friction_loss > 0.0 && e.damping_loss > 0.0 && e.bit_loss > 0.0);
+        assert!(e.numerical_loss > 0.0 && e.numerical_loss < 0.05 * e.motor_work, "{e:?}");
+        // The balance summed here: motor work = change + losses.
+        let change = e.kinetic + e.elastic + e.top_drive + e.bha - e.initial;
+        let losses = e.friction_loss + e.damping_loss + e.bit_loss + e.numerical_loss;
+        assert!((e.motor_work - change - losses).abs() < 1e-10 * e.motor_work);
+        assert!(run.motor_torque.iter().all(|m| m.abs() <= 30e3));
+    }
+    // Courant 1, no friction: no upwind dissipation; only the top drive's implicit Euler.
+    let mut cfg = frictionless(vec![section(1000.0, 0.14, 0.1)], 200, 5.0);
+    cfg.top_drive.controller.kind = ControllerKind::Pi;
+    cfg.top_drive.rpm = 60.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let e = run.energy;
+    eprintln!("uniform, Courant 1, PI: {e:?}");
+    assert!(e.balance_error.abs() < 1e-12);
+    assert_eq!(e.upwind_loss, 0.0);
+    assert!(e.inertia_loss < 0.02 * e.motor_work, "{e:?}");
+}
+
+#[test]
+fn regularised_and_set_valued_friction_differ_measurably() {
+    let mut results = Vec::new();
+    for model in [FrictionModel::SetValued, FrictionModel::Regularised] {
+        let mut cfg = DrillConfig::default();
+        cfg.friction.model = model;
+        let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        let m = run.metrics.unwrap();
+        eprintln!(
+            "{model:?}: SSI {:.3}, stuck {:.3}, bit rpm {:.1}..{:.1} mean {:.2}, motor torque {:.0}..{:.0}, period {:.3} s, friction loss {:.4e} J",
+            m.severity, m.stuck_fraction, m.rpm_min, m.rpm_max, m.rpm_mean, m.torque_min, m.torque_max, m.cycle_period, run.energy.friction_loss
+        );
+        results.push(m);
+    }
+    // Both run to the end near the setpoint on average.
+    for m in &results {
+        assert!((m.rpm_mean - 40.0).abs() < 5.0, "{m:?}");
+    }
+}
+
+#[test]
+fn a_torque_below_break_off_leaves_the_lower_string_exactly_at_rest() {
+    let mut cfg = DrillConfig { sections: vec![section(2500.0, 0.146529, 0.123024)], ..DrillConfig::default() };
+    let breakoff = breakoff_torque(&cfg).unwrap();
+    let limit = 0.25 * breakoff;
+    cfg.top_drive.torque_limit = Some(limit);
+    cfg.top_drive.controller.kp = 1e7;
+    cfg.bit = Bit { on_bottom: true, weight_on_bit: 1e5, ..Bit::default() };
+    cfg.numerics.duration = 20.0;
+    cfg.numerics.field_interval = 0.1;
+    let profile = friction_profile(&cfg).unwrap();
+    // Below the depth where the static friction above holds twice the motor torque, nothing moves.
+    let h = 2500.0 / profile.z.len() as f64;
+    let mut held = 0.0;
+    let first = profile
+        .limit_per_m
+        .iter()
+        .position(|l| {
+            held += l * h;
+            held > 2.0 * limit
+        })
+        .unwrap();
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert!(run.bit_rpm.iter().all(|&w| w == 0.0), "bit moved");
+    let nz = run.z.len();
+    for k in 0..run.field_t.len() {
+        let row = &run.omega_field[k * nz..(k + 1) * nz];
+        assert!(row[first..].iter().all(|&w| w == 0.0), "moved below {} m at t = {}", profile.z[first], run.field_t[k]);
+    }
+    assert!(run.motor_torque.iter().all(|m| m.abs() <= limit));
+    eprintln!(
+        "held below {:.0} m of {} m; top moved up to {:.2} rpm",
+        profile.z[first],
+        2500,
+        run.surface_rpm.iter().fold(0.0f64, |a, b| a.max(*b))
+    );
+}
+
+#[test]
+fn bad_configurations_name_the_field() {
+    let base = r#""sections": [{"length": 1000, "outer_diameter": 0.14, "inner_diameter": 0.1}]"#;
+    let field = |extra: &str| {
+        let json = format!("{{{base}{extra}}}");
+        match DrillConfig::from_json(&json).and_then(|c| c.validate()) {
+            Err(e) => e.field().to_string(),
+            Ok(()) => "ok".into(),
+        }
+    };
+    assert_eq!(field(""), "ok");
+    assert_eq!(field(r#", "numerics": {"cels": 10}"#), "numerics.cels");
+    assert_eq!(field(r#", "numerics": {"cells": 0}"#), "numerics.cells");
+    assert_eq!(field(r#", "numerics": {"cells": 1.5}"#), "numerics.cells");
+    assert_eq!(field(r#", "numerics": {"cells": 2000, "max_cells": 1000}"#), "numerics.cells");
+    assert_eq!(field(r#", "numerics": {"duration": -1}"#), "numerics.duration");
+    assert_eq!(field(r#", "numerics": {"output_interval": 1e-9}"#), "numerics.output_interval");
+    assert_eq!(field(r#", "numerics": {"field_interval": 1e-4, "cells": 100000}"#), "numerics.field_interval");
+    assert_eq!(field(r#", "top_drive": {"inertia": 0}"#), "top_drive.inertia");
+    assert_eq!(field(r#", "top_drive": {"controller": {"type": "fuzzy"}}"#), "top_drive.controller.type");
+    assert_eq!(field(r#", "top_drive": {"controller": {"kp": "a"}}"#), "top_drive.controller.kp");
+    assert_eq!(field(r#", "top_drive": {"steps": [[1, 2], [0.5, 3]]}"#), "top_drive.steps[1][0]");
+    assert_eq!(field(r#", "top_drive": {"steps": [[1]]}"#), "top_drive.steps[0]");
+    assert_eq!(field(r#", "well": {"inclination_deg": [0, 200, 3, 4]}"#), "well.inclination_deg[1]");
+    assert_eq!(field(r#", "well": {"md": [0, 10, 5, 20]}"#), "well.md[2]");
+    assert_eq!(field(r#", "well": {"md": [0, 10]}"#), "well.inclination_deg");
+    assert_eq!(field(r#", "well": {"inclination_deg": 30}"#), "ok");
+    assert_eq!(field(r#", "well": {"mud_density": 9000}"#), "well.mud_density");
+    assert_eq!(field(r#", "friction": {"model": "smooth"}"#), "friction.model");
+    assert_eq!(field(r#", "friction": {"kinetic_ratio": 1.5}"#), "friction.kinetic_ratio");
+    assert_eq!(field(r#", "bit": {"mu_kinetic": 0.9}"#), "bit.mu_kinetic");
+    assert_eq!(field(r#", "metrics": {"window": [5, 1]}"#), "metrics.window");
+    let sections = |s: &str| {
+        let json =
+            format!(r#"{{"sections": [{{"length": 1000, "outer_diameter": 0.14, "inner_diameter": 0.1}}, {s}]}}"#);
+        DrillConfig::from_json(&json).and_then(|c| c.validate()).map_err(|e| e.field().to_string()).err()
+    };
+    assert_eq!(sections(r#"{"length": 10, "outer_diameter": 0.1}"#).unwrap(), "sections[1].inner_diameter");
+    assert_eq!(
+        sections(r#"{"length": 10, "outer_diameter": 0.1, "inner_diameter": 0.2}"#).unwrap(),
+        "sections[1].inner_diameter"
+    );
+    assert_eq!(
+        sections(r#"{"length": 10, "outer_diameter": 0.1, "inner_diameter": 0, "polar_moment": -1}"#).unwrap(),
+        "sections[1].polar_moment"
+    );
+    assert_eq!(
+        sections(r#"{"length": 10, "outer_diameter": 0.1, "inner_diameter": 0, "colour": 1}"#).unwrap(),
+        "sections[1].colour"
+    );
+    assert_eq!(DrillConfig::from_json("{}").unwrap_err().field(), "sections");
+    assert_eq!(DrillConfig::from_json("[1]").unwrap_err().field(), "config");
+    assert_eq!(DrillConfig::from_json("{").unwrap_err().field(), "config");
+    assert_eq!(DrillConfig::from_json(r#"{"sections": []}"#).unwrap().validate().unwrap_err().field(), "sections");
+    let cfg = DrillConfig { damping_rate: 1e9, ..DrillConfig::default() };
+    assert_eq!(Simulation::new(&cfg).err().unwrap().field(), "damping_rate");
+}
+
+#[test]
+fn defaults_round_trip_and_well_b_example_parses() {
+    let cfg = DrillConfig::default();
+    let back = DrillConfig::from_json(&cfg.to_json()).unwrap();
+    assert_eq!(back, cfg);
+    cfg.validate().unwrap();
+    let well_b = r#"{
+      "sections": [
+        {"name": "drill pipe", "length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
+         "shear_modulus": 61e9, "density": 7850.0},
+        {"name": "BHA (Aarsnes-Shor average)", "length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.0,
+         "shear_modulus": 61e9, "density": 7850.0,
+         "polar_moment": 5.169666634679985e-4, "area": 0.02286618845760419}],
+      "damping_rate": 0.08333333333333334,
+      "top_drive": {"inertia": 2900.0, "rpm": 40.0, "ramp_time": 1.0, "controller": {"type": "pi", "kp": 38e3, "ki": 100e3},
+                    "control_interval": 0.01},
+      "friction": {"static": 0.3, "kinetic_ratio": 0.65, "stick_speed": 1.5},
+      "numerics": {"cells": 1000, "duration": 60.0}
+    }"#;
+    let cfg = DrillConfig::from_json(well_b).unwrap();
+    cfg.validate().unwrap();
+    let grid = Grid::new(&cfg).unwrap();
+    // Both sections at the pipe wave speed: 908 + 92 cells, Courant 1 (their 1000 cells, 908/92).
+    assert_eq!(grid.counts, vec![908, 92]);
+    // The collar impedance is theirs: Jc Gc / c_t with their Jc (extra pi) and Gc = 67e9.
+    let c_t = (61e9f64 / 7850.0).sqrt();
+    let jc = 4.7067114136638673e-4;
+    assert!((grid.props[1].impedance / (jc * 67e9 / c_t) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn interrupt_and_progress() {
+    let cfg = DrillConfig::default();
+    let flag = CancelFlag::new();
+    flag.cancel();
+    let run = solve(&cfg, &flag, &mut |_| {}).unwrap();
+    assert_eq!(run.status, Status::Interrupted);
+    assert!(run.t.len() < 10);
+    let mut cfg = DrillConfig::default();
+    cfg.numerics.duration = 2.0;
+    let mut seen = Vec::new();
+    let run = solve(&cfg, &Never, &mut |f| seen.push(f)).unwrap();
+    assert_eq!(run.status, Status::Success);
+    assert!(seen.windows(2).all(|w| w[1] >= w[0]) && *seen.last().unwrap() == 1.0 && seen.len() > 10);
+    assert_eq!(run.t.len(), 201);
+    assert!((run.t[200] - 2.0).abs() < 1e-12);
+    assert_eq!(run.field_t.len(), 5);
+    assert_eq!(run.omega_field.len(), 5 * run.z.len());
+}
+
+#[test]
+fn soft_torque_gains_from_impedance_and_first_mode() {
+    let mut cfg = DrillConfig::default();
+    cfg.top_drive.controller.kind = ControllerKind::SoftTorque;
+    cfg.numerics.duration = 1.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let p = &cfg.sections[0];
+    let z = polar(p.outer_diameter, p.inner_diameter) * (p.shear_modulus * p.density).sqrt();
+    let w = 2.0 * PI * run.stats.first_mode_hz;
+    assert!((run.stats.kp / z - 1.0).abs() < 1e-12);
+    assert!((run.stats.ki / (w * w * 2900.0) - 1.0).abs() < 1e-12);
+    // Uniform string without BHA: the first mode is c / (4 L).
+    let c = (p.shear_modulus / p.density).sqrt();
+    assert!((run.stats.first_mode_hz / (c / (4.0 * p.length)) - 1.0).abs() < 1e-9);
+}
+
+#[test]
+fn setpoint_ramps_and_steps() {
+    // Ideal speed control: the top speed is the setpoint, a first-order approach of the target
+    // (rpm until the first step, then each step's) with the ramp time constant.
+    let mut cfg = frictionless(vec![section(1000.0, 0.14, 0.1)], 100, 6.0);
+    cfg.top_drive.rpm = 40.0;
+    cfg.top_drive.ramp_time = 0.5;
+    cfg.top_drive.steps = vec![[3.0, 60.0], [4.5, 0.0]];
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let dt = run.stats.dt;
+    let exact = |t: f64| {
+        let at3 = 40.0 * (1.0 - (-3.0f64 / 0.5).exp());
+        let at45 = 60.0 + (at3 - 60.0) * (-1.5f64 / 0.5).exp();
+        if t <= 3.0 {
+            40.0 * (1.0 - (-t / 0.5).exp())
+        } else if t <= 4.5 {
+            60.0 + (at3 - 60.0) * (-(t - 3.0) / 0.5).exp()
+        } else {
+            at45 * (-(t - 4.5) / 0.5).exp()
+        }
+    };
+    for (t, rpm) in run.t.iter().zip(&run.surface_rpm) {
+        // The target changes at the first step end at or after the step time.
+        if (t - 3.0).abs() < 2.0 * dt || (t - 4.5).abs() < 2.0 * dt {
+            continue;
+        }
+        assert!((rpm - exact(*t)).abs() < 0.2, "t = {t}: {rpm} vs {}", exact(*t));
+    }
+}
+
+#[test]
+fn bit_on_bottom_sticks_and_slips_with_positive_bit_work() {
+    for bha in [0.0, 100.0] {
+        let mut cfg = loaded(FrictionModel::SetValued);
+        cfg.bit = Bit { on_bottom: true, weight_on_bit: 1e5, bha_inertia: bha, ..Bit::default() };
+        cfg.top_drive.torque_limit = None;
+        let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        let (m, e) = (run.metrics.unwrap(), run.energy);
+        eprintln!(
+            "on bottom, BHA {bha}: SSI {:.3}, stuck {:.3}, bit rpm {:.1}..{:.1}, bit loss {:.4e} J, balance {:.1e}",
+            m.severity, m.stuck_fraction, m.rpm_min, m.rpm_max, e.bit_loss, e.balance_error
+        );
+        assert_eq!(run.status, Status::Success);
+        assert!(e.bit_loss > 0.0 && e.balance_error.abs() < 1e-11, "{e:?}");
+        // The bit never turns backwards (it sticks instead), its torque at most W r mu_s.
+        assert!(m.rpm_min >= -1e-9, "{}", m.rpm_min);
+        assert!(run.bit_torque.iter().all(|t| t.abs() <= 1e5 * 0.1 * 0.8 * (1.0 + 1e-12)));
+    }
+}
+
+#[test]
+fn overflow_ends_with_a_status_not_a_panic() {
+    let mut cfg = frictionless(vec![section(1000.0, 0.14, 0.1)], 50, 1.0);
+    cfg.numerics.field_interval = 0.1;
+    let mut sim = Simulation::new(&cfg).unwrap();
+    let n = sim.grid().cells();
+    sim.set_state(&vec![1e307; n], &vec![1e308; n], 0.0, 0.0).unwrap();
+    let run = sim.run(&Never, &mut |_| {});
+    assert_eq!(run.status, Status::NonFinite, "{}", run.message);
+    assert!(!run.message.is_empty());
+    assert!(run.bit_rpm.iter().chain(&run.omega_field).chain(&run.torque_field).all(|v| v.is_finite()));
+    assert_eq!(run.omega_field.len(), run.field_t.len() * n);
+}
+
+#[test]
+fn well_b_agrees_with_the_published_model() {
+    // Aarsnes & Shor's Well B (MAIN.m, parameters_WellB.m, MD 2500 m, 40 rpm, 60 s) in the form
+    // with the same continuum equations as their scheme (collar: their Jc with its extra pi,
+    // Ac, Gc = 67 GPa, density rho Gc / Gp so that its wave speed is the pipe's; damping rate
+    // 2 kt dt_sub). Reference: their code run in GNU Octave 7.3 (tests/data/aarsnes_shor/
+    // reference.json), metrics over 30..60 s.
+    let json = r#"{
+      "sections": [
+        {"length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
+         "shear_modulus": 61e9, "density": 7850.0},
+        {"length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.09285466808235807,
+         "shear_modulus": 67e9, "density": 8622.131147540984,
+         "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
+      "damping_rate": 0.08333333333333334,
+      "numerics": {"cells": 1000, "duration": 60.0, "field_interval": 0}
+    }"#;
+    let cfg = DrillConfig::from_json(json).unwrap();
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let m = run.metrics.unwrap();
+    let (torque_min, torque_max, period, rpm_max, rpm_mean) = (6132.67, 24925.16, 10.0047, 120.325, 39.735);
+    eprintln!(
+        "Well B: motor torque {:.0}..{:.0} N m (Octave {torque_min:.0}..{torque_max:.0}), period {:.3} s ({period}), \
+         bit rpm max {:.1} ({rpm_max}), mean {:.2} ({rpm_mean}), balance {:.1e}",
+        m.torque_min, m.torque_max, m.cycle_period, m.rpm_max, m.rpm_mean, run.energy.balance_error
+    );
+    let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+    assert!(rel(m.torque_min, torque_min) < 0.05 && rel(m.torque_max, torque_max) < 0.02);
+    assert!(rel(m.cycle_period, period) < 0.02 && rel(m.rpm_max, rpm_max) < 0.02 && rel(m.rpm_mean, rpm_mean) < 0.01);
+}
+
+#[test]
+fn a_short_section_gets_a_cell_and_a_stable_step() {
+    // A 1 m sub between pipes: shorter than one cell of a 100-cell string.
+    let sections = vec![section(500.0, 0.14, 0.1), section(1.0, 0.2, 0.07), section(500.0, 0.14, 0.1)];
+    let mut cfg = frictionless(sections, 100, 2.0);
+    cfg.top_drive.rpm = 30.0;
+    let grid = Grid::new(&cfg).unwrap();
+    assert_eq!(grid.counts[1], 1);
+    assert!(grid.courant.iter().all(|&c| c > 0.0 && c <= 1.0), "{:?}", grid.courant);
+    assert!(grid.cells() > 100);
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, Status::Success);
+    assert!(run.energy.balance_error.abs() < 1e-12);
+    cfg.numerics.max_cells = 200;
+    assert_eq!(cfg.validate().unwrap_err().field(), "numerics.cells");
+}
