@@ -80,7 +80,7 @@ def test_too_many_runs(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_interrupt_keeps_finished_rows() -> None:
-    cfg = _small().with_overrides(["numerics.duration=100"])
+    cfg = _small().with_overrides(["numerics.duration=300", "numerics.cells=200"])
     seen: list[tuple[int, int]] = []
 
     class Stop(Exception):
@@ -92,13 +92,13 @@ def test_interrupt_keeps_finished_rows() -> None:
             raise Stop
 
     with pytest.raises(Stop) as info:
-        drill_map(cfg, {"top_drive.rpm": [30.0, 40.0, 50.0, 60.0, 70.0, 80.0]}, threads=1, progress=progress)
+        drill_map(cfg, {"top_drive.rpm": [30.0, 40.0, 50.0, 60.0, 70.0, 80.0] * 2}, threads=1, progress=progress)
     frame = info.value.frame  # type: ignore[attr-defined]
-    assert len(frame) == 6
+    assert len(frame) == 12
     assert (frame["status"] == "success").sum() >= 1
     assert (frame["status"] == "interrupted").sum() >= 1
     assert frame.loc[frame["status"] == "success", "ssi"].notna().all()
-    assert seen[0] == (0, 6)
+    assert seen[0] == (0, 12)
 
 
 @pytest.mark.skipif(not ON_BOTTOM.exists(), reason="examples/on-bottom-3000m.toml")

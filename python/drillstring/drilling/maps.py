@@ -186,14 +186,22 @@ def drill_map(
     raw = _core.drill_map(cfg.to_json(), runs_json, None if threads is None else int(threads), memory_budget(), report)
     frame = _frame(named, combos, raw, cfg)
     interrupt = raw.get("interrupt")
-    close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
+    try:
+        close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
+    except BaseException as exc:  # the last report's exception: the map is complete, keep it
+        _attach(exc, frame)
+        raise
     if interrupt is not None:
-        try:
-            interrupt.frame = frame  # type: ignore[attr-defined]
-        except AttributeError:  # pragma: no cover - exceptions normally take attributes
-            pass
+        _attach(interrupt, frame)
         raise interrupt
     return frame
+
+
+def _attach(exc: BaseException, frame: pd.DataFrame) -> None:
+    try:
+        exc.frame = frame  # type: ignore[attr-defined]
+    except AttributeError:  # pragma: no cover - exceptions normally take attributes
+        pass
 
 
 def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: Mapping[str, Any],
