@@ -154,3 +154,54 @@ def test_cli_bad_axis_exits_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]
     assert code == 2
     assert err.startswith("drillstring: error:") and err.count("\n") == 1
     assert not (tmp_path / "m").exists()
+
+
+def test_stored_map_resumes(tmp_path: Path) -> None:
+    cfg = _small()
+    axes = {"top_drive.rpm": [20.0, 50.0, 90.0], "top_drive.controller.type": ["pi", "soft_torque"]}
+    memory = drill_map(cfg, axes, threads=2)
+    out = tmp_path / "m"
+    first = drill_map(cfg, axes, threads=2, out=out, chunk_size=4)
+    assert sorted(os.listdir(out / "chunks")) == ["chunk-00000.json", "chunk-00000.parquet", "chunk-00001.json",
+                                                  "chunk-00001.parquet"]
+    columns = [c for c in memory.columns if c != "message"]
+    pd.testing.assert_frame_equal(first[columns], memory[columns], check_dtype=False)
+    pd.testing.assert_frame_equal(pd.read_parquet(out / "map.parquet")[columns], memory[columns], check_dtype=False)
+    # a tampered chunk is recomputed (with a warning), the other one reused
+    data = (out / "chunks" / "chunk-00001.parquet").read_bytes()
+    (out / "chunks" / "chunk-00001.parquet").write_bytes(data[:-10] + b"0123456789")
+    with pytest.warns(ds.errors.ResumeWarning, match="chunk 1"):
+        again = drill_map(cfg, axes, threads=2, out=out, chunk_size=4)
+    assert again.attrs["resume"]["recomputed"].keys() == {1}
+    pd.testing.assert_frame_equal(again[columns], memory[columns], check_dtype=False)
+    # another map in the same directory is refused
+    with pytest.raises(ValidationError, match="out_dir"):
+        drill_map(cfg, {"top_drive.rpm": [20.0]}, out=out)
+
+
+def test_stored_map_interrupt_then_resume(tmp_path: Path) -> None:
+    cfg = _small().with_overrides(["numerics.duration=300", "numerics.cells=200"])
+    axes = {"top_drive.rpm": [30.0, 40.0, 50.0, 60.0, 70.0, 80.0]}
+    out = tmp_path / "m"
+
+    class Stop(Exception):
+        pass
+
+    def progress(done: int, total: int) -> None:
+        if done >= 1:
+            raise Stop
+
+    with pytest.raises(Stop) as info:
+        drill_map(cfg, axes, threads=1, progress=progress, out=out, chunk_size=6)
+    partial = info.value.frame  # type: ignore[attr-defined]
+    finished = partial.loc[partial["status"] == "success", "top_drive.rpm"].tolist()
+    assert finished and (partial["status"] == "interrupted").any()
+    assert not (out / "map.parquet").exists()
+    solved: list[int] = []
+    frame = drill_map(cfg, axes, threads=1, progress=lambda done, total: solved.append(done), out=out, chunk_size=6)
+    assert (frame["status"] == "success").all()
+    # the stored runs count as done from the start; only the interrupted ones are solved
+    assert solved[0] == 0 and solved[-1] == 6 and all(n >= len(finished) for n in solved[1:])
+    assert frame.attrs["resume"]["recomputed"] == {}
+    single = drill(cfg.with_overrides({"top_drive.rpm": finished[0]})).metrics
+    assert frame.loc[frame["top_drive.rpm"] == finished[0], "ssi"].item() == single.ssi

@@ -573,7 +573,8 @@ def _add_drill_map(sub: Any) -> None:
         "configuration (config.toml) and the figures: with two numeric axes the SSI heat map with the stick-slip "
         "boundary SSI = 1 (ssi_map.png) and, with a top_drive.controller.type axis, one panel per controller "
         "(controllers.png); with one numeric axis SSI against it (ssi_lines.png). A run whose values the core "
-        "refuses is a row with status 'invalid'. Maps are held in memory (no resume).",
+        "refuses is a row with status 'invalid'. DIR also holds the map's chunked, verified store (manifest.json, "
+        "chunks/): the same command again resumes an interrupted map, solving only what is missing.",
         epilog="example: drillstring drill-map examples/on-bottom-3000m.toml --axis top_drive.rpm=40:160:13 "
         "--axis bit.weight_on_bit=40e3:120e3:9 --out rpm-wob",
     )
@@ -585,13 +586,15 @@ def _add_drill_map(sub: Any) -> None:
                    help="change a field of the base configuration (as drill --set; repeatable)")
     p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
     p.add_argument("--threads", type=int, default=None, help="threads (default: every core)")
+    p.add_argument("--chunk-size", type=int, default=None, help="runs per stored chunk (default 100)")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
     _add_progress(p)
     p.set_defaults(func=_cmd_drill_map)
 
 
 #: The files ``drill-map --out DIR`` may write.
-DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "controllers.png", "ssi_lines.png")
+DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "controllers.png", "ssi_lines.png",
+                   "manifest.json")
 
 
 def _map_axis(text: str) -> tuple[str, list[Any]]:
@@ -642,50 +645,33 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     check_destination(args.out, field="--out", directory=True, files=DRILL_MAP_FILES)
     start = time.perf_counter()
     try:
-        frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args))
-    except KeyboardInterrupt as exc:
-        partial = getattr(exc, "frame", None)
-        if partial is not None:
-            _write_map(partial, config, args.out, plots=False, file=sys.stderr)
+        frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
+                          chunk_size=args.chunk_size)
+    except KeyboardInterrupt:
+        print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
+              file=sys.stderr)
         raise
     seconds = time.perf_counter() - start
     counts = frame["status"].value_counts()
     ok = frame[frame["status"] == "success"]
+    redone = len(frame.attrs.get("resume", {}).get("recomputed", {}))
     _say(f"drill-map: {len(frame)} runs ({', '.join(f'{n} {s}' for s, n in counts.items())}) in {seconds:.3g} s "
-         f"({len(frame) / seconds:.3g} runs/s)")
+         f"({len(frame) / seconds:.3g} runs/s){f', {redone} stored chunk(s) recomputed' if redone else ''}")
     if len(ok):
         _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip (SSI >= 1) in {(ok['ssi'] >= 1).sum()} "
              f"runs, the bit stuck some of the time in {(ok['stuck_fraction'] > 0).sum()}")
-    written = _write_map(frame, config, args.out, plots=not args.no_plots, file=sys.stdout)
-    _say(f"wrote {len(written)} files to {args.out}")
-    return 0
+    from ._output import write_text
 
-
-def _write_map(frame: Any, config: Any, out: str, *, plots: bool, file: TextIO) -> list[Any]:
-    """Writes a map's table, base configuration and (``plots``) figures into ``out``."""
-    from ._output import atomic_write, make_directory, write_text
-
-    directory = os.fspath(make_directory(out))
-    table = frame.copy()
-    table.attrs = {}
-    written = [
-        atomic_write(os.path.join(directory, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
-                     suffix=".parquet"),
-        atomic_write(os.path.join(directory, "map.csv"), lambda tmp: table.to_csv(tmp, index=False,
-                                                                                   float_format="%.10g"),
-                     suffix=".csv"),
-        write_text(os.path.join(directory, "config.toml"), config.to_toml()),
-    ]
-    if plots:
+    written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),
+               write_text(os.path.join(args.out, "config.toml"), config.to_toml())]
+    if not args.no_plots:
         from .drilling.maps import map_figures
         from .plots import save
 
         for name, fig in map_figures(frame).items():
-            written.append(save(fig, os.path.join(directory, name)))
-    if file is sys.stderr:
-        print(f"drillstring: kept {int((frame['status'] != 'interrupted').sum())} finished runs in "
-              f"{os.path.join(out, 'map.parquet')}", file=sys.stderr)
-    return written
+            written.append(save(fig, os.path.join(args.out, name)))
+    _say(f"wrote {len(written)} files to {args.out} (and the resumable store: manifest.json, chunks/)")
+    return 0
 
 
 class _Parser(argparse.ArgumentParser):

@@ -11,8 +11,12 @@ switched off: they do not change the series or the metrics); its metrics are tho
 ``metrics.json``. A value the core refuses makes that run's row ``status = "invalid"`` with the
 message naming the field; the other runs go on.
 
-Maps are held in memory only (no chunked, resumable store as for the modal sweeps);
-``drillstring drill-map --out DIR`` writes the finished table and figures.
+With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumable store of the
+modal sweeps (:mod:`drillstring.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
+with a SHA-256 record each, one writer at a time); the same call again reuses every verified
+chunk, recomputes missing or failed ones and solves only the interrupted runs of a chunk; the
+whole table is written as ``map.parquet`` and ``map.csv`` at the end. Without ``out`` the map is
+held in memory only.
 
 Figures: :func:`ssi_map` (the stick-slip severity over two axes with the stick-slip boundary,
 the contour SSI = 1: the bit-speed oscillation as large as its mean, where the bit starts to
@@ -23,10 +27,12 @@ scale), :func:`ssi_lines` (SSI against one axis, one line per value of another).
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 import itertools
 import json
 import math
 import numbers
+import os
 import warnings
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
@@ -51,6 +57,9 @@ CONTROLLER_AXIS = "top_drive.controller.type"
 
 #: The metric columns of a map, in order (the fields of :class:`DrillMetrics`, as in ``metrics.json``).
 METRIC_COLUMNS: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(DrillMetrics))
+
+#: Runs per stored chunk of a map with ``out`` (default).
+CHUNK_SIZE = 100
 
 #: Solver columns after the metrics.
 STAT_COLUMNS: tuple[str, ...] = ("cells", "steps", "dt", "balance_error")
@@ -129,6 +138,8 @@ def drill_map(
     *,
     threads: Optional[int] = None,
     progress: Optional[MapProgress] = None,
+    out: Optional[Union[str, os.PathLike[str]]] = None,
+    chunk_size: Optional[int] = None,
 ) -> pd.DataFrame:
     """Solves ``config`` at every combination of the ``axes`` values; one row per run.
 
@@ -148,6 +159,12 @@ def drill_map(
     progress : bool or callable, optional
         ``True``: a tqdm bar of the runs finished on stderr; a callable ``f(finished, total)``
         (about every 20 ms while runs finish). An exception it raises stops the map as Ctrl-C does.
+    out : path, optional
+        A directory to store the map in as it goes (see the module docstring), resumable by the
+        same call; ``map.parquet`` and ``map.csv`` hold the table at the end. A directory holding
+        another map (other configuration, axes, chunk size or core build) is refused.
+    chunk_size : int, optional
+        Runs per stored chunk with ``out`` (default :data:`CHUNK_SIZE`).
 
     Returns
     -------
@@ -168,7 +185,7 @@ def drill_map(
     KeyboardInterrupt
         Ctrl-C (or the exception of ``progress``): the runs under way stop within milliseconds;
         the exception carries the table so far as its ``frame`` attribute (finished rows kept,
-        the others ``"interrupted"``).
+        the others ``"interrupted"``; with ``out``, the chunks solved so far, also stored).
     """
     cfg = _config(config)
     named = _axes(cfg, axes)
@@ -178,14 +195,18 @@ def drill_map(
     check_run_count("axes", {k: len(v) for k, v in named.items()}, runs)
     if threads is not None and (isinstance(threads, bool) or not isinstance(threads, numbers.Integral)):
         raise ValidationError("threads", threads, f"an integer in 1..={_core.MAX_THREADS} (or None for all cores)")
+    if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(chunk_size, numbers.Integral)
+                                   or chunk_size < 1):
+        raise ValidationError("chunk_size", chunk_size, "an integer >= 1")
     report, close = _progress_hook(progress, runs)
     combos = list(itertools.product(*named.values()))
-    runs_json = json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
+    count = None if threads is None else int(threads)
     if report is not None:
         report(0)
-    raw = _core.drill_map(cfg.to_json(), runs_json, None if threads is None else int(threads), memory_budget(), report)
-    frame = _frame(named, combos, raw, cfg)
-    interrupt = raw.get("interrupt")
+    if out is None:
+        frame, interrupt = _solve(cfg, named, combos, count, report, 0)
+    else:
+        frame, interrupt = _stored(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE))
     try:
         close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
     except BaseException as exc:  # the last report's exception: the map is complete, keep it
@@ -204,21 +225,113 @@ def _attach(exc: BaseException, frame: pd.DataFrame) -> None:
         pass
 
 
-def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: Mapping[str, Any],
-           cfg: DrillConfig) -> pd.DataFrame:
+def _solve(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
+           report: Optional[Callable[[float], None]], offset: int) -> tuple[pd.DataFrame, Optional[BaseException]]:
+    """Solves the runs ``combos`` in one core call; the table and the exception that stopped it."""
+    runs_json = json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
+    hook = None if report is None else (lambda done: report(offset + done))
+    raw = _core.drill_map(cfg.to_json(), runs_json, threads, memory_budget(), hook)
+    return _frame(named, combos, raw, cfg), raw.get("interrupt")
+
+
+def _digest(value: Any) -> str:
+    return hashlib.sha256(json.dumps(value, sort_keys=True, default=repr).encode()).hexdigest()
+
+
+def _stored(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
+            report: Optional[Callable[[float], None]], out: Any, size: int,
+            ) -> tuple[pd.DataFrame, Optional[BaseException]]:
+    """The map through a :class:`~drillstring.sweep_store.SweepStore` in ``out`` (resumable)."""
+    import pandas as pd
+
+    from .._output import atomic_write
+    from ..errors import ResumeWarning
+    from ..sweep_store import SweepStore
+    from ..sweeps import _core_build
+
+    identity = {"format": "drillstring-drill-map-1", "drillstring_version": _core.__version__,
+                "core_build": _core_build(), "chunk_size": size, "runs": len(combos)}
+    fingerprint = _digest({**identity, "config": cfg.to_dict(), "axes": named})
+    chunks = range(0, len(combos), size)
+    manifest = {**identity, "fingerprint": fingerprint, "chunks": len(chunks), "axes": list(named)}
+    columns = [*named, "status", "message", *METRIC_COLUMNS, *STAT_COLUMNS]
+    frames: list[pd.DataFrame] = []
+    interrupt: Optional[BaseException] = None
+    recomputed: dict[int, str] = {}
+    with SweepStore.open(out, manifest) as store:
+        for index, start in enumerate(chunks):
+            part = combos[start:start + size]
+            plan = _digest({"fingerprint": fingerprint, "index": index, "start": start, "runs": part})
+            parameters = _axis_frame(named, part, start)
+            stored, reason = store.load_chunk(index, plan, parameters, columns)
+            if reason is not None:
+                recomputed[index] = reason
+            if stored is not None:
+                todo = np.flatnonzero((stored["status"] == "interrupted").to_numpy())
+                if todo.size == 0:
+                    frames.append(stored)
+                    if report is not None:
+                        report(start + len(part))
+                    continue
+                solved, interrupt = _solve(cfg, named, [part[i] for i in todo], threads, report,
+                                           start + len(part) - todo.size)
+                solved.index = stored.index[todo]
+                frame = pd.concat([stored.drop(index=solved.index), solved]).sort_index()
+            else:
+                frame, interrupt = _solve(cfg, named, part, threads, report, start)
+                frame.index = parameters.index
+            frame.attrs = {}
+            store.save_chunk(index, plan, frame, not bool((frame["status"] == "interrupted").any()))
+            frames.append(frame)
+            if interrupt is not None:
+                break
+        table = pd.concat(frames).reset_index(drop=True) if frames else _frame(named, [], _EMPTY, cfg)
+        if recomputed:
+            reasons = "; ".join(f"chunk {i}: {why}" for i, why in recomputed.items())
+            warnings.warn(f"resuming the drill map in {out}: {len(recomputed)} stored chunk(s) failed verification "
+                          f"and are recomputed ({reasons})", ResumeWarning, stacklevel=3)
+        if interrupt is None:
+            root = os.fspath(store.root)
+            atomic_write(os.path.join(root, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
+                         suffix=".parquet", field="out")
+            atomic_write(os.path.join(root, "map.csv"),
+                         lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g"), suffix=".csv", field="out")
+    table.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict(),
+                       resume={"recomputed": recomputed})
+    return table, interrupt
+
+
+_EMPTY: dict[str, Any] = {"status": [], "message": [], "metrics": {}, "stats": {}}
+
+
+def _axis_columns(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]]) -> dict[str, Any]:
     import pandas as pd
 
     columns: dict[str, Any] = {}
     for i, key in enumerate(named):
         values = [combo[i] for combo in combos]
         columns[key] = values if any(isinstance(v, (list, dict)) for v in values) else pd.array(values).to_numpy()
+    return columns
+
+
+def _axis_frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], start: int) -> pd.DataFrame:
+    import pandas as pd
+
+    return pd.DataFrame(_axis_columns(named, combos), index=pd.RangeIndex(start, start + len(combos)))
+
+
+def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: Mapping[str, Any],
+           cfg: DrillConfig) -> pd.DataFrame:
+    import pandas as pd
+
+    columns = _axis_columns(named, combos)
     columns["status"] = list(raw["status"])
     columns["message"] = list(raw["message"])
     metrics = raw["metrics"]
     for name in METRIC_COLUMNS:
-        columns[name] = np.asarray(metrics[_CORE_METRICS.get(name, name)], dtype=float)
+        columns[name] = np.asarray(metrics.get(_CORE_METRICS.get(name, name), []), dtype=float)
     for name in STAT_COLUMNS:
-        columns[name] = np.asarray(raw["stats"][name])
+        columns[name] = np.asarray(raw["stats"].get(name, []))
     frame = pd.DataFrame(columns)
     frame.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict())
     return frame
