@@ -23,7 +23,8 @@ The API
 
 The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
 ``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
-:class:`DrillResult`; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
+:class:`DrillResult`, ``ds.drill_map(config, axes)`` a table of stick-slip metrics over a grid of
+configuration values; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ from . import section as section
 from . import stability as stability
 from ._core import __version__, simd_path
 from .coefficients import PDECoefficients
-from .drilling import DrillConfig, DrillMetrics, DrillResult, drill, load_drill_config
+from .drilling import DrillConfig, DrillMetrics, DrillResult, drill, drill_map, load_drill_config
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .grid import linspace, logspace
@@ -165,6 +166,7 @@ __all__ = [
     "logspace",
     # the drilling system (stick-slip)
     "drill",
+    "drill_map",
     "DrillConfig",
     "DrillResult",
     "DrillMetrics",

@@ -501,3 +501,36 @@ def drill_solve(config_json: str, progress: Optional[Callable[[float], object]] 
     KeyboardInterrupt
         Ctrl-C during the solve (or any exception raised by ``progress``).
     """
+
+
+class DrillMapOutput(TypedDict):
+    """What :func:`drill_map` returns: one entry per run, in the order of the runs."""
+
+    status: list[str]
+    message: list[str]
+    metrics: dict[str, NDArray[np.float64]]
+    """The names of ``drill_solve``'s metrics (``severity``, ``stuck_fraction``, ...), NaN unless successful."""
+    stats: dict[str, NDArray[np.generic]]
+    """``cells``, ``steps`` (uint64), ``dt``, ``balance_error``."""
+    interrupt: Optional[BaseException]
+    """The exception that stopped the map (Ctrl-C or raised by ``progress``), or None."""
+
+
+def drill_map(
+    config_json: str,
+    runs_json: str,
+    threads: Optional[int] = None,
+    memory_budget: Optional[int] = None,
+    progress: Optional[Callable[[float], object]] = None,
+) -> DrillMapOutput:
+    """A stick-slip map: ``config_json`` with each run's overrides (``runs_json``: a list of runs,
+    each a list of ``[dotted key, value]`` pairs; null unsets a field) solved in parallel without
+    the GIL; ``progress(finished_runs)`` about every 20 ms. A refused run is a row with status
+    ``"invalid"``; the exception that stopped the map is returned under ``interrupt``.
+
+    Raises
+    ------
+    ValidationError
+        ``config_json`` or ``runs_json`` not JSON of the right shape, ``threads``, or a map
+        over ``memory_budget`` bytes (``threads``).
+    """

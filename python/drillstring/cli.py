@@ -3,6 +3,7 @@
     drillstring simulate [CONFIG.toml] [--preset NAME] [overrides] [--out FILE.csv] [--plot FILE.png]
     drillstring table2 [--json]
     drillstring drill CONFIG.toml --out DIR [--set key=value ...] [--no-plots]
+    drillstring drill-map CONFIG.toml --axis key=start:stop:count --axis key=v1,v2 --out DIR [--set ...]
 
 Errors are reported as one line on stderr with exit status 2 (no traceback); an error in a
 TOML file names the file, the line and the key. Ctrl-C stops a run within a fraction of a second
@@ -563,6 +564,116 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_drill_map(sub: Any) -> None:
+    p = sub.add_parser(
+        "drill-map",
+        help="stick-slip map of the drilling system over configuration values (SSI heat map)",
+        description="Solve the drilling system at every combination of the axis values (any dotted configuration "
+        "key) in parallel and write one row of stick-slip metrics per run (map.parquet, map.csv), the base "
+        "configuration (config.toml) and the figures: with two numeric axes the SSI heat map with the stick-slip "
+        "boundary SSI = 1 (ssi_map.png) and, with a top_drive.controller.type axis, one panel per controller "
+        "(controllers.png); with one numeric axis SSI against it (ssi_lines.png). A run whose values the core "
+        "refuses is a row with status 'invalid'. DIR also holds the map's chunked, verified store (manifest.json, "
+        "chunks/): the same command again resumes an interrupted map, solving only what is missing.",
+        epilog="example: drillstring drill-map examples/on-bottom-3000m.toml --axis top_drive.rpm=40:160:13 "
+        "--axis bit.weight_on_bit=40e3:120e3:9 --out rpm-wob",
+    )
+    p.add_argument("config", metavar="CONFIG.toml", help="drilling-system configuration (examples/*.toml)")
+    p.add_argument("--axis", action="append", default=[], required=True, metavar="KEY=VALUES", dest="axes",
+                   help="an axis: KEY=start:stop:count (evenly spaced, numpy.linspace) or KEY=v1,v2,... (TOML "
+                   "values; bare words are strings, e.g. top_drive.controller.type=pi,soft_torque) (repeatable)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="change a field of the base configuration (as drill --set; repeatable)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
+    p.add_argument("--threads", type=int, default=None, help="threads (default: every core)")
+    p.add_argument("--chunk-size", type=int, default=None, help="runs per stored chunk (default 100)")
+    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    _add_progress(p)
+    p.set_defaults(func=_cmd_drill_map)
+
+
+#: The files ``drill-map --out DIR`` may write.
+DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "controllers.png", "ssi_lines.png",
+                   "manifest.json")
+
+
+def _map_axis(text: str) -> tuple[str, list[Any]]:
+    """``KEY=start:stop:count`` or ``KEY=v1,v2,...`` as (key, values)."""
+    import numpy as np
+
+    from .drilling.config import _split_assignment
+
+    form = "KEY=start:stop:count or KEY=v1,v2,... (e.g. top_drive.rpm=40:160:13)"
+    key, sep, raw = text.partition("=")
+    key, raw = key.strip(), raw.strip()
+    if not sep or not key or not raw:
+        raise ValidationError("--axis", text, form)
+    if ":" in raw:
+        parts = raw.split(":")
+        try:
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
+        except ValueError:
+            raise ValidationError("--axis", text, form + " with numbers and an integer count") from None
+        if count < 1 or not (np.isfinite(start) and np.isfinite(stop)):
+            raise ValidationError("--axis", text, form + " with finite numbers and a count >= 1")
+        return key, [float(v) for v in np.linspace(start, stop, count)]
+    values = []
+    for item in raw.split(","):
+        if not item.strip():
+            raise ValidationError("--axis", text, form + " (an empty value)")
+        values.append(_split_assignment(f"{key}={item.strip()}")[1])
+    return key, values
+
+
+def _cmd_drill_map(args: argparse.Namespace) -> int:
+    import time
+
+    from .drilling import load_drill_config
+    from .drilling.maps import drill_map
+
+    config = load_drill_config(args.config)
+    if args.overrides:
+        config = config.with_overrides(args.overrides)
+    axes: dict[str, list[Any]] = {}
+    for text in args.axes:
+        key, values = _map_axis(text)
+        if key in axes:
+            raise ValidationError("--axis", text, f"each key once ({key} is given twice)")
+        axes[key] = values
+    check_destination(args.out, field="--out", directory=True, files=DRILL_MAP_FILES)
+    start = time.perf_counter()
+    try:
+        frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
+                          chunk_size=args.chunk_size)
+    except KeyboardInterrupt:
+        print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
+              file=sys.stderr)
+        raise
+    seconds = time.perf_counter() - start
+    counts = frame["status"].value_counts()
+    ok = frame[frame["status"] == "success"]
+    redone = len(frame.attrs.get("resume", {}).get("recomputed", {}))
+    _say(f"drill-map: {len(frame)} runs ({', '.join(f'{n} {s}' for s, n in counts.items())}) in {seconds:.3g} s "
+         f"({len(frame) / seconds:.3g} runs/s){f', {redone} stored chunk(s) recomputed' if redone else ''}")
+    if len(ok):
+        _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip (SSI >= 1) in {(ok['ssi'] >= 1).sum()} "
+             f"runs, the bit stuck some of the time in {(ok['stuck_fraction'] > 0).sum()}")
+    from ._output import write_text
+
+    written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),
+               write_text(os.path.join(args.out, "config.toml"), config.to_toml())]
+    if not args.no_plots:
+        from .drilling.maps import map_figures
+        from .plots import save
+
+        for name, fig in map_figures(frame).items():
+            written.append(save(fig, os.path.join(args.out, name)))
+    _say(f"wrote {len(written)} files to {args.out} (and the resumable store: manifest.json, chunks/)")
+    return 0
+
+
 class _Parser(argparse.ArgumentParser):
     """Usage errors as one line (``prog: error: ...``) with exit status 2."""
 
@@ -585,6 +696,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_paper(sub)
     _add_sweep(sub)
     _add_drill(sub)
+    _add_drill_map(sub)
     return parser
 
 

@@ -28,6 +28,7 @@ from .config import (
     defaults,
     load_drill_config,
 )
+from .maps import controller_maps, drill_map, ssi_lines, ssi_map
 from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
 from .solve import drill, friction_profile
@@ -40,6 +41,10 @@ __all__ = [
     "DrillProfile",
     "DrillResult",
     "drill",
+    "drill_map",
+    "controller_maps",
+    "ssi_lines",
+    "ssi_map",
     "friction_profile",
     "Bit",
     "Controller",

@@ -10,6 +10,7 @@
 use pyo3::prelude::*;
 
 mod convert;
+mod drill_map;
 mod drilling;
 mod galerkin;
 mod metrics;
@@ -54,6 +55,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(drill_map::drill_map, m)?)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

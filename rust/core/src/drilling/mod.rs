@@ -16,10 +16,13 @@
 //! * [`grid`]: section properties, the time step and cells, the friction limit, the string's
 //!   first natural frequency, the break-off torque;
 //! * [`solver`]: the time stepping, controllers, outputs, energy balance and metrics
-//!   ([`solve`], [`friction_profile`]).
+//!   ([`solve`], [`friction_profile`]);
+//! * [`map`]: stick-slip maps, many runs of one base configuration with per-run overrides
+//!   solved in parallel, one row of metrics each ([`map::solve_map`]).
 
 pub mod config;
 pub mod grid;
+pub mod map;
 pub mod solver;
 
 #[cfg(test)]

@@ -1,0 +1,461 @@
+"""Stick-slip maps: the drilling system over a grid of configuration values.
+
+:func:`drill_map` solves every combination of the values of its axes (any dotted field of the
+configuration: ``top_drive.rpm``, ``bit.weight_on_bit``, ``friction.static``,
+``sections[0].length``, ``top_drive.controller.type``, ...) in the Rust core
+(``drillstring_core::drilling::map``) on a thread pool, and returns one row of metrics per run
+(no time series: a map's memory does not depend on the duration). Each run is the base
+configuration with its axis values set by path, parsed and validated in the core exactly as
+:func:`~drillstring.drilling.drill` does, and solved by the same solver (its field snapshots
+switched off: they do not change the series or the metrics); its metrics are those of
+``metrics.json``. A value the core refuses makes that run's row ``status = "invalid"`` with the
+message naming the field; the other runs go on.
+
+With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumable store of the
+modal sweeps (:mod:`drillstring.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
+with a SHA-256 record each, one writer at a time); the same call again reuses every verified
+chunk, recomputes missing or failed ones and solves only the interrupted runs of a chunk; the
+whole table is written as ``map.parquet`` and ``map.csv`` at the end. Without ``out`` the map is
+held in memory only.
+
+Figures: :func:`ssi_map` (the stick-slip severity over two axes with the stick-slip boundary,
+the contour SSI = 1: the bit-speed oscillation as large as its mean, where the bit starts to
+stop), :func:`controller_maps` (one such panel per controller, side by side, on one colour
+scale), :func:`ssi_lines` (SSI against one axis, one line per value of another).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import itertools
+import json
+import math
+import numbers
+import os
+import warnings
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
+
+import numpy as np
+
+from .. import _core
+from ..errors import ValidationError
+from ..limits import check_run_count, memory_budget
+from .config import DrillConfig, _assign
+from .result import _CORE_METRICS, DrillMetrics
+from .solve import ConfigLike, _config
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+    from matplotlib.figure import Figure
+
+__all__ = ["CONTROLLER_AXIS", "METRIC_COLUMNS", "controller_maps", "drill_map", "ssi_lines", "ssi_map"]
+
+#: The axis of the controller type (one panel per controller in :func:`controller_maps`).
+CONTROLLER_AXIS = "top_drive.controller.type"
+
+#: The metric columns of a map, in order (the fields of :class:`DrillMetrics`, as in ``metrics.json``).
+METRIC_COLUMNS: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(DrillMetrics))
+
+#: Runs per stored chunk of a map with ``out`` (default).
+CHUNK_SIZE = 100
+
+#: Solver columns after the metrics.
+STAT_COLUMNS: tuple[str, ...] = ("cells", "steps", "dt", "balance_error")
+
+MapProgress = Union[bool, Callable[[int, int], Any]]
+
+
+def _plain_value(value: Any, field: str) -> Any:
+    """An axis value as a JSON-ready plain value (numpy scalars unwrapped)."""
+    if isinstance(value, np.generic):
+        value = value.item()
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        if not math.isfinite(float(value)):
+            raise ValidationError(field, value, "finite numbers, strings, true/false or lists of numbers")
+        return float(value)
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_plain_value(v, field) for v in value]
+    raise ValidationError(field, value, "numbers, strings, true/false, null or lists of numbers")
+
+
+def _axes(cfg: DrillConfig, axes: Any) -> dict[str, list[Any]]:
+    if not isinstance(axes, Mapping) or not axes:
+        raise ValidationError("axes", axes, "a non-empty mapping of dotted configuration keys to lists of values "
+                              "(e.g. {'top_drive.rpm': [40, 80, 120]})")
+    data = cfg.to_dict()
+    out: dict[str, list[Any]] = {}
+    for path, values in axes.items():
+        if not isinstance(path, str):
+            raise ValidationError("axes", path, "dotted configuration keys (strings)")
+        key = path.replace(" ", "")
+        if key in out:
+            raise ValidationError(f"axes[{path!r}]", path, "each key once")
+        if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)) or len(values) == 0:
+            raise ValidationError(f"axes[{path!r}]", values, "a non-empty list of values")
+        plain = [_plain_value(v, f"axes[{path!r}]") for v in values]
+        _assign(json.loads(json.dumps(data)), key, plain[0])  # unknown keys and indices name the path
+        out[key] = plain
+    return out
+
+
+def _progress_hook(
+    progress: Any, total: int
+) -> tuple[Optional[Callable[[float], None]], Callable[[Optional[int]], None]]:
+    """The core's ``progress(finished)`` and ``close(finished)`` (the last report; ``None``: none), for
+    ``progress=True`` (a tqdm bar of runs) or a callable ``f(finished, total)``."""
+    if progress is None or progress is False:
+        return None, lambda done: None
+    if progress is True:
+        from .._progress import bar
+
+        tq = bar(total, "drill map", "runs")
+
+        def report(done: float) -> None:
+            tq.n = int(done)
+            tq.refresh()
+
+        def close(done: Optional[int]) -> None:
+            if done is not None:
+                report(done)
+            tq.close()
+
+        return report, close
+    if callable(progress):
+        call = progress
+        return (lambda done: call(int(done), total)), (lambda done: None if done is None else call(done, total))
+    raise ValidationError("progress", progress, "True, False or a callable f(finished_runs, total_runs)")
+
+
+def drill_map(
+    config: ConfigLike,
+    axes: Mapping[str, Sequence[Any]],
+    *,
+    threads: Optional[int] = None,
+    progress: Optional[MapProgress] = None,
+    out: Optional[Union[str, os.PathLike[str]]] = None,
+    chunk_size: Optional[int] = None,
+) -> pd.DataFrame:
+    """Solves ``config`` at every combination of the ``axes`` values; one row per run.
+
+    Parameters
+    ----------
+    config : DrillConfig, mapping or path of a TOML file
+        The base configuration.
+    axes : mapping of dotted keys to lists of values
+        ``{"top_drive.rpm": [40, 80, 120], "bit.weight_on_bit": [50e3, 100e3]}``; any field of
+        the configuration (``sections[1].length``, ``friction.static``,
+        ``top_drive.controller.type`` with ``["pi", "soft_torque"]``, ...). The runs are the
+        Cartesian product, the first axis varying slowest. ``None`` unsets an optional field;
+        one number for ``well.inclination_deg`` (without a ``well.md`` axis) drops the survey
+        depths, as :meth:`DrillConfig.with_overrides` does.
+    threads : int, optional
+        Threads of the map (default: every core), at most ``_core.MAX_THREADS``.
+    progress : bool or callable, optional
+        ``True``: a tqdm bar of the runs finished on stderr; a callable ``f(finished, total)``
+        (about every 20 ms while runs finish). An exception it raises stops the map as Ctrl-C does.
+    out : path, optional
+        A directory to store the map in as it goes (see the module docstring), resumable by the
+        same call; ``map.parquet`` and ``map.csv`` hold the table at the end. A directory holding
+        another map (other configuration, axes, chunk size or core build) is refused.
+    chunk_size : int, optional
+        Runs per stored chunk with ``out`` (default :data:`CHUNK_SIZE`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns: the axis keys (their values), ``status`` (``"success"``, ``"invalid"`` for a
+        configuration the core refuses, ``"non_finite"``, ``"interrupted"``, ``"error"``),
+        ``message``, the metrics of ``metrics.json`` (:data:`METRIC_COLUMNS`: ``ssi``,
+        ``stuck_fraction``, ``period_s``, ``bit_rpm_min`` ... ``breakoff_torque_Nm``; NaN unless
+        the run succeeded) and :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes`` and the base
+        ``config`` (:meth:`DrillConfig.to_dict`).
+
+    Raises
+    ------
+    ValidationError
+        A base configuration the core refuses; empty or malformed axes, a key that is not in
+        the configuration (naming it); too many runs (:func:`drillstring.limits.check_run_count`)
+        or a map over the memory budget.
+    KeyboardInterrupt
+        Ctrl-C (or the exception of ``progress``): the runs under way stop within milliseconds;
+        the exception carries the table so far as its ``frame`` attribute (finished rows kept,
+        the others ``"interrupted"``; with ``out``, the chunks solved so far, also stored).
+    """
+    cfg = _config(config)
+    named = _axes(cfg, axes)
+    runs = 1
+    for values in named.values():
+        runs *= len(values)
+    check_run_count("axes", {k: len(v) for k, v in named.items()}, runs)
+    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, numbers.Integral)):
+        raise ValidationError("threads", threads, f"an integer in 1..={_core.MAX_THREADS} (or None for all cores)")
+    if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(chunk_size, numbers.Integral)
+                                   or chunk_size < 1):
+        raise ValidationError("chunk_size", chunk_size, "an integer >= 1")
+    report, close = _progress_hook(progress, runs)
+    combos = list(itertools.product(*named.values()))
+    count = None if threads is None else int(threads)
+    if report is not None:
+        report(0)
+    if out is None:
+        frame, interrupt = _solve(cfg, named, combos, count, report, 0)
+    else:
+        frame, interrupt = _stored(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE))
+    try:
+        close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
+    except BaseException as exc:  # the last report's exception: the map is complete, keep it
+        _attach(exc, frame)
+        raise
+    if interrupt is not None:
+        _attach(interrupt, frame)
+        raise interrupt
+    return frame
+
+
+def _attach(exc: BaseException, frame: pd.DataFrame) -> None:
+    try:
+        exc.frame = frame  # type: ignore[attr-defined]
+    except AttributeError:  # pragma: no cover - exceptions normally take attributes
+        pass
+
+
+def _solve(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
+           report: Optional[Callable[[float], None]], offset: int) -> tuple[pd.DataFrame, Optional[BaseException]]:
+    """Solves the runs ``combos`` in one core call; the table and the exception that stopped it."""
+    runs_json = json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
+    hook = None if report is None else (lambda done: report(offset + done))
+    raw = _core.drill_map(cfg.to_json(), runs_json, threads, memory_budget(), hook)
+    return _frame(named, combos, raw, cfg), raw.get("interrupt")
+
+
+def _digest(value: Any) -> str:
+    return hashlib.sha256(json.dumps(value, sort_keys=True, default=repr).encode()).hexdigest()
+
+
+def _stored(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
+            report: Optional[Callable[[float], None]], out: Any, size: int,
+            ) -> tuple[pd.DataFrame, Optional[BaseException]]:
+    """The map through a :class:`~drillstring.sweep_store.SweepStore` in ``out`` (resumable)."""
+    import pandas as pd
+
+    from .._output import atomic_write
+    from ..errors import ResumeWarning
+    from ..sweep_store import SweepStore
+    from ..sweeps import _core_build
+
+    identity = {"format": "drillstring-drill-map-1", "drillstring_version": _core.__version__,
+                "core_build": _core_build(), "chunk_size": size, "runs": len(combos)}
+    fingerprint = _digest({**identity, "config": cfg.to_dict(), "axes": named})
+    chunks = range(0, len(combos), size)
+    manifest = {**identity, "fingerprint": fingerprint, "chunks": len(chunks), "axes": list(named)}
+    columns = [*named, "status", "message", *METRIC_COLUMNS, *STAT_COLUMNS]
+    frames: list[pd.DataFrame] = []
+    interrupt: Optional[BaseException] = None
+    recomputed: dict[int, str] = {}
+    with SweepStore.open(out, manifest) as store:
+        for index, start in enumerate(chunks):
+            part = combos[start:start + size]
+            plan = _digest({"fingerprint": fingerprint, "index": index, "start": start, "runs": part})
+            parameters = _axis_frame(named, part, start)
+            stored, reason = store.load_chunk(index, plan, parameters, columns)
+            if reason is not None:
+                recomputed[index] = reason
+            if stored is not None:
+                todo = np.flatnonzero((stored["status"] == "interrupted").to_numpy())
+                if todo.size == 0:
+                    frames.append(stored)
+                    if report is not None:
+                        report(start + len(part))
+                    continue
+                solved, interrupt = _solve(cfg, named, [part[i] for i in todo], threads, report,
+                                           start + len(part) - todo.size)
+                solved.index = stored.index[todo]
+                frame = pd.concat([stored.drop(index=solved.index), solved]).sort_index()
+            else:
+                frame, interrupt = _solve(cfg, named, part, threads, report, start)
+                frame.index = parameters.index
+            frame.attrs = {}
+            store.save_chunk(index, plan, frame, not bool((frame["status"] == "interrupted").any()))
+            frames.append(frame)
+            if interrupt is not None:
+                break
+        table = pd.concat(frames).reset_index(drop=True) if frames else _frame(named, [], _EMPTY, cfg)
+        if recomputed:
+            reasons = "; ".join(f"chunk {i}: {why}" for i, why in recomputed.items())
+            warnings.warn(f"resuming the drill map in {out}: {len(recomputed)} stored chunk(s) failed verification "
+                          f"and are recomputed ({reasons})", ResumeWarning, stacklevel=3)
+        if interrupt is None:
+            root = os.fspath(store.root)
+            atomic_write(os.path.join(root, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
+                         suffix=".parquet", field="out")
+            atomic_write(os.path.join(root, "map.csv"),
+                         lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g"), suffix=".csv", field="out")
+    table.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict(),
+                       resume={"recomputed": recomputed})
+    return table, interrupt
+
+
+_EMPTY: dict[str, Any] = {"status": [], "message": [], "metrics": {}, "stats": {}}
+
+
+def _axis_columns(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]]) -> dict[str, Any]:
+    import pandas as pd
+
+    columns: dict[str, Any] = {}
+    for i, key in enumerate(named):
+        values = [combo[i] for combo in combos]
+        columns[key] = values if any(isinstance(v, (list, dict)) for v in values) else pd.array(values).to_numpy()
+    return columns
+
+
+def _axis_frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], start: int) -> pd.DataFrame:
+    import pandas as pd
+
+    return pd.DataFrame(_axis_columns(named, combos), index=pd.RangeIndex(start, start + len(combos)))
+
+
+def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: Mapping[str, Any],
+           cfg: DrillConfig) -> pd.DataFrame:
+    import pandas as pd
+
+    columns = _axis_columns(named, combos)
+    columns["status"] = list(raw["status"])
+    columns["message"] = list(raw["message"])
+    metrics = raw["metrics"]
+    for name in METRIC_COLUMNS:
+        columns[name] = np.asarray(metrics.get(_CORE_METRICS.get(name, name), []), dtype=float)
+    for name in STAT_COLUMNS:
+        columns[name] = np.asarray(raw["stats"].get(name, []))
+    frame = pd.DataFrame(columns)
+    frame.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict())
+    return frame
+
+
+# --------------------------------------------------------------------------- figures
+
+
+def _numeric(frame: pd.DataFrame, key: str) -> bool:
+    import pandas as pd
+
+    return key in frame.columns and pd.api.types.is_numeric_dtype(frame[key]) and not pd.api.types.is_bool_dtype(
+        frame[key])
+
+
+def numeric_axes(frame: pd.DataFrame) -> list[str]:
+    """The axes of a map (``frame.attrs["axes"]``) with numeric values."""
+    return [k for k in frame.attrs.get("axes", {}) if _numeric(frame, k)]
+
+
+def _grid(frame: pd.DataFrame, x: str, y: str, value: str) -> tuple[Any, Any, Any]:
+    table = frame.pivot_table(index=y, columns=x, values=value, aggfunc="mean", dropna=False)
+    return (table.columns.to_numpy(dtype=float), table.index.to_numpy(dtype=float),
+            np.ma.masked_invalid(table.to_numpy(dtype=float)))
+
+
+def _panel(ax: Any, frame: pd.DataFrame, x: str, y: str, value: str, vmax: float) -> Any:
+    xs, ys, z = _grid(frame, x, y, value)
+    mesh = ax.pcolormesh(xs, ys, z, shading="nearest", cmap="magma_r", vmin=0.0, vmax=vmax)
+    finite = z.compressed()
+    if value == "ssi" and xs.size > 1 and ys.size > 1 and finite.size and finite.min() < 1.0 < finite.max():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ax.contour(xs, ys, z, levels=[1.0], colors="tab:cyan", linewidths=2.0)
+    ax.set_xlabel(x)
+    ax.set_ylabel(y)
+    return mesh
+
+
+def _check_axes(frame: pd.DataFrame, keys: Sequence[str]) -> None:
+    for key in keys:
+        if not _numeric(frame, key):
+            raise ValidationError("axis", key, f"a numeric axis of the map (one of {', '.join(numeric_axes(frame))})")
+
+
+def _vmax(values: Any) -> float:
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    return float(max(1.5, finite.max())) if finite.size else 1.5
+
+
+def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None) -> Figure:
+    """The stick-slip severity over the axes ``x`` and ``y`` of a map (a cell per run; runs
+    with other axes' values are averaged), with the stick-slip boundary SSI = 1 (cyan).
+    Failed runs are blank."""
+    from .plots import _figure
+
+    _check_axes(frame, (x, y))
+    fig = _figure(6.4, 4.8)
+    ax = fig.add_subplot()
+    mesh = _panel(ax, frame, x, y, "ssi", _vmax(frame["ssi"]))
+    fig.colorbar(mesh, ax=ax, label="stick-slip severity SSI (cyan: SSI = 1)")
+    ax.set_title(title or "stick-slip map")
+    return fig
+
+
+def controller_maps(frame: pd.DataFrame, x: str, y: str, *, controller: str = CONTROLLER_AXIS,
+                    title: Optional[str] = None) -> Figure:
+    """:func:`ssi_map` panels side by side, one per value of the ``controller`` axis, on one
+    colour scale, each with its SSI = 1 boundary."""
+    from .plots import _figure
+
+    _check_axes(frame, (x, y))
+    if controller not in frame.columns:
+        raise ValidationError("controller", controller, "an axis of the map")
+    kinds = list(dict.fromkeys(frame[controller]))
+    fig = _figure(4.2 * len(kinds) + 1.2, 4.2)
+    axs = fig.subplots(1, len(kinds), sharex=True, sharey=True, squeeze=False)[0]
+    vmax = _vmax(frame["ssi"])
+    meshes = []
+    for ax, kind in zip(axs, kinds):
+        meshes.append(_panel(ax, frame[frame[controller] == kind], x, y, "ssi", vmax))
+        ax.set_title(str(kind))
+    fig.colorbar(meshes[0], ax=list(axs), label="SSI (cyan: SSI = 1)")
+    fig.suptitle(title or "stick-slip severity by controller")
+    return fig
+
+
+def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: Optional[str] = None) -> Figure:
+    """SSI (and the stuck fraction) against the axis ``x``, one line per value of the axis ``by``."""
+    from .plots import _figure
+
+    _check_axes(frame, (x,))
+    fig = _figure(6.4, 4.8)
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    groups = [(None, frame)] if by is None else list(frame.groupby(by, sort=False))
+    for key, part in groups:
+        part = part.groupby(x, sort=True)[["ssi", "stuck_fraction"]].mean()
+        label = None if key is None else f"{by} = {key!s}"
+        ax1.plot(part.index, part["ssi"], marker="o", label=label)
+        ax2.plot(part.index, part["stuck_fraction"], marker="o", label=label)
+    ax1.axhline(1.0, color="0.5", ls="--", lw=1)
+    ax1.set_ylabel("SSI")
+    ax2.set_ylabel("stuck fraction")
+    ax2.set_xlabel(x)
+    if by is not None:
+        ax1.legend(fontsize="small")
+    ax1.set_title(title or "stick-slip severity")
+    return fig
+
+
+def map_figures(frame: pd.DataFrame) -> dict[str, Figure]:
+    """The figures a map gets (file name -> figure): with two numeric axes ``ssi_map.png`` and,
+    when ``top_drive.controller.type`` is an axis too, ``controllers.png``; with one numeric
+    axis ``ssi_lines.png`` (a line per value of another axis, if any). None otherwise."""
+    axes = list(frame.attrs.get("axes", {}))
+    numeric = numeric_axes(frame)
+    out: dict[str, Figure] = {}
+    if len(numeric) >= 2:
+        x, y = numeric[0], numeric[1]
+        out["ssi_map.png"] = ssi_map(frame, x, y)
+        if CONTROLLER_AXIS in axes:
+            out["controllers.png"] = controller_maps(frame, x, y)
+    elif len(numeric) == 1:
+        others = [k for k in axes if k != numeric[0]]
+        out["ssi_lines.png"] = ssi_lines(frame, numeric[0], others[0] if others else None)
+    return out

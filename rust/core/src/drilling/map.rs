@@ -1,0 +1,437 @@
+//! Stick-slip maps: many drilling runs of one base configuration, each with its own field
+//! overrides, solved in parallel; one row of metrics per run (no time series are kept).
+//!
+//! Each run is the base configuration (JSON) with its overrides set by dotted path
+//! (`top_drive.rpm`, `sections[1].length`, `top_drive.controller.type`), then
+//! [`DrillConfig::from_json`] and [`DrillConfig::validate`] as for a single run, and
+//! [`solve`] with the field snapshots switched off (`numerics.field_interval = 0`: they do not
+//! change the dynamics, the series or the metrics). The metrics are the solve's own
+//! ([`crate::metrics::stick_slip`] over its window); the series are dropped when the run ends,
+//! so a row's memory does not depend on the duration (a thread holds the series of the one run
+//! it is solving).
+//!
+//! A run whose configuration is refused is a row with status `invalid` and the message naming
+//! the field; it never fails the map. The runs go on a thread pool made for the call (never
+//! rayon's global pool, so a process that forks can run maps in the child), as
+//! [`crate::sweep::batch_solve_with`] does.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use rayon::prelude::*;
+use serde_json::Value;
+
+use super::config::{DrillConfig, SERIES};
+use super::solver::{solve, DrillStats};
+use crate::error::{Error, Result};
+use crate::interrupt::{CancelFlag, Interrupt};
+use crate::metrics::StickSlip;
+use crate::solution::Status;
+use crate::sweep::{resolve_threads, RunStatus};
+
+/// How often the calling thread asks its [`Interrupt`] hook and reports progress.
+const HOOK_INTERVAL: Duration = Duration::from_millis(5);
+
+/// One field override of a run: a dotted path with indices and its JSON value
+/// (`null` removes the field, so it takes its default).
+pub type Override = (String, Value);
+
+/// The outcome of one run of a map. `metrics` is `None` unless the run succeeded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapRow {
+    pub status: RunStatus,
+    /// Why the run failed or was refused (`""` on success).
+    pub message: String,
+    pub metrics: Option<StickSlip>,
+    /// The metrics window `[t_start, t_end]` asked for (NaN for an invalid run).
+    pub window: [f64; 2],
+    /// Static break-off torque, N m (NaN for an invalid run).
+    pub breakoff_torque: f64,
+    pub stats: DrillStats,
+    /// Relative energy balance error of the run (NaN for an invalid run).
+    pub balance_error: f64,
+}
+
+impl MapRow {
+    fn failed(status: RunStatus, message: String) -> Self {
+        MapRow {
+            status,
+            message,
+            metrics: None,
+            window: [f64::NAN; 2],
+            breakoff_torque: f64::NAN,
+            stats: DrillStats::default(),
+            balance_error: f64::NAN,
+        }
+    }
+}
+
+/// The tokens of a dotted path with indices: `sections[1].length` -> `sections`, `1`, `length`.
+enum Token<'a> {
+    Key(&'a str),
+    Index(usize),
+}
+
+fn tokens(path: &str) -> Option<Vec<Token<'_>>> {
+    let mut out = Vec::new();
+    for part in path.split('.') {
+        let (name, mut rest) = part.split_once('[').map_or((part, ""), |(n, r)| (n, r));
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            return None;
+        }
+        out.push(Token::Key(name));
+        while !rest.is_empty() {
+            let (index, after) = rest.split_once(']')?;
+            out.push(Token::Index(index.parse().ok()?));
+            rest = match after.strip_prefix('[') {
+                Some(r) => r,
+                None if after.is_empty() => "",
+                None => return None,
+            };
+        }
+    }
+    Some(out)
+}
+
+/// Sets `path` to `value` in the JSON configuration `config` (`null` removes the field). The
+/// path must exist in `config` or be a key of an object that exists (the core fills defaults
+/// later and refuses unknown keys, naming them). Setting `well.inclination_deg` to one number
+/// without also setting `well.md` drops the survey depths (a constant inclination), as
+/// `DrillConfig.with_overrides` does in Python.
+pub fn set_path(config: &mut Value, path: &str, value: &Value) -> Result<()> {
+    let form = "a dotted key with indices of the configuration (top_drive.rpm, sections[0].length)";
+    let toks = tokens(path).ok_or_else(|| Error::invalid("axis", path, form))?;
+    let mut node = config;
+    let mut where_ = String::new();
+    for (i, tok) in toks.iter().enumerate() {
+        let last = i + 1 == toks.len();
+        match tok {
+            Token::Key(name) => {
+                where_ = if where_.is_empty() { (*name).to_string() } else { format!("{where_}.{name}") };
+                let Value::Object(map) = node else {
+                    return Err(Error::invalid(where_, path, "a path through tables of the configuration"));
+                };
+                if last {
+                    if value.is_null() {
+                        map.remove(*name);
+                    } else {
+                        map.insert((*name).to_string(), value.clone());
+                    }
+                    return Ok(());
+                }
+                node = map.entry((*name).to_string()).or_insert_with(|| Value::Object(Default::default()));
+            }
+            Token::Index(k) => {
+                where_ = format!("{where_}[{k}]");
+                let Value::Array(items) = node else {
+                    return Err(Error::invalid(where_, path, "an index of a list of the configuration"));
+                };
+                let len = items.len();
+                let Some(item) = items.get_mut(*k) else {
+                    return Err(Error::invalid(where_, path, format!("an index below {len}")));
+                };
+                if last {
+                    *item = value.clone();
+                    return Ok(());
+                }
+                node = item;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The configuration of one run: `base` with `overrides` set in order, parsed and validated.
+pub fn run_config(base: &Value, overrides: &[Override]) -> Result<DrillConfig> {
+    let mut value = base.clone();
+    for (path, v) in overrides {
+        set_path(&mut value, path, v)?;
+    }
+    let constant = overrides.iter().any(|(p, v)| p == "well.inclination_deg" && v.is_number());
+    if constant && !overrides.iter().any(|(p, _)| p == "well.md") {
+        if let Some(Value::Object(well)) = value.get_mut("well") {
+            well.remove("md");
+        }
+    }
+    let cfg = DrillConfig::from_json(&value.to_string())?;
+    cfg.validate()?;
+    Ok(cfg)
+}
+
+/// The runs of a map from JSON: a list (one item per run) of lists of `[path, value]` pairs.
+pub fn parse_runs(json: &str) -> Result<Vec<Vec<Override>>> {
+    let form = "a JSON list of runs, each a list of [dotted path, value] pairs";
+    let value: Value =
+        serde_json::from_str(json).map_err(|e| Error::invalid("runs", format!("text that is not JSON ({e})"), form))?;
+    let Value::Array(runs) = value else { return Err(Error::invalid("runs", "not a list", form)) };
+    runs.into_iter()
+        .enumerate()
+        .map(|(i, run)| {
+            let Value::Array(pairs) = run else { return Err(Error::invalid(format!("runs[{i}]"), "not a list", form)) };
+            pairs
+                .into_iter()
+                .map(|pair| match pair {
+                    Value::Array(mut kv) if kv.len() == 2 && kv[0].is_string() => {
+                        let v = kv.pop().unwrap_or(Value::Null);
+                        let k = kv.pop().and_then(|k| k.as_str().map(str::to_string)).unwrap_or_default();
+                        Ok((k, v))
+                    }
+                    _ => Err(Error::invalid(format!("runs[{i}]"), "a malformed pair", form)),
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// An upper estimate of the bytes one run holds while it is solved: its series
+/// (`SERIES` values per sample, plus the bit speed in rad/s for the metrics) and its grid
+/// (about 16 values per cell).
+pub fn run_bytes(cfg: &DrillConfig) -> u64 {
+    let samples = cfg.series_samples() as u64;
+    let cells = cfg.numerics.cells as u64;
+    samples.saturating_mul((SERIES as u64 + 1) * 8).saturating_add(cells.saturating_mul(16 * 8)).saturating_add(4096)
+}
+
+/// Bytes of one row (an upper estimate, without the message text).
+pub const ROW_BYTES: u64 = 512;
+
+/// Solves every run of a map: `base` (a JSON configuration) with each run's overrides, on
+/// `threads` threads (every core for `None`, at most [`crate::sweep::MAX_THREADS`]). One row
+/// per run, in input order.
+///
+/// Errors only for a shared input the map cannot use: `base` not a JSON object, `threads`, or a
+/// map over `memory_budget` bytes (the rows, and on each thread the run it solves). A run whose
+/// configuration is refused is a row with status `invalid`; a failed solve a row with its status.
+///
+/// The calling thread waits for the pool and, every few milliseconds, asks
+/// `interrupt.interrupted_at(finished runs)` (so a hook that must run on that thread, such as
+/// Python's signal check, works; the "time" it receives is the number of runs finished) and
+/// calls `progress(finished, total)` when the count changed. When the hook answers `true`, the
+/// runs under way stop within milliseconds with status `interrupted`, the runs not started are
+/// rows with that status, and the finished runs keep their rows.
+pub fn solve_map(
+    base: &str,
+    runs: &[Vec<Override>],
+    threads: Option<usize>,
+    memory_budget: Option<u64>,
+    interrupt: &dyn Interrupt,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Vec<MapRow>> {
+    let base: Value = serde_json::from_str(base)
+        .map_err(|e| Error::invalid("config", format!("text that is not JSON ({e})"), "a JSON object"))?;
+    if !base.is_object() {
+        return Err(Error::invalid("config", "not an object", "a JSON object"));
+    }
+    let threads = resolve_threads(threads)?;
+    let configs: Vec<Result<DrillConfig>> = runs.iter().map(|o| run_config(&base, o)).collect();
+    if let Some(budget) = memory_budget {
+        let largest = configs.iter().filter_map(|c| c.as_ref().ok()).map(run_bytes).max().unwrap_or(0);
+        let active = threads.min(runs.len().max(1)) as u64;
+        let need = largest.saturating_mul(active).saturating_add(ROW_BYTES.saturating_mul(runs.len() as u64));
+        if need > budget {
+            return Err(Error::invalid(
+                "threads",
+                threads,
+                format!(
+                    "a map that fits the memory budget of {budget} bytes (DRILLSTRING_MEMORY_BUDGET): {} runs on \
+                     {active} threads would need {need} bytes; use fewer threads, runs or samples",
+                    runs.len()
+                ),
+            ));
+        }
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.min(runs.len().max(1)))
+        .build()
+        .map_err(|e| Error::invalid("threads", threads, format!("a thread count the system allows ({e})")))?;
+    let cancel = CancelFlag::new();
+    let finished = AtomicUsize::new(0);
+    let total = runs.len();
+    let work = || {
+        configs
+            .par_iter()
+            .map(|cfg| {
+                let row = match cfg {
+                    Ok(cfg) => run_guarded(cfg, &cancel),
+                    Err(e) => MapRow::failed(RunStatus::Invalid, e.to_string()),
+                };
+                finished.fetch_add(1, Ordering::Relaxed);
+                row
+            })
+            .collect::<Vec<_>>()
+    };
+    let rows = std::thread::scope(|scope| {
+        let (done, over) = mpsc::channel();
+        let worker = scope.spawn(move || {
+            let rows = pool.install(work);
+            let _ = done.send(());
+            rows
+        });
+        progress(0, total);
+        let mut reported = 0;
+        loop {
+            let ended = !matches!(over.recv_timeout(HOOK_INTERVAL), Err(mpsc::RecvTimeoutError::Timeout));
+            let n = finished.load(Ordering::Relaxed);
+            if n != reported {
+                reported = n;
+                progress(n, total);
+            }
+            if ended {
+                break;
+            }
+            if !cancel.is_cancelled() && interrupt.interrupted_at(n as f64) {
+                cancel.cancel();
+            }
+        }
+        worker.join()
+    });
+    rows.map_err(|_| Error::invalid("runs", runs.len(), "runs the map solver can finish (internal error)"))
+}
+
+/// [`run_one`], with a panic turned into a row of this run only.
+fn run_guarded(cfg: &DrillConfig, cancel: &CancelFlag) -> MapRow {
+    catch_unwind(AssertUnwindSafe(|| run_one(cfg, cancel))).unwrap_or_else(|payload| {
+        let what = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown panic".into());
+        MapRow::failed(RunStatus::Error, format!("internal error: {what}"))
+    })
+}
+
+/// One run: the solve without field snapshots, reduced to its row.
+pub fn run_one(cfg: &DrillConfig, cancel: &CancelFlag) -> MapRow {
+    if cancel.is_cancelled() {
+        return MapRow::failed(RunStatus::Solved(Status::Interrupted), "interrupted before this run started".into());
+    }
+    let mut cfg = cfg.clone();
+    cfg.numerics.field_interval = 0.0;
+    match solve(&cfg, cancel, &mut |_| {}) {
+        Err(e) => MapRow::failed(RunStatus::Invalid, e.to_string()),
+        Ok(run) => {
+            let status = RunStatus::Solved(run.status);
+            MapRow {
+                status,
+                message: run.message,
+                metrics: if status.is_success() { run.metrics } else { None },
+                window: run.window,
+                breakoff_torque: run.breakoff_torque,
+                stats: run.stats,
+                balance_error: run.energy.balance_error,
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interrupt::Never;
+    use serde_json::json;
+
+    fn base() -> String {
+        json!({
+            "sections": [{"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.108}],
+            "well": {"inclination_deg": 30.0},
+            "numerics": {"cells": 50, "duration": 4.0, "field_interval": 0.5}
+        })
+        .to_string()
+    }
+
+    #[test]
+    fn rows_equal_single_runs() {
+        let runs: Vec<Vec<Override>> = [20.0, 80.0]
+            .iter()
+            .map(|&rpm| vec![("top_drive.rpm".to_string(), json!(rpm)), ("friction.static".into(), json!(0.4))])
+            .collect();
+        let rows = solve_map(&base(), &runs, Some(2), None, &Never, &mut |_, _| {}).unwrap();
+        assert_eq!(rows.len(), 2);
+        for (row, rpm) in rows.iter().zip([20.0, 80.0]) {
+            let mut cfg = DrillConfig::from_json(&base()).unwrap();
+            cfg.top_drive.rpm = rpm;
+            cfg.friction.static_coefficient = 0.4;
+            let single = solve(&cfg, &Never, &mut |_| {}).unwrap();
+            assert!(row.status.is_success(), "{}", row.message);
+            assert_eq!(format!("{:?}", row.metrics), format!("{:?}", single.metrics));
+            assert_eq!(row.breakoff_torque, single.breakoff_torque);
+            assert_eq!(row.stats, single.stats);
+        }
+    }
+
+    #[test]
+    fn an_invalid_run_is_a_row() {
+        let runs = vec![
+            vec![("top_drive.inertia".to_string(), json!(-1.0))],
+            vec![("top_drive.nope".to_string(), json!(1.0))],
+            vec![("sections[3].length".to_string(), json!(1.0))],
+            vec![("top_drive.rpm".to_string(), json!(60.0))],
+        ];
+        let rows = solve_map(&base(), &runs, Some(2), None, &Never, &mut |_, _| {}).unwrap();
+        for row in &rows[..3] {
+            assert_eq!(row.status, RunStatus::Invalid);
+            assert!(row.metrics.is_none());
+        }
+        assert!(rows[0].message.contains("top_drive.inertia"), "{}", rows[0].message);
+        assert!(rows[1].message.contains("top_drive.nope"), "{}", rows[1].message);
+        assert!(rows[2].message.contains("sections[3]"), "{}", rows[2].message);
+        assert!(rows[3].status.is_success());
+    }
+
+    #[test]
+    fn interrupt_keeps_finished_rows() {
+        let runs: Vec<Vec<Override>> = (0..6).map(|_| vec![("numerics.duration".to_string(), json!(200.0))]).collect();
+        // The hook receives the number of finished runs.
+        struct StopAfterFirst;
+        impl Interrupt for StopAfterFirst {
+            fn interrupted(&self) -> bool {
+                false
+            }
+            fn interrupted_at(&self, finished: f64) -> bool {
+                finished >= 1.0
+            }
+        }
+        let mut seen = Vec::new();
+        let rows =
+            solve_map(&base(), &runs, Some(1), None, &StopAfterFirst, &mut |n, total| seen.push((n, total))).unwrap();
+        assert!(rows[0].status.is_success());
+        assert!(rows.iter().any(|r| r.status == RunStatus::Solved(Status::Interrupted)));
+        assert_eq!(seen.first(), Some(&(0, 6)));
+        assert_eq!(seen.last().map(|s| s.0), Some(6));
+    }
+
+    #[test]
+    fn memory_budget_and_base_errors() {
+        let runs = vec![vec![]];
+        let e = solve_map(&base(), &runs, Some(1), Some(10), &Never, &mut |_, _| {}).unwrap_err();
+        assert!(e.to_string().contains("memory budget"), "{e}");
+        assert!(solve_map("[1]", &runs, Some(1), None, &Never, &mut |_, _| {}).is_err());
+        assert!(solve_map(&base(), &runs, Some(0), None, &Never, &mut |_, _| {}).is_err());
+    }
+
+    #[test]
+    fn runs_from_json() {
+        let runs =
+            parse_runs(r#"[[["top_drive.rpm", 60]], [], [["top_drive.controller.type", "pi"], ["a", null]]]"#).unwrap();
+        assert_eq!(runs.len(), 3);
+        assert_eq!(runs[0], vec![("top_drive.rpm".to_string(), json!(60))]);
+        assert_eq!(runs[2][1], ("a".to_string(), Value::Null));
+        assert!(parse_runs("[[1]]").is_err());
+        assert!(parse_runs("{}").is_err());
+    }
+
+    #[test]
+    fn paths() {
+        let mut v = json!({"a": {"b": [1, {"c": 2}]}});
+        set_path(&mut v, "a.b[1].c", &json!(5)).unwrap();
+        set_path(&mut v, "a.d", &json!("x")).unwrap();
+        set_path(&mut v, "a.d", &Value::Null).unwrap();
+        assert_eq!(v, json!({"a": {"b": [1, {"c": 5}]}}));
+        assert!(set_path(&mut v, "a.b[2].c", &json!(1)).is_err());
+        assert!(set_path(&mut v, "a..b", &json!(1)).is_err());
+        assert!(set_path(&mut v, "a.b[x]", &json!(1)).is_err());
+        assert!(set_path(&mut v, "a.b[0].c", &json!(1)).is_err());
+    }
+}
