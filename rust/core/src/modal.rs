@@ -45,10 +45,20 @@ pub use spectral::SpectralQuartic;
 /// [`QuarticEvaluation::Auto`] evaluates the quartic force pseudo-spectrally
 /// ([`SpectralQuartic`]) instead of by its merged monomials.
 ///
-/// Measured (`benchmarks/spectral_crossover.py`: the cost of one right-hand-side evaluation
-/// inside the Rust solver, aluminium preset with the rigid mode, both evaluations of the same
-/// model; release build, AVX2 + FMA machine): MEASUREMENT.
-pub const SPECTRAL_MIN_MODES: usize = 12;
+/// Measured with `python benchmarks/spectral_crossover.py` (the cost of one right-hand-side
+/// evaluation inside the Rust solver, fixed-step RK4 minus a null system, `_evalcost.py`;
+/// aluminium preset, `n` elastic modes + the rigid mode, the same model built both ways;
+/// release build, x86_64 with AVX2 + FMA, 2 cores shared), us per evaluation:
+///
+/// ```text
+/// retained modes    5     8     9    10    11    12    13    17    33     65    129     257
+/// term sum      0.047 0.258 0.248 0.339 0.466 0.589 0.751 1.696 12.75  100.1 1391.2  9016.9
+/// spectral      0.159 0.266 0.277 0.326 0.345 0.342 0.407 0.496 1.015  2.106  4.122   8.353
+/// ```
+///
+/// The two cost the same at 10 retained modes; from 11 on the spectral evaluation is faster
+/// (1.35x at 11, 3.4x at 17, 48x at 65, 1080x at 257).
+pub const SPECTRAL_MIN_MODES: usize = 11;
 
 /// How a [`ModalSystem`] evaluates its quartic potential and its gradient.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

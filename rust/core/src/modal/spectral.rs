@@ -46,6 +46,12 @@
 //!   (`F = e_th`, `G = e_thz` at the points) gives `exp(-i pi i / L) Y_i
 //!   = 2 sum_j F_j cos(i pi s_j) - 2i sum_j G_j sin(i pi s_j)`.
 //!
+//! The quartic monomials with `r` even are `th^4`, `th^2 th_z^2` and `th_z^4`, so the terms'
+//! weights are summed by shape once, at construction, and `e`, `e_th`, `e_thz` at a point are
+//! three polynomials of those sums (equal to the sums of [`crate::terms::EnergyTerm::density`]
+//! and [`crate::terms::EnergyTerm::partials`] over the terms, tested): a new quartic term needs
+//! no code here.
+//!
 //! `M` is the smallest 5-smooth number `> 2N` (fast transform lengths). Scratch buffers are
 //! per thread, so a system is shared read-only between threads (sweeps, the Python binding).
 
@@ -67,9 +73,16 @@ pub struct SpectralQuartic {
     indices: Vec<u32>,
     length: f64,
     terms: Vec<EnergyTerm>,
+    /// The weights of the terms summed by shape: `e = w[0] th^4 + w[1] th^2 th_z^2 + w[2] th_z^4`
+    /// (the only quartic monomials with `r` even).
+    shape: [f64; 3],
     points: usize,
-    /// `exp(i pi i_k / L)` per basis position.
-    phase: Vec<Complex<f64>>,
+    /// Per basis position, the bin `X_i / q_k` of the transform to the points (module docs):
+    /// `(1 + i (pi / l) i_k) exp(i pi i_k / L) / 2`, `1` for `i_k = 0`.
+    to_spectrum: Vec<Complex<f64>>,
+    /// Per basis position, `(alpha, beta)` with `dV/dq_k = alpha Re Y_i + beta Im Y_i`: the
+    /// phase `exp(-i pi i_k / L)`, the slope factor `-(pi / l) i_k` and the weight `l / (2 M)`.
+    from_spectrum: Vec<(f64, f64)>,
     forward: Arc<dyn RealToComplex<f64>>,
     inverse: Arc<dyn ComplexToReal<f64>>,
 }
@@ -136,9 +149,12 @@ impl SpectralQuartic {
         if !(length.is_finite() && length > 0.0) {
             return Err(Error::invalid("length", crate::error::Num(length), "a finite number > 0"));
         }
+        let mut shape = [0.0; 3];
         for term in &terms {
             let (p, r) = term.exponents();
-            if p + r != 4 || r % 2 != 0 {
+            if p + r == 4 && r % 2 == 0 {
+                shape[r as usize / 2] += term.weight();
+            } else {
                 return Err(Error::invalid(
                     term.spec().coefficient,
                     format!("the {} term th^{p} th_z^{r}", term.name()),
@@ -150,16 +166,26 @@ impl SpectralQuartic {
         let points = smooth_at_least(2 * top + 1);
         let len = 2 * points;
         let mut planner = RealFftPlanner::<f64>::new();
-        let phase =
-            indices.iter().map(|&i| Complex::from_polar(1.0, PI * f64::from(i) / len as f64)).collect::<Vec<_>>();
+        let (mut to_spectrum, mut from_spectrum) = (Vec::with_capacity(indices.len()), Vec::new());
+        let weight = 0.5 * length / points as f64;
+        for &i in &indices {
+            let phase = Complex::from_polar(1.0, PI * f64::from(i) / len as f64);
+            let wave = PI / length * f64::from(i);
+            // X_i = (q - i b) phase / 2 with b = -(pi / l) i q; the rigid bin is real, whole
+            to_spectrum.push(if i == 0 { Complex::new(1.0, 0.0) } else { Complex::new(0.5, 0.5 * wave) * phase });
+            // y = Y conj(phase): dV/dq = weight (Re y + wave Im y)
+            from_spectrum.push((weight * (phase.re - wave * phase.im), weight * (phase.im + wave * phase.re)));
+        }
         Ok(SpectralQuartic {
             forward: planner.plan_fft_forward(len),
             inverse: planner.plan_fft_inverse(len),
             indices,
             length,
             terms,
+            shape,
             points,
-            phase,
+            to_spectrum,
+            from_spectrum,
         })
     }
 
@@ -178,24 +204,34 @@ impl SpectralQuartic {
         &self.terms
     }
 
+    /// The quartic density `e(th, th_z)`: the sum of the terms' [`EnergyTerm::density`], with
+    /// their weights summed by shape.
+    #[inline]
+    fn density(&self, th: f64, th_z: f64) -> f64 {
+        let [w4, w22, w04] = self.shape;
+        let (th2, thz2) = (th * th, th_z * th_z);
+        th2 * (w4 * th2 + w22 * thz2) + w04 * thz2 * thz2
+    }
+
+    /// `(de/dth, de/dth_z)`: the sum of the terms' [`EnergyTerm::partials`].
+    #[inline]
+    fn partials(&self, th: f64, th_z: f64) -> (f64, f64) {
+        let [w4, w22, w04] = self.shape;
+        let (th2, thz2) = (th * th, th_z * th_z);
+        (th * (4.0 * w4 * th2 + 2.0 * w22 * thz2), th_z * (2.0 * w22 * th2 + 4.0 * w04 * thz2))
+    }
+
     /// `th(s_j)` into `values[j]` and `th_z(s_j)` into `values[L - 1 - j]` mixed as
     /// `th +- th_z` (module docs); the caller separates them.
     fn to_points(&self, q: &[f64], s: &mut Scratch) {
         let len = 2 * self.points;
         s.spectrum.clear();
         s.spectrum.resize(len / 2 + 1, Complex::new(0.0, 0.0));
-        s.values.clear();
+        // fully overwritten by the transform
         s.values.resize(len, 0.0);
         s.fft.resize(self.inverse.get_scratch_len().max(self.forward.get_scratch_len()), Complex::new(0.0, 0.0));
-        let slope = -PI / self.length;
-        for ((&i, &phase), &qk) in self.indices.iter().zip(&self.phase).zip(q) {
-            if i == 0 {
-                s.spectrum[0] = Complex::new(qk, 0.0);
-            } else {
-                let b = slope * f64::from(i) * qk;
-                // (q - i b) e^{i phi} / 2
-                s.spectrum[i as usize] = Complex::new(0.5 * qk, -0.5 * b) * phase;
-            }
+        for ((&i, &factor), &qk) in self.indices.iter().zip(&self.to_spectrum).zip(q) {
+            s.spectrum[i as usize] = factor * qk;
         }
         // the imaginary parts of the first and last bins are zero by construction
         let _ = self.inverse.process_with_scratch(&mut s.spectrum, &mut s.values, &mut s.fft);
@@ -206,14 +242,11 @@ impl SpectralQuartic {
         SCRATCH.with(|cell| {
             let s = &mut *cell.borrow_mut();
             self.to_points(q, s);
-            let (m, len) = (self.points, 2 * self.points);
+            let m = self.points;
+            let (lo, hi) = s.values.split_at_mut(m);
             let mut sum = 0.0;
-            for j in 0..m {
-                let (a, b) = (s.values[j], s.values[len - 1 - j]);
-                let (th, th_z) = (0.5 * (a + b), 0.5 * (a - b));
-                for term in &self.terms {
-                    sum += term.density(th, th_z);
-                }
+            for (&a, &b) in lo.iter().zip(hi.iter().rev()) {
+                sum += self.density(0.5 * (a + b), 0.5 * (a - b));
             }
             self.length / m as f64 * sum
         })
@@ -224,27 +257,19 @@ impl SpectralQuartic {
         SCRATCH.with(|cell| {
             let s = &mut *cell.borrow_mut();
             self.to_points(q, s);
-            let (m, len) = (self.points, 2 * self.points);
-            for j in 0..m {
-                let (a, b) = (s.values[j], s.values[len - 1 - j]);
-                let (th, th_z) = (0.5 * (a + b), 0.5 * (a - b));
-                let (mut f, mut g) = (0.0, 0.0);
-                for term in &self.terms {
-                    let (d_th, d_thz) = term.partials(th, th_z);
-                    f += d_th;
-                    g += d_thz;
-                }
-                s.values[j] = f + g;
-                s.values[len - 1 - j] = f - g;
+            let m = self.points;
+            let (lo, hi) = s.values.split_at_mut(m);
+            for (a, b) in lo.iter_mut().zip(hi.iter_mut().rev()) {
+                let (f, g) = self.partials(0.5 * (*a + *b), 0.5 * (*a - *b));
+                *a = f + g;
+                *b = f - g;
             }
             let _ = self.forward.process_with_scratch(&mut s.values, &mut s.spectrum, &mut s.fft);
-            // sum_j F cos = Re / 2, sum_j G sin = -Im / 2, each times l / M; the slope factor
-            // -(pi / l) i of d th_z / d q
-            let scale = 0.5 * self.length / m as f64;
-            let slope = PI / self.length;
-            for ((&i, &phase), o) in self.indices.iter().zip(&self.phase).zip(out.iter_mut()) {
-                let y = s.spectrum[i as usize] * phase.conj();
-                *o += scale * (y.re + slope * f64::from(i) * y.im);
+            // sum_j F cos = Re y / 2, sum_j G sin = -Im y / 2 (y = Y conj(phase)), times l / M;
+            // the slope factor -(pi / l) i of d th_z / d q: folded into from_spectrum
+            for ((&i, &(alpha, beta)), o) in self.indices.iter().zip(&self.from_spectrum).zip(out.iter_mut()) {
+                let y = s.spectrum[i as usize];
+                *o += alpha * y.re + beta * y.im;
             }
         });
     }
@@ -269,6 +294,28 @@ mod tests {
         assert_eq!(SpectralQuartic::new(vec![], 1.0, vec![]).unwrap_err().field(), "indices");
         assert_eq!(SpectralQuartic::new(vec![2, 1], 1.0, vec![]).unwrap_err().field(), "indices");
         assert_eq!(SpectralQuartic::new(vec![1], 0.0, vec![]).unwrap_err().field(), "length");
+    }
+
+    #[test]
+    fn the_density_and_its_partials_are_the_sums_over_the_terms() {
+        let terms: Vec<EnergyTerm> = crate::terms::EQ18_TERMS
+            .iter()
+            .zip([3.0, 5.0, -7.0, 11.0, 13.0])
+            .filter(|(spec, _)| spec.p + spec.r == 4)
+            .map(|(spec, k)| spec.with(k).unwrap())
+            .collect();
+        assert_eq!(terms.len(), 3);
+        let sys = SpectralQuartic::new(vec![1, 2], 2.0, terms.clone()).unwrap();
+        for (th, th_z) in [(0.3, -0.7), (-1.1, 0.4), (0.0, 0.9), (2.0, 0.0)] {
+            let density: f64 = terms.iter().map(|t| t.density(th, th_z)).sum();
+            let (f, g) = terms.iter().fold((0.0, 0.0), |(f, g), t| {
+                let (a, b) = t.partials(th, th_z);
+                (f + a, g + b)
+            });
+            let (sf, sg) = sys.partials(th, th_z);
+            let close = |a: f64, b: f64| (a - b).abs() <= 1e-14 * (1.0 + b.abs());
+            assert!(close(sys.density(th, th_z), density) && close(sf, f) && close(sg, g));
+        }
     }
 
     /// The fields at the points against their direct sums.
