@@ -51,14 +51,15 @@ pub use spectral::SpectralQuartic;
 /// release build, x86_64 with AVX2 + FMA, 2 cores shared), us per evaluation:
 ///
 /// ```text
-/// retained modes    5     8     9    10    11    12    13    17    33     65    129     257
-/// term sum      0.047 0.258 0.248 0.339 0.466 0.589 0.751 1.696 12.75  100.1 1391.2  9016.9
-/// spectral      0.159 0.266 0.277 0.326 0.345 0.342 0.407 0.496 1.015  2.106  4.122   8.353
+/// retained modes     4     6     7     8     9    10    11    17    33     65    129    257
+/// term sum       0.026 0.077 0.121 0.180 0.256 0.382 0.470 1.712 13.17  103.8 1414.1 8397.0
+/// spectral       0.072 0.090 0.158 0.155 0.143 0.212 0.169 0.212 0.745  0.931  2.036  4.050
 /// ```
 ///
-/// The two cost the same at 10 retained modes; from 11 on the spectral evaluation is faster
-/// (1.35x at 11, 3.4x at 17, 48x at 65, 1080x at 257).
-pub const SPECTRAL_MIN_MODES: usize = 11;
+/// The two cost about the same at 7 retained modes (ratio 0.8-1.0 over repeated runs); from 8
+/// on the spectral evaluation is faster (1.2-1.3x at 8, 2.8x at 11, 8x at 17, 110x at 65,
+/// 2000x at 257). The paper's three modes (four with the rigid mode) stay on the term sum.
+pub const SPECTRAL_MIN_MODES: usize = 8;
 
 /// How a [`ModalSystem`] evaluates its quartic potential and its gradient.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
