@@ -535,6 +535,41 @@ mod tests {
     }
 
     #[test]
+    fn spectral_force_is_gradient_of_energy() {
+        let terms = crate::terms::EQ18_TERMS
+            .iter()
+            .zip([3.0, 5.0, -7.0, 11.0, 13.0])
+            .filter(|(spec, _)| spec.p + spec.r == 4)
+            .map(|(spec, k)| spec.with(k).unwrap())
+            .collect();
+        let quartic = SpectralQuartic::new(vec![0, 1, 2, 3], 1.3, terms).unwrap();
+        let sys = ModalSystem::spectral(vec![1.0, 2.0, 2.0, 2.0], vec![-1.0, 2.0, 5.0, 9.0], quartic).unwrap();
+        assert!(sys.terms().is_empty() && sys.evaluation() == QuarticEvaluation::Spectral);
+        let q = [0.3, -0.7, 0.2, 0.1];
+        let v = [0.0; 4];
+        let mut f = [0.0; 4];
+        sys.force(&q, &mut f);
+        for i in 0..4 {
+            let h = 1e-6;
+            let (mut qp, mut qm) = (q, q);
+            qp[i] += h;
+            qm[i] -= h;
+            let fd = (sys.energy(&qp, &v) - sys.energy(&qm, &v)) / (2.0 * h);
+            assert!((fd - f[i]).abs() < 1e-7 * (1.0 + f[i].abs()), "mode {i}: {fd} vs {}", f[i]);
+        }
+        let three = SpectralQuartic::new(vec![1, 2, 3], 1.0, vec![]).unwrap();
+        assert_eq!(ModalSystem::spectral(vec![1.0; 2], vec![1.0; 2], three.clone()).unwrap_err().field(), "quartic");
+        assert_eq!(ModalSystem::spectral(vec![0.0; 3], vec![1.0; 3], three).unwrap_err().field(), "mass[0]");
+        assert_eq!(QuarticEvaluation::from_name("fft").unwrap_err().field(), "evaluation");
+        for e in [QuarticEvaluation::Auto, QuarticEvaluation::TermSum, QuarticEvaluation::Spectral] {
+            assert_eq!(QuarticEvaluation::from_name(e.name()).unwrap(), e);
+        }
+        assert_eq!(QuarticEvaluation::Auto.resolve(SPECTRAL_MIN_MODES - 1), QuarticEvaluation::TermSum);
+        assert_eq!(QuarticEvaluation::Auto.resolve(SPECTRAL_MIN_MODES), QuarticEvaluation::Spectral);
+        assert_eq!(QuarticEvaluation::TermSum.resolve(1000), QuarticEvaluation::TermSum);
+    }
+
+    #[test]
     fn rejects_bad_input() {
         assert_eq!(ModalSystem::new(vec![], vec![], vec![]).unwrap_err().field(), "mass");
         assert_eq!(ModalSystem::new(vec![1.0], vec![1.0, 2.0], vec![]).unwrap_err().field(), "stiffness");
