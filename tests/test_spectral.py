@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import drillstring as ds
 from drillstring import _core
 from drillstring.errors import ValidationError
 from drillstring.galerkin import ModalCoefficients, project
@@ -93,3 +94,17 @@ def test_spectral_refusals_name_the_field() -> None:
     with pytest.raises(ValidationError) as info:
         _core.ModalSystem.spectral(k, 100.0, np.array([1]), damping_rate=-1.0)
     assert info.value.field == "damping_rate"
+
+
+def test_a_linear_many_mode_run_stays_linear() -> None:
+    params = preset("aluminum")
+    modes = _core.SPECTRAL_MIN_MODES + 4
+    linear = ds.simulate(params, modes=modes, rigid_mode=True, t_end=0.02, nonlinear=False)
+    assert linear.coefficients.quartic_coef.size == 0 and linear.coefficients.coefficients is None
+    # the exact linear solution: each mode oscillates at its own frequency
+    w = linear.coefficients.linear_frequencies
+    q0, v0 = linear.coefficients.initial_state(params)
+    t = linear.t
+    elastic = slice(1, None)
+    want = v0[elastic, None] / w[elastic, None] * np.sin(w[elastic, None] * t)
+    np.testing.assert_allclose(linear.q[elastic], want, rtol=0, atol=1e-8 * np.abs(want).max())
