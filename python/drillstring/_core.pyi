@@ -34,6 +34,19 @@ class ModalSystem:
         quartic_coef: NDArray[np.float64],
         damping_rate: float = 0.0,
     ) -> None: ...
+    @staticmethod
+    def spectral(
+        k: NDArray[np.float64],
+        length: float,
+        indices: NDArray[np.int64],
+        damping_rate: float = 0.0,
+    ) -> ModalSystem:
+        """Eq. 18 with ``k = (k1, ..., k6)`` on the basis ``cos(i pi z / length)``, ``i`` in
+        ``indices``, its quartic force and potential evaluated pseudo-spectrally (exact
+        quadrature, O(n log n); no quartic coefficients)."""
+    @property
+    def evaluation(self) -> str:
+        """``"terms"`` (merged monomials of the quartic coefficients) or ``"spectral"``."""
     @property
     def modes(self) -> int: ...
     @property
@@ -259,6 +272,7 @@ def galerkin_integrals(modes: int, rigid_mode: bool) -> IntegralArrays:
     """
 
 GALERKIN_MAX_MODES: int
+SPECTRAL_MIN_MODES: int
 
 class ScaledSystem(TypedDict):
     mass: NDArray[np.float64]

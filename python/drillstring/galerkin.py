@@ -240,6 +240,10 @@ class ModalCoefficients:
         ``(T, 4)`` positions ``a <= b <= c <= d`` of the quartic terms.
     quartic_coef:
         ``(T,)`` coefficients ``C_t`` with ``V(q) = sum_t C_t q_a q_b q_c q_d``.
+    coefficients:
+        The ``k1..k6`` and ``l`` projected (set by :meth:`from_coefficients`), or ``None``
+        for a model given by its arrays. With them :meth:`core_system` may evaluate the quartic
+        force pseudo-spectrally.
 
     All arrays are read-only. Build with :func:`project`,
     :meth:`from_parameters` or :meth:`from_coefficients`.
@@ -251,6 +255,7 @@ class ModalCoefficients:
     stiffness: FloatArray
     quartic_index: IntArray
     quartic_coef: FloatArray
+    coefficients: PDECoefficients | None = None
 
     def __post_init__(self) -> None:
         indices = np.array(self.indices, dtype=np.int64)
@@ -321,6 +326,7 @@ class ModalCoefficients:
             stiffness=scaled["stiffness"],
             quartic_index=integrals.quartic_index,
             quartic_coef=scaled["quartic_coef"],
+            coefficients=coefficients,
         )
 
     @classmethod
@@ -376,15 +382,39 @@ class ModalCoefficients:
     def _factors(self, q: FloatArray) -> FloatArray:
         return q[self.quartic_index]  # (T, 4) or (T, 4, S)
 
-    def core_system(self, damping_rate: float = 0.0) -> _core.ModalSystem:
+    def core_system(self, damping_rate: float = 0.0, evaluation: str = "auto") -> _core.ModalSystem:
         """This model as the core's modal system, with the viscous damping rate ``c`` (1/s).
+
+        ``evaluation`` is how the core evaluates the quartic force and potential: ``"terms"``
+        (the merged monomials of :attr:`quartic_coef`), ``"spectral"`` (the exact quadrature of
+        the quartic density of :attr:`coefficients`, ``O(n log n)``; equal to ``"terms"`` to
+        rounding) or ``"auto"``: spectral from ``_core.SPECTRAL_MIN_MODES`` retained modes on
+        when :attr:`coefficients` is set, else terms.
 
         Raises
         ------
         ValidationError
             For a model the core refuses (a mass not finite and > 0, a stiffness or quartic
-            coefficient not finite) or a bad ``damping_rate``.
+            coefficient not finite), a bad ``damping_rate`` or ``evaluation``, or
+            ``"spectral"`` without :attr:`coefficients`.
         """
+        if evaluation not in ("auto", "terms", "spectral"):
+            raise ValidationError("evaluation", evaluation, '"auto", "terms" or "spectral"')
+        if evaluation == "spectral" and self.coefficients is None:
+            raise ValidationError(
+                "evaluation", evaluation, '"terms" or "auto" for a model without coefficients'
+            )
+        source = self.coefficients
+        if source is not None and (
+            evaluation == "spectral"
+            or (evaluation == "auto" and self.n_modes >= _core.SPECTRAL_MIN_MODES)
+        ):
+            return _core.ModalSystem.spectral(
+                np.array(source.as_tuple(), dtype=float),
+                source.length,
+                np.ascontiguousarray(self.indices, dtype=np.int64),
+                damping_rate=damping_rate,
+            )
         return _core.ModalSystem(
             self.mass,
             self.stiffness,

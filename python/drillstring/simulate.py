@@ -308,8 +308,12 @@ def simulate(
     progress = check_progress(progress)
     coefficients = project(params, modes=modes, rigid_mode=rigid_mode)
     if not nonlinear:
+        # without its k1..k6 the model is its arrays alone (no quartic terms), evaluated as such
         coefficients = dataclasses.replace(
-            coefficients, quartic_index=np.zeros((0, 4), dtype=np.int64), quartic_coef=np.zeros(0)
+            coefficients,
+            quartic_index=np.zeros((0, 4), dtype=np.int64),
+            quartic_coef=np.zeros(0),
+            coefficients=None,
         )
     if method in FIXED_STEP_METHODS and dt_f is None:
         dt_f = _default_dt(coefficients)

@@ -43,6 +43,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::scale_integrals, m)?)?;
     m.add_function(wrap_pyfunction!(galerkin::galerkin_integrals, m)?)?;
     m.add("GALERKIN_MAX_MODES", drillstring_core::galerkin::MAX_MODES)?;
+    m.add("SPECTRAL_MIN_MODES", drillstring_core::modal::SPECTRAL_MIN_MODES)?;
     m.add_function(wrap_pyfunction!(metrics::spectral_peaks, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::energy_drift, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::modal_energies, m)?)?;

@@ -58,6 +58,43 @@ impl ModalSystem {
         Ok(ModalSystem { inner })
     }
 
+    /// The modal system of eq. 18 with `k = (k1, ..., k6)` on the cosine basis of the mode
+    /// numbers `indices` (strictly increasing) of `[0, length]`, its quartic force and potential
+    /// evaluated pseudo-spectrally (exact quadrature of the quartic density, O(n log n); no
+    /// quartic coefficients). M and K are those of the term-sum system of the same model.
+    #[staticmethod]
+    #[pyo3(signature = (k, length, indices, damping_rate=0.0))]
+    fn spectral(
+        py: Python<'_>,
+        k: PyReadonlyArray1<'_, f64>,
+        length: f64,
+        indices: PyReadonlyArray1<'_, i64>,
+        damping_rate: f64,
+    ) -> PyResult<Self> {
+        let k = to_vec(&k);
+        let k: [f64; 6] = k.try_into().map_err(|k: Vec<f64>| {
+            validation_error(py, core::Error::invalid("k", format!("length {}", k.len()), "length 6"))
+        })?;
+        let mut modes = Vec::with_capacity(indices.len()?);
+        for (p, &i) in indices.as_array().iter().enumerate() {
+            modes.push(u32::try_from(i).map_err(|_| {
+                validation_error(py, core::Error::invalid(format!("indices[{p}]"), i, "non-negative mode numbers"))
+            })?);
+        }
+        let inner = core::terms::ModelTerms::from_coefficients(k)
+            .and_then(|model| model.with_damping(damping_rate))
+            .and_then(|model| core::sweep::discretise_spectral(&modes, &model, length))
+            .map_err(|e| validation_error(py, e))?;
+        Ok(ModalSystem { inner })
+    }
+
+    /// How the quartic force is evaluated: `"terms"` (the merged monomials of the quartic
+    /// coefficients) or `"spectral"`.
+    #[getter]
+    fn evaluation(&self) -> &'static str {
+        self.inner.evaluation().name()
+    }
+
     /// Number of modal coordinates.
     #[getter]
     fn modes(&self) -> usize {

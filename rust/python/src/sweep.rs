@@ -66,11 +66,13 @@ pub(crate) fn scale_integrals<'py>(
     let k = to_vec(&k);
     let k: [f64; 6] =
         k.try_into().map_err(|k: Vec<f64>| invalid(py, "k", format!("length {}", k.len()), "length 6"))?;
-    let sys = integrals.scale(&k, length).map_err(|e| validation_error(py, e))?;
+    let (mass, stiffness, terms) = drillstring_core::terms::ModelTerms::from_coefficients(k)
+        .and_then(|model| integrals.coefficients(&model, length))
+        .map_err(|e| validation_error(py, e))?;
     let out = PyDict::new(py);
-    out.set_item("mass", PyArray1::from_slice(py, sys.mass()))?;
-    out.set_item("stiffness", PyArray1::from_slice(py, sys.stiffness()))?;
-    let coef: Vec<f64> = sys.terms().iter().map(|t| t.coef).collect();
+    out.set_item("mass", PyArray1::from_vec(py, mass))?;
+    out.set_item("stiffness", PyArray1::from_vec(py, stiffness))?;
+    let coef: Vec<f64> = terms.iter().map(|t| t.coef).collect();
     out.set_item("quartic_coef", PyArray1::from_vec(py, coef))?;
     Ok(out)
 }

@@ -19,13 +19,18 @@
 //! multiplications per term, so the per-run set-up of a sweep is negligible.
 //! [`GalerkinIntegrals::discretise`] is the one place of this scaling: sweeps call it per run
 //! (through [`GalerkinIntegrals::scale`]) and single solves through `drillstring.galerkin.project`
-//! (`_core.scale_integrals`).
+//! (`_core.scale_integrals`, [`GalerkinIntegrals::coefficients`]).
+//!
+//! From [`crate::modal::SPECTRAL_MIN_MODES`] retained modes on ([`QuarticEvaluation::Auto`]) the
+//! quartic terms are not scaled to `C_t` at all: [`discretise_spectral`] hands the model's quartic
+//! energy terms to the pseudo-spectral evaluation ([`crate::modal::spectral`]), which needs only
+//! the mode numbers of the basis (single solves: `_core.ModalSystem.spectral`).
 
 use std::f64::consts::PI;
 
 use crate::error::Num;
 use crate::error::{Error, Result};
-use crate::modal::{ModalSystem, QuarticTerm};
+use crate::modal::{check_model, ModalSystem, QuarticEvaluation, QuarticTerm, SpectralQuartic};
 use crate::terms::{Boundary, EnergyTerm, ModelTerms};
 
 /// The dimensionless quartic integrals of the retained basis `cos(i_k pi z / l)`.
@@ -94,35 +99,9 @@ impl GalerkinIntegrals {
         self.indices.len()
     }
 
-    /// `int_0^l cos^2(i pi z / l) dz`: `l` for `i = 0`, else `l / 2`.
-    fn norm(i: u32, length: f64) -> f64 {
-        if i == 0 {
-            length
-        } else {
-            length / 2.0
-        }
-    }
-
     /// The diagonal of `M` for `k1` and `l`.
     pub fn mass(&self, k1: f64, length: f64) -> Vec<f64> {
-        self.indices.iter().map(|&i| k1 * Self::norm(i, length)).collect()
-    }
-
-    /// The diagonal of `K` of the quadratic terms, `sum 2 weight (i pi / l)^r N_i` (negative
-    /// entries: linearly unstable modes).
-    fn stiffness_of(&self, quadratic: &[&EnergyTerm], length: f64) -> Vec<f64> {
-        self.indices
-            .iter()
-            .map(|&i| {
-                let norm = Self::norm(i, length);
-                let wave = f64::from(i) * PI / length;
-                quadratic.iter().fold(0.0, |acc, term| {
-                    let wave_r = if term.spec().r == 2 { wave * wave } else { 1.0 };
-                    // 2 factor is +-1: exactly +-k
-                    acc + 2.0 * term.spec().factor() * term.coefficient() * wave_r * norm
-                })
-            })
-            .collect()
+        mass(&self.indices, k1, length)
     }
 
     /// The dimensionless integrals `I^(p,r)` of a quartic monomial, `None` unless `p + r = 4`
@@ -153,6 +132,42 @@ impl GalerkinIntegrals {
     /// the basis (`"boundary"`), a term of another shape (field: its coefficient, naming the
     /// term), and whatever [`ModalSystem::new`] refuses.
     pub fn discretise(&self, model: &ModelTerms, length: f64) -> Result<ModalSystem> {
+        self.discretise_with(model, length, QuarticEvaluation::Auto)
+    }
+
+    /// [`GalerkinIntegrals::discretise`] with the quartic force evaluated as `evaluation` asks
+    /// ([`QuarticEvaluation::resolve`] for the number of modes): the merged monomials of the
+    /// coefficients `C_t`, or pseudo-spectrally ([`discretise_spectral`], which needs only the
+    /// basis: the integrals are not used, the coefficients not formed).
+    pub fn discretise_with(
+        &self,
+        model: &ModelTerms,
+        length: f64,
+        evaluation: QuarticEvaluation,
+    ) -> Result<ModalSystem> {
+        if !(length.is_finite() && length > 0.0) {
+            return Err(Error::invalid("length", Num(length), "a finite number > 0"));
+        }
+        if model.boundary() != self.boundary {
+            return Err(Error::invalid(
+                "boundary",
+                model.boundary().name(),
+                format!("the boundary of the basis, {}", self.boundary.name()),
+            ));
+        }
+        if evaluation.resolve(self.modes()) == QuarticEvaluation::Spectral {
+            return discretise_spectral(&self.indices, model, length);
+        }
+        let (mass, stiffness, terms) = self.coefficients(model, length)?;
+        ModalSystem::new(mass, stiffness, terms)?.with_damping(model.damping().rate())
+    }
+
+    /// The diagonals of `M` and `K` and the quartic terms `C_t` of `model` on `[0, length]` (the
+    /// formulas of the module docs), checked as [`ModalSystem::new`] checks them, without
+    /// building the system (its merged gradient rows): the coefficients `drillstring.galerkin`
+    /// exposes (`_core.scale_integrals`). Errors as [`GalerkinIntegrals::discretise`].
+    #[allow(clippy::type_complexity)]
+    pub fn coefficients(&self, model: &ModelTerms, length: f64) -> Result<(Vec<f64>, Vec<f64>, Vec<QuarticTerm>)> {
         if !(length.is_finite() && length > 0.0) {
             return Err(Error::invalid("length", Num(length), "a finite number > 0"));
         }
@@ -189,14 +204,15 @@ impl GalerkinIntegrals {
                 }
             }
         }
-        let terms = (0..self.quartic_index.len())
+        let terms: Vec<QuarticTerm> = (0..self.quartic_index.len())
             .map(|t| QuarticTerm {
                 idx: self.quartic_index[t],
                 coef: quartic.iter().fold(0.0, |acc, &(scale, integrals)| acc + scale * integrals[t]),
             })
             .collect();
-        ModalSystem::new(self.mass(model.inertia(), length), self.stiffness_of(&quadratic, length), terms)?
-            .with_damping(model.damping().rate())
+        let (mass, stiffness) = (self.mass(model.inertia(), length), stiffness(&self.indices, &quadratic, length));
+        check_model(&mass, &stiffness, &terms)?;
+        Ok((mass, stiffness, terms))
     }
 
     /// `cos(i_k pi z / l)` for every retained mode: theta at section `z` is the dot product
@@ -204,6 +220,75 @@ impl GalerkinIntegrals {
     pub fn basis(&self, z: f64, length: f64) -> Vec<f64> {
         self.indices.iter().map(|&i| (f64::from(i) * PI / length * z).cos()).collect()
     }
+}
+
+/// `int_0^l cos^2(i pi z / l) dz`: `l` for `i = 0`, else `l / 2`.
+fn norm(i: u32, length: f64) -> f64 {
+    if i == 0 {
+        length
+    } else {
+        length / 2.0
+    }
+}
+
+/// The diagonal of `M` of the basis `indices` for `k1` and `l`.
+fn mass(indices: &[u32], k1: f64, length: f64) -> Vec<f64> {
+    indices.iter().map(|&i| k1 * norm(i, length)).collect()
+}
+
+/// The diagonal of `K` of the quadratic terms, `sum 2 weight (i pi / l)^r N_i` (negative
+/// entries: linearly unstable modes).
+fn stiffness(indices: &[u32], quadratic: &[&EnergyTerm], length: f64) -> Vec<f64> {
+    indices
+        .iter()
+        .map(|&i| {
+            let norm = norm(i, length);
+            let wave = f64::from(i) * PI / length;
+            quadratic.iter().fold(0.0, |acc, term| {
+                let wave_r = if term.spec().r == 2 { wave * wave } else { 1.0 };
+                // 2 factor is +-1: exactly +-k
+                acc + 2.0 * term.spec().factor() * term.coefficient() * wave_r * norm
+            })
+        })
+        .collect()
+}
+
+/// The modal system of `model` on the cosine basis `indices` (mode numbers, strictly
+/// increasing) of `[0, length]` with the quartic force evaluated pseudo-spectrally
+/// ([`SpectralQuartic`]): `M` and `K` as [`GalerkinIntegrals::discretise`] forms them, the quartic
+/// terms taken as they are (no integrals). The builder of
+/// [`GalerkinIntegrals::discretise_with`] for [`QuarticEvaluation::Spectral`], and of single
+/// solves above the crossover (`_core.ModalSystem.spectral`).
+///
+/// Errors: as [`GalerkinIntegrals::discretise`] (`"length"`, a term of another shape naming its
+/// coefficient; the boundary must be [`Boundary::Free`], the basis of these cosines), and
+/// `"indices"` for an empty or not strictly increasing basis.
+pub fn discretise_spectral(indices: &[u32], model: &ModelTerms, length: f64) -> Result<ModalSystem> {
+    if !(length.is_finite() && length > 0.0) {
+        return Err(Error::invalid("length", Num(length), "a finite number > 0"));
+    }
+    if model.boundary() != Boundary::Free {
+        return Err(Error::invalid("boundary", model.boundary().name(), "free ends (the cosine basis)"));
+    }
+    let mut quadratic = Vec::new();
+    let mut quartic = Vec::new();
+    for term in model.conservative() {
+        let (p, r) = term.exponents();
+        match p + r {
+            2 if r % 2 == 0 => quadratic.push(term),
+            4 if r % 2 == 0 => quartic.push(*term),
+            _ => {
+                return Err(Error::invalid(
+                    term.spec().coefficient,
+                    format!("the {} term th^{p} th_z^{r}", term.name()),
+                    "a Galerkin energy monomial with p + r = 2 or 4 and r even",
+                ))
+            }
+        }
+    }
+    let spectral = SpectralQuartic::new(indices.to_vec(), length, quartic)?;
+    ModalSystem::spectral(mass(indices, model.inertia(), length), stiffness(indices, &quadratic, length), spectral)?
+        .with_damping(model.damping().rate())
 }
 
 #[cfg(test)]
@@ -288,7 +373,8 @@ mod tests {
             let g = crate::galerkin::integrals(Boundary::Free, modes, rigid).unwrap();
             for k in [paper, consistent, [2.0, 3.0, 5.0, 7.0, 11.0, 13.0]] {
                 for length in [100.0, 1.7, 2000.0] {
-                    let sys = g.scale(&k, length).unwrap();
+                    let model = ModelTerms::from_coefficients(k).unwrap();
+                    let sys = g.discretise_with(&model, length, QuarticEvaluation::TermSum).unwrap();
                     let (mass, stiffness, coef) = scale_by_hand(&g, &k, length);
                     assert_eq!(bits(sys.mass()), bits(&mass));
                     assert_eq!(bits(sys.stiffness()), bits(&stiffness), "{modes} {rigid} {k:?} {length}");
@@ -336,5 +422,80 @@ mod tests {
         let odd = ModelTerms::new(1.0, vec![SLOPE.with(1.0).unwrap()]).unwrap();
         let err = g.discretise(&odd, 1.0).unwrap_err();
         assert!(err.field() == "k7" && err.to_string().contains("slope"), "{err}");
+    }
+
+    /// Deterministic pseudo-random numbers in [-1, 1).
+    fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+    }
+
+    /// The largest relative difference of the spectral and the term-sum force and potential over
+    /// random states of `modes` modes.
+    fn spectral_vs_terms(modes: u32, rigid: bool, k: [f64; 6], length: f64, draws: usize) -> (f64, f64) {
+        let g = crate::galerkin::integrals(Boundary::Free, modes, rigid).unwrap();
+        let model = ModelTerms::from_coefficients(k).unwrap();
+        let sum = g.discretise_with(&model, length, QuarticEvaluation::TermSum).unwrap();
+        let spec = g.discretise_with(&model, length, QuarticEvaluation::Spectral).unwrap();
+        assert_eq!((sum.evaluation(), spec.evaluation()), (QuarticEvaluation::TermSum, QuarticEvaluation::Spectral));
+        assert_eq!(sum.mass(), spec.mass());
+        assert_eq!(sum.stiffness(), spec.stiffness());
+        let m = g.modes();
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15 ^ u64::from(modes) << 1 ^ u64::from(rigid));
+        let (mut force_err, mut potential_err) = (0.0f64, 0.0f64);
+        for draw in 0..draws {
+            // amplitudes from 1e-3 to 1, decaying with the mode number in half the draws
+            let scale = 10f64.powf(-3.0 * (draw as f64 / draws as f64));
+            let q: Vec<f64> =
+                (0..m).map(|k| scale * next() / if draw % 2 == 0 { 1.0 } else { 1.0 + k as f64 }).collect();
+            let (mut a, mut b) = (vec![0.0; m], vec![0.0; m]);
+            sum.quartic_gradient(&q, &mut a);
+            spec.quartic_gradient(&q, &mut b);
+            let norm = a.iter().map(|x| x.abs()).fold(0.0, f64::max);
+            let diff = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+            force_err = force_err.max(diff / norm);
+            let (va, vb) = (sum.quartic_potential(&q), spec.quartic_potential(&q));
+            potential_err = potential_err.max((va - vb).abs() / va.abs());
+        }
+        (force_err, potential_err)
+    }
+
+    #[test]
+    fn the_spectral_force_and_potential_equal_the_term_sum_to_rounding() {
+        let paper = [0.369, 5.4e9, 3.3e8, 1.6e9, -2.2e5, 3.64];
+        let consistent = [0.369, 1.35e9, 0.0, 0.0, 7.7e5, 0.0];
+        let (mut worst_force, mut worst_potential) = (0.0f64, 0.0f64);
+        for modes in 1..=40 {
+            for rigid in [false, true] {
+                for (k, length) in [(paper, 100.0), (consistent, 100.0), (paper, 1.7)] {
+                    let (f, v) = spectral_vs_terms(modes, rigid, k, length, 6);
+                    assert!(f < 2e-13 && v < 2e-13, "{modes} modes, rigid {rigid}, {k:?}: {f:e} {v:e}");
+                    worst_force = worst_force.max(f);
+                    worst_potential = worst_potential.max(v);
+                }
+            }
+        }
+        println!("largest relative difference: force {worst_force:e}, potential {worst_potential:e}");
+    }
+
+    #[test]
+    fn auto_is_spectral_from_the_crossover() {
+        let model = ModelTerms::from_coefficients([0.369, 5.4e9, 3.3e8, 1.6e9, -2.2e5, 3.64]).unwrap();
+        let below = crate::modal::SPECTRAL_MIN_MODES as u32 - 2;
+        let g = crate::galerkin::integrals(Boundary::Free, below, true).unwrap();
+        assert_eq!(g.discretise(&model, 100.0).unwrap().evaluation(), QuarticEvaluation::TermSum);
+        let g = crate::galerkin::integrals(Boundary::Free, below + 1, true).unwrap();
+        let sys = g.discretise(&model, 100.0).unwrap();
+        assert_eq!(sys.evaluation(), QuarticEvaluation::Spectral);
+        assert!(sys.terms().is_empty());
+        // the basis alone builds the same system
+        let direct = discretise_spectral(&g.indices, &model, 100.0).unwrap();
+        assert_eq!(direct, sys);
+        assert_eq!(discretise_spectral(&g.indices, &model, 0.0).unwrap_err().field(), "length");
     }
 }

@@ -10,7 +10,10 @@
 //! * Galerkin ([`crate::sweep::GalerkinIntegrals::discretise`]): `p + r = 2` adds
 //!   `2 weight int phi_i^p phi_i'^r` to the diagonal stiffness, `p + r = 4` adds
 //!   `weight l (pi / l)^r I^(p,r)_t` to the quartic coefficients, `I^(p,r)` the exact
-//!   dimensionless integrals of [`crate::galerkin`] (`r` even).
+//!   dimensionless integrals of [`crate::galerkin`] (`r` even); or, for many modes, the term
+//!   itself: the pseudo-spectral evaluation ([`crate::modal::spectral`]) sums its
+//!   [`EnergyTerm::density`] and [`EnergyTerm::partials`] at quadrature points, so a new
+//!   quartic term needs no new spectral code.
 //! * Finite differences ([`crate::pde::PdeSystem::discretise`]): the cell energy
 //!   [`EnergyTerm::cell_energy`] `h weight (a^p + b^p) / 2 g^r`, collected into the fused
 //!   kernel by shape.

@@ -1,0 +1,110 @@
+"""The pseudo-spectral quartic force and potential of the modal model (``evaluation="spectral"``)
+against the term sum, and where the core chooses it."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import drillstring as ds
+from drillstring import _core
+from drillstring.errors import ValidationError
+from drillstring.galerkin import ModalCoefficients, project
+from drillstring.parameters import preset
+
+
+def _relative(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.abs(a - b)) / np.max(np.abs(b)))
+
+
+@pytest.mark.parametrize("model_name", ["paper", "consistent"])
+@pytest.mark.parametrize("rigid", [False, True])
+@pytest.mark.parametrize("modes", [1, 2, 5, 13, 40])
+def test_spectral_equals_the_term_sum_to_rounding(model_name: str, rigid: bool, modes: int) -> None:
+    params = preset("aluminum").replace(model=model_name)
+    model = project(params, modes, rigid)
+    terms = model.core_system(evaluation="terms")
+    spectral = model.core_system(evaluation="spectral")
+    assert (terms.evaluation, spectral.evaluation) == ("terms", "spectral")
+    rng = np.random.default_rng(modes + 100 * rigid)
+    m = model.n_modes
+    # amplitudes large enough that the quartic force is not negligible against K q
+    q = rng.standard_normal((m, 8)) * np.logspace(-2, 0, 8)
+    v = rng.standard_normal((m, 8))
+    for k in range(q.shape[1]):
+        assert _relative(spectral.acceleration(q[:, k]), terms.acceleration(q[:, k])) < 1e-13
+    assert _relative(spectral.potential(q), terms.potential(q)) < 1e-13
+    assert _relative(spectral.energy(q, v), terms.energy(q, v)) < 1e-13
+
+
+def test_auto_is_spectral_from_the_crossover() -> None:
+    params = preset("aluminum")
+    crossover = _core.SPECTRAL_MIN_MODES
+    below = project(params, crossover - 2, rigid_mode=True)  # crossover - 1 retained modes
+    at = project(params, crossover - 1, rigid_mode=True)
+    assert below.core_system().evaluation == "terms"
+    assert at.core_system().evaluation == "spectral"
+    assert at.core_system(0.5).damping_rate == 0.5
+    # a model given by its arrays has no coefficients to evaluate spectrally
+    arrays = ModalCoefficients(
+        indices=at.indices,
+        length=at.length,
+        mass=at.mass,
+        stiffness=at.stiffness,
+        quartic_index=at.quartic_index,
+        quartic_coef=at.quartic_coef,
+    )
+    assert arrays.coefficients is None
+    assert arrays.core_system().evaluation == "terms"
+    with pytest.raises(ValidationError) as info:
+        arrays.core_system(evaluation="spectral")
+    assert info.value.field == "evaluation"
+    with pytest.raises(ValidationError) as info:
+        at.core_system(evaluation="fft")
+    assert info.value.field == "evaluation"
+
+
+def test_spectral_solve_follows_the_term_sum_solve() -> None:
+    params = preset("aluminum")
+    model = project(params, 20, rigid_mode=True)
+    q0, v0 = model.initial_state(params)
+    t_eval = np.linspace(0.0, 0.05, 11)
+    runs = [
+        _core.solve_modal(model.core_system(evaluation=e), q0, v0, 0.05, t_eval, "dop853", 1e-11, 1e-13)
+        for e in ("terms", "spectral")
+    ]
+    assert all(run["status"] == "success" for run in runs)
+    np.testing.assert_allclose(runs[1]["y"], runs[0]["y"], rtol=0, atol=1e-9 * np.abs(runs[0]["y"]).max())
+
+
+def test_spectral_refusals_name_the_field() -> None:
+    k = np.array([0.369, 5.4e9, 3.3e8, 1.6e9, -2.2e5, 3.64])
+    with pytest.raises(ValidationError) as info:
+        _core.ModalSystem.spectral(k, 100.0, np.array([2, 1]))
+    assert info.value.field == "indices"
+    with pytest.raises(ValidationError) as info:
+        _core.ModalSystem.spectral(k, 100.0, np.array([-1, 1]))
+    assert info.value.field == "indices[0]"
+    with pytest.raises(ValidationError) as info:
+        _core.ModalSystem.spectral(k[:5], 100.0, np.array([1]))
+    assert info.value.field == "k"
+    with pytest.raises(ValidationError) as info:
+        _core.ModalSystem.spectral(k, -1.0, np.array([1]))
+    assert info.value.field == "length"
+    with pytest.raises(ValidationError) as info:
+        _core.ModalSystem.spectral(k, 100.0, np.array([1]), damping_rate=-1.0)
+    assert info.value.field == "damping_rate"
+
+
+def test_a_linear_many_mode_run_stays_linear() -> None:
+    params = preset("aluminum")
+    modes = _core.SPECTRAL_MIN_MODES + 4
+    linear = ds.simulate(params, modes=modes, rigid_mode=True, t_end=0.02, nonlinear=False)
+    assert linear.coefficients.quartic_coef.size == 0 and linear.coefficients.coefficients is None
+    # the exact linear solution: each mode oscillates at its own frequency
+    w = linear.coefficients.linear_frequencies
+    q0, v0 = linear.coefficients.initial_state(params)
+    t = linear.t
+    elastic = slice(1, None)
+    want = v0[elastic, None] / w[elastic, None] * np.sin(w[elastic, None] * t)
+    np.testing.assert_allclose(linear.q[elastic], want, rtol=0, atol=1e-8 * np.abs(want).max())
