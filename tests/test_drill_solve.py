@@ -218,6 +218,10 @@ def test_well_b_example_reproduces_the_published_code() -> None:
     assert m.bit_rpm_mean == pytest.approx(ref.rpm_mean, rel=0.02)
     assert m.motor_torque_max_Nm == pytest.approx(ref.torque_max, rel=0.08)
     assert m.motor_torque_min_Nm == pytest.approx(ref.torque_min, rel=0.1)
+    # the cycle period from the motor torque, both series through the same function: one cycle
+    # counted per stick-slip cycle although the torque wiggles across its mean on the way up
+    assert ref.cycle_period == pytest.approx(10.0, rel=0.01)
+    assert m.period_s == pytest.approx(ref.cycle_period, rel=0.01)
     # the cycle: the bit breaks free (reaches 80 rpm after having been stuck) every 10 s in both,
     # within 1 s of each other over the whole run
     starts = []

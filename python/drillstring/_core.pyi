@@ -372,8 +372,9 @@ def stick_slip_metrics(
     ``t_start <= t <= t_end`` (``window``; None: all): severity ``(max - min) / (2 |mean|)``
     (NaN for a zero mean), the time fraction with ``|omega_bit| <= stick_speed``, bit rpm
     min / max / time-weighted mean, motor torque min / max and cycle period (mean interval
-    between upward crossings of its time-weighted mean; NaN with fewer than two cycles or
-    without a torque series).
+    between upward crossings of its time-weighted mean, one per cycle: a crossing within 0.6
+    periods of the strongest spectral peak after the last one counted does not count; NaN with
+    fewer than two cycles or without a torque series).
 
     Raises
     ------

@@ -391,8 +391,9 @@ class StickSlipMetrics:
     """Motor torque minimum (NaN without a torque series)."""
     torque_max: float
     cycle_period: float
-    """Mean interval between upward mean-crossings of the motor torque, s (NaN with fewer than
-    two cycles or without a torque series)."""
+    """Mean interval between upward mean-crossings of the motor torque, one per cycle (a crossing
+    within 0.6 spectral periods of the last one counted is a wiggle, not a cycle), s (NaN with
+    fewer than two cycles or without a torque series)."""
 
 
 def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:
@@ -434,7 +435,7 @@ def stick_slip_metrics(
     StickSlipMetrics
         Severity ``SSI = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
         min / max / mean, motor torque min / max and its cycle period (the mean interval
-        between upward crossings of its mean).
+        between upward crossings of its mean, one per cycle).
 
     Raises
     ------

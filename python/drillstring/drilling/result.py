@@ -75,7 +75,8 @@ class DrillMetrics:
     stuck_fraction: float
     """Fraction of the window's time the bit is stuck."""
     period_s: float
-    """Stick-slip period: mean interval between upward mean-crossings of the motor torque, s."""
+    """Stick-slip period: mean interval between upward mean-crossings of the motor torque, one per
+    cycle (a crossing within 0.6 spectral periods of the last one counted is a wiggle), s."""
     bit_rpm_min: float
     bit_rpm_max: float
     bit_rpm_mean: float

@@ -10,12 +10,15 @@
 //!   - bit speed min / max / mean in rpm (`rad/s * 60 / (2 pi)`);
 //!   - motor torque min / max and cycle period: the mean interval between the upward crossings
 //!     of the motor torque through its time-weighted mean (crossing times linearly
-//!     interpolated); NaN with fewer than three crossings (two full cycles). Without a torque
-//!     series these are NaN.
+//!     interpolated), a crossing within 0.6 spectral periods (the strongest peak of the
+//!     torque's spectrum) of the last one counted not counted: a wiggle on a slope of a
+//!     stick-slip cycle crosses the mean too; NaN with fewer than three counted crossings (two
+//!     full cycles). Without a torque series these are NaN.
 //! * [`break_off_torque`]: the static break-off torque of a well, the integral over measured
 //!   depth of the friction limit per metre (trapezoidal).
 
 use crate::error::{Error, Num, Result};
+use crate::metrics::FrequencyEstimator;
 
 /// Default stick threshold speed, rad/s (about 0.1 rpm): the bit counts as stuck while
 /// `|omega_bit|` is at most this.
@@ -41,8 +44,8 @@ pub struct StickSlip {
     /// NaN without a motor torque series.
     pub torque_min: f64,
     pub torque_max: f64,
-    /// Mean interval between upward mean-crossings of the motor torque, s; NaN with fewer than
-    /// two full cycles or without a torque series.
+    /// Mean interval between upward mean-crossings of the motor torque (one per cycle: see
+    /// the module), s; NaN with fewer than two full cycles or without a torque series.
     pub cycle_period: f64,
 }
 
@@ -99,10 +102,17 @@ fn time_within(t: &[f64], x: &[f64], s: f64) -> f64 {
         .sum()
 }
 
-/// Mean interval between the upward crossings of `x` through its time-weighted mean (linear
-/// interpolation); NaN with fewer than three crossings.
-fn mean_crossing_period(t: &[f64], x: &[f64]) -> f64 {
+/// The cycle period of `x`: the mean interval between its upward crossings through its
+/// time-weighted mean (linear interpolation), where a crossing less than 0.6 spectral
+/// periods after the last one counted is not counted (a wiggle on a slope of the cycle, not a new
+/// cycle); NaN with fewer than three counted crossings.
+///
+/// The spectral period is that of the strongest peak of the Hann-windowed spectrum
+/// ([`FrequencyEstimator::dominant_frequency`]) of `x` on a uniform grid of as many samples
+/// (linear interpolation when `t` is not uniform). Without a peak every crossing counts.
+fn cycle_period(t: &[f64], x: &[f64]) -> f64 {
     let mean = time_mean(t, x);
+    let min_gap = 0.6 * spectral_period(t, x);
     let mut first = None;
     let mut last = f64::NAN;
     let mut count = 0usize;
@@ -110,6 +120,10 @@ fn mean_crossing_period(t: &[f64], x: &[f64]) -> f64 {
         let (u, v) = (x[0] - mean, x[1] - mean);
         if u < 0.0 && v >= 0.0 {
             let tc = t[0] + (t[1] - t[0]) * (-u) / (v - u);
+            // NaN min_gap (no spectral peak): the comparison is false, every crossing counts
+            if count > 0 && tc - last < min_gap {
+                continue;
+            }
             first.get_or_insert(tc);
             last = tc;
             count += 1;
@@ -118,6 +132,41 @@ fn mean_crossing_period(t: &[f64], x: &[f64]) -> f64 {
     match first {
         Some(t0) if count >= 3 => (last - t0) / (count - 1) as f64,
         _ => f64::NAN,
+    }
+}
+
+/// `1 / f` of the strongest spectral peak of `x` sampled at `t` (see [`cycle_period`]); NaN
+/// without a peak.
+fn spectral_period(t: &[f64], x: &[f64]) -> f64 {
+    let n = t.len();
+    if n < 4 {
+        return f64::NAN;
+    }
+    let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
+    let uniform = t.iter().enumerate().all(|(j, &tj)| (tj - (t[0] + j as f64 * dt)).abs() <= 1e-9 * dt.max(tj.abs()));
+    let resampled: Vec<f64>;
+    let xs: &[f64] = if uniform {
+        x
+    } else {
+        let mut k = 0;
+        resampled = (0..n)
+            .map(|j| {
+                let tj = if j + 1 == n { t[n - 1] } else { t[0] + j as f64 * dt };
+                while k + 2 < n && t[k + 1] < tj {
+                    k += 1;
+                }
+                let s = ((tj - t[k]) / (t[k + 1] - t[k])).clamp(0.0, 1.0);
+                x[k] + s * (x[k + 1] - x[k])
+            })
+            .collect();
+        &resampled
+    };
+    let estimator = FrequencyEstimator::new(n);
+    let f = estimator.dominant_frequency(xs, dt, &mut estimator.buffers());
+    if f > 0.0 {
+        1.0 / f
+    } else {
+        f64::NAN
     }
 }
 
@@ -178,7 +227,7 @@ pub fn stick_slip(
             (
                 m.iter().copied().fold(f64::INFINITY, f64::min),
                 m.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                mean_crossing_period(tw, m),
+                cycle_period(tw, m),
             )
         }
     };
@@ -215,6 +264,32 @@ mod tests {
 
     fn grid(n: usize, end: f64) -> Vec<f64> {
         (0..n).map(|j| end * j as f64 / (n - 1) as f64).collect()
+    }
+
+    /// A stick-slip-like torque: a slow build-up over 80 % of each 10 s cycle and a fast drop,
+    /// with a wiggle that crosses the mean several times on the way up. One cycle counts once.
+    #[test]
+    fn wiggles_on_a_slope_are_not_cycles() {
+        let period = 10.0;
+        let t = grid(6001, 60.0);
+        let torque: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                let phase = (t / period).fract();
+                let saw = if phase < 0.8 { -1.0 + 2.0 * phase / 0.8 } else { 1.0 - 2.0 * (phase - 0.8) / 0.2 };
+                saw + 0.1 * (2.0 * PI * t / 0.5).sin()
+            })
+            .collect();
+        let w = vec![1.0; t.len()];
+        let mean = time_mean(&t, &torque);
+        let crossings = t.windows(2).zip(torque.windows(2)).filter(|(_, x)| x[0] < mean && x[1] >= mean).count();
+        assert!(crossings >= 12, "{crossings} upward crossings: the wiggle must cross the mean more than once a cycle");
+        let m = stick_slip(&t, &w, Some(&torque), None, STICK_SPEED).unwrap();
+        assert!((m.cycle_period - period).abs() < 1e-9 * period, "{}", m.cycle_period);
+        // the same on a non-uniform grid (the spectral estimate resamples)
+        let tn: Vec<f64> = t.iter().map(|&t| t + 0.003 * (t * 7.0).sin()).collect();
+        let m = stick_slip(&tn, &w, Some(&torque), None, STICK_SPEED).unwrap();
+        assert!((m.cycle_period - period).abs() < 2e-3 * period, "{}", m.cycle_period);
     }
 
     #[test]
