@@ -14,9 +14,9 @@ import numpy as np
 import pandas as pd
 import pytest
 from _children import python_child
+from _cli import one_line_error, run_cli
 
 from drillstring import _core
-from drillstring.cli import main
 from drillstring.drilling import FILES, load_drill_config
 from drillstring.drilling.output import PLOT_FILES
 
@@ -28,21 +28,6 @@ SHORT = ["--set", "numerics.duration=3", "--set", "numerics.cells=60", "--set", 
 METRIC_KEYS = {"period_s", "ssi", "stuck_fraction", "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean",
                "motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "window_start", "window_end",
                "window", "status", "message", "energy"}
-
-
-def run_cli(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str, str]:
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(err: str, *needles: str) -> str:
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("drillstring: error:"), err
-    for needle in needles:
-        assert needle in lines[0], (needle, lines[0])
-    assert ".tmp" not in lines[0] and "Traceback" not in err
-    return lines[0]
 
 
 def test_drill_writes_the_output_folder(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -30,30 +30,15 @@ from typing import Any, Callable
 
 import numpy as np
 import pytest
+from _cli import one_line_error, run_cli
 
 import drillstring as ds
 from drillstring._output import OutputError, atomic_write, check_destination, command_inputs, write_bytes
-from drillstring.cli import main
 from drillstring.paper.table2 import Table2Row, write_table2_csv
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX special files")
 
 QUICK = ["--t-end", "0.01", "--samples", "21"]  # 20 samples per period of mode 3: no warning
-
-
-def run_cli(capsys: pytest.CaptureFixture[str], *args: str) -> tuple[int, str, str]:
-    code = main(list(args))
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def one_line_error(err: str, *needles: str) -> str:
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("drillstring: error:"), err
-    for needle in needles:
-        assert needle in lines[0], (needle, lines[0])
-    assert ".tmp" not in lines[0] and "Traceback" not in err
-    return lines[0]
 
 
 def reference_csv(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> bytes:
