@@ -11,6 +11,7 @@ from drillstring import _core
 from drillstring.errors import ValidationError
 from drillstring.galerkin import ModalCoefficients, project
 from drillstring.parameters import preset
+from drillstring.simulate import simulate
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> float:
@@ -108,3 +109,21 @@ def test_a_linear_many_mode_run_stays_linear() -> None:
     elastic = slice(1, None)
     want = v0[elastic, None] / w[elastic, None] * np.sin(w[elastic, None] * t)
     np.testing.assert_allclose(linear.q[elastic], want, rtol=0, atol=1e-8 * np.abs(want).max())
+
+
+def test_simulate_takes_the_evaluation() -> None:
+    """``simulate(evaluation=...)``: "terms" and "spectral" solves of 10 modes agree to their
+    tolerance, "auto" is the spectral one there (from the crossover on), a bad value names the
+    argument; below the crossover "auto" is the term sum, bit for bit."""
+    params = preset("aluminum")
+    t_eval = np.linspace(0.0, 0.05, 11)
+    runs = {e: simulate(params, modes=10, t_end=0.05, t_eval=t_eval, rtol=1e-11, atol=1e-13, evaluation=e)
+            for e in ("terms", "spectral", "auto")}
+    scale = np.abs(runs["terms"].q).max()
+    np.testing.assert_allclose(runs["spectral"].q, runs["terms"].q, rtol=0, atol=1e-8 * scale)
+    assert np.array_equal(runs["auto"].q, runs["spectral"].q)
+    small = [simulate(params, modes=3, t_end=0.05, t_eval=t_eval, evaluation=e).q for e in ("terms", "auto")]
+    assert np.array_equal(small[0], small[1])
+    with pytest.raises(ValidationError) as info:
+        simulate(params, modes=3, t_end=0.05, evaluation="fft")  # type: ignore[arg-type]
+    assert info.value.field == "evaluation"

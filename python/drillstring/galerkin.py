@@ -61,7 +61,7 @@ import functools
 import itertools
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, NamedTuple, Union
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -76,6 +76,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MAX_MODES",
+    "Evaluation",
     "DuffingCoefficients",
     "GalerkinIntegrals",
     "ModalCoefficients",
@@ -83,6 +84,9 @@ __all__ = [
     "mode_numbers",
     "project",
 ]
+
+#: How the core evaluates the quartic force and potential (:meth:`ModalCoefficients.core_system`).
+Evaluation = Literal["auto", "terms", "spectral"]
 
 #: Largest accepted number of elastic modes ``n`` (the core's limit).
 MAX_MODES: int = _core.GALERKIN_MAX_MODES
@@ -382,7 +386,7 @@ class ModalCoefficients:
     def _factors(self, q: FloatArray) -> FloatArray:
         return q[self.quartic_index]  # (T, 4) or (T, 4, S)
 
-    def core_system(self, damping_rate: float = 0.0, evaluation: str = "auto") -> _core.ModalSystem:
+    def core_system(self, damping_rate: float = 0.0, evaluation: Evaluation = "auto") -> _core.ModalSystem:
         """This model as the core's modal system, with the viscous damping rate ``c`` (1/s).
 
         ``evaluation`` is how the core evaluates the quartic force and potential: ``"terms"``

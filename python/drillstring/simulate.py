@@ -17,7 +17,7 @@ import numpy as np
 from . import _core, limits
 from ._progress import ProgressOption, SolveProgress, check_progress
 from .errors import SolveError, ValidationError
-from .galerkin import ModalCoefficients, project
+from .galerkin import Evaluation, ModalCoefficients, project
 from .parameters import Parameters
 from .result import SolverStats, TrajectoryResult
 
@@ -238,6 +238,7 @@ def simulate(
     samples: Optional[int] = None,
     max_steps: Optional[int] = None,
     nonlinear: bool = True,
+    evaluation: Evaluation = "auto",
     check: bool = True,
     progress: ProgressOption = False,
 ) -> Simulation:
@@ -279,6 +280,12 @@ def simulate(
         status ``"max_steps"``.
     nonlinear : bool
         ``False`` drops the cubic terms: the linearised model ``M q'' + K q = 0`` (sec. 3.3).
+    evaluation : {"auto", "terms", "spectral"}
+        How the core evaluates the quartic force: ``"terms"`` sums the quartic terms one by one,
+        ``"spectral"`` evaluates them pseudo-spectrally (O(n log n), equal to the term sum to
+        rounding), ``"auto"`` (default) takes the spectral evaluation from
+        ``drillstring._core.SPECTRAL_MIN_MODES`` retained modes on, where it is faster. The two
+        agree to rounding, so adaptive solves agree to their tolerance, not bit for bit.
     check : bool
         Raise :class:`~drillstring.errors.SolveError` when the solve stops early (default);
         with ``check=False`` the partial result is returned with its ``status``.
@@ -321,7 +328,7 @@ def simulate(
         t_eval, samples, t_end_f, method, state_dim=2 * coefficients.n_modes, dt=dt_f, max_steps=steps,
         fastest=fastest_mode(coefficients),
     )
-    system = coefficients.core_system(params.damping_rate)
+    system = coefficients.core_system(params.damping_rate, evaluation)
     q0, v0 = coefficients.initial_state(params)
     with SolveProgress(progress, t_end_f, "simulate") as bar:
         raw = _core.solve_modal(
