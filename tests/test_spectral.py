@@ -127,3 +127,6 @@ def test_simulate_takes_the_evaluation() -> None:
     with pytest.raises(ValidationError) as info:
         simulate(params, modes=3, t_end=0.05, evaluation="fft")  # type: ignore[arg-type]
     assert info.value.field == "evaluation"
+    n = _core.SPECTRAL_MIN_MODES
+    assert [_core.resolve_evaluation("auto", m) for m in (n - 1, n)] == ["terms", "spectral"]
+    assert _core.resolve_evaluation("terms", 200) == "terms" and _core.resolve_evaluation("spectral", 1) == "spectral"

@@ -1,6 +1,6 @@
 """Type stubs of the compiled module ``drillstring._core`` (Rust, PyO3)."""
 
-from typing import Callable, Optional, TypedDict
+from typing import Callable, Literal, Optional, TypedDict
 
 import numpy as np
 from numpy.typing import NDArray
@@ -273,6 +273,17 @@ def galerkin_integrals(modes: int, rigid_mode: bool) -> IntegralArrays:
 
 GALERKIN_MAX_MODES: int
 SPECTRAL_MIN_MODES: int
+
+def resolve_evaluation(evaluation: str, modes: int) -> Literal["terms", "spectral"]:
+    """The quartic evaluation that ``evaluation`` (``"auto"``, ``"terms"`` or ``"spectral"``)
+    means for ``modes`` retained modes: ``"auto"`` is ``"spectral"`` from
+    :data:`SPECTRAL_MIN_MODES` on, else ``"terms"``.
+
+    Raises
+    ------
+    ValidationError
+        For another name (field ``evaluation``).
+    """
 
 class ScaledSystem(TypedDict):
     mass: NDArray[np.float64]

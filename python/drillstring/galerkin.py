@@ -402,17 +402,13 @@ class ModalCoefficients:
             coefficient not finite), a bad ``damping_rate`` or ``evaluation``, or
             ``"spectral"`` without :attr:`coefficients`.
         """
-        if evaluation not in ("auto", "terms", "spectral"):
-            raise ValidationError("evaluation", evaluation, '"auto", "terms" or "spectral"')
+        resolved = _core.resolve_evaluation(str(evaluation), self.n_modes)  # names "evaluation" if bad
         if evaluation == "spectral" and self.coefficients is None:
             raise ValidationError(
                 "evaluation", evaluation, '"terms" or "auto" for a model without coefficients'
             )
         source = self.coefficients
-        if source is not None and (
-            evaluation == "spectral"
-            or (evaluation == "auto" and self.n_modes >= _core.SPECTRAL_MIN_MODES)
-        ):
+        if source is not None and resolved == "spectral":
             return _core.ModalSystem.spectral(
                 np.array(source.as_tuple(), dtype=float),
                 source.length,

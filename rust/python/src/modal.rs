@@ -1,13 +1,22 @@
 //! Bindings of the modal Galerkin system and its solve.
 
 use drillstring_core as core;
-use drillstring_core::modal::{ModalSystem as CoreModalSystem, QuarticTerm};
+use drillstring_core::modal::{ModalSystem as CoreModalSystem, QuarticEvaluation, QuarticTerm};
 use drillstring_core::SecondOrderSystem;
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::convert::{no_panic, solve_to_dict, to_vec, validation_error, SolveArgs};
+
+/// The quartic evaluation (`"terms"` or `"spectral"`) that `evaluation` (`"auto"`, `"terms"`
+/// or `"spectral"`) means for a system of `modes` retained modes; a `ValidationError` naming
+/// `"evaluation"` for another name.
+#[pyfunction]
+pub(crate) fn resolve_evaluation(py: Python<'_>, evaluation: &str, modes: usize) -> PyResult<&'static str> {
+    let chosen = QuarticEvaluation::from_name(evaluation).map_err(|e| validation_error(py, e))?;
+    Ok(chosen.resolve(modes).name())
+}
 
 /// The modal system `M q'' + K q + grad V(q) = 0` (diagonal M and K, quartic potential terms).
 #[pyclass(frozen, module = "drillstring._core")]
