@@ -17,8 +17,6 @@
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::mpsc;
-use std::time::Duration;
 
 use rayon::prelude::*;
 use serde_json::Value;
@@ -29,10 +27,8 @@ use crate::error::{Error, Result};
 use crate::interrupt::{CancelFlag, Interrupt};
 use crate::metrics::StickSlip;
 use crate::solution::Status;
+use crate::sweep::batch::run_on_pool;
 use crate::sweep::{resolve_threads, RunStatus};
-
-/// How often the calling thread asks its [`Interrupt`] hook and reports progress.
-const HOOK_INTERVAL: Duration = Duration::from_millis(5);
 
 /// One field override of a run: a dotted path with indices and its JSON value
 /// (`null` removes the field, so it takes its default).
@@ -242,10 +238,6 @@ pub fn solve_map(
             ));
         }
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.min(runs.len().max(1)))
-        .build()
-        .map_err(|e| Error::invalid("threads", threads, format!("a thread count the system allows ({e})")))?;
     let cancel = CancelFlag::new();
     let finished = AtomicUsize::new(0);
     let total = runs.len();
@@ -262,32 +254,17 @@ pub fn solve_map(
             })
             .collect::<Vec<_>>()
     };
-    let rows = std::thread::scope(|scope| {
-        let (done, over) = mpsc::channel();
-        let worker = scope.spawn(move || {
-            let rows = pool.install(work);
-            let _ = done.send(());
-            rows
-        });
-        progress(0, total);
-        let mut reported = 0;
-        loop {
-            let ended = !matches!(over.recv_timeout(HOOK_INTERVAL), Err(mpsc::RecvTimeoutError::Timeout));
-            let n = finished.load(Ordering::Relaxed);
-            if n != reported {
-                reported = n;
-                progress(n, total);
-            }
-            if ended {
-                break;
-            }
-            if !cancel.is_cancelled() && interrupt.interrupted_at(n as f64) {
-                cancel.cancel();
-            }
+    progress(0, total);
+    let mut reported = 0;
+    let tick = || {
+        let n = finished.load(Ordering::Relaxed);
+        if n != reported {
+            reported = n;
+            progress(n, total);
         }
-        worker.join()
-    });
-    rows.map_err(|_| Error::invalid("runs", runs.len(), "runs the map solver can finish (internal error)"))
+        n as f64
+    };
+    run_on_pool(threads, total, &cancel, interrupt, tick, work)
 }
 
 /// [`run_one`], with a panic turned into a row of this run only.

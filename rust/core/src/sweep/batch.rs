@@ -279,10 +279,6 @@ pub fn batch_solve_with(
     opts.validate()?;
     let threads = resolve_threads(threads)?;
     opts.check_memory(integrals.modes(), runs.len(), threads)?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.min(runs.len().max(1)))
-        .build()
-        .map_err(|e| Error::invalid("threads", threads, format!("a thread count the system allows ({e})")))?;
     let times = opts.times();
     let cancel = CancelFlag::new();
     let shared = Shared {
@@ -298,21 +294,48 @@ pub fn batch_solve_with(
             .map_init(|| shared.estimator.buffers(), |buf, spec| run_guarded(&shared, spec, buf))
             .collect::<Vec<_>>()
     };
-    let records = std::thread::scope(|scope| {
+    run_on_pool(threads, runs.len(), &cancel, interrupt, || f64::NAN, work)
+}
+
+/// Runs `work` (parallel iterators inside it run on the pool) on a rayon pool of `threads`
+/// made for this call and dropped after it (fork-safe: never the global pool), for a batch of
+/// `runs` runs. Meanwhile the calling thread polls `interrupt` every [`HOOK_INTERVAL`] (a
+/// Python signal check must run on the main thread) and cancels `cancel` when it asks to stop;
+/// each poll first calls `tick`, whose value (the progress reached) is what the hook sees, and
+/// `tick` is called once more when the work has ended. The batch solves and the drilling maps
+/// both run this way.
+pub(crate) fn run_on_pool<T: Send>(
+    threads: usize,
+    runs: usize,
+    cancel: &CancelFlag,
+    interrupt: &dyn Interrupt,
+    mut tick: impl FnMut() -> f64,
+    work: impl FnOnce() -> T + Send,
+) -> Result<T> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.min(runs.max(1)))
+        .build()
+        .map_err(|e| Error::invalid("threads", threads, format!("a thread count the system allows ({e})")))?;
+    let outcome = std::thread::scope(|scope| {
         let (done, finished) = mpsc::channel();
         let worker = scope.spawn(move || {
-            let records = pool.install(work);
+            let out = pool.install(work);
             let _ = done.send(());
-            records
+            out
         });
-        while let Err(mpsc::RecvTimeoutError::Timeout) = finished.recv_timeout(HOOK_INTERVAL) {
-            if !cancel.is_cancelled() && interrupt.interrupted() {
+        loop {
+            let ended = !matches!(finished.recv_timeout(HOOK_INTERVAL), Err(mpsc::RecvTimeoutError::Timeout));
+            let reached = tick();
+            if ended {
+                break;
+            }
+            if !cancel.is_cancelled() && interrupt.interrupted_at(reached) {
                 cancel.cancel();
             }
         }
         worker.join()
     });
-    records.map_err(|_| Error::invalid("runs", runs.len(), "runs the batch solver can finish (internal error)"))
+    outcome.map_err(|_| Error::invalid("runs", runs, "runs the batch solver can finish (internal error)"))
 }
 
 /// [`run_one`], with a panic turned into a record of this run only.
