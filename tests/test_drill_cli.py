@@ -26,8 +26,8 @@ EXAMPLE = ROOT / "examples" / "on-bottom-3000m.toml"
 SHORT = ["--set", "numerics.duration=3", "--set", "numerics.cells=60", "--set", "numerics.field_interval=0.5"]
 
 METRIC_KEYS = {"period_s", "ssi", "stuck_fraction", "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean",
-               "motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "window_start", "window_end",
-               "window", "status", "message", "energy"}
+               "motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "min_cycle_torque_Nm",
+               "window_start", "window_end", "window", "status", "message", "energy"}
 
 
 def test_drill_writes_the_output_folder(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -461,6 +461,9 @@ class DrillMetrics(TypedDict):
     torque_max: float
     cycle_period: float
     breakoff_torque: float
+    #: The minimum motor torque of a stick-slip cycle implied by break-off, 2 K - S (S the static
+    #: torque of the wall and, on bottom, the bit; K the same at the kinetic torques), N m.
+    min_cycle_torque: float
 
 class DrillEnergy(TypedDict):
     #: J, from the start to the end reached: motor work = (final - initial) + losses.
@@ -560,3 +563,101 @@ def drill_map(
         ``config_json`` or ``runs_json`` not JSON of the right shape, ``threads``, or a map
         over ``memory_budget`` bytes (``threads``).
     """
+
+
+# ----------------------------------------------------------------- the lumped two-inertia model
+
+def lumped_defaults() -> tuple[str, str]:
+    """The default parameters and numerics of the lumped model as JSON objects:
+    parameters ``jr``, ``jb``, ``kt``, ``ct``, ``cr``, ``cb``, ``rb``, ``mu_cb``, ``mu_sb``,
+    ``gamma_b``, ``v_f``, ``d_v``, ``tm``, ``wob`` (Navarro-Lopez & Cortes 2007);
+    numerics ``duration``, ``dt``, ``output_interval``, ``initial`` ([wr, phi, wb]),
+    ``window`` (null or [t_start, t_end]), ``stick_speed``."""
+
+class LumpedMetrics(TypedDict):
+    #: Of ``metrics::stick_slip`` with the spring torque as the torque series.
+    t_start: float
+    t_end: float
+    severity: float
+    stuck_fraction: float
+    rpm_min: float
+    rpm_max: float
+    rpm_mean: float
+    torque_min: float
+    torque_max: float
+    cycle_period: float
+
+class LumpedEnergy(TypedDict):
+    #: J: motor_work = (kinetic_top + kinetic_bit + spring - initial) + viscous_loss + friction_loss.
+    motor_work: float
+    initial: float
+    kinetic_top: float
+    kinetic_bit: float
+    spring: float
+    viscous_loss: float
+    friction_loss: float
+    #: The residual over the largest term.
+    balance_error: float
+
+class LumpedOutput(TypedDict):
+    #: Samples at k * output_interval: s, rad/s, rad/s, N m (kt phi), N m.
+    t: NDArray[np.float64]
+    top_speed: NDArray[np.float64]
+    bit_speed: NDArray[np.float64]
+    spring_torque: NDArray[np.float64]
+    bit_torque: NDArray[np.float64]
+    #: "success", "interrupted", "non_finite" or "out_of_memory".
+    status: str
+    message: str
+    window: tuple[float, float]
+    metrics: LumpedMetrics
+    energy: LumpedEnergy
+    #: steps, sticks, slips.
+    stats: dict[str, int]
+
+def lumped_solve(
+    params_json: str, numerics_json: str, progress: Optional[Callable[[float], object]] = None
+) -> LumpedOutput:
+    """Runs the lumped model (fourth-order Runge-Kutta, stick and slip switches located in the
+    step) without the GIL.
+
+    Raises
+    ------
+    ValidationError
+        An unknown field or a value out of range, naming it.
+    KeyboardInterrupt
+        Ctrl-C during the run (or any exception raised by ``progress``).
+    """
+
+class LumpedRotationDict(TypedDict):
+    #: rad/s, rad.
+    speed: float
+    twist: float
+    #: (re, im) of the Jacobian's eigenvalues, by increasing real part.
+    eigenvalues: list[tuple[float, float]]
+    stable: bool
+
+class LumpedEquilibriaDict(TypedDict):
+    rotations: list[LumpedRotationDict]
+    #: Tm <= Wob Rb mu_sb.
+    stuck_possible: bool
+    #: "stable_rotation", "unstable" or "stuck".
+    regime: str
+    #: Wob Rb mu_sb, N m.
+    static_limit: float
+
+def lumped_equilibria(params_json: str) -> LumpedEquilibriaDict:
+    """The steady rotations of the lumped model, their stability and the regime.
+
+    Raises
+    ------
+    ValidationError
+        As :func:`lumped_solve`.
+    """
+
+def min_cycle_torque(
+    breakoff_torque: float, kinetic_ratio: float, bit_static: float = 0.0, bit_kinetic: float = 0.0
+) -> float:
+    """The minimum motor torque of a stick-slip cycle implied by break-off, ``2 K - S`` with
+    ``S = breakoff_torque + bit_static`` and ``K = kinetic_ratio breakoff_torque + bit_kinetic``
+    (``drilling::grid::min_cycle_torque_from``), N m."""

@@ -5,7 +5,8 @@ with a speed controller, with Coulomb friction against the wall along its length
 bottom, a velocity-weakening bit-rock torque. The Rust core (``drillstring_core::drilling``)
 solves the torsional wave equation on a grid along the string, and computes the friction
 profile, the break-off torque, the stick-slip metrics and the energy balance; this package
-configures it and renders what it returns.
+configures it and renders what it returns. :mod:`.lumped` holds the lumped two-inertia model
+of Navarro-Lopez & Cortes (2007) with its equilibria and their stability.
 
 >>> import drillstring as ds
 >>> cfg = ds.load_drill_config("examples/on-bottom-3000m.toml")          # doctest: +SKIP
@@ -28,6 +29,7 @@ from .config import (
     defaults,
     load_drill_config,
 )
+from .lumped import LumpedEquilibria, LumpedResult, LumpedRotation, lumped, lumped_defaults, lumped_equilibria
 from .maps import controller_maps, drill_map, ssi_lines, ssi_map
 from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
@@ -35,6 +37,12 @@ from .solve import drill, friction_profile
 
 __all__ = [
     "FILES",
+    "LumpedEquilibria",
+    "LumpedResult",
+    "LumpedRotation",
+    "lumped",
+    "lumped_defaults",
+    "lumped_equilibria",
     "SERIES",
     "UNITS",
     "DrillMetrics",

@@ -135,6 +135,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         f"| bit speed min / mean / max, rpm | {_fmt(m.bit_rpm_min)} / {_fmt(m.bit_rpm_mean)} / {_fmt(m.bit_rpm_max)} |",
         f"| motor torque min / max, kN m | {_fmt(m.motor_torque_min_Nm / 1e3)} / {_fmt(m.motor_torque_max_Nm / 1e3)} |",
         f"| break-off torque, kN m | {_fmt(m.breakoff_torque_Nm / 1e3)} |",
+        f"| minimum cycle torque implied by break-off, kN m | {_fmt(m.min_cycle_torque_Nm / 1e3)} |",
     ]
     if result.energy:
         lines += ["", "## Energy balance, J", "",

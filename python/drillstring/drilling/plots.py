@@ -45,7 +45,8 @@ def _shade_window(ax: object, result: DrillResult) -> None:
 
 def time_histories(result: DrillResult, title: Optional[str] = None) -> Figure:
     """Surface and bit rpm (top), motor and bit torque in kN m (bottom) against time; the
-    metrics window is shaded, the break-off torque drawn as a dashed line."""
+    metrics window is shaded, the break-off torque drawn as a dotted line and the minimum cycle
+    torque it implies as a dash-dotted one."""
     fig = _figure(11, 6.4)
     ax_rpm, ax_torque = fig.subplots(2, 1, sharex=True)
     for ax in (ax_rpm, ax_torque):
@@ -60,6 +61,9 @@ def time_histories(result: DrillResult, title: Optional[str] = None) -> Figure:
     breakoff = result.profile.breakoff_torque
     if np.isfinite(breakoff) and breakoff > 0:
         ax_torque.axhline(breakoff * _KN, color="k", lw=0.8, ls=":", label="break-off torque (wall friction)")
+    low = result.metrics.min_cycle_torque_Nm
+    if np.isfinite(low):
+        ax_torque.axhline(low * _KN, color="0.4", lw=0.8, ls="-.", label="minimum cycle torque implied by break-off")
     ax_torque.set_ylabel("torque, kN m")
     ax_torque.set_xlabel("t, s")
     ax_torque.legend(loc="upper right", fontsize=9)

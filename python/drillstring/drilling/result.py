@@ -38,6 +38,7 @@ UNITS: dict[str, str] = {
     "limit_per_m": "N m/m",
     "cumulative": "N m",
     "breakoff_torque": "N m",
+    "min_cycle_torque": "N m",
 }
 
 
@@ -52,6 +53,7 @@ _CORE_METRICS = {
     "motor_torque_min_Nm": "torque_min",
     "motor_torque_max_Nm": "torque_max",
     "breakoff_torque_Nm": "breakoff_torque",
+    "min_cycle_torque_Nm": "min_cycle_torque",
 }
 
 
@@ -85,6 +87,11 @@ class DrillMetrics:
     motor_torque_max_Nm: float
     breakoff_torque_Nm: float
     """Static break-off torque of the string in the well (the integral of the friction limit), N m."""
+    min_cycle_torque_Nm: float
+    """The minimum motor torque of a stick-slip cycle that break-off implies, ``2 K - S`` (``S`` the
+    static torque of the wall and, on bottom, the bit; ``K`` the same contacts at their kinetic
+    torque): ``breakoff (1 - 2 (1 - kinetic_ratio))`` off bottom, as ``tauMin`` of Aarsnes & Shor's
+    code (``drillstring_core::drilling::grid::min_cycle_torque``), N m."""
 
     @classmethod
     def from_core(cls, metrics: Mapping[str, Any]) -> DrillMetrics:

@@ -61,6 +61,7 @@ fn columns<'py>(
     m.set_item("torque_max", PyArray1::from_vec(py, metric(|s| s.torque_max)))?;
     m.set_item("cycle_period", PyArray1::from_vec(py, metric(|s| s.cycle_period)))?;
     m.set_item("breakoff_torque", PyArray1::from_vec(py, row(|r| r.breakoff_torque)))?;
+    m.set_item("min_cycle_torque", PyArray1::from_vec(py, row(|r| r.min_cycle_torque)))?;
     d.set_item("metrics", m)?;
     let st = PyDict::new(py);
     st.set_item("cells", PyArray1::from_vec(py, rows.iter().map(|r| r.stats.cells as u64).collect::<Vec<_>>()))?;

@@ -44,9 +44,9 @@ pub(crate) fn drill_profile<'py>(py: Python<'py>, config_json: &str) -> PyResult
 
 /// The interrupt hook of a drilling solve: Python's signal handlers (Ctrl-C) and the progress
 /// callable, which receives the fraction done (the solve time over the duration).
-struct Fraction<'a> {
-    signals: &'a SignalCheck,
-    duration: f64,
+pub(crate) struct Fraction<'a> {
+    pub(crate) signals: &'a SignalCheck,
+    pub(crate) duration: f64,
 }
 
 impl Interrupt for Fraction<'_> {
@@ -108,6 +108,7 @@ fn run_dict(py: Python<'_>, run: drilling::DrillRun) -> PyResult<Bound<'_, PyDic
     m.set_item("torque_max", s.map_or(nan, |s| s.torque_max))?;
     m.set_item("cycle_period", s.map_or(nan, |s| s.cycle_period))?;
     m.set_item("breakoff_torque", run.breakoff_torque)?;
+    m.set_item("min_cycle_torque", run.min_cycle_torque)?;
     d.set_item("metrics", m)?;
 
     let e = PyDict::new(py);

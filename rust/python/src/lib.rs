@@ -13,6 +13,7 @@ mod convert;
 mod drill_map;
 mod drilling;
 mod galerkin;
+mod lumped;
 mod metrics;
 mod modal;
 mod model;
@@ -58,6 +59,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
     m.add_function(wrap_pyfunction!(drill_map::drill_map, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::lumped_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::lumped_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::lumped_equilibria, m)?)?;
+    m.add_function(wrap_pyfunction!(lumped::min_cycle_torque, m)?)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -501,34 +501,6 @@ impl DrillConfig {
     }
 
     fn validate_values(&self) -> Result<()> {
-        fn pos(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
-            if x.is_finite() && x > 0.0 {
-                Ok(())
-            } else {
-                Err(Error::invalid(field, Num(x), format!("a finite number > 0 ({unit})")))
-            }
-        }
-        fn nonneg(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
-            if x.is_finite() && x >= 0.0 {
-                Ok(())
-            } else {
-                Err(Error::invalid(field, Num(x), format!("a finite number >= 0 ({unit})")))
-            }
-        }
-        fn within(field: impl Into<String>, x: f64, lo: f64, hi: f64, unit: &str) -> Result<()> {
-            if x.is_finite() && (lo..=hi).contains(&x) {
-                Ok(())
-            } else {
-                Err(Error::invalid(field, Num(x), format!("a number in [{}, {}] ({unit})", Num(lo), Num(hi))))
-            }
-        }
-        fn finite(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
-            if x.is_finite() {
-                Ok(())
-            } else {
-                Err(Error::invalid(field, Num(x), format!("a finite number ({unit})")))
-            }
-        }
         let n = self.sections.len();
         if !(1..=MAX_SECTIONS).contains(&n) {
             return Err(Error::invalid("sections", format!("{n} sections"), format!("1..={MAX_SECTIONS} sections")));
@@ -735,5 +707,35 @@ fn samples(duration: f64, interval: f64) -> usize {
         n as usize + 1
     } else {
         usize::MAX
+    }
+}
+
+/// Validation helpers: an error naming `field` unless `x` is in range.
+pub(super) fn pos(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
+    if x.is_finite() && x > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, Num(x), format!("a finite number > 0 ({unit})")))
+    }
+}
+pub(super) fn nonneg(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
+    if x.is_finite() && x >= 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, Num(x), format!("a finite number >= 0 ({unit})")))
+    }
+}
+pub(super) fn within(field: impl Into<String>, x: f64, lo: f64, hi: f64, unit: &str) -> Result<()> {
+    if x.is_finite() && (lo..=hi).contains(&x) {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, Num(x), format!("a number in [{}, {}] ({unit})", Num(lo), Num(hi))))
+    }
+}
+pub(super) fn finite(field: impl Into<String>, x: f64, unit: &str) -> Result<()> {
+    if x.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, Num(x), format!("a finite number ({unit})")))
     }
 }

@@ -215,6 +215,42 @@ pub fn breakoff_torque(cfg: &DrillConfig) -> Result<f64> {
     Ok(total)
 }
 
+/// The minimum motor torque of a stick-slip cycle implied by break-off, N m:
+/// `2 K - S` with `S = wall_breakoff + bit_static` the static torque the string holds at
+/// break-off and `K = kinetic_ratio wall_breakoff + bit_kinetic` the torque of the same
+/// contacts slipping.
+///
+/// Derivation: at break-off the string is wound up to hold `S`. When it slips, the friction
+/// along it (and at the bit) drops from static to kinetic, releasing the difference `S - K` as a
+/// torque wave; the wave reflects at the bit and comes back to the top with the same sign, so
+/// the top torque swings about the new balance `K` by the same amount it was above it, down to
+/// `K - (S - K) = S (1 - 2 (1 - K / S))` (an undamped spring preloaded to `S` and released
+/// against a load `K` oscillates between `S` and `2 K - S`). Without a bit torque this is
+/// `tauMax (1 - 2 (1 - fRat))` of the published code of Aarsnes & Shor (MAIN.m, `tauMin`).
+/// Assumptions: no damping and a quick release (the whole string slips within one
+/// round trip of the wave), the bit (if on bottom) at its kinetic torque `W r mu_k` (the
+/// law's fast limit: a slower bit has a larger torque and a larger minimum). The value can be
+/// negative (the motor would have to brake).
+pub fn min_cycle_torque_from(wall_breakoff: f64, kinetic_ratio: f64, bit_static: f64, bit_kinetic: f64) -> f64 {
+    let static_torque = wall_breakoff + bit_static;
+    let kinetic_torque = kinetic_ratio * wall_breakoff + bit_kinetic;
+    2.0 * kinetic_torque - static_torque
+}
+
+/// [`min_cycle_torque_from`] of a configuration whose wall break-off torque is `breakoff`
+/// ([`breakoff_torque`]): the wall's kinetic ratio `friction.kinetic_ratio` and, with the bit
+/// on bottom, its static and kinetic torques `W r mu_s`, `W r mu_k`.
+pub fn min_cycle_torque(cfg: &DrillConfig, breakoff: f64) -> f64 {
+    let b = &cfg.bit;
+    let (bit_static, bit_kinetic) = if b.on_bottom && b.weight_on_bit > 0.0 {
+        let wr = b.weight_on_bit * b.radius;
+        (wr * b.mu_static, wr * b.mu_kinetic)
+    } else {
+        (0.0, 0.0)
+    };
+    min_cycle_torque_from(breakoff, cfg.friction.kinetic_ratio, bit_static, bit_kinetic)
+}
+
 /// The lowest natural angular frequency (rad/s) of the string with the top fixed and the bit
 /// free (or carrying the BHA inertia `bha_inertia`): the first root of the transfer-matrix
 /// frequency equation `q(L) - I_bha w^2 theta(L) = 0` from `theta(0) = 0`, `q(0) = 1`

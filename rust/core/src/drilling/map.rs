@@ -45,6 +45,8 @@ pub struct MapRow {
     pub window: [f64; 2],
     /// Static break-off torque, N m (NaN for an invalid run).
     pub breakoff_torque: f64,
+    /// Minimum cycle torque implied by break-off, N m (NaN for an invalid run).
+    pub min_cycle_torque: f64,
     pub stats: DrillStats,
     /// Relative energy balance error of the run (NaN for an invalid run).
     pub balance_error: f64,
@@ -58,6 +60,7 @@ impl MapRow {
             metrics: None,
             window: [f64::NAN; 2],
             breakoff_torque: f64::NAN,
+            min_cycle_torque: f64::NAN,
             stats: DrillStats::default(),
             balance_error: f64::NAN,
         }
@@ -296,6 +299,7 @@ pub fn run_one(cfg: &DrillConfig, cancel: &CancelFlag) -> MapRow {
                 metrics: if status.is_success() { run.metrics } else { None },
                 window: run.window,
                 breakoff_torque: run.breakoff_torque,
+                min_cycle_torque: run.min_cycle_torque,
                 stats: run.stats,
                 balance_error: run.energy.balance_error,
             }

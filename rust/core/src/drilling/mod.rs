@@ -20,8 +20,10 @@
 //! * [`map`]: stick-slip maps, many runs of one base configuration with per-run overrides
 //!   solved in parallel, one row of metrics each ([`map::solve_map`]).
 
+pub mod bit;
 pub mod config;
 pub mod grid;
+pub mod lumped;
 pub mod map;
 pub mod solver;
 
@@ -29,5 +31,5 @@ pub mod solver;
 mod tests;
 
 pub use config::{DrillConfig, MAX_CELLS, MAX_DURATION, MAX_OUTPUT_BYTES, MAX_SECTIONS};
-pub use grid::{breakoff_torque, Grid};
+pub use grid::{breakoff_torque, min_cycle_torque, min_cycle_torque_from, Grid};
 pub use solver::{friction_profile, solve, DrillRun, DrillStats, EnergyBalance, Profile, Simulation};

@@ -76,8 +76,9 @@ use crate::interrupt::{Interrupt, Poller};
 use crate::metrics::{stick_slip, StickSlip};
 use crate::solution::Status;
 
+use super::bit::slip_torque;
 use super::config::{ControllerKind, DrillConfig, FrictionModel, SERIES};
-use super::grid::{breakoff_torque, first_natural_frequency, Grid};
+use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
 
@@ -148,6 +149,9 @@ pub struct DrillRun {
     /// The window `[t_start, t_end]` asked for.
     pub window: [f64; 2],
     pub breakoff_torque: f64,
+    /// The minimum motor torque of a stick-slip cycle implied by break-off
+    /// ([`super::grid::min_cycle_torque`]), N m.
+    pub min_cycle_torque: f64,
     pub status: Status,
     pub message: String,
     pub stats: DrillStats,
@@ -481,8 +485,7 @@ impl<'c> Simulation<'c> {
             if wb.abs() < b.stick_speed {
                 stick(drive)
             } else {
-                let mu = b.mu_kinetic + (b.mu_static - b.mu_kinetic) * (-b.decay * wb.abs()).exp();
-                let tb = (wr * mu).copysign(wb);
+                let tb = slip_torque(wr, b.mu_static, b.mu_kinetic, b.decay, wb);
                 let w = (drive - tb) / denom;
                 // A slip torque that would reverse the bit stops it instead (set-valued at 0).
                 if w * wb < 0.0 {
@@ -556,6 +559,7 @@ impl<'c> Simulation<'c> {
         let (k0, e0, t0, b0) = self.energies();
         let initial = k0 + e0 + t0 + b0;
 
+        let breakoff = breakoff_torque(cfg).unwrap_or(f64::NAN);
         let mut run = DrillRun {
             t: Vec::new(),
             surface_rpm: Vec::new(),
@@ -569,7 +573,8 @@ impl<'c> Simulation<'c> {
             energy: EnergyBalance::default(),
             metrics: None,
             window: cfg.metrics.window.unwrap_or([0.5 * duration, duration]),
-            breakoff_torque: breakoff_torque(cfg).unwrap_or(f64::NAN),
+            breakoff_torque: breakoff,
+            min_cycle_torque: min_cycle_torque(cfg, breakoff),
             status: Status::Success,
             message: String::new(),
             stats: DrillStats {

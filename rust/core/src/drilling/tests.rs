@@ -612,3 +612,28 @@ fn a_short_section_gets_a_cell_and_a_stable_step() {
     cfg.numerics.max_cells = 200;
     assert_eq!(cfg.validate().unwrap_err().field(), "numerics.cells");
 }
+
+#[test]
+fn min_cycle_torque_is_the_published_tau_min_and_counts_the_bit() {
+    // Aarsnes & Shor's MAIN.m, Well B: tauMin = tauMax(1) (1 - 2 (1 - fRat)).
+    let (tau_max, f_rat) = (19531.0174047259, 0.65);
+    let published = 5859.305221417771;
+    let got = min_cycle_torque_from(tau_max, f_rat, 0.0, 0.0);
+    assert!((got / published - 1.0).abs() < 1e-12, "{got} vs {published}");
+    // Static and kinetic alike: no drop, the minimum is the torque itself.
+    assert_eq!(min_cycle_torque_from(1000.0, 1.0, 50.0, 50.0), 1050.0);
+    // A configuration: the wall's kinetic ratio, and the bit's W r mu_s, W r mu_k when on bottom.
+    let mut cfg = DrillConfig { sections: vec![section(2500.0, 0.127, 0.1086)], ..DrillConfig::default() };
+    let b = breakoff_torque(&cfg).unwrap();
+    let r = cfg.friction.kinetic_ratio;
+    assert!((min_cycle_torque(&cfg, b) - b * (1.0 - 2.0 * (1.0 - r))).abs() < 1e-9 * b);
+    cfg.bit.on_bottom = true;
+    cfg.bit.weight_on_bit = 1e5;
+    let wr = 1e5 * cfg.bit.radius;
+    let want = 2.0 * (r * b + wr * cfg.bit.mu_kinetic) - (b + wr * cfg.bit.mu_static);
+    assert!((min_cycle_torque(&cfg, b) - want).abs() < 1e-9 * b);
+    // The run reports it.
+    cfg.numerics.duration = 0.05;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.min_cycle_torque, min_cycle_torque(&cfg, run.breakoff_torque));
+}

@@ -1,0 +1,879 @@
+//! The lumped two-inertia stick-slip model of Navarro-Lopez & Cortes, "Avoiding harmful
+//! oscillations in a drillstring through dynamical analysis", J. Sound Vib. 307 (2007) 152-171:
+//! the rotary table (inertia `Jr`) and the bit (`Jb`) joined by the string as a torsional spring
+//! `kt` and damper `ct`, viscous damping `cr` at the top and `cb` at the bit, a constant motor
+//! torque `Tm`, and the velocity-weakening bit torque of [`super::bit`]:
+//!
+//! ```text
+//! Jr wr' = Tm - cr wr - kt phi - ct (wr - wb)
+//! phi'   = wr - wb                                  (phi = phr - phb, the twist)
+//! Jb wb' = kt phi + ct (wr - wb) - cb wb - Tb
+//! Tb     = Wob Rb (mu_cb + (mu_sb - mu_cb) exp(-gamma_b |wb| / v_f)) sign(wb)   slipping
+//! Tb     = kt phi + ct wr    (the applied torque)   stuck: wb = 0 while |kt phi + ct wr| <= Wob Rb mu_sb
+//! ```
+//!
+//! The parameters' defaults are the published ones (the same values, with `Tm = 6000 N m` and
+//! `Wob = 50 kN`, appear in public code modelling this system as a hybrid automaton).
+//!
+//! # The solver
+//!
+//! Classical fourth-order Runge-Kutta at a fixed step `dt` (shortened to land on every output
+//! time), on the state `(wr, phi, wb)` plus the motor work and the viscous and friction losses
+//! as quadratures, in one of three modes: slipping forwards or backwards (the smooth vector
+//! field above with the sign of the slip held, so that a step never straddles a switch) or
+//! stuck (`wb = 0`, `phi' = wr`). The switches are located within the step by bisection on the
+//! step length (to the last bit):
+//!
+//! * slip -> stick: `wb` reaches 0 (or ends a step below `d_v` in magnitude); there the bit
+//!   sticks if the applied torque `|kt phi + ct wr|` is within the static limit
+//!   `Wob Rb mu_sb`, else it slips on in the direction of that torque;
+//! * stick -> slip: the applied torque reaches the static limit; the bit slips in its direction.
+//!
+//! The energy `Jr wr^2 / 2 + Jb wb^2 / 2 + kt phi^2 / 2` then obeys
+//! `motor work = change + viscous loss + friction loss` to the integrator's error (fourth
+//! order in `dt`); [`LumpedEnergy::balance_error`] reports the residual.
+//!
+//! # Equilibria
+//!
+//! [`equilibria`]: a steady rotation `wr = wb = w > 0` needs
+//! `Tm = (cr + cb) w + Wob Rb mu(w)` (top: `Tm = cr w + kt phi`; bit: `kt phi = cb w + Tb(w)`),
+//! `mu` the bit's friction coefficient. The right side is convex in `w` (the exponential), so
+//! there are 0, 1 or 2 roots, all returned. Each root's linear stability comes from the
+//! eigenvalues of the Jacobian in `(wr, phi, wb)`:
+//!
+//! ```text
+//! [ -(cr + ct)/Jr   -kt/Jr   ct/Jr                        ]
+//! [  1               0       -1                           ]
+//! [  ct/Jb           kt/Jb   -(ct + cb + Wob Rb mu'(w))/Jb ]
+//! ```
+//!
+//! (`mu' < 0`: velocity weakening is negative damping at the bit). The bit at rest is an
+//! equilibrium (`wr = wb = 0`, `kt phi = Tm`) exactly when the static limit holds the whole
+//! motor torque, `Tm <= Wob Rb mu_sb`: with `wr = 0` the applied torque is `kt phi = Tm`
+//! (started there it stays; started from rest untwisted, the top's inertia winds the string
+//! past `Tm` and the bit can break free all the same). So the
+//! regimes: a stable root -> [`Regime::StableRotation`] (with `Tm <= Wob Rb mu_sb` the stuck
+//! state coexists with it); roots but none stable ->
+//! [`Regime::Unstable`] (stick-slip or a growing oscillation); no root -> [`Regime::Stuck`]
+//! (then necessarily `Tm <= Wob Rb mu_sb`: above it `f(0) < 0` and a root exists).
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Num, Result};
+use crate::interrupt::{Interrupt, Poller};
+use crate::metrics::{stick_slip, StickSlip, STICK_SPEED};
+use crate::solution::Status;
+
+use super::bit::{friction_coefficient, slip_torque};
+use super::config::{finite, nonneg, pos, MAX_DURATION};
+
+/// The most output samples of a run.
+pub const MAX_SAMPLES: usize = 20_000_000;
+/// The most time steps of a run.
+pub const MAX_STEPS: f64 = 1e9;
+
+/// The physical parameters; `Default` is Navarro-Lopez & Cortes (2007) with `Tm = 6000 N m`,
+/// `Wob = 50 kN`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LumpedParams {
+    /// Rotary-table (top) inertia, kg m^2.
+    pub jr: f64,
+    /// Bit (BHA) inertia, kg m^2.
+    pub jb: f64,
+    /// Torsional stiffness of the string, N m/rad.
+    pub kt: f64,
+    /// Torsional damping of the string, N m s/rad.
+    pub ct: f64,
+    /// Viscous damping at the top and at the bit, N m s/rad.
+    pub cr: f64,
+    pub cb: f64,
+    /// Bit radius, m.
+    pub rb: f64,
+    /// Kinetic (fast-slip) and static friction coefficients of the bit.
+    pub mu_cb: f64,
+    pub mu_sb: f64,
+    /// Decay of the friction coefficient with speed, s/rad, over the velocity scale `v_f`, rad/s.
+    pub gamma_b: f64,
+    pub v_f: f64,
+    /// Speed band, rad/s, below which a slipping bit is checked for sticking at a step end.
+    pub d_v: f64,
+    /// Motor torque, N m.
+    pub tm: f64,
+    /// Weight on bit, N.
+    pub wob: f64,
+}
+
+impl Default for LumpedParams {
+    fn default() -> Self {
+        LumpedParams {
+            jr: 2122.0,
+            jb: 471.9698,
+            kt: 861.5336,
+            ct: 172.3067,
+            cr: 425.0,
+            cb: 50.0,
+            rb: 0.155575,
+            mu_cb: 0.5,
+            mu_sb: 0.8,
+            gamma_b: 0.9,
+            v_f: 1.0,
+            d_v: 1e-6,
+            tm: 6000.0,
+            wob: 50e3,
+        }
+    }
+}
+
+impl LumpedParams {
+    /// An error naming the first invalid field.
+    pub fn validate(&self) -> Result<()> {
+        pos("jr", self.jr, "kg m^2")?;
+        pos("jb", self.jb, "kg m^2")?;
+        pos("kt", self.kt, "N m/rad")?;
+        nonneg("ct", self.ct, "N m s/rad")?;
+        nonneg("cr", self.cr, "N m s/rad")?;
+        nonneg("cb", self.cb, "N m s/rad")?;
+        if self.cr + self.cb <= 0.0 {
+            return Err(Error::invalid(
+                "cb",
+                Num(self.cb),
+                "cr + cb > 0 N m s/rad (a steady rotation needs viscous damping)",
+            ));
+        }
+        pos("rb", self.rb, "m")?;
+        nonneg("mu_sb", self.mu_sb, "-")?;
+        if !(self.mu_cb.is_finite() && (0.0..=self.mu_sb).contains(&self.mu_cb)) {
+            return Err(Error::invalid(
+                "mu_cb",
+                Num(self.mu_cb),
+                format!("a number in [0, mu_sb = {}]", Num(self.mu_sb)),
+            ));
+        }
+        nonneg("gamma_b", self.gamma_b, "s/rad")?;
+        pos("v_f", self.v_f, "rad/s")?;
+        nonneg("d_v", self.d_v, "rad/s")?;
+        nonneg("tm", self.tm, "N m")?;
+        nonneg("wob", self.wob, "N")?;
+        Ok(())
+    }
+
+    /// `Wob Rb`, N m.
+    fn weight_radius(&self) -> f64 {
+        self.wob * self.rb
+    }
+
+    /// `gamma_b / v_f`, 1/(rad/s): the distributed bit's `decay`.
+    fn decay(&self) -> f64 {
+        self.gamma_b / self.v_f
+    }
+
+    /// The static limit `Wob Rb mu_sb`, N m.
+    pub fn static_limit(&self) -> f64 {
+        self.weight_radius() * self.mu_sb
+    }
+
+    /// The slipping bit's torque at `speed` (the law of [`super::bit`]).
+    pub fn bit_torque(&self, speed: f64) -> f64 {
+        slip_torque(self.weight_radius(), self.mu_sb, self.mu_cb, self.decay(), speed)
+    }
+
+    /// The steady-rotation residual `(cr + cb) w + Wob Rb mu(w) - Tm` at `w >= 0`.
+    pub fn steady_residual(&self, w: f64) -> f64 {
+        (self.cr + self.cb) * w + self.weight_radius() * friction_coefficient(self.mu_sb, self.mu_cb, self.decay(), w)
+            - self.tm
+    }
+
+    /// The Jacobian in `(wr, phi, wb)` at a steady rotation at `w > 0` (see the module).
+    pub fn jacobian(&self, w: f64) -> [[f64; 3]; 3] {
+        let a = self.decay();
+        let dmu = -(self.mu_sb - self.mu_cb) * a * (-a * w).exp();
+        let (jr, jb) = (self.jr, self.jb);
+        [
+            [-(self.cr + self.ct) / jr, -self.kt / jr, self.ct / jr],
+            [1.0, 0.0, -1.0],
+            [self.ct / jb, self.kt / jb, -(self.ct + self.cb + self.weight_radius() * dmu) / jb],
+        ]
+    }
+}
+
+/// Parses `json` (an object of some of the fields) over the defaults of `T`; an error naming
+/// `what` for text that is not such an object (an unknown field or a value of the wrong type).
+fn from_json<T: serde::de::DeserializeOwned>(json: &str, what: &str) -> Result<T> {
+    serde_json::from_str(json).map_err(|e| {
+        Error::invalid(what, format!("JSON that does not fit ({e})"), "an object of the known fields with numbers")
+    })
+}
+
+impl LumpedParams {
+    /// From a JSON object of some of the fields (the rest default); validated.
+    pub fn from_json(json: &str) -> Result<Self> {
+        let p: LumpedParams = from_json(json, "params")?;
+        p.validate()?;
+        Ok(p)
+    }
+
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("plain numbers serialise")
+    }
+}
+
+impl LumpedNumerics {
+    /// From a JSON object of some of the fields (the rest default); validated.
+    pub fn from_json(json: &str) -> Result<Self> {
+        let n: LumpedNumerics = from_json(json, "numerics")?;
+        n.validate()?;
+        Ok(n)
+    }
+
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).expect("plain numbers serialise")
+    }
+}
+
+/// Time stepping, outputs and metrics of a lumped run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LumpedNumerics {
+    /// Simulated time, s.
+    pub duration: f64,
+    /// Runge-Kutta step, s.
+    pub dt: f64,
+    /// Interval of the output samples, s (a whole number of steps is not needed: steps are
+    /// shortened to land on the samples).
+    pub output_interval: f64,
+    /// Initial `(wr, phi, wb)`, rad/s, rad, rad/s (default at rest, untwisted).
+    pub initial: [f64; 3],
+    /// The metrics window `[t_start, t_end]`, s (default the last half of the run).
+    pub window: Option<[f64; 2]>,
+    /// The stick threshold of the metrics (stuck fraction), rad/s.
+    pub stick_speed: f64,
+}
+
+impl Default for LumpedNumerics {
+    fn default() -> Self {
+        LumpedNumerics {
+            duration: 200.0,
+            dt: 1e-3,
+            output_interval: 0.01,
+            initial: [0.0; 3],
+            window: None,
+            stick_speed: STICK_SPEED,
+        }
+    }
+}
+
+impl LumpedNumerics {
+    /// An error naming the first invalid field.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.duration.is_finite() && self.duration > 0.0 && self.duration <= MAX_DURATION) {
+            return Err(Error::invalid(
+                "duration",
+                Num(self.duration),
+                format!("a number in (0, {}] s", Num(MAX_DURATION)),
+            ));
+        }
+        pos("dt", self.dt, "s")?;
+        if self.duration / self.dt > MAX_STEPS {
+            return Err(Error::invalid(
+                "dt",
+                Num(self.dt),
+                format!(
+                    "at least duration / {} = {} s (at most {} steps)",
+                    Num(MAX_STEPS),
+                    Num(self.duration / MAX_STEPS),
+                    Num(MAX_STEPS)
+                ),
+            ));
+        }
+        pos("output_interval", self.output_interval, "s")?;
+        if self.duration / self.output_interval > MAX_SAMPLES as f64 {
+            return Err(Error::invalid(
+                "output_interval",
+                Num(self.output_interval),
+                format!("at least duration / {MAX_SAMPLES} = {} s", Num(self.duration / MAX_SAMPLES as f64)),
+            ));
+        }
+        for (j, name) in ["initial[0]", "initial[1]", "initial[2]"].iter().enumerate() {
+            finite(*name, self.initial[j], "rad/s or rad")?;
+        }
+        if let Some([a, b]) = self.window {
+            if !(a.is_finite() && b.is_finite() && 0.0 <= a && a < b) {
+                return Err(Error::invalid(
+                    "window",
+                    format!("[{}, {}]", Num(a), Num(b)),
+                    "finite times 0 <= t_start < t_end, s",
+                ));
+            }
+        }
+        nonneg("stick_speed", self.stick_speed, "rad/s")
+    }
+
+    fn samples(&self) -> usize {
+        (self.duration / self.output_interval * (1.0 + 1e-12)).floor() as usize + 1
+    }
+}
+
+/// The energy balance of a lumped run, J.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LumpedEnergy {
+    /// `int Tm wr dt`.
+    pub motor_work: f64,
+    /// `Jr wr^2 / 2 + Jb wb^2 / 2 + kt phi^2 / 2` at the start and at the end.
+    pub initial: f64,
+    pub kinetic_top: f64,
+    pub kinetic_bit: f64,
+    pub spring: f64,
+    /// `int cr wr^2 + ct (wr - wb)^2 + cb wb^2 dt`.
+    pub viscous_loss: f64,
+    /// `int Tb wb dt` (and the bit's kinetic energy at the rounding to rest where it sticks).
+    pub friction_loss: f64,
+    /// `(motor work - change - losses) / scale`, `scale` the largest magnitude of the terms.
+    pub balance_error: f64,
+}
+
+/// A lumped run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LumpedRun {
+    /// Samples at `k output_interval`: time s, top and bit speed rad/s, the spring torque
+    /// `kt phi` and the bit torque N m.
+    pub t: Vec<f64>,
+    pub top_speed: Vec<f64>,
+    pub bit_speed: Vec<f64>,
+    pub spring_torque: Vec<f64>,
+    pub bit_torque: Vec<f64>,
+    /// Through [`crate::metrics::stick_slip`] of the bit speed with the spring torque as the
+    /// torque series (its min / max and the cycle period); None with fewer than 2 samples in
+    /// the window.
+    pub metrics: Option<StickSlip>,
+    pub window: [f64; 2],
+    pub energy: LumpedEnergy,
+    /// Time steps taken (events split steps) and stick / slip switches.
+    pub steps: u64,
+    pub sticks: u64,
+    pub slips: u64,
+    pub status: Status,
+    pub message: String,
+}
+
+/// The motion of the bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Mode {
+    Stuck,
+    /// Slipping in the direction `+1` or `-1`.
+    Slip(f64),
+}
+
+/// State: `wr, phi, wb`, motor work, viscous loss, friction loss.
+type State = [f64; 6];
+
+struct Model<'p> {
+    p: &'p LumpedParams,
+    wr_: f64,
+    a: f64,
+}
+
+impl<'p> Model<'p> {
+    fn new(p: &'p LumpedParams) -> Self {
+        Model { p, wr_: p.weight_radius(), a: p.decay() }
+    }
+
+    /// The torque applied to the bit by the string with the bit at rest, `kt phi + ct wr`.
+    fn applied(&self, y: &State) -> f64 {
+        self.p.kt * y[1] + self.p.ct * y[0]
+    }
+
+    /// The bit torque in `mode`: slipping, the law with the direction held (`dir * wb` in the
+    /// exponent, smooth through 0); stuck, the applied torque.
+    fn bit(&self, mode: Mode, y: &State) -> f64 {
+        let p = self.p;
+        match mode {
+            Mode::Stuck => self.applied(y),
+            Mode::Slip(dir) => dir * self.wr_ * (p.mu_cb + (p.mu_sb - p.mu_cb) * (-self.a * dir * y[2]).exp()),
+        }
+    }
+
+    fn rhs(&self, mode: Mode, y: &State) -> State {
+        let p = self.p;
+        let (wr, phi, wb) = (y[0], y[1], if mode == Mode::Stuck { 0.0 } else { y[2] });
+        let spring = p.kt * phi;
+        let damper = p.ct * (wr - wb);
+        let tb = self.bit(mode, y);
+        let dwb = if mode == Mode::Stuck { 0.0 } else { (spring + damper - p.cb * wb - tb) / p.jb };
+        [
+            (p.tm - p.cr * wr - spring - damper) / p.jr,
+            wr - wb,
+            dwb,
+            p.tm * wr,
+            p.cr * wr * wr + p.ct * (wr - wb) * (wr - wb) + p.cb * wb * wb,
+            if mode == Mode::Stuck { 0.0 } else { tb * wb },
+        ]
+    }
+
+    fn rk4(&self, mode: Mode, y: &State, h: f64) -> State {
+        let add = |a: &State, k: &State, s: f64| -> State { std::array::from_fn(|i| a[i] + s * k[i]) };
+        let k1 = self.rhs(mode, y);
+        let k2 = self.rhs(mode, &add(y, &k1, 0.5 * h));
+        let k3 = self.rhs(mode, &add(y, &k2, 0.5 * h));
+        let k4 = self.rhs(mode, &add(y, &k3, h));
+        std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+    }
+
+    fn energy(&self, y: &State) -> (f64, f64, f64) {
+        let p = self.p;
+        (0.5 * p.jr * y[0] * y[0], 0.5 * p.jb * y[2] * y[2], 0.5 * p.kt * y[1] * y[1])
+    }
+
+    /// The largest `h` in `[0, h_max]` with `event(rk4(y, h)) <= 0` given `event(y) <= 0 <
+    /// event(rk4(y, h_max))`, by bisection to the last bit; returns `(h_before, h_after)`.
+    fn locate(&self, mode: Mode, y: &State, h_max: f64, event: impl Fn(&State) -> f64) -> (f64, f64) {
+        let (mut lo, mut hi) = (0.0, h_max);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if event(&self.rk4(mode, y, mid)) <= 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        (lo, hi)
+    }
+}
+
+/// Runs the lumped model (both validated first) from `numerics.initial`; see the module.
+/// `progress` receives the fraction done about every 0.1 %.
+pub fn solve_lumped(
+    p: &LumpedParams,
+    num: &LumpedNumerics,
+    interrupt: &dyn Interrupt,
+    progress: &mut dyn FnMut(f64),
+) -> Result<LumpedRun> {
+    p.validate()?;
+    num.validate()?;
+    let model = Model::new(p);
+    let limit = p.static_limit();
+    let n_out = num.samples();
+    let mut run = LumpedRun {
+        t: Vec::new(),
+        top_speed: Vec::new(),
+        bit_speed: Vec::new(),
+        spring_torque: Vec::new(),
+        bit_torque: Vec::new(),
+        metrics: None,
+        window: num.window.unwrap_or([0.5 * num.duration, num.duration]),
+        energy: LumpedEnergy::default(),
+        steps: 0,
+        sticks: 0,
+        slips: 0,
+        status: Status::Success,
+        message: String::new(),
+    };
+    let reserved = [&mut run.t, &mut run.top_speed, &mut run.bit_speed, &mut run.spring_torque, &mut run.bit_torque]
+        .into_iter()
+        .all(|v| v.try_reserve_exact(n_out).is_ok());
+    if !reserved {
+        run.status = Status::OutOfMemory;
+        run.message = format!("the outputs ({} MiB) could not be allocated", (n_out * 5 * 8) >> 20);
+        return Ok(run);
+    }
+    let [wr0, phi0, wb0] = num.initial;
+    let mut y: State = [wr0, phi0, wb0, 0.0, 0.0, 0.0];
+    let mut mode = if wb0 != 0.0 {
+        Mode::Slip(wb0.signum())
+    } else {
+        let a = model.applied(&y);
+        if a.abs() <= limit {
+            Mode::Stuck
+        } else {
+            Mode::Slip(a.signum())
+        }
+    };
+    let (k0, b0, s0) = model.energy(&y);
+    let initial = k0 + b0 + s0;
+    let mut extra_friction = 0.0;
+    let record = |run: &mut LumpedRun, t: f64, y: &State, mode: Mode| {
+        run.t.push(t);
+        run.top_speed.push(y[0]);
+        run.bit_speed.push(y[2]);
+        run.spring_torque.push(p.kt * y[1]);
+        run.bit_torque.push(model.bit(mode, y));
+    };
+    record(&mut run, 0.0, &y, mode);
+    let mut poller = Poller::new(interrupt);
+    let mut t = 0.0;
+    let mut k_out = 1usize;
+    let mut next_progress = 0.0;
+    while k_out < n_out {
+        let t_out = (k_out as f64 * num.output_interval).min(num.duration);
+        if poller.poll(t) {
+            run.status = Status::Interrupted;
+            run.message = format!("interrupted at t = {} s", Num(t));
+            break;
+        }
+        let span = t_out - t;
+        let mut h = span.min(num.dt);
+        let mut y1 = model.rk4(mode, &y, h);
+        let mut next_mode = mode;
+        match mode {
+            Mode::Slip(dir) => {
+                let crossed = dir * y1[2] < 0.0;
+                if crossed {
+                    // The bit reaches rest within the step: stop there.
+                    h = model.locate(mode, &y, h, |s| -dir * s[2]).0;
+                    y1 = model.rk4(mode, &y, h);
+                }
+                if crossed || y1[2].abs() < p.d_v {
+                    let a = model.applied(&y1);
+                    if a.abs() <= limit {
+                        extra_friction += 0.5 * p.jb * y1[2] * y1[2];
+                        y1[2] = 0.0;
+                        next_mode = Mode::Stuck;
+                        run.sticks += 1;
+                    } else if crossed {
+                        // At rest with more than the static limit applied: slips on that way.
+                        extra_friction += 0.5 * p.jb * y1[2] * y1[2];
+                        y1[2] = 0.0;
+                        next_mode = Mode::Slip(a.signum());
+                    }
+                }
+            }
+            Mode::Stuck => {
+                if model.applied(&y1).abs() > limit {
+                    h = model.locate(mode, &y, h, |s| model.applied(s).abs() - limit).1;
+                    y1 = model.rk4(mode, &y, h);
+                    next_mode = Mode::Slip(model.applied(&y1).signum());
+                    run.slips += 1;
+                }
+            }
+        }
+        let reached = h >= span;
+        t = if reached { t_out } else { t + h };
+        y = y1;
+        mode = next_mode;
+        run.steps += 1;
+        if !y.iter().all(|v| v.is_finite()) {
+            run.status = Status::NonFinite;
+            run.message = format!("the state became non-finite before t = {} s", Num(t));
+            break;
+        }
+        if reached {
+            record(&mut run, t, &y, mode);
+            k_out += 1;
+        }
+        if t >= next_progress {
+            progress(t / num.duration);
+            next_progress = t + 1e-3 * num.duration;
+        }
+    }
+    let (kt_, kb, sp) = model.energy(&y);
+    let friction = y[5] + extra_friction;
+    let residual = y[3] - (kt_ + kb + sp - initial) - y[4] - friction;
+    let scale = [y[3], initial, kt_ + kb + sp, y[4], friction].iter().fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+    run.energy = LumpedEnergy {
+        motor_work: y[3],
+        initial,
+        kinetic_top: kt_,
+        kinetic_bit: kb,
+        spring: sp,
+        viscous_loss: y[4],
+        friction_loss: friction,
+        balance_error: residual / scale,
+    };
+    let [a, b] = run.window;
+    run.metrics = stick_slip(&run.t, &run.bit_speed, Some(&run.spring_torque), Some((a, b)), num.stick_speed).ok();
+    progress(1.0);
+    Ok(run)
+}
+
+/// A steady rotation of the lumped model and its linear stability.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Equilibrium {
+    /// `wr = wb`, rad/s.
+    pub speed: f64,
+    /// The twist `phi = (Tm - cr w) / kt`, rad.
+    pub twist: f64,
+    /// The eigenvalues of the Jacobian as `(re, im)`, by increasing real part.
+    pub eigenvalues: [(f64, f64); 3],
+    /// All real parts < 0.
+    pub stable: bool,
+}
+
+/// What the equilibria imply (see the module).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Regime {
+    StableRotation,
+    Unstable,
+    Stuck,
+}
+
+impl Regime {
+    pub fn name(self) -> &'static str {
+        match self {
+            Regime::StableRotation => "stable_rotation",
+            Regime::Unstable => "unstable",
+            Regime::Stuck => "stuck",
+        }
+    }
+}
+
+/// The equilibria of a parameter set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Equilibria {
+    /// The steady rotations, by increasing speed (0, 1 or 2).
+    pub rotations: Vec<Equilibrium>,
+    /// `Tm <= Wob Rb mu_sb`: the bit at rest (`wr = 0`, `kt phi = Tm`) is an equilibrium.
+    pub stuck_possible: bool,
+    pub regime: Regime,
+}
+
+/// The steady rotations (roots of `(cr + cb) w + Wob Rb mu(w) = Tm`, `w > 0`), their
+/// stability and the regime; see the module.
+pub fn equilibria(p: &LumpedParams) -> Result<Equilibria> {
+    p.validate()?;
+    let c = p.cr + p.cb;
+    let a = p.decay();
+    let drop = p.weight_radius() * (p.mu_sb - p.mu_cb);
+    // The residual is convex with its minimum at w_m (0 when it increases from the start).
+    let w_m = if drop * a > c { (drop * a / c).ln() / a } else { 0.0 };
+    // Beyond (Tm - Wob Rb mu_cb) / c the residual is positive.
+    let w_hi = w_m.max((p.tm - p.weight_radius() * p.mu_cb) / c).max(0.0);
+    let f = |w: f64| p.steady_residual(w);
+    let mut roots = Vec::new();
+    let bisect = |mut lo: f64, mut hi: f64| {
+        let f_lo_neg = f(lo) < 0.0;
+        loop {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break 0.5 * (lo + hi);
+            }
+            if (f(mid) < 0.0) == f_lo_neg {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+    };
+    // Decreasing branch (0, w_m]: a root when f(0) > 0 >= f(w_m).
+    if w_m > 0.0 && f(0.0) > 0.0 && f(w_m) <= 0.0 {
+        roots.push(bisect(0.0, w_m));
+    }
+    // Increasing branch [w_m, w_hi]: a root when f(w_m) < 0 (or = 0 at w_m > 0, counted above).
+    if f(w_m) < 0.0 && w_hi > w_m {
+        let r = bisect(w_m, w_hi);
+        if r > 0.0 {
+            roots.push(r);
+        }
+    }
+    let rotations: Vec<Equilibrium> = roots
+        .into_iter()
+        .map(|w| {
+            let eigenvalues = eigenvalues3(&p.jacobian(w));
+            Equilibrium {
+                speed: w,
+                twist: (p.tm - p.cr * w) / p.kt,
+                eigenvalues,
+                stable: eigenvalues.iter().all(|e| e.0 < 0.0),
+            }
+        })
+        .collect();
+    let regime = if rotations.iter().any(|e| e.stable) {
+        Regime::StableRotation
+    } else if rotations.is_empty() {
+        Regime::Stuck
+    } else {
+        Regime::Unstable
+    };
+    Ok(Equilibria { rotations, stuck_possible: p.tm <= p.static_limit(), regime })
+}
+
+/// The eigenvalues of a real 3x3 matrix, `(re, im)` by increasing real part (then imaginary):
+/// a real root of the characteristic cubic `l^3 + c2 l^2 + c1 l + c0` by bisection on the
+/// Cauchy bound and Newton polishing, the other two from the deflated quadratic.
+pub fn eigenvalues3(m: &[[f64; 3]; 3]) -> [(f64, f64); 3] {
+    let tr = m[0][0] + m[1][1] + m[2][2];
+    let minors = m[0][0] * m[1][1] - m[0][1] * m[1][0] + m[0][0] * m[2][2] - m[0][2] * m[2][0] + m[1][1] * m[2][2]
+        - m[1][2] * m[2][1];
+    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    let (c2, c1, c0) = (-tr, minors, -det);
+    let poly = |l: f64| ((l + c2) * l + c1) * l + c0;
+    let bound = 1.0 + c2.abs().max(c1.abs()).max(c0.abs());
+    let (mut lo, mut hi) = (-bound, bound);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if poly(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let mut r = 0.5 * (lo + hi);
+    for _ in 0..3 {
+        let d = (3.0 * r + 2.0 * c2) * r + c1;
+        if d != 0.0 {
+            let next = r - poly(r) / d;
+            if next.is_finite() && poly(next).abs() <= poly(r).abs() {
+                r = next;
+            }
+        }
+    }
+    // l^3 + c2 l^2 + c1 l + c0 = (l - r)(l^2 + b l + q)
+    let b = c2 + r;
+    let q = c1 + r * b;
+    let disc = b * b - 4.0 * q;
+    let mut out = if disc >= 0.0 {
+        let s = disc.sqrt();
+        // Stable quadratic roots.
+        let big = -0.5 * (b + s.copysign(b));
+        let (x1, x2) = if big != 0.0 { (big, q / big) } else { (0.0, 0.0) };
+        [(r, 0.0), (x1, 0.0), (x2, 0.0)]
+    } else {
+        let re = -0.5 * b;
+        let im = 0.5 * (-disc).sqrt();
+        [(r, 0.0), (re, -im), (re, im)]
+    };
+    out.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::interrupt::Never;
+
+    fn run(p: &LumpedParams, num: &LumpedNumerics) -> LumpedRun {
+        solve_lumped(p, num, &Never, &mut |_| {}).unwrap()
+    }
+
+    #[test]
+    fn eigenvalues_of_known_matrices() {
+        // Diagonal, and a rotation block with a real root.
+        let e = eigenvalues3(&[[-1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, -3.0]]);
+        for (got, want) in e.iter().zip([-3.0, -1.0, 2.0]) {
+            assert!((got.0 - want).abs() < 1e-12 && got.1 == 0.0, "{e:?}");
+        }
+        let e = eigenvalues3(&[[-0.5, -2.0, 0.0], [2.0, -0.5, 0.0], [0.0, 0.0, 1.0]]);
+        assert!((e[0].0 + 0.5).abs() < 1e-12 && (e[0].1 + 2.0).abs() < 1e-12, "{e:?}");
+        assert!((e[1].0 + 0.5).abs() < 1e-12 && (e[1].1 - 2.0).abs() < 1e-12, "{e:?}");
+        assert!((e[2].0 - 1.0).abs() < 1e-12, "{e:?}");
+    }
+
+    #[test]
+    fn roots_solve_the_steady_balance_and_count_right() {
+        let p = LumpedParams::default();
+        // Tm = 6000 < Wob Rb mu_sb = 6223 at 50 kN with a dip below 0: two rotations, stuck possible.
+        let eq = equilibria(&p).unwrap();
+        assert!(eq.stuck_possible);
+        assert_eq!(eq.rotations.len(), 2, "{eq:?}");
+        for e in &eq.rotations {
+            assert!(p.steady_residual(e.speed).abs() < 1e-9 * p.tm, "{e:?}");
+            // Top balance: Tm = cr w + kt phi.
+            assert!((p.cr * e.speed + p.kt * e.twist - p.tm).abs() < 1e-9 * p.tm);
+        }
+        // The slower root sits on the falling branch: a saddle (a real positive eigenvalue).
+        assert!(
+            !eq.rotations[0].stable
+                && eq.rotations[0].eigenvalues[2].0 > 0.0
+                && eq.rotations[0].eigenvalues[2].1 == 0.0
+        );
+        // Light weight: one root, stable; heavy: none, stuck.
+        let light = equilibria(&LumpedParams { wob: 10e3, ..p.clone() }).unwrap();
+        assert_eq!(light.rotations.len(), 1);
+        assert_eq!(light.regime, Regime::StableRotation);
+        assert!(!light.stuck_possible);
+        let heavy = equilibria(&LumpedParams { wob: 200e3, ..p.clone() }).unwrap();
+        assert!(heavy.rotations.is_empty() && heavy.stuck_possible && heavy.regime == Regime::Stuck);
+        // No weight: w = Tm / (cr + cb) exactly as the bisection resolves it.
+        let free = equilibria(&LumpedParams { wob: 0.0, ..p.clone() }).unwrap();
+        assert!((free.rotations[0].speed - p.tm / (p.cr + p.cb)).abs() < 1e-12 * p.tm / (p.cr + p.cb));
+    }
+
+    #[test]
+    fn jacobian_matches_finite_differences_of_the_vector_field() {
+        let p = LumpedParams { wob: 30e3, ..LumpedParams::default() };
+        let w = equilibria(&p).unwrap().rotations[0].speed;
+        let model = Model::new(&p);
+        let y0: State = [w, (p.tm - p.cr * w) / p.kt, w, 0.0, 0.0, 0.0];
+        let f0 = model.rhs(Mode::Slip(1.0), &y0);
+        for i in 0..3 {
+            assert!(f0[i].abs() < 1e-9, "not an equilibrium: {f0:?}");
+        }
+        let jac = p.jacobian(w);
+        for col in 0..3 {
+            let h = 1e-6;
+            let mut yp = y0;
+            let mut ym = y0;
+            yp[col] += h;
+            ym[col] -= h;
+            let (fp, fm) = (model.rhs(Mode::Slip(1.0), &yp), model.rhs(Mode::Slip(1.0), &ym));
+            for row in 0..3 {
+                let fd = (fp[row] - fm[row]) / (2.0 * h);
+                assert!((fd - jac[row][col]).abs() < 1e-7, "({row}, {col}): {fd} vs {}", jac[row][col]);
+            }
+        }
+    }
+
+    #[test]
+    fn from_rest_the_bit_breaks_free_when_the_applied_torque_reaches_the_static_limit() {
+        let p = LumpedParams { wob: 40e3, ..LumpedParams::default() };
+        let num = LumpedNumerics { duration: 20.0, ..LumpedNumerics::default() };
+        let r = run(&p, &num);
+        assert_eq!(r.status, Status::Success);
+        assert!(r.slips >= 1);
+        // Stuck at first: the bit speed is exactly 0 while the applied torque is below the limit.
+        let first_move = r.bit_speed.iter().position(|&w| w != 0.0).unwrap();
+        assert!(first_move > 1);
+        let k = first_move - 1;
+        let applied = r.spring_torque[k] + p.ct * r.top_speed[k];
+        assert!(applied <= p.static_limit() && applied > 0.9 * p.static_limit(), "{applied}");
+        // While stuck the bit torque is the applied torque.
+        assert!((r.bit_torque[k] - applied).abs() < 1e-9 * applied);
+        assert!(r.energy.balance_error.abs() < 1e-9, "{:?}", r.energy);
+    }
+
+    #[test]
+    fn stick_slip_sticks_and_slips_repeatedly_and_stays_stuck_when_held() {
+        let p = LumpedParams { wob: 55e3, ..LumpedParams::default() };
+        let num = LumpedNumerics { duration: 200.0, ..LumpedNumerics::default() };
+        let r = run(&p, &num);
+        let m = r.metrics.unwrap();
+        assert!(r.sticks >= 10 && r.slips >= 10, "{} {}", r.sticks, r.slips);
+        assert!(m.stuck_fraction > 0.1 && m.severity >= 1.0, "{m:?}");
+        assert!(r.energy.balance_error.abs() < 1e-9, "{:?}", r.energy);
+        // Stuck samples: exactly at rest with the applied torque within the static limit.
+        for k in 0..r.t.len() {
+            if r.bit_speed[k] == 0.0 {
+                assert!((r.spring_torque[k] + p.ct * r.top_speed[k]).abs() <= p.static_limit() * (1.0 + 1e-12));
+            }
+        }
+        // Held at the stuck equilibrium (wr = 0, kt phi = Tm <= Wob Rb mu_sb): never moves.
+        let held = LumpedParams { wob: 60e3, ..p };
+        let start = LumpedNumerics { duration: 10.0, initial: [0.0, held.tm / held.kt, 0.0], ..num };
+        let r = run(&held, &start);
+        assert!(r.bit_speed.iter().all(|&w| w == 0.0) && r.slips == 0);
+        assert!(r.top_speed.iter().all(|&w| w.abs() < 1e-12));
+    }
+
+    #[test]
+    fn bad_fields_are_named() {
+        let bad = [
+            (LumpedParams { jb: 0.0, ..LumpedParams::default() }, "jb"),
+            (LumpedParams { mu_cb: 0.9, ..LumpedParams::default() }, "mu_cb"),
+            (LumpedParams { cr: 0.0, cb: 0.0, ..LumpedParams::default() }, "cb"),
+            (LumpedParams { wob: f64::NAN, ..LumpedParams::default() }, "wob"),
+        ];
+        for (p, field) in bad {
+            assert_eq!(p.validate().unwrap_err().field(), field);
+        }
+        let n = LumpedNumerics { dt: 1e-12, ..LumpedNumerics::default() };
+        assert_eq!(n.validate().unwrap_err().field(), "dt");
+        let n = LumpedNumerics { window: Some([5.0, 1.0]), ..LumpedNumerics::default() };
+        assert_eq!(n.validate().unwrap_err().field(), "window");
+    }
+}
