@@ -558,7 +558,8 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
          f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), "
          f"motor torque {m.motor_torque_min_Nm / 1e3:.4g}..{m.motor_torque_max_Nm / 1e3:.4g} kN m, "
-         f"break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m")
+         f"break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m (implied cycle minimum "
+         f"{m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
     written = result.save(args.out, plots=not args.no_plots)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0

@@ -776,7 +776,7 @@ mod tests {
             // Top balance: Tm = cr w + kt phi.
             assert!((p.cr * e.speed + p.kt * e.twist - p.tm).abs() < 1e-9 * p.tm);
         }
-        // The slower root sits on the falling branch: a saddle (a real positive eigenvalue).
+        // The slower root sits on the falling branch (f' < 0): a real positive eigenvalue.
         assert!(
             !eq.rotations[0].stable
                 && eq.rotations[0].eigenvalues[2].0 > 0.0

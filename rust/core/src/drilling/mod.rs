@@ -14,11 +14,15 @@
 //!
 //! * [`config`]: [`DrillConfig`] (JSON, defaults, validation with dotted field names, limits);
 //! * [`grid`]: section properties, the time step and cells, the friction limit, the string's
-//!   first natural frequency, the break-off torque;
+//!   first natural frequency, the break-off torque and the minimum cycle torque it implies;
+//! * [`bit`]: the bit-rock torque law (Navarro-Lopez & Cortes 2007), shared by the string's bit
+//!   and the lumped model;
 //! * [`solver`]: the time stepping, controllers, outputs, energy balance and metrics
 //!   ([`solve`], [`friction_profile`]);
 //! * [`map`]: stick-slip maps, many runs of one base configuration with per-run overrides
-//!   solved in parallel, one row of metrics each ([`map::solve_map`]).
+//!   solved in parallel, one row of metrics each ([`map::solve_map`]);
+//! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
+//!   with a true stick phase, its steady rotations and their stability.
 
 pub mod bit;
 pub mod config;
