@@ -272,3 +272,15 @@ def test_the_readme_example_says_what_it_prints() -> None:
     # the boundaries the README gives at tm = 6000 N m
     assert P["tm"] / (P["rb"] * P["mu_sb"]) == pytest.approx(48.2e3, rel=1e-3)
     assert round(hopf_wob() / 1e3, 1) == 58.7 and round(fold_wob() / 1e3, 1) == 59.1
+
+
+def test_progress_is_reported_and_its_exception_stops_the_run() -> None:
+    seen: list[float] = []
+    lumped({"wob": 30e3}, duration=50.0, progress=seen.append)
+    assert seen[0] == 0.0 and seen[-1] == 1.0 and seen == sorted(seen)
+
+    def stop(fraction: float) -> None:
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        lumped({"wob": 30e3}, duration=1e4, progress=stop)

@@ -172,7 +172,8 @@ def lumped(
     stick_speed : float, optional
         The stuck threshold of the metrics, rad/s (default the metrics' ``STICK_SPEED``).
     progress : callable, optional
-        Called with the fraction done; an exception it raises stops the run.
+        Called with the fraction done: at the start (0), about every 20 ms while the core steps,
+        and at the end (1); an exception it raises stops the run and is raised here.
     check : bool
         Raise :class:`~drillstring.errors.SolveError` when the run stops early (default).
 
@@ -200,7 +201,11 @@ def lumped(
         if not math.isfinite(numerics[key]):
             raise ValidationError(key, numerics[key], "a finite number > 0")
     params_json = _params_json(params)
+    if progress is not None:
+        progress(0.0)
     raw = _core.lumped_solve(params_json, json.dumps(numerics), progress)
+    if progress is not None and raw["status"] == "success":
+        progress(1.0)
     full = json.loads(_core.lumped_defaults()[0])
     full.update(json.loads(params_json))
     result = LumpedResult(

@@ -65,10 +65,10 @@ use crate::metrics::{stick_slip, StickSlip, STICK_SPEED};
 use crate::solution::Status;
 
 use super::bit::{friction_coefficient, slip_torque};
-use super::config::{finite, nonneg, pos, MAX_DURATION};
+use super::config::{finite, nonneg, pos, MAX_DURATION, MAX_OUTPUT_BYTES};
 
-/// The most output samples of a run.
-pub const MAX_SAMPLES: usize = 20_000_000;
+/// The most output samples of a run: five series of `f64` within [`MAX_OUTPUT_BYTES`].
+pub const MAX_SAMPLES: usize = MAX_OUTPUT_BYTES / (5 * 8);
 /// The most time steps of a run.
 pub const MAX_STEPS: f64 = 1e9;
 
@@ -858,6 +858,34 @@ mod tests {
         let r = run(&held, &start);
         assert!(r.bit_speed.iter().all(|&w| w == 0.0) && r.slips == 0);
         assert!(r.top_speed.iter().all(|&w| w.abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_bit_turning_backwards_stops_through_rest_and_the_balance_holds() {
+        // Started backwards: the friction opposes the motion until the bit reaches rest, where
+        // it sticks or slips on in the direction of the applied torque.
+        let p = LumpedParams { wob: 55e3, ..LumpedParams::default() };
+        let num = LumpedNumerics {
+            duration: 60.0,
+            output_interval: 1e-3,
+            initial: [0.0, 0.0, -3.0],
+            ..LumpedNumerics::default()
+        };
+        let r = run(&p, &num);
+        assert_eq!(r.status, Status::Success);
+        assert!(r.bit_speed[..10].iter().all(|&w| w < 0.0));
+        assert!(r.bit_speed.iter().any(|&w| w > 1.0));
+        // The bit torque always opposes the slip (or holds the bit at rest).
+        for (w, tb) in r.bit_speed.iter().zip(&r.bit_torque) {
+            assert!(*w == 0.0 || tb * w > 0.0, "{w} {tb}");
+        }
+        // Sign changes of the speed pass through rest exactly.
+        for k in 1..r.t.len() {
+            let (a, b) = (r.bit_speed[k - 1], r.bit_speed[k]);
+            assert!(a * b >= 0.0 || (a.abs() < 1e-2 && b.abs() < 1e-2), "{a} -> {b} at {}", r.t[k]);
+        }
+        assert!(r.sticks >= 1);
+        assert!(r.energy.balance_error.abs() < 1e-9, "{:?}", r.energy);
     }
 
     #[test]
