@@ -69,6 +69,8 @@ use super::config::{finite, nonneg, pos, MAX_DURATION, MAX_OUTPUT_BYTES};
 
 /// The most output samples of a run: five series of `f64` within [`MAX_OUTPUT_BYTES`].
 pub const MAX_SAMPLES: usize = MAX_OUTPUT_BYTES / (5 * 8);
+/// Consecutive switches without advancing time before a run stops (`step_size_underflow`).
+const MAX_STALLED: u32 = 16;
 /// The most time steps of a run.
 pub const MAX_STEPS: f64 = 1e9;
 
@@ -506,6 +508,7 @@ pub fn solve_lumped(
     let mut t = 0.0;
     let mut k_out = 1usize;
     let mut next_progress = 0.0;
+    let mut stalled = 0u32;
     while k_out < n_out {
         let t_out = (k_out as f64 * num.output_interval).min(num.duration);
         if poller.poll(t) {
@@ -550,6 +553,14 @@ pub fn solve_lumped(
             }
         }
         let reached = h >= span;
+        // A switch located at the very start of the step again and again (a torque grazing
+        // the static limit) would not advance: stop with a status instead of spinning.
+        stalled = if t + h > t { 0 } else { stalled + 1 };
+        if stalled > MAX_STALLED {
+            run.status = Status::StepSizeUnderflow;
+            run.message = format!("the stick and slip switches did not advance at t = {} s", Num(t));
+            break;
+        }
         t = if reached { t_out } else { t + h };
         y = y1;
         mode = next_mode;
