@@ -284,3 +284,15 @@ def test_progress_is_reported_and_its_exception_stops_the_run() -> None:
 
     with pytest.raises(RuntimeError, match="stop here"):
         lumped({"wob": 30e3}, duration=1e4, progress=stop)
+
+
+def test_command_line(capsys: pytest.CaptureFixture[str]) -> None:
+    from _cli import one_line_error, run_cli
+
+    code, out, err = run_cli(capsys, "lumped", "--set", "wob=55e3", "--duration", "100")
+    assert code == 0, err
+    assert "steady rotation 0.67144 rad/s: unstable" in out and "steady rotation 3.36252 rad/s: stable" in out
+    assert "regime: stable_rotation" in out and "SSI 1.2" in out
+    code, out, err = run_cli(capsys, "lumped", "--set", "weight=1")
+    assert code == 2
+    one_line_error(err, "weight")
