@@ -220,12 +220,12 @@ pub fn breakoff_torque(cfg: &DrillConfig) -> Result<f64> {
 /// break-off and `K = kinetic_ratio wall_breakoff + bit_kinetic` the torque of the same
 /// contacts slipping.
 ///
-/// Derivation: at break-off the string is wound up to hold `S`. When it slips, the friction
-/// along it (and at the bit) drops from static to kinetic, releasing the difference `S - K` as a
-/// torque wave; the wave reflects at the bit and comes back to the top with the same sign, so
-/// the top torque swings about the new balance `K` by the same amount it was above it, down to
-/// `K - (S - K) = S (1 - 2 (1 - K / S))` (an undamped spring preloaded to `S` and released
-/// against a load `K` oscillates between `S` and `2 K - S`). Without a bit torque this is
+/// Derivation: at break-off the string is wound up to hold `S`. Once it slips, the load it
+/// turns against drops from static to kinetic, `K`: the twist in excess of the new balance,
+/// `S - K`, is released and, without damping, the string overshoots the balance by as much (an
+/// undamped spring preloaded to `S` and released against a constant load `K` oscillates
+/// between `S` and `2 K - S`). The top torque thus falls by twice the released difference,
+/// `S - 2 (S - K) = S (1 - 2 (1 - K / S))`. Without a bit torque this is
 /// `tauMax (1 - 2 (1 - fRat))` of the published code of Aarsnes & Shor (MAIN.m, `tauMin`).
 /// Assumptions: no damping and a quick release (the whole string slips within one
 /// round trip of the wave), the bit (if on bottom) at its kinetic torque `W r mu_k` (the
