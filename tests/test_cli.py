@@ -5,12 +5,15 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import drillstring as ds
 from drillstring.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 def run(*args: str) -> subprocess.CompletedProcess:
@@ -33,7 +36,7 @@ def test_simulate_writes_csv_and_plot(tmp_path):
 
 def test_simulate_from_toml_with_overrides(tmp_path, capsys):
     out = tmp_path / "r.csv"
-    code = main(["simulate", "examples/reference.toml", "--length", "250", "--rigid-mode", "--t-end", "0.1",
+    code = main(["simulate", str(EXAMPLES / "reference.toml"), "--length", "250", "--rigid-mode", "--t-end", "0.1",
                  "--z", "10", "--out", str(out)])
     assert code == 0
     assert out.read_text().splitlines()[0] == "t,theta,theta_dot,q0,q1,q2,q3"

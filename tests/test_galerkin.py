@@ -6,7 +6,6 @@ import dataclasses
 import itertools
 import math
 import pickle
-import time
 from typing import Any
 
 import numpy as np
@@ -356,12 +355,9 @@ def test_potential_matches_quadrature_of_energy_density() -> None:
         assert model.potential(q) == pytest.approx(k.length * np.sum(w * density), rel=1e-12)
 
 
-def test_large_basis_is_fast_cached_and_read_only() -> None:
+def test_large_basis_is_cached_and_read_only() -> None:
     galerkin._cached_integrals.cache_clear()
-    start = time.perf_counter()
     integrals = dimensionless_integrals(40, rigid_mode=True)
-    elapsed = time.perf_counter() - start
-    assert elapsed < 1.0
     assert dimensionless_integrals(40, True) is integrals
     assert integrals.indices.tolist() == list(range(41))
     assert integrals.rigid_mode

@@ -320,7 +320,7 @@ def test_directories_sockets_and_block_devices_are_refused(capsys, monkeypatch, 
 
 def test_the_input_config_is_never_overwritten(tmp_path, capsys, monkeypatch):
     config = tmp_path / "config.toml"
-    shutil.copy("examples/reference.toml", config)
+    shutil.copy(Path(__file__).resolve().parents[1] / "examples" / "reference.toml", config)
     before = config.read_bytes()
     os.link(config, tmp_path / "hard.toml")
     (tmp_path / "soft.toml").symlink_to(config)

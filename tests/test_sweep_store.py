@@ -257,3 +257,38 @@ def test_the_lock_is_held_for_the_whole_sweep_and_released_after(tmp_path, monke
     assert seen == list(range(7))
     with pytest.raises(ds.ValidationError, match="different sweep"):  # the lock is free again
         SweepStore.open(out, {"fingerprint": "x"})
+
+
+def test_a_ctrl_c_during_a_chunk_save_is_raised_after_chunk_and_record(tmp_path, monkeypatch):
+    # the chunk file and its record are one unit: a SIGINT between the two writes is held back
+    # and handed to the handler in force once both exist (this test installs its own handler, so
+    # it behaves the same when SIGINT is ignored, e.g. under nohup)
+    import signal
+
+    import pandas as pd
+
+    from drillstring import sweep_store
+
+    seen: list[list[str]] = []
+    store_dir = tmp_path / "store"
+    store_dir.mkdir()
+    (store_dir / "chunks").mkdir()
+    store = sweep_store.SweepStore(store_dir, {"fingerprint": "x"})
+    real_write = sweep_store._atomic_write
+
+    def write_then_signal(path, data):
+        real_write(path, data)
+        if path.suffix == ".parquet":
+            signal.raise_signal(signal.SIGINT)   # arrives between the chunk and its record
+
+    def handler(signum, frame):
+        seen.append(sorted(p.name for p in (store_dir / "chunks").iterdir()))
+
+    monkeypatch.setattr(sweep_store, "_atomic_write", write_then_signal)
+    previous = signal.signal(signal.SIGINT, handler)
+    try:
+        store.save_chunk(0, "plan", pd.DataFrame({"a": [1.0, 2.0]}), True)
+        assert signal.getsignal(signal.SIGINT) is handler
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert seen == [["chunk-00000.json", "chunk-00000.parquet"]]

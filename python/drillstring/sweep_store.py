@@ -34,11 +34,15 @@ Guarantees
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
+import signal
 import socket
+import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any, Optional
 
@@ -59,6 +63,29 @@ LOCK = ".lock"
 
 def _atomic_write(path: Path, data: bytes) -> None:
     write_bytes(path, data, field="out_dir")
+
+
+@contextlib.contextmanager
+def _sigint_deferred() -> Iterator[None]:
+    """Holds back SIGINT (Ctrl-C) for the body: a signal received meanwhile is handed to the
+    previous handler (normally raising KeyboardInterrupt) when the body ends. Only the main
+    thread can change handlers; elsewhere, or when the handler is not a Python callable, the body
+    runs as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.getsignal(signal.SIGINT)
+    if not callable(previous):
+        yield
+        return
+    received: list[tuple[int, Any]] = []
+    signal.signal(signal.SIGINT, lambda signum, frame: received.append((signum, frame)))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if received:
+            previous(*received[0])
 
 
 def _sha256(data: bytes) -> str:
@@ -235,11 +262,14 @@ class SweepStore:
         return frame, None
 
     def save_chunk(self, index: int, plan: str, frame: pd.DataFrame, complete: bool) -> None:
-        """Write chunk ``index`` and then its record, each atomically."""
+        """Write chunk ``index`` and then its record, each atomically, as one unit: a Ctrl-C
+        arriving in between is raised once both are written (see :func:`_sigint_deferred`)."""
         data = frame.to_parquet()
-        _atomic_write(self.chunk_path(index), data)
         record = {"chunk": index, "plan": plan, "rows": len(frame), "sha256": _sha256(data), "complete": complete}
-        _atomic_write(self.record_path(index), (json.dumps(record, indent=1, sort_keys=True) + "\n").encode())
+        text = (json.dumps(record, indent=1, sort_keys=True) + "\n").encode()
+        with _sigint_deferred():
+            _atomic_write(self.chunk_path(index), data)
+            _atomic_write(self.record_path(index), text)
 
     def save_results(self, frame: pd.DataFrame) -> tuple[Path, Path]:
         """Write ``results.parquet`` and ``results.csv`` atomically; returns their paths."""

@@ -25,6 +25,11 @@ fn modal() -> ModalSystem {
     .unwrap()
 }
 
+/// Longest accepted time from raising the flag to the solve's return. The solves poll the flag
+/// every few milliseconds (printed by each test); the bound is loose so that the tests also pass
+/// on a loaded machine, and still fails for a solve that never polls (it would run to `t = 1e9`).
+const PROMPT: Duration = Duration::from_secs(2);
+
 fn options(method: Method) -> SolveOptions {
     let dt = if method.is_adaptive() { None } else { Some(1e-3) };
     SolveOptions { dt, ..SolveOptions::new(method) }
@@ -65,7 +70,7 @@ fn a_flag_raised_from_another_thread_stops_every_method_promptly() {
         assert_eq!(sol.status.code(), 4);
         assert_eq!(sol.status.name(), "interrupted");
         assert!(sol.message.starts_with("interrupted at t = "), "{}", sol.message);
-        assert!(latency < Duration::from_millis(50), "{}: {latency:?}", method.name());
+        assert!(latency < PROMPT, "{}: {latency:?}", method.name());
         // The samples reached before the interrupt are kept, and they are finite.
         assert!(!sol.is_empty() && sol.len() < 12, "{}", sol.len());
         assert!(sol.y.iter().all(|v| v.is_finite()));
@@ -84,7 +89,7 @@ fn a_large_pde_solve_stops_promptly_too() {
         let (sol, latency) = cancel_after(&sys, &q0, &v0, &opts, Duration::from_millis(200));
         eprintln!("pde {}: stopped {latency:?} after the flag: {}", method.name(), sol.message);
         assert_eq!(sol.status, Status::Interrupted, "{}", sol.message);
-        assert!(latency < Duration::from_millis(50), "{latency:?}");
+        assert!(latency < PROMPT, "{latency:?}");
     }
 }
 
