@@ -24,7 +24,7 @@ def test_the_option_defaults_to_linear_and_round_trips(tmp_path: Path) -> None:
     cfg = load_drill_config(ON_BOTTOM)
     assert cfg.nonlinearity == "linear"
     assert cfg.sections[0].poisson_ratio == pytest.approx(0.3)
-    assert cfg.numerics.max_shear_strain == pytest.approx(0.01)
+    assert cfg.numerics.max_shear_strain == pytest.approx(0.005)
     consistent = cfg.with_overrides(["nonlinearity=consistent", "sections[1].poisson_ratio=0.29"])
     assert consistent.nonlinearity == "consistent" and consistent.sections[1].poisson_ratio == 0.29
     path = consistent.save(tmp_path / "c.toml")

@@ -146,8 +146,10 @@ pub struct Grid {
     /// Courant number `c_i dt / h_i` of each section at its design speed `speed[i]` (`<= 1`;
     /// exactly 1 when the section's travel time is a whole number of steps).
     pub courant: Vec<f64>,
-    /// The wave speed the step is made for, m/s: `sqrt(G / rho)` (`linear`), or the tangent
-    /// speed at the twist per length `strain_bound[i]` (`consistent`).
+    /// The wave speed the step is made for, m/s: `sqrt(G / rho)` (`linear`); for `consistent`
+    /// that times the largest hardening factor of the sections, `max_i c_t,i / c_i` with `c_t,i`
+    /// the tangent speed at the twist per length `strain_bound[i]` (at least each section's
+    /// tangent speed there; sections of equal wave speeds keep equal ones).
     pub speed: Vec<f64>,
     /// `consistent`: the twist per length of `numerics.max_shear_strain` at the outer surface,
     /// `2 max_shear_strain / OD`, 1/m (0 for `linear`).
@@ -170,24 +172,27 @@ impl Grid {
         let props: Vec<SectionProps> =
             cfg.sections.iter().map(|s| SectionProps::new(s, cfg.well.mud_density)).collect();
         let mut strain_bound = vec![0.0; props.len()];
-        let mut speed = Vec::with_capacity(props.len());
-        for (i, (p, s)) in props.iter().zip(&cfg.sections).enumerate() {
-            speed.push(match cfg.nonlinearity {
-                Nonlinearity::Linear => p.wave_speed,
-                Nonlinearity::Consistent => {
-                    strain_bound[i] = 2.0 * cfg.numerics.max_shear_strain / s.outer_diameter;
-                    let c = p.tangent_speed(strain_bound[i]);
-                    if !(p.quartic.is_finite() && c.is_finite() && c > 0.0) {
-                        return Err(Error::invalid(
-                            format!("sections[{i}].outer_diameter"),
-                            Num(s.outer_diameter),
-                            "diameters whose fourth polar moment and tangent wave speed are finite",
-                        ));
-                    }
-                    c
+        // consistent: every section's speed raised by the largest hardening factor of the
+        // sections (so that sections of equal wave speeds keep equal cells and Courant numbers).
+        let mut factor: f64 = 1.0;
+        if cfg.nonlinearity == Nonlinearity::Consistent {
+            for (i, (p, s)) in props.iter().zip(&cfg.sections).enumerate() {
+                strain_bound[i] = 2.0 * cfg.numerics.max_shear_strain / s.outer_diameter;
+                let c = p.tangent_speed(strain_bound[i]);
+                if !(p.quartic.is_finite() && c.is_finite() && c > 0.0) {
+                    return Err(Error::invalid(
+                        format!("sections[{i}].outer_diameter"),
+                        Num(s.outer_diameter),
+                        "diameters whose fourth polar moment and tangent wave speed are finite",
+                    ));
                 }
-            });
+                factor = factor.max(c / p.wave_speed);
+            }
         }
+        let speed: Vec<f64> = match cfg.nonlinearity {
+            Nonlinearity::Linear => props.iter().map(|p| p.wave_speed).collect(),
+            Nonlinearity::Consistent => props.iter().map(|p| p.wave_speed * factor).collect(),
+        };
         let travel: f64 = props.iter().zip(&speed).map(|(p, c)| p.length / c).sum();
         // Every section gets at least one cell at a Courant number <= 1: the step is also
         // limited by the shortest section's travel time.

@@ -56,7 +56,9 @@
 //! with its stick phase: a stuck cell keeps its twist) at the transported speed. With `k5 = 0`
 //! the face values are those of the invariants and the update is the upwind scheme above
 //! (to rounding). The time step is made for the tangent speed at `numerics.max_shear_strain`
-//! (Courant number `<= 1` at that strain); the run reports the largest tangent Courant number
+//! (Courant number `<= 1` at that strain; every section's wave speed is raised by the largest
+//! hardening factor of the sections, so that sections of equal wave speeds keep whole numbers
+//! of steps per travel time, [`Grid::speed`]); the run reports the largest tangent Courant number
 //! met ([`DrillStats::courant_peak`]). The elastic energy is `sum h (k2 eps^2 / 2 + k5 eps^4 / 4)`
 //! and the transport's dissipation (`upwind_loss`) is measured per cell as the energy the face
 //! fluxes bring in (`dt tau* omega*`) less the cell's energy change, so the balance closes to
@@ -246,6 +248,9 @@ struct Nonlinear {
     strain_next: Vec<f64>,
     face_omega: Vec<f64>,
     face_torque: Vec<f64>,
+    /// Per cell in a step: tangent impedance and torque.
+    cell_impedance: Vec<f64>,
+    cell_torque: Vec<f64>,
     /// Largest `|eps|` of each section's cells so far.
     peak_strain: Vec<f64>,
 }
@@ -365,6 +370,8 @@ impl<'c> Simulation<'c> {
             strain_next: vec![0.0; len],
             face_omega: vec![0.0; len],
             face_torque: vec![0.0; len],
+            cell_impedance: vec![0.0; len],
+            cell_torque: vec![0.0; len],
             peak_strain: vec![0.0; grid.props.len()],
         });
         Ok(Simulation {
@@ -935,12 +942,17 @@ fn godunov<const REGULARISED: bool>(nl: &mut Nonlinear, sp: &Span, stop: &[f64],
     let p = &sp.props;
     let o = sp.offset;
     let n = sp.cells;
-    for j in 1..n {
-        let (wl, sl, wr, sr) = (nl.omega[o + j], nl.strain[o + j], nl.omega[o + j + 1], nl.strain[o + j + 1]);
-        let z = p.tangent_impedance(sl).max(p.tangent_impedance(sr));
-        let (tl, tr) = (p.torque(sl), p.torque(sr));
-        nl.face_omega[o + j] = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
-        nl.face_torque[o + j] = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
+    for j in o + 1..=o + n {
+        let eps = nl.strain[j];
+        nl.cell_impedance[j] = p.tangent_impedance(eps);
+        nl.cell_torque[j] = p.torque(eps);
+    }
+    for j in o + 1..o + n {
+        let (wl, wr) = (nl.omega[j], nl.omega[j + 1]);
+        let z = nl.cell_impedance[j].max(nl.cell_impedance[j + 1]);
+        let (tl, tr) = (nl.cell_torque[j], nl.cell_torque[j + 1]);
+        nl.face_omega[j] = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
+        nl.face_torque[j] = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
     }
     let k = Consts {
         c: 0.0,
