@@ -675,11 +675,7 @@ impl<'c> Simulation<'c> {
         };
         if let Some(nl) = &mut self.nl {
             for (s, sp) in self.spans.iter().enumerate() {
-                let sums = if sources.regularised.is_some() {
-                    godunov::<true>(nl, sp, &self.stop, dt, &sources)
-                } else {
-                    godunov::<false>(nl, sp, &self.stop, dt, &sources)
-                };
+                let sums = godunov(nl, sp, &self.stop, dt, &sources);
                 self.losses.upwind += sums.jumps;
                 self.losses.friction -= sums.friction;
                 self.losses.damping -= sums.damping;
@@ -938,51 +934,112 @@ struct Sums {
 /// and the sources as in [`update`]. Returns the sums, with `jumps` the transport's
 /// dissipation `dt (tau*_top omega*_top - tau*_bottom omega*_bottom) - dE` (J) and
 /// `friction`, `damping` the work of the sources (J, negative).
-fn godunov<const REGULARISED: bool>(nl: &mut Nonlinear, sp: &Span, stop: &[f64], dt: f64, src: &Sources) -> Sums {
-    let p = &sp.props;
-    let o = sp.offset;
-    let n = sp.cells;
-    for j in o + 1..=o + n {
-        let eps = nl.strain[j];
-        nl.cell_impedance[j] = p.tangent_impedance(eps);
-        nl.cell_torque[j] = p.torque(eps);
+fn godunov(nl: &mut Nonlinear, sp: &Span, stop: &[f64], dt: f64, src: &Sources) -> Sums {
+    crate::simd::dispatch(Godunov { nl, sp, stop, dt, src })
+}
+
+/// [`godunov`] as a [`crate::simd::Kernel`] (AVX2 code when available; no fused multiply-adds).
+struct Godunov<'a> {
+    nl: &'a mut Nonlinear,
+    sp: &'a Span,
+    stop: &'a [f64],
+    dt: f64,
+    src: &'a Sources,
+}
+
+impl crate::simd::Kernel for Godunov<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        if self.src.regularised.is_some() {
+            self.cells::<true>()
+        } else {
+            self.cells::<false>()
+        }
     }
-    for j in o + 1..o + n {
-        let (wl, wr) = (nl.omega[j], nl.omega[j + 1]);
-        let z = nl.cell_impedance[j].max(nl.cell_impedance[j + 1]);
-        let (tl, tr) = (nl.cell_torque[j], nl.cell_torque[j + 1]);
-        nl.face_omega[j] = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
-        nl.face_torque[j] = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
+}
+
+impl Godunov<'_> {
+    #[inline(always)]
+    fn cells<const REGULARISED: bool>(self) -> Sums {
+        let Godunov { nl, sp, stop, dt, src } = self;
+        let p = &sp.props;
+        let r = sp.offset + 1..=sp.offset + sp.cells;
+        let Nonlinear {
+            omega,
+            strain,
+            omega_next,
+            strain_next,
+            face_omega,
+            face_torque,
+            cell_impedance,
+            cell_torque,
+            ..
+        } = nl;
+        // Tangent impedance and torque of every cell, then the faces inside the section.
+        for ((z, t), &eps) in
+            cell_impedance[r.clone()].iter_mut().zip(&mut cell_torque[r.clone()]).zip(&strain[r.clone()])
+        {
+            *z = p.tangent_impedance(eps);
+            *t = p.torque(eps);
+        }
+        let inner = sp.offset + 1..sp.offset + sp.cells;
+        let (zc, tc, wc) = (&cell_impedance[r.clone()], &cell_torque[r.clone()], &omega[r.clone()]);
+        for (k, (fw, ft)) in face_omega[inner.clone()].iter_mut().zip(&mut face_torque[inner]).enumerate() {
+            let (wl, wr) = (wc[k], wc[k + 1]);
+            let z = zc[k].max(zc[k + 1]);
+            let (tl, tr) = (tc[k], tc[k + 1]);
+            *fw = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
+            *ft = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
+        }
+        let k = Consts {
+            c: 0.0,
+            damping: src.damping,
+            vs: src.stick_speed,
+            kr: src.kinetic_ratio,
+            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
+        };
+        let (k1, k2, k5, h) = (p.inertia_per_length, p.stiffness, p.quartic, sp.h);
+        let (rw, rs) = (dt / (k1 * h), dt / h);
+        let mut sums = Sums::default();
+        let faces = sp.offset..=sp.offset + sp.cells;
+        let (fw, ft) = (&face_omega[faces.clone()], &face_torque[faces]);
+        let (w0, s0, lim) = (&omega[r.clone()], &strain[r.clone()], &stop[r.clone()]);
+        let (wn, sn) = (&mut omega_next[r.clone()], &mut strain_next[r]);
+        // Blocks of BLOCK cells whose per-cell terms stay on the stack, each then summed in
+        // lanes (as in `Transport::cells`), so that the update loop vectorises.
+        let (mut jump, mut fric, mut damp, mut peak) = ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
+        let mut start = 0;
+        while start < sp.cells {
+            let m = BLOCK.min(sp.cells - start);
+            for j in 0..m {
+                let c = start + j;
+                let (wt, tt, wb, tb) = (fw[c], ft[c], fw[c + 1], ft[c + 1]);
+                let (w, s) = (w0[c], s0[c]);
+                let w1 = w + rw * (tt - tb);
+                let s1 = s + rs * (wt - wb);
+                let de = h
+                    * (0.5 * k1 * (w1 - w) * (w1 + w)
+                        + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
+                jump[j] = dt * (tt * wt - tb * wb) - de;
+                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], &k);
+                let d = dd + df;
+                let wbar = w1 + 0.5 * d;
+                wn[c] = if stuck { 0.0 } else { w1 + d };
+                sn[c] = s1;
+                fric[j] = df * wbar;
+                damp[j] = dd * wbar;
+                peak[j] = s1.abs();
+            }
+            sums.jumps += lane_sum(&jump[..m]);
+            sums.friction += k1 * h * lane_sum(&fric[..m]);
+            sums.damping += k1 * h * lane_sum(&damp[..m]);
+            sums.peak = peak[..m].iter().fold(sums.peak, |a, &b| if b > a { b } else { a });
+            start += m;
+        }
+        sums
     }
-    let k = Consts {
-        c: 0.0,
-        damping: src.damping,
-        vs: src.stick_speed,
-        kr: src.kinetic_ratio,
-        inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
-    };
-    let (k1, k2, k5, h) = (p.inertia_per_length, p.stiffness, p.quartic, sp.h);
-    let (rw, rs) = (dt / (k1 * h), dt / h);
-    let mut sums = Sums::default();
-    for j in 1..=n {
-        let i = o + j;
-        let (wt, tt, wb, tb) = (nl.face_omega[i - 1], nl.face_torque[i - 1], nl.face_omega[i], nl.face_torque[i]);
-        let (w, s) = (nl.omega[i], nl.strain[i]);
-        let w1 = w + rw * (tt - tb);
-        let s1 = s + rs * (wt - wb);
-        let de =
-            h * (0.5 * k1 * (w1 - w) * (w1 + w) + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
-        sums.jumps += dt * (tt * wt - tb * wb) - de;
-        let (dd, df, stuck) = source::<REGULARISED>(w1, stop[i], &k);
-        let d = dd + df;
-        let wbar = w1 + 0.5 * d;
-        nl.omega_next[i] = if stuck { 0.0 } else { w1 + d };
-        nl.strain_next[i] = s1;
-        sums.friction += k1 * h * df * wbar;
-        sums.damping += k1 * h * dd * wbar;
-        sums.peak = sums.peak.max(s1.abs());
-    }
-    sums
 }
 
 /// Upwind transport and sources of one section: `a`, `b`, `stop` padded (`[ghost, cells, ghost]`),
