@@ -408,7 +408,9 @@ impl<'c> Simulation<'c> {
     }
 
     /// Sets the initial state: the speed (rad/s) and torque (N m) of every cell (top to
-    /// bottom, `grid().cells()` each), the top-drive and the bit speed (rad/s).
+    /// bottom, `grid().cells()` each), the top-drive and the bit speed (rad/s). With the
+    /// `consistent` law a cell's twist is the one carrying its torque
+    /// ([`SectionProps::strain`]).
     pub fn set_state(&mut self, omega: &[f64], torque: &[f64], omega_top: f64, omega_bit: f64) -> Result<()> {
         let n = self.grid.cells();
         for (name, x) in [("omega", omega), ("torque", torque)] {
