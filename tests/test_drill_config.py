@@ -162,6 +162,9 @@ def fails(call: Any) -> ValidationError:
         ("top_drive.steps=[[1, 2, 3]]", "top_drive.steps[0]", ""),
         ("sections[1].polar_moment=-1e-4", "sections[1].polar_moment", "> 0"),
         ("numerics.duration=1e400", "numerics.duration", ""),
+        ("nonlinearity=cubic", "nonlinearity", "linear, consistent"),
+        ("sections[0].poisson_ratio=0.5", "sections[0].poisson_ratio", "(0, 0.5)"),
+        ("numerics.max_shear_strain=0", "numerics.max_shear_strain", "(0, 1]"),
     ],
 )
 def test_bad_overrides_name_the_field(assignment: str, field: str, needle: str) -> None:

@@ -479,7 +479,8 @@ class DrillEnergy(TypedDict):
     bit_loss: float
     #: upwind_loss + inertia_loss.
     numerical_loss: float
-    #: Dissipation of the first-order upwind transport (0 at Courant number 1).
+    #: Dissipation of the first-order transport (linear: 0 at Courant number 1; consistent:
+    #: the energy the Godunov face fluxes bring in less the cells' energy change).
     upwind_loss: float
     #: Dissipation of the implicit Euler steps of the top-drive and BHA inertias.
     inertia_loss: float
@@ -490,8 +491,12 @@ class DrillStats(TypedDict):
     cells: int
     steps: int
     dt: float
+    #: Courant numbers of the sections at the speed the step is made for (consistent: the
+    #: tangent speed at numerics.max_shear_strain).
     courant_min: float
     courant_max: float
+    #: The largest Courant number of the local (tangent) wave speed met in the run.
+    courant_peak: float
     #: Controller gains used (soft_torque: the tuned ones).
     kp: float
     ki: float

@@ -17,6 +17,7 @@ A :class:`DrillConfig` is therefore always valid and normalised.
 TOML (``examples/on-bottom-3000m.toml``)::
 
     damping_rate = 0.0            # top-level scalars first
+    nonlinearity = "linear"       # or "consistent" (finite-strain torque-twist law)
 
     [[sections]]                  # one table per section, from the top
     name = "drill pipe"
@@ -141,6 +142,9 @@ class Section:
     """Override of the polar moment of area J, m^4 (None: from the diameters)."""
     area: Optional[float] = _default("sections", "area", unit="m^2", kind="float?")
     """Override of the cross-section area A, m^2 (None: from the diameters)."""
+    poisson_ratio: float = _default("sections", "poisson_ratio", unit="", kind="float")
+    """Poisson's ratio nu, ``0 < nu < 0.5``: with ``shear_modulus`` the P-wave modulus
+    ``M = 2 G (1 - nu) / (1 - 2 nu)`` of the ``"consistent"`` nonlinearity (unused by ``"linear"``)."""
 
 
 @dataclass(frozen=True)
@@ -253,6 +257,10 @@ class Numerics:
     """Spacing of the space-time snapshots, s (0: none)."""
     max_cells: int = _default("numerics", "max_cells", unit="", kind="int")
     """Largest ``cells`` accepted (a guard against typos)."""
+    max_shear_strain: float = _default("numerics", "max_shear_strain", unit="", kind="float")
+    """``"consistent"`` only: the largest shear strain at the outer surface the time step is made
+    for (Courant number <= 1 at the tangent wave speed of that strain); a run exceeding it says so
+    in its message and ``stats["courant_peak"]`` > 1."""
 
 
 @dataclass(frozen=True)
@@ -289,6 +297,9 @@ class DrillConfig:
     friction: Friction = _table(Friction)
     damping_rate: float = _default(None, "damping_rate", unit="1/s", kind="float")
     """Viscous damping rate c, 1/s: force ``-rho J c omega`` per unit length."""
+    nonlinearity: str = _default(None, "nonlinearity", unit="", kind="str")
+    """The torque-twist law: ``"linear"`` (``tau = G J eps``, the default) or ``"consistent"``
+    (finite strain, ``tau = k2 eps + k5 eps^3``, ``k5 = M J4 / 2``; a first-order Godunov scheme)."""
     top_drive: TopDrive = _table(TopDrive)
     bit: Bit = _table(Bit)
     numerics: Numerics = _table(Numerics)

@@ -160,10 +160,15 @@ class DrillResult:
     metrics : DrillMetrics
         Stick-slip metrics over the window.
     energy : dict
-        The energy balance, J: ``motor_work, kinetic, elastic, friction_loss, damping_loss,
-        bit_loss, balance_error``.
+        The energy balance, J: ``motor_work, initial, kinetic, elastic, top_drive, bha,
+        friction_loss, damping_loss, bit_loss, numerical_loss`` (``upwind_loss`` of the transport
+        plus ``inertia_loss`` of the implicit top-drive and BHA steps) and ``balance_error``.
     stats : dict
-        ``cells``, ``substeps``, ``dt`` of the solve.
+        ``cells``, ``steps``, ``dt`` of the solve, the Courant numbers ``courant_min``,
+        ``courant_max`` of the sections (at the speed the step is made for) and ``courant_peak``
+        (the largest of the local wave speed met: above 1 only when a ``"consistent"`` run
+        exceeded ``numerics.max_shear_strain``), the controller gains ``kp``, ``ki`` and
+        ``first_mode_hz``.
     status, message : str
         How the solve ended (``"success"`` or a failure status, see :class:`~drillstring.errors.SolveError`).
     """

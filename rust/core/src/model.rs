@@ -156,6 +156,19 @@ pub fn p_wave_modulus(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
     youngs_modulus * (1.0 - poisson_ratio) / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio))
 }
 
+/// Young's modulus `E = 2 G (1 + nu)` from the shear modulus and Poisson's ratio (the inverse
+/// of [`shear_modulus`]), Pa.
+pub fn youngs_modulus(shear_modulus: f64, poisson_ratio: f64) -> f64 {
+    2.0 * shear_modulus * (1.0 + poisson_ratio)
+}
+
+/// The quartic coefficient of the consistent model, `k5 = M J4 / 2` (`M` the P-wave modulus,
+/// `J4 = int r^4 dA` the fourth polar moment): the torque-twist law is
+/// `tau = k2 th_z + k5 th_z^3`, N m^4.
+pub fn consistent_k5(p_wave_modulus: f64, j4: f64) -> f64 {
+    p_wave_modulus * j4 / 2.0
+}
+
 /// Longitudinal bar speed `sqrt(E / rho)`, m/s: the speed of extensional waves in a thin bar,
 /// the scale the torsional wave speeds are compared with.
 pub fn bar_speed(youngs_modulus: f64, density: f64) -> f64 {
@@ -249,7 +262,7 @@ pub fn coefficients(p: &Physical, model: Model, k5: K5Variant) -> Result<Coeffic
                 k2: g * ip,
                 k3: 0.0,
                 k4: 0.0,
-                k5: p_wave_modulus(p.youngs_modulus, nu) * section.j4 / 2.0,
+                k5: consistent_k5(p_wave_modulus(p.youngs_modulus, nu), section.j4),
                 k6: 0.0,
             },
             k6_per_omega_squared: 0.0,
@@ -329,6 +342,7 @@ mod tests {
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         assert!(close(p_wave_modulus(e, nu), lambda + 2.0 * shear_modulus(e, nu), 1e-15));
         assert_eq!(p_wave_modulus(e, 0.0), e);
+        assert!(close(shear_modulus(youngs_modulus(79.3e9, 0.3), 0.3), 79.3e9, 1e-15));
         assert_eq!(bar_speed(0.7e11, 2.7e3), (0.7e11f64 / 2.7e3).sqrt());
         assert!(close(bar_speed(2.1e11, 7.85e3), 5172.19, 1e-5));
     }

@@ -123,6 +123,8 @@ fn run_dict(py: Python<'_>, run: drilling::DrillRun) -> PyResult<Bound<'_, PyDic
     e.set_item("damping_loss", en.damping_loss)?;
     e.set_item("bit_loss", en.bit_loss)?;
     e.set_item("numerical_loss", en.numerical_loss)?;
+    e.set_item("upwind_loss", en.upwind_loss)?;
+    e.set_item("inertia_loss", en.inertia_loss)?;
     e.set_item("balance_error", en.balance_error)?;
     d.set_item("energy", e)?;
 
@@ -133,6 +135,7 @@ fn run_dict(py: Python<'_>, run: drilling::DrillRun) -> PyResult<Bound<'_, PyDic
     st.set_item("dt", s.dt)?;
     st.set_item("courant_min", s.courant_min)?;
     st.set_item("courant_max", s.courant_max)?;
+    st.set_item("courant_peak", s.courant_peak)?;
     st.set_item("kp", s.kp)?;
     st.set_item("ki", s.ki)?;
     st.set_item("first_mode_hz", s.first_mode_hz)?;

@@ -47,6 +47,9 @@ pub struct Section {
     pub polar_moment: Option<f64>,
     /// m^2; None: `pi/4 (OD^2 - ID^2)`.
     pub area: Option<f64>,
+    /// Poisson's ratio, `0 < nu < 0.5`: with `shear_modulus` it gives the P-wave modulus
+    /// `M = 2 G (1 - nu) / (1 - 2 nu)` of the `consistent` nonlinearity (unused by `linear`).
+    pub poisson_ratio: f64,
 }
 
 impl Default for Section {
@@ -63,8 +66,24 @@ impl Default for Section {
             contact_diameter: None,
             polar_moment: None,
             area: None,
+            poisson_ratio: 0.3,
         }
     }
+}
+
+/// The torque-twist law of the string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Nonlinearity {
+    /// `tau = G J eps` (`eps` the twist per length): the linear wave equation.
+    Linear,
+    /// The finite-strain law of [`crate::model::Model::Consistent`],
+    /// `tau = k2 eps + k5 eps^3` with `k2 = G J`, `k5 = M J4 / 2` (hardening).
+    Consistent,
+}
+
+impl Nonlinearity {
+    pub const NAMES: [&'static str; 2] = ["linear", "consistent"];
 }
 
 /// The inclination: one constant angle, or a table at the measured depths `well.md`.
@@ -279,12 +298,29 @@ pub struct Numerics {
     pub field_interval: f64,
     /// A ceiling on `cells` (at most [`MAX_CELLS`]).
     pub max_cells: usize,
+    /// `consistent` only: the largest shear strain at the outer surface, `gamma = (OD / 2) eps`,
+    /// the time step is made for. The step respects the tangent wave speed
+    /// `sqrt((k2 + 3 k5 eps^2) / (rho J))` at this strain in every section (Courant number
+    /// `<= 1`; every section's speed is raised by the largest of these hardening factors); a run
+    /// whose strains exceed it reports a tangent Courant number above 1
+    /// (`DrillStats::courant_peak`) in its message. Default 0.005: below the shear yield strain
+    /// of high-strength drill-pipe steel (S-135: `931 MPa / sqrt(3) / G ~ 0.0068`), where the
+    /// elastic law ends. A larger bound lowers the Courant numbers of the small strains below 1,
+    /// where the first-order transport dissipates.
+    pub max_shear_strain: f64,
 }
 
 impl Default for Numerics {
     /// Aarsnes & Shor (2018), parameters_WellB.m and MAIN.m: 1000 cells, 60 s.
     fn default() -> Self {
-        Numerics { cells: 1000, duration: 60.0, output_interval: 0.01, field_interval: 0.5, max_cells: 1_000_000 }
+        Numerics {
+            cells: 1000,
+            duration: 60.0,
+            output_interval: 0.01,
+            field_interval: 0.5,
+            max_cells: 1_000_000,
+            max_shear_strain: 0.005,
+        }
     }
 }
 
@@ -314,6 +350,8 @@ pub struct DrillConfig {
     pub friction: Friction,
     /// 1/s: viscous force `-rho J c omega` per unit length.
     pub damping_rate: f64,
+    /// The torque-twist law: `linear` (default) or `consistent` (finite strain).
+    pub nonlinearity: Nonlinearity,
     pub top_drive: TopDrive,
     pub bit: Bit,
     pub numerics: Numerics,
@@ -328,6 +366,7 @@ impl Default for DrillConfig {
             well: Well::default(),
             friction: Friction::default(),
             damping_rate: 0.0,
+            nonlinearity: Nonlinearity::Linear,
             top_drive: TopDrive::default(),
             bit: Bit::default(),
             numerics: Numerics::default(),
@@ -462,6 +501,7 @@ impl DrillConfig {
         for (path, value, names) in [
             ("top_drive.controller.type", user.pointer("/top_drive/controller/type"), &ControllerKind::NAMES[..]),
             ("friction.model", user.pointer("/friction/model"), &["set_valued", "regularised"][..]),
+            ("nonlinearity", user.pointer("/nonlinearity"), &Nonlinearity::NAMES[..]),
         ] {
             if let Some(v) = value {
                 if !v.as_str().is_some_and(|s| names.contains(&s)) {
@@ -519,6 +559,9 @@ impl DrillConfig {
             }
             pos(f("shear_modulus"), s.shear_modulus, "Pa")?;
             pos(f("density"), s.density, "kg/m^3")?;
+            if !(s.poisson_ratio.is_finite() && s.poisson_ratio > 0.0 && s.poisson_ratio < 0.5) {
+                return Err(Error::invalid(f("poisson_ratio"), Num(s.poisson_ratio), "a number in (0, 0.5) (-)"));
+            }
             for (k, v, unit) in [
                 ("contact_diameter", s.contact_diameter, "m"),
                 ("polar_moment", s.polar_moment, "m^4"),
@@ -640,6 +683,13 @@ impl DrillConfig {
             ));
         }
         nonneg("numerics.field_interval", nu.field_interval, "s, 0 for no snapshots")?;
+        if !(nu.max_shear_strain.is_finite() && nu.max_shear_strain > 0.0 && nu.max_shear_strain <= 1.0) {
+            return Err(Error::invalid(
+                "numerics.max_shear_strain",
+                Num(nu.max_shear_strain),
+                "a number in (0, 1] (-)",
+            ));
+        }
         let m = &self.metrics;
         if let Some([a, b]) = m.window {
             if !(a.is_finite() && b.is_finite() && a < b) {

@@ -4,8 +4,9 @@
 use std::f64::consts::PI;
 
 use crate::error::{Error, Num, Result};
+use crate::model::{consistent_k5, p_wave_modulus, youngs_modulus};
 
-use super::config::{DrillConfig, Inclination, Section};
+use super::config::{DrillConfig, Inclination, Nonlinearity, Section};
 
 /// Subdivisions of each interval between breakpoints (section ends, survey stations) in the
 /// quadrature of the break-off torque (trapezoidal on this and half as many, extrapolated:
@@ -30,6 +31,12 @@ pub struct SectionProps {
     pub contact_radius: f64,
     /// `(rho - rho_mud) A`, kg/m.
     pub buoyed_mass_per_length: f64,
+    /// Torsional stiffness `k2 = G J`, N m^2.
+    pub stiffness: f64,
+    /// Quartic coefficient of the `consistent` torque-twist law, `k5 = M J4 / 2`
+    /// ([`crate::model::consistent_k5`], `J4 = int r^4 dA` of the annulus of the section's
+    /// diameters, `M` the P-wave modulus of `shear_modulus` and `poisson_ratio`), N m^4.
+    pub quartic: f64,
 }
 
 impl SectionProps {
@@ -38,6 +45,8 @@ impl SectionProps {
         let j = s.polar_moment.unwrap_or(PI / 32.0 * (od.powi(4) - id.powi(4)));
         let a = s.area.unwrap_or(PI / 4.0 * (od * od - id * id));
         let (g, rho) = (s.shear_modulus, s.density);
+        let j4 = crate::model::Section::annulus(od, id).map_or(f64::NAN, |a| a.j4);
+        let nu = s.poisson_ratio;
         SectionProps {
             length: s.length,
             polar_moment: j,
@@ -47,7 +56,55 @@ impl SectionProps {
             inertia_per_length: rho * j,
             contact_radius: s.contact_diameter.unwrap_or(od) / 2.0,
             buoyed_mass_per_length: (rho - mud_density) * a,
+            stiffness: g * j,
+            quartic: consistent_k5(p_wave_modulus(youngs_modulus(g, nu), nu), j4),
         }
+    }
+
+    /// The torque of the `consistent` law at the twist per length `eps` (1/m),
+    /// `tau = k2 eps + k5 eps^3`, N m.
+    #[inline(always)]
+    pub fn torque(&self, eps: f64) -> f64 {
+        eps * (self.stiffness + self.quartic * eps * eps)
+    }
+
+    /// The tangent stiffness `d tau / d eps = k2 + 3 k5 eps^2`, N m^2.
+    #[inline(always)]
+    pub fn tangent_stiffness(&self, eps: f64) -> f64 {
+        self.stiffness + 3.0 * self.quartic * eps * eps
+    }
+
+    /// The tangent impedance `sqrt(rho J (k2 + 3 k5 eps^2))`, N m s (`Z` at `eps = 0`).
+    #[inline(always)]
+    pub fn tangent_impedance(&self, eps: f64) -> f64 {
+        (self.inertia_per_length * self.tangent_stiffness(eps)).sqrt()
+    }
+
+    /// The tangent wave speed `sqrt((k2 + 3 k5 eps^2) / (rho J))`, m/s.
+    pub fn tangent_speed(&self, eps: f64) -> f64 {
+        (self.tangent_stiffness(eps) / self.inertia_per_length).sqrt()
+    }
+
+    /// The elastic energy per length of the `consistent` law, `k2 eps^2 / 2 + k5 eps^4 / 4`, J/m.
+    #[inline(always)]
+    pub fn elastic_energy(&self, eps: f64) -> f64 {
+        let e2 = eps * eps;
+        e2 * (0.5 * self.stiffness + 0.25 * self.quartic * e2)
+    }
+
+    /// The twist per length carrying the torque `tau` under the `consistent` law (the inverse
+    /// of [`SectionProps::torque`], increasing and odd): Newton from `tau / k2`, which lies on
+    /// the far side of the root of the convex branch, so the iterates approach it monotonically.
+    pub fn strain(&self, tau: f64) -> f64 {
+        let mut eps = tau / self.stiffness;
+        for _ in 0..100 {
+            let next = eps - (self.torque(eps) - tau) / self.tangent_stiffness(eps);
+            if next.abs() >= eps.abs() {
+                break;
+            }
+            eps = next;
+        }
+        eps
     }
 
     /// Static friction limit per metre at inclination `inc` (rad), N m/m: the soft-string
@@ -86,9 +143,17 @@ pub struct Grid {
     pub dt: f64,
     /// Cells of each section.
     pub counts: Vec<usize>,
-    /// Courant number `c_i dt / h_i` of each section (`<= 1`; exactly 1 when the section's
-    /// travel time is a whole number of steps).
+    /// Courant number `c_i dt / h_i` of each section at its design speed `speed[i]` (`<= 1`;
+    /// exactly 1 when the section's travel time is a whole number of steps).
     pub courant: Vec<f64>,
+    /// The wave speed the step is made for, m/s: `sqrt(G / rho)` (`linear`); for `consistent`
+    /// that times the largest hardening factor of the sections, `max_i c_t,i / c_i` with `c_t,i`
+    /// the tangent speed at the twist per length `strain_bound[i]` (at least each section's
+    /// tangent speed there; sections of equal wave speeds keep equal ones).
+    pub speed: Vec<f64>,
+    /// `consistent`: the twist per length of `numerics.max_shear_strain` at the outer surface,
+    /// `2 max_shear_strain / OD`, 1/m (0 for `linear`).
+    pub strain_bound: Vec<f64>,
     /// Cell length of each section, m.
     pub spacing: Vec<f64>,
     /// Cell centres (measured depth from the top), m.
@@ -106,16 +171,38 @@ impl Grid {
     pub fn new(cfg: &DrillConfig) -> Result<Grid> {
         let props: Vec<SectionProps> =
             cfg.sections.iter().map(|s| SectionProps::new(s, cfg.well.mud_density)).collect();
-        let travel: f64 = props.iter().map(|p| p.length / p.wave_speed).sum();
+        let mut strain_bound = vec![0.0; props.len()];
+        // consistent: every section's speed raised by the largest hardening factor of the
+        // sections (so that sections of equal wave speeds keep equal cells and Courant numbers).
+        let mut factor: f64 = 1.0;
+        if cfg.nonlinearity == Nonlinearity::Consistent {
+            for (i, (p, s)) in props.iter().zip(&cfg.sections).enumerate() {
+                strain_bound[i] = 2.0 * cfg.numerics.max_shear_strain / s.outer_diameter;
+                let c = p.tangent_speed(strain_bound[i]);
+                if !(p.quartic.is_finite() && c.is_finite() && c > 0.0) {
+                    return Err(Error::invalid(
+                        format!("sections[{i}].outer_diameter"),
+                        Num(s.outer_diameter),
+                        "diameters whose fourth polar moment and tangent wave speed are finite",
+                    ));
+                }
+                factor = factor.max(c / p.wave_speed);
+            }
+        }
+        let speed: Vec<f64> = match cfg.nonlinearity {
+            Nonlinearity::Linear => props.iter().map(|p| p.wave_speed).collect(),
+            Nonlinearity::Consistent => props.iter().map(|p| p.wave_speed * factor).collect(),
+        };
+        let travel: f64 = props.iter().zip(&speed).map(|(p, c)| p.length / c).sum();
         // Every section gets at least one cell at a Courant number <= 1: the step is also
         // limited by the shortest section's travel time.
-        let shortest = props.iter().map(|p| p.length / p.wave_speed).fold(f64::INFINITY, f64::min);
+        let shortest = props.iter().zip(&speed).map(|(p, c)| p.length / c).fold(f64::INFINITY, f64::min);
         let dt = (travel / cfg.numerics.cells as f64).min(shortest);
         let mut counts = Vec::with_capacity(props.len());
         let mut courant = Vec::with_capacity(props.len());
         let mut spacing = Vec::with_capacity(props.len());
-        for p in &props {
-            let exact = p.length / (p.wave_speed * dt);
+        for (p, &speed) in props.iter().zip(&speed) {
+            let exact = p.length / (speed * dt);
             let n = ((exact * (1.0 + 1e-9)).floor()).max(1.0);
             let mut c = n / exact;
             if (c - 1.0).abs() < 1e-9 {
@@ -128,7 +215,7 @@ impl Grid {
                     cfg.numerics.cells,
                     format!(
                         "more cells: a section of travel time {} s is shorter than the time step {} s",
-                        Num(p.length / p.wave_speed),
+                        Num(p.length / speed),
                         Num(dt)
                     ),
                 ));
@@ -164,7 +251,7 @@ impl Grid {
             }
             top += p.length;
         }
-        Ok(Grid { props, dt, counts, courant, spacing, z, section_of, limit })
+        Ok(Grid { props, dt, counts, courant, speed, strain_bound, spacing, z, section_of, limit })
     }
 
     /// Total number of cells.

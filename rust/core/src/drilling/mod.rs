@@ -11,6 +11,9 @@
 //! top drive an inertia driven by a controller, the bit a free end, a lumped BHA inertia or the
 //! Navarro-Lopez velocity-weakening bit torque with a stick phase; soft-string Coulomb friction
 //! with the set-valued stick resolution of that code (or a regularised form); viscous damping.
+//! Optionally (`nonlinearity = "consistent"`) the torque-twist law is the finite-strain one of
+//! [`crate::model::Model::Consistent`], advanced by a first-order Godunov scheme whose linear
+//! limit is the scheme above (see [`solver`]).
 //!
 //! * [`config`]: [`DrillConfig`] (JSON, defaults, validation with dotted field names, limits);
 //! * [`grid`]: section properties, the time step and cells, the friction limit, the string's

@@ -35,6 +35,36 @@
 //! the torque relaxes towards a linear profile (over `n` stuck cells in ~`n^2` steps) instead of
 //! staying frozen as in the continuum; the scheme of torsionalWaveStep.m does the same.
 //!
+//! # The `consistent` nonlinearity
+//!
+//! With `nonlinearity = "consistent"` the torque is the finite-strain law of
+//! [`crate::model::Model::Consistent`], `tau(eps) = k2 eps + k5 eps^3` (`eps = -theta_z` the
+//! twist per length, `k2 = G J`, `k5 = M J4 / 2`), and the string is the p-system
+//! `rho J omega_t = -tau(eps)_z - f - rho J d omega`, `eps_t = -omega_z`, whose local wave speed is
+//! the tangent speed `sqrt((k2 + 3 k5 eps^2) / (rho J))` (hardening). The cells hold
+//! `(omega, eps)` and the scheme is the first-order Godunov finite-volume scheme with the
+//! acoustic (two-wave, Suliciu relaxation) Riemann solver: at a face between states `l` and
+//! `r` the outgoing characteristics `omega_l + tau_l / Z_l` and `omega_r - tau_r / Z_r` meet,
+//! `omega* = (Z_l (omega_l + tau_l / Z_l) + Z_r (omega_r - tau_r / Z_r)) / (Z_l + Z_r)`,
+//! `tau* = Z_l (omega_l + tau_l / Z_l - omega*)`, with `Z_l = Z_r` the larger tangent impedance
+//! `sqrt(rho J (k2 + 3 k5 eps^2))` of the two cells inside a section, each side's own at a
+//! junction (continuity of speed and torque), and the cell's at the top drive and the bit,
+//! which are solved exactly as above with `beta_1 = omega_1 - tau_1 / Z_1` and
+//! `alpha_n = omega_n + tau_n / Z_n`. Then
+//! `omega_j += dt (tau*_{j-1/2} - tau*_{j+1/2}) / (rho J h)`,
+//! `eps_j += dt (omega*_{j-1/2} - omega*_{j+1/2}) / h`, and the same sources (damping, friction
+//! with its stick phase: a stuck cell keeps its twist) at the transported speed. With `k5 = 0`
+//! the face values are those of the invariants and the update is the upwind scheme above
+//! (to rounding). The time step is made for the tangent speed at `numerics.max_shear_strain`
+//! (Courant number `<= 1` at that strain; every section's wave speed is raised by the largest
+//! hardening factor of the sections, so that sections of equal wave speeds keep whole numbers
+//! of steps per travel time, [`Grid::speed`]); the run reports the largest tangent Courant number
+//! met ([`DrillStats::courant_peak`]). The elastic energy is `sum h (k2 eps^2 / 2 + k5 eps^4 / 4)`
+//! and the transport's dissipation (`upwind_loss`) is measured per cell as the energy the face
+//! fluxes bring in (`dt tau* omega*`) less the cell's energy change, so the balance closes to
+//! rounding and the scheme's first-order dissipation is reported (positive; it vanishes at
+//! first order with `h` on smooth solutions).
+//!
 //! # Controllers
 //!
 //! * `pi`: `tau_m = kp e + ki int e`, `e = setpoint - Omega`, sampled in a zero-order hold at
@@ -77,8 +107,8 @@ use crate::metrics::{stick_slip, StickSlip};
 use crate::solution::Status;
 
 use super::bit::slip_torque;
-use super::config::{ControllerKind, DrillConfig, FrictionModel, SERIES};
-use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
+use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity, SERIES};
+use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid, SectionProps};
 
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
 
@@ -99,8 +129,9 @@ pub struct EnergyBalance {
     pub bit_loss: f64,
     /// `upwind_loss + inertia_loss`.
     pub numerical_loss: f64,
-    /// Dissipation of the first-order upwind transport, `e C (1 - C) (d alpha^2 + d beta^2)`
-    /// per cell and step (0 at Courant number 1).
+    /// Dissipation of the first-order upwind transport: `linear`, `e C (1 - C) (d alpha^2 +
+    /// d beta^2)` per cell and step (0 at Courant number 1); `consistent`, the energy the
+    /// Godunov fluxes bring into a cell less its energy change in the transport.
     pub upwind_loss: f64,
     /// Dissipation of the implicit Euler steps of the top-drive and BHA inertias,
     /// `I (Omega' - Omega)^2 / 2` per step (first order in `dt`).
@@ -117,9 +148,14 @@ pub struct DrillStats {
     /// Time steps taken.
     pub steps: u64,
     pub dt: f64,
-    /// Smallest and largest Courant number of the sections.
+    /// Smallest and largest Courant number of the sections at the speed the step is made for
+    /// (`linear`: `sqrt(G / rho)`; `consistent`: the tangent speed at `numerics.max_shear_strain`).
     pub courant_min: f64,
     pub courant_max: f64,
+    /// The largest Courant number of the local wave speed met in the run: `courant_max` for
+    /// `linear`; for `consistent` the tangent speed at the largest twist each section reached
+    /// (above 1 when the strains exceeded `numerics.max_shear_strain`; the message says so).
+    pub courant_peak: f64,
     /// The controller gains used (for `soft_torque`, the tuned ones), N m s/rad and N m/rad.
     pub kp: f64,
     pub ki: f64,
@@ -200,6 +236,27 @@ struct Span {
     /// `rho J h / 4`.
     e: f64,
     impedance: f64,
+    /// Cell length, m.
+    h: f64,
+    props: SectionProps,
+}
+
+/// The state of the `consistent` scheme: cell speed and twist per length, padded like the
+/// invariants (`[ghost, cells, ghost]` per section, ghosts unused), and the face values
+/// `(omega*, tau*)` at padded index `offset + j` for the face below cell `j` (`offset`: the
+/// section's top face).
+struct Nonlinear {
+    omega: Vec<f64>,
+    strain: Vec<f64>,
+    omega_next: Vec<f64>,
+    strain_next: Vec<f64>,
+    face_omega: Vec<f64>,
+    face_torque: Vec<f64>,
+    /// Per cell in a step: tangent impedance and torque.
+    cell_impedance: Vec<f64>,
+    cell_torque: Vec<f64>,
+    /// Largest `|eps|` of each section's cells so far.
+    peak_strain: Vec<f64>,
 }
 
 /// The state of the controller.
@@ -235,6 +292,8 @@ pub struct Simulation<'c> {
     control: Control,
     losses: Losses,
     first_mode: f64,
+    /// `Some` for the `consistent` nonlinearity (then `alpha`, `beta` are unused).
+    nl: Option<Nonlinear>,
 }
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -272,6 +331,8 @@ impl<'c> Simulation<'c> {
                 courant: grid.courant[s],
                 e: 0.25 * p.inertia_per_length * grid.spacing[s],
                 impedance: p.impedance,
+                h: grid.spacing[s],
+                props: *p,
             });
             stop.push(0.0);
             for _ in 0..n {
@@ -306,6 +367,17 @@ impl<'c> Simulation<'c> {
             slow_torque: 0.0,
             slow_factor: 1.0 - (-dt / c.torque_highpass_time).exp(),
         };
+        let nl = (cfg.nonlinearity == Nonlinearity::Consistent).then(|| Nonlinear {
+            omega: vec![0.0; len],
+            strain: vec![0.0; len],
+            omega_next: vec![0.0; len],
+            strain_next: vec![0.0; len],
+            face_omega: vec![0.0; len],
+            face_torque: vec![0.0; len],
+            cell_impedance: vec![0.0; len],
+            cell_torque: vec![0.0; len],
+            peak_strain: vec![0.0; grid.props.len()],
+        });
         Ok(Simulation {
             cfg,
             grid,
@@ -321,7 +393,17 @@ impl<'c> Simulation<'c> {
             control,
             losses: Losses::default(),
             first_mode,
+            nl,
         })
+    }
+
+    /// Sets `k5 = 0` in every section (the `consistent` scheme with the linear law), for tests
+    /// of its linear limit.
+    #[cfg(test)]
+    pub(crate) fn zero_quartic(&mut self) {
+        for sp in &mut self.spans {
+            sp.props.quartic = 0.0;
+        }
     }
 
     /// The discretisation.
@@ -330,7 +412,9 @@ impl<'c> Simulation<'c> {
     }
 
     /// Sets the initial state: the speed (rad/s) and torque (N m) of every cell (top to
-    /// bottom, `grid().cells()` each), the top-drive and the bit speed (rad/s).
+    /// bottom, `grid().cells()` each), the top-drive and the bit speed (rad/s). With the
+    /// `consistent` law a cell's twist is the one carrying its torque
+    /// ([`SectionProps::strain`]).
     pub fn set_state(&mut self, omega: &[f64], torque: &[f64], omega_top: f64, omega_bit: f64) -> Result<()> {
         let n = self.grid.cells();
         for (name, x) in [("omega", omega), ("torque", torque)] {
@@ -347,9 +431,14 @@ impl<'c> Simulation<'c> {
         let mut k = 0;
         for sp in &self.spans {
             for j in 1..=sp.cells {
-                let s = torque[k] / sp.impedance;
-                self.alpha[sp.offset + j] = omega[k] + s;
-                self.beta[sp.offset + j] = omega[k] - s;
+                if let Some(nl) = &mut self.nl {
+                    nl.omega[sp.offset + j] = omega[k];
+                    nl.strain[sp.offset + j] = sp.props.strain(torque[k]);
+                } else {
+                    let s = torque[k] / sp.impedance;
+                    self.alpha[sp.offset + j] = omega[k] + s;
+                    self.beta[sp.offset + j] = omega[k] - s;
+                }
                 k += 1;
             }
         }
@@ -364,26 +453,68 @@ impl<'c> Simulation<'c> {
         let mut t = Vec::with_capacity(self.grid.cells());
         for sp in &self.spans {
             for j in 1..=sp.cells {
-                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
-                w.push(0.5 * (a + b));
-                t.push(0.5 * sp.impedance * (a - b));
+                let (wj, tj) = self.cell(sp, j);
+                w.push(wj);
+                t.push(tj);
             }
         }
         (w, t)
     }
 
+    /// Speed (rad/s) and torque (N m) of cell `j` (1-based) of a section.
+    #[inline]
+    fn cell(&self, sp: &Span, j: usize) -> (f64, f64) {
+        match &self.nl {
+            Some(nl) => (nl.omega[sp.offset + j], sp.props.torque(nl.strain[sp.offset + j])),
+            None => {
+                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
+                (0.5 * (a + b), 0.5 * sp.impedance * (a - b))
+            }
+        }
+    }
+
+    /// The characteristic variable leaving cell `j` of a section towards a face and the
+    /// impedance it travels with: downwards (`down`) `omega + tau / Z`, else `omega - tau / Z`
+    /// (`consistent`: `Z` the tangent impedance of the cell's twist).
+    #[inline]
+    fn outgoing(&self, sp: &Span, j: usize, down: bool) -> (f64, f64) {
+        match &self.nl {
+            Some(nl) => {
+                let eps = nl.strain[sp.offset + j];
+                let z = sp.props.tangent_impedance(eps);
+                let s = sp.props.torque(eps) / z;
+                let w = nl.omega[sp.offset + j];
+                (if down { w + s } else { w - s }, z)
+            }
+            None => (if down { self.alpha[sp.offset + j] } else { self.beta[sp.offset + j] }, sp.impedance),
+        }
+    }
+
     /// `(string kinetic, string elastic, top drive, BHA)` energies, J.
     fn energies(&self) -> (f64, f64, f64, f64) {
         let (mut kin, mut ela) = (0.0, 0.0);
-        for sp in &self.spans {
-            let (mut k, mut e) = (0.0, 0.0);
-            for j in 1..=sp.cells {
-                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
-                k += (a + b) * (a + b);
-                e += (a - b) * (a - b);
+        if let Some(nl) = &self.nl {
+            for sp in &self.spans {
+                let (mut k, mut e) = (0.0, 0.0);
+                for j in 1..=sp.cells {
+                    let w = nl.omega[sp.offset + j];
+                    k += w * w;
+                    e += sp.props.elastic_energy(nl.strain[sp.offset + j]);
+                }
+                kin += 0.5 * sp.props.inertia_per_length * sp.h * k;
+                ela += sp.h * e;
             }
-            kin += 0.5 * sp.e * k;
-            ela += 0.5 * sp.e * e;
+        } else {
+            for sp in &self.spans {
+                let (mut k, mut e) = (0.0, 0.0);
+                for j in 1..=sp.cells {
+                    let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
+                    k += (a + b) * (a + b);
+                    e += (a - b) * (a - b);
+                }
+                kin += 0.5 * sp.e * k;
+                ela += 0.5 * sp.e * e;
+            }
         }
         let td = 0.5 * self.cfg.top_drive.inertia * self.omega_top * self.omega_top;
         let bha = 0.5 * self.cfg.bit.bha_inertia * self.omega_bit * self.omega_bit;
@@ -410,8 +541,7 @@ impl<'c> Simulation<'c> {
 
         // Top drive.
         let first = self.spans[0];
-        let z0 = first.impedance;
-        let beta1 = self.beta[first.offset + 1];
+        let (beta1, z0) = self.outgoing(&first, 1, false);
         let inertia = cfg.top_drive.inertia;
         let omega = self.omega_top;
         let implicit = |tm: f64| (inertia * omega / dt + tm + z0 * beta1) / (inertia / dt + z0);
@@ -456,15 +586,20 @@ impl<'c> Simulation<'c> {
         if ctl.kind == ControllerKind::ZTorque {
             ctl.slow_torque += (tau_top - ctl.slow_torque) * ctl.slow_factor;
         }
-        self.alpha[first.offset] = 2.0 * omega1 - beta1;
+        match &mut self.nl {
+            Some(nl) => {
+                nl.face_omega[first.offset] = omega1;
+                nl.face_torque[first.offset] = tau_top;
+            }
+            None => self.alpha[first.offset] = 2.0 * omega1 - beta1,
+        }
         self.losses.motor += dt * motor * omega1;
         self.losses.inertia += 0.5 * inertia * (omega1 - omega) * (omega1 - omega);
         self.omega_top = omega1;
 
         // Bit.
         let last = *self.spans.last().expect("at least one section");
-        let zl = last.impedance;
-        let alpha_n = self.alpha[last.offset + last.cells];
+        let (alpha_n, zl) = self.outgoing(&last, last.cells, true);
         let b = &cfg.bit;
         let ib = b.bha_inertia;
         let wb = self.omega_bit;
@@ -497,7 +632,13 @@ impl<'c> Simulation<'c> {
         } else {
             (drive / denom, 0.0)
         };
-        self.beta[last.offset + last.cells + 1] = 2.0 * wb1 - alpha_n;
+        match &mut self.nl {
+            Some(nl) => {
+                nl.face_omega[last.offset + last.cells] = wb1;
+                nl.face_torque[last.offset + last.cells] = zl * (alpha_n - wb1);
+            }
+            None => self.beta[last.offset + last.cells + 1] = 2.0 * wb1 - alpha_n,
+        }
         self.losses.bit += dt * tbit * wb1;
         // A bit stopped in this step: the BHA's kinetic energy is taken by the bit torque.
         let stop = 0.5 * ib * (wb1 - wb) * (wb1 - wb);
@@ -511,11 +652,22 @@ impl<'c> Simulation<'c> {
         // Junctions.
         for k in 1..self.spans.len() {
             let (a, bl) = (self.spans[k - 1], self.spans[k]);
-            let alpha_a = self.alpha[a.offset + a.cells];
-            let beta_b = self.beta[bl.offset + 1];
-            let w = (a.impedance * alpha_a + bl.impedance * beta_b) / (a.impedance + bl.impedance);
-            self.beta[a.offset + a.cells + 1] = 2.0 * w - alpha_a;
-            self.alpha[bl.offset] = 2.0 * w - beta_b;
+            let (alpha_a, za) = self.outgoing(&a, a.cells, true);
+            let (beta_b, zb) = self.outgoing(&bl, 1, false);
+            let w = (za * alpha_a + zb * beta_b) / (za + zb);
+            match &mut self.nl {
+                Some(nl) => {
+                    let tau = za * (alpha_a - w);
+                    for face in [a.offset + a.cells, bl.offset] {
+                        nl.face_omega[face] = w;
+                        nl.face_torque[face] = tau;
+                    }
+                }
+                None => {
+                    self.beta[a.offset + a.cells + 1] = 2.0 * w - alpha_a;
+                    self.alpha[bl.offset] = 2.0 * w - beta_b;
+                }
+            }
         }
 
         // Cells.
@@ -526,6 +678,18 @@ impl<'c> Simulation<'c> {
             kinetic_ratio: fr.kinetic_ratio,
             regularised: (fr.model == FrictionModel::Regularised).then_some(fr.regularisation_speed),
         };
+        if let Some(nl) = &mut self.nl {
+            for (s, sp) in self.spans.iter().enumerate() {
+                let sums = godunov(nl, sp, &self.stop, dt, &sources);
+                self.losses.upwind += sums.jumps;
+                self.losses.friction -= sums.friction;
+                self.losses.damping -= sums.damping;
+                nl.peak_strain[s] = nl.peak_strain[s].max(sums.peak);
+            }
+            std::mem::swap(&mut nl.omega, &mut nl.omega_next);
+            std::mem::swap(&mut nl.strain, &mut nl.strain_next);
+            return (motor, tbit);
+        }
         for sp in &self.spans {
             let r = sp.offset..sp.offset + sp.cells + 2;
             let sums = transport(
@@ -583,6 +747,7 @@ impl<'c> Simulation<'c> {
                 dt,
                 courant_min: self.grid.courant.iter().copied().fold(f64::INFINITY, f64::min),
                 courant_max: self.grid.courant.iter().copied().fold(0.0, f64::max),
+                courant_peak: self.grid.courant.iter().copied().fold(0.0, f64::max),
                 kp: self.control.kp,
                 ki: self.control.ki,
                 first_mode_hz: self.first_mode / (2.0 * PI),
@@ -667,6 +832,29 @@ impl<'c> Simulation<'c> {
                 progress((n + 1) as f64 / steps as f64);
             }
         }
+        if let Some(nl) = &self.nl {
+            let peak = self
+                .spans
+                .iter()
+                .zip(&nl.peak_strain)
+                .map(|(sp, &eps)| sp.props.tangent_speed(eps) * dt / sp.h)
+                .fold(0.0, f64::max);
+            run.stats.courant_peak = peak;
+            if peak > 1.0 + 1e-12 {
+                let bound = cfg.numerics.max_shear_strain;
+                let strain = (nl.peak_strain.iter().zip(&self.grid.strain_bound))
+                    .map(|(&eps, &b)| bound * eps / b)
+                    .fold(0.0, f64::max);
+                let note = format!(
+                    "the shear strain reached {} > numerics.max_shear_strain = {}: the tangent Courant number \
+                     reached {} > 1 (raise numerics.max_shear_strain)",
+                    Num(strain),
+                    Num(cfg.numerics.max_shear_strain),
+                    Num(peak)
+                );
+                run.message = if run.message.is_empty() { note } else { format!("{}; {note}", run.message) };
+            }
+        }
         let (kin, ela, td, bha) = self.energies();
         let l = self.losses;
         let change = kin + ela + td + bha - initial;
@@ -707,9 +895,9 @@ impl<'c> Simulation<'c> {
         let start = run.omega_field.len();
         for sp in &self.spans {
             for j in 1..=sp.cells {
-                let (a, b) = (self.alpha[sp.offset + j], self.beta[sp.offset + j]);
-                run.omega_field.push(0.5 * (a + b) * RPM_PER_RAD_S);
-                run.torque_field.push(0.5 * sp.impedance * (a - b));
+                let (w, tau) = self.cell(sp, j);
+                run.omega_field.push(w * RPM_PER_RAD_S);
+                run.torque_field.push(tau);
             }
         }
         let finite = run.omega_field[start..].iter().chain(&run.torque_field[start..]).all(|v| v.is_finite());
@@ -741,6 +929,124 @@ struct Sums {
     /// `sum delta_f (omega* + delta / 2)` and the same for the damping.
     friction: f64,
     damping: f64,
+    /// Largest `|eps|` (`consistent`).
+    peak: f64,
+}
+
+/// One step of the `consistent` scheme on a section (faces at the boundaries and junctions
+/// set): the faces inside it by the acoustic (two-wave) Riemann solver with the larger tangent
+/// impedance of the two cells, `omega* = (w_l + w_r) / 2 + (tau_l - tau_r) / (2 Z)`,
+/// `tau* = (tau_l + tau_r) / 2 + Z (w_l - w_r) / 2`, then the finite-volume update
+/// `omega += dt (tau*_top - tau*_bottom) / (rho J h)`, `eps += dt (omega*_top - omega*_bottom) / h`
+/// and the sources as in [`update`]. Returns the sums, with `jumps` the transport's
+/// dissipation `dt (tau*_top omega*_top - tau*_bottom omega*_bottom) - dE` (J) and
+/// `friction`, `damping` the work of the sources (J, negative).
+fn godunov(nl: &mut Nonlinear, sp: &Span, stop: &[f64], dt: f64, src: &Sources) -> Sums {
+    crate::simd::dispatch(Godunov { nl, sp, stop, dt, src })
+}
+
+/// [`godunov`] as a [`crate::simd::Kernel`] (AVX2 code when available; no fused multiply-adds).
+struct Godunov<'a> {
+    nl: &'a mut Nonlinear,
+    sp: &'a Span,
+    stop: &'a [f64],
+    dt: f64,
+    src: &'a Sources,
+}
+
+impl crate::simd::Kernel for Godunov<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        if self.src.regularised.is_some() {
+            self.cells::<true>()
+        } else {
+            self.cells::<false>()
+        }
+    }
+}
+
+impl Godunov<'_> {
+    #[inline(always)]
+    fn cells<const REGULARISED: bool>(self) -> Sums {
+        let Godunov { nl, sp, stop, dt, src } = self;
+        let p = &sp.props;
+        let r = sp.offset + 1..=sp.offset + sp.cells;
+        let Nonlinear {
+            omega,
+            strain,
+            omega_next,
+            strain_next,
+            face_omega,
+            face_torque,
+            cell_impedance,
+            cell_torque,
+            ..
+        } = nl;
+        // Tangent impedance and torque of every cell, then the faces inside the section.
+        for ((z, t), &eps) in
+            cell_impedance[r.clone()].iter_mut().zip(&mut cell_torque[r.clone()]).zip(&strain[r.clone()])
+        {
+            *z = p.tangent_impedance(eps);
+            *t = p.torque(eps);
+        }
+        let inner = sp.offset + 1..sp.offset + sp.cells;
+        let (zc, tc, wc) = (&cell_impedance[r.clone()], &cell_torque[r.clone()], &omega[r.clone()]);
+        for (k, (fw, ft)) in face_omega[inner.clone()].iter_mut().zip(&mut face_torque[inner]).enumerate() {
+            let (wl, wr) = (wc[k], wc[k + 1]);
+            let z = zc[k].max(zc[k + 1]);
+            let (tl, tr) = (tc[k], tc[k + 1]);
+            *fw = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
+            *ft = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
+        }
+        let k = Consts {
+            c: 0.0,
+            damping: src.damping,
+            vs: src.stick_speed,
+            kr: src.kinetic_ratio,
+            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
+        };
+        let (k1, k2, k5, h) = (p.inertia_per_length, p.stiffness, p.quartic, sp.h);
+        let (rw, rs) = (dt / (k1 * h), dt / h);
+        let mut sums = Sums::default();
+        let faces = sp.offset..=sp.offset + sp.cells;
+        let (fw, ft) = (&face_omega[faces.clone()], &face_torque[faces]);
+        let (w0, s0, lim) = (&omega[r.clone()], &strain[r.clone()], &stop[r.clone()]);
+        let (wn, sn) = (&mut omega_next[r.clone()], &mut strain_next[r]);
+        // Blocks of BLOCK cells whose per-cell terms stay on the stack, each then summed in
+        // lanes (as in `Transport::cells`), so that the update loop vectorises.
+        let (mut jump, mut fric, mut damp, mut peak) = ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
+        let mut start = 0;
+        while start < sp.cells {
+            let m = BLOCK.min(sp.cells - start);
+            for j in 0..m {
+                let c = start + j;
+                let (wt, tt, wb, tb) = (fw[c], ft[c], fw[c + 1], ft[c + 1]);
+                let (w, s) = (w0[c], s0[c]);
+                let w1 = w + rw * (tt - tb);
+                let s1 = s + rs * (wt - wb);
+                let de = h
+                    * (0.5 * k1 * (w1 - w) * (w1 + w)
+                        + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
+                jump[j] = dt * (tt * wt - tb * wb) - de;
+                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], &k);
+                let d = dd + df;
+                let wbar = w1 + 0.5 * d;
+                wn[c] = if stuck { 0.0 } else { w1 + d };
+                sn[c] = s1;
+                fric[j] = df * wbar;
+                damp[j] = dd * wbar;
+                peak[j] = s1.abs();
+            }
+            sums.jumps += lane_sum(&jump[..m]);
+            sums.friction += k1 * h * lane_sum(&fric[..m]);
+            sums.damping += k1 * h * lane_sum(&damp[..m]);
+            sums.peak = peak[..m].iter().fold(sums.peak, |a, &b| if b > a { b } else { a });
+            start += m;
+        }
+        sums
+    }
 }
 
 /// Upwind transport and sources of one section: `a`, `b`, `stop` padded (`[ghost, cells, ghost]`),
@@ -893,6 +1199,25 @@ fn update<const REGULARISED: bool>(a_prev: f64, a: f64, b: f64, b_next: f64, lim
     let a1 = a - k.c * da;
     let b1 = b - k.c * db;
     let w1 = 0.5 * (a1 + b1);
+    let (dd, df, stuck) = source::<REGULARISED>(w1, lim, k);
+    let d = dd + df;
+    let wbar = w1 + 0.5 * d;
+    // Stuck: stopped exactly (omega = 0), the torque kept.
+    let s1 = 0.5 * (a1 - b1);
+    Cell {
+        an: if stuck { s1 } else { a1 + d },
+        bn: if stuck { -s1 } else { b1 + d },
+        jump: da * da + db * db,
+        friction: df * wbar,
+        damping: dd * wbar,
+    }
+}
+
+/// The sources of a cell whose transported speed is `w1`, with the stop limit `lim`
+/// (`dt limit / (rho J)`): the damping change `dd = -dt d w1`, the friction change `df` and
+/// whether the cell sticks (see the module).
+#[inline(always)]
+fn source<const REGULARISED: bool>(w1: f64, lim: f64, k: &Consts) -> (f64, f64, bool) {
     let dd = -k.damping * w1;
     let wd = w1 + dd;
     let (df, stuck) = if REGULARISED {
@@ -906,15 +1231,5 @@ fn update<const REGULARISED: bool>(a_prev: f64, a: f64, b: f64, b_next: f64, lim
         let df = if slow { -clipped } else { -(k.kr * lim).copysign(w1) };
         (df, slow & (wd.abs() <= lim))
     };
-    let d = dd + df;
-    let wbar = w1 + 0.5 * d;
-    // Stuck: stopped exactly (omega = 0), the torque kept.
-    let s1 = 0.5 * (a1 - b1);
-    Cell {
-        an: if stuck { s1 } else { a1 + d },
-        bn: if stuck { -s1 } else { b1 + d },
-        jump: da * da + db * db,
-        friction: df * wbar,
-        damping: dd * wbar,
-    }
+    (dd, df, stuck)
 }
