@@ -38,3 +38,55 @@ def test_scheduler_address_string(client):
     local = ds.sweep(ds.preset("aluminum"), {"length": [100.0, 150.0]}, **OPTIONS)
     remote = ds.sweep(ds.preset("aluminum"), {"length": [100.0, 150.0]}, client=client.scheduler.address, **OPTIONS)
     pd.testing.assert_frame_equal(remote, local)
+
+
+# ----------------------------------------------------------------------------- drilling maps
+
+def _drill_config():
+    from drillstring.drilling import DrillConfig
+
+    return DrillConfig.from_dict({
+        "sections": [{"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.108}],
+        "well": {"inclination_deg": 30.0},
+        "numerics": {"cells": 40, "duration": 3.0, "field_interval": 0.5},
+    })
+
+
+DRILL_AXES = {"top_drive.rpm": [20.0, 60.0, 100.0], "friction.static": [0.2, 0.4],
+              "top_drive.inertia": [2900.0, -1.0]}   # 12 runs, 6 invalid
+
+
+def test_drill_map_on_dask_equals_local(client, tmp_path, monkeypatch):
+    from drillstring.drilling import drill_map, maps
+
+    local = drill_map(_drill_config(), DRILL_AXES, threads=1)
+    assert (local["status"] == "invalid").sum() == 6 and (local["status"] == "success").sum() == 6
+
+    def not_here(*args, **kwargs):
+        raise AssertionError("solved in the calling process instead of on the cluster")
+
+    monkeypatch.setattr(maps, "_solve", not_here)   # the workers are other processes
+    remote = drill_map(_drill_config(), DRILL_AXES, client=client, chunk_size=5)   # in memory, 3 tasks
+    pd.testing.assert_frame_equal(remote, local)
+    stored = drill_map(_drill_config(), DRILL_AXES, client=client, chunk_size=5, out=tmp_path / "m")
+    pd.testing.assert_frame_equal(stored, local)
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "m" / "map.parquet"), local.reset_index(drop=True),
+                                  check_like=False)
+    assert len(list((tmp_path / "m" / "chunks").glob("chunk-*.parquet"))) == 3
+    # a deleted chunk is solved again on the cluster; the others are reused
+    (tmp_path / "m" / "chunks" / "chunk-00001.parquet").unlink()
+    (tmp_path / "m" / "chunks" / "chunk-00001.json").unlink()
+    again = drill_map(_drill_config(), DRILL_AXES, client=client.scheduler.address, chunk_size=5, out=tmp_path / "m")
+    pd.testing.assert_frame_equal(again, local)
+
+
+def test_drill_map_cli_scheduler(client, tmp_path):
+    from drillstring.cli import main
+
+    config = tmp_path / "c.toml"
+    config.write_text(_drill_config().to_toml())
+    args = ["drill-map", str(config), "--axis", "top_drive.rpm=20,100", "--out", str(tmp_path / "m"), "--no-plots"]
+    assert main([*args, "--scheduler", client.scheduler.address]) == 0
+    assert main([*args[:-3], "--out", str(tmp_path / "local"), "--no-plots"]) == 0
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "m" / "map.parquet"),
+                                  pd.read_parquet(tmp_path / "local" / "map.parquet"))

@@ -462,6 +462,19 @@ def _sweep_config(path: str) -> tuple[Parameters, dict[str, Any], dict[str, Any]
     return base, solver, grid
 
 
+def _dask_client(address: Optional[str]) -> Any:
+    """A ``dask.distributed.Client`` of the scheduler at ``address`` (``--scheduler``), or None."""
+    if not address:
+        return None
+    try:
+        from distributed import Client
+    except ImportError as exc:
+        raise ValidationError(
+            "--scheduler", address, "dask.distributed installed: pip install '.[dask]' in the drillstring checkout",
+        ) from exc
+    return Client(address)
+
+
 def _cmd_sweep(args: argparse.Namespace) -> int:
     import time
 
@@ -470,16 +483,7 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
 
     base, solver, grid = _sweep_config(args.config)
     check_destination(args.out, field="--out", directory=True, files=(MANIFEST, RESULTS_PARQUET, RESULTS_CSV))
-    client = None
-    if args.scheduler:
-        try:
-            from distributed import Client
-        except ImportError as exc:
-            raise ValidationError(
-                "--scheduler", args.scheduler,
-                "dask.distributed installed: pip install '.[dask]' in the drillstring checkout",
-            ) from exc
-        client = Client(args.scheduler)
+    client = _dask_client(args.scheduler)
     options: dict[str, Any] = {"threads": args.threads, "progress": args.progress}
     if args.chunk_size is not None:
         options["chunk_size"] = args.chunk_size
@@ -634,6 +638,8 @@ def _add_drill_map(sub: Any) -> None:
     p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
     p.add_argument("--threads", type=int, default=None, help="threads (default: every core)")
     p.add_argument("--chunk-size", type=int, default=None, help="runs per stored chunk (default 100)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="solve the chunks on this Dask distributed scheduler, e.g. tcp://head-node:8786")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
     _add_progress(p)
     p.set_defaults(func=_cmd_drill_map)
@@ -690,14 +696,18 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
             raise ValidationError("--axis", text, f"each key once ({key} is given twice)")
         axes[key] = values
     check_destination(args.out, field="--out", directory=True, files=DRILL_MAP_FILES)
+    client = _dask_client(args.scheduler)
     start = time.perf_counter()
     try:
         frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
-                          chunk_size=args.chunk_size)
+                          chunk_size=args.chunk_size, client=client)
     except KeyboardInterrupt:
         print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
               file=sys.stderr)
         raise
+    finally:
+        if client is not None:
+            client.close()
     seconds = time.perf_counter() - start
     counts = frame["status"].value_counts()
     ok = frame[frame["status"] == "success"]

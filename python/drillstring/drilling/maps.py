@@ -140,6 +140,7 @@ def drill_map(
     progress: Optional[MapProgress] = None,
     out: Optional[Union[str, os.PathLike[str]]] = None,
     chunk_size: Optional[int] = None,
+    client: Any = None,
 ) -> pd.DataFrame:
     """Solves ``config`` at every combination of the ``axes`` values; one row per run.
 
@@ -164,7 +165,12 @@ def drill_map(
         same call; ``map.parquet`` and ``map.csv`` hold the table at the end. A directory holding
         another map (other configuration, axes, chunk size or core build) is refused.
     chunk_size : int, optional
-        Runs per stored chunk with ``out`` (default :data:`CHUNK_SIZE`).
+        Runs per chunk with ``out`` or ``client`` (default :data:`CHUNK_SIZE`).
+    client : dask.distributed.Client or str, optional
+        Solve the chunks on this Dask cluster, one task per chunk (a str is a scheduler address
+        to connect to); each worker solves its chunk on ``threads`` threads (default: all its
+        cores). With ``out``, each chunk is stored as it comes back. The table equals the local
+        one. Needs ``dask.distributed`` (``pip install '.[dask]'`` in the drillstring checkout).
 
     Returns
     -------
@@ -203,10 +209,10 @@ def drill_map(
     count = None if threads is None else int(threads)
     if report is not None:
         report(0)
-    if out is None:
+    if out is None and client is None:
         frame, interrupt = _solve(cfg, named, combos, count, report, 0)
     else:
-        frame, interrupt = _stored(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE))
+        frame, interrupt = _chunked(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE), client)
     try:
         close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
     except BaseException as exc:  # the last report's exception: the map is complete, keep it
@@ -238,10 +244,52 @@ def _digest(value: Any) -> str:
     return hashlib.sha256(json.dumps(value, sort_keys=True, default=repr).encode()).hexdigest()
 
 
-def _stored(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
-            report: Optional[Callable[[float], None]], out: Any, size: int,
-            ) -> tuple[pd.DataFrame, Optional[BaseException]]:
-    """The map through a :class:`~drillstring.sweep_store.SweepStore` in ``out`` (resumable)."""
+def _solve_map_chunk(config: dict[str, Any], named: dict[str, list[Any]], combos: list[tuple[Any, ...]],
+                     threads: Optional[int]) -> pd.DataFrame:
+    """One chunk of a map, solved where it runs (a module-level function: Dask workers import it)."""
+    frame, interrupt = _solve(_config(config), named, combos, threads, None, 0)
+    if interrupt is not None:
+        raise interrupt
+    return frame
+
+
+@dataclasses.dataclass
+class _Chunk:
+    """A chunk still to solve: its position, its runs, and what the store held of it."""
+
+    index: int
+    start: int
+    part: list[tuple[Any, ...]]
+    plan: str
+    parameters: pd.DataFrame
+    stored: Optional[pd.DataFrame]
+    todo: Optional[np.ndarray]   # rows of ``stored`` to solve (its interrupted runs)
+
+    @property
+    def runs(self) -> list[tuple[Any, ...]]:
+        return self.part if self.todo is None else [self.part[i] for i in self.todo]
+
+    def merge(self, solved: pd.DataFrame) -> pd.DataFrame:
+        import pandas as pd
+
+        if self.stored is None:
+            solved.index = self.parameters.index
+            frame = solved
+        else:
+            assert self.todo is not None
+            solved.index = self.stored.index[self.todo]
+            frame = pd.concat([self.stored.drop(index=solved.index), solved]).sort_index()
+        frame.attrs = {}
+        return frame
+
+
+def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
+             report: Optional[Callable[[float], None]], out: Any, size: int, client: Any,
+             ) -> tuple[pd.DataFrame, Optional[BaseException]]:
+    """The map in chunks of ``size`` runs: stored in a :class:`~drillstring.sweep_store.SweepStore`
+    in ``out`` (resumable) if given, solved locally or on the Dask cluster ``client``."""
+    import contextlib
+
     import pandas as pd
 
     from .._output import atomic_write
@@ -255,42 +303,56 @@ def _stored(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple
     chunks = range(0, len(combos), size)
     manifest = {**identity, "fingerprint": fingerprint, "chunks": len(chunks), "axes": list(named)}
     columns = [*named, "status", "message", *METRIC_COLUMNS, *STAT_COLUMNS]
-    frames: list[pd.DataFrame] = []
+    frames: dict[int, pd.DataFrame] = {}
     interrupt: Optional[BaseException] = None
     recomputed: dict[int, str] = {}
-    with SweepStore.open(out, manifest) as store:
+    done = 0
+    opened = SweepStore.open(out, manifest) if out is not None else contextlib.nullcontext()
+    with opened as store:
+        jobs: list[_Chunk] = []
         for index, start in enumerate(chunks):
             part = combos[start:start + size]
             plan = _digest({"fingerprint": fingerprint, "index": index, "start": start, "runs": part})
             parameters = _axis_frame(named, part, start)
-            stored, reason = store.load_chunk(index, plan, parameters, columns)
+            stored, reason = (None, None) if store is None else store.load_chunk(index, plan, parameters, columns)
             if reason is not None:
                 recomputed[index] = reason
+            todo = None
             if stored is not None:
                 todo = np.flatnonzero((stored["status"] == "interrupted").to_numpy())
                 if todo.size == 0:
-                    frames.append(stored)
-                    if report is not None:
-                        report(start + len(part))
+                    frames[index] = stored
+                    done += len(part)
                     continue
-                solved, interrupt = _solve(cfg, named, [part[i] for i in todo], threads, report,
-                                           start + len(part) - todo.size)
-                solved.index = stored.index[todo]
-                frame = pd.concat([stored.drop(index=solved.index), solved]).sort_index()
-            else:
-                frame, interrupt = _solve(cfg, named, part, threads, report, start)
-                frame.index = parameters.index
-            frame.attrs = {}
-            store.save_chunk(index, plan, frame, not bool((frame["status"] == "interrupted").any()))
-            frames.append(frame)
-            if interrupt is not None:
-                break
-        table = pd.concat(frames).reset_index(drop=True) if frames else _frame(named, [], _EMPTY, cfg)
+                done += len(part) - todo.size
+            jobs.append(_Chunk(index, start, part, plan, parameters, stored, todo))
+        if report is not None:
+            report(done)
+
+        def finished(job: _Chunk, solved: pd.DataFrame) -> None:
+            frame = job.merge(solved)
+            if store is not None:
+                store.save_chunk(job.index, job.plan, frame, not bool((frame["status"] == "interrupted").any()))
+            frames[job.index] = frame
+
+        if client is not None and jobs:
+            _on_dask(client, cfg, named, jobs, threads, finished, lambda n: report(n) if report is not None else None,
+                     done)
+        else:
+            for job in jobs:
+                runs = job.runs
+                solved, interrupt = _solve(cfg, named, runs, threads, report, done)
+                finished(job, solved)
+                done += len(runs)
+                if interrupt is not None:
+                    break
+        ordered = [frames[i] for i in sorted(frames)]
+        table = pd.concat(ordered).reset_index(drop=True) if ordered else _frame(named, [], _EMPTY, cfg)
         if recomputed:
             reasons = "; ".join(f"chunk {i}: {why}" for i, why in recomputed.items())
             warnings.warn(f"resuming the drill map in {out}: {len(recomputed)} stored chunk(s) failed verification "
                           f"and are recomputed ({reasons})", ResumeWarning, stacklevel=3)
-        if interrupt is None:
+        if interrupt is None and store is not None:
             root = os.fspath(store.root)
             atomic_write(os.path.join(root, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
                          suffix=".parquet", field="out")
@@ -299,6 +361,33 @@ def _stored(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple
     table.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict(),
                        resume={"recomputed": recomputed})
     return table, interrupt
+
+
+def _on_dask(client: Any, cfg: DrillConfig, named: Mapping[str, list[Any]], jobs: list[_Chunk],
+             threads: Optional[int], finished: Callable[[_Chunk, pd.DataFrame], None],
+             report: Callable[[int], None], done: int) -> None:
+    """Submits every chunk as a task and hands each result to ``finished`` as it completes."""
+    from ..sweeps import _require_distributed
+
+    distributed = _require_distributed()
+    own = None
+    if isinstance(client, str):
+        own = client = distributed.Client(client)
+    try:
+        config, axes = cfg.to_dict(), {k: list(v) for k, v in named.items()}
+        futures = {client.submit(_solve_map_chunk, config, axes, job.runs, threads, pure=False): job for job in jobs}
+        try:
+            for future in distributed.as_completed(list(futures)):
+                job = futures[future]
+                finished(job, future.result())
+                done += len(job.runs)
+                report(done)
+        except BaseException:
+            client.cancel(list(futures))
+            raise
+    finally:
+        if own is not None:
+            own.close()
 
 
 _EMPTY: dict[str, Any] = {"status": [], "message": [], "metrics": {}, "stats": {}}
