@@ -8,7 +8,8 @@ from numpy.typing import NDArray
 __version__: str
 
 def simd_path() -> str:
-    """``"avx2+fma"`` or ``"baseline"``: the code path of the core's hot loops here."""
+    """``"avx512+fma"``, ``"avx2+fma"`` or ``"baseline"``: the code path of the core's hot loops
+    here (``DRILLSTRING_SIMD=avx2`` or ``=baseline`` pins a narrower one)."""
 
 class SolveOutput(TypedDict):
     t: NDArray[np.float64]

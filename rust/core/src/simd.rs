@@ -1,11 +1,14 @@
-//! Runtime dispatch of the hot loops to AVX2 + FMA.
+//! Runtime dispatch of the hot loops to AVX-512 or AVX2, with FMA.
 //!
 //! The crate is compiled for the baseline of its target (SSE2 on x86-64), so a wheel runs on
-//! any machine. The few loops that dominate a solve (the Runge-Kutta stage combinations and
-//! the finite-difference acceleration) are written once as a `Kernel`, generic over how a
-//! product is accumulated (`MulAdd`), and `dispatch` runs them compiled for AVX2 + FMA
-//! (x86-64-v3) when the processor has it, through the `pulp` crate's safe target-feature
-//! token, and as plain baseline code otherwise.
+//! any machine. The few loops that dominate a solve (the Runge-Kutta stage combinations, the
+//! finite-difference acceleration, the drilling solver's cell update) are written once as a
+//! `Kernel`, generic over how a product is accumulated (`MulAdd`), and `dispatch` runs them
+//! compiled for AVX-512 + FMA (x86-64-v4) or AVX2 + FMA (x86-64-v3), the best the processor
+//! has, through the `pulp` crate's safe target-feature tokens, and as plain baseline code
+//! otherwise. The kernels are written element by element (no reassociated sums), so the two
+//! vector paths compute the same operations in the same order: their results are
+//! bit-identical; only the vector width differs.
 //!
 //! A fused multiply-add rounds once where `a * b + c` rounds twice, so results computed on
 //! machines with and without FMA may differ in the last bits; every method's accuracy and
@@ -50,21 +53,42 @@ pub(crate) trait Kernel {
     fn run<M: MulAdd>(self) -> Self::Output;
 }
 
-/// The environment variable that can pin every kernel to baseline code:
+/// The environment variable that can pin every kernel to one path:
 /// `DRILLSTRING_SIMD=baseline` (bit-identical results on every x86-64 machine, or a
-/// benchmark of the fallback). Any other value, or none, selects the best path. Read once.
+/// benchmark of the fallback), `DRILLSTRING_SIMD=avx2` (no AVX-512, e.g. to compare the two).
+/// Any other value, or none, selects the best path. Read once.
 pub const SIMD_ENV: &str = "DRILLSTRING_SIMD";
 
-/// Whether `DRILLSTRING_SIMD=baseline` is set (read once per process).
-fn pinned_to_baseline() -> bool {
-    static PINNED: OnceLock<bool> = OnceLock::new();
-    *PINNED.get_or_init(|| std::env::var(SIMD_ENV).is_ok_and(|v| v.trim().eq_ignore_ascii_case("baseline")))
+/// The widest path [`SIMD_ENV`] allows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Pin {
+    Best,
+    Avx2,
+    Baseline,
 }
 
-/// Runs `kernel` with AVX2 + FMA if this processor has them (x86-64-v3, detected once and
-/// cached) and [`SIMD_ENV`] does not say otherwise, else as baseline code.
+/// What [`SIMD_ENV`] says (read once per process).
+fn pin() -> Pin {
+    static PIN: OnceLock<Pin> = OnceLock::new();
+    *PIN.get_or_init(|| match std::env::var(SIMD_ENV).map(|v| v.trim().to_ascii_lowercase()) {
+        Ok(v) if v == "baseline" => Pin::Baseline,
+        Ok(v) if v == "avx2" => Pin::Avx2,
+        _ => Pin::Best,
+    })
+}
+
+fn pinned_to_baseline() -> bool {
+    pin() == Pin::Baseline
+}
+
+/// Runs `kernel` with AVX-512 + FMA or AVX2 + FMA, the best this processor has (x86-64-v4 or
+/// v3, detected once and cached) and [`SIMD_ENV`] allows, else as baseline code.
 #[inline(always)]
 pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(simd) = v4() {
+        return simd.vectorize(InV3(kernel));
+    }
     #[cfg(target_arch = "x86_64")]
     if let Some(simd) = v3() {
         return simd.vectorize(InV3(kernel));
@@ -98,8 +122,22 @@ fn v3() -> Option<pulp::x86::V3> {
     }
 }
 
-/// The code path `dispatch` takes on this machine: `"avx2+fma"` or `"baseline"`.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn v4() -> Option<pulp::x86::V4> {
+    if pin() != Pin::Best {
+        None
+    } else {
+        pulp::x86::V4::try_new()
+    }
+}
+
+/// The code path `dispatch` takes on this machine: `"avx512+fma"`, `"avx2+fma"` or `"baseline"`.
 pub fn path() -> &'static str {
+    #[cfg(target_arch = "x86_64")]
+    if v4().is_some() {
+        return "avx512+fma";
+    }
     #[cfg(target_arch = "x86_64")]
     if v3().is_some() {
         return "avx2+fma";
@@ -108,7 +146,7 @@ pub fn path() -> &'static str {
     "baseline"
 }
 
-/// A kernel called inside pulp's AVX2 + FMA context.
+/// A kernel called inside pulp's AVX-512 or AVX2 context, with FMA.
 #[cfg(target_arch = "x86_64")]
 struct InV3<K>(K);
 
@@ -133,7 +171,7 @@ mod tests {
 
     #[test]
     fn the_path_is_named() {
-        assert!(["avx2+fma", "baseline"].contains(&path()));
+        assert!(["avx512+fma", "avx2+fma", "baseline"].contains(&path()));
     }
 
     /// `sum_i a_i b_i` as a kernel.

@@ -20,8 +20,8 @@ mod model;
 mod pde;
 mod sweep;
 
-/// The vector instruction path of the core's hot loops on this machine: `"avx2+fma"` or
-/// `"baseline"` (`DRILLSTRING_SIMD=baseline` pins the latter).
+/// The vector instruction path of the core's hot loops on this machine: `"avx512+fma"`,
+/// `"avx2+fma"` or `"baseline"` (`DRILLSTRING_SIMD=avx2` or `=baseline` pins a narrower one).
 #[pyfunction]
 fn simd_path() -> &'static str {
     drillstring_core::simd::path()
