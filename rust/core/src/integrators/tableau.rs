@@ -94,8 +94,8 @@ impl Kernel for Combination<'_> {
     }
 }
 
-/// Most terms of a combination (the rows of the largest stage storage, DOP853's 16).
-const MAX_TERMS: usize = 16;
+/// Most terms of a combination (the rows of the largest stage storage, RKN12's 17).
+const MAX_TERMS: usize = 17;
 
 /// The non-zero coefficients of a combination `sum_j coef_j k_j` and their rows.
 struct Terms {
