@@ -66,6 +66,12 @@ impl PdeSystem {
         self.inner.damping_rate()
     }
 
+    /// Whether the forces depend on the velocity (damping), see `resolve_method`.
+    #[getter]
+    fn velocity_dependent(&self) -> bool {
+        drillstring_core::SecondOrderSystem::velocity_dependent(&self.inner)
+    }
+
     /// `(k1, k2, k3, k4, k5, k6)`.
     #[getter]
     fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {

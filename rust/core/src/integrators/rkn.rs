@@ -17,13 +17,18 @@
 //!
 //! Output times are sampled through the Hermite-Birkhoff interpolant of the step ends
 //! ([`super::birkhoff`]), which needs the ends after the output interval: samples are
-//! recorded one or two steps late (and the rest at the end of the solve, or when it fails).
+//! recorded up to three steps late (and the rest at the end of the solve, or when it fails).
+//! With output times a step may at most double the previous one (the interpolant spans five
+//! steps and its error grows with their ratios), and a step that would leave less than half
+//! a step to `t_end` is replaced by two equal ones (no short last step: a near-coincident
+//! node); otherwise the steps are those of every-step output, and they do not depend on how
+//! many output times there are.
 
 use super::adaptive::{
     clip_to_end, initial_step, interrupted_message, max_steps_message, min_step, non_finite_message, underflow_message,
     Control,
 };
-use super::birkhoff::{Birkhoff, ESTIMATE_ORDER};
+use super::birkhoff::Birkhoff;
 use super::sampling::{record_failure, RecordError, Sampler};
 use super::tableau::{all_finite, Stages};
 use crate::error::Result;
@@ -107,8 +112,6 @@ struct Run<'a, S: ?Sized> {
     k: Stages,
     /// The interpolant of the step ends, for output times (`None`: every-step output).
     dense: Option<Birkhoff>,
-    /// The largest next step the interpolation error allows ([`Run::accept`]).
-    interp_cap: f64,
     stats: Stats,
 }
 
@@ -145,8 +148,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
             qs: vec![0.0; n],
             err: vec![0.0; 2 * n],
             k: Stages::new(pair.stages(), n),
-            dense: dense.then(|| Birkhoff::new(n, opts.rtol, opts.atol)),
-            interp_cap: f64::INFINITY,
+            dense: dense.then(|| Birkhoff::new(n)),
             stats: Stats::default(),
         };
         sys.acceleration(q0, run.k.row_mut(0));
@@ -202,6 +204,10 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
             }
             let (h_step, last) = clip_to_end(self.t, self.t_end, self.hmax, h);
             h = h_step;
+            if self.dense.is_some() && !last && self.t + 1.5 * h > self.t_end {
+                // No short last step: it would be a near-coincident node of the interpolant.
+                h = 0.5 * (self.t_end - self.t);
+            }
             attempts += 1;
             let err = self.attempt(h);
             if !err.is_finite() {
@@ -229,7 +235,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                 }
                 h_new = h_new.min(self.hmax);
                 if self.dense.is_some() {
-                    h_new = h_new.min(self.interp_cap).min(DENSE_MAX_GROWTH * h);
+                    h_new = h_new.min(DENSE_MAX_GROWTH * h);
                 }
                 if reject {
                     h_new = h_new.min(h);
@@ -287,11 +293,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         match self.dense.as_mut() {
             Some(d) => {
                 d.push(t_new, &self.y, self.k.row(0));
-                d.emit(sampler, sol, false)?;
-                if let Some((est, h)) = d.take_estimate() {
-                    self.interp_cap = h * interpolation_factor(est);
-                }
-                Ok(())
+                d.emit(sampler, sol, false)
             }
             None => sampler.record(sol, t_new, &self.y, &mut [], |_, _| {}),
         }
@@ -319,20 +321,8 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
 }
 
 /// The largest ratio of consecutive steps when output times are interpolated: the
-/// interpolant of an interval spans three steps, and its error grows with their ratios.
+/// interpolant of an interval spans five steps, and its error grows with their ratios.
 const DENSE_MAX_GROWTH: f64 = 2.0;
-
-/// The step-size factor that brings an interpolation error estimate `est` (scaled, `O(h^11)`,
-/// see [`Birkhoff`]) to `0.5`: `(0.5 / est)^(1/11)`, within `[0.2, 6]`.
-fn interpolation_factor(est: f64) -> f64 {
-    if est.is_finite() && est > 0.0 {
-        (0.5 / est).powf(1.0 / f64::from(ESTIMATE_ORDER)).clamp(0.2, 6.0)
-    } else if est == 0.0 {
-        6.0
-    } else {
-        0.2
-    }
-}
 
 #[cfg(test)]
 pub(crate) mod testing {
