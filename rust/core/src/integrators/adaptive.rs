@@ -399,9 +399,13 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
             self.stats.nfev += extra;
             self.stats.ndense += extra;
         }
-        let (t, y, dense) = (self.t, &self.y, &self.dense);
-        sampler.record(sol, t_new, &self.y_new, &mut self.ytmp, |t_out, out| {
-            P::dense_eval(dense, y, (t_out - t) / h, out);
+        // The samples of the step in one block, written in place: the continuous extension's
+        // coefficients were formed once above; per sample only the nested evaluation.
+        let (t, y, dense, dim) = (self.t, &self.y, &self.dense, self.y.len());
+        sampler.record_block(sol, t_new, &self.y_new, |times, out| {
+            for (&t_out, row) in times.iter().zip(out.chunks_exact_mut(dim)) {
+                P::dense_eval(dense, y, (t_out - t) / h, row);
+            }
         })?;
         std::mem::swap(&mut self.y, &mut self.y_new);
         self.k.copy_row(P::FSAL, 0);

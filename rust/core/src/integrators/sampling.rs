@@ -206,6 +206,35 @@ mod tests {
         assert_eq!(sol.y, [1.0, 2.0]);
     }
 
+    /// The block path records exactly what the per-sample path does: the same times, the same
+    /// values, `y_new` at a time equal to the step end, the samples before a non-finite one.
+    #[test]
+    fn blocks_record_what_samples_record() {
+        let times = vec![0.0, 0.1, 0.25, 0.25, 0.5, 0.9, 1.0, 1.0, 1.3, 2.0];
+        let f = |t: f64, out: &mut [f64]| {
+            out[0] = (3.0 * t).sin();
+            out[1] = if t > 1.2 && t < 1.5 { f64::NAN } else { t * t };
+        };
+        let output = Output::Times(times);
+        let ends = [(0.5, [5.0, 6.0]), (1.0, [7.0, 8.0]), (2.0, [9.0, 10.0])];
+        let (mut a, mut b) = (Sampler::new(&output), Sampler::new(&output));
+        let (mut sa, mut sb) = (a.solution(2, 0), b.solution(2, 0));
+        a.start(&mut sa, 0.0, &[1.0, 2.0]).unwrap();
+        b.start(&mut sb, 0.0, &[1.0, 2.0]).unwrap();
+        for (t_new, y_new) in ends {
+            let ra = a.record(&mut sa, t_new, &y_new, &mut [0.0; 2], f);
+            let rb = b.record_block(&mut sb, t_new, &y_new, |ts, out| {
+                for (&t, row) in ts.iter().zip(out.chunks_exact_mut(2)) {
+                    f(t, row);
+                }
+            });
+            assert_eq!(ra, rb);
+            assert_eq!(sa, sb);
+        }
+        assert_eq!(sa.t, [0.0, 0.1, 0.25, 0.25, 0.5, 0.9, 1.0, 1.0]);
+        assert_eq!(sa.state(7), [7.0, 8.0]);
+    }
+
     #[test]
     fn a_non_finite_interpolant_is_refused() {
         let output = Output::Times(vec![0.5, 0.7, 1.0]);
