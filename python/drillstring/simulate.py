@@ -262,8 +262,8 @@ def simulate(
     method : {"dop853", "dopri5", "rkn12", "rk4", "central", "verlet", "auto"}
         Adaptive DOP853 (default) or Dormand-Prince 5(4) with dense output; the adaptive
         Runge-Kutta-Nystrom pair RKN12(10) of Dormand, El-Mikkawy and Prince (1987, order 12,
-        output through a degree-17 Hermite-Birkhoff interpolant of the step ends: several
-        times fewer evaluations than DOP853 at tight tolerances); fixed-step classical RK4,
+        output through a degree-17 Hermite-Birkhoff interpolant of the step ends: about a
+        third of DOP853's evaluations at rtol = 1e-12); fixed-step classical RK4,
         the explicit central-difference scheme of Table 2 or symplectic Stormer-Verlet.
         ``"auto"``: ``"rkn12"`` for an undamped model at ``rtol <=``
         ``drillstring._core.AUTO_RKN12_MAX_RTOL`` (a measured crossover), else ``"dop853"``;

@@ -224,7 +224,8 @@ impl ModalSystem {
 /// Returns a dict with `t` (samples,), `y` (samples, 2m) holding `[q, qdot]`, `status`,
 /// `message`, `nfev`, `naccept`, `nreject`, and `dissipated` (samples,), the energy the
 /// damping took out up to each sample (None without damping). `t_eval=None` samples every
-/// step. With damping only `"dop853"`, `"dopri5"` and `"rk4"` apply.
+/// step. `method` is a name of `resolve_method` (`"auto"` is resolved here by the same rule).
+/// With damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"` apply.
 ///
 /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
 /// within ~20 ms and is raised here.

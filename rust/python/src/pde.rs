@@ -174,8 +174,9 @@ impl PdeSystem {
 /// Returns a dict with `t` (samples,), `y` (samples, 2N) holding `[theta, theta_t]` at the
 /// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`, `dissipated` (samples,) (the
 /// energy the damping took out, None without damping). `t_eval=None` samples every step. Any
-/// method (`"dop853"`, `"dopri5"`, `"rk4"`, `"central"`, `"verlet"`; with damping only the
-/// first three); the fixed-step ones need `dt`.
+/// method (`"dop853"`, `"dopri5"`, `"rkn12"`, `"rk4"`, `"central"`, `"verlet"`, or `"auto"`,
+/// see `resolve_method`; with damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"`); the
+/// fixed-step ones need `dt`.
 ///
 /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
 /// within ~20 ms and is raised here.
