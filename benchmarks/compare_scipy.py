@@ -1,18 +1,31 @@
-"""drillstring vs scipy.integrate.solve_ivp(method="DOP853") on the 3-mode reference case.
+"""drillstring (DOP853, RKN12) vs scipy.integrate.solve_ivp(method="DOP853") on the 3-mode reference case.
 
-Table 1 parameters, C = (0.1, 0.05, 0.02), 0 <= t <= 1, rtol = atol = 1e-12, 1001 output times.
-scipy gets the fastest numpy right-hand side we could write for it (precomputed diagonal
-M^-1 K, the quartic terms as index arrays). Both solutions are compared; times are the best of
-several repeats; the ratio is scipy time / drillstring time.
+Table 1 parameters, C = (0.1, 0.05, 0.02), 0 <= t <= 1, rtol = 1e-12 and atol = 1e-12 (or
+``--atol``), ``--samples`` uniform output times (default 20001). scipy gets the fastest numpy
+right-hand side we could write for it (precomputed diagonal M^-1 K, the quartic terms as index
+arrays). Times are the best of several repeats; the speed-up is scipy time / drillstring time.
 
-Each side also gets its floor: nfev x the measured cost of one right-hand-side evaluation, and
+Accuracy: every solution is compared at all output times with a converged reference,
+drillstring's RKN12 at rtol = 1e-15, atol = 1e-22 (the core's own limit is below the 2.2e-14
+that ``simulate`` allows); its distance to drillstring's DOP853 at the same tolerances is
+printed too: the reference is good to about that distance, which must be far below the errors
+it measures. Errors are max |q - q_ref| over all modes and samples, relative to max |q_ref|,
+and the same for qdot.
+
+Each solve also gets its floor: nfev x the measured cost of one right-hand-side evaluation, and
 the ratio total / floor (how much of the solve is not spent evaluating the right-hand side).
 scipy's evaluation is its numpy rhs called from Python (best per-call time in a loop).
 drillstring's is timed inside the Rust solver: a fixed-step RK4 solve of the
 same modal system minus the same solve of a same-size system without quartic terms, per
-evaluation (``_evalcost.py``): a lower bound of the evaluation cost.
+evaluation (``_evalcost.py``): a lower bound of the evaluation cost. drillstring's total is the
+core solve (``_core.solve_modal`` on a prepared system, what the floor compares with) and,
+separately, the whole ``ds.simulate`` call (projection, validation and result included).
 
-    python benchmarks/compare_scipy.py [--repeat 5]
+``--crossover`` instead prints, for rtol from 1e-4 to 1e-13, the evaluations and core solve
+times of DOP853 and RKN12 (the measurement behind ``_core.AUTO_RKN12_MAX_RTOL``).
+
+    python benchmarks/compare_scipy.py [--repeat 5] [--samples 20001] [--atol 1e-12]
+                                       [--method dop853 rkn12] [--crossover]
 """
 
 from __future__ import annotations
@@ -21,6 +34,7 @@ import argparse
 import os
 import platform
 import time
+from typing import Any, Callable
 
 import numpy as np
 from _evalcost import evaluation_cost, per_call_time
@@ -29,8 +43,11 @@ from scipy.integrate import solve_ivp
 import drillstring as ds
 from drillstring import _core
 
+RTOL = 1e-12
+REFERENCE = (1e-15, 1e-22)
 
-def best_of(repeat: int, fn):
+
+def best_of(repeat: int, fn: Callable[[], Any]) -> tuple[float, Any]:
     times, out = [], None
     for _ in range(repeat):
         start = time.perf_counter()
@@ -39,24 +56,45 @@ def best_of(repeat: int, fn):
     return min(times), out
 
 
+def errors(y: np.ndarray, ref: np.ndarray, m: int) -> tuple[float, float]:
+    """Relative max errors of q and qdot, ``y`` and ``ref`` of shape (samples, 2m)."""
+    eq = np.abs(y[:, :m] - ref[:, :m]).max() / np.abs(ref[:, :m]).max()
+    ev = np.abs(y[:, m:] - ref[:, m:]).max() / np.abs(ref[:, m:]).max()
+    return float(eq), float(ev)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--samples", type=int, default=20001)
+    parser.add_argument("--atol", type=float, default=1e-12)
+    parser.add_argument("--method", nargs="+", default=["dop853", "rkn12"], choices=["dop853", "dopri5", "rkn12"])
+    parser.add_argument("--crossover", action="store_true")
     args = parser.parse_args()
 
     params = ds.preset("aluminum")
-    tol = 1e-12
-    t_eval = np.linspace(0.0, 1.0, 1001)
+    t_eval = np.linspace(0.0, 1.0, args.samples)
     coeff = ds.galerkin.project(params, modes=3)
     q0, v0 = coeff.initial_state(params)
     m = len(coeff.indices)
+    system = coeff.core_system(0.0, "auto")
+    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+          f"numpy {np.__version__}, python {platform.python_version()}, core kernels {ds.simd_path()}")
+
+    def core(method: str, rtol: float, atol: float) -> dict[str, Any]:
+        return _core.solve_modal(system, q0, v0, 1.0, t_eval, method, rtol, atol)
+
+    if args.crossover:
+        crossover(core, args.repeat)
+        return
+
     inv_mass = 1.0 / coeff.mass
     k_over_m = coeff.stiffness * inv_mass
     idx = coeff.quartic_index
     a, b, c, d = (idx[:, j] for j in range(4))
     cm = coeff.quartic_coef
 
-    def rhs(_t, y):
+    def rhs(_t: float, y: np.ndarray) -> np.ndarray:
         q, v = y[:m], y[m:]
         qa, qb, qc, qd = q[a], q[b], q[c], q[d]
         force = np.zeros(m)
@@ -66,38 +104,62 @@ def main() -> None:
         np.add.at(force, d, cm * qa * qb * qc)
         return np.concatenate([v, -k_over_m * q - force * inv_mass])
 
+    ref_rkn, ref_dop = core("rkn12", *REFERENCE), core("dop853", *REFERENCE)
+    assert ref_rkn["status"] == ref_dop["status"] == "success"
+    ref = ref_rkn["y"]
+    agree = errors(ref_dop["y"], ref, m)
+
     y0 = np.concatenate([q0, v0])
-    t_scipy, ref = best_of(
+    t_scipy, sp = best_of(
         max(1, args.repeat // 2),
-        lambda: solve_ivp(rhs, (0.0, 1.0), y0, method="DOP853", t_eval=t_eval, rtol=tol, atol=tol),
+        lambda: solve_ivp(rhs, (0.0, 1.0), y0, method="DOP853", t_eval=t_eval, rtol=RTOL, atol=args.atol),
     )
-    t_ds, res = best_of(args.repeat, lambda: ds.simulate(params, modes=3, t_eval=t_eval, rtol=tol, atol=tol))
-    diff = np.abs(res.q - ref.y[:m]).max()
-    scale = np.abs(ref.y[:m]).max()
-    # cost of one evaluation at a state from the middle of the solution
-    y_mid = ref.y[:, ref.y.shape[1] // 2].copy()
+    y_mid = sp.y[:, sp.y.shape[1] // 2].copy()
     cost_sp = per_call_time(lambda: rhs(0.5, y_mid))
-    system = _core.ModalSystem(
-        coeff.mass, coeff.stiffness, np.ascontiguousarray(idx, dtype=np.int64), coeff.quartic_coef
-    )
     cost_ds, timed = evaluation_cost(system, q0, v0, 1e-4)
-    floor_sp, floor_ds = ref.nfev * cost_sp, res.stats.nfev * cost_ds
-    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
-          f"numpy {np.__version__}, python {platform.python_version()}, core kernels {ds.simd_path()}")
-    print("case: 3 modes, Table 1, C = (0.1, 0.05, 0.02), 0 <= t <= 1, DOP853, rtol = atol = 1e-12")
-    print(f"scipy solve_ivp DOP853 : {t_scipy * 1e3:9.2f} ms  ({ref.nfev} rhs evaluations)")
-    print(f"drillstring.simulate   : {t_ds * 1e3:9.3f} ms  ({res.stats.nfev} rhs evaluations, "
-          f"{res.stats.naccept} steps)")
-    print(f"max |q_drillstring - q_scipy| = {diff:.3e} rad ({diff / scale:.2e} of max |q|)")
-    print(f"speed-up (scipy / drillstring): {t_scipy / t_ds:.0f}x")
-    print("floor = nfev x cost of one rhs evaluation (measured in this run):")
-    print(f"  scipy       : {cost_sp * 1e6:8.3f} us/eval -> floor {floor_sp * 1e3:9.3f} ms, "
-          f"total {t_scipy * 1e3:9.3f} ms, total/floor {t_scipy / floor_sp:5.2f}")
-    print(f"  drillstring : {cost_ds * 1e6:8.3f} us/eval -> floor {floor_ds * 1e3:9.3f} ms, "
-          f"total {t_ds * 1e3:9.3f} ms, total/floor "
-          + (f"{t_ds / floor_ds:5.2f}" if floor_ds > 0 else "n/a (cost below resolution)"))
+
+    print(f"case: 3 modes, Table 1, C = (0.1, 0.05, 0.02), 0 <= t <= 1, rtol = {RTOL:g}, atol = {args.atol:g}, "
+          f"{args.samples} output samples")
+    print(f"reference: drillstring rkn12 at rtol = {REFERENCE[0]:g}, atol = {REFERENCE[1]:g} "
+          f"({ref_rkn['nfev']} evaluations); drillstring dop853 at the same tolerances differs from it by "
+          f"{agree[0]:.1e} (q), {agree[1]:.1e} (qdot), relative to max |q|, max |qdot|")
+    print("floor = nfev x cost of one rhs evaluation (measured in this run): "
+          f"scipy {cost_sp * 1e6:.3f} us/eval, drillstring {cost_ds * 1e9:.1f} ns/eval")
     print(f"  (drillstring's cost: RK4 solve of this system minus that of a {m}-coordinate system without "
           f"quartic terms, {timed} evaluations each, best of 5)")
+    header = (f"{'solver':<24}{'total ms':>10}{'nfev':>8}{'steps':>7}{'err q':>10}{'err qdot':>10}"
+              f"{'floor ms':>10}{'total/floor':>12}{'vs scipy':>10}")
+    print(header)
+    eq, ev = errors(sp.y.T, ref, m)
+    floor = sp.nfev * cost_sp
+    print(f"{'scipy DOP853':<24}{t_scipy * 1e3:10.2f}{sp.nfev:8d}{'':>7}{eq:10.1e}{ev:10.1e}"
+          f"{floor * 1e3:10.3f}{t_scipy / floor:12.2f}{1:10.0f}x")
+    for method in args.method:
+        t_core, out = best_of(args.repeat, lambda m=method: core(m, RTOL, args.atol))
+        t_sim, res = best_of(
+            args.repeat,
+            lambda m=method: ds.simulate(params, modes=3, t_eval=t_eval, method=m, rtol=RTOL, atol=args.atol),
+        )
+        assert out["status"] == "success" and res.stats.nfev == out["nfev"]
+        eq, ev = errors(out["y"], ref, m)
+        floor = out["nfev"] * cost_ds
+        ratio = f"{t_core / floor:12.2f}" if floor > 0 else f"{'n/a':>12}"
+        print(f"{'drillstring ' + method:<24}{t_core * 1e3:10.3f}{out['nfev']:8d}{out['naccept']:7d}{eq:10.1e}"
+              f"{ev:10.1e}{floor * 1e3:10.3f}{ratio}{t_scipy / t_core:10.0f}x")
+        print(f"{'  (whole ds.simulate)':<24}{t_sim * 1e3:10.3f}{'':>8}{'':>7}{'':>10}{'':>10}{'':>10}"
+              f"{'':>12}{t_scipy / t_sim:10.0f}x")
+
+
+def crossover(core: Callable[[str, float, float], dict[str, Any]], repeat: int) -> None:
+    """Evaluations and core solve times of DOP853 and RKN12 over rtol (atol = rtol * 1e-5)."""
+    print("crossover: core solves, 20001-style output of the command line, atol = 1e-5 rtol")
+    print(f"{'rtol':>8}{'dop853 nfev':>13}{'rkn12 nfev':>12}{'dop853 ms':>11}{'rkn12 ms':>10}{'dop/rkn time':>14}")
+    for rtol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13]:
+        atol = rtol * 1e-5
+        t_dop, dop = best_of(repeat, lambda r=rtol, a=atol: core("dop853", r, a))
+        t_rkn, rkn = best_of(repeat, lambda r=rtol, a=atol: core("rkn12", r, a))
+        print(f"{rtol:8.0e}{dop['nfev']:13d}{rkn['nfev']:12d}{t_dop * 1e3:11.3f}{t_rkn * 1e3:10.3f}"
+              f"{t_dop / t_rkn:14.2f}")
 
 
 if __name__ == "__main__":

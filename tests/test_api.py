@@ -48,7 +48,9 @@ def test_sweep_and_table2_are_functions_and_their_modules_are_importable():
 
 
 def test_method_names_are_one_literal():
-    assert ds.METHODS == typing.get_args(ds.Method) == ("dop853", "dopri5", "rk4", "central", "verlet")
+    assert ds.METHODS == typing.get_args(ds.Method) == (
+        "dop853", "dopri5", "rkn12", "rk4", "central", "verlet", "auto"
+    )
     assert inspect.signature(ds.simulate).parameters["method"].default == "dop853"
 
 

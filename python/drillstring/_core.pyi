@@ -52,6 +52,9 @@ class ModalSystem:
     def modes(self) -> int: ...
     @property
     def damping_rate(self) -> float: ...
+    @property
+    def velocity_dependent(self) -> bool:
+        """Whether the forces depend on the velocity (damping); see :func:`resolve_method`."""
     def acceleration(self, q: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def energy(self, q: NDArray[np.float64], qdot: NDArray[np.float64]) -> NDArray[np.float64]:
         """``H = q'^T M q' / 2 + q^T K q / 2 + V(q)`` of each sample: ``q``, ``qdot`` (m, samples)."""
@@ -141,6 +144,9 @@ class PdeSystem:
     def nodes(self) -> int: ...
     @property
     def damping_rate(self) -> float: ...
+    @property
+    def velocity_dependent(self) -> bool:
+        """Whether the forces depend on the velocity (damping); see :func:`resolve_method`."""
     @property
     def length(self) -> float: ...
     @property
@@ -284,6 +290,25 @@ def resolve_evaluation(evaluation: str, modes: int) -> Literal["terms", "spectra
     ------
     ValidationError
         For another name (field ``evaluation``).
+    """
+
+AUTO_RKN12_MAX_RTOL: float
+
+def resolve_method(
+    method: str, velocity_dependent: bool, rtol: float
+) -> Literal["dop853", "dopri5", "rkn12", "rk4", "central", "verlet"]:
+    """The integration method ``method`` selects: a method name as given, or for ``"auto"``
+    ``"rkn12"`` when the forces do not depend on the velocity and
+    ``rtol <= AUTO_RKN12_MAX_RTOL``, else ``"dop853"``.
+
+    >>> from drillstring import _core
+    >>> _core.resolve_method("auto", False, 1e-12), _core.resolve_method("auto", True, 1e-12)
+    ('rkn12', 'dop853')
+
+    Raises
+    ------
+    ValidationError
+        For another name (field ``method``).
     """
 
 class ScaledSystem(TypedDict):

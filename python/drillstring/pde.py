@@ -226,7 +226,7 @@ def solve_pde(
         most a quarter of the memory budget): 1868 over 1 s for the aluminium preset. Sparser
         output times issue a :class:`~drillstring.errors.SamplingWarning`.
         With ``params.damping_rate > 0`` (damping ``-k1 c theta_t`` at every node, lumped like
-        the inertia) only "dop853", "dopri5" and "rk4" apply.
+        the inertia) only "dop853", "dopri5", "rk4" and "auto" apply.
     save_field_every : int, optional
         Keep ``theta(z_j, t)`` at every k-th output sample in ``result.field``.
     initial_twist, initial_velocity : array_like or callable, optional
@@ -250,6 +250,7 @@ def solve_pde(
     progress = check_progress(progress)
     every = None if save_field_every is None else _count("save_field_every", save_field_every, 1)
     system = pde_system(params, nodes)
+    method = _core.resolve_method(method, system.velocity_dependent, rtol_f)
     z = np.asarray(system.z)
     twist = _initial_field("initial_twist", initial_twist, z)
     velocity = _initial_field("initial_velocity", initial_velocity, z)

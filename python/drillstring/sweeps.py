@@ -85,7 +85,7 @@ from .galerkin import dimensionless_integrals
 from .grid import apply_overrides, expand_grid, linspace, logspace, run_overrides
 from .limits import as_float, check_table_size, memory_budget
 from .parameters import CHOICE_FIELDS, Parameters, preset
-from .simulate import FIXED_STEP_METHODS, check_solver_options
+from .simulate import FIXED_STEP_METHODS, SWEEP_METHODS, check_solver_options
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -476,8 +476,8 @@ def sweep(
     modes, rigid_mode : int, bool
         The basis, as in :func:`~drillstring.simulate.simulate`.
     t_end, method, rtol, atol, dt, max_steps :
-        Solver options, as in :func:`~drillstring.simulate.simulate` (``rtol`` default 1e-8).
-        ``max_steps`` applies to each run.
+        Solver options, as in :func:`~drillstring.simulate.simulate` (``rtol`` default 1e-8),
+        with a named method (not ``"auto"``). ``max_steps`` applies to each run.
     samples : int
         Uniform samples of ``0 <= t <= t_end`` the metrics are computed from (>= 4).
     z : float, optional
@@ -513,7 +513,9 @@ def sweep(
     """
     base = _base(base_params)
     axes, fulls = _plan(base, grid, runs)
-    method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(method, t_end, rtol, atol, dt, max_steps)
+    method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
+        method, t_end, rtol, atol, dt, max_steps, methods=SWEEP_METHODS
+    )
     samples_i = _check_count("samples", samples, 4)
     integrals = dimensionless_integrals(modes, rigid_mode)
     size = _check_count("chunk_size", chunk_size, 1)

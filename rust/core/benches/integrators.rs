@@ -6,7 +6,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use drillstring_core::integrators::{central_difference, dop853, dopri5, rk4};
+use drillstring_core::integrators::{central_difference, dop853, dopri5, rk4, rkn12};
 use drillstring_core::modal::{ModalSystem, QuarticTerm};
 use drillstring_core::{AdaptiveOptions, FirstOrder, FixedOptions, OdeSystem, Output};
 
@@ -55,6 +55,20 @@ fn bench(c: &mut Criterion) {
     assert!(dop853(&fo, 0.0, &y0, 1.0, &out, &opts).expect("valid input").status.is_success());
     c.bench_function("dop853/3-mode t=1 rtol=1e-12", |b| {
         b.iter(|| dop853(&fo, 0.0, black_box(&y0), 1.0, &out, &opts).expect("valid input"))
+    });
+
+    // The same case by RKN12(10): the Runge-Kutta-Nystrom pair on q'' = a(q), same output.
+    assert!(rkn12(&sys, 0.0, &Q0, &V0, 1.0, &out, &opts).expect("valid input").status.is_success());
+    c.bench_function("rkn12/3-mode t=1 rtol=1e-12", |b| {
+        b.iter(|| rkn12(&sys, 0.0, black_box(&Q0), &V0, 1.0, &out, &opts).expect("valid input"))
+    });
+    let fine: Output = Output::Times((0..=20_000).map(|i| i as f64 / 20_000.0).collect());
+    let tight = AdaptiveOptions { rtol: 1e-12, atol: 1e-17, ..AdaptiveOptions::default() };
+    c.bench_function("dop853/3-mode t=1 rtol=1e-12 atol=1e-17 20001 samples", |b| {
+        b.iter(|| dop853(&fo, 0.0, black_box(&y0), 1.0, &fine, &tight).expect("valid input"))
+    });
+    c.bench_function("rkn12/3-mode t=1 rtol=1e-12 atol=1e-17 20001 samples", |b| {
+        b.iter(|| rkn12(&sys, 0.0, black_box(&Q0), &V0, 1.0, &fine, &tight).expect("valid input"))
     });
 
     let opts = AdaptiveOptions { rtol: 1e-10, atol: 1e-12, ..AdaptiveOptions::default() };

@@ -212,7 +212,8 @@ pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
     sys: &S,
     args: SolveArgs<'_, 'py>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = Method::parse(args.method).map_err(|e| validation_error(py, e))?;
+    let method =
+        Method::resolve(args.method, sys.velocity_dependent(), args.rtol).map_err(|e| validation_error(py, e))?;
     let (q0, v0) = (to_vec(&args.q0), to_vec(&args.v0));
     let output = match &args.t_eval {
         Some(t) => Output::Times(to_vec(t)),

@@ -32,6 +32,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<modal::ModalSystem>()?;
     m.add_function(wrap_pyfunction!(modal::solve_modal, m)?)?;
     m.add_function(wrap_pyfunction!(modal::resolve_evaluation, m)?)?;
+    m.add_function(wrap_pyfunction!(modal::resolve_method, m)?)?;
+    m.add("AUTO_RKN12_MAX_RTOL", drillstring_core::integrators::AUTO_RKN12_MAX_RTOL)?;
     m.add_function(wrap_pyfunction!(model::section, m)?)?;
     m.add_function(wrap_pyfunction!(model::shear_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(model::p_wave_modulus, m)?)?;

@@ -18,6 +18,22 @@ pub(crate) fn resolve_evaluation(py: Python<'_>, evaluation: &str, modes: usize)
     Ok(chosen.resolve(modes).name())
 }
 
+/// The integration method a name selects (the core's `Method::resolve`): a method name as
+/// given, or for `"auto"` `"rkn12"` when the forces do not depend on the velocity and
+/// `rtol <= AUTO_RKN12_MAX_RTOL`, else `"dop853"`; a `ValidationError` naming `"method"` for
+/// another name.
+#[pyfunction]
+pub(crate) fn resolve_method(
+    py: Python<'_>,
+    method: &str,
+    velocity_dependent: bool,
+    rtol: f64,
+) -> PyResult<&'static str> {
+    let chosen =
+        core::integrators::Method::resolve(method, velocity_dependent, rtol).map_err(|e| validation_error(py, e))?;
+    Ok(chosen.name())
+}
+
 /// The modal system `M q'' + K q + grad V(q) = 0` (diagonal M and K, quartic potential terms).
 #[pyclass(frozen, module = "drillstring._core")]
 pub(crate) struct ModalSystem {
@@ -116,6 +132,13 @@ impl ModalSystem {
         self.inner.damping_rate()
     }
 
+    /// Whether the forces depend on the velocity (damping): then only `"dop853"`, `"dopri5"`
+    /// and `"rk4"` apply, and `"auto"` is `"dop853"` ([`resolve_method`]).
+    #[getter]
+    fn velocity_dependent(&self) -> bool {
+        self.inner.velocity_dependent()
+    }
+
     /// Accelerations `q'' = -M^{-1} (K q + grad V(q))` at one state `q` (shape (m,)), without
     /// the damping term.
     fn acceleration<'py>(&self, py: Python<'py>, q: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyArray1<f64>>> {
@@ -201,7 +224,8 @@ impl ModalSystem {
 /// Returns a dict with `t` (samples,), `y` (samples, 2m) holding `[q, qdot]`, `status`,
 /// `message`, `nfev`, `naccept`, `nreject`, and `dissipated` (samples,), the energy the
 /// damping took out up to each sample (None without damping). `t_eval=None` samples every
-/// step. With damping only `"dop853"`, `"dopri5"` and `"rk4"` apply.
+/// step. `method` is a name of `resolve_method` (`"auto"` is resolved here by the same rule).
+/// With damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"` apply.
 ///
 /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
 /// within ~20 ms and is raised here.

@@ -66,6 +66,12 @@ impl PdeSystem {
         self.inner.damping_rate()
     }
 
+    /// Whether the forces depend on the velocity (damping), see `resolve_method`.
+    #[getter]
+    fn velocity_dependent(&self) -> bool {
+        drillstring_core::SecondOrderSystem::velocity_dependent(&self.inner)
+    }
+
     /// `(k1, k2, k3, k4, k5, k6)`.
     #[getter]
     fn coefficients(&self) -> (f64, f64, f64, f64, f64, f64) {
@@ -168,8 +174,9 @@ impl PdeSystem {
 /// Returns a dict with `t` (samples,), `y` (samples, 2N) holding `[theta, theta_t]` at the
 /// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`, `dissipated` (samples,) (the
 /// energy the damping took out, None without damping). `t_eval=None` samples every step. Any
-/// method (`"dop853"`, `"dopri5"`, `"rk4"`, `"central"`, `"verlet"`; with damping only the
-/// first three); the fixed-step ones need `dt`.
+/// method (`"dop853"`, `"dopri5"`, `"rkn12"`, `"rk4"`, `"central"`, `"verlet"`, or `"auto"`,
+/// see `resolve_method`; with damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"`); the
+/// fixed-step ones need `dt`.
 ///
 /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
 /// within ~20 ms and is raised here.

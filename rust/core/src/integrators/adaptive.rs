@@ -262,9 +262,9 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
         run
     }
 
-    /// The step floor `10 eps max(|t|, tiny)`.
+    /// The step floor at the current time ([`min_step`]).
     fn min_step(&self) -> f64 {
-        10.0 * f64::EPSILON * self.t.abs().max(f64::MIN_POSITIVE)
+        min_step(self.t)
     }
 
     fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) {
@@ -293,21 +293,10 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
                 return Outcome::Failed(Status::MaxStepsReached, self.max_steps_message());
             }
             if poller.poll(self.t) {
-                let msg = format!(
-                    "interrupted at t = {} before t_end = {} after {attempts} step attempts",
-                    Num(self.t),
-                    Num(self.t_end)
-                );
-                return Outcome::Failed(Status::Interrupted, msg);
+                return Outcome::Failed(Status::Interrupted, interrupted_message(self.t, self.t_end, attempts));
             }
             if h.is_nan() || h < self.min_step() {
-                let msg = format!(
-                    "step size h = {} fell below 10*eps*|t| = {} at t = {}",
-                    Num(h),
-                    Num(self.min_step()),
-                    Num(self.t)
-                );
-                return Outcome::Failed(Status::StepSizeUnderflow, msg);
+                return Outcome::Failed(Status::StepSizeUnderflow, underflow_message(h, self.t));
             }
             let (h_step, last) = self.clip_to_end(h);
             h = h_step;
@@ -326,9 +315,7 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
                 facold = err.max(1e-4);
                 let t_new = if last { self.t_end } else { self.t + h };
                 if !all_finite(&self.y_new) {
-                    let msg =
-                        format!("state became non-finite in the step from t = {} to t = {}", Num(self.t), Num(t_new));
-                    return Outcome::Failed(Status::NonFinite, msg);
+                    return Outcome::Failed(Status::NonFinite, non_finite_message(self.t, t_new));
                 }
                 let t_old = self.t;
                 if let Err(err) = self.accept(h, t_new, sampler, sol) {
@@ -356,23 +343,11 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
     /// to end exactly there (the last step). If that would exceed `max_step`, the rest is
     /// split into two equal steps instead.
     fn clip_to_end(&self, h: f64) -> (f64, bool) {
-        let rest = self.t_end - self.t;
-        if self.t + 1.01 * h <= self.t_end {
-            (h, false)
-        } else if rest <= self.hmax {
-            (rest, true)
-        } else {
-            (0.5 * rest, false)
-        }
+        clip_to_end(self.t, self.t_end, self.hmax, h)
     }
 
     fn max_steps_message(&self) -> String {
-        format!(
-            "reached t = {} before t_end = {}: max_steps = {} step attempts (accepted + rejected) used",
-            Num(self.t),
-            Num(self.t_end),
-            self.opts.max_steps
-        )
+        max_steps_message(self.t, self.t_end, self.opts.max_steps)
     }
 
     /// Attempts the step `t -> t + h`: stages, `y_new` and the error norm.
@@ -424,9 +399,13 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
             self.stats.nfev += extra;
             self.stats.ndense += extra;
         }
-        let (t, y, dense) = (self.t, &self.y, &self.dense);
-        sampler.record(sol, t_new, &self.y_new, &mut self.ytmp, |t_out, out| {
-            P::dense_eval(dense, y, (t_out - t) / h, out);
+        // The samples of the step in one block, written in place: the continuous extension's
+        // coefficients were formed once above; per sample only the nested evaluation.
+        let (t, y, dense, dim) = (self.t, &self.y, &self.dense, self.y.len());
+        sampler.record_block(sol, t_new, &self.y_new, |times, out| {
+            for (&t_out, row) in times.iter().zip(out.chunks_exact_mut(dim)) {
+                P::dense_eval(dense, y, (t_out - t) / h, row);
+            }
         })?;
         std::mem::swap(&mut self.y, &mut self.y_new);
         self.k.copy_row(P::FSAL, 0);
@@ -434,47 +413,110 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
         Ok(())
     }
 
-    /// Hairer's initial step guess `hinit`: with `d0 = ||y0||`, `d1 = ||f0||` (scaled with
-    /// `sc_i = atol + rtol |y0_i|`), an explicit Euler step of `h0 = 0.01 d0 / d1` and
-    /// `d2 = ||f(t0 + h0, y0 + h0 f0) - f0|| / h0`, the step
-    /// `min(100 h0, (0.01 / max(d2, d1))^(1/order), hmax)`.
+    /// Hairer's initial step guess ([`initial_step`]) from `f(t0, y0)` in row 0.
     fn hinit(&mut self) -> f64 {
-        let (rtol, atol, order) = (self.opts.rtol, self.opts.atol, P::CONTROL.hinit_order);
         let n = self.y.len();
         self.init.resize(2 * n, 0.0);
         let (f0, f1) = self.init.split_at_mut(n);
         // f(t0, y0) over the whole state, from row 0 (no new evaluation).
         self.form.combine(&self.k, &[1.0], 0.0, &self.y, f0);
-        let (mut dnf, mut dny) = (0.0, 0.0);
-        for (&y, &f) in self.y.iter().zip(f0.iter()) {
-            let sk = atol + rtol * y.abs();
-            dnf += (f / sk) * (f / sk);
-            dny += (y / sk) * (y / sk);
-        }
-        let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
-        h = h.min(self.hmax);
-        if h.is_nan() || h <= 0.0 {
-            h = 1e-6_f64.min(self.hmax);
-        }
-        for ((yt, &y), &f) in self.ytmp.iter_mut().zip(&self.y).zip(f0.iter()) {
-            *yt = y + h * f;
-        }
-        self.form.rhs(self.t + h, &self.ytmp, f1);
+        let (form, t) = (self.form, self.t);
+        let tol = (self.opts.rtol, self.opts.atol);
+        let guess = initial_step(&self.y, f0, f1, &mut self.ytmp, tol, P::CONTROL.hinit_order, self.hmax, |h, y, f| {
+            form.rhs(t + h, y, f)
+        });
         self.stats.nfev += 1;
-        let mut der2 = 0.0;
-        for ((&y, &f0i), &f1i) in self.y.iter().zip(f0.iter()).zip(f1.iter()) {
-            let sk = atol + rtol * y.abs();
-            der2 += ((f1i - f0i) / sk) * ((f1i - f0i) / sk);
-        }
-        let der2 = der2.sqrt() / h;
-        let der12 = der2.abs().max(dnf.sqrt());
-        let h1 = if der12 <= 1e-15 { 1e-6_f64.max(h * 1e-3) } else { (0.01 / der12).powf(1.0 / f64::from(order)) };
-        let guess = (100.0 * h).min(h1).min(self.hmax);
-        if guess > 0.0 {
-            guess
-        } else {
-            h
-        }
+        guess
+    }
+}
+
+/// The step floor `10 eps max(|t|, tiny)`: a step below it ends the solve with
+/// [`Status::StepSizeUnderflow`].
+pub(crate) fn min_step(t: f64) -> f64 {
+    10.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE)
+}
+
+/// Hairer's end-point rule for the step `h` from `t` (see [`Run::clip_to_end`]): the step to
+/// take and whether it is the last.
+pub(crate) fn clip_to_end(t: f64, t_end: f64, hmax: f64, h: f64) -> (f64, bool) {
+    let rest = t_end - t;
+    if t + 1.01 * h <= t_end {
+        (h, false)
+    } else if rest <= hmax {
+        (rest, true)
+    } else {
+        (0.5 * rest, false)
+    }
+}
+
+/// The message of a solve that used its `max_steps` step attempts.
+pub(crate) fn max_steps_message(t: f64, t_end: f64, max_steps: u64) -> String {
+    format!(
+        "reached t = {} before t_end = {}: max_steps = {max_steps} step attempts (accepted + rejected) used",
+        Num(t),
+        Num(t_end)
+    )
+}
+
+/// The message of an interrupted adaptive solve.
+pub(crate) fn interrupted_message(t: f64, t_end: f64, attempts: u64) -> String {
+    format!("interrupted at t = {} before t_end = {} after {attempts} step attempts", Num(t), Num(t_end))
+}
+
+/// The message of a step from `t` to `t_new` whose new state is not finite.
+pub(crate) fn non_finite_message(t: f64, t_new: f64) -> String {
+    format!("state became non-finite in the step from t = {} to t = {}", Num(t), Num(t_new))
+}
+
+/// The message of a step that fell below [`min_step`].
+pub(crate) fn underflow_message(h: f64, t: f64) -> String {
+    format!("step size h = {} fell below 10*eps*|t| = {} at t = {}", Num(h), Num(min_step(t)), Num(t))
+}
+
+/// Hairer's initial step guess `hinit`: with `d0 = ||y0||`, `d1 = ||f0||` (scaled with
+/// `sc_i = atol + rtol |y0_i|`), an explicit Euler step of `h0 = 0.01 d0 / d1` and
+/// `d2 = ||f(t0 + h0, y0 + h0 f0) - f0|| / h0`, the step
+/// `min(100 h0, (0.01 / max(d2, d1))^(1/order), hmax)`. `rhs(h0, y, f)` evaluates
+/// `f(t0 + h0, y)` (one evaluation); `f1` and `ytmp` (length of `y`) are scratch.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn initial_step(
+    y: &[f64],
+    f0: &[f64],
+    f1: &mut [f64],
+    ytmp: &mut [f64],
+    (rtol, atol): (f64, f64),
+    order: i32,
+    hmax: f64,
+    rhs: impl FnOnce(f64, &[f64], &mut [f64]),
+) -> f64 {
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for (&y, &f) in y.iter().zip(f0.iter()) {
+        let sk = atol + rtol * y.abs();
+        dnf += (f / sk) * (f / sk);
+        dny += (y / sk) * (y / sk);
+    }
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
+    h = h.min(hmax);
+    if h.is_nan() || h <= 0.0 {
+        h = 1e-6_f64.min(hmax);
+    }
+    for ((yt, &y), &f) in ytmp.iter_mut().zip(y).zip(f0.iter()) {
+        *yt = y + h * f;
+    }
+    rhs(h, ytmp, f1);
+    let mut der2 = 0.0;
+    for ((&y, &f0i), &f1i) in y.iter().zip(f0.iter()).zip(f1.iter()) {
+        let sk = atol + rtol * y.abs();
+        der2 += ((f1i - f0i) / sk) * ((f1i - f0i) / sk);
+    }
+    let der2 = der2.sqrt() / h;
+    let der12 = der2.abs().max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 { 1e-6_f64.max(h * 1e-3) } else { (0.01 / der12).powf(1.0 / f64::from(order)) };
+    let guess = (100.0 * h).min(h1).min(hmax);
+    if guess > 0.0 {
+        guess
+    } else {
+        h
     }
 }
 

@@ -352,10 +352,13 @@ impl Scheme for Dop853 {
     /// `s' = 1 - s`.
     fn dense_eval(dense: &Stages, y: &[f64], s: f64, out: &mut [f64]) {
         let s1 = 1.0 - s;
-        for (i, o) in out.iter_mut().enumerate() {
-            let r = |j: usize| dense.row(j)[i];
-            let conpar = r(3) + s * (r(4) + s1 * (r(5) + s * r(6)));
-            *o = y[i] + s * (r(0) + s1 * (r(1) + s * (r(2) + s1 * conpar)));
+        let n = out.len();
+        // The seven rows sliced once, to the length of `out` (no bounds checks in the loop).
+        let r: [&[f64]; 7] = std::array::from_fn(|j| &dense.row(j)[..n]);
+        let y = &y[..n];
+        for i in 0..n {
+            let conpar = r[3][i] + s * (r[4][i] + s1 * (r[5][i] + s * r[6][i]));
+            out[i] = y[i] + s * (r[0][i] + s1 * (r[1][i] + s * (r[2][i] + s1 * conpar)));
         }
     }
 }

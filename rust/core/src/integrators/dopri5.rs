@@ -113,8 +113,10 @@ impl Scheme for Dopri5 {
     /// `u(theta) = y + theta (r1 + (1 - theta) (r2 + theta (r3 + (1 - theta) r4)))`.
     fn dense_eval(dense: &Stages, y: &[f64], theta: f64, out: &mut [f64]) {
         let theta1 = 1.0 - theta;
-        let (r1, r2, r3, r4) = (dense.row(0), dense.row(1), dense.row(2), dense.row(3));
-        for i in 0..out.len() {
+        let n = out.len();
+        let (r1, r2, r3, r4) = (&dense.row(0)[..n], &dense.row(1)[..n], &dense.row(2)[..n], &dense.row(3)[..n]);
+        let y = &y[..n];
+        for i in 0..n {
             out[i] = y[i] + theta * (r1[i] + theta1 * (r2[i] + theta * (r3[i] + theta1 * r4[i])));
         }
     }

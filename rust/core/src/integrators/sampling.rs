@@ -99,6 +99,54 @@ impl<'a> Sampler<'a> {
     }
 }
 
+impl Sampler<'_> {
+    /// [`Sampler::record`] for an interpolant evaluated in blocks: the requested times of the
+    /// step strictly before `t_new` are handed to `fill(times, out)` at once, with `out` their
+    /// `times.len() x dim` states, reserved in the solution up front and written in place;
+    /// requested times equal to `t_new` get `y_new` exactly. Every-step output records `y_new`
+    /// (`fill` is not called). Same errors as [`Sampler::record`]: samples before a
+    /// non-finite one are kept.
+    pub fn record_block(
+        &mut self,
+        sol: &mut Solution,
+        t_new: f64,
+        y_new: &[f64],
+        fill: impl FnOnce(&[f64], &mut [f64]),
+    ) -> Result<(), RecordError> {
+        let Some(times) = self.times else {
+            return push(sol, t_new, y_new);
+        };
+        let start = self.next;
+        let end = start + times[start..].partition_point(|&t| t < t_new);
+        if end > start {
+            let (m, dim) = (end - start, sol.dim);
+            let t_first = times[start];
+            sol.t.try_reserve(m).map_err(|_| RecordError::OutOfMemory { t: t_first, bytes: 8 * (sol.t.len() + m) })?;
+            let values = m * dim;
+            sol.y
+                .try_reserve(values)
+                .map_err(|_| RecordError::OutOfMemory { t: t_first, bytes: 8 * (sol.y.len() + values) })?;
+            let y0 = sol.y.len();
+            sol.y.resize(y0 + values, 0.0);
+            fill(&times[start..end], &mut sol.y[y0..]);
+            if let Some(bad) = sol.y[y0..].iter().position(|v| !v.is_finite()) {
+                let kept = bad / dim.max(1);
+                sol.y.truncate(y0 + kept * dim);
+                sol.t.extend_from_slice(&times[start..start + kept]);
+                self.next = start + kept;
+                return Err(RecordError::NonFinite(times[start + kept]));
+            }
+            sol.t.extend_from_slice(&times[start..end]);
+            self.next = end;
+        }
+        while self.next < times.len() && times[self.next] <= t_new {
+            push(sol, t_new, y_new)?;
+            self.next += 1;
+        }
+        Ok(())
+    }
+}
+
 fn push(sol: &mut Solution, t: f64, y: &[f64]) -> Result<(), RecordError> {
     sol.try_push(t, y).map_err(|e| RecordError::OutOfMemory { t, bytes: e.bytes })
 }
@@ -156,6 +204,35 @@ mod tests {
         s.record(&mut sol, 1.0, &[2.0], &mut [0.0], |_, _| panic!("no interpolation")).unwrap();
         assert_eq!(sol.t, [0.0, 1.0]);
         assert_eq!(sol.y, [1.0, 2.0]);
+    }
+
+    /// The block path records exactly what the per-sample path does: the same times, the same
+    /// values, `y_new` at a time equal to the step end, the samples before a non-finite one.
+    #[test]
+    fn blocks_record_what_samples_record() {
+        let times = vec![0.0, 0.1, 0.25, 0.25, 0.5, 0.9, 1.0, 1.0, 1.3, 2.0];
+        let f = |t: f64, out: &mut [f64]| {
+            out[0] = (3.0 * t).sin();
+            out[1] = if t > 1.2 && t < 1.5 { f64::NAN } else { t * t };
+        };
+        let output = Output::Times(times);
+        let ends = [(0.5, [5.0, 6.0]), (1.0, [7.0, 8.0]), (2.0, [9.0, 10.0])];
+        let (mut a, mut b) = (Sampler::new(&output), Sampler::new(&output));
+        let (mut sa, mut sb) = (a.solution(2, 0), b.solution(2, 0));
+        a.start(&mut sa, 0.0, &[1.0, 2.0]).unwrap();
+        b.start(&mut sb, 0.0, &[1.0, 2.0]).unwrap();
+        for (t_new, y_new) in ends {
+            let ra = a.record(&mut sa, t_new, &y_new, &mut [0.0; 2], f);
+            let rb = b.record_block(&mut sb, t_new, &y_new, |ts, out| {
+                for (&t, row) in ts.iter().zip(out.chunks_exact_mut(2)) {
+                    f(t, row);
+                }
+            });
+            assert_eq!(ra, rb);
+            assert_eq!(sa, sb);
+        }
+        assert_eq!(sa.t, [0.0, 0.1, 0.25, 0.25, 0.5, 0.9, 1.0, 1.0]);
+        assert_eq!(sa.state(7), [7.0, 8.0]);
     }
 
     #[test]

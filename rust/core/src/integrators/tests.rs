@@ -676,7 +676,7 @@ fn method_names_round_trip() {
     assert!(!Method::Rk4.is_adaptive() && !Method::Central.is_adaptive());
     let err = Method::parse("euler").unwrap_err();
     assert_eq!(err.field(), "method");
-    assert!(err.to_string().contains("\"dop853\", \"dopri5\", \"rk4\", \"central\""), "{err}");
+    assert!(err.to_string().contains("\"dop853\", \"dopri5\", \"rkn12\", \"rk4\", \"central\""), "{err}");
     assert_eq!(SolveOptions::default().method, Method::Dop853);
 }
 

@@ -1,0 +1,356 @@
+//! The adaptive stepping loop of the embedded Runge-Kutta-Nystrom pairs for `q'' = a(q)`
+//! (RKN12(10), `rkn12.rs`).
+//!
+//! The step control is that of the first-order pairs ([`super::adaptive`]): a step is
+//! accepted when the scaled RMS norm over the `2 n` components of `y = [q, v]`,
+//!
+//! ```text
+//! err = sqrt(1/(2n) sum_i (e_i / sc_i)^2),   sc_i = atol + rtol max(|y_i|, |y_new,i|),
+//! ```
+//!
+//! of the embedded difference `e = (h^2 sum (b - b^) K, h sum (b' - b'^) K)` is `<= 1`; the
+//! next step is `h / clamp(err^expo1 / safe, 1/fac2, 1/fac1)` (after a rejection as in
+//! Hairer's codes), a non-finite `err` is a rejection with `h_new = 0.2 h`, the first step is
+//! Hairer's `hinit` ([`super::adaptive::initial_step`]) and the last one is stretched or split
+//! to land on `t_end` ([`super::adaptive::clip_to_end`]). The statuses on failure and their
+//! messages are those of the first-order pairs.
+//!
+//! Output times are sampled through the Hermite-Birkhoff interpolant of the step ends
+//! ([`super::birkhoff`]), which needs the ends after the output interval: samples are
+//! recorded up to three steps late (and the rest at the end of the solve, or when it fails).
+//! With output times a step may at most double the previous one (the interpolant spans five
+//! steps and its error grows with their ratios), and a step that would leave less than half
+//! a step to `t_end` is replaced by two equal ones (no short last step: a near-coincident
+//! node); otherwise the steps are those of every-step output, and they do not depend on how
+//! many output times there are.
+
+use super::adaptive::{
+    clip_to_end, initial_step, interrupted_message, max_steps_message, min_step, non_finite_message, underflow_message,
+    Control,
+};
+use super::birkhoff::Birkhoff;
+use super::sampling::{record_failure, RecordError, Sampler};
+use super::tableau::{all_finite, Stages};
+use crate::error::Result;
+use crate::interrupt::{Interrupt, Poller};
+use crate::options::{validate_span, AdaptiveOptions, Output};
+use crate::solution::{Solution, Stats, Status};
+use crate::system::SecondOrderSystem;
+
+/// An embedded explicit Runge-Kutta-Nystrom pair for `q'' = a(q)` as data.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RknPair {
+    /// Nodes `c_i` (`c_0 = 0`).
+    pub c: &'static [f64],
+    /// Row `i`: `a_i0 .. a_i,i-1` of the stage positions (possibly shorter: zeros dropped).
+    pub a: &'static [&'static [f64]],
+    /// Position weights `b_i`.
+    pub b: &'static [f64],
+    /// Velocity weights `b'_i`.
+    pub bp: &'static [f64],
+    /// Position error weights `b_i - b^_i`.
+    pub eq: &'static [f64],
+    /// Velocity error weights `b'_i - b'^_i`.
+    pub ev: &'static [f64],
+    /// Step-size control (`expo1 = 1/(q+1)` for an estimate of order `q`).
+    pub control: Control,
+}
+
+impl RknPair {
+    /// Number of stages.
+    pub fn stages(&self) -> usize {
+        self.c.len()
+    }
+}
+
+/// Most stages of a pair (RKN12's 17).
+const MAX_STAGES: usize = 17;
+
+/// Solves `q'' = a(q)` from `(q0, v0)` on `[t0, t_end]` with `pair`; the state in the
+/// [`Solution`] is `[q, v]`. The caller has checked `q0`, `v0` and that the system's forces do
+/// not depend on the velocity.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
+    pair: &'static RknPair,
+    sys: &S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &AdaptiveOptions,
+    interrupt: &dyn Interrupt,
+) -> Result<Solution> {
+    validate_span(t0, t_end, output)?;
+    opts.validate()?;
+    let mut sampler = Sampler::new(output);
+    let mut sol = sampler.solution(2 * q0.len(), 1024);
+    let dense = matches!(output, Output::Times(_));
+    let mut run = Run::new(pair, sys, t0, q0, v0, t_end, opts, dense);
+    run.solve(&mut sampler, &mut sol, &mut Poller::new(interrupt));
+    sol.stats = run.stats;
+    Ok(sol)
+}
+
+/// The state of one solve; all buffers are allocated here, once.
+struct Run<'a, S: ?Sized> {
+    pair: &'static RknPair,
+    sys: &'a S,
+    opts: &'a AdaptiveOptions,
+    n: usize,
+    t_end: f64,
+    hmax: f64,
+    t: f64,
+    /// `[q, v]`.
+    y: Vec<f64>,
+    y_new: Vec<f64>,
+    /// A stage position, `n`.
+    qs: Vec<f64>,
+    /// The error estimate `[e_q, e_v]`, `2 n`.
+    err: Vec<f64>,
+    /// `K_0 .. K_16`; row 0 holds `a(q)` at the step's start.
+    k: Stages,
+    /// The interpolant of the step ends, for output times (`None`: every-step output).
+    dense: Option<Birkhoff>,
+    stats: Stats,
+}
+
+/// How the loop of [`Run::solve`] ended.
+enum Outcome {
+    Done,
+    Failed(Status, String),
+}
+
+impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        pair: &'static RknPair,
+        sys: &'a S,
+        t0: f64,
+        q0: &[f64],
+        v0: &[f64],
+        t_end: f64,
+        opts: &'a AdaptiveOptions,
+        dense: bool,
+    ) -> Self {
+        assert!(pair.stages() <= MAX_STAGES, "{} stages exceed {MAX_STAGES}", pair.stages());
+        let n = q0.len();
+        let mut run = Run {
+            pair,
+            sys,
+            opts,
+            n,
+            t_end,
+            hmax: opts.max_step.min(t_end - t0),
+            t: t0,
+            y: [q0, v0].concat(),
+            y_new: vec![0.0; 2 * n],
+            qs: vec![0.0; n],
+            err: vec![0.0; 2 * n],
+            k: Stages::new(pair.stages(), n),
+            dense: dense.then(|| Birkhoff::new(n)),
+            stats: Stats::default(),
+        };
+        sys.acceleration(q0, run.k.row_mut(0));
+        run.stats.nfev += 1;
+        if let Some(d) = run.dense.as_mut() {
+            d.push(t0, &run.y, run.k.row(0));
+        }
+        run
+    }
+
+    fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) {
+        if let Err(err) = sampler.start(sol, self.t, &self.y) {
+            let (status, message) = record_failure(err, self.t, self.t);
+            sol.fail(status, message);
+            return;
+        }
+        let h = match self.opts.first_step {
+            Some(h) => h.min(self.hmax),
+            None => self.hinit(),
+        };
+        let outcome = self.step_loop(h, sampler, sol, poller);
+        // The output intervals still waiting for later step ends, from the ends reached.
+        let flushed = match self.dense.as_mut() {
+            Some(d) => d.emit(sampler, sol, true),
+            None => Ok(()),
+        };
+        if let Outcome::Failed(status, message) = outcome {
+            sol.fail(status, message);
+        } else if let Err(err) = flushed {
+            let (status, message) = record_failure(err, self.t, self.t);
+            sol.fail(status, message);
+        }
+    }
+
+    /// The accept/reject loop from step size `h` until `t_end`, a failure or an interrupt.
+    fn step_loop(&mut self, mut h: f64, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) -> Outcome {
+        let c = self.pair.control;
+        let mut facold: f64 = 1e-4;
+        let mut reject = false;
+        let mut attempts: u64 = 0;
+        loop {
+            if attempts >= self.opts.max_steps {
+                return Outcome::Failed(
+                    Status::MaxStepsReached,
+                    max_steps_message(self.t, self.t_end, self.opts.max_steps),
+                );
+            }
+            if poller.poll(self.t) {
+                return Outcome::Failed(Status::Interrupted, interrupted_message(self.t, self.t_end, attempts));
+            }
+            if h.is_nan() || h < min_step(self.t) {
+                return Outcome::Failed(Status::StepSizeUnderflow, underflow_message(h, self.t));
+            }
+            let (h_step, last) = clip_to_end(self.t, self.t_end, self.hmax, h);
+            h = h_step;
+            if self.dense.is_some() && !last && self.t + 1.5 * h > self.t_end {
+                // No short last step: it would be a near-coincident node of the interpolant.
+                h = 0.5 * (self.t_end - self.t);
+            }
+            attempts += 1;
+            let err = self.attempt(h);
+            if !err.is_finite() {
+                self.stats.nreject += 1;
+                reject = true;
+                h *= 0.2;
+                continue;
+            }
+            let fac11 = err.powf(c.expo1);
+            let fac = (fac11 / facold.powf(c.beta) / c.safe).min(1.0 / c.fac1).max(1.0 / c.fac2);
+            let mut h_new = h / fac;
+            if err <= 1.0 {
+                facold = err.max(1e-4);
+                let t_new = if last { self.t_end } else { self.t + h };
+                if !all_finite(&self.y_new) {
+                    return Outcome::Failed(Status::NonFinite, non_finite_message(self.t, t_new));
+                }
+                let t_old = self.t;
+                if let Err(err) = self.accept(t_new, sampler, sol) {
+                    let (status, message) = record_failure(err, t_old, t_new);
+                    return Outcome::Failed(status, message);
+                }
+                if last {
+                    return Outcome::Done;
+                }
+                h_new = h_new.min(self.hmax);
+                if self.dense.is_some() {
+                    h_new = h_new.min(DENSE_MAX_GROWTH * h);
+                }
+                if reject {
+                    h_new = h_new.min(h);
+                }
+                reject = false;
+            } else {
+                h_new = h / (1.0 / c.fac1).min(fac11 / c.safe);
+                reject = true;
+                self.stats.nreject += 1;
+            }
+            h = h_new;
+        }
+    }
+
+    /// Attempts the step `t -> t + h`: the stages, `y_new` and the error norm.
+    fn attempt(&mut self, h: f64) -> f64 {
+        let (pair, n) = (self.pair, self.n);
+        let (q, v) = self.y.split_at(n);
+        for s in 1..pair.stages() {
+            self.k.axpy_combine_plus(q, h * h, pair.a[s], v, h * pair.c[s], &mut self.qs);
+            self.sys.acceleration(&self.qs, self.k.row_mut(s));
+        }
+        self.stats.nfev += (pair.stages() - 1) as u64;
+        let (q_new, v_new) = self.y_new.split_at_mut(n);
+        self.k.axpy_combine_plus(q, h * h, pair.b, v, h, q_new);
+        self.k.axpy_combine(v, h, pair.bp, v_new);
+        let mut weights = [0.0; MAX_STAGES];
+        let (e_q, e_v) = self.err.split_at_mut(n);
+        for (w, &e) in weights.iter_mut().zip(pair.eq) {
+            *w = h * h * e;
+        }
+        self.k.combine(&weights[..pair.stages()], e_q);
+        for (w, &e) in weights.iter_mut().zip(pair.ev) {
+            *w = h * e;
+        }
+        self.k.combine(&weights[..pair.stages()], e_v);
+        let (sum, _) =
+            super::adaptive::scaled_sums(&self.err, &self.err, &self.y, &self.y_new, self.opts.rtol, self.opts.atol);
+        (sum / (2 * n) as f64).sqrt()
+    }
+
+    /// Accepts the attempted step ending at `t_new`: the acceleration there (`K_0` of the
+    /// next step), the output samples, and the move to the new state.
+    fn accept(
+        &mut self,
+        t_new: f64,
+        sampler: &mut Sampler,
+        sol: &mut Solution,
+    ) -> std::result::Result<(), RecordError> {
+        self.stats.naccept += 1;
+        std::mem::swap(&mut self.y, &mut self.y_new);
+        self.t = t_new;
+        self.sys.acceleration(&self.y[..self.n], self.k.row_mut(0));
+        self.stats.nfev += 1;
+        match self.dense.as_mut() {
+            Some(d) => {
+                d.push(t_new, &self.y, self.k.row(0));
+                d.emit(sampler, sol, false)
+            }
+            None => sampler.record(sol, t_new, &self.y, &mut [], |_, _| {}),
+        }
+    }
+
+    /// Hairer's `hinit` on `y' = [v, a(q)]` with the pair's order.
+    fn hinit(&mut self) -> f64 {
+        let n = self.n;
+        let mut f0 = vec![0.0; 2 * n];
+        let mut f1 = vec![0.0; 2 * n];
+        let mut ytmp = vec![0.0; 2 * n];
+        f0[..n].copy_from_slice(&self.y[n..]);
+        f0[n..].copy_from_slice(self.k.row(0));
+        let sys = self.sys;
+        let tol = (self.opts.rtol, self.opts.atol);
+        let order = self.pair.control.hinit_order;
+        let guess = initial_step(&self.y, &f0, &mut f1, &mut ytmp, tol, order, self.hmax, |_, y, f| {
+            let (fq, fv) = f.split_at_mut(n);
+            fq.copy_from_slice(&y[n..]);
+            sys.acceleration(&y[..n], fv);
+        });
+        self.stats.nfev += 1;
+        guess
+    }
+}
+
+/// The largest ratio of consecutive steps when output times are interpolated: the
+/// interpolant of an interval spans five steps, and its error grows with their ratios.
+const DENSE_MAX_GROWTH: f64 = 2.0;
+
+#[cfg(test)]
+pub(crate) mod testing {
+    //! Test hook: the pair stepped with `n` uniform steps, every step accepted.
+
+    use super::*;
+
+    /// Takes `n` uniform steps of `pair` from `(q0, v0)` over `[t0, t_end]`; returns the final
+    /// `[q, v]` and the largest error estimate `[e_q, e_v]` (max norm) of the steps.
+    pub(crate) fn uniform_steps<S: SecondOrderSystem + ?Sized>(
+        pair: &'static RknPair,
+        sys: &S,
+        (q0, v0): (&[f64], &[f64]),
+        (t0, t_end): (f64, f64),
+        n: usize,
+    ) -> (Vec<f64>, f64) {
+        let opts = AdaptiveOptions::default();
+        let output = Output::EveryStep;
+        let mut sampler = Sampler::new(&output);
+        let mut sol = sampler.solution(2 * q0.len(), n + 1);
+        let mut run = Run::new(pair, sys, t0, q0, v0, t_end, &opts, false);
+        let h = (t_end - t0) / n as f64;
+        let mut est: f64 = 0.0;
+        for i in 1..=n {
+            run.attempt(h);
+            est = run.err.iter().fold(est, |m, e| m.max(e.abs()));
+            run.accept(t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
+        }
+        (run.y, est)
+    }
+}
