@@ -44,6 +44,16 @@ const HALF: usize = NODES / 2;
 const RING: usize = NODES + 1;
 /// Coefficients per component: degree `3 NODES - 1`.
 const DEG: usize = 3 * NODES;
+/// The end of each Newton node: node `i` is end `i / 3` (each end three times).
+const END: [usize; DEG] = {
+    let mut end = [0; DEG];
+    let mut i = 0;
+    while i < DEG {
+        end[i] = i / 3;
+        i += 1;
+    }
+    end
+};
 /// An end closer than this fraction of the interval's length to an end already taken is left
 /// out (near-coincident triple nodes make the divided differences lose digits: a last step of
 /// 2 % of the one before cost six digits on the intervals before it).
@@ -174,14 +184,6 @@ impl Birkhoff {
                 recip[a][b] = 1.0 / (z[3 * a] - z[3 * b]);
             }
         }
-        let mut inv = [[0.0; DEG]; DEG];
-        for l in 1..m {
-            for i in l..m {
-                if i / 3 != (i - l) / 3 {
-                    inv[l][i] = recip[i / 3][(i - l) / 3];
-                }
-            }
-        }
         let slots: [usize; NODES] = std::array::from_fn(|e| order[e.min(ends - 1)] % RING);
         let half_h2 = 0.5 * h * h;
         for comp in 0..n {
@@ -195,18 +197,21 @@ impl Birkhoff {
                 d[i] = if i % 3 != 0 {
                     h * self.y[slots[i / 3] * 2 * n + n + comp]
                 } else {
-                    (d[i] - d[i - 1]) * inv[1][i]
+                    (d[i] - d[i - 1]) * recip[END[i]][END[i - 1]]
                 };
             }
             // Level 2: h^2 q'' / 2 inside a triple (i mod 3 = 2).
             for i in (2..m).rev() {
-                d[i] =
-                    if i % 3 == 2 { half_h2 * self.a[slots[i / 3] * n + comp] } else { (d[i] - d[i - 1]) * inv[2][i] };
+                d[i] = if i % 3 == 2 {
+                    half_h2 * self.a[slots[i / 3] * n + comp]
+                } else {
+                    (d[i] - d[i - 1]) * recip[END[i]][END[i - 2]]
+                };
             }
             // Levels 3 and up: every pair of nodes is distinct.
-            for (l, inv_l) in inv.iter().enumerate().take(m).skip(3) {
+            for l in 3..m {
                 for i in (l..m).rev() {
-                    d[i] = (d[i] - d[i - 1]) * inv_l[i];
+                    d[i] = (d[i] - d[i - 1]) * recip[END[i]][END[i - l]];
                 }
             }
             self.coef[comp * DEG..(comp + 1) * DEG].copy_from_slice(&d);
