@@ -205,3 +205,13 @@ def test_stored_map_interrupt_then_resume(tmp_path: Path) -> None:
     assert frame.attrs["resume"]["recomputed"] == {}
     single = drill(cfg.with_overrides({"top_drive.rpm": finished[0]})).metrics
     assert frame.loc[frame["top_drive.rpm"] == finished[0], "ssi"].item() == single.ssi
+
+
+@pytest.mark.parametrize("client", [5, "", object()])
+def test_a_client_that_is_not_dask_is_refused(client) -> None:
+    with pytest.raises(ValidationError) as info:
+        drill_map(_small(), {"top_drive.rpm": [20.0]}, client=client)
+    assert info.value.field == "client" and "Client" in info.value.allowed
+    with pytest.raises(ValidationError) as info:
+        ds.sweep(ds.preset("aluminum"), {"length": [100.0]}, client=client)
+    assert info.value.field == "client"

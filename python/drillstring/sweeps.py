@@ -116,6 +116,14 @@ _NUMERIC_FIELDS = tuple(
 )
 
 
+def check_client(client: Any) -> None:
+    """Refuses a ``client`` that is neither None, a scheduler address nor a Dask client
+    (anything with ``submit``), naming the field."""
+    if client is None or (isinstance(client, str) and client.strip()) or callable(getattr(client, "submit", None)):
+        return
+    raise ValidationError("client", client, "a dask.distributed.Client or a scheduler address (a non-empty str)")
+
+
 def _require_distributed() -> Any:
     try:
         import distributed
@@ -524,6 +532,7 @@ def sweep(
         z = as_float("z", z, "a finite section position in m, or None for 2l/3")
     if not isinstance(trajectories, bool):
         raise ValidationError("trajectories", trajectories, "True or False")
+    check_client(client)
     if trajectories and (out_dir is not None or client is not None):
         raise ValidationError("trajectories", True, "False with out_dir or client (trajectories stay in memory)")
     m = integrals.indices.size

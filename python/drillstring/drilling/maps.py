@@ -186,7 +186,8 @@ def drill_map(
     ------
     ValidationError
         A base configuration the core refuses; empty or malformed axes, a key that is not in
-        the configuration (naming it); too many runs (:func:`drillstring.limits.check_run_count`)
+        the configuration (naming it); a ``client`` that is not a Dask client or address; too many
+        runs (:func:`drillstring.limits.check_run_count`)
         or a map over the memory budget.
     KeyboardInterrupt
         Ctrl-C (or the exception of ``progress``): the runs under way stop within milliseconds;
@@ -204,6 +205,9 @@ def drill_map(
     if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(chunk_size, numbers.Integral)
                                    or chunk_size < 1):
         raise ValidationError("chunk_size", chunk_size, "an integer >= 1")
+    from ..sweeps import check_client
+
+    check_client(client)
     report, close = _progress_hook(progress, runs)
     combos = list(itertools.product(*named.values()))
     count = None if threads is None else int(threads)
