@@ -58,6 +58,24 @@ pub(crate) struct Control {
     pub hinit_order: i32,
 }
 
+impl Control {
+    /// The next step after an accepted attempt of size `h` with scaled error `err`, `facold`
+    /// the error of the previous accepted step: `h / clamp(err^expo1 / facold^beta / safe,
+    /// 1/fac2, 1/fac1)`.
+    #[inline]
+    pub fn accepted_step(&self, h: f64, err: f64, facold: f64) -> f64 {
+        let fac = (err.powf(self.expo1) / facold.powf(self.beta) / self.safe).min(1.0 / self.fac1).max(1.0 / self.fac2);
+        h / fac
+    }
+
+    /// The step to retry after a rejected attempt of size `h` with scaled error `err`:
+    /// `h / min(1/fac1, err^expo1 / safe)`.
+    #[inline]
+    pub fn rejected_step(&self, h: f64, err: f64) -> f64 {
+        h / (1.0 / self.fac1).min(err.powf(self.expo1) / self.safe)
+    }
+}
+
 /// An embedded Runge-Kutta pair with dense output, run by [`integrate`].
 ///
 /// Row layout of the stage storage: `0 .. TABLEAU.stages()` the step's stages,
@@ -308,9 +326,7 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
                 h *= 0.2;
                 continue;
             }
-            let fac11 = err.powf(c.expo1);
-            let fac = (fac11 / facold.powf(c.beta) / c.safe).min(1.0 / c.fac1).max(1.0 / c.fac2);
-            let mut h_new = h / fac;
+            let mut h_new = c.accepted_step(h, err, facold);
             if err <= 1.0 {
                 facold = err.max(1e-4);
                 let t_new = if last { self.t_end } else { self.t + h };
@@ -331,7 +347,7 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
                 }
                 reject = false;
             } else {
-                h_new = h / (1.0 / c.fac1).min(fac11 / c.safe);
+                h_new = c.rejected_step(h, err);
                 reject = true;
                 self.stats.nreject += 1;
             }

@@ -216,9 +216,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                 h *= 0.2;
                 continue;
             }
-            let fac11 = err.powf(c.expo1);
-            let fac = (fac11 / facold.powf(c.beta) / c.safe).min(1.0 / c.fac1).max(1.0 / c.fac2);
-            let mut h_new = h / fac;
+            let mut h_new = c.accepted_step(h, err, facold);
             if err <= 1.0 {
                 facold = err.max(1e-4);
                 let t_new = if last { self.t_end } else { self.t + h };
@@ -242,7 +240,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                 }
                 reject = false;
             } else {
-                h_new = h / (1.0 / c.fac1).min(fac11 / c.safe);
+                h_new = c.rejected_step(h, err);
                 reject = true;
                 self.stats.nreject += 1;
             }
