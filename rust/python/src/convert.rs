@@ -238,3 +238,25 @@ pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
     let sol = solved.map_err(|e| validation_error(py, e))?;
     solution_dict(py, sol, sys.velocity_dependent())
 }
+
+/// The stick-slip metrics of a run as a dict (`t_start`, `t_end`, `severity`, `stuck_fraction`,
+/// `rpm_min`, `rpm_max`, `rpm_mean`, `torque_min`, `torque_max`, `cycle_period`); every value
+/// NaN when the run has none.
+pub(crate) fn stick_slip_dict<'py>(
+    py: Python<'py>,
+    m: Option<&drillstring_core::metrics::StickSlip>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let nan = f64::NAN;
+    d.set_item("t_start", m.map_or(nan, |s| s.t_start))?;
+    d.set_item("t_end", m.map_or(nan, |s| s.t_end))?;
+    d.set_item("severity", m.map_or(nan, |s| s.severity))?;
+    d.set_item("stuck_fraction", m.map_or(nan, |s| s.stuck_fraction))?;
+    d.set_item("rpm_min", m.map_or(nan, |s| s.rpm_min))?;
+    d.set_item("rpm_max", m.map_or(nan, |s| s.rpm_max))?;
+    d.set_item("rpm_mean", m.map_or(nan, |s| s.rpm_mean))?;
+    d.set_item("torque_min", m.map_or(nan, |s| s.torque_min))?;
+    d.set_item("torque_max", m.map_or(nan, |s| s.torque_max))?;
+    d.set_item("cycle_period", m.map_or(nan, |s| s.cycle_period))?;
+    Ok(d)
+}

@@ -7,7 +7,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{no_panic, validation_error, SignalCheck};
+use crate::convert::{no_panic, stick_slip_dict, validation_error, SignalCheck};
 
 fn parse(py: Python<'_>, config_json: &str) -> PyResult<DrillConfig> {
     let cfg = DrillConfig::from_json(config_json).map_err(|e| validation_error(py, e))?;
@@ -92,21 +92,9 @@ fn run_dict(py: Python<'_>, run: drilling::DrillRun) -> PyResult<Bound<'_, PyDic
     d.set_item("status", run.status.name())?;
     d.set_item("message", run.message)?;
 
-    let m = PyDict::new(py);
-    let s = run.metrics;
-    let nan = f64::NAN;
-    m.set_item("t_start", s.map_or(nan, |s| s.t_start))?;
-    m.set_item("t_end", s.map_or(nan, |s| s.t_end))?;
+    let m = stick_slip_dict(py, run.metrics.as_ref())?;
     m.set_item("window_start", run.window[0])?;
     m.set_item("window_end", run.window[1])?;
-    m.set_item("severity", s.map_or(nan, |s| s.severity))?;
-    m.set_item("stuck_fraction", s.map_or(nan, |s| s.stuck_fraction))?;
-    m.set_item("rpm_min", s.map_or(nan, |s| s.rpm_min))?;
-    m.set_item("rpm_max", s.map_or(nan, |s| s.rpm_max))?;
-    m.set_item("rpm_mean", s.map_or(nan, |s| s.rpm_mean))?;
-    m.set_item("torque_min", s.map_or(nan, |s| s.torque_min))?;
-    m.set_item("torque_max", s.map_or(nan, |s| s.torque_max))?;
-    m.set_item("cycle_period", s.map_or(nan, |s| s.cycle_period))?;
     m.set_item("breakoff_torque", run.breakoff_torque)?;
     m.set_item("min_cycle_torque", run.min_cycle_torque)?;
     d.set_item("metrics", m)?;

@@ -6,7 +6,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::convert::{no_panic, validation_error, SignalCheck};
+use crate::convert::{no_panic, stick_slip_dict, validation_error, SignalCheck};
 use crate::drilling::Fraction;
 
 /// The default parameters and numerics as JSON objects.
@@ -46,20 +46,7 @@ pub(crate) fn lumped_solve<'py>(
     d.set_item("status", run.status.name())?;
     d.set_item("message", run.message)?;
     d.set_item("window", (run.window[0], run.window[1]))?;
-    let nan = f64::NAN;
-    let s = run.metrics;
-    let m = PyDict::new(py);
-    m.set_item("t_start", s.map_or(nan, |s| s.t_start))?;
-    m.set_item("t_end", s.map_or(nan, |s| s.t_end))?;
-    m.set_item("severity", s.map_or(nan, |s| s.severity))?;
-    m.set_item("stuck_fraction", s.map_or(nan, |s| s.stuck_fraction))?;
-    m.set_item("rpm_min", s.map_or(nan, |s| s.rpm_min))?;
-    m.set_item("rpm_max", s.map_or(nan, |s| s.rpm_max))?;
-    m.set_item("rpm_mean", s.map_or(nan, |s| s.rpm_mean))?;
-    m.set_item("torque_min", s.map_or(nan, |s| s.torque_min))?;
-    m.set_item("torque_max", s.map_or(nan, |s| s.torque_max))?;
-    m.set_item("cycle_period", s.map_or(nan, |s| s.cycle_period))?;
-    d.set_item("metrics", m)?;
+    d.set_item("metrics", stick_slip_dict(py, run.metrics.as_ref())?)?;
     let e = PyDict::new(py);
     let en = run.energy;
     e.set_item("motor_work", en.motor_work)?;

@@ -6,7 +6,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArra
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 
-use crate::convert::{integer, no_panic, to_vec, validation_error};
+use crate::convert::{integer, no_panic, stick_slip_dict, to_vec, validation_error};
 
 /// `(frequencies, amplitudes)` of spectral peaks.
 type Peaks<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -126,18 +126,7 @@ pub(crate) fn stick_slip_metrics<'py>(
     let torque = motor_torque.map(|m| to_vec(&m));
     let m = no_panic(|| core::metrics::stick_slip(&t, &omega, torque.as_deref(), window, stick_speed))?
         .map_err(|e| validation_error(py, e))?;
-    let d = PyDict::new(py);
-    d.set_item("t_start", m.t_start)?;
-    d.set_item("t_end", m.t_end)?;
-    d.set_item("severity", m.severity)?;
-    d.set_item("stuck_fraction", m.stuck_fraction)?;
-    d.set_item("rpm_min", m.rpm_min)?;
-    d.set_item("rpm_max", m.rpm_max)?;
-    d.set_item("rpm_mean", m.rpm_mean)?;
-    d.set_item("torque_min", m.torque_min)?;
-    d.set_item("torque_max", m.torque_max)?;
-    d.set_item("cycle_period", m.cycle_period)?;
-    Ok(d)
+    stick_slip_dict(py, Some(&m))
 }
 
 /// The static break-off torque of a well, N m: the trapezoidal integral of the friction limit
