@@ -84,6 +84,13 @@ pub fn validate_span(t0: f64, t_end: f64, output: &Output) -> Result<()> {
         return Err(Error::invalid("t_end", Num(t_end), format!("a finite number > t0 = {}", Num(t0))));
     }
     if let Output::Times(times) = output {
+        // The common case in one branch-free pass: sorted, the first at or after t0, the
+        // last at or before t_end (every comparison with a NaN is false). Otherwise the
+        // loop below names the first bad value.
+        let sorted = times.windows(2).fold(true, |ok, w| ok & (w[0] <= w[1]));
+        if sorted && times.first().is_none_or(|&t| t0 <= t) && times.last().is_none_or(|&t| t <= t_end) {
+            return Ok(());
+        }
         let mut prev = t0;
         for (k, &t) in times.iter().enumerate() {
             if !t.is_finite() || t < t0 || t > t_end {

@@ -65,7 +65,10 @@ pub(crate) fn max_steps_arg(py: Python<'_>, value: Option<&Bound<'_, PyAny>>) ->
 }
 
 pub(crate) fn to_vec(a: &PyReadonlyArray1<'_, f64>) -> Vec<f64> {
-    a.as_array().iter().copied().collect()
+    match a.as_slice() {
+        Ok(contiguous) => contiguous.to_vec(),
+        Err(_) => a.as_array().iter().copied().collect(),
+    }
 }
 
 /// The dict every solve returns: `t` (samples,), `y` (samples, dim), `status`, `message`,
