@@ -151,16 +151,19 @@ def main() -> None:
 
 
 def crossover(core: Callable[[str, float, float], dict[str, Any]], repeat: int) -> None:
-    """Evaluations and core solve times of DOP853 and RKN12 over rtol (atol = rtol * 1e-5)."""
+    """Evaluations, core solve times and errors of DOP853 and RKN12 over rtol (atol = rtol * 1e-5);
+    the errors are those of q against the converged reference, relative to max |q|."""
+    ref = core("rkn12", *REFERENCE)["y"]
+    m = ref.shape[1] // 2
     print("crossover: core solves, 20001-style output of the command line, atol = 1e-5 rtol")
-    print(f"{'rtol':>8}{'dop853 nfev':>13}{'rkn12 nfev':>12}{'dop853 ms':>11}{'rkn12 ms':>10}{'dop/rkn time':>14}")
+    print(f"{'rtol':>8}{'dop853 nfev':>13}{'rkn12 nfev':>12}{'dop853 ms':>11}{'rkn12 ms':>10}{'dop/rkn time':>14}"
+          f"{'dop853 err q':>14}{'rkn12 err q':>13}")
     for rtol in [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13]:
         atol = rtol * 1e-5
         t_dop, dop = best_of(repeat, lambda r=rtol, a=atol: core("dop853", r, a))
         t_rkn, rkn = best_of(repeat, lambda r=rtol, a=atol: core("rkn12", r, a))
         print(f"{rtol:8.0e}{dop['nfev']:13d}{rkn['nfev']:12d}{t_dop * 1e3:11.3f}{t_rkn * 1e3:10.3f}"
-              f"{t_dop / t_rkn:14.2f}")
-
+              f"{t_dop / t_rkn:14.2f}{errors(dop['y'], ref, m)[0]:14.1e}{errors(rkn['y'], ref, m)[0]:13.1e}")
 
 if __name__ == "__main__":
     main()

@@ -7,7 +7,17 @@ their J (extra pi), A, contact radius, G = 67 GPa and density rho*Gc/Gp; damping
 2*kt*dt_sub). Times are the best of ``--repeat`` runs; the ratio is numpy / drillstring. The
 metrics over 30..60 s of both are printed next to the Octave reference.
 
-    python benchmarks/drill_vs_numpy.py [--repeat 3] [--duration 60]
+``--published DIR`` also times the published Python port of the same scheme (the repository's
+pull request 1, commit b73329e: ``python/torsionalWaveStep.py`` and ``python/parameters_WellB.py``,
+vectorised numpy; not shipped with drillstring), driven by the loop of that pull request's
+``main.ipynb`` without its plotting (same case: 40 rpm, 1 s setpoint ramp, PI 38e3/100e3, 10 ms
+control interval, 1000 cells; its CFL factor 0.99 gives 1 % more steps). Get it with::
+
+    git clone https://github.com/Open-Source-Drilling-Community/Aarsnes-and-Shor-Torsional-Model as
+    git -C as fetch origin pull/1/head && git -C as checkout FETCH_HEAD
+    python benchmarks/drill_vs_numpy.py --published as/python
+
+    python benchmarks/drill_vs_numpy.py [--repeat 3] [--duration 60] [--published DIR]
 """
 
 from __future__ import annotations
@@ -56,6 +66,33 @@ def drill_config(duration: float, cells: int) -> dict:
     }
 
 
+def published_port(directory: str, duration: float) -> dict:
+    """The published port's Well B run (their step function and parameters from ``directory``;
+    the loop of their notebook): time series of motor torque and bit speed."""
+    sys.path.insert(0, str(Path(directory).resolve()))
+    try:
+        from parameters_WellB import parameters_WellB  # type: ignore[import-not-found]
+        from torsionalWaveStep import torsionalWaveStep  # type: ignore[import-not-found]
+    finally:
+        sys.path.pop(0)
+    p = parameters_WellB(2500, 0.3, 0.65, 1.5)
+    omega_stat = 40 / 60 * 2 * math.pi
+    dt = 0.01
+    t = np.arange(0, duration + dt, dt)
+    cells = p.Pp + p.Pc
+    x = np.zeros((2 * cells + 1, len(t)))
+    torque = np.zeros(len(t))
+    omega_sp, integral = 0.0, 0.0
+    for k in range(len(t) - 1):
+        omega_sp = omega_sp + (omega_stat - omega_sp) / (1 / dt)
+        otd = x[2 * cells, k]
+        torque[k] = (omega_sp - otd) * 38e3 + integral * 100e3
+        integral += dt * (omega_sp - otd)
+        x[:, k + 1] = torsionalWaveStep(p, x[:, k], dt, torque[k])
+    torque[-1] = torque[-2]
+    return {"t": t, "motor_torque": torque, "bit_speed": x[2 * cells - 1]}
+
+
 def best_of(fn, repeat: int):
     best, out = math.inf, None
     for _ in range(repeat):
@@ -70,6 +107,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--duration", type=float, default=60.0)
     ap.add_argument("--cells", type=int, default=1000)
+    ap.add_argument("--published", metavar="DIR", help="directory of the published Python port (see above)")
     args = ap.parse_args()
 
     cfg = json.dumps(drill_config(args.duration, args.cells))
@@ -86,10 +124,20 @@ def main() -> None:
           f"status {run['status']}, stats {run.get('stats')}")
     print(f"numpy port:              {t_np:8.3f} s  ({t_np / args.duration * 60:.3f} s per simulated minute)")
     print(f"ratio numpy / drillstring: {t_np / t_ds:.1f}")
+    published = None
+    if args.published:
+        if args.cells != 1000:
+            raise SystemExit("--published runs the published port's own 1000 cells: leave --cells at 1000")
+        t_pub, published = best_of(lambda: published_port(args.published, args.duration), 1)
+        print(f"published port (1 run):  {t_pub:8.3f} s  ({t_pub / args.duration * 60:.3f} s per simulated minute)")
+        print(f"ratio published port / drillstring: {t_pub / t_ds:.1f}; published port / numpy port: "
+              f"{t_pub / t_np:.1f}")
 
     ds_res = {"t": np.asarray(run["t"]), "motor_torque": np.asarray(run["motor_torque"]),
               "bit_speed": np.asarray(run["bit_rpm"]) * 2 * math.pi / 60}
     rows = [("numpy port", asn.summary(res)), ("drillstring", asn.summary(ds_res))]
+    if published is not None:
+        rows.append(("published port", asn.summary(published)))
     if REFERENCE.exists() and args.duration == 60.0 and args.cells == 1000:
         ref = json.loads(REFERENCE.read_text())
         rows.append(("Octave reference", {"motor_torque_min": ref["motor_torque_min_Nm"],
