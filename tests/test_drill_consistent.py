@@ -100,3 +100,23 @@ def test_cli_runs_the_consistent_law(tmp_path: Path, capsys: pytest.CaptureFixtu
     code, _, err = run_cli(capsys, "drill", str(ON_BOTTOM), "--out", str(tmp_path / "bad"), "--no-progress",
                            "--set", "nonlinearity=cubic")
     assert code == 2 and "nonlinearity" in err and "consistent" in err
+
+
+def test_maps_report_the_courant_peak() -> None:
+    """A map row carries its run's largest Courant number: at most 1 for the linear law, above 1
+    when the consistent law is driven past ``numerics.max_shear_strain``."""
+    # one uniform section: Courant number 1 on the grid, so any strain above the 1e-6 the grid
+    # was built for pushes the consistent law past 1
+    base = DrillConfig.from_dict({
+        "sections": [{"length": 1000.0, "outer_diameter": 0.14, "inner_diameter": 0.1}],
+        "top_drive": {"rpm": 60.0},
+        "numerics": {"cells": 200, "duration": 1.0, "field_interval": 0.5, "max_shear_strain": 1e-6},
+    })
+    frame = ds.drill_map(base, {"nonlinearity": ["linear", "consistent"]}, threads=1)
+    assert list(frame["status"]) == ["success", "success"]
+    for _, row in frame.iterrows():
+        single = ds.drill(base.with_overrides([f"nonlinearity={row['nonlinearity']}"]))
+        assert row["courant_peak"] == single.stats["courant_peak"]
+    linear, consistent = frame["courant_peak"]
+    assert linear == 1.0 < consistent
+    assert "numerics.max_shear_strain" in frame["message"][1]

@@ -48,6 +48,7 @@ def test_rows_equal_single_runs() -> None:
             value = expected[name]
             assert _same(row[name], math.nan if value is None else value), name
         assert row["steps"] == single.stats["steps"]
+        assert row["courant_peak"] == single.stats["courant_peak"] == 1.0
 
 
 def test_an_invalid_row_does_not_fail_the_map() -> None:

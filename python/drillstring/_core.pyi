@@ -571,7 +571,9 @@ class DrillMapOutput(TypedDict):
     metrics: dict[str, NDArray[np.float64]]
     """The names of ``drill_solve``'s metrics (``severity``, ``stuck_fraction``, ...), NaN unless successful."""
     stats: dict[str, NDArray[np.generic]]
-    """``cells``, ``steps`` (uint64), ``dt``, ``balance_error``."""
+    """``cells``, ``steps`` (uint64), ``dt``, ``balance_error``, ``courant_peak`` (the largest
+    Courant number a run reached: above 1 only with ``nonlinearity = "consistent"`` past
+    ``numerics.max_shear_strain``)."""
     interrupt: Optional[BaseException]
     """The exception that stopped the map (Ctrl-C or raised by ``progress``), or None."""
 

@@ -62,7 +62,7 @@ METRIC_COLUMNS: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(Drill
 CHUNK_SIZE = 100
 
 #: Solver columns after the metrics.
-STAT_COLUMNS: tuple[str, ...] = ("cells", "steps", "dt", "balance_error")
+STAT_COLUMNS: tuple[str, ...] = ("cells", "steps", "dt", "balance_error", "courant_peak")
 
 MapProgress = Union[bool, Callable[[int, int], Any]]
 

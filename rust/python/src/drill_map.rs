@@ -68,6 +68,7 @@ fn columns<'py>(
     st.set_item("steps", PyArray1::from_vec(py, rows.iter().map(|r| r.stats.steps).collect::<Vec<_>>()))?;
     st.set_item("dt", PyArray1::from_vec(py, row(|r| r.stats.dt)))?;
     st.set_item("balance_error", PyArray1::from_vec(py, row(|r| r.balance_error)))?;
+    st.set_item("courant_peak", PyArray1::from_vec(py, row(|r| r.stats.courant_peak)))?;
     d.set_item("stats", st)?;
     d.set_item("interrupt", interrupt)?;
     Ok(d)
