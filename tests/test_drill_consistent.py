@@ -120,3 +120,18 @@ def test_maps_report_the_courant_peak() -> None:
     linear, consistent = frame["courant_peak"]
     assert linear == 1.0 < consistent
     assert "numerics.max_shear_strain" in frame["message"][1]
+
+
+def test_quartic_moment_sets_the_cubic_torque() -> None:
+    """``sections[i].quartic_moment`` (J4) unset is the annulus's pi/192 (OD^6 - ID^6): giving that
+    value changes nothing, bit for bit; a larger one stiffens the string; a bad one names the field."""
+    base = load_drill_config(ON_BOTTOM).with_overrides([*SHORT, "nonlinearity=consistent"])
+    section = base.sections[0]
+    annulus = math.pi / 192 * (section.outer_diameter ** 6 - section.inner_diameter ** 6)
+    implicit = ds.drill(base)
+    explicit = ds.drill(base.with_overrides([f"sections[0].quartic_moment={annulus!r}"]))
+    np.testing.assert_array_equal(implicit.motor_torque, explicit.motor_torque)
+    stiffer = ds.drill(base.with_overrides([f"sections[0].quartic_moment={1e4 * annulus!r}"]))
+    assert not np.array_equal(stiffer.motor_torque, implicit.motor_torque)
+    with pytest.raises(ds.errors.ValidationError, match=r"sections\[0\]\.quartic_moment"):
+        ds.drill(base.with_overrides(["sections[0].quartic_moment=-1"]))

@@ -142,6 +142,10 @@ class Section:
     """Override of the polar moment of area J, m^4 (None: from the diameters)."""
     area: Optional[float] = _default("sections", "area", unit="m^2", kind="float?")
     """Override of the cross-section area A, m^2 (None: from the diameters)."""
+    quartic_moment: Optional[float] = _default("sections", "quartic_moment", unit="m^6", kind="float?")
+    """Override of ``J4 = int r^4 dA``, m^6, which sets the ``"consistent"`` law's cubic torque
+    ``k5 = M J4 / 2`` (None: ``pi/192 (OD^6 - ID^6)``, from the diameters; unused by
+    ``"linear"``). A section with an overridden ``polar_moment`` needs it too."""
     poisson_ratio: float = _default("sections", "poisson_ratio", unit="", kind="float")
     """Poisson's ratio nu, ``0 < nu < 0.5``: with ``shear_modulus`` the P-wave modulus
     ``M = 2 G (1 - nu) / (1 - 2 nu)`` of the ``"consistent"`` nonlinearity (unused by ``"linear"``)."""

@@ -47,6 +47,10 @@ pub struct Section {
     pub polar_moment: Option<f64>,
     /// m^2; None: `pi/4 (OD^2 - ID^2)`.
     pub area: Option<f64>,
+    /// `J4 = int r^4 dA`, m^6, of the `consistent` nonlinearity's `k5 = M J4 / 2` (unused by
+    /// `linear`); None: `pi/192 (OD^6 - ID^6)`, the annulus of the diameters. A section whose
+    /// `polar_moment` is overridden (an equivalent section) needs it too for the consistent law.
+    pub quartic_moment: Option<f64>,
     /// Poisson's ratio, `0 < nu < 0.5`: with `shear_modulus` it gives the P-wave modulus
     /// `M = 2 G (1 - nu) / (1 - 2 nu)` of the `consistent` nonlinearity (unused by `linear`).
     pub poisson_ratio: f64,
@@ -66,6 +70,7 @@ impl Default for Section {
             contact_diameter: None,
             polar_moment: None,
             area: None,
+            quartic_moment: None,
             poisson_ratio: 0.3,
         }
     }
@@ -566,6 +571,7 @@ impl DrillConfig {
                 ("contact_diameter", s.contact_diameter, "m"),
                 ("polar_moment", s.polar_moment, "m^4"),
                 ("area", s.area, "m^2"),
+                ("quartic_moment", s.quartic_moment, "m^6"),
             ] {
                 if let Some(v) = v {
                     pos(f(k), v, &format!("{unit}, or null for the default"))?;

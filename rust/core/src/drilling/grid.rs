@@ -34,8 +34,9 @@ pub struct SectionProps {
     /// Torsional stiffness `k2 = G J`, N m^2.
     pub stiffness: f64,
     /// Quartic coefficient of the `consistent` torque-twist law, `k5 = M J4 / 2`
-    /// ([`crate::model::consistent_k5`], `J4 = int r^4 dA` of the annulus of the section's
-    /// diameters, `M` the P-wave modulus of `shear_modulus` and `poisson_ratio`), N m^4.
+    /// ([`crate::model::consistent_k5`], `J4 = int r^4 dA`: the section's `quartic_moment`, else
+    /// that of the annulus of its diameters; `M` the P-wave modulus of `shear_modulus` and
+    /// `poisson_ratio`), N m^4.
     pub quartic: f64,
 }
 
@@ -45,7 +46,7 @@ impl SectionProps {
         let j = s.polar_moment.unwrap_or(PI / 32.0 * (od.powi(4) - id.powi(4)));
         let a = s.area.unwrap_or(PI / 4.0 * (od * od - id * id));
         let (g, rho) = (s.shear_modulus, s.density);
-        let j4 = crate::model::Section::annulus(od, id).map_or(f64::NAN, |a| a.j4);
+        let j4 = s.quartic_moment.unwrap_or_else(|| crate::model::Section::annulus(od, id).map_or(f64::NAN, |a| a.j4));
         let nu = s.poisson_ratio;
         SectionProps {
             length: s.length,

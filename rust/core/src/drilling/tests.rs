@@ -938,6 +938,9 @@ fn consistent_fields_are_bad_input_when_out_of_range() {
     assert_eq!(field(r#", "poisson_ratio": 0.5"#), "sections[0].poisson_ratio");
     assert_eq!(field(r#", "poisson_ratio": 0"#), "sections[0].poisson_ratio");
     assert_eq!(field(r#", "poisson_ratio": 0.25"#), "ok");
+    assert_eq!(field(r#", "quartic_moment": 0"#), "sections[0].quartic_moment");
+    assert_eq!(field(r#", "quartic_moment": -1e-7"#), "sections[0].quartic_moment");
+    assert_eq!(field(r#", "quartic_moment": 1e-7"#), "ok");
     let top = |extra: &str| {
         let json =
             format!(r#"{{"sections": [{{"length": 100, "outer_diameter": 0.1, "inner_diameter": 0.05}}]{extra}}}"#);
@@ -947,4 +950,24 @@ fn consistent_fields_are_bad_input_when_out_of_range() {
     assert_eq!(top(r#", "nonlinearity": "consistent""#), "ok");
     assert_eq!(top(r#", "numerics": {"max_shear_strain": 0}"#), "numerics.max_shear_strain");
     assert_eq!(top(r#", "numerics": {"max_shear_strain": 2}"#), "numerics.max_shear_strain");
+}
+
+/// `quartic_moment` sets `J4` of `k5 = M J4 / 2`: unset, the annulus's `pi/192 (OD^6 - ID^6)`
+/// (computed here); given, that value, whatever the diameters or a `polar_moment` override.
+#[test]
+fn quartic_moment_sets_k5() {
+    let (od, id): (f64, f64) = (0.127, 0.1086);
+    let mut s = section(100.0, od, id);
+    let m = |s: &Section| {
+        let nu = s.poisson_ratio;
+        2.0 * s.shear_modulus * (1.0 - nu) / (1.0 - 2.0 * nu)
+    };
+    let annulus = PI / 192.0 * (od.powi(6) - id.powi(6));
+    let k5 = grid::SectionProps::new(&s, 0.0).quartic;
+    assert!((k5 - m(&s) * annulus / 2.0).abs() < 1e-12 * k5, "{k5}");
+    s.polar_moment = Some(2.0 * polar(od, id));
+    s.quartic_moment = Some(3.0 * annulus);
+    let props = grid::SectionProps::new(&s, 0.0);
+    assert!((props.quartic - 3.0 * k5).abs() < 1e-12 * k5, "{}", props.quartic);
+    assert_eq!(props.stiffness, G * 2.0 * polar(od, id));
 }
