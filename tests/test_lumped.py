@@ -5,6 +5,8 @@ from the sampled series, and the slipping phase integrated with scipy's DOP853."
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -296,3 +298,66 @@ def test_command_line(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run_cli(capsys, "lumped", "--set", "weight=1")
     assert code == 2
     one_line_error(err, "weight")
+
+
+def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
+    """Each row of ``lumped_sweep`` is what ``lumped`` and ``lumped_equilibria`` give for its
+    value (exactly); across the onset the rows show it: steady below, stick-slip coexisting with
+    the stable rotation above ~51.4 kN, no rotation past the fold."""
+    from drillstring.drilling import lumped_sweep, lumped_sweep_figure
+
+    values = [48e3, 55e3, 60e3]
+    frame = lumped_sweep("wob", values, {"tm": 6000.0}, duration=150.0)
+    assert list(frame["wob"]) == values and frame.attrs["parameter"] == "wob"
+    for _, row in frame.iterrows():
+        p = {"tm": 6000.0, "wob": row["wob"]}
+        eq, res = lumped_equilibria(p), lumped(p, duration=150.0)
+        assert row["regime"] == eq.regime and row["stuck_possible"] == eq.stuck_possible
+        assert row["static_limit_Nm"] == eq.static_limit
+        speeds = [r.speed for r in eq.rotations]
+        got = [row[f"rotation_{k}"] for k in (1, 2) if row[f"stable_{k}"] is not None]
+        assert got == speeds and [row[f"stable_{k}"] for k in (1, 2)][:len(speeds)] == [r.stable for r in eq.rotations]
+        for column, value in [("ssi", res.metrics.severity), ("stuck_fraction", res.metrics.stuck_fraction),
+                              ("bit_rpm_max", res.metrics.rpm_max), ("period_s", res.metrics.cycle_period)]:
+            assert row[column] == value or (np.isnan(row[column]) and np.isnan(value)), column
+    assert list(frame["regime"]) == ["stable_rotation", "stable_rotation", "stuck"]
+    assert frame["stuck_fraction"][0] == 0.0 and 0.1 < frame["stuck_fraction"][1] < 1.0
+    assert frame["stuck_fraction"][2] == 1.0 and np.isnan(frame["rotation_1"][2])
+    assert len(lumped_sweep_figure(frame).axes) == 2
+
+
+@pytest.mark.parametrize(("name", "values", "field"), [
+    ("weight", [1.0], "name"), ("wob", [], "values"), ("wob", [float("nan")], "wob"), ("wob", [-1.0], "wob"),
+])
+def test_sweep_bad_input_names_the_field(name: str, values: list[float], field: str) -> None:
+    from drillstring.drilling import lumped_sweep
+
+    with pytest.raises(ValidationError) as info:
+        lumped_sweep(name, values, duration=10.0)
+    assert info.value.field == field
+
+
+def test_sweep_and_output_on_the_command_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    import pandas as pd
+    from _cli import one_line_error, run_cli
+
+    out_dir = tmp_path / "sweep"
+    code, out, err = run_cli(capsys, "lumped", "--sweep", "wob=48e3,55e3", "--duration", "100", "--out", str(out_dir))
+    assert code == 0, err
+    assert "wob = 48000: steady rotations" in out and "wob = 55000:" in out and "SSI 1.2" in out
+    table = pd.read_csv(out_dir / "lumped_sweep.csv")
+    assert list(table["wob"]) == [48e3, 55e3] and table["stuck_fraction"][1] > 0.1
+    assert (out_dir / "lumped_sweep.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    single = tmp_path / "single"
+    code, out, err = run_cli(capsys, "lumped", "--set", "wob=55e3", "--duration", "20", "--out", str(single))
+    assert code == 0, err
+    series = pd.read_csv(single / "lumped.csv")
+    res = lumped({"wob": 55e3}, duration=20.0)
+    assert list(series.columns) == ["t_s", "top_speed_rad_s", "bit_speed_rad_s", "spring_torque_Nm", "bit_torque_Nm"]
+    np.testing.assert_allclose(series["bit_speed_rad_s"], res.bit_speed, rtol=1e-15, atol=0)
+    assert (single / "lumped.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    for args, needle in [(["--sweep", "weight=1:2:3"], "--sweep"), (["--sweep", "wob=1:2:x"], "--sweep"),
+                         (["--sweep", "wob=1:2:1000000000000"], "--sweep")]:
+        code, out, err = run_cli(capsys, "lumped", *args)
+        assert code == 2
+        one_line_error(err, needle)

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import errno
+import math
 import os
 import sys
 import warnings
@@ -30,7 +31,7 @@ from . import __version__
 from ._output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
 from ._progress import on_terminal
 from .errors import DrillstringError, DrillstringWarning, ValidationError
-from .limits import as_float
+from .limits import as_float, check_run_count
 from .paper.table2 import format_table2, table2, table2_json
 from .parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
 from .simulate import METHODS, PDE_METHODS, simulate
@@ -575,9 +576,16 @@ def _add_lumped(sub: Any) -> None:
         help="the lumped two-inertia stick-slip model (Navarro-Lopez & Cortes 2007): equilibria and a run",
         description="Print the steady rotations of the lumped two-inertia model, their stability and the regime, "
         "then run it from the initial state and print the stick-slip metrics over the last half of the run. "
-        "Parameters default to the published ones (tm = 6000 N m, wob = 50 kN).",
-        epilog="example: drillstring lumped --set wob=55e3 --duration 200",
+        "Parameters default to the published ones (tm = 6000 N m, wob = 50 kN). With --sweep, do both at each "
+        "value of one parameter and print one line per value; with --out DIR also write the table "
+        "(lumped_sweep.csv) and the figure of the steady speeds against the runs (lumped_sweep.png), or for a "
+        "single run its time series (lumped.csv) and time histories (lumped.png).",
+        epilog="examples: drillstring lumped --set wob=55e3 --duration 200; "
+        "drillstring lumped --sweep wob=40e3:62e3:23 --out wob-sweep",
     )
+    p.add_argument("--sweep", metavar="NAME=START:STOP:COUNT", default=None,
+                   help="sweep one parameter over COUNT evenly spaced values (or NAME=v1,v2,...)")
+    p.add_argument("--out", metavar="DIR", default=None, help="write the table or series and the figure to DIR")
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="overrides",
                    help="a parameter: jr, jb, kt, ct, cr, cb, rb, mu_cb, mu_sb, gamma_b, v_f, d_v, tm, wob "
                    "(SI units; repeatable)")
@@ -599,6 +607,10 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
             params[name.strip()] = float(value)
         except ValueError:
             raise ValidationError(name.strip(), value, "a number") from None
+    if args.sweep is not None:
+        return _lumped_sweep(args, params)
+    if args.out is not None:
+        check_destination(args.out, field="--out", directory=True, files=LUMPED_FILES)
     eq = lumped_equilibria(params)
     for r in eq.rotations:
         growth = max(e.real for e in r.eigenvalues)
@@ -612,6 +624,51 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
          f"SSI {m.severity:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.cycle_period:.4g} s, "
          f"bit {m.rpm_min:.4g}..{m.rpm_max:.4g} rpm (mean {m.rpm_mean:.4g}), energy balance "
          f"{res.energy['balance_error']:.2g}")
+    if args.out is not None:
+        import pandas as pd
+
+        from ._output import make_directory, write_text
+        from .drilling.lumped import lumped_figure
+        from .plots import save
+
+        make_directory(args.out)
+        series = pd.DataFrame({"t_s": res.t, "top_speed_rad_s": res.top_speed, "bit_speed_rad_s": res.bit_speed,
+                               "spring_torque_Nm": res.spring_torque, "bit_torque_Nm": res.bit_torque})
+        written = [write_text(os.path.join(args.out, "lumped.csv"), series.to_csv(index=False)),
+                   save(lumped_figure(res), os.path.join(args.out, "lumped.png"))]
+        _say(f"wrote {', '.join(str(w) for w in written)}")
+    return 0
+
+
+#: What ``drillstring lumped --out DIR`` writes (a single run; with --sweep).
+LUMPED_FILES = ("lumped.csv", "lumped.png")
+LUMPED_SWEEP_FILES = ("lumped_sweep.csv", "lumped_sweep.png")
+
+
+def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
+    from .drilling.lumped import lumped_defaults, lumped_sweep, lumped_sweep_figure
+
+    name, values = _map_axis(args.sweep, field="--sweep")
+    if name not in lumped_defaults():
+        raise ValidationError("--sweep", args.sweep, f"NAME=... with NAME one of {', '.join(lumped_defaults())}")
+    if args.out is not None:
+        check_destination(args.out, field="--out", directory=True, files=LUMPED_SWEEP_FILES)
+    frame = lumped_sweep(name, values, params, duration=args.duration, initial=args.initial)
+    rpm = 60.0 / (2.0 * math.pi)
+    for _, row in frame.iterrows():
+        speeds = ", ".join(f"{row[f'rotation_{k}'] * rpm:.4g} rpm {'stable' if row[f'stable_{k}'] else 'unstable'}"
+                           for k in (1, 2) if row[f"stable_{k}"] is not None) or "none"
+        _say(f"{name} = {row[name]:.6g}: steady rotations {speeds}; regime {row['regime']}; run {row['status']}: "
+             f"SSI {row['ssi']:.3g}, stuck fraction {row['stuck_fraction']:.3g}, "
+             f"bit {row['bit_rpm_min']:.4g}..{row['bit_rpm_max']:.4g} rpm")
+    if args.out is not None:
+        from ._output import make_directory, write_text
+        from .plots import save
+
+        make_directory(args.out)
+        written = [write_text(os.path.join(args.out, "lumped_sweep.csv"), frame.to_csv(index=False)),
+                   save(lumped_sweep_figure(frame), os.path.join(args.out, "lumped_sweep.png"))]
+        _say(f"wrote {', '.join(str(w) for w in written)}")
     return 0
 
 
@@ -650,8 +707,8 @@ DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "cont
                    "manifest.json")
 
 
-def _map_axis(text: str) -> tuple[str, list[Any]]:
-    """``KEY=start:stop:count`` or ``KEY=v1,v2,...`` as (key, values)."""
+def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
+    """``KEY=start:stop:count`` or ``KEY=v1,v2,...`` as (key, values); errors name ``field``."""
     import numpy as np
 
     from .drilling.config import _split_assignment
@@ -660,7 +717,7 @@ def _map_axis(text: str) -> tuple[str, list[Any]]:
     key, sep, raw = text.partition("=")
     key, raw = key.strip(), raw.strip()
     if not sep or not key or not raw:
-        raise ValidationError("--axis", text, form)
+        raise ValidationError(field, text, form)
     if ":" in raw:
         parts = raw.split(":")
         try:
@@ -668,14 +725,15 @@ def _map_axis(text: str) -> tuple[str, list[Any]]:
                 raise ValueError
             start, stop, count = float(parts[0]), float(parts[1]), int(parts[2])
         except ValueError:
-            raise ValidationError("--axis", text, form + " with numbers and an integer count") from None
+            raise ValidationError(field, text, form + " with numbers and an integer count") from None
         if count < 1 or not (np.isfinite(start) and np.isfinite(stop)):
-            raise ValidationError("--axis", text, form + " with finite numbers and a count >= 1")
+            raise ValidationError(field, text, form + " with finite numbers and a count >= 1")
+        check_run_count(field, text, count)
         return key, [float(v) for v in np.linspace(start, stop, count)]
     values = []
     for item in raw.split(","):
         if not item.strip():
-            raise ValidationError("--axis", text, form + " (an empty value)")
+            raise ValidationError(field, text, form + " (an empty value)")
         values.append(_split_assignment(f"{key}={item.strip()}")[1])
     return key, values
 

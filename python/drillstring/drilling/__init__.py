@@ -29,7 +29,16 @@ from .config import (
     defaults,
     load_drill_config,
 )
-from .lumped import LumpedEquilibria, LumpedResult, LumpedRotation, lumped, lumped_defaults, lumped_equilibria
+from .lumped import (
+    LumpedEquilibria,
+    LumpedResult,
+    LumpedRotation,
+    lumped,
+    lumped_defaults,
+    lumped_equilibria,
+    lumped_sweep,
+    lumped_sweep_figure,
+)
 from .maps import controller_maps, drill_map, ssi_lines, ssi_map
 from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
@@ -43,6 +52,8 @@ __all__ = [
     "lumped",
     "lumped_defaults",
     "lumped_equilibria",
+    "lumped_sweep",
+    "lumped_sweep_figure",
     "SERIES",
     "UNITS",
     "DrillMetrics",

@@ -17,7 +17,10 @@ bit-torque function as the distributed string's bit (its ``decay`` is ``gamma_b 
   ``"stable_rotation"``, ``"unstable"`` (stick-slip or a growing oscillation) or ``"stuck"``
   (no steady rotation; the bit at rest, ``wr = 0`` and ``kt phi = tm``, is an equilibrium whenever
   ``tm <= wob rb mu_sb``);
-* :func:`lumped_defaults`: the published parameters (``tm = 6000 N m``, ``wob = 50 kN``).
+* :func:`lumped_defaults`: the published parameters (``tm = 6000 N m``, ``wob = 50 kN``);
+* :func:`lumped_sweep` both over the values of one parameter (e.g. the weight on bit): the
+  steady speeds and their stability next to what a run from rest does, one row per value, and
+  :func:`lumped_sweep_figure` draws them (the onset of stick-slip against the equilibria).
 
 >>> from drillstring.drilling import lumped, lumped_equilibria
 >>> lumped_equilibria({"wob": 30e3}).regime
@@ -33,7 +36,7 @@ import json
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Callable, Optional, cast
+from typing import TYPE_CHECKING, Any, Callable, Optional, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -42,7 +45,12 @@ from .. import _core
 from ..analysis import StickSlipMetrics
 from ..errors import SolveError, ValidationError
 
-__all__ = ["LumpedEquilibria", "LumpedResult", "LumpedRotation", "lumped", "lumped_defaults", "lumped_equilibria"]
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+    from matplotlib.figure import Figure
+
+__all__ = ["LumpedEquilibria", "LumpedResult", "LumpedRotation", "lumped", "lumped_defaults", "lumped_equilibria",
+           "lumped_figure", "lumped_sweep", "lumped_sweep_figure"]
 
 
 def lumped_defaults() -> dict[str, float]:
@@ -220,3 +228,135 @@ def lumped(
     if check and result.status != "success":
         raise SolveError(result.status, result.message, result=result)
     return result
+
+
+def lumped_figure(result: LumpedResult, title: Optional[str] = None) -> Figure:
+    """Time histories of a :func:`lumped` run: rotary-table and bit speed above, spring and bit
+    torque below, the metrics window shaded."""
+    from matplotlib.figure import Figure
+
+    rpm = 60.0 / (2.0 * math.pi)
+    fig = Figure(figsize=(7.0, 5.5), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    for ax in (top, bottom):
+        ax.axvspan(*result.window, color="0.92", zorder=0, lw=0)
+    top.plot(result.t, result.top_speed * rpm, color="tab:blue", lw=1.0, label="rotary table")
+    top.plot(result.t, result.bit_speed * rpm, color="tab:orange", lw=1.0, label="bit")
+    top.set_ylabel("speed (rpm)")
+    top.legend(fontsize="small")
+    bottom.plot(result.t, result.spring_torque * 1e-3, color="tab:blue", lw=1.0, label="spring")
+    bottom.plot(result.t, result.bit_torque * 1e-3, color="tab:orange", lw=1.0, label="bit")
+    bottom.set_ylabel("torque (kN m)")
+    bottom.set_xlabel("t (s)")
+    bottom.legend(fontsize="small")
+    m = result.metrics
+    top.set_title(title or f"Lumped two-inertia model, wob = {result.params['wob'] * 1e-3:g} kN, "
+                  f"tm = {result.params['tm']:g} N m: SSI {m.severity:.3g}, stuck {m.stuck_fraction:.2f}")
+    return fig
+
+
+#: The columns of :func:`lumped_sweep` after the parameter's own.
+SWEEP_COLUMNS: tuple[str, ...] = (
+    "regime", "stuck_possible", "static_limit_Nm", "rotation_1", "stable_1", "rotation_2", "stable_2",
+    "status", "ssi", "stuck_fraction", "period_s", "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean",
+    "spring_torque_min_Nm", "spring_torque_max_Nm", "balance_error",
+)
+
+
+def lumped_sweep(
+    name: str,
+    values: Sequence[float],
+    params: Optional[Mapping[str, Any]] = None,
+    *,
+    duration: float = 200.0,
+    dt: float = 1e-3,
+    initial: Sequence[float] = (0.0, 0.0, 0.0),
+    progress: Optional[Callable[[float], object]] = None,
+) -> pd.DataFrame:
+    """The lumped model at each of ``values`` of the parameter ``name`` (over ``params`` and
+    :func:`lumped_defaults`): its equilibria (:func:`lumped_equilibria`) and a run from ``initial``
+    (:func:`lumped`, metrics over the last half), one row per value.
+
+    Columns: ``name``; ``regime``, ``stuck_possible``, ``static_limit_Nm``; ``rotation_1``,
+    ``rotation_2`` (the steady speeds by increasing value, rad/s, NaN where there are fewer) and
+    ``stable_1``, ``stable_2`` (None where absent); the run's ``status``, ``ssi``,
+    ``stuck_fraction``, ``period_s``, ``bit_rpm_min/max/mean``, ``spring_torque_min/max_Nm`` and
+    ``balance_error`` (NaN where the run has no metrics). Every number comes from the core.
+
+    Raises
+    ------
+    ValidationError
+        ``name`` is not a parameter, a value is not a finite number or makes the parameters
+        invalid (naming the field), or ``values`` is empty.
+
+    Examples
+    --------
+    >>> frame = lumped_sweep("wob", [30e3, 55e3], duration=100.0)
+    >>> list(frame["regime"]), [bool(f > 0) for f in frame["stuck_fraction"]]
+    (['stable_rotation', 'stable_rotation'], [False, True])
+    """
+    import pandas as pd
+
+    if name not in lumped_defaults():
+        raise ValidationError("name", name, f"a parameter name, one of {', '.join(lumped_defaults())}")
+    values = list(values)
+    if not values:
+        raise ValidationError("values", values, "at least one value")
+    rows: list[dict[str, Any]] = []
+    for k, value in enumerate(values):
+        p = {**(params or {}), name: value}
+        eq = lumped_equilibria(p)
+        res = lumped(p, duration=duration, dt=dt, initial=initial, check=False)
+        speeds = [r.speed for r in eq.rotations] + [math.nan] * (2 - len(eq.rotations))
+        stable: list[Optional[bool]] = [r.stable for r in eq.rotations] + [None] * (2 - len(eq.rotations))
+        m = res.metrics
+        rows.append({
+            name: float(value), "regime": eq.regime, "stuck_possible": eq.stuck_possible,
+            "static_limit_Nm": eq.static_limit, "rotation_1": speeds[0], "stable_1": stable[0],
+            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status, "ssi": m.severity,
+            "stuck_fraction": m.stuck_fraction, "period_s": m.cycle_period, "bit_rpm_min": m.rpm_min,
+            "bit_rpm_max": m.rpm_max, "bit_rpm_mean": m.rpm_mean, "spring_torque_min_Nm": m.torque_min,
+            "spring_torque_max_Nm": m.torque_max, "balance_error": res.energy.get("balance_error", math.nan),
+        })
+        if progress is not None:
+            progress((k + 1) / len(values))
+    frame = pd.DataFrame(rows, columns=[name, *SWEEP_COLUMNS])
+    frame.attrs.update(parameter=name, duration=float(duration), initial=[float(x) for x in initial])
+    return frame
+
+
+def lumped_sweep_figure(frame: pd.DataFrame, title: Optional[str] = None) -> Figure:
+    """Two panels over the swept parameter of a :func:`lumped_sweep` frame: the steady speeds
+    (filled: stable, open: unstable) with the band of bit speeds of the runs (min to max over
+    the metrics window) and their mean; below, the stick-slip severity and the stuck fraction,
+    with SSI = 1 marked."""
+    from matplotlib.figure import Figure
+
+    name = str(frame.attrs.get("parameter", frame.columns[0]))
+    scale, unit = (1e-3, "kN") if name == "wob" else (1.0, "")
+    x = frame[name].to_numpy(dtype=float) * scale
+    rpm = 60.0 / (2.0 * math.pi)
+    fig = Figure(figsize=(7.0, 6.0), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True)
+    top.fill_between(x, frame["bit_rpm_min"], frame["bit_rpm_max"], color="tab:orange", alpha=0.25, lw=0,
+                     label="bit speed of the run, min to max")
+    top.plot(x, frame["bit_rpm_mean"], color="tab:orange", lw=1.2, label="bit speed of the run, mean")
+    for k in (1, 2):
+        speed = frame[f"rotation_{k}"].to_numpy(dtype=float) * rpm
+        stable = frame[f"stable_{k}"].to_numpy(dtype=object)
+        is_stable = np.array([s is True for s in stable])
+        is_unstable = np.array([s is False for s in stable])
+        top.plot(x[is_stable], speed[is_stable], "o", color="tab:blue", ms=4,
+                 label="steady rotation, stable" if k == 1 else None)
+        top.plot(x[is_unstable], speed[is_unstable], "o", mfc="none", color="tab:blue", ms=4,
+                 label="steady rotation, unstable" if k == 1 else None)
+    top.set_ylabel("speed (rpm)")
+    top.legend(fontsize="small")
+    bottom.plot(x, frame["ssi"], color="tab:red", label="SSI")
+    bottom.plot(x, frame["stuck_fraction"], color="tab:gray", label="stuck fraction")
+    bottom.axhline(1.0, color="tab:red", lw=0.8, ls="--")
+    bottom.set_ylabel("severity")
+    bottom.set_xlabel(f"{name} ({unit})" if unit else name)
+    bottom.legend(fontsize="small")
+    top.set_title(title or f"Lumped two-inertia model against {name}: equilibria and runs from rest")
+    return fig
