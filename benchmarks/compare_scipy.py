@@ -36,6 +36,11 @@ import platform
 import time
 from typing import Any, Callable
 
+# One BLAS thread: after numpy's first linear-algebra call its idle BLAS threads spin and compete
+# with the timed solves for the two cores (the times then swing by up to 2x). Set before numpy
+# loads; an explicit OPENBLAS_NUM_THREADS wins.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import numpy as np
 from _evalcost import evaluation_cost, per_call_time
 from scipy.integrate import solve_ivp
