@@ -304,7 +304,7 @@ def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
     """Each row of ``lumped_sweep`` is what ``lumped`` and ``lumped_equilibria`` give for its
     value (exactly); across the onset the rows show it: steady below, stick-slip coexisting with
     the stable rotation above ~51.4 kN, no rotation past the fold."""
-    from drillstring.drilling import lumped_sweep, lumped_sweep_figure
+    from drillstring.drilling import lumped_figure, lumped_sweep, lumped_sweep_figure
 
     values = [48e3, 55e3, 60e3]
     frame = lumped_sweep("wob", values, {"tm": 6000.0}, duration=150.0)
@@ -324,6 +324,7 @@ def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
     assert frame["stuck_fraction"][0] == 0.0 and 0.1 < frame["stuck_fraction"][1] < 1.0
     assert frame["stuck_fraction"][2] == 1.0 and np.isnan(frame["rotation_1"][2])
     assert len(lumped_sweep_figure(frame).axes) == 2
+    assert len(lumped_figure(lumped({"wob": 55e3}, duration=20.0)).axes) == 2
 
 
 @pytest.mark.parametrize(("name", "values", "field"), [

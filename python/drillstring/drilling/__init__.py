@@ -36,6 +36,7 @@ from .lumped import (
     lumped,
     lumped_defaults,
     lumped_equilibria,
+    lumped_figure,
     lumped_sweep,
     lumped_sweep_figure,
 )
@@ -52,6 +53,7 @@ __all__ = [
     "lumped",
     "lumped_defaults",
     "lumped_equilibria",
+    "lumped_figure",
     "lumped_sweep",
     "lumped_sweep_figure",
     "SERIES",

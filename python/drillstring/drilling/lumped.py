@@ -18,6 +18,7 @@ bit-torque function as the distributed string's bit (its ``decay`` is ``gamma_b 
   (no steady rotation; the bit at rest, ``wr = 0`` and ``kt phi = tm``, is an equilibrium whenever
   ``tm <= wob rb mu_sb``);
 * :func:`lumped_defaults`: the published parameters (``tm = 6000 N m``, ``wob = 50 kN``);
+* :func:`lumped_figure` the time histories of a run;
 * :func:`lumped_sweep` both over the values of one parameter (e.g. the weight on bit): the
   steady speeds and their stability next to what a run from rest does, one row per value, and
   :func:`lumped_sweep_figure` draws them (the onset of stick-slip against the equilibria).
