@@ -328,9 +328,10 @@ def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
 
 
 @pytest.mark.parametrize(("name", "values", "field"), [
-    ("weight", [1.0], "name"), ("wob", [], "values"), ("wob", [float("nan")], "wob"), ("wob", [-1.0], "wob"),
+    ("weight", [1.0], "name"), ("wob", [], "values"), ("wob", 5e4, "values"),
+    ("wob", [float("nan")], "wob"), ("wob", [-1.0], "wob"),
 ])
-def test_sweep_bad_input_names_the_field(name: str, values: list[float], field: str) -> None:
+def test_sweep_bad_input_names_the_field(name: str, values: object, field: str) -> None:
     from drillstring.drilling import lumped_sweep
 
     with pytest.raises(ValidationError) as info:

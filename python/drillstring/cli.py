@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import argparse
 import errno
-import math
 import os
 import sys
 import warnings
@@ -646,7 +645,7 @@ LUMPED_SWEEP_FILES = ("lumped_sweep.csv", "lumped_sweep.png")
 
 
 def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
-    from .drilling.lumped import lumped_defaults, lumped_sweep, lumped_sweep_figure
+    from .drilling.lumped import RPM_PER_RAD_S, lumped_defaults, lumped_sweep, lumped_sweep_figure
 
     name, values = _map_axis(args.sweep, field="--sweep")
     if name not in lumped_defaults():
@@ -654,7 +653,7 @@ def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
     if args.out is not None:
         check_destination(args.out, field="--out", directory=True, files=LUMPED_SWEEP_FILES)
     frame = lumped_sweep(name, values, params, duration=args.duration, initial=args.initial)
-    rpm = 60.0 / (2.0 * math.pi)
+    rpm = RPM_PER_RAD_S
     for _, row in frame.iterrows():
         speeds = ", ".join(f"{row[f'rotation_{k}'] * rpm:.4g} rpm {'stable' if row[f'stable_{k}'] else 'unstable'}"
                            for k in (1, 2) if row[f"stable_{k}"] is not None) or "none"

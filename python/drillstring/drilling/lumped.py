@@ -231,12 +231,16 @@ def lumped(
     return result
 
 
+#: rpm per rad/s, for display (the core's speeds are rad/s; its metrics give rpm).
+RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+
+
 def lumped_figure(result: LumpedResult, title: Optional[str] = None) -> Figure:
     """Time histories of a :func:`lumped` run: rotary-table and bit speed above, spring and bit
     torque below, the metrics window shaded."""
     from matplotlib.figure import Figure
 
-    rpm = 60.0 / (2.0 * math.pi)
+    rpm = RPM_PER_RAD_S
     fig = Figure(figsize=(7.0, 5.5), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
     for ax in (top, bottom):
@@ -300,7 +304,10 @@ def lumped_sweep(
 
     if name not in lumped_defaults():
         raise ValidationError("name", name, f"a parameter name, one of {', '.join(lumped_defaults())}")
-    values = list(values)
+    try:
+        values = [value for value in values]
+    except TypeError:
+        raise ValidationError("values", values, "a sequence of numbers") from None
     if not values:
         raise ValidationError("values", values, "at least one value")
     rows: list[dict[str, Any]] = []
@@ -336,7 +343,7 @@ def lumped_sweep_figure(frame: pd.DataFrame, title: Optional[str] = None) -> Fig
     name = str(frame.attrs.get("parameter", frame.columns[0]))
     scale, unit = (1e-3, "kN") if name == "wob" else (1.0, "")
     x = frame[name].to_numpy(dtype=float) * scale
-    rpm = 60.0 / (2.0 * math.pi)
+    rpm = RPM_PER_RAD_S
     fig = Figure(figsize=(7.0, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
     top.fill_between(x, frame["bit_rpm_min"], frame["bit_rpm_max"], color="tab:orange", alpha=0.25, lw=0,
