@@ -7,17 +7,17 @@ their J (extra pi), A, contact radius, G = 67 GPa and density rho*Gc/Gp; damping
 2*kt*dt_sub). Times are the best of ``--repeat`` runs; the ratio is numpy / drillstring. The
 metrics over 30..60 s of both are printed next to the Octave reference.
 
-``--published DIR`` also times the published Python port of the same scheme (the repository's
-pull request 1, commit b73329e: ``python/torsionalWaveStep.py`` and ``python/parameters_WellB.py``,
-vectorised numpy; not shipped with drillstring), driven by the loop of that pull request's
-``main.ipynb`` without its plotting (same case: 40 rpm, 1 s setpoint ramp, PI 38e3/100e3, 10 ms
-control interval, 1000 cells; its CFL factor 0.99 gives 1 % more steps). Get it with::
+It also times the published Python port of the same scheme (the repository's pull request 1,
+commit b73329e: ``python/torsionalWaveStep.py`` and ``python/parameters_WellB.py``, vectorised
+numpy, copied unchanged into ``benchmarks/aarsnes_shor_published/`` under its MIT licence; not part
+of the package), driven by the loop of that pull request's ``main.ipynb`` without its plotting
+(same case: 40 rpm, 1 s setpoint ramp, PI 38e3/100e3, 10 ms control interval, 1000 cells; its CFL
+factor 0.99, as in the MATLAB code and the numpy port, gives 1 % more steps than drillstring's
+Courant number 1; ``tests/test_benchmark_baselines.py`` checks that both ports reproduce the
+Octave run of the MATLAB code). It takes about 10 s per simulated minute: ``--published DIR``
+times another copy, ``--no-published`` leaves it out.
 
-    git clone https://github.com/Open-Source-Drilling-Community/Aarsnes-and-Shor-Torsional-Model as
-    git -C as fetch origin pull/1/head && git -C as checkout FETCH_HEAD
-    python benchmarks/drill_vs_numpy.py --published as/python
-
-    python benchmarks/drill_vs_numpy.py [--repeat 3] [--duration 60] [--published DIR]
+    python benchmarks/drill_vs_numpy.py [--repeat 3] [--duration 60] [--published DIR | --no-published]
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ import aarsnes_shor_numpy as asn
 from drillstring import _core
 
 REFERENCE = Path(__file__).resolve().parents[1] / "tests" / "data" / "aarsnes_shor" / "reference.json"
+PUBLISHED = Path(__file__).resolve().parent / "aarsnes_shor_published"
 
 
 def drill_config(duration: float, cells: int) -> dict:
@@ -107,7 +108,9 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--duration", type=float, default=60.0)
     ap.add_argument("--cells", type=int, default=1000)
-    ap.add_argument("--published", metavar="DIR", help="directory of the published Python port (see above)")
+    ap.add_argument("--published", metavar="DIR", default=str(PUBLISHED),
+                    help="directory of the published Python port (default: the copy beside this script)")
+    ap.add_argument("--no-published", action="store_true", help="do not time the published port")
     args = ap.parse_args()
 
     cfg = json.dumps(drill_config(args.duration, args.cells))
@@ -125,9 +128,10 @@ def main() -> None:
     print(f"numpy port:              {t_np:8.3f} s  ({t_np / args.duration * 60:.3f} s per simulated minute)")
     print(f"ratio numpy / drillstring: {t_np / t_ds:.1f}")
     published = None
-    if args.published:
+    if not args.no_published:
         if args.cells != 1000:
-            raise SystemExit("--published runs the published port's own 1000 cells: leave --cells at 1000")
+            raise SystemExit("--published runs the published port's own 1000 cells: leave --cells at 1000 "
+                             "(or --no-published)")
         t_pub, published = best_of(lambda: published_port(args.published, args.duration), 1)
         print(f"published port (1 run):  {t_pub:8.3f} s  ({t_pub / args.duration * 60:.3f} s per simulated minute)")
         print(f"ratio published port / drillstring: {t_pub / t_ds:.1f}; published port / numpy port: "

@@ -1015,7 +1015,7 @@ impl Godunov<'_> {
         let (w0, s0, lim) = (&omega[r.clone()], &strain[r.clone()], &stop[r.clone()]);
         let (wn, sn) = (&mut omega_next[r.clone()], &mut strain_next[r]);
         // Blocks of BLOCK cells whose per-cell terms stay on the stack, each then summed in
-        // lanes (as in `Transport::cells`), so that the update loop vectorises.
+        // lanes, so that the update loop vectorises.
         let (mut jump, mut fric, mut damp, mut peak) = ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
         let mut start = 0;
         while start < sp.cells {
@@ -1081,6 +1081,9 @@ struct Transport<'a> {
     src: &'a Sources,
 }
 
+/// Cells per block of [`godunov`].
+const BLOCK: usize = 128;
+
 /// Lanes of the summation (independent accumulators, vectorisable).
 const LANES: usize = 4;
 
@@ -1118,8 +1121,9 @@ impl crate::simd::Kernel for Transport<'_> {
 }
 
 impl Transport<'_> {
-    /// The update loop (no reductions: it vectorises) over blocks of [`BLOCK`] cells whose
-    /// energy terms stay in L1 on the stack, each block then summed.
+    /// The update loop over chunks of [`WIDTH`] cells, the energy terms added lane by lane
+    /// into [`WIDTH`] accumulators (a fixed order, so every instruction set gives the same
+    /// bits; the chunk's cells side by side in vector registers), the lanes summed at the end.
     #[inline(always)]
     fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(self) -> Sums {
         let Transport { a_prev, a, b, b_next, stop, an, bn, c, src } = self;
@@ -1131,45 +1135,51 @@ impl Transport<'_> {
             kr: src.kinetic_ratio,
             inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
         };
-        let mut sums = Sums::default();
-        let mut jump = [0.0; BLOCK];
-        let mut fric = [0.0; BLOCK];
-        let mut damp = [0.0; BLOCK];
-        let mut start = 0;
-        while start < n {
-            let m = BLOCK.min(n - start);
-            let r = start..start + m;
-            let (ap, aa, bb, bx, st) =
-                (&a_prev[r.clone()], &a[r.clone()], &b[r.clone()], &b_next[r.clone()], &stop[r.clone()]);
-            let (an, bn) = (&mut an[r.clone()], &mut bn[r]);
-            let (jump, fric, damp) = (&mut jump[..m], &mut fric[..m], &mut damp[..m]);
-            for j in 0..m {
-                let cell = update::<REGULARISED>(ap[j], aa[j], bb[j], bx[j], st[j], &k);
-                an[j] = cell.an;
-                bn[j] = cell.bn;
+        let mut jump = [0.0; WIDTH];
+        let mut fric = [0.0; WIDTH];
+        let mut damp = [0.0; WIDTH];
+        let whole = n - n % WIDTH;
+        for start in (0..whole).step_by(WIDTH) {
+            let r = start..start + WIDTH;
+            let chunk = |x: &[f64]| -> [f64; WIDTH] { x[r.clone()].try_into().expect("a whole chunk") };
+            let (ap, aa, bb, bx, st) = (chunk(a_prev), chunk(a), chunk(b), chunk(b_next), chunk(stop));
+            let mut new_a = [0.0; WIDTH];
+            let mut new_b = [0.0; WIDTH];
+            for l in 0..WIDTH {
+                let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], &k);
+                new_a[l] = cell.an;
+                new_b[l] = cell.bn;
                 if UPWIND {
-                    jump[j] = cell.jump;
+                    jump[l] += cell.jump;
                 }
-                fric[j] = cell.friction;
+                fric[l] += cell.friction;
                 if DAMPED {
-                    damp[j] = cell.damping;
+                    damp[l] += cell.damping;
                 }
             }
-            if UPWIND {
-                sums.jumps += lane_sum(jump);
-            }
-            sums.friction += lane_sum(fric);
-            if DAMPED {
-                sums.damping += lane_sum(damp);
-            }
-            start += m;
+            an[r.clone()].copy_from_slice(&new_a);
+            bn[r].copy_from_slice(&new_b);
         }
-        sums
+        for i in whole..n {
+            let l = i - whole;
+            let cell = update::<REGULARISED, UPWIND>(a_prev[i], a[i], b[i], b_next[i], stop[i], &k);
+            an[i] = cell.an;
+            bn[i] = cell.bn;
+            if UPWIND {
+                jump[l] += cell.jump;
+            }
+            fric[l] += cell.friction;
+            if DAMPED {
+                damp[l] += cell.damping;
+            }
+        }
+        let total = |x: &[f64; WIDTH]| x.iter().sum::<f64>();
+        Sums { jumps: total(&jump), friction: total(&fric), damping: total(&damp), peak: 0.0 }
     }
 }
 
-/// Cells per block of [`Transport::cells`].
-const BLOCK: usize = 128;
+/// Cells side by side in [`Transport::cells`] (and accumulators of its energy terms).
+const WIDTH: usize = 16;
 
 /// What one cell's update adds and writes.
 struct Cell {
@@ -1189,15 +1199,20 @@ struct Consts {
     inv_vr: f64,
 }
 
-/// One cell: upwind transport of the invariants from `(a_prev, a)` and `(b, b_next)`, then
-/// the damping and friction sources (see the module); branch-free (selects) so that blocks
-/// vectorise.
+/// One cell: upwind transport of the invariants from `(a_prev, a)` and `(b, b_next)` (at
+/// Courant number 1, `!UPWIND`, the exact shift `a_prev`, `b_next`), then the damping and
+/// friction sources (see the module); branch-free (selects) so that blocks vectorise.
 #[inline(always)]
-fn update<const REGULARISED: bool>(a_prev: f64, a: f64, b: f64, b_next: f64, lim: f64, k: &Consts) -> Cell {
-    let da = a - a_prev;
-    let db = b - b_next;
-    let a1 = a - k.c * da;
-    let b1 = b - k.c * db;
+fn update<const REGULARISED: bool, const UPWIND: bool>(
+    a_prev: f64,
+    a: f64,
+    b: f64,
+    b_next: f64,
+    lim: f64,
+    k: &Consts,
+) -> Cell {
+    let (da, db) = (a - a_prev, b - b_next);
+    let (a1, b1) = if UPWIND { (a - k.c * da, b - k.c * db) } else { (a_prev, b_next) };
     let w1 = 0.5 * (a1 + b1);
     let (dd, df, stuck) = source::<REGULARISED>(w1, lim, k);
     let d = dd + df;
