@@ -286,6 +286,8 @@ pub struct Simulation<'c> {
     beta_next: Vec<f64>,
     /// `dt limit / (rho J)` per padded index (0 at the ghosts).
     stop: Vec<f64>,
+    /// `-kinetic_ratio stop`: the kinetic friction change of a cell turning forwards.
+    slip: Vec<f64>,
     omega_top: f64,
     omega_bit: f64,
     setpoint: f64,
@@ -343,6 +345,7 @@ impl<'c> Simulation<'c> {
             offset += n + 2;
         }
         let len = offset;
+        let slip = stop.iter().map(|&lim| -(cfg.friction.kinetic_ratio * lim)).collect();
         let td = &cfg.top_drive;
         let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
         let c = &td.controller;
@@ -387,6 +390,7 @@ impl<'c> Simulation<'c> {
             alpha_next: vec![0.0; len],
             beta_next: vec![0.0; len],
             stop,
+            slip,
             omega_top: 0.0,
             omega_bit: 0.0,
             setpoint: 0.0,
@@ -696,6 +700,7 @@ impl<'c> Simulation<'c> {
                 &self.alpha[r.clone()],
                 &self.beta[r.clone()],
                 &self.stop[r.clone()],
+                &self.slip[r.clone()],
                 &mut self.alpha_next[r.clone()],
                 &mut self.beta_next[r],
                 sp.courant,
@@ -1000,13 +1005,7 @@ impl Godunov<'_> {
             *fw = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
             *ft = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
         }
-        let k = Consts {
-            c: 0.0,
-            damping: src.damping,
-            vs: src.stick_speed,
-            kr: src.kinetic_ratio,
-            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
-        };
+        let k = Consts::new(0.0, src);
         let (k1, k2, k5, h) = (p.inertia_per_length, p.stiffness, p.quartic, sp.h);
         let (rw, rs) = (dt / (k1 * h), dt / h);
         let mut sums = Sums::default();
@@ -1030,7 +1029,7 @@ impl Godunov<'_> {
                     * (0.5 * k1 * (w1 - w) * (w1 + w)
                         + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
                 jump[j] = dt * (tt * wt - tb * wb) - de;
-                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], &k);
+                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], -(k.kr * lim[c]), &k);
                 let d = dd + df;
                 let wbar = w1 + 0.5 * d;
                 wn[c] = if stuck { 0.0 } else { w1 + d };
@@ -1049,11 +1048,21 @@ impl Godunov<'_> {
     }
 }
 
-/// Upwind transport and sources of one section: `a`, `b`, `stop` padded (`[ghost, cells, ghost]`),
+/// Upwind transport and sources of one section: `a`, `b`, `stop`, `slip` padded (`[ghost, cells, ghost]`),
 /// the new invariants written to the cells of `an`, `bn`. Runs through
 /// [`crate::simd::dispatch`] (AVX2 when available; no fused multiply-adds, so both paths give
 /// the same bits).
-fn transport(a: &[f64], b: &[f64], stop: &[f64], an: &mut [f64], bn: &mut [f64], c: f64, src: &Sources) -> Sums {
+#[allow(clippy::too_many_arguments)]
+fn transport(
+    a: &[f64],
+    b: &[f64],
+    stop: &[f64],
+    slip: &[f64],
+    an: &mut [f64],
+    bn: &mut [f64],
+    c: f64,
+    src: &Sources,
+) -> Sums {
     let n = a.len() - 2;
     let kernel = Transport {
         a_prev: &a[..n],
@@ -1061,6 +1070,7 @@ fn transport(a: &[f64], b: &[f64], stop: &[f64], an: &mut [f64], bn: &mut [f64],
         b: &b[1..=n],
         b_next: &b[2..],
         stop: &stop[1..=n],
+        slip: &slip[1..=n],
         an: &mut an[1..=n],
         bn: &mut bn[1..=n],
         c,
@@ -1075,6 +1085,7 @@ struct Transport<'a> {
     b: &'a [f64],
     b_next: &'a [f64],
     stop: &'a [f64],
+    slip: &'a [f64],
     an: &'a mut [f64],
     bn: &'a mut [f64],
     c: f64,
@@ -1126,15 +1137,9 @@ impl Transport<'_> {
     /// bits; the chunk's cells side by side in vector registers), the lanes summed at the end.
     #[inline(always)]
     fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(self) -> Sums {
-        let Transport { a_prev, a, b, b_next, stop, an, bn, c, src } = self;
+        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src } = self;
         let n = a.len();
-        let k = Consts {
-            c,
-            damping: src.damping,
-            vs: src.stick_speed,
-            kr: src.kinetic_ratio,
-            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
-        };
+        let k = Consts::new(c, src);
         let mut jump = [0.0; WIDTH];
         let mut fric = [0.0; WIDTH];
         let mut damp = [0.0; WIDTH];
@@ -1142,11 +1147,11 @@ impl Transport<'_> {
         for start in (0..whole).step_by(WIDTH) {
             let r = start..start + WIDTH;
             let chunk = |x: &[f64]| -> [f64; WIDTH] { x[r.clone()].try_into().expect("a whole chunk") };
-            let (ap, aa, bb, bx, st) = (chunk(a_prev), chunk(a), chunk(b), chunk(b_next), chunk(stop));
+            let (ap, aa, bb, bx, st, sl) = (chunk(a_prev), chunk(a), chunk(b), chunk(b_next), chunk(stop), chunk(slip));
             let mut new_a = [0.0; WIDTH];
             let mut new_b = [0.0; WIDTH];
             for l in 0..WIDTH {
-                let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], &k);
+                let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], &k);
                 new_a[l] = cell.an;
                 new_b[l] = cell.bn;
                 if UPWIND {
@@ -1162,7 +1167,7 @@ impl Transport<'_> {
         }
         for i in whole..n {
             let l = i - whole;
-            let cell = update::<REGULARISED, UPWIND>(a_prev[i], a[i], b[i], b_next[i], stop[i], &k);
+            let cell = update::<REGULARISED, UPWIND>(a_prev[i], a[i], b[i], b_next[i], stop[i], slip[i], &k);
             an[i] = cell.an;
             bn[i] = cell.bn;
             if UPWIND {
@@ -1190,13 +1195,28 @@ struct Cell {
     damping: f64,
 }
 
-/// The constants of [`update`].
+/// The constants of [`update`] and [`source`].
 struct Consts {
     c: f64,
     damping: f64,
-    vs: f64,
+    /// A cell is slow below this speed: the stick speed, or with stick speed 0 the least
+    /// positive double (then only a cell exactly at rest is slow, and the sign taken in
+    /// [`source`] is never that of a zero).
+    slow_below: f64,
     kr: f64,
     inv_vr: f64,
+}
+
+impl Consts {
+    fn new(c: f64, src: &Sources) -> Self {
+        Consts {
+            c,
+            damping: src.damping,
+            slow_below: if src.stick_speed > 0.0 { src.stick_speed } else { f64::from_bits(1) },
+            kr: src.kinetic_ratio,
+            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
+        }
+    }
 }
 
 /// One cell: upwind transport of the invariants from `(a_prev, a)` and `(b, b_next)` (at
@@ -1209,12 +1229,13 @@ fn update<const REGULARISED: bool, const UPWIND: bool>(
     b: f64,
     b_next: f64,
     lim: f64,
+    slip: f64,
     k: &Consts,
 ) -> Cell {
     let (da, db) = (a - a_prev, b - b_next);
     let (a1, b1) = if UPWIND { (a - k.c * da, b - k.c * db) } else { (a_prev, b_next) };
     let w1 = 0.5 * (a1 + b1);
-    let (dd, df, stuck) = source::<REGULARISED>(w1, lim, k);
+    let (dd, df, stuck) = source::<REGULARISED>(w1, lim, slip, k);
     let d = dd + df;
     let wbar = w1 + 0.5 * d;
     // Stuck: stopped exactly (omega = 0), the torque kept.
@@ -1229,22 +1250,28 @@ fn update<const REGULARISED: bool, const UPWIND: bool>(
 }
 
 /// The sources of a cell whose transported speed is `w1`, with the stop limit `lim`
-/// (`dt limit / (rho J)`): the damping change `dd = -dt d w1`, the friction change `df` and
-/// whether the cell sticks (see the module).
+/// (`dt limit / (rho J)`) and `slip = -kinetic_ratio lim`: the damping change `dd = -dt d w1`,
+/// the friction change `df` and whether the cell sticks (see the module).
 #[inline(always)]
-fn source<const REGULARISED: bool>(w1: f64, lim: f64, k: &Consts) -> (f64, f64, bool) {
+fn source<const REGULARISED: bool>(w1: f64, lim: f64, slip: f64, k: &Consts) -> (f64, f64, bool) {
     let dd = -k.damping * w1;
     let wd = w1 + dd;
     let (df, stuck) = if REGULARISED {
         (-k.kr * lim * (w1 * k.inv_vr).tanh(), false)
     } else {
-        // A cell at rest counts as slow even with stick_speed 0 (then the sign below is never
-        // that of a zero). Selects only, so that the loop vectorises.
-        let slow = (w1.abs() < k.vs) | (w1 == 0.0);
+        // Slow: |w1| < stick speed, or w1 = 0 (`slow_below`). Selects and bit operations
+        // only, so that the loop vectorises.
+        let slow = w1.abs() < k.slow_below;
         let clipped = if wd > lim { lim } else { wd };
         let clipped = if clipped < -lim { -lim } else { clipped };
-        let df = if slow { -clipped } else { -(k.kr * lim).copysign(w1) };
+        // Kinetic: -(kinetic_ratio lim) copysign w1, i.e. `slip` (<= -0) with its sign
+        // flipped when w1 is negative.
+        let kinetic = f64::from_bits(slip.to_bits() ^ (w1.to_bits() & SIGN_BIT));
+        let df = if slow { -clipped } else { kinetic };
         (df, slow & (wd.abs() <= lim))
     };
     (dd, df, stuck)
 }
+
+/// The sign bit of an `f64`.
+const SIGN_BIT: u64 = 1 << 63;

@@ -971,3 +971,25 @@ fn quartic_moment_sets_k5() {
     assert!((props.quartic - 3.0 * k5).abs() < 1e-12 * k5, "{}", props.quartic);
     assert_eq!(props.stiffness, G * 2.0 * polar(od, id));
 }
+
+#[test]
+fn with_stick_speed_zero_a_string_at_rest_stays_at_rest() {
+    // Set-valued friction with stick_speed 0: a cell exactly at rest still counts as slow
+    // (held by the static limit). Were it treated as sliding, the kinetic torque with the sign
+    // of +0 would start it turning backwards.
+    let mut cfg = loaded(FrictionModel::SetValued);
+    cfg.friction.stick_speed = 0.0;
+    cfg.top_drive.rpm = 0.0;
+    cfg.numerics.duration = 2.0;
+    cfg.numerics.field_interval = 0.5;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, Status::Success);
+    assert!(run.omega_field.iter().chain(&run.bit_rpm).chain(&run.surface_rpm).all(|&w| w == 0.0));
+    assert_eq!(run.energy.friction_loss, 0.0);
+    // Turning, the same setting sticks and slips with its energy balance closed.
+    cfg.top_drive.rpm = 60.0;
+    cfg.numerics.duration = 20.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert!(run.bit_rpm.iter().any(|&w| w > 30.0));
+    assert!(run.energy.friction_loss > 0.0 && run.energy.balance_error.abs() < 1e-11, "{:?}", run.energy);
+}
