@@ -684,7 +684,7 @@ impl<'c> Simulation<'c> {
         };
         if let Some(nl) = &mut self.nl {
             for (s, sp) in self.spans.iter().enumerate() {
-                let sums = godunov(nl, sp, &self.stop, dt, &sources);
+                let sums = godunov(nl, sp, (&self.stop, &self.slip), dt, &sources);
                 self.losses.upwind += sums.jumps;
                 self.losses.friction -= sums.friction;
                 self.losses.damping -= sums.damping;
@@ -946,8 +946,8 @@ struct Sums {
 /// and the sources as in [`update`]. Returns the sums, with `jumps` the transport's
 /// dissipation `dt (tau*_top omega*_top - tau*_bottom omega*_bottom) - dE` (J) and
 /// `friction`, `damping` the work of the sources (J, negative).
-fn godunov(nl: &mut Nonlinear, sp: &Span, stop: &[f64], dt: f64, src: &Sources) -> Sums {
-    crate::simd::dispatch(Godunov { nl, sp, stop, dt, src })
+fn godunov(nl: &mut Nonlinear, sp: &Span, (stop, slip): (&[f64], &[f64]), dt: f64, src: &Sources) -> Sums {
+    crate::simd::dispatch(Godunov { nl, sp, stop, slip, dt, src })
 }
 
 /// [`godunov`] as a [`crate::simd::Kernel`] (AVX2 code when available; no fused multiply-adds).
@@ -955,6 +955,7 @@ struct Godunov<'a> {
     nl: &'a mut Nonlinear,
     sp: &'a Span,
     stop: &'a [f64],
+    slip: &'a [f64],
     dt: f64,
     src: &'a Sources,
 }
@@ -975,7 +976,7 @@ impl crate::simd::Kernel for Godunov<'_> {
 impl Godunov<'_> {
     #[inline(always)]
     fn cells<const REGULARISED: bool>(self) -> Sums {
-        let Godunov { nl, sp, stop, dt, src } = self;
+        let Godunov { nl, sp, stop, slip, dt, src } = self;
         let p = &sp.props;
         let r = sp.offset + 1..=sp.offset + sp.cells;
         let Nonlinear {
@@ -1011,7 +1012,7 @@ impl Godunov<'_> {
         let mut sums = Sums::default();
         let faces = sp.offset..=sp.offset + sp.cells;
         let (fw, ft) = (&face_omega[faces.clone()], &face_torque[faces]);
-        let (w0, s0, lim) = (&omega[r.clone()], &strain[r.clone()], &stop[r.clone()]);
+        let (w0, s0, lim, slip) = (&omega[r.clone()], &strain[r.clone()], &stop[r.clone()], &slip[r.clone()]);
         let (wn, sn) = (&mut omega_next[r.clone()], &mut strain_next[r]);
         // Blocks of BLOCK cells whose per-cell terms stay on the stack, each then summed in
         // lanes, so that the update loop vectorises.
@@ -1029,7 +1030,7 @@ impl Godunov<'_> {
                     * (0.5 * k1 * (w1 - w) * (w1 + w)
                         + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
                 jump[j] = dt * (tt * wt - tb * wb) - de;
-                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], -(k.kr * lim[c]), &k);
+                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], slip[c], &k);
                 let d = dd + df;
                 let wbar = w1 + 0.5 * d;
                 wn[c] = if stuck { 0.0 } else { w1 + d };
