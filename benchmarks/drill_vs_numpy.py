@@ -132,6 +132,11 @@ def main() -> None:
         if args.cells != 1000:
             raise SystemExit("--published runs the published port's own 1000 cells: leave --cells at 1000 "
                              "(or --no-published)")
+        files = ("torsionalWaveStep.py", "parameters_WellB.py")
+        missing = [f for f in files if not (Path(args.published) / f).is_file()]
+        if missing:
+            raise SystemExit(f"--published {args.published}: not a directory with the published port "
+                             f"(missing {', '.join(missing)}); see the script's docstring, or --no-published")
         t_pub, published = best_of(lambda: published_port(args.published, args.duration), 1)
         print(f"published port (1 run):  {t_pub:8.3f} s  ({t_pub / args.duration * 60:.3f} s per simulated minute)")
         print(f"ratio published port / drillstring: {t_pub / t_ds:.1f}; published port / numpy port: "
