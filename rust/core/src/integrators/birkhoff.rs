@@ -4,17 +4,22 @@
 //! At every step end `t_k` the solve knows `q_k`, `v_k` and `a_k = a(q_k)` (the next step's
 //! first stage, no extra evaluation). On the output interval `[t_j, t_j+1]` the positions are
 //! the polynomial `p` of degree `3m - 1 = 17` matching `q`, `q'` and `q''` at the `m = 6`
-//! ends `t_j-2 .. t_j+3` (one-sided at the ends of the span: the six ends nearest; fewer
-//! when the solve has fewer), and the velocities are `p'`. For a smooth solution the
-//! interpolation error is `O(h^18)` in `q` and `O(h^17)` in `v`, far below the RKN12 pair's
-//! own error at the step sizes its control picks, provided consecutive steps do not differ
-//! too much (`rkn.rs` lets a step at most double the previous one when output times are
-//! requested). Measured against exact solutions (`rkn_tests.rs`, a linear two-mass chain
-//! over 40 s): the dense error is within 1.3 times the error at the step ends for
-//! `rtol = atol = 1e-8 .. 1e-12`; at `rtol = 1e-13` (`atol = 1e-15`) 1.5e-13 against 2e-14,
-//! and near rounding (`rtol = 1e-15`) 5.5e-13: the velocities are the derivative of the
-//! position interpolant, which loses about `eps |q| / (h |v|)` on small steps. The first and
-//! last two intervals of a solve have one-sided windows and are a few times less accurate.
+//! ends `t_j-2 .. t_j+3` (where the solve has fewer ends on one side, more on the other:
+//! the window is balanced in steps, not in time, [`Birkhoff::window`]), and the velocities
+//! are `p'`. Before `t0` the solve takes two steps backwards for these windows (the lead-in
+//! of [`super::rkn`]), so only the last intervals of a solve have one-sided windows. For a
+//! smooth solution the interpolation error is `O(h^18)` in `q` and `O(h^17)` in `v`, far
+//! below the RKN12 pair's own error at the step sizes its control picks, provided
+//! consecutive steps do not differ too much (`rkn.rs` lets a step at most double the
+//! previous one when output times are requested). Measured against exact solutions
+//! (`rkn_tests.rs`, a linear two-mass chain over 40 s): the dense error is within 1.3 times
+//! the error at the step ends for `rtol = atol = 1e-8 .. 1e-12`; at `rtol = 1e-13` (`atol =
+//! 1e-15`) 1.5e-13 against 2e-14 (on the ramp of doubling first steps), and near rounding
+//! (`rtol = 1e-15`) 2.7e-14. On the 3-mode reference case (`benchmarks/compare_scipy.py`)
+//! the lead-in made the dense error of the velocities 43 times smaller: the one-sided
+//! window of the first interval had been 200 times less accurate than the others (the
+//! product of the node distances, cubed, is 75 times larger for equal steps). A solve that
+//! ends early (a failure) leaves its last intervals one-sided and a few times less accurate.
 //! (Four ends, degree 11, `O(h^12)`, were 100 times above the tolerance at `rtol = 1e-8`;
 //! capping the steps by an estimate of that error, the last Newton term, kept them within it
 //! at 1.7-1.9 times the steps. Near rounding such an estimate is noise that grows as the
@@ -112,6 +117,12 @@ impl Birkhoff {
         self.ends += 1;
     }
 
+    /// Marks the first `count` intervals as recorded: ends pushed before the start of the
+    /// solve (only for the interpolants of the intervals after them).
+    pub fn skip(&mut self, count: usize) {
+        self.done += count;
+    }
+
     /// Records the intervals whose interpolant is complete: `HALF` ends known on its right
     /// and `NODES` in all (every remaining interval when `last`: the solve has ended and no
     /// more ends will come).
@@ -139,37 +150,31 @@ impl Birkhoff {
         Ok(())
     }
 
-    /// The ends of the interpolant of interval `j` among those kept (up to `newest`), nearest
-    /// the interval first (`j`, `j + 1`, then by distance in time), leaving out an end within
-    /// [`MIN_SEPARATION`] interval lengths of one already taken; at most [`NODES`].
+    /// The ends of the interpolant of interval `j` among those kept (up to `newest`): `j` and
+    /// `j + 1`, then by rings of index distance, `j - k` and `j + 1 + k` for `k = 1, 2, ..`
+    /// (the nearer in time first), so that the window is balanced in steps, not in time,
+    /// leaving out an end within [`MIN_SEPARATION`] interval lengths of one already taken; at
+    /// most [`NODES`]. (Balanced in time, a window on a ramp of growing steps takes the short
+    /// steps on one side and none on the other, and the gap amplifies the ends' errors.)
     fn window(&self, j: usize, newest: usize) -> ([usize; NODES], usize) {
         let oldest = (newest + 1).saturating_sub(RING);
         let (t_j, t_j1) = (self.t[j % RING], self.t[(j + 1) % RING]);
         let gap = MIN_SEPARATION * (t_j1 - t_j);
         let mut chosen = [j, j + 1, 0, 0, 0, 0];
         let mut count = 2;
-        let (mut left, mut right) = (j.checked_sub(1).filter(|&e| e >= oldest), Some(j + 2).filter(|&e| e <= newest));
-        while count < NODES {
-            // The nearer of the next end on each side.
-            let take_right = match (left, right) {
-                (Some(l), Some(r)) => self.t[r % RING] - t_j1 <= t_j - self.t[l % RING],
-                (None, Some(_)) => true,
-                (Some(_), None) => false,
-                (None, None) => break,
+        for k in 1..RING {
+            let left = j.checked_sub(k).filter(|&e| e >= oldest);
+            let right = Some(j + 1 + k).filter(|&e| e <= newest);
+            let pair = match (left, right) {
+                (Some(l), Some(r)) if self.t[r % RING] - t_j1 > t_j - self.t[l % RING] => [Some(l), Some(r)],
+                (l, r) => [r, l],
             };
-            let e = if take_right {
-                let r = right.expect("a right end");
-                right = Some(r + 1).filter(|&e| e <= newest);
-                r
-            } else {
-                let l = left.expect("a left end");
-                left = l.checked_sub(1).filter(|&e| e >= oldest);
-                l
-            };
-            let te = self.t[e % RING];
-            if chosen[..count].iter().all(|&c| (self.t[c % RING] - te).abs() >= gap) {
-                chosen[count] = e;
-                count += 1;
+            for e in pair.into_iter().flatten() {
+                let te = self.t[e % RING];
+                if count < NODES && chosen[..count].iter().all(|&c| (self.t[c % RING] - te).abs() >= gap) {
+                    chosen[count] = e;
+                    count += 1;
+                }
             }
         }
         (chosen, count)
