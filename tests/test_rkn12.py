@@ -28,6 +28,21 @@ def test_rkn12_agrees_with_dop853_to_tolerance():
     assert rkn.energy_drift() < 1e-10
 
 
+@pytest.mark.parametrize("t_end", [0.3, 0.6, 0.9])
+def test_rkn12_dense_output_as_accurate_at_both_ends_of_the_span(t_end):
+    """The samples of the first and last intervals are no less accurate than the others:
+    their interpolants take two steps before t0 and two beyond t_end (without them the last
+    interval was up to 40 times less accurate here, the first 200 times)."""
+    t = np.linspace(0.0, t_end, 20001)
+    kw = dict(modes=3, t_end=t_end, t_eval=t)
+    ref = ds.simulate(REF, method="rkn12", rtol=3e-14, atol=1e-20, **kw)
+    res = ds.simulate(REF, method="rkn12", rtol=3e-11, atol=3e-11, **kw)
+    err = np.abs(res.qdot - ref.qdot).max(axis=0) / np.abs(ref.qdot).max()
+    edge = (t < 0.005) | (t > t_end - 0.005)
+    assert err[edge].max() <= err[~edge].max(), (err[edge].max(), err[~edge].max())
+    assert err.max() < 1e-8
+
+
 @pytest.mark.parametrize("c1", [0.1, 3.0])
 def test_rkn12_one_mode_period_equals_exact_duffing_period(c1):
     params = REF.replace(initial_velocities=(c1,))

@@ -6,8 +6,9 @@
 //! the polynomial `p` of degree `3m - 1 = 17` matching `q`, `q'` and `q''` at the `m = 6`
 //! ends `t_j-2 .. t_j+3` (where the solve has fewer ends on one side, more on the other:
 //! the window is balanced in steps, not in time, [`Birkhoff::window`]), and the velocities
-//! are `p'`. Before `t0` the solve takes two steps backwards for these windows (the lead-in
-//! of [`super::rkn`]), so only the last intervals of a solve have one-sided windows. For a
+//! are `p'`. Before `t0` and after `t_end` the solve takes two extra steps for these windows
+//! (the lead-in and lead-out of [`super::rkn`]), so no interval of a solve that reaches
+//! `t_end` has a one-sided window. For a
 //! smooth solution the interpolation error is `O(h^18)` in `q` and `O(h^17)` in `v`, far
 //! below the RKN12 pair's own error at the step sizes its control picks, provided
 //! consecutive steps do not differ too much (`rkn.rs` lets a step at most double the
@@ -18,8 +19,10 @@
 //! (`rtol = 1e-15`) 2.7e-14. On the 3-mode reference case (`benchmarks/compare_scipy.py`)
 //! the lead-in made the dense error of the velocities 43 times smaller: the one-sided
 //! window of the first interval had been 200 times less accurate than the others (the
-//! product of the node distances, cubed, is 75 times larger for equal steps). A solve that
-//! ends early (a failure) leaves its last intervals one-sided and a few times less accurate.
+//! product of the node distances, cubed, is 75 times larger for equal steps); the lead-out
+//! did the same for the last interval, up to 40 times less accurate without it
+//! (`tests/test_rkn12.py`). A solve that ends early (a failure) leaves its last intervals
+//! one-sided and a few times less accurate.
 //! (Four ends, degree 11, `O(h^12)`, were 100 times above the tolerance at `rtol = 1e-8`;
 //! capping the steps by an estimate of that error, the last Newton term, kept them within it
 //! at 1.7-1.9 times the steps. Near rounding such an estimate is noise that grows as the

@@ -18,8 +18,9 @@
 //! Output times are sampled through the Hermite-Birkhoff interpolant of the step ends
 //! ([`super::birkhoff`]), which needs the ends after the output interval: samples are
 //! recorded up to three steps late (and the rest at the end of the solve, or when it fails).
-//! For the first intervals the solve first takes two steps backwards from `t0` ([`Run::lead_in`]:
-//! 34 evaluations, counted in `nfev`; the forward solve is unchanged).
+//! For the first and last intervals the solve takes two steps backwards from `t0` and two
+//! beyond `t_end` ([`Run::lead_in`], [`Run::lead_out`]: 68 evaluations, counted in `nfev`;
+//! the steps from `t0` to `t_end` are unchanged).
 //! With output times a step may at most double the previous one (the interpolant spans five
 //! steps and its error grows with their ratios), and a step that would leave less than half
 //! a step to `t_end` is replaced by two equal ones (no short last step: a near-coincident
@@ -119,7 +120,8 @@ struct Run<'a, S: ?Sized> {
 
 /// How the loop of [`Run::solve`] ended.
 enum Outcome {
-    Done,
+    /// Reached `t_end`; the size of the last step.
+    Done(f64),
     Failed(Status, String),
 }
 
@@ -172,6 +174,9 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
             h = self.lead_in(h);
         }
         let outcome = self.step_loop(h, sampler, sol, poller);
+        if let (Outcome::Done(h_last), true) = (&outcome, self.dense.is_some()) {
+            self.lead_out(*h_last);
+        }
         // The output intervals still waiting for later step ends, from the ends reached.
         let flushed = match self.dense.as_mut() {
             Some(d) => d.emit(sampler, sol, true),
@@ -231,7 +236,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                     return Outcome::Failed(status, message);
                 }
                 if last {
-                    return Outcome::Done;
+                    return Outcome::Done(h);
                 }
                 h_new = h_new.min(self.hmax);
                 if self.dense.is_some() {
@@ -307,35 +312,12 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     /// first interval of equal steps (measured: 200 times the error of the other intervals in
     /// the velocities of the 3-mode reference case). `q'' = a(q)` is autonomous and solved
     /// as well backwards as forwards, so [`LEAD_IN`] steps of size `-h` (the first step's
-    /// size, reduced as the control asks) give the missing ends; they cost `17 LEAD_IN`
-    /// evaluations (counted in `nfev`, not in the steps), and the solution is not changed:
-    /// the forward solve starts from `(q0, v0)` as before. If the backward steps fail (a
-    /// non-finite state, or more than [`LEAD_IN_TRIES`] attempts), the ends reached are used.
-    /// Returns the size of the first forward step: `h`, or the backward one if the control
-    /// reduced it.
+    /// size, reduced as the control asks) give the missing ends ([`Run::extra_ends`]); the
+    /// forward solve starts from `(q0, v0)` as before. Returns the size of the first forward
+    /// step: `h`, or the backward one if the control reduced it.
     fn lead_in(&mut self, h: f64) -> f64 {
-        let n = self.n;
         let (t0, y0, a0) = (self.t, self.y.clone(), self.k.row(0).to_vec());
-        let mut ends: Vec<(f64, Vec<f64>, Vec<f64>)> = Vec::with_capacity(LEAD_IN);
-        let mut hb = h;
-        let mut t = t0;
-        for _ in 0..LEAD_IN_TRIES {
-            if ends.len() == LEAD_IN || hb.is_nan() || hb < min_step(t) {
-                break;
-            }
-            let err = self.attempt(-hb);
-            if err.is_nan() || err > 1.0 || !all_finite(&self.y_new) {
-                hb = if err.is_finite() { self.pair.control.rejected_step(hb, err) } else { 0.2 * hb };
-                continue;
-            }
-            std::mem::swap(&mut self.y, &mut self.y_new);
-            t -= hb;
-            self.sys.acceleration(&self.y[..n], self.k.row_mut(0));
-            self.stats.nfev += 1;
-            ends.push((t, self.y.clone(), self.k.row(0).to_vec()));
-        }
-        self.y.copy_from_slice(&y0);
-        self.k.row_mut(0).copy_from_slice(&a0);
+        let (ends, hb) = self.extra_ends(-h);
         let d = self.dense.as_mut().expect("the lead-in is for output times");
         for (t, y, a) in ends.iter().rev() {
             d.push(*t, y, a);
@@ -345,8 +327,52 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         if ends.is_empty() {
             h
         } else {
-            hb
+            -hb
         }
+    }
+
+    /// The ends after `t_end` for the interpolants of the last intervals (as [`Run::lead_in`]
+    /// at the start): [`LEAD_IN`] steps of size `h`, the last step of the solve, beyond
+    /// `t_end`. No output time lies there, so only the windows use them. Without them the
+    /// last interval, a full step, was measured 80 times less accurate than the others.
+    fn lead_out(&mut self, h: f64) {
+        let (ends, _) = self.extra_ends(h);
+        let d = self.dense.as_mut().expect("the lead-out is for output times");
+        for (t, y, a) in &ends {
+            d.push(*t, y, a);
+        }
+    }
+
+    /// Up to [`LEAD_IN`] steps of size `h` (either sign) from the current state, which is
+    /// restored afterwards: the ends `(t, [q, v], a(q))` reached, nearest first, and the step
+    /// size taken (reduced as the control asks after a rejection). They cost 17 evaluations
+    /// each (counted in `nfev`, not in the steps). If they fail (a non-finite state, or more
+    /// than [`LEAD_IN_TRIES`] attempts), the ends reached are returned.
+    #[allow(clippy::type_complexity)]
+    fn extra_ends(&mut self, h: f64) -> (Vec<(f64, Vec<f64>, Vec<f64>)>, f64) {
+        let n = self.n;
+        let (t0, y0, a0) = (self.t, self.y.clone(), self.k.row(0).to_vec());
+        let mut ends: Vec<(f64, Vec<f64>, Vec<f64>)> = Vec::with_capacity(LEAD_IN);
+        let (sign, mut size) = (h.signum(), h.abs());
+        let mut t = t0;
+        for _ in 0..LEAD_IN_TRIES {
+            if ends.len() == LEAD_IN || size.is_nan() || size < min_step(t) {
+                break;
+            }
+            let err = self.attempt(sign * size);
+            if err.is_nan() || err > 1.0 || !all_finite(&self.y_new) {
+                size = if err.is_finite() { self.pair.control.rejected_step(size, err) } else { 0.2 * size };
+                continue;
+            }
+            std::mem::swap(&mut self.y, &mut self.y_new);
+            t += sign * size;
+            self.sys.acceleration(&self.y[..n], self.k.row_mut(0));
+            self.stats.nfev += 1;
+            ends.push((t, self.y.clone(), self.k.row(0).to_vec()));
+        }
+        self.y.copy_from_slice(&y0);
+        self.k.row_mut(0).copy_from_slice(&a0);
+        (ends, sign * size)
     }
 
     /// Hairer's `hinit` on `y' = [v, a(q)]` with the pair's order.
@@ -370,9 +396,9 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     }
 }
 
-/// Steps taken backwards from `t0` for the interpolants of the first intervals
-/// ([`Run::lead_in`]): the interpolant takes three ends on each side of its interval, the
-/// ends before `t0` are two (with `t0`, three).
+/// Steps taken backwards from `t0` and forwards from `t_end` for the interpolants of the
+/// first and last intervals ([`Run::lead_in`], [`Run::lead_out`]): the interpolant takes three
+/// ends on each side of its interval, these are two (with `t0` or `t_end`, three).
 const LEAD_IN: usize = 2;
 /// Attempts of the backward steps before the interpolants make do with the ends reached.
 const LEAD_IN_TRIES: usize = 8;
