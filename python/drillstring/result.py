@@ -44,7 +44,9 @@ class SolverStats:
     """Right-hand-side (acceleration) evaluations, counted by the core: those of the steps and
     those the dense output needs. DOP853: ``2 + 12 naccept + 11 nreject`` plus 3 for each
     accepted step with an output time strictly inside it (so it grows with ``samples`` for the
-    same steps); DOPRI5: ``2 + 6 (naccept + nreject)``; RK4: 4 a step; central differences and
+    same steps); RKN12: ``2 + 17 naccept + 16 nreject`` plus, with output times, the two steps
+    before ``t0`` and the two after ``t_end`` its interpolants take (68 when none is rejected);
+    DOPRI5: ``2 + 6 (naccept + nreject)``; RK4: 4 a step; central differences and
     Stormer-Verlet: ``1 + steps``."""
     naccept: int
     """Accepted steps."""
@@ -52,7 +54,8 @@ class SolverStats:
     """Rejected steps (0 for fixed-step methods)."""
     ndense: int = 0
     """Of ``nfev``, the evaluations made only for the dense output (DOP853's 3 extra stages for
-    each accepted step with an output time strictly inside it; 0 for the other methods):
+    each accepted step with an output time strictly inside it, RKN12's steps before ``t0`` and
+    after ``t_end``; 0 for the other methods):
     ``nfev - ndense`` is the same whatever the output times."""
 
 

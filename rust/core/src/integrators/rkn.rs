@@ -19,8 +19,8 @@
 //! ([`super::birkhoff`]), which needs the ends after the output interval: samples are
 //! recorded up to three steps late (and the rest at the end of the solve, or when it fails).
 //! For the first and last intervals the solve takes two steps backwards from `t0` and two
-//! beyond `t_end` ([`Run::lead_in`], [`Run::lead_out`]: 68 evaluations, counted in `nfev`;
-//! the steps from `t0` to `t_end` are unchanged).
+//! beyond `t_end` ([`Run::lead_in`], [`Run::lead_out`]: 68 evaluations, counted in `nfev`
+//! and `ndense`; the steps from `t0` to `t_end` are unchanged).
 //! With output times a step may at most double the previous one (the interpolant spans five
 //! steps and its error grows with their ratios), and a step that would leave less than half
 //! a step to `t_end` is replaced by two equal ones (no short last step: a near-coincident
@@ -346,7 +346,8 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     /// Up to [`LEAD_IN`] steps of size `h` (either sign) from the current state, which is
     /// restored afterwards: the ends `(t, [q, v], a(q))` reached, nearest first, and the step
     /// size taken (reduced as the control asks after a rejection). They cost 17 evaluations
-    /// each (counted in `nfev`, not in the steps). If they fail (a non-finite state, or more
+    /// each (counted in `nfev` and, as evaluations for the output only, in `ndense`; not in
+    /// the steps). If they fail (a non-finite state, or more
     /// than [`LEAD_IN_TRIES`] attempts), the ends reached are returned.
     #[allow(clippy::type_complexity)]
     fn extra_ends(&mut self, h: f64) -> (Vec<(f64, Vec<f64>, Vec<f64>)>, f64) {
@@ -360,6 +361,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                 break;
             }
             let err = self.attempt(sign * size);
+            self.stats.ndense += (self.pair.stages() - 1) as u64;
             if err.is_nan() || err > 1.0 || !all_finite(&self.y_new) {
                 size = if err.is_finite() { self.pair.control.rejected_step(size, err) } else { 0.2 * size };
                 continue;
@@ -368,6 +370,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
             t += sign * size;
             self.sys.acceleration(&self.y[..n], self.k.row_mut(0));
             self.stats.nfev += 1;
+            self.stats.ndense += 1;
             ends.push((t, self.y.clone(), self.k.row(0).to_vec()));
         }
         self.y.copy_from_slice(&y0);

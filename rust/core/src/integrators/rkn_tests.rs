@@ -157,6 +157,7 @@ fn rkn12_dense_output_is_as_accurate_at_the_start() {
     // and the end).
     let plain = rkn12(&Chain2, 0.0, &q0, &[0.0, 0.0], 20.0, &Output::EveryStep, &o).unwrap();
     assert_eq!(sol.stats.nfev, plain.stats.nfev + 4 * 17, "{:?} vs {:?}", sol.stats, plain.stats);
+    assert_eq!((sol.stats.ndense, plain.stats.ndense), (4 * 17, 0));
 }
 
 /// At a tolerance near rounding the solve with output times takes the steps of the
