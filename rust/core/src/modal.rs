@@ -25,9 +25,10 @@
 //!   integrands (no aliasing), `O(n log n)`, and needs no coefficients.
 //!
 //! The acceleration of a term-sum system of at most four modes (the paper's three) runs
-//! through [`SmallCubic`]: every cubic monomial in a fixed order and a dense coefficient
+//! through `SmallCubic`: every cubic monomial in a fixed order and a dense coefficient
 //! matrix, one code path per mode count with constant indices, the same sums to rounding
-//! (8-10 ns per 3-mode evaluation against about 20 through the rows).
+//! (about 10 ns less per 3-mode evaluation than the rows: the RKN12 steps of the reference
+//! case, 10,746 evaluations, took 0.51 ms before and 0.41-0.43 ms after).
 //!
 //! [`QuarticEvaluation::Auto`] (what the builder uses for single solves and sweeps alike) takes
 //! the term sum below [`SPECTRAL_MIN_MODES`] retained modes, so small models (the paper's
