@@ -592,16 +592,21 @@ mod tests {
         (grad, start)
     }
 
-    #[test]
-    fn gradient_rows_match_the_straightforward_merge_bit_for_bit() {
-        // Deterministic pseudo-random terms with many repeated index sets and cancellations.
+    /// A deterministic xorshift sequence of `u64`.
+    fn xorshift() -> impl FnMut() -> u64 {
         let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             state
-        };
+        }
+    }
+
+    #[test]
+    fn gradient_rows_match_the_straightforward_merge_bit_for_bit() {
+        // Deterministic pseudo-random terms with many repeated index sets and cancellations.
+        let mut next = xorshift();
         let n = 5;
         let terms: Vec<QuarticTerm> = (0..400)
             .map(|_| {
@@ -633,13 +638,8 @@ mod tests {
     /// larger systems use the rows.
     #[test]
     fn small_systems_acceleration_equals_the_rows() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut rand = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut next = xorshift();
+        let mut rand = move || (next() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
         for n in 1..=SMALL_MAX_MODES + 1 {
             let mut terms = Vec::new();
             for a in 0..n as u32 {
