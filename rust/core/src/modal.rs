@@ -24,11 +24,12 @@
 //!   quartic energy terms, one real FFT back; the midpoint rule is exact for the quartic
 //!   integrands (no aliasing), `O(n log n)`, and needs no coefficients.
 //!
-//! The acceleration of a term-sum system of at most four modes (the paper's three) runs
+//! The force of a term-sum system of at most four modes (the paper's three) runs
 //! through `SmallCubic`: every cubic monomial in a fixed order and a dense coefficient
 //! matrix, one code path per mode count with constant indices, the same sums to rounding
-//! (about 10 ns less per 3-mode evaluation than the rows: the RKN12 steps of the reference
-//! case, 10,746 evaluations, took 0.51 ms before and 0.41-0.43 ms after).
+//! (the RKN12 steps of the reference case, 10,746 evaluations, took 0.45-0.73 ms against
+//! 0.48-0.87 ms through the rows, faster in 6 of 7 alternating runs of
+//! `python benchmarks/compare_scipy.py --method rkn12 --samples 2`).
 //!
 //! [`QuarticEvaluation::Auto`] (what the builder uses for single solves and sweeps alike) takes
 //! the term sum below [`SPECTRAL_MIN_MODES`] retained modes, so small models (the paper's
@@ -139,8 +140,8 @@ pub struct ModalSystem {
     grad: Vec<CubicMonomial>,
     grad_start: Vec<usize>,
     /// For a system of at most [`SMALL_MAX_MODES`] modes: the coefficients of every cubic
-    /// monomial in every component ([`SmallCubic`], used by the acceleration instead of the
-    /// rows).
+    /// monomial in every component ([`SmallCubic`], used by [`ModalSystem::force`] instead of
+    /// the rows).
     small: Option<SmallCubic>,
     /// The pseudo-spectral quartic force, used instead of `terms` when set.
     spectral: Option<SpectralQuartic>,
@@ -191,21 +192,21 @@ fn gradient_rows(n: usize, terms: &[QuarticTerm]) -> (Vec<CubicMonomial>, Vec<us
 }
 
 /// Systems of up to this many modes (the paper's three, or two with the rigid mode, ...)
-/// evaluate their acceleration through [`SmallCubic`].
+/// evaluate their force through [`SmallCubic`].
 const SMALL_MAX_MODES: usize = 4;
-/// The cubic monomials of [`SMALL_MAX_MODES`] variables: `C(4 + 2, 3)`.
-const SMALL_MONOMIALS: usize = 20;
+/// The cubic monomials of [`SMALL_MAX_MODES`] variables.
+const SMALL_MONOMIALS: usize = monomial_count(SMALL_MAX_MODES);
 
-/// The cubic monomials `q_b q_c q_d` (`b <= c <= d < N`) of `N` variables in the order of
-/// [`SmallCubic`]: `(b, c, d)` lexicographic.
+/// The number of cubic monomials `q_b q_c q_d` (`b <= c <= d < n`) of `n` variables,
+/// `C(n + 2, 3)`.
 const fn monomial_count(n: usize) -> usize {
     n * (n + 1) * (n + 2) / 6
 }
 
-/// The acceleration of a system of at most [`SMALL_MAX_MODES`] modes with every cubic
+/// The force of a system of at most [`SMALL_MAX_MODES`] modes with every cubic
 /// monomial in a fixed order and a dense matrix of their coefficients (zeros included), so
 /// that the evaluation has no index lookups: for `N` modes a code path of its own with
-/// constant indices ([`SmallCubic::acceleration`]). The rows of [`gradient_rows`] cost
+/// constant indices ([`SmallCubic::force`]); the monomials in `(b, c, d)` lexicographic order. The rows of [`gradient_rows`] cost
 /// about 20 ns per evaluation of the 3-mode reference case, mostly loads of indices and
 /// values. The same sums in the same order of monomials, equal to the rows to rounding (the
 /// products associate as `coef (q_b q_c q_d)` instead of `((coef q_b) q_c) q_d`).
@@ -240,22 +241,21 @@ impl SmallCubic {
         Some(SmallCubic { coef })
     }
 
-    /// `-M^-1 (K q + grad V(q))` for `n = q.len()` modes.
+    /// `K q + grad V(q)` into `out` for `n = q.len()` modes.
     #[inline]
-    fn acceleration(&self, stiffness: &[f64], inv_mass: &[f64], q: &[f64], acc: &mut [f64]) {
+    fn force(&self, stiffness: &[f64], q: &[f64], out: &mut [f64]) {
         match q.len() {
-            1 => self.fixed::<1>(stiffness, inv_mass, q, acc),
-            2 => self.fixed::<2>(stiffness, inv_mass, q, acc),
-            3 => self.fixed::<3>(stiffness, inv_mass, q, acc),
-            _ => self.fixed::<4>(stiffness, inv_mass, q, acc),
+            1 => self.fixed::<1>(stiffness, q, out),
+            2 => self.fixed::<2>(stiffness, q, out),
+            3 => self.fixed::<3>(stiffness, q, out),
+            _ => self.fixed::<4>(stiffness, q, out),
         }
     }
 
     #[inline(always)]
-    fn fixed<const N: usize>(&self, stiffness: &[f64], inv_mass: &[f64], q: &[f64], acc: &mut [f64]) {
+    fn fixed<const N: usize>(&self, stiffness: &[f64], q: &[f64], out: &mut [f64]) {
         let q: [f64; N] = q[..N].try_into().expect("N modes");
-        let (stiffness, inv_mass): (&[f64; N], &[f64; N]) =
-            (stiffness[..N].try_into().expect("N modes"), inv_mass[..N].try_into().expect("N modes"));
+        let stiffness: &[f64; N] = stiffness[..N].try_into().expect("N modes");
         let mut m = [0.0; SMALL_MONOMIALS];
         let mut k = 0;
         for b in 0..N {
@@ -267,13 +267,13 @@ impl SmallCubic {
                 }
             }
         }
-        let acc: &mut [f64; N] = (&mut acc[..N]).try_into().expect("N modes");
+        let out: &mut [f64; N] = (&mut out[..N]).try_into().expect("N modes");
         for j in 0..N {
             let mut f = stiffness[j] * q[j];
             for (&c, &mk) in self.coef[j][..monomial_count(N)].iter().zip(&m) {
                 f += c * mk;
             }
-            acc[j] = -f * inv_mass[j];
+            out[j] = f;
         }
     }
 }
@@ -422,6 +422,10 @@ impl ModalSystem {
             spectral.add_gradient(q, out);
             return;
         }
+        if let Some(small) = &self.small {
+            small.force(&self.stiffness, q, out);
+            return;
+        }
         for j in 0..n {
             let mut acc = self.stiffness[j] * q[j];
             for mono in &self.grad[self.grad_start[j]..self.grad_start[j + 1]] {
@@ -490,10 +494,6 @@ impl SecondOrderSystem for ModalSystem {
 
     #[inline]
     fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
-        if let Some(small) = &self.small {
-            small.acceleration(&self.stiffness, &self.inv_mass, &q[..self.modes()], acc);
-            return;
-        }
         self.force(q, acc);
         for (a, &im) in acc.iter_mut().zip(&self.inv_mass) {
             *a = -*a * im;
@@ -632,12 +632,12 @@ mod tests {
         }
     }
 
-    /// Small systems (at most `SMALL_MAX_MODES` modes) evaluate the acceleration with every
-    /// cubic monomial and a dense coefficient matrix: equal to the rows (`force`, divided by
-    /// the mass) to rounding, for random coefficients on every index pattern of 1 to 4 modes;
-    /// larger systems use the rows.
+    /// Small systems (at most `SMALL_MAX_MODES` modes) evaluate the force with every cubic
+    /// monomial and a dense coefficient matrix: equal to the rows (`K q` plus
+    /// `quartic_gradient`) to rounding, for random coefficients on every index pattern of 1 to
+    /// 4 modes; larger systems use the rows.
     #[test]
-    fn small_systems_acceleration_equals_the_rows() {
+    fn small_systems_force_equals_the_rows() {
         let mut next = xorshift();
         let mut rand = move || (next() >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
         for n in 1..=SMALL_MAX_MODES + 1 {
@@ -653,17 +653,17 @@ mod tests {
             }
             let mass: Vec<f64> = (0..n).map(|_| 1.0 + rand().abs()).collect();
             let stiffness: Vec<f64> = (0..n).map(|_| rand()).collect();
-            let sys = ModalSystem::new(mass.clone(), stiffness, terms).unwrap();
+            let sys = ModalSystem::new(mass, stiffness.clone(), terms).unwrap();
             assert_eq!(sys.small.is_some(), n <= SMALL_MAX_MODES, "{n} modes");
             for _ in 0..20 {
                 let q: Vec<f64> = (0..n).map(|_| 3.0 * rand()).collect();
-                let (mut f, mut a) = (vec![0.0; n], vec![0.0; n]);
+                let (mut f, mut g) = (vec![0.0; n], vec![0.0; n]);
                 sys.force(&q, &mut f);
-                sys.acceleration(&q, &mut a);
+                sys.quartic_gradient(&q, &mut g);
                 let scale: f64 = q.iter().map(|x| x.abs()).fold(0.0, f64::max).powi(3) * 20.0 + 1.0;
                 for j in 0..n {
-                    let rows = -f[j] / mass[j];
-                    assert!((a[j] - rows).abs() <= 1e-14 * scale, "{n} modes, component {j}: {} vs {rows}", a[j]);
+                    let rows = stiffness[j] * q[j] + g[j];
+                    assert!((f[j] - rows).abs() <= 1e-14 * scale, "{n} modes, component {j}: {} vs {rows}", f[j]);
                 }
             }
         }
