@@ -9,7 +9,7 @@ Measured end to end through ``drillstring.sweeps`` (planning, parameter validati
 batch solves, the table): runs per second on 1 and 2 threads and the parallel efficiency
 ``rate_2 / (2 rate_1)``, with the time spent inside the Rust batch solve shown separately.
 The baseline is a Python loop of ``scipy.integrate.solve_ivp(method="DOP853")`` over the same
-runs (``drillstring.project`` per run, a vectorised numpy right-hand side, the same output
+runs (``drillstring.project`` per run, the numpy right-hand side of ``_scipy_rhs.py``, the same output
 times and the same dominant-frequency analysis), timed on 50 runs spread over the grid and
 extrapolated to 10,000. Each thread count is timed ``--repeat`` times, alternating, and the
 fastest is kept (the machine is shared: run it when nothing else is busy).
@@ -27,6 +27,7 @@ import resource
 import time
 
 import numpy as np
+from _scipy_rhs import modal_rhs
 
 import drillstring as ds
 from drillstring.analysis import dominant_frequencies
@@ -86,20 +87,7 @@ def scipy_run(params: ds.Parameters, t_eval: np.ndarray) -> tuple[float, float]:
     coeff = ds.project(params, modes=3)
     q0, v0 = coeff.initial_state(params)
     m = coeff.n_modes
-    inv_mass = 1.0 / coeff.mass
-    k_over_m = coeff.stiffness * inv_mass
-    a, b, c, d = (coeff.quartic_index[:, j] for j in range(4))
-    cm = coeff.quartic_coef
-
-    def rhs(_t, y):
-        q, v = y[:m], y[m:]
-        qa, qb, qc, qd = q[a], q[b], q[c], q[d]
-        force = np.zeros(m)
-        np.add.at(force, a, cm * qb * qc * qd)
-        np.add.at(force, b, cm * qa * qc * qd)
-        np.add.at(force, c, cm * qa * qb * qd)
-        np.add.at(force, d, cm * qa * qb * qc)
-        return np.concatenate([v, -k_over_m * q - force * inv_mass])
+    rhs = modal_rhs(coeff, check=False)  # the agreement with drillstring is printed below
 
     sol = solve_ivp(rhs, (0.0, 1.0), np.concatenate([q0, v0]), method="DOP853", rtol=1e-8, atol=1e-12,
                     t_eval=t_eval)
