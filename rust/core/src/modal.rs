@@ -241,19 +241,21 @@ impl SmallCubic {
         Some(SmallCubic { coef })
     }
 
-    /// `K q + grad V(q)` into `out` for `n = q.len()` modes.
+    /// `finish(j, f_j)` into `out[j]` for the force `f = K q + grad V(q)` of `n = q.len()`
+    /// modes: the force stays in registers until `finish` (the acceleration divides it by
+    /// the mass there; a round trip through `out` made the next loads wait on the stores).
     #[inline]
-    fn force(&self, stiffness: &[f64], q: &[f64], out: &mut [f64]) {
+    fn force_with(&self, stiffness: &[f64], q: &[f64], out: &mut [f64], finish: impl Fn(usize, f64) -> f64) {
         match q.len() {
-            1 => self.fixed::<1>(stiffness, q, out),
-            2 => self.fixed::<2>(stiffness, q, out),
-            3 => self.fixed::<3>(stiffness, q, out),
-            _ => self.fixed::<4>(stiffness, q, out),
+            1 => self.fixed::<1>(stiffness, q, out, finish),
+            2 => self.fixed::<2>(stiffness, q, out, finish),
+            3 => self.fixed::<3>(stiffness, q, out, finish),
+            _ => self.fixed::<4>(stiffness, q, out, finish),
         }
     }
 
     #[inline(always)]
-    fn fixed<const N: usize>(&self, stiffness: &[f64], q: &[f64], out: &mut [f64]) {
+    fn fixed<const N: usize>(&self, stiffness: &[f64], q: &[f64], out: &mut [f64], finish: impl Fn(usize, f64) -> f64) {
         let q: [f64; N] = q[..N].try_into().expect("N modes");
         let stiffness: &[f64; N] = stiffness[..N].try_into().expect("N modes");
         let mut m = [0.0; SMALL_MONOMIALS];
@@ -267,14 +269,14 @@ impl SmallCubic {
                 }
             }
         }
-        let out: &mut [f64; N] = (&mut out[..N]).try_into().expect("N modes");
-        for j in 0..N {
+        let f: [f64; N] = std::array::from_fn(|j| {
             let mut f = stiffness[j] * q[j];
             for (&c, &mk) in self.coef[j][..monomial_count(N)].iter().zip(&m) {
                 f += c * mk;
             }
-            out[j] = f;
-        }
+            finish(j, f)
+        });
+        out[..N].copy_from_slice(&f);
     }
 }
 
@@ -423,7 +425,7 @@ impl ModalSystem {
             return;
         }
         if let Some(small) = &self.small {
-            small.force(&self.stiffness, q, out);
+            small.force_with(&self.stiffness, q, out, |_, f| f);
             return;
         }
         for j in 0..n {
@@ -487,6 +489,12 @@ impl Energy for ModalSystem {
     }
 }
 
+/// The acceleration `-f / M_j` of the generalised force `f` on mode `j` (`inv_mass = 1 / M_j`).
+#[inline(always)]
+fn acceleration_of(f: f64, inv_mass: f64) -> f64 {
+    -f * inv_mass
+}
+
 impl SecondOrderSystem for ModalSystem {
     fn dof(&self) -> usize {
         self.modes()
@@ -494,9 +502,15 @@ impl SecondOrderSystem for ModalSystem {
 
     #[inline]
     fn acceleration(&self, q: &[f64], acc: &mut [f64]) {
+        let n = self.modes();
+        if let Some(small) = &self.small {
+            let inv_mass = &self.inv_mass[..n];
+            small.force_with(&self.stiffness, &q[..n], acc, |j, f| acceleration_of(f, inv_mass[j]));
+            return;
+        }
         self.force(q, acc);
         for (a, &im) in acc.iter_mut().zip(&self.inv_mass) {
-            *a = -*a * im;
+            *a = acceleration_of(*a, im);
         }
     }
 
@@ -653,7 +667,7 @@ mod tests {
             }
             let mass: Vec<f64> = (0..n).map(|_| 1.0 + rand().abs()).collect();
             let stiffness: Vec<f64> = (0..n).map(|_| rand()).collect();
-            let sys = ModalSystem::new(mass, stiffness.clone(), terms).unwrap();
+            let sys = ModalSystem::new(mass.clone(), stiffness.clone(), terms).unwrap();
             assert_eq!(sys.small.is_some(), n <= SMALL_MAX_MODES, "{n} modes");
             for _ in 0..20 {
                 let q: Vec<f64> = (0..n).map(|_| 3.0 * rand()).collect();
@@ -664,6 +678,12 @@ mod tests {
                 for j in 0..n {
                     let rows = stiffness[j] * q[j] + g[j];
                     assert!((f[j] - rows).abs() <= 1e-14 * scale, "{n} modes, component {j}: {} vs {rows}", f[j]);
+                }
+                // The small path divides by the mass before storing: the same numbers.
+                let mut acc = vec![0.0; n];
+                sys.acceleration(&q, &mut acc);
+                for j in 0..n {
+                    assert_eq!(acc[j], -f[j] * (1.0 / mass[j]), "{n} modes, component {j}");
                 }
             }
         }
