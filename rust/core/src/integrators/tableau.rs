@@ -376,12 +376,13 @@ mod tests {
         assert_eq!(k.row(0), &[10.0, 20.0]);
     }
 
-    /// Every block width and tail (dims across multiples of 32, 16 and 4), both code paths
-    /// of [`crate::simd`], against a plain row-by-row sum.
+    /// Every block width and tail (dims across multiples of 32, 16 and 4), the small
+    /// systems' chunks (halves for dims 4 to 8) and both code paths of [`crate::simd`], against
+    /// a plain row-by-row sum.
     #[test]
     fn blocked_combinations_match_the_plain_sum() {
         let coef = [0.3, 0.0, -1.25, 0.0, 2.5, 1e-3, 0.0, -0.7, 0.9, 0.0, 0.0, 4.0, -2.0, 0.5, 0.0, 1.5];
-        for dim in [1, 3, 4, 5, 15, 16, 17, 31, 32, 33, 36, 63, 64, 67, 480, 483] {
+        for dim in [1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 31, 32, 33, 36, 63, 64, 67, 480, 483] {
             let mut k = Stages::new(coef.len(), dim);
             for j in 0..coef.len() {
                 for (i, v) in k.row_mut(j).iter_mut().enumerate() {
