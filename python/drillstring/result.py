@@ -62,6 +62,11 @@ class SolverStats:
 class TrajectoryResult:
     """Samples ``t`` of a state ``q`` (rows) and ``qdot``, with statuses and the energy.
 
+    ``q`` and ``qdot`` (``n x samples``) are views of the core's sample-major state array,
+    not copies: their rows are strided (``np.ascontiguousarray(res.q)`` gives a contiguous
+    copy). Copying them into rows of their own took longer than a 3-mode solve with 20,001
+    samples, mostly in page faults of the fresh memory.
+
     Subclasses define :meth:`_section_matrix` (the linear map from the state to
     ``theta(z)``), :meth:`_state_columns` (CSV column names of the state rows) and
     :meth:`_state_dimension` (how :meth:`to_xarray` names the state rows).
@@ -74,8 +79,8 @@ class TrajectoryResult:
         y = np.asarray(raw["y"])
         m = y.shape[1] // 2
         self.t: NDArray[np.float64] = np.asarray(raw["t"])
-        self.q: NDArray[np.float64] = np.ascontiguousarray(y[:, :m].T)
-        self.qdot: NDArray[np.float64] = np.ascontiguousarray(y[:, m:].T)
+        self.q: NDArray[np.float64] = y[:, :m].T
+        self.qdot: NDArray[np.float64] = y[:, m:].T  # views (see the class docstring)
         self.status: str = raw["status"]
         self.message: str = raw["message"]
         self.stats = SolverStats(int(raw["nfev"]), int(raw["naccept"]), int(raw["nreject"]), int(raw.get("ndense", 0)))
