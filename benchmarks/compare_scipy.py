@@ -30,8 +30,13 @@ both its errors are at most scipy's (scipy's DOP853 misses the requested 1e-12 b
 ``--crossover`` instead prints, for rtol from 1e-4 to 1e-13, the evaluations and core solve
 times of DOP853 and RKN12 (the measurement behind ``_core.AUTO_RKN12_MAX_RTOL``).
 
+``--timeline N`` instead times N RKN12 core solves in a row and prints the median of each of 30
+consecutive slices, then the minimum and median of all: how steady the machine is. On a shared
+virtual machine the same call can run in phases of seconds whose times differ by 1.5x or more,
+which is why the table quotes the best of several repeats.
+
     python benchmarks/compare_scipy.py [--repeat 5] [--samples 20001] [--atol 1e-12]
-                                       [--method dop853 rkn12] [--crossover]
+                                       [--method dop853 rkn12] [--crossover] [--timeline N]
 """
 
 from __future__ import annotations
@@ -84,6 +89,7 @@ def main() -> None:
     parser.add_argument("--atol", type=float, default=1e-12)
     parser.add_argument("--method", nargs="+", default=["dop853", "rkn12"], choices=["dop853", "dopri5", "rkn12"])
     parser.add_argument("--crossover", action="store_true")
+    parser.add_argument("--timeline", type=int, default=0, metavar="N")
     args = parser.parse_args()
 
     params = ds.preset("aluminum")
@@ -100,6 +106,9 @@ def main() -> None:
 
     if args.crossover:
         crossover(core, args.repeat)
+        return
+    if args.timeline:
+        timeline(core, args.timeline, args.atol)
         return
 
     rhs = modal_rhs(coeff)
@@ -205,6 +214,21 @@ def crossover(core: Callable[[str, float, float], dict[str, Any]], repeat: int) 
         t_rkn, rkn = best_of(repeat, lambda r=rtol, a=atol: core("rkn12", r, a))
         print(f"{rtol:8.0e}{dop['nfev']:13d}{rkn['nfev']:12d}{t_dop * 1e3:11.3f}{t_rkn * 1e3:10.3f}"
               f"{t_dop / t_rkn:14.2f}{errors(dop['y'], ref, m)[0]:14.1e}{errors(rkn['y'], ref, m)[0]:13.1e}")
+
+
+def timeline(core: Callable[[str, float, float], dict[str, Any]], calls: int, atol: float) -> None:
+    """Times ``calls`` RKN12 core solves in a row; prints the medians of 30 consecutive slices."""
+    times = np.empty(calls)
+    for i in range(calls):
+        start = time.perf_counter()
+        core("rkn12", RTOL, atol)
+        times[i] = time.perf_counter() - start
+    slices = np.array_split(times, min(30, calls))
+    print(f"timeline: {calls} rkn12 core solves in a row, median ms of {len(slices)} consecutive slices:")
+    print(" ".join(f"{np.median(part) * 1e3:.3f}" for part in slices))
+    print(f"all: min {times.min() * 1e3:.3f} ms, median {np.median(times) * 1e3:.3f} ms, "
+          f"max {times.max() * 1e3:.3f} ms")
+
 
 if __name__ == "__main__":
     main()
