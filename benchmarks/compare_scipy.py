@@ -66,6 +66,21 @@ MATCH_GRID = (1e-12, 2e-12, 5e-12, 1e-11, 2e-11, 3e-11, 5e-11, 1e-10, 2e-10)
 REFERENCE = (1e-15, 1e-22)
 
 
+def at_least(low: int) -> Callable[[str], int]:
+    """An argparse type: a whole number >= ``low`` (else a one-line usage error naming the range)."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number (allowed: >= {low})") from None
+        if value < low:
+            raise argparse.ArgumentTypeError(f"{value} is out of range (allowed: >= {low})")
+        return value
+
+    return parse
+
+
 def best_of(repeat: int, fn: Callable[[], Any]) -> tuple[float, Any]:
     times, out = [], None
     for _ in range(repeat):
@@ -84,12 +99,12 @@ def errors(y: np.ndarray, ref: np.ndarray, m: int) -> tuple[float, float]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--repeat", type=int, default=5)
-    parser.add_argument("--samples", type=int, default=20001)
+    parser.add_argument("--repeat", type=at_least(1), default=5)
+    parser.add_argument("--samples", type=at_least(2), default=20001)
     parser.add_argument("--atol", type=float, default=1e-12)
     parser.add_argument("--method", nargs="+", default=["dop853", "rkn12"], choices=["dop853", "dopri5", "rkn12"])
     parser.add_argument("--crossover", action="store_true")
-    parser.add_argument("--timeline", type=int, default=0, metavar="N")
+    parser.add_argument("--timeline", type=at_least(1), default=None, metavar="N")
     args = parser.parse_args()
 
     params = ds.preset("aluminum")
@@ -107,7 +122,7 @@ def main() -> None:
     if args.crossover:
         crossover(core, args.repeat)
         return
-    if args.timeline:
+    if args.timeline is not None:
         timeline(core, args.timeline, args.atol)
         return
 
