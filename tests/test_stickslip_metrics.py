@@ -57,7 +57,9 @@ def test_square_wave_and_its_period() -> None:
     assert m.stuck_fraction == pytest.approx(0.3, abs=1e-3)
     assert m.severity == pytest.approx(5.0 / (2 * 3.5), rel=1e-3)
     assert (m.torque_min, m.torque_max) == (300.0, 900.0)
-    assert m.cycle_period == pytest.approx(2.0, abs=1e-9)
+    # the period from the similarity of the torque with itself shifted, resampled to 16384
+    # samples over the window: exact to a fraction of a resampled step (4.9e-4 s)
+    assert m.cycle_period == pytest.approx(2.0, abs=1e-4)
 
 
 def test_motor_torque_period_of_a_sine_and_fewer_than_two_cycles() -> None:

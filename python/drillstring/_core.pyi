@@ -395,6 +395,13 @@ class StickSlipDict(TypedDict):
     torque_min: float
     torque_max: float
     cycle_period: float
+    period_cycles: float
+    periodicity: float
+    slip_period: float
+    slip_onsets: int
+    stick_slip: bool
+    settled: bool
+    warnings: list[str]
 
 def stick_slip_metrics(
     t: NDArray[np.float64],
@@ -486,6 +493,13 @@ class DrillMetrics(TypedDict):
     torque_min: float
     torque_max: float
     cycle_period: float
+    period_cycles: float
+    periodicity: float
+    slip_period: float
+    slip_onsets: int
+    stick_slip: bool
+    settled: bool
+    warnings: list[str]
     breakoff_torque: float
     #: The minimum motor torque of a stick-slip cycle implied by break-off, 2 K - S (S the static
     #: torque of the wall and, on bottom, the bit; K the same at the kinetic torques), N m.
@@ -619,6 +633,13 @@ class LumpedMetrics(TypedDict):
     torque_min: float
     torque_max: float
     cycle_period: float
+    period_cycles: float
+    periodicity: float
+    slip_period: float
+    slip_onsets: int
+    stick_slip: bool
+    settled: bool
+    warnings: list[str]
 
 class LumpedEnergy(TypedDict):
     #: J: motor_work = (kinetic_top + kinetic_bit + spring - initial) + viscous_loss + friction_loss.

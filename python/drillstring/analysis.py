@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, NamedTuple, Optional, Union
+from typing import TYPE_CHECKING, Any, NamedTuple, Optional, Union
 
 import numpy as np
 
@@ -391,9 +391,28 @@ class StickSlipMetrics:
     """Motor torque minimum (NaN without a torque series)."""
     torque_max: float
     cycle_period: float
-    """Mean interval between upward mean-crossings of the motor torque, one per cycle (a crossing
-    within 0.6 spectral periods of the last one counted is a wiggle, not a cycle), s (NaN with
-    fewer than two cycles or without a torque series)."""
+    """The motor torque's period from its autocorrelation (the similarity of the series with
+    itself shifted, searched up to half the window), s (NaN with fewer than two cycles in the
+    window or without a torque series)."""
+    period_cycles: float
+    """The window's length in periods (NaN without one)."""
+    periodicity: float
+    """Similarity of the motor torque with itself one period later (1: exactly periodic)."""
+    slip_period: float
+    """Mean interval between the bit's slip onsets (its speed rising through ``stick_speed`` in
+    the direction of its mean, for a slip that carries it above its mean speed), s (NaN with
+    fewer than three)."""
+    slip_onsets: int
+    """Slip onsets of the bit in the window."""
+    stick_slip: bool
+    """The verdict: the bit stops during part of the window (``0 < stuck_fraction < 1``)."""
+    settled: bool
+    """The first and the last whole periods of the window (as many as half of it holds; its
+    halves without a period) agree in the
+    means and ranges of the bit speed and the motor torque, to 5 % of the ranges plus 1 % of the
+    means: not a transient."""
+    warnings: tuple[str, ...] = ()
+    """What in these metrics cannot be trusted as it stands (empty when all can)."""
 
 
 def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:
@@ -458,7 +477,12 @@ def stick_slip_metrics(
     d = _core.stick_slip_metrics(
         ta, _series("omega_bit", omega_bit), torque, window=span, stick_speed=float(stick_speed)
     )
-    return StickSlipMetrics(**d)
+    return _stick_slip(d)
+
+
+def _stick_slip(d: Any) -> StickSlipMetrics:
+    """:class:`StickSlipMetrics` from the core's dict (its ``warnings`` list as a tuple)."""
+    return StickSlipMetrics(**{**d, "warnings": tuple(d.get("warnings", ()))})
 
 
 def break_off_torque(depth: ArrayLike, limit: ArrayLike) -> float:

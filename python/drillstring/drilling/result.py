@@ -54,6 +54,40 @@ _CORE_METRICS = {
     "motor_torque_max_Nm": "torque_max",
     "breakoff_torque_Nm": "breakoff_torque",
     "min_cycle_torque_Nm": "min_cycle_torque",
+    "slip_period_s": "slip_period",
+}
+
+#: The metrics that are verdicts (booleans; 1 / 0 in a map's table).
+_VERDICTS = ("stick_slip", "settled")
+
+#: The criterion of the ``stick_slip`` verdict, as ``metrics.json`` states it.
+STICK_SLIP_CRITERION = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
+                        "0 < stuck_fraction < 1")
+
+#: What each entry of ``metrics.json`` is (written beside the numbers).
+METRIC_DEFINITIONS: dict[str, str] = {
+    "window_start": "start of the metrics window, s",
+    "window_end": "end of the metrics window, s",
+    "ssi": "stick-slip severity (max - min) / (2 |mean|) of the bit speed over the window",
+    "stuck_fraction": "fraction of the window's time with |bit speed| <= metrics.stick_speed; the bit is "
+                      "at rest while the string above it is stuck (converges with the grid)",
+    "period_s": "stick-slip period from the autocorrelation of the motor torque, s; null with fewer than two "
+                "cycles in the window",
+    "bit_rpm_min": "lowest bit speed, rpm; at re-stick the end of a coarse grid undershoots below 0 by an amount "
+                   "that falls with the cell size",
+    "bit_rpm_max": "highest bit speed, rpm",
+    "bit_rpm_mean": "time-weighted mean bit speed, rpm",
+    "motor_torque_min_Nm": "lowest motor torque, N m",
+    "motor_torque_max_Nm": "highest motor torque, N m",
+    "breakoff_torque_Nm": "static break-off torque of the string in the well, N m",
+    "period_cycles": "the window's length in periods",
+    "periodicity": "similarity of the motor torque with itself one period later (1: exactly periodic)",
+    "slip_period_s": "mean interval between the bit's slip onsets (slips that carry it above its mean speed), s "
+                     "(cross-check of period_s)",
+    "stick_slip": "the verdict: " + STICK_SLIP_CRITERION,
+    "settled": "the first and the last whole periods of the window (as many as half of it holds) agree in "
+               "means and ranges to 5 %: not a transient",
+    "min_cycle_torque_Nm": "minimum motor torque of a stick-slip cycle that break-off implies, N m",
 }
 
 
@@ -77,8 +111,10 @@ class DrillMetrics:
     stuck_fraction: float
     """Fraction of the window's time the bit is stuck."""
     period_s: float
-    """Stick-slip period: mean interval between upward mean-crossings of the motor torque, one per
-    cycle (a crossing within 0.6 spectral periods of the last one counted is a wiggle), s."""
+    """Stick-slip period, s: the lag of the first full peak of the motor torque's
+    autocorrelation (the similarity of the series with itself shifted), searched up to half the
+    window; NaN when the window holds fewer than two cycles. It does not depend on where the
+    window starts."""
     bit_rpm_min: float
     bit_rpm_max: float
     bit_rpm_mean: float
@@ -87,6 +123,21 @@ class DrillMetrics:
     motor_torque_max_Nm: float
     breakoff_torque_Nm: float
     """Static break-off torque of the string in the well (the integral of the friction limit), N m."""
+    period_cycles: float
+    """The window's length in periods (NaN without a period)."""
+    periodicity: float
+    """Similarity of the motor torque with itself one period later (1: exactly periodic)."""
+    slip_period_s: float
+    """Cross-check of ``period_s``: the mean interval between the bit's slip onsets (its speed
+    rising through ``metrics.stick_speed`` for a slip that carries it above its mean speed; a
+    partial slip is no cycle), s; NaN with fewer than three onsets."""
+    stick_slip: bool
+    """The verdict: the bit stops (``|bit speed| <= metrics.stick_speed``) during part of the
+    window, neither never nor throughout (``0 < stuck_fraction < 1``)."""
+    settled: bool
+    """The window holds a steady regime: its first and last period (its halves without a
+    period) have the same bit-speed and motor-torque means and ranges to 5 % of the ranges plus
+    1 % of the means. False for a transient still decaying inside the window."""
     min_cycle_torque_Nm: float
     """The minimum motor torque of a stick-slip cycle that break-off implies, ``2 K - S`` (``S`` the
     static torque of the wall and, on bottom, the bit; ``K`` the same contacts at their kinetic
@@ -98,10 +149,11 @@ class DrillMetrics:
         """From the ``metrics`` dict of ``_core.drill_solve`` (the names of
         :func:`drillstring.analysis.stick_slip_metrics`: ``severity``, ``rpm_min``, ...;
         ``None`` read as NaN)."""
-        values = {}
+        values: dict[str, Any] = {}
         for f in dataclasses.fields(cls):
             core = _CORE_METRICS.get(f.name, f.name)
-            values[f.name] = _number(metrics[core] if core in metrics else metrics.get(f.name))
+            value = metrics[core] if core in metrics else metrics.get(f.name)
+            values[f.name] = bool(value) if f.name in _VERDICTS else _number(value)
         return cls(**values)
 
     @property
@@ -171,6 +223,9 @@ class DrillResult:
         ``first_mode_hz``.
     status, message : str
         How the solve ended (``"success"`` or a failure status, see :class:`~drillstring.errors.SolveError`).
+    warnings : tuple of str
+        What in the metrics cannot be trusted as it stands (a window that is not settled, an
+        undefined severity or period, a period its cross-check disagrees with); empty when all can.
     """
 
     def __init__(self, config: DrillConfig, raw: Mapping[str, Any], profile: DrillProfile) -> None:
@@ -188,6 +243,7 @@ class DrillResult:
             self.field_t.size, self.z.size)
         self.profile = profile
         self.metrics = DrillMetrics.from_core(raw["metrics"])
+        self.warnings: tuple[str, ...] = tuple(str(w) for w in raw["metrics"].get("warnings", ()))
         self.energy: dict[str, float] = {str(k): float(v) for k, v in dict(raw.get("energy") or {}).items()}
         self.stats: dict[str, Any] = dict(raw.get("stats") or {})
         self.status: str = str(raw["status"])
@@ -225,6 +281,9 @@ class DrillResult:
         energy balance and the solver counters (NaN as ``None``)."""
         out: dict[str, Any] = {"status": self.status, "message": self.message}
         out.update(self.metrics.to_dict())
+        out["stick_slip_criterion"] = STICK_SLIP_CRITERION
+        out["warnings"] = list(self.warnings)
+        out["definitions"] = dict(METRIC_DEFINITIONS)
         out["window"] = [self.metrics.window_start, self.metrics.window_end]
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}
         out["stats"] = self.stats

@@ -243,8 +243,9 @@ pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
 }
 
 /// The stick-slip metrics of a run as a dict (`t_start`, `t_end`, `severity`, `stuck_fraction`,
-/// `rpm_min`, `rpm_max`, `rpm_mean`, `torque_min`, `torque_max`, `cycle_period`); every value
-/// NaN when the run has none.
+/// `rpm_min`, `rpm_max`, `rpm_mean`, `torque_min`, `torque_max`, `cycle_period`,
+/// `period_cycles`, `periodicity`, `slip_period`, `slip_onsets`, `stick_slip`, `settled`,
+/// `warnings`); NaN, 0, false and no warnings when the run has none.
 pub(crate) fn stick_slip_dict<'py>(
     py: Python<'py>,
     m: Option<&drillstring_core::metrics::StickSlip>,
@@ -261,5 +262,12 @@ pub(crate) fn stick_slip_dict<'py>(
     d.set_item("torque_min", m.map_or(nan, |s| s.torque_min))?;
     d.set_item("torque_max", m.map_or(nan, |s| s.torque_max))?;
     d.set_item("cycle_period", m.map_or(nan, |s| s.cycle_period))?;
+    d.set_item("period_cycles", m.map_or(nan, |s| s.period_cycles))?;
+    d.set_item("periodicity", m.map_or(nan, |s| s.periodicity))?;
+    d.set_item("slip_period", m.map_or(nan, |s| s.slip_period))?;
+    d.set_item("slip_onsets", m.map_or(0, |s| s.slip_onsets))?;
+    d.set_item("stick_slip", m.is_some_and(|s| s.stick_slip))?;
+    d.set_item("settled", m.is_some_and(|s| s.settled))?;
+    d.set_item("warnings", m.map_or_else(Vec::new, |s| s.warnings()))?;
     Ok(d)
 }

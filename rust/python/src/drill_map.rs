@@ -60,6 +60,12 @@ fn columns<'py>(
     m.set_item("torque_min", PyArray1::from_vec(py, metric(|s| s.torque_min)))?;
     m.set_item("torque_max", PyArray1::from_vec(py, metric(|s| s.torque_max)))?;
     m.set_item("cycle_period", PyArray1::from_vec(py, metric(|s| s.cycle_period)))?;
+    m.set_item("period_cycles", PyArray1::from_vec(py, metric(|s| s.period_cycles)))?;
+    m.set_item("periodicity", PyArray1::from_vec(py, metric(|s| s.periodicity)))?;
+    m.set_item("slip_period", PyArray1::from_vec(py, metric(|s| s.slip_period)))?;
+    // the verdicts as 1 / 0 (NaN without metrics), like every other column of a map
+    m.set_item("stick_slip", PyArray1::from_vec(py, metric(|s| f64::from(u8::from(s.stick_slip)))))?;
+    m.set_item("settled", PyArray1::from_vec(py, metric(|s| f64::from(u8::from(s.settled)))))?;
     m.set_item("breakoff_torque", PyArray1::from_vec(py, row(|r| r.breakoff_torque)))?;
     m.set_item("min_cycle_torque", PyArray1::from_vec(py, row(|r| r.min_cycle_torque)))?;
     d.set_item("metrics", m)?;

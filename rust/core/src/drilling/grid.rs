@@ -225,6 +225,10 @@ impl Grid {
             courant.push(c);
             spacing.push(p.length / n);
         }
+        // A Courant number below 1 asked for: a shorter step on the same cells.
+        let target = cfg.numerics.courant;
+        let dt = dt * target;
+        courant.iter_mut().for_each(|c| *c *= target);
         let total: usize = counts.iter().sum();
         if total > cfg.numerics.max_cells {
             return Err(Error::invalid(

@@ -477,6 +477,28 @@ impl<'c> Simulation<'c> {
         }
     }
 
+    /// The bit speed reported, rad/s: the speed of the string's end, except that an end slower
+    /// than `friction.stick_speed` below a stuck last cell (speed exactly 0) is at rest.
+    ///
+    /// Below a stuck cell the end's speed is `omega_n + tau_n / Z` of the cell's invariant (the
+    /// boundary's Riemann solution), which creeps at the stuck cell's torque over the
+    /// impedance: a speed proportional to the cell size (the torque of a stuck string falls
+    /// linearly to 0 at a free end, so the last cell's is about `h / 2` times its gradient).
+    /// In the continuum the string is at rest down to its end. The creep moves no state (the
+    /// scheme keeps no angle), so reporting 0 changes nothing else; the published code of
+    /// Aarsnes & Shor reports the last cell's speed for the same reason.
+    fn bit_speed(&self) -> f64 {
+        let last = self.spans.last().expect("at least one section");
+        let (w, _) = self.cell(last, last.cells);
+        let fr = &self.cfg.friction;
+        let stuck = fr.model == FrictionModel::SetValued && w == 0.0;
+        if stuck && self.omega_bit.abs() < fr.stick_speed.max(self.cfg.metrics.stick_speed) {
+            0.0
+        } else {
+            self.omega_bit
+        }
+    }
+
     /// The characteristic variable leaving cell `j` of a section towards a face and the
     /// impedance it travels with: downwards (`down`) `omega + tau / Z`, else `omega - tau / Z`
     /// (`consistent`: `Z` the tangent impedance of the cell's twist).
@@ -783,7 +805,7 @@ impl<'c> Simulation<'c> {
         let mut poller = Poller::new(interrupt);
         let stride = (steps / 1000).max(1);
         // (t, omega_top, omega_bit, motor, bit) at the previous step end.
-        let mut prev = [0.0, self.omega_top, self.omega_bit, f64::NAN, f64::NAN];
+        let mut prev = [0.0, self.omega_top, self.bit_speed(), f64::NAN, f64::NAN];
         let mut next_series = 0usize;
         let mut next_field = 1usize;
         let mut t = 0.0;
@@ -796,7 +818,7 @@ impl<'c> Simulation<'c> {
             let (motor, bit) = self.step(t);
             t = (n + 1) as f64 * dt;
             run.stats.steps = n + 1;
-            let cur = [t, self.omega_top, self.omega_bit, motor, bit];
+            let cur = [t, self.omega_top, self.bit_speed(), motor, bit];
             if n == 0 {
                 prev[3] = motor;
                 prev[4] = bit;
@@ -889,8 +911,25 @@ impl<'c> Simulation<'c> {
         }
         let [a, b] = run.window;
         let stuck = cfg.metrics.stick_speed;
-        let omega_bit: Vec<f64> = run.bit_rpm.iter().map(|r| r / RPM_PER_RAD_S).collect();
-        run.metrics = stick_slip(&run.t, &omega_bit, Some(&run.motor_torque), Some((a, b)), stuck).ok();
+        let mut omega_bit = Vec::new();
+        let note = if omega_bit.try_reserve_exact(run.bit_rpm.len()).is_err() {
+            Some("no metrics: their memory could not be allocated".to_string())
+        } else {
+            omega_bit.extend(run.bit_rpm.iter().map(|r| r / RPM_PER_RAD_S));
+            run.metrics = stick_slip(&run.t, &omega_bit, Some(&run.motor_torque), Some((a, b)), stuck).ok();
+            run.metrics.is_none().then(|| {
+                format!(
+                    "no metrics: the window metrics.window = [{}, {}] s holds fewer than 2 samples of the series \
+                     (0 to {} s)",
+                    Num(a),
+                    Num(b),
+                    Num(run.t.last().copied().unwrap_or(0.0))
+                )
+            })
+        };
+        if let Some(note) = note {
+            run.message = if run.message.is_empty() { note } else { format!("{}; {note}", run.message) };
+        }
         progress(1.0);
         run
     }
@@ -1257,19 +1296,25 @@ fn update<const REGULARISED: bool, const UPWIND: bool>(
 fn source<const REGULARISED: bool>(w1: f64, lim: f64, slip: f64, k: &Consts) -> (f64, f64, bool) {
     let dd = -k.damping * w1;
     let wd = w1 + dd;
+    // Friction never reverses a cell within a step: a change larger than the speed after
+    // damping (`wd`, of the sign of `w1` since `dt d <= 1`) stops the cell instead.
     let (df, stuck) = if REGULARISED {
-        (-k.kr * lim * (w1 * k.inv_vr).tanh(), false)
+        let df = -k.kr * lim * (w1 * k.inv_vr).tanh();
+        (if df.abs() > wd.abs() { -wd } else { df }, false)
     } else {
         // Slow: |w1| < stick speed, or w1 = 0 (`slow_below`). Selects and bit operations
         // only, so that the loop vectorises.
         let slow = w1.abs() < k.slow_below;
         let clipped = if wd > lim { lim } else { wd };
         let clipped = if clipped < -lim { -lim } else { clipped };
-        // Kinetic: -(kinetic_ratio lim) copysign w1, i.e. `slip` (<= -0) with its sign
-        // flipped when w1 is negative.
-        let kinetic = f64::from_bits(slip.to_bits() ^ (w1.to_bits() & SIGN_BIT));
+        // Kinetic: -min(kinetic_ratio lim, |wd|) copysign w1, i.e. the larger of `slip` (<= -0)
+        // and -|wd|, with its sign flipped when w1 is negative; at -|wd| it stops the cell.
+        let room = -wd.abs();
+        let stops = slip <= room;
+        let kinetic = if stops { room } else { slip };
+        let kinetic = f64::from_bits(kinetic.to_bits() ^ (w1.to_bits() & SIGN_BIT));
         let df = if slow { -clipped } else { kinetic };
-        (df, slow & (wd.abs() <= lim))
+        (df, (slow & (wd.abs() <= lim)) | (!slow & stops))
     };
     (dd, df, stuck)
 }

@@ -683,8 +683,10 @@ fn linear_runs_are_unchanged() {
     assert_eq!(got, LOADED_FINGERPRINT);
 }
 
-const WELL_B_FINGERPRINT: [f64; 4] = [52937.993822556935, 27686614.84156269, 1122349.7601874035, 782097.2279241397];
-const LOADED_FINGERPRINT: [f64; 4] = [22626.962510435824, 13708014.63578681, 536085.6656196791, 27.580043507515068];
+// The bit speed's sum changed (52937.993822556935 before) when the end below a stuck last cell
+// was reported at rest instead of creeping; the motor torque and the energies, the dynamics, did not.
+const WELL_B_FINGERPRINT: [f64; 4] = [52918.07308358484, 27686614.84156269, 1122349.7601874035, 782097.2279241397];
+const LOADED_FINGERPRINT: [f64; 4] = [22612.652434214873, 13708014.63578681, 536085.6656196791, 27.580043507515068];
 
 #[test]
 fn consistent_with_k5_zero_is_the_linear_scheme() {
@@ -992,4 +994,46 @@ fn with_stick_speed_zero_a_string_at_rest_stays_at_rest() {
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
     assert!(run.bit_rpm.iter().any(|&w| w > 30.0));
     assert!(run.energy.friction_loss > 0.0 && run.energy.balance_error.abs() < 1e-11, "{:?}", run.energy);
+}
+
+/// A kinetic friction far above the break-off torque (friction.static = 1000) never reverses a
+/// cell: the friction loss is never negative and the balance closes without a numerical loss
+/// that hides it (before: friction_loss -3.25e8 J against a numerical loss of +3.21e8 J).
+#[test]
+fn kinetic_friction_never_reverses_the_motion() {
+    let json = r#"{
+      "sections": [{"length": 3200.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
+      "friction": {"static": 1000.0},
+      "numerics": {"cells": 500, "duration": 5.0, "field_interval": 0}
+    }"#;
+    let cfg = DrillConfig::from_json(json).unwrap();
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let e = run.energy;
+    assert!(e.friction_loss >= 0.0, "{e:?}");
+    // only the implicit top drive's first-order loss (no transport loss at Courant number 1)
+    assert!(e.upwind_loss == 0.0 && e.inertia_loss < 1e-3 * e.motor_work, "{e:?}");
+    assert!(e.balance_error.abs() < 1e-10, "{e:?}");
+    // the motor cannot break the string free: the bit never turns
+    assert!(
+        run.bit_rpm.iter().all(|&w| w.abs() < 1e-9),
+        "{:?}",
+        run.bit_rpm.iter().fold(0.0f64, |a, &b| a.max(b.abs()))
+    );
+}
+
+/// A Courant number below 1 asked for shortens the step on the same cells.
+#[test]
+fn a_courant_number_below_one_shortens_the_step() {
+    let mut cfg = DrillConfig::default();
+    cfg.numerics.duration = 1.0;
+    let base = Grid::new(&cfg).unwrap();
+    cfg.numerics.courant = 0.5;
+    let half = Grid::new(&cfg).unwrap();
+    assert_eq!(base.counts, half.counts);
+    assert!((half.dt - 0.5 * base.dt).abs() < 1e-15 * base.dt);
+    assert!(half.courant.iter().zip(&base.courant).all(|(h, b)| (h - 0.5 * b).abs() < 1e-15));
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert!(run.energy.upwind_loss > 0.0 && run.energy.balance_error.abs() < 1e-10, "{:?}", run.energy);
+    cfg.numerics.courant = 1.5;
+    assert_eq!(cfg.validate().unwrap_err().field(), "numerics.courant");
 }

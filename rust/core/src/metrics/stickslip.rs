@@ -8,17 +8,30 @@
 //!   - stuck fraction: the fraction of the window's time with `|omega_bit| <= stick_speed`
 //!     (exact for the piecewise-linear series);
 //!   - bit speed min / max / mean in rpm (`rad/s * 60 / (2 pi)`);
-//!   - motor torque min / max and cycle period: the mean interval between the upward crossings
-//!     of the motor torque through its time-weighted mean (crossing times linearly
-//!     interpolated), a crossing within 0.6 spectral periods (the strongest peak of the
-//!     torque's spectrum) of the last one counted not counted: a wiggle on a slope of a
-//!     stick-slip cycle crosses the mean too; NaN with fewer than three counted crossings (two
-//!     full cycles). Without a torque series these are NaN.
+//!   - motor torque min / max;
+//!   - cycle period ([`cycle_period`]): the lag of the first full peak of the motor torque's
+//!     autocorrelation (unbiased, mean removed, on a uniform grid of at most
+//!     [`PERIOD_SAMPLES`] samples, the peak refined by a parabola), searched up to half the
+//!     window, so that it is NaN unless the window holds two cycles; it does not depend on
+//!     where the window starts for a periodic signal. `periodicity` is the autocorrelation at
+//!     that lag (1 for an exactly periodic series) and `period_cycles` the window's length in
+//!     periods. Without a torque series these are NaN;
+//!   - the cross-check `slip_period`: the mean interval between the bit's slip onsets (its
+//!     speed rising through `stick_speed` in the direction of its mean, linearly
+//!     interpolated, for a slip that carries it above its mean speed), NaN with fewer than
+//!     three;
+//!   - the verdict `stick_slip`: the bit stops (`|omega_bit| <= stick_speed`) during part of
+//!     the window, neither never nor always (stuck fraction strictly between 0 and 1);
+//!   - `settled`: the window holds a steady regime: the first and the last whole periods of the
+//!     window (as many as half the window holds; its two halves without a period) have the
+//!     same bit-speed and motor-torque
+//!     means and ranges, to 5 % of the ranges plus 1 % of the means (and `stick_speed` for
+//!     the speed). A transient still decaying inside the window is not settled.
+//! * [`StickSlip::warnings`]: what a reader should know before trusting the numbers.
 //! * [`break_off_torque`]: the static break-off torque of a well, the integral over measured
 //!   depth of the friction limit per metre (trapezoidal).
 
 use crate::error::{Error, Num, Result};
-use crate::metrics::FrequencyEstimator;
 
 /// Default stick threshold speed, rad/s (about 0.1 rpm): the bit counts as stuck while
 /// `|omega_bit|` is at most this.
@@ -44,9 +57,66 @@ pub struct StickSlip {
     /// NaN without a motor torque series.
     pub torque_min: f64,
     pub torque_max: f64,
-    /// Mean interval between upward mean-crossings of the motor torque (one per cycle: see
-    /// the module), s; NaN with fewer than two full cycles or without a torque series.
+    /// The autocorrelation period of the motor torque (see the module), s; NaN with fewer than
+    /// two cycles in the window, without a clear peak or without a torque series.
     pub cycle_period: f64,
+    /// The window's length in periods (NaN without a period).
+    pub period_cycles: f64,
+    /// The normalised autocorrelation at the period (1: exactly periodic; NaN without one).
+    pub periodicity: f64,
+    /// Mean interval between the bit's slip onsets, s (NaN with fewer than three onsets).
+    pub slip_period: f64,
+    /// Slip onsets of the bit in the window.
+    pub slip_onsets: usize,
+    /// The bit stops during part of the window (stuck fraction strictly between 0 and 1).
+    pub stick_slip: bool,
+    /// The window holds a steady regime (see the module).
+    pub settled: bool,
+}
+
+/// Most samples the period estimator uses: a longer window is resampled to this many (the
+/// period's resolution is refined below a sample by the parabola), so that its memory is
+/// bounded whatever the series' length.
+pub const PERIOD_SAMPLES: usize = 1 << 14;
+
+/// Relative agreement the cross-check between the autocorrelation period and the slip period
+/// is held to before a warning.
+pub const PERIOD_AGREEMENT: f64 = 0.05;
+
+impl StickSlip {
+    /// Short sentences on what in these metrics cannot be trusted as they stand (empty when
+    /// every one can).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if !self.settled {
+            out.push(
+                "not settled: the first and the last cycle of the metrics window differ by more than 5 % \
+                 (a transient, or an irregular motion); lengthen the run or start the window later"
+                    .to_string(),
+            );
+        }
+        if self.severity.is_nan() {
+            out.push("ssi undefined: the bit's mean speed over the window is 0".to_string());
+        }
+        if self.stuck_fraction >= 1.0 {
+            out.push("the bit never turns in the window (stuck throughout)".to_string());
+        }
+        if self.cycle_period.is_nan() && self.torque_max.is_finite() && self.torque_max > self.torque_min {
+            out.push("period_s undefined: the window holds fewer than two cycles, or no periodic motion".to_string());
+        }
+        if self.cycle_period.is_finite()
+            && self.slip_period.is_finite()
+            && (self.slip_period - self.cycle_period).abs() > PERIOD_AGREEMENT * self.cycle_period
+        {
+            out.push(format!(
+                "period_s = {} s and the mean interval between slip onsets, {} s, differ by more than {} %",
+                Num(self.cycle_period),
+                Num(self.slip_period),
+                100.0 * PERIOD_AGREEMENT
+            ));
+        }
+        out
+    }
 }
 
 fn finite_values(field: &str, x: &[f64], n: usize) -> Result<()> {
@@ -102,72 +172,183 @@ fn time_within(t: &[f64], x: &[f64], s: f64) -> f64 {
         .sum()
 }
 
-/// The cycle period of `x`: the mean interval between its upward crossings through its
-/// time-weighted mean (linear interpolation), where a crossing less than 0.6 spectral
-/// periods after the last one counted is not counted (a wiggle on a slope of the cycle, not a new
-/// cycle); NaN with fewer than three counted crossings.
-///
-/// The spectral period is that of the strongest peak of the Hann-windowed spectrum
-/// ([`FrequencyEstimator::dominant_frequency`]) of `x` on a uniform grid of as many samples
-/// (linear interpolation when `t` is not uniform). Without a peak every crossing counts.
-fn cycle_period(t: &[f64], x: &[f64]) -> f64 {
-    let mean = time_mean(t, x);
-    let min_gap = 0.6 * spectral_period(t, x);
-    let mut first = None;
-    let mut last = f64::NAN;
-    let mut count = 0usize;
-    for (t, x) in t.windows(2).zip(x.windows(2)) {
-        let (u, v) = (x[0] - mean, x[1] - mean);
-        if u < 0.0 && v >= 0.0 {
-            let tc = t[0] + (t[1] - t[0]) * (-u) / (v - u);
-            // NaN min_gap (no spectral peak): the comparison is false, every crossing counts
-            if count > 0 && tc - last < min_gap {
-                continue;
-            }
-            first.get_or_insert(tc);
-            last = tc;
-            count += 1;
-        }
-    }
-    match first {
-        Some(t0) if count >= 3 => (last - t0) / (count - 1) as f64,
-        _ => f64::NAN,
-    }
+/// A vector of `n` zeros, or None when the memory cannot be had.
+fn zeros<T: Clone + Default>(n: usize) -> Option<Vec<T>> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).ok()?;
+    v.resize(n, T::default());
+    Some(v)
 }
 
-/// `1 / f` of the strongest spectral peak of `x` sampled at `t` (see [`cycle_period`]); NaN
-/// without a peak.
-fn spectral_period(t: &[f64], x: &[f64]) -> f64 {
+/// `x` (sampled at the strictly increasing `t`) on `m` uniform samples from `t[0]` to the last
+/// `t`, linearly interpolated; None without memory.
+fn resample(t: &[f64], x: &[f64], m: usize) -> Option<Vec<f64>> {
     let n = t.len();
-    if n < 4 {
-        return f64::NAN;
+    let dt = (t[n - 1] - t[0]) / (m - 1) as f64;
+    let mut y = zeros(m)?;
+    let mut k = 0;
+    for (j, yj) in y.iter_mut().enumerate() {
+        let tj = if j + 1 == m { t[n - 1] } else { t[0] + j as f64 * dt };
+        while k + 2 < n && t[k + 1] < tj {
+            k += 1;
+        }
+        let s = ((tj - t[k]) / (t[k + 1] - t[k])).clamp(0.0, 1.0);
+        *yj = x[k] + s * (x[k + 1] - x[k]);
     }
-    let dt = (t[n - 1] - t[0]) / (n - 1) as f64;
-    let uniform = t.iter().enumerate().all(|(j, &tj)| (tj - (t[0] + j as f64 * dt)).abs() <= 1e-9 * dt.max(tj.abs()));
-    let resampled: Vec<f64>;
-    let xs: &[f64] = if uniform {
-        x
-    } else {
-        let mut k = 0;
-        resampled = (0..n)
-            .map(|j| {
-                let tj = if j + 1 == n { t[n - 1] } else { t[0] + j as f64 * dt };
-                while k + 2 < n && t[k + 1] < tj {
-                    k += 1;
-                }
-                let s = ((tj - t[k]) / (t[k + 1] - t[k])).clamp(0.0, 1.0);
-                x[k] + s * (x[k + 1] - x[k])
-            })
-            .collect();
-        &resampled
+    Some(y)
+}
+
+/// The autocorrelation period of `x` sampled at `t` and the similarity at it (see the
+/// module); NaNs without a period.
+///
+/// The lag is that of the similarity `s[k] = 1 - mean((y_j - y_{j+k})^2) / (2 var)` over the
+/// overlap of the series and its shift (the normalised autocorrelation with the energies of the
+/// overlapping parts instead of the whole, as the YIN pitch estimator does, so that the
+/// window's ends bias it not): the first local maximum, after `s` first falls below 0, within
+/// 80 % of the highest up to half the window, refined by a parabola.
+pub fn cycle_period(t: &[f64], x: &[f64]) -> (f64, f64) {
+    let none = (f64::NAN, f64::NAN);
+    let n = t.len();
+    if n < 8 {
+        return none;
+    }
+    let m = n.min(PERIOD_SAMPLES);
+    let Some(mut y) = resample(t, x, m) else { return none };
+    let dt = (t[n - 1] - t[0]) / (m - 1) as f64;
+    let mean = y.iter().sum::<f64>() / m as f64;
+    y.iter_mut().for_each(|v| *v -= mean);
+    if y.iter().all(|v| v.abs() <= 1e-12 * mean.abs()) {
+        return none;
+    }
+    // Autocorrelation by the real FFT of the series zero-padded to twice its length.
+    let len = (2 * m).next_power_of_two();
+    let mut planner = realfft::RealFftPlanner::<f64>::new();
+    let forward = planner.plan_fft_forward(len);
+    let inverse = planner.plan_fft_inverse(len);
+    let (Some(mut input), Some(mut spectrum)) = (zeros::<f64>(len), zeros(len / 2 + 1)) else { return none };
+    input[..m].copy_from_slice(&y);
+    if forward.process(&mut input, &mut spectrum).is_err() {
+        return none;
+    }
+    for c in spectrum.iter_mut() {
+        *c = realfft::num_complex::Complex::new(c.norm_sqr(), 0.0);
+    }
+    if inverse.process(&mut spectrum, &mut input).is_err() {
+        return none;
+    }
+    let half = m / 2;
+    // The similarity of the series with itself shifted by k samples, from the mean squared
+    // difference over the overlap (free of the edge bias of the autocorrelation: exactly 1 at
+    // the period of a periodic series): s[k] = 1 - sum (y_j - y_{j+k})^2 / (m - k) / (2 var).
+    let mut prefix = Vec::new();
+    if prefix.try_reserve_exact(m + 1).is_err() {
+        return none;
+    }
+    prefix.push(0.0);
+    let mut acc = 0.0;
+    for v in &y {
+        acc += v * v;
+        prefix.push(acc);
+    }
+    let var = acc / m as f64;
+    if var.is_nan() || var <= 0.0 {
+        return none;
+    }
+    // input[k] = sum_j y_j y_{j+k} (unnormalised inverse FFT: times len).
+    let scale = 1.0 / len as f64;
+    let r: Vec<f64> = (0..=half)
+        .map(|k| {
+            let overlap = prefix[m - k] + (prefix[m] - prefix[k]) - 2.0 * input[k] * scale;
+            1.0 - overlap / ((m - k) as f64 * 2.0 * var)
+        })
+        .collect();
+    let Some(k0) = r.iter().position(|&v| v < 0.0) else { return none };
+    let top = r[k0..half].iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if top.is_nan() || top <= 0.0 {
+        return none;
+    }
+    // The first interior local maximum within 80 % of the highest (not a wiggle, not a
+    // multiple of the period).
+    let Some(k) = (k0.max(1)..half).find(|&k| r[k] >= 0.8 * top && r[k] >= r[k - 1] && r[k] >= r[k + 1]) else {
+        return none;
     };
-    let estimator = FrequencyEstimator::new(n);
-    let f = estimator.dominant_frequency(xs, dt, &mut estimator.buffers());
-    if f > 0.0 {
-        1.0 / f
-    } else {
-        f64::NAN
+    let (a, b, c) = (r[k - 1], r[k], r[k + 1]);
+    let curvature = a - 2.0 * b + c;
+    let delta = if curvature < 0.0 { (0.5 * (a - c) / curvature).clamp(-0.5, 0.5) } else { 0.0 };
+    ((k as f64 + delta) * dt, b - 0.25 * (a - c) * delta)
+}
+
+/// The slip onsets of the bit: times at which its speed rises through `stick_speed` in the
+/// direction of its mean rotation `mean` (linearly interpolated) for a slip that carries it
+/// above `|mean|` before it stops again (a partial slip, or a short reversal at re-stick, is
+/// no cycle), as (count, mean interval; NaN with fewer than three).
+fn slip_onsets(t: &[f64], w: &[f64], stick_speed: f64, mean: f64) -> (usize, f64) {
+    let sign = if mean < 0.0 { -1.0 } else { 1.0 };
+    let (mut count, mut first, mut last) = (0usize, f64::NAN, f64::NAN);
+    let mut pending: Option<f64> = None;
+    for (t, w) in t.windows(2).zip(w.windows(2)) {
+        let (u, v) = (sign * w[0], sign * w[1]);
+        if u <= stick_speed && v > stick_speed {
+            pending = Some(t[0] + (t[1] - t[0]) * (stick_speed - u) / (v - u));
+        } else if v <= stick_speed {
+            pending = None;
+        }
+        if let Some(tc) = pending.filter(|_| v > mean.abs()) {
+            if count == 0 {
+                first = tc;
+            }
+            last = tc;
+            count += 1;
+            pending = None;
+        }
     }
+    (count, if count >= 3 { (last - first) / (count - 1) as f64 } else { f64::NAN })
+}
+
+/// Minimum, maximum and time-weighted mean of the linear interpolant of `x` over `[a, b]`
+/// (inside `t`'s span, `a < b`).
+fn segment(t: &[f64], x: &[f64], a: f64, b: f64) -> (f64, f64, f64) {
+    let at = |s: f64| {
+        let k = t.partition_point(|&v| v < s).clamp(1, t.len() - 1);
+        let f = ((s - t[k - 1]) / (t[k] - t[k - 1])).clamp(0.0, 1.0);
+        x[k - 1] + f * (x[k] - x[k - 1])
+    };
+    let lo = t.partition_point(|&v| v <= a);
+    let hi = t.partition_point(|&v| v < b);
+    let (xa, xb) = (at(a), at(b));
+    let (mut min, mut max) = (xa.min(xb), xa.max(xb));
+    let mut area = 0.0;
+    let (mut tp, mut xp) = (a, xa);
+    for j in lo..hi {
+        min = min.min(x[j]);
+        max = max.max(x[j]);
+        area += 0.5 * (t[j] - tp) * (x[j] + xp);
+        (tp, xp) = (t[j], x[j]);
+    }
+    area += 0.5 * (b - tp) * (xb + xp);
+    (min, max, area / (b - a))
+}
+
+/// Whether the window holds a steady regime (see the module): the first and the last
+/// `period` (the two halves when NaN) agree in mean and range, for every series.
+fn settled(t: &[f64], series: &[(&[f64], f64)], period: f64) -> bool {
+    let (t0, t1) = (t[0], t[t.len() - 1]);
+    let (first, last) = if period.is_finite() && period < t1 - t0 {
+        // as many whole periods as each half holds (a motion that repeats every second cycle
+        // compares alike)
+        let k = (0.5 * (t1 - t0) / period).floor().max(1.0);
+        ((t0, t0 + k * period), (t1 - k * period, t1))
+    } else {
+        let mid = 0.5 * (t0 + t1);
+        ((t0, mid), (mid, t1))
+    };
+    series.iter().all(|&(x, floor)| {
+        let (min1, max1, mean1) = segment(t, x, first.0, first.1);
+        let (min2, max2, mean2) = segment(t, x, last.0, last.1);
+        let (r1, r2) = (max1 - min1, max2 - min2);
+        let tol = 0.05 * r1.max(r2) + 0.01 * mean1.abs().max(mean2.abs()) + floor;
+        (r1 - r2).abs() <= tol && (mean1 - mean2).abs() <= tol
+    })
 }
 
 /// The stick-slip metrics (see the module) of the bit speed `omega_bit` (rad/s) and optionally
@@ -220,8 +401,8 @@ pub fn stick_slip(
     let mean = time_mean(tw, w);
     let span = tw[tw.len() - 1] - tw[0];
     let severity = if mean == 0.0 { f64::NAN } else { (max - min) / (2.0 * mean.abs()) };
-    let (torque_min, torque_max, cycle_period) = match motor_torque {
-        None => (f64::NAN, f64::NAN, f64::NAN),
+    let (torque_min, torque_max, (cycle_period, periodicity)) = match motor_torque {
+        None => (f64::NAN, f64::NAN, (f64::NAN, f64::NAN)),
         Some(m) => {
             let m = &m[lo..hi];
             (
@@ -231,17 +412,29 @@ pub fn stick_slip(
             )
         }
     };
+    let stuck_fraction = (time_within(tw, w, stick_speed) / span).min(1.0);
+    let (slip_onsets, slip_period) = slip_onsets(tw, w, stick_speed, mean);
+    let mut series: Vec<(&[f64], f64)> = vec![(w, stick_speed)];
+    if let Some(m) = motor_torque {
+        series.push((&m[lo..hi], 0.0));
+    }
     Ok(StickSlip {
         t_start: tw[0],
         t_end: tw[tw.len() - 1],
         severity,
-        stuck_fraction: (time_within(tw, w, stick_speed) / span).min(1.0),
+        stuck_fraction,
         rpm_min: min * RPM_PER_RAD_S,
         rpm_max: max * RPM_PER_RAD_S,
         rpm_mean: mean * RPM_PER_RAD_S,
         torque_min,
         torque_max,
         cycle_period,
+        period_cycles: span / cycle_period,
+        periodicity,
+        slip_period,
+        slip_onsets,
+        stick_slip: stuck_fraction > 0.0 && stuck_fraction < 1.0,
+        settled: settled(tw, &series, cycle_period),
     })
 }
 
@@ -285,7 +478,8 @@ mod tests {
         let crossings = t.windows(2).zip(torque.windows(2)).filter(|(_, x)| x[0] < mean && x[1] >= mean).count();
         assert!(crossings >= 12, "{crossings} upward crossings: the wiggle must cross the mean more than once a cycle");
         let m = stick_slip(&t, &w, Some(&torque), None, STICK_SPEED).unwrap();
-        assert!((m.cycle_period - period).abs() < 1e-9 * period, "{}", m.cycle_period);
+        assert!((m.cycle_period - period).abs() < 1e-6 * period, "{}", m.cycle_period);
+        assert!(m.periodicity > 0.999 && (m.period_cycles - 6.0).abs() < 1e-5, "{m:?}");
         // the same on a non-uniform grid (the spectral estimate resamples)
         let tn: Vec<f64> = t.iter().map(|&t| t + 0.003 * (t * 7.0).sin()).collect();
         let m = stick_slip(&tn, &w, Some(&torque), None, STICK_SPEED).unwrap();
@@ -305,7 +499,8 @@ mod tests {
         assert!((m.rpm_mean - w0 * RPM_PER_RAD_S).abs() < 1e-9);
         assert!((m.rpm_max - w0 * (1.0 + a) * RPM_PER_RAD_S).abs() < 1e-6);
         assert!((m.torque_min - 2.0).abs() < 1e-6 && (m.torque_max - 8.0).abs() < 1e-6);
-        assert!((m.cycle_period - 1.0 / f).abs() < 1e-9, "{}", m.cycle_period);
+        assert!((m.cycle_period - 1.0 / f).abs() < 1e-7, "{}", m.cycle_period);
+        assert!(m.settled && !m.stick_slip && m.slip_onsets == 0 && m.slip_period.is_nan(), "{m:?}");
         assert!(stick_slip(&t, &w, None, None, STICK_SPEED).unwrap().cycle_period.is_nan());
     }
 
@@ -332,7 +527,10 @@ mod tests {
         let m = stick_slip(&t, &w, Some(&w), Some((0.0, 3.9999)), STICK_SPEED).unwrap();
         assert!((m.stuck_fraction - 0.25).abs() < 1e-3, "{}", m.stuck_fraction);
         assert!((m.severity - 4.0 / (2.0 * 3.0)).abs() < 2e-3, "{}", m.severity);
-        assert!((m.cycle_period - 1.0).abs() < 1e-9);
+        assert!((m.cycle_period - 1.0).abs() < 1e-4, "{}", m.cycle_period);
+        // slip onsets at 0.25 + k (k = 0..3): three intervals of 1 s
+        assert_eq!(m.slip_onsets, 4);
+        assert!((m.slip_period - 1.0).abs() < 1e-9 && m.stick_slip && m.settled, "{m:?}");
         let late = stick_slip(&t, &w, None, Some((2.5, 2.9)), STICK_SPEED).unwrap();
         assert_eq!((late.stuck_fraction, late.t_start), (0.0, 2.5));
         assert!((late.t_end - 2.9).abs() < 1e-12);
@@ -340,6 +538,63 @@ mod tests {
         let zero = stick_slip(&t, &vec![0.0; t.len()], None, None, STICK_SPEED).unwrap();
         assert!(zero.severity.is_nan());
         assert_eq!(zero.stuck_fraction, 1.0);
+    }
+
+    /// A stick-slip-like torque (slow wind-up, fast drop, a wiggle that crosses the mean 1.4 s
+    /// after the main crossing, as the motor torque of Well B does): the period is the same for
+    /// every window start, and NaN when the window holds fewer than two cycles.
+    #[test]
+    fn period_does_not_depend_on_the_window_start() {
+        let period = 7.25;
+        let t = grid(60001, 60.0);
+        let torque: Vec<f64> = t
+            .iter()
+            .map(|&t| {
+                let phase = (t / period).fract();
+                let saw = if phase < 0.85 { -1.0 + 2.0 * phase / 0.85 } else { 1.0 - 2.0 * (phase - 0.85) / 0.15 };
+                let since = phase * period;
+                saw + 0.6 * (-((since - 1.4) / 0.2).powi(2)).exp()
+            })
+            .collect();
+        // the bit turns in the upper part of the cycle only (the wiggle does not free it)
+        let w: Vec<f64> = torque.iter().map(|v| (2.0 * (v - 0.3)).max(0.0)).collect();
+        for start in [20.0, 20.7, 25.0, 30.0, 33.3] {
+            let m = stick_slip(&t, &w, Some(&torque), Some((start, 60.0)), STICK_SPEED).unwrap();
+            assert!((m.cycle_period - period).abs() < 1e-4 * period, "start {start}: {}", m.cycle_period);
+            assert!((m.slip_period - period).abs() < 1e-3 * period, "start {start}: {}", m.slip_period);
+            assert!(m.settled && m.stick_slip, "start {start}: {m:?}");
+            assert!(m.warnings().is_empty(), "{:?}", m.warnings());
+        }
+        // 1.9 cycles: no period, and a warning says why
+        let m = stick_slip(&t, &w, Some(&torque), Some((40.0, 40.0 + 1.9 * period)), STICK_SPEED).unwrap();
+        assert!(m.cycle_period.is_nan() && m.period_cycles.is_nan(), "{m:?}");
+        assert!(m.warnings().iter().any(|s| s.contains("fewer than two cycles")), "{:?}", m.warnings());
+    }
+
+    /// A decaying oscillation is not settled; the same oscillation at constant amplitude is.
+    #[test]
+    fn a_decaying_transient_is_not_settled() {
+        let t = grid(20001, 40.0);
+        let decaying: Vec<f64> =
+            t.iter().map(|&t| 10.0 + 5.0 * (-t / 10.0).exp() * (2.0 * PI * t / 3.0).sin()).collect();
+        let steady: Vec<f64> = t.iter().map(|&t| 10.0 + 5.0 * (2.0 * PI * t / 3.0).sin()).collect();
+        let m = stick_slip(&t, &decaying, Some(&decaying), Some((10.0, 40.0)), STICK_SPEED).unwrap();
+        assert!(!m.settled && m.warnings().iter().any(|s| s.starts_with("not settled")), "{m:?}");
+        let m = stick_slip(&t, &steady, Some(&steady), Some((10.0, 40.0)), STICK_SPEED).unwrap();
+        assert!(m.settled && (m.cycle_period - 3.0).abs() < 1e-6, "{m:?}");
+        // steady rotation (no oscillation) is settled, with no period and no warning about it
+        let flat = vec![4.0; t.len()];
+        let m = stick_slip(&t, &flat, Some(&flat), None, STICK_SPEED).unwrap();
+        assert!(m.settled && m.cycle_period.is_nan() && m.warnings().is_empty(), "{m:?}");
+    }
+
+    /// The period estimator's memory is bounded: a long series is resampled.
+    #[test]
+    fn a_long_series_is_resampled() {
+        let n = 40 * PERIOD_SAMPLES + 1;
+        let t = grid(n, 10.0);
+        let x: Vec<f64> = t.iter().map(|&t| (2.0 * PI * t / 0.7).sin()).collect();
+        assert!((cycle_period(&t, &x).0 - 0.7).abs() < 1e-5);
     }
 
     #[test]

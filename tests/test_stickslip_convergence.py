@@ -1,0 +1,82 @@
+"""Stick-slip metrics that do not depend on the grid or on where the metrics window starts.
+
+The corrected Well B of Aarsnes & Shor (examples/aarsnes-shor-well-b-corrected.toml), bit off
+bottom, in a stick-slip limit cycle. Before the bit speed was taken as at rest below a stuck
+last cell, its stuck fraction was 0.009 / 0.017 / 0.50 at 500 / 1000 / 2000 cells (the free end
+crept at a speed proportional to the cell size), and the period 6.94 s over 20-60 s against
+7.24 s over 30-60 s (a mean-crossing count that a wiggle of the torque fooled).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import drillstring as ds
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "aarsnes-shor-well-b-corrected.toml"
+
+
+@pytest.fixture(scope="module")
+def runs() -> dict[int, ds.DrillResult]:
+    cfg = ds.load_drill_config(EXAMPLE)
+    return {n: ds.drill(cfg.with_overrides([f"numerics.cells={n}", "metrics.window=[20.0, 60.0]"]), progress=False)
+            for n in (500, 1000, 2000)}
+
+
+def test_metrics_converge_with_the_grid(runs: dict[int, ds.DrillResult]) -> None:
+    fine = runs[2000].metrics
+    # the independent solution: the autocorrelation of the same run's torque gives 7.25 s
+    assert fine.period_s == pytest.approx(7.25, abs=0.05)
+    assert 0.45 < fine.stuck_fraction < 0.55
+    for n in (500, 1000):
+        m = runs[n].metrics
+        assert m.stuck_fraction == pytest.approx(fine.stuck_fraction, rel=0.03), n
+        assert m.ssi == pytest.approx(fine.ssi, rel=0.03), n
+        assert m.period_s == pytest.approx(fine.period_s, rel=0.01), n
+    for n, r in runs.items():
+        m = r.metrics
+        assert m.stick_slip and m.settled, n
+        # the two period estimates agree: cycles counted from the bit's slip onsets
+        assert m.slip_period_s == pytest.approx(m.period_s, rel=0.01), n
+        assert r.warnings == (), (n, r.warnings)
+
+
+@pytest.mark.parametrize("start", [20.0, 25.0, 30.0])
+def test_the_period_does_not_depend_on_the_window_start(runs: dict[int, ds.DrillResult], start: float) -> None:
+    r = runs[1000]
+    m = ds.analysis.stick_slip_metrics(r.t, r.bit_rpm * (2 * 3.141592653589793 / 60), r.motor_torque,
+                                       window=(start, 60.0), stick_speed=r.config.metrics.stick_speed)
+    assert m.cycle_period == pytest.approx(r.metrics.period_s, rel=0.01)
+    assert m.cycle_period * 2 <= 60.0 - start
+
+
+def test_a_bit_at_rest_below_a_stuck_string_reads_zero(runs: dict[int, ds.DrillResult]) -> None:
+    # during the stuck phases the reported bit speed is exactly 0, at every grid
+    for n, r in runs.items():
+        stuck = r.bit_rpm[(r.t >= 20.0)] == 0.0
+        assert 0.4 < stuck.mean() < 0.6, n
+
+
+def test_metrics_json_states_the_verdict_and_the_definitions(runs: dict[int, ds.DrillResult]) -> None:
+    summary = runs[1000].summary()
+    assert summary["stick_slip"] is True and summary["settled"] is True
+    assert "stuck_fraction" in summary["stick_slip_criterion"]
+    assert summary["warnings"] == []
+    for key in ("ssi", "stuck_fraction", "period_s", "stick_slip", "settled", "bit_rpm_min"):
+        assert summary["definitions"][key]
+
+
+def test_a_transient_is_not_settled_and_says_so() -> None:
+    cfg = ds.load_drill_config(EXAMPLE)
+    # the first stick-slip cycles, from rest: the wind-up and the first slip are no limit cycle
+    r = ds.drill(cfg.with_overrides(["numerics.duration=30", "metrics.window=[0.0, 30.0]"]), progress=False)
+    assert not r.metrics.settled
+    assert any(w.startswith("not settled") for w in r.warnings)
+
+
+def test_a_window_outside_the_run_says_why_there_are_no_metrics() -> None:
+    cfg = ds.load_drill_config(EXAMPLE)
+    r = ds.drill(cfg.with_overrides(["numerics.duration=2", "metrics.window=[5.0, 8.0]"]), progress=False)
+    assert "no metrics" in r.message and "metrics.window" in r.message
