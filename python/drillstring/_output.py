@@ -39,7 +39,7 @@ from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Optional, Union
+from typing import IO, Any, Callable, Optional, Union
 
 from .errors import ValidationError
 
@@ -48,12 +48,19 @@ __all__ = [
     "OutputError",
     "atomic_path",
     "atomic_write",
+    "LOCK",
     "check_destination",
+    "check_directory_name",
     "command_inputs",
+    "folder_owners",
     "is_path",
     "is_stdout",
     "is_stream",
+    "lock_directory",
     "make_directory",
+    "read_regular",
+    "refuse_foreign_folder",
+    "unlock_directory",
     "write_bytes",
     "write_text",
     "write_to",
@@ -63,6 +70,12 @@ PathLike = Union[str, "os.PathLike[str]"]
 
 #: The path that means standard output.
 STDOUT = "-"
+
+#: The lock file of an output directory (see :func:`lock_directory`).
+LOCK = ".lock"
+
+#: What an output directory may be named (the ``allowed`` text of a refused one).
+ALLOWED_DIRECTORY = "a directory path (not empty, and not '-': standard output is not a directory)"
 
 #: What a file destination may be (the ``allowed`` text of a refused one).
 ALLOWED_FILE = "a new or regular file (or a symlink to one), a character device, a FIFO or '-' for standard output"
@@ -236,6 +249,7 @@ def check_destination(
     """
     display = os.fsdecode(os.fspath(path))
     if directory:
+        check_directory_name(display, field)
         real = os.path.realpath(display)
         probe = real
         while not os.path.lexists(probe) and os.path.dirname(probe) != probe:
@@ -259,11 +273,21 @@ def check_destination(
             raise ValidationError(field, display, f"a file in an existing, writable directory ({problem})")
 
 
+def check_directory_name(path: PathLike, field: str) -> None:
+    """Refuses (:class:`~drillstring.errors.ValidationError` naming ``field``) an output directory
+    named ``""`` (it would be the current folder) or ``"-"`` (standard output, not a folder)."""
+    display = os.fsdecode(os.fspath(path))
+    if not display or display == STDOUT:
+        raise ValidationError(field, display, ALLOWED_DIRECTORY)
+
+
 def make_directory(path: PathLike) -> Path:
     """Creates the output directory ``path`` (and its parents) unless it exists; a symlink to a
     directory is used as it is, a dangling one gets its target created. Returns ``path``; a
-    failure raises :class:`OutputError` naming ``path`` as given."""
+    failure raises :class:`OutputError` naming ``path`` as given; an empty path or ``"-"`` a
+    :class:`~drillstring.errors.ValidationError` (:func:`check_directory_name`)."""
     display = os.fsdecode(os.fspath(path))
+    check_directory_name(display, "path")
     try:
         os.makedirs(os.path.realpath(display), exist_ok=True)
     except OSError as exc:
@@ -407,3 +431,136 @@ def write_to(
         writer(target)
         return None
     return atomic_write(target, writer, field=field, suffix=suffix)
+
+
+# --------------------------------------------------------------------------- reading what a command wrote
+
+
+def read_regular(path: PathLike) -> bytes:
+    """The bytes of the regular file ``path`` (symlinks followed). Anything else (a FIFO, a
+    device, a directory) raises ``OSError`` without blocking: it is opened non-blocking and
+    checked before it is read."""
+    fd = os.open(os.fspath(path), os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0))
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = "a FIFO" if stat.S_ISFIFO(mode) else _kind_name(mode)
+            raise OSError(errno.EINVAL, f"not a regular file ({kind})", os.fsdecode(os.fspath(path)))
+        with os.fdopen(fd, "rb", closefd=False) as handle:
+            return handle.read()
+    finally:
+        os.close(fd)
+
+
+# --------------------------------------------------------------------------- output directories
+
+#: The format of a ``drill-map`` store's manifest (its ``"format"`` entry); any other manifest
+#: is a ``sweep``'s.
+MAP_FORMAT = "drillstring-drill-map-1"
+
+#: The files that show which command wrote an output directory (command -> names).
+FOLDER_SIGNS: dict[str, tuple[str, ...]] = {
+    "drill": ("series.parquet", "series.csv", "metrics.json", "fields.npz"),
+    "drill-map": ("map.parquet", "map.csv"),
+    "sweep": ("results.parquet", "results.csv"),
+}
+
+
+def folder_owners(path: PathLike) -> dict[str, list[str]]:
+    """The commands whose output the directory ``path`` holds, each with the entries that show
+    it (:data:`FOLDER_SIGNS`; a ``manifest.json`` is a ``drill-map``'s when its format is
+    :data:`MAP_FORMAT`, else a ``sweep``'s). Empty for a missing or empty directory."""
+    display = os.fsdecode(os.fspath(path))
+    owners: dict[str, list[str]] = {}
+    if not os.path.isdir(display):
+        return owners
+    for command, names in FOLDER_SIGNS.items():
+        for name in names:
+            if os.path.lexists(os.path.join(display, name)):
+                owners.setdefault(command, []).append(name)
+    manifest = os.path.join(display, "manifest.json")
+    if os.path.lexists(manifest):
+        try:
+            import json
+
+            document = json.loads(read_regular(manifest))
+        except (OSError, ValueError, RecursionError):
+            document = None
+        command = "drill-map" if isinstance(document, dict) and document.get("format") == MAP_FORMAT else "sweep"
+        owners.setdefault(command, []).append("manifest.json")
+    return owners
+
+
+def refuse_foreign_folder(path: PathLike, command: str, *, field: str) -> None:
+    """Refuses (:class:`~drillstring.errors.ValidationError` naming ``field`` and the folder) an
+    output directory holding another command's output (:func:`folder_owners`): writing there
+    would put this command's files beside the other run's results."""
+    display = os.fsdecode(os.fspath(path))
+    for other, names in folder_owners(display).items():
+        if other != command:
+            raise ValidationError(
+                field, display, f"a folder for the output of drillstring {command}; it holds the output of "
+                f"drillstring {other} ({', '.join(names)}): choose another output directory",
+            )
+
+
+def lock_directory(directory: PathLike, *, field: str, busy: str) -> IO[str]:
+    """Takes the exclusive lock of the output directory ``directory`` (POSIX ``flock`` on its
+    :data:`LOCK` file, created if needed, released by the system when the process ends, even on
+    ``kill -9``) and writes the holder (process, host, time) into it; returns the open lock file
+    (close it, or :func:`unlock_directory`, to release).
+
+    A directory locked by another process (or by another open of this one) is refused with a
+    :class:`~drillstring.errors.ValidationError` naming ``field`` and the directory; ``busy`` is the
+    text of its ``allowed`` part, with ``{holder}`` and ``{path}`` (of the lock file) filled in. A
+    lock file that is not a regular file is refused too, without blocking on it."""
+    import socket
+    import time
+
+    display = os.fsdecode(os.fspath(directory))
+    path = os.path.join(display, LOCK)
+    while True:
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0),
+                         0o644)
+        except OSError as exc:
+            raise ValidationError(field, display, f"a directory where {LOCK} can be created ({exc})") from exc
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            os.close(fd)
+            kind = "a FIFO" if stat.S_ISFIFO(mode) else _kind_name(mode)
+            raise ValidationError(field, display, f"a directory whose {LOCK} is a regular file (it is {kind})")
+        handle = os.fdopen(fd, "r+", encoding="utf-8")
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - Windows: no advisory locks, one writer is on the user
+            return handle
+        try:
+            fcntl.flock(handle.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as exc:
+            holder = handle.read().strip() or "another process"
+            handle.close()
+            raise ValidationError(field, display, busy.format(holder=holder, path=path)) from exc
+        try:  # the holder before us may have removed the file after we opened it: lock the file at the path
+            same = os.path.samestat(os.fstat(handle.fileno()), os.stat(path))
+        except OSError:
+            same = False
+        if same:
+            break
+        handle.close()
+    handle.seek(0)
+    handle.truncate()
+    handle.write(f"process {os.getpid()} on {socket.gethostname()} since {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
+    handle.flush()
+    return handle
+
+
+def unlock_directory(handle: IO[str], directory: PathLike) -> None:
+    """Removes the :data:`LOCK` file of ``directory`` (while still holding it) and releases the
+    lock taken by :func:`lock_directory`."""
+    try:
+        os.unlink(os.path.join(os.fsdecode(os.fspath(directory)), LOCK))
+    except OSError:
+        pass
+    finally:
+        handle.close()

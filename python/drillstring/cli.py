@@ -20,17 +20,18 @@ from __future__ import annotations
 
 import argparse
 import errno
+import math
 import os
 import sys
 import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any, NoReturn, Optional, TextIO
 
-from . import __version__
+from . import __version__, _core
 from ._output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
 from ._progress import on_terminal
 from .errors import DrillstringError, DrillstringWarning, ValidationError
-from .limits import as_float, check_run_count
+from .limits import INT64_MAX, as_float, check_run_count, memory_budget
 from .paper.table2 import format_table2, table2, table2_json
 from .parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
 from .simulate import METHODS, PDE_METHODS, simulate
@@ -49,6 +50,36 @@ SOLVER_KEYS = {
     "samples": int,
     "z": float,
 }
+
+
+def _int_in(low: int, high: int) -> Any:
+    """An argparse type: an integer ``low <= n <= high``, else a one-line usage error naming the
+    option and the range (exit status 2) before any work."""
+    top = "2**63 - 1" if high == INT64_MAX else str(high)
+
+    def convert(text: str) -> int:
+        shown = text if len(text) <= 40 else f"{text[:20]}... ({len(text)} characters)"
+        try:
+            value = int(text.strip(), 10) if len(text) <= 40 else None
+        except ValueError:
+            value = None
+        if value is None or not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"got {shown!r}, expected an integer in {low}..{top}")
+        return value
+
+    return convert
+
+
+def _finite_float(text: str) -> float:
+    """An argparse type: a finite number, else a one-line usage error naming the option."""
+    shown = text if len(text) <= 40 else f"{text[:20]}... ({len(text)} characters)"
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"got {shown!r}, expected a finite number")
+    return value
 
 
 def _floats(text: str) -> tuple[float, ...]:
@@ -427,8 +458,9 @@ def _add_sweep(sub: Any) -> None:
     p.add_argument("--out", required=True, metavar="DIR", help="output directory (created; reused to resume)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run the chunks on this Dask distributed scheduler, e.g. tcp://head-node:8786")
-    p.add_argument("--threads", type=int, help="threads per batch solve (default: all cores)")
-    p.add_argument("--chunk-size", type=int, help="runs per chunk (default 500)")
+    p.add_argument("--threads", type=_int_in(1, _core.MAX_THREADS),
+                   help=f"threads per batch solve, 1..{_core.MAX_THREADS} (default: all cores)")
+    p.add_argument("--chunk-size", type=_int_in(1, INT64_MAX), help="runs per chunk (default 500)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr (default: when stderr is a terminal)")
     p.add_argument("--no-plots", action="store_true", help="skip the PNG per metric")
@@ -547,24 +579,30 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     import time
 
     from .drilling import drill, load_drill_config
-    from .drilling.output import output_names
+    from .drilling.output import _write_files, output_folder
 
     config = load_drill_config(args.config)
     if args.overrides:
         config = config.with_overrides(args.overrides)
-    check_destination(args.out, field="--out", directory=True, files=output_names(not args.no_plots))
-    start = time.perf_counter()
-    result = drill(config, progress=_show_progress(args))
-    seconds = time.perf_counter() - start
-    m = result.metrics
-    _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
-         f"simulated in {seconds:.2g} s ({result.status})")
-    _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
-         f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), "
-         f"motor torque {m.motor_torque_min_Nm / 1e3:.4g}..{m.motor_torque_max_Nm / 1e3:.4g} kN m, "
-         f"break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m (implied cycle minimum "
-         f"{m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
-    written = result.save(args.out, plots=not args.no_plots)
+    plots = not args.no_plots
+    # the folder is checked, created and locked before solving: a second run into it is refused now
+    with output_folder(args.out, plots=plots, field="--out") as directory:
+        start = time.perf_counter()
+        result = drill(config, progress=_show_progress(args))
+        seconds = time.perf_counter() - start
+        m = result.metrics
+        _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
+             f"simulated in {seconds:.2g} s ({result.status})")
+        _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
+             f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
+             f"(mean {m.bit_rpm_mean:.4g}), motor torque {m.motor_torque_min_Nm / 1e3:.4g}.."
+             f"{m.motor_torque_max_Nm / 1e3:.4g} kN m, break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m (implied "
+             f"cycle minimum {m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
+        _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
+             f"{'settled' if m.settled else 'not settled'}")
+        for warning in result.warnings:
+            _say(f"warning: {warning}")
+        written = _write_files(result, directory, plots)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0
 
@@ -588,8 +626,9 @@ def _add_lumped(sub: Any) -> None:
     p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE", dest="overrides",
                    help="a parameter: jr, jb, kt, ct, cr, cb, rb, mu_cb, mu_sb, gamma_b, v_f, d_v, tm, wob "
                    "(SI units; repeatable)")
-    p.add_argument("--duration", type=float, default=200.0, metavar="S", help="simulated time, s (default 200)")
-    p.add_argument("--initial", type=float, nargs=3, default=(0.0, 0.0, 0.0), metavar=("WR", "PHI", "WB"),
+    p.add_argument("--duration", type=_finite_float, default=200.0, metavar="S",
+                   help="simulated time, s (default 200)")
+    p.add_argument("--initial", type=_finite_float, nargs=3, default=(0.0, 0.0, 0.0), metavar=("WR", "PHI", "WB"),
                    help="initial top speed rad/s, twist rad, bit speed rad/s (default: at rest)")
     p.set_defaults(func=_cmd_lumped)
 
@@ -603,9 +642,10 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
         if not sep:
             raise ValidationError("--set", item, "NAME=VALUE, e.g. wob=55e3")
         try:
-            params[name.strip()] = float(value)
+            number = float(value)
         except ValueError:
-            raise ValidationError(name.strip(), value, "a number") from None
+            number = math.nan
+        params[name.strip()] = as_float(name.strip(), number if math.isfinite(number) else value, "a finite number")
     if args.sweep is not None:
         return _lumped_sweep(args, params)
     if args.out is not None:
@@ -692,8 +732,10 @@ def _add_drill_map(sub: Any) -> None:
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
                    help="change a field of the base configuration (as drill --set; repeatable)")
     p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
-    p.add_argument("--threads", type=int, default=None, help="threads (default: every core)")
-    p.add_argument("--chunk-size", type=int, default=None, help="runs per stored chunk (default 100)")
+    p.add_argument("--threads", type=_int_in(1, _core.MAX_THREADS), default=None,
+                   help=f"threads, 1..{_core.MAX_THREADS} (default: every core)")
+    p.add_argument("--chunk-size", type=_int_in(1, INT64_MAX), default=None,
+                   help="runs per stored chunk (default 100)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="solve the chunks on this Dask distributed scheduler, e.g. tcp://head-node:8786")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
@@ -709,8 +751,6 @@ DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "cont
 def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
     """``KEY=start:stop:count`` or ``KEY=v1,v2,...`` as (key, values); errors name ``field``."""
     import numpy as np
-
-    from .drilling.config import _split_assignment
 
     form = "KEY=start:stop:count or KEY=v1,v2,... (e.g. top_drive.rpm=40:160:13)"
     key, sep, raw = text.partition("=")
@@ -729,30 +769,28 @@ def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
             raise ValidationError(field, text, form + " with finite numbers and a count >= 1")
         check_run_count(field, text, count)
         return key, [float(v) for v in np.linspace(start, stop, count)]
-    values = []
-    for item in raw.split(","):
-        if not item.strip():
-            raise ValidationError(field, text, form + " (an empty value)")
-        values.append(_split_assignment(f"{key}={item.strip()}")[1])
-    return key, values
+    from .drilling.config import parse_values
+
+    return key, parse_values(raw, field, text)
 
 
 def _cmd_drill_map(args: argparse.Namespace) -> int:
     import time
 
-    from .drilling import load_drill_config
-    from .drilling.maps import drill_map
+    from ._output import refuse_foreign_folder
+    from .drilling.maps import _map_config, check_axis, drill_map
 
-    config = load_drill_config(args.config)
+    config = _map_config(args.config)  # no field snapshots: a map keeps none
     if args.overrides:
-        config = config.with_overrides(args.overrides)
+        config = config.with_overrides([*args.overrides, "numerics.field_interval=0"])
     axes: dict[str, list[Any]] = {}
     for text in args.axes:
         key, values = _map_axis(text)
         if key in axes:
             raise ValidationError("--axis", text, f"each key once ({key} is given twice)")
-        axes[key] = values
+        axes[key] = check_axis(key, values, "--axis")
     check_destination(args.out, field="--out", directory=True, files=DRILL_MAP_FILES)
+    refuse_foreign_folder(args.out, "drill-map", field="--out")
     client = _dask_client(args.scheduler)
     start = time.perf_counter()
     try:
@@ -857,6 +895,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             warnings.showwarning = _show_warning
             if sys.stdout is None:  # started with descriptor 1 closed (`drillstring ... >&-`)
                 raise OutputError(errno.EBADF, "it is closed", "standard output")
+            memory_budget()  # every command: a bad $DRILLSTRING_MEMORY_BUDGET is refused before any work
             status = int(args.func(args))
             _flush_stdout()
             return status

@@ -35,18 +35,26 @@ Guarantees
 from __future__ import annotations
 
 import contextlib
+import errno
 import hashlib
 import json
 import os
 import signal
-import socket
+import stat
 import threading
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any, Optional
 
-from ._output import write_bytes
+from ._output import (
+    LOCK,
+    MAP_FORMAT,
+    check_directory_name,
+    lock_directory,
+    read_regular,
+    refuse_foreign_folder,
+    write_bytes,
+)
 from .errors import ResumeWarning, ValidationError
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -58,7 +66,6 @@ MANIFEST = "manifest.json"
 RESULTS_PARQUET = "results.parquet"
 RESULTS_CSV = "results.csv"
 CHUNKS = "chunks"
-LOCK = ".lock"
 
 
 def _atomic_write(path: Path, data: bytes) -> None:
@@ -93,33 +100,37 @@ def _sha256(data: bytes) -> str:
 
 
 def _lock(root: Path) -> IO[str]:
-    """Takes the exclusive lock of ``root`` (see the module docstring); returns the open lock file."""
-    path = root / LOCK
+    """Takes the exclusive lock of ``root`` (see the module docstring and
+    :func:`drillstring._output.lock_directory`); returns the open lock file."""
+    return lock_directory(
+        root, field="out_dir", busy="a directory no other sweep is writing to: it is locked by {holder} ({path}). "
+        "Wait for that sweep to finish (then re-run to resume or reuse it) or choose another output directory",
+    )
+
+
+def _read(path: Path) -> bytes:
+    """The bytes of a file of the store; a FIFO, device or directory in its place is refused
+    (``ValidationError`` naming it) rather than read, which could block for ever (and a chunk
+    recomputed over a FIFO would block writing into it)."""
     try:
-        handle = open(path, "a+", encoding="utf-8")
+        return read_regular(path)
     except OSError as exc:
-        raise ValidationError("out_dir", str(root), f"a directory where {LOCK} can be created ({exc})") from exc
+        if exc.errno == errno.EINVAL:
+            raise ValidationError(
+                "out_dir", str(path), f"a regular file of the store ({exc.strerror}); remove it and run again",
+            ) from exc
+        raise
+
+
+def _check_regular(path: Path) -> None:
+    """Refuses (as :func:`_read`) an entry of the store at ``path`` that is not a regular file;
+    a missing one is fine."""
     try:
-        import fcntl
-    except ImportError:  # pragma: no cover - Windows: no advisory locks, one writer is on the user
-        return handle
-    try:
-        fcntl.flock(handle.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError as exc:
-        handle.seek(0)
-        holder = handle.read().strip() or "another process"
-        handle.close()
-        raise ValidationError(
-            "out_dir",
-            str(root),
-            f"a directory no other sweep is writing to: it is locked by {holder} ({path}). Wait for that "
-            "sweep to finish (then re-run to resume or reuse it) or choose another output directory",
-        ) from exc
-    handle.seek(0)
-    handle.truncate()
-    handle.write(f"process {os.getpid()} on {socket.gethostname()} since {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
-    handle.flush()
-    return handle
+        mode = os.stat(path).st_mode
+    except OSError:
+        return
+    if not stat.S_ISREG(mode):
+        _read(path)
 
 
 class SweepStore:
@@ -144,11 +155,14 @@ class SweepStore:
         Raises
         ------
         ValidationError
-            ``field="out_dir"``: the directory holds another sweep, or files that are not a
-            sweep's, or an unreadable manifest, or cannot be created, or another process is
+            ``field="out_dir"``: the directory holds another sweep, or another command's output
+            (:func:`drillstring._output.refuse_foreign_folder`), or files that are not a sweep's,
+            or an unreadable manifest, or cannot be created, or another process is
             writing to it.
         """
+        check_directory_name(out_dir, "out_dir")
         root = Path(os.fspath(out_dir))
+        refuse_foreign_folder(root, "drill-map" if manifest.get("format") == MAP_FORMAT else "sweep", field="out_dir")
         try:
             root.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
@@ -179,7 +193,9 @@ class SweepStore:
             _atomic_write(path, (json.dumps(manifest, indent=1, sort_keys=True) + "\n").encode())
             return
         try:
-            existing = json.loads(path.read_text(encoding="utf-8"))
+            existing = json.loads(_read(path).decode("utf-8"))
+        except ValidationError:
+            raise
         except (OSError, ValueError, RecursionError) as exc:
             raise ValidationError("out_dir", str(root), f"a readable {MANIFEST} ({exc})") from exc
         if not isinstance(existing, dict) or not isinstance(existing.get("fingerprint"), str):
@@ -227,12 +243,16 @@ class SweepStore:
         import pandas as pd
 
         path, record_path = self.chunk_path(index), self.record_path(index)
+        _check_regular(path)
+        _check_regular(record_path)
         if not path.exists() and not record_path.exists():
             return None, None
         try:
-            record = json.loads(record_path.read_text(encoding="utf-8"))
+            record = json.loads(_read(record_path).decode("utf-8"))
         except FileNotFoundError:
             return None, "it has no record of its checksum"
+        except ValidationError:
+            raise
         except (OSError, ValueError, RecursionError) as exc:
             return None, f"its record is unreadable ({exc})"
         if not isinstance(record, dict):
@@ -242,7 +262,9 @@ class SweepStore:
         if not path.exists():
             return None, "its file is missing"
         try:
-            data = path.read_bytes()
+            data = _read(path)
+        except ValidationError:
+            raise
         except OSError as exc:
             return None, f"its file is unreadable ({exc})"
         if _sha256(data) != record.get("sha256"):

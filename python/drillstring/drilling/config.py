@@ -265,6 +265,10 @@ class Numerics:
     """``"consistent"`` only: the largest shear strain at the outer surface the time step is made
     for (Courant number <= 1 at the tangent wave speed of that strain); a run exceeding it says so
     in its message and ``stats["courant_peak"]`` > 1."""
+    courant: float = _default("numerics", "courant", unit="", kind="float")
+    """The Courant number ``c dt / h`` the step is made for, in (0, 1]: the step is this fraction
+    of the grid's Courant-1 step, the cells unchanged (1: the exact shift; below 1 the upwind
+    transport diffuses, reported as ``upwind_loss``)."""
 
 
 @dataclass(frozen=True)
@@ -570,6 +574,28 @@ _TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Cont
 # --------------------------------------------------------------------------- TOML writing
 
 
+_TOML_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
+
+
+def _toml_string(text: str) -> str:
+    """``text`` as a TOML basic string: quotes, backslashes and every control character (C0,
+    DEL and C1, which TOML refuses raw or which editors mangle) escaped; other characters as
+    they are. A lone surrogate (no Unicode scalar value, so no TOML form) is refused."""
+    out = ['"']
+    for ch in text:
+        code = ord(ch)
+        if ch in _TOML_ESCAPES:
+            out.append(_TOML_ESCAPES[ch])
+        elif code < 0x20 or 0x7F <= code <= 0x9F:
+            out.append(f"\\u{code:04X}")
+        elif 0xD800 <= code <= 0xDFFF:
+            raise ValidationError("string", text, "text without lone surrogates (it has no TOML form)")
+        else:
+            out.append(ch)
+    out.append('"')
+    return "".join(out)
+
+
 def _toml_value(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
@@ -578,7 +604,7 @@ def _toml_value(value: Any) -> str:
     if isinstance(value, float):
         return repr(value)  # shortest exact round trip; finite (validated)
     if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
+        return _toml_string(value)
     if isinstance(value, list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     raise TypeError(f"no TOML form for {value!r}")  # pragma: no cover
@@ -680,20 +706,107 @@ def _assignment_list(assignments: Iterable[str]) -> list[str]:
     return list(assignments)
 
 
-def _split_assignment(text: Any) -> tuple[str, Any]:
+def _split_assignment(text: Any, field: str = "--set") -> tuple[str, Any]:
+    """``key=value`` as ``(key, value)`` (the value TOML or a bare word); errors name ``field``."""
     if not isinstance(text, str) or "=" not in text:
-        raise ValidationError("--set", text, _SET_FORM)
+        raise ValidationError(field, text, _SET_FORM)
     key, _, raw = text.partition("=")
     key, raw = key.strip(), raw.strip()
     if not raw:
-        raise ValidationError("--set", text, _SET_FORM + " (the value is empty)")
+        raise ValidationError(field, text, _SET_FORM + " (the value is empty)")
+    return key, _parse_value(raw, field, text)
+
+
+def _parse_value(raw: str, field: str, text: str) -> Any:
+    """One value of an assignment: TOML (``60``, ``true``, ``"pi"``, ``[0, 30]``), a bare word
+    (a string) or ``null`` (``None``); ``ValidationError`` naming ``field`` with ``text``."""
     try:
-        value = tomllib.loads(f"value = {raw}")["value"]
+        return tomllib.loads(f"value = {raw}")["value"]
     except (ValueError, RecursionError):  # tomllib.TOMLDecodeError: maybe a bare word
         if not _BARE_WORD.match(raw):
-            raise ValidationError("--set", text, _SET_FORM + " (number, true/false, \"string\", [list])") from None
-        value = None if raw == "null" else raw  # null: unset an optional field (TOML has no null)
-    return key, value
+            raise ValidationError(field, text, _SET_FORM + " (number, true/false, \"string\", [list])") from None
+        return None if raw == "null" else raw  # null: unset an optional field (TOML has no null)
+
+
+def split_values(raw: str) -> list[str]:
+    """``raw`` split at its top-level commas: commas inside ``[...]``, ``{...}`` or a quoted
+    string stay (``[0, 30], [10, 40]`` is two values)."""
+    items: list[str] = []
+    depth = 0
+    quote = ""
+    start = 0
+    escaped = False
+    for i, ch in enumerate(raw):
+        if quote:
+            if escaped:
+                escaped = False
+            elif ch == "\\" and quote == '"':
+                escaped = True
+            elif ch == quote:
+                quote = ""
+        elif ch in "\"'":
+            quote = ch
+        elif ch in "[{":
+            depth += 1
+        elif ch in "]}":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            items.append(raw[start:i])
+            start = i + 1
+    items.append(raw[start:])
+    return [item.strip() for item in items]
+
+
+def parse_values(raw: str, field: str, text: str) -> list[Any]:
+    """The comma-separated values ``raw`` (:func:`split_values`), each as :func:`_parse_value`
+    reads it; an empty one raises ``ValidationError`` naming ``field`` with ``text``."""
+    values = []
+    for item in split_values(raw):
+        if not item:
+            raise ValidationError(field, text, "comma-separated values (an empty value)")
+        values.append(_parse_value(item, field, text))
+    return values
+
+
+def field_kind(key: str) -> Optional[tuple[str, str]]:
+    """The kind and unit of the configuration field at the dotted ``key`` (``top_drive.rpm``,
+    ``sections[0].length``; see ``_KIND_TEXT``), or ``None`` for a sub-table, a list item or an
+    unknown key."""
+    cls: Any = DrillConfig
+    tokens = _tokens(key)
+    position = 0
+    while position < len(tokens):
+        token = tokens[position]
+        f = {f.name: f for f in dataclasses.fields(cls)}.get(token) if isinstance(token, str) else None
+        if f is None:
+            return None
+        rest = tokens[position + 1:]
+        if token == "sections":  # sections[i].key
+            if len(rest) < 2 or not isinstance(rest[0], int):
+                return None
+            cls, position = Section, position + 2
+            continue
+        kind = str(f.metadata.get("kind"))
+        if kind == "table":
+            if not rest:
+                return None
+            cls, position = _TABLES[str(token)], position + 1
+            continue
+        return (kind, str(f.metadata.get("unit", ""))) if not rest else None
+    return None
+
+
+def check_field_type(key: str, value: Any, field: str) -> Any:
+    """``value`` checked against the type of the field ``key`` (:func:`field_kind`; ranges are the
+    core's): the converted value, or ``ValidationError`` naming ``field``. Values of sub-tables and
+    unknown keys pass as they are."""
+    kind = field_kind(key)
+    if kind is None:
+        return value
+    try:
+        return _convert(kind[0], kind[1], value, key)
+    except ValidationError as exc:
+        raise ValidationError(field, value, f"a value of {key}: {exc.allowed}") from None
 
 
 def _assign(data: dict[str, Any], key: Any, value: Any) -> None:

@@ -43,8 +43,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import _core
-from ..analysis import StickSlipMetrics
+from ..analysis import StickSlipMetrics, _stick_slip
 from ..errors import SolveError, ValidationError
+from ..limits import as_float
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -61,6 +62,26 @@ def lumped_defaults() -> dict[str, float]:
     ``tm`` N m; ``wob`` N."""
     params: dict[str, float] = json.loads(_core.lumped_defaults()[0])
     return params
+
+
+def _numerics(duration: Any, dt: Any, output_interval: Any, initial: Any, window: Any = None,
+              stick_speed: Any = None) -> dict[str, Any]:
+    """The numerical settings of a run as the core takes them, each a finite number (or
+    :class:`~drillstring.errors.ValidationError` naming it, before any work; ranges are the core's)."""
+    numerics: dict[str, Any] = {key: as_float(key, value, "a finite number > 0") for key, value in
+                                (("duration", duration), ("dt", dt), ("output_interval", output_interval))}
+    allowed = "three finite numbers (wr rad/s, phi rad, wb rad/s)"
+    if isinstance(initial, (str, bytes, Mapping)) or not isinstance(initial, (Sequence, np.ndarray)) or len(
+            initial) != 3:
+        raise ValidationError("initial", initial, allowed)
+    numerics["initial"] = [as_float(f"initial[{i}]", x, allowed) for i, x in enumerate(initial)]
+    if window is not None:
+        if isinstance(window, (str, bytes)) or not isinstance(window, (Sequence, np.ndarray)) or len(window) != 2:
+            raise ValidationError("window", window, "(t_start, t_end), s")
+        numerics["window"] = [as_float(f"window[{i}]", x, "a finite number, s") for i, x in enumerate(window)]
+    if stick_speed is not None:
+        numerics["stick_speed"] = as_float("stick_speed", stick_speed, "a finite number >= 0, rad/s")
+    return numerics
 
 
 def _params_json(params: Optional[Mapping[str, Any]]) -> str:
@@ -197,18 +218,7 @@ def lumped(
     >>> round(float(res.bit_speed[-1]), 4), res.metrics.stuck_fraction
     (7.7158, 0.0)
     """
-    numerics: dict[str, Any] = {"duration": float(duration), "dt": float(dt),
-                                "output_interval": float(output_interval),
-                                "initial": [float(x) for x in initial]}
-    if len(numerics["initial"]) != 3:
-        raise ValidationError("initial", initial, "three numbers (wr rad/s, phi rad, wb rad/s)")
-    if window is not None:
-        numerics["window"] = [float(window[0]), float(window[1])]
-    if stick_speed is not None:
-        numerics["stick_speed"] = float(stick_speed)
-    for key in ("duration", "dt", "output_interval"):
-        if not math.isfinite(numerics[key]):
-            raise ValidationError(key, numerics[key], "a finite number > 0")
+    numerics = _numerics(duration, dt, output_interval, initial, window, stick_speed)
     params_json = _params_json(params)
     if progress is not None:
         progress(0.0)
@@ -221,7 +231,7 @@ def lumped(
         params=full,
         t=raw["t"], top_speed=raw["top_speed"], bit_speed=raw["bit_speed"],
         spring_torque=raw["spring_torque"], bit_torque=raw["bit_torque"],
-        metrics=StickSlipMetrics(**raw["metrics"]), window=(float(raw["window"][0]), float(raw["window"][1])),
+        metrics=_stick_slip(raw["metrics"]), window=(float(raw["window"][0]), float(raw["window"][1])),
         energy=dict(cast("dict[str, float]", raw["energy"])),
         stats=dict(raw["stats"]),
         status=str(raw["status"]), message=str(raw["message"]),
@@ -310,6 +320,7 @@ def lumped_sweep(
         raise ValidationError("values", values, "a sequence of numbers") from None
     if not values:
         raise ValidationError("values", values, "at least one value")
+    _numerics(duration, dt, 0.01, initial)  # refused before any run
     rows: list[dict[str, Any]] = []
     for k, value in enumerate(values):
         p = {**(params or {}), name: value}

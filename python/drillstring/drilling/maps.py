@@ -9,7 +9,10 @@ configuration with its axis values set by path, parsed and validated in the core
 :func:`~drillstring.drilling.drill` does, and solved by the same solver (its field snapshots
 switched off: they do not change the series or the metrics); its metrics are those of
 ``metrics.json``. A value the core refuses makes that run's row ``status = "invalid"`` with the
-message naming the field; the other runs go on.
+message naming the field; the other runs go on. The base configuration of a map has
+``numerics.field_interval = 0`` (a map keeps no snapshots, so their size neither refuses it nor
+counts in its memory), and a map whose runs on its threads would not fit the memory budget is
+refused before any work (:func:`check_map_memory`).
 
 With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumable store of the
 modal sweeps (:mod:`drillstring.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
@@ -41,8 +44,8 @@ import numpy as np
 
 from .. import _core
 from ..errors import ValidationError
-from ..limits import check_run_count, memory_budget
-from .config import DrillConfig, _assign
+from ..limits import INT64_MAX, MEMORY_BUDGET_ENV, _human_bytes, as_int, check_run_count, memory_budget
+from .config import DrillConfig, _assign, _load_document, _plain, check_field_type
 from .result import _CORE_METRICS, DrillMetrics
 from .solve import ConfigLike, _config
 
@@ -66,6 +69,55 @@ STAT_COLUMNS: tuple[str, ...] = ("cells", "steps", "dt", "balance_error", "coura
 
 MapProgress = Union[bool, Callable[[int, int], Any]]
 
+#: Peak bytes a run of a map holds per sample of its series while it is solved (measured: about
+#: 240 with the metrics; the core's own check, ``drilling::map::run_bytes``, counts 48), per cell
+#: of its grid, and per row of the table: what :func:`check_map_memory` counts.
+RUN_SAMPLE_BYTES = 256
+RUN_CELL_BYTES = 128
+ROW_BYTES = 512
+#: The largest series a run may have (the core's ``MAX_OUTPUT_BYTES`` over 5 series of 8 bytes):
+#: a run asking for more is an ``"invalid"`` row, never solved.
+_MAX_SAMPLES = (512 << 20) // 40 + 1
+_MAX_DURATION = 86_400.0
+
+
+def _available_cores() -> int:
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def check_map_memory(cfg: DrillConfig, named: Mapping[str, list[Any]], runs: int, threads: Optional[int],
+                     per_call: int) -> None:
+    """Refuses, before any work, a map whose peak memory exceeds
+    :func:`~drillstring.limits.memory_budget`: on each of its threads (``None``: every core) the
+    run it solves (:data:`RUN_SAMPLE_BYTES` per series sample, :data:`RUN_CELL_BYTES` per cell,
+    for the longest series and the finest grid the axes ask for), plus :data:`ROW_BYTES` per row.
+    ``per_call`` is the number of runs solved at once (a chunk's). Raises
+    :class:`~drillstring.errors.ValidationError` naming ``threads``."""
+
+    def numbers(key: str) -> list[float]:
+        return [float(v) for v in named.get(key, []) if isinstance(v, (int, float)) and not isinstance(v, bool)
+                and math.isfinite(v) and v > 0]
+
+    nu = cfg.numerics
+    duration = min(max([nu.duration, *numbers("numerics.duration")]), _MAX_DURATION)
+    interval = min([nu.output_interval, *numbers("numerics.output_interval")])
+    cells = int(max([nu.cells, *numbers("numerics.cells")]))
+    samples = min(int(duration / interval) + 1, _MAX_SAMPLES)
+    per_run = samples * RUN_SAMPLE_BYTES + cells * RUN_CELL_BYTES + 4096
+    active = min(threads if threads is not None else min(_available_cores(), _core.MAX_THREADS), max(per_call, 1))
+    need = per_run * active + ROW_BYTES * runs
+    budget = memory_budget()
+    if need > budget:
+        raise ValidationError(
+            "threads", threads if threads is not None else f"{active} (every core)",
+            f"a map that fits the memory budget of {_human_bytes(budget)} ({MEMORY_BUDGET_ENV}): {active} threads "
+            f"each solving a run of {samples} samples and {cells} cells would need {_human_bytes(need)}; use fewer "
+            "threads, a shorter numerics.duration or a longer numerics.output_interval",
+        )
+
 
 def _plain_value(value: Any, field: str) -> Any:
     """An axis value as a JSON-ready plain value (numpy scalars unwrapped)."""
@@ -84,6 +136,34 @@ def _plain_value(value: Any, field: str) -> Any:
     raise ValidationError(field, value, "numbers, strings, true/false, null or lists of numbers")
 
 
+def _value_kind(value: Any) -> str:
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "true/false"
+    if isinstance(value, (int, float)):
+        return "numbers"
+    if isinstance(value, str):
+        return "strings"
+    return "lists"
+
+
+def check_axis(key: str, values: Sequence[Any], field: str) -> list[Any]:
+    """The values of the axis ``key`` as JSON-ready plain values, each checked against the type of
+    the field ``key`` (``top_drive.rpm`` takes numbers, ``bit.on_bottom`` true/false, ...; ranges
+    are the core's: a value out of range is an ``"invalid"`` row) and all of one kind (numbers,
+    strings, true/false or lists, and ``None``: one column of the table), before anything is
+    solved. Raises :class:`~drillstring.errors.ValidationError` naming ``field``."""
+    plain = [_plain_value(v, field) for v in values]
+    for value in plain:
+        check_field_type(key, value, field)
+    kinds = sorted({_value_kind(v) for v in plain} - {"null"})
+    if len(kinds) > 1:
+        raise ValidationError(field, f"{key}={', '.join(json.dumps(v) for v in plain)}",
+                              f"values of one kind for {key} (one column of the map), not {' and '.join(kinds)}")
+    return plain
+
+
 def _axes(cfg: DrillConfig, axes: Any) -> dict[str, list[Any]]:
     if not isinstance(axes, Mapping) or not axes:
         raise ValidationError("axes", axes, "a non-empty mapping of dotted configuration keys to lists of values "
@@ -100,8 +180,26 @@ def _axes(cfg: DrillConfig, axes: Any) -> dict[str, list[Any]]:
             raise ValidationError(f"axes[{path!r}]", values, "a non-empty list of values")
         plain = [_plain_value(v, f"axes[{path!r}]") for v in values]
         _assign(json.loads(json.dumps(data)), key, plain[0])  # unknown keys and indices name the path
-        out[key] = plain
+        out[key] = check_axis(key, plain, f"axes[{path!r}]")
     return out
+
+
+def _map_config(config: ConfigLike) -> DrillConfig:
+    """The base configuration of a map with ``numerics.field_interval = 0``: a map keeps no field
+    snapshots, so their size must neither refuse it nor count in its memory."""
+    if isinstance(config, DrillConfig):
+        return config.with_overrides({"numerics.field_interval": 0.0})
+    source: Optional[str] = None
+    if isinstance(config, (str, os.PathLike)):
+        source = os.fsdecode(os.fspath(config))
+        config = _load_document(source)
+    if not isinstance(config, Mapping):
+        return _config(config)  # refused there, naming what it is
+    data = dict(_plain(dict(config)))
+    numerics = data.get("numerics", {})
+    if isinstance(numerics, Mapping):
+        data["numerics"] = {**numerics, "field_interval": 0.0}
+    return DrillConfig.from_dict(data, source=source)
 
 
 def _progress_hook(
@@ -194,20 +292,23 @@ def drill_map(
         the exception carries the table so far as its ``frame`` attribute (finished rows kept,
         the others ``"interrupted"``; with ``out``, the chunks solved so far, also stored).
     """
-    cfg = _config(config)
+    if threads is not None:
+        threads = as_int("threads", threads, 1, _core.MAX_THREADS,
+                         f"an integer in 1..={_core.MAX_THREADS} (or None for all cores)")
+    if chunk_size is not None:
+        chunk_size = as_int("chunk_size", chunk_size, 1, INT64_MAX, "an integer >= 1")
+    cfg = _map_config(config)
     named = _axes(cfg, axes)
     runs = 1
     for values in named.values():
         runs *= len(values)
     check_run_count("axes", {k: len(v) for k, v in named.items()}, runs)
-    if threads is not None and (isinstance(threads, bool) or not isinstance(threads, numbers.Integral)):
-        raise ValidationError("threads", threads, f"an integer in 1..={_core.MAX_THREADS} (or None for all cores)")
-    if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(chunk_size, numbers.Integral)
-                                   or chunk_size < 1):
-        raise ValidationError("chunk_size", chunk_size, "an integer >= 1")
     from ..sweeps import check_client
 
     check_client(client)
+    if client is None:  # on a cluster, each worker's memory is its own
+        per_call = runs if out is None else min(runs, int(chunk_size or CHUNK_SIZE))
+        check_map_memory(cfg, named, runs, None if threads is None else int(threads), per_call)
     report, close = _progress_hook(progress, runs)
     combos = list(itertools.product(*named.values()))
     count = None if threads is None else int(threads)
@@ -238,7 +339,9 @@ def _attach(exc: BaseException, frame: pd.DataFrame) -> None:
 def _solve(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
            report: Optional[Callable[[float], None]], offset: int) -> tuple[pd.DataFrame, Optional[BaseException]]:
     """Solves the runs ``combos`` in one core call; the table and the exception that stopped it."""
-    runs_json = json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
+    # no field snapshots in any run, also with a numerics.field_interval axis (see _map_config)
+    runs_json = json.dumps([[*zip(named, combo), ("numerics.field_interval", 0.0)] for combo in combos],
+                           allow_nan=False)
     hook = None if report is None else (lambda done: report(offset + done))
     raw = _core.drill_map(cfg.to_json(), runs_json, threads, memory_budget(), hook)
     return _frame(named, combos, raw, cfg), raw.get("interrupt")
@@ -296,12 +399,12 @@ def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tupl
 
     import pandas as pd
 
-    from .._output import atomic_write
+    from .._output import MAP_FORMAT, atomic_write
     from ..errors import ResumeWarning
     from ..sweep_store import SweepStore
     from ..sweeps import _core_build
 
-    identity = {"format": "drillstring-drill-map-1", "drillstring_version": _core.__version__,
+    identity = {"format": MAP_FORMAT, "drillstring_version": _core.__version__,
                 "core_build": _core_build(), "chunk_size": size, "runs": len(combos)}
     fingerprint = _digest({**identity, "config": cfg.to_dict(), "axes": named})
     chunks = range(0, len(combos), size)

@@ -1,23 +1,49 @@
 """The output folder of a drilling-system run (``drillstring drill --out DIR``,
 :meth:`DrillResult.save`). Every file goes through :mod:`drillstring._output`: written to a
-temporary file and renamed into place, never over an input of the command."""
+temporary file and renamed into place, never over an input of the command.
+
+The folder is written as a whole (:func:`output_folder`):
+
+* **one writer**: the folder is locked (:func:`drillstring._output.lock_directory`, the lock of
+  the sweep and map stores) while a run writes it (``drillstring drill`` takes it before solving);
+  a second run into it is refused, naming the process that holds it;
+* **complete or marked partial**: :data:`MARKER` is written first and removed last, so a folder
+  whose writing was interrupted says so; the files of :data:`FILES` this run does not write (the
+  figures with ``plots=False``) are removed, so the folder never mixes files of two runs;
+* **its own folder**: a folder holding another command's output (a ``drill-map`` or ``sweep``
+  store) is refused (:func:`drillstring._output.refuse_foreign_folder`).
+"""
 
 from __future__ import annotations
 
 import json
 import math
 import os
+import unicodedata
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
-from .._output import atomic_write, check_destination, make_directory, write_bytes, write_text
+from .._output import (
+    atomic_write,
+    check_destination,
+    check_directory_name,
+    lock_directory,
+    make_directory,
+    refuse_foreign_folder,
+    unlock_directory,
+    write_bytes,
+    write_text,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from .result import DrillResult
 
-__all__ = ["DATA_FILES", "FILES", "PLOT_FILES", "output_names", "report_markdown", "write_outputs"]
+__all__ = ["DATA_FILES", "FILES", "MARKER", "PLOT_FILES", "output_folder", "output_names", "report_markdown",
+           "write_outputs"]
 
 #: The data files of an output folder, in the order they are written.
 DATA_FILES: tuple[str, ...] = ("series.parquet", "series.csv", "metrics.json", "fields.npz", "config.toml")
@@ -25,6 +51,9 @@ DATA_FILES: tuple[str, ...] = ("series.parquet", "series.csv", "metrics.json", "
 PLOT_FILES: tuple[str, ...] = ("time_histories.png", "space_time.png", "torque_depth.png")
 #: Every file an output folder gets (``report.md`` last).
 FILES: tuple[str, ...] = (*DATA_FILES, *PLOT_FILES, "report.md")
+#: Written first and removed last: a folder that still has it was not written to the end (its
+#: files may be of different runs).
+MARKER = "INCOMPLETE"
 
 
 def _json_ready(value: Any) -> Any:
@@ -44,18 +73,65 @@ def output_names(plots: bool = True) -> tuple[str, ...]:
     return FILES if plots else tuple(name for name in FILES if name not in PLOT_FILES)
 
 
-def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
+@contextmanager
+def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
+                  field: str = "out_dir") -> Iterator[Path]:
+    """Holds the output folder ``out_dir`` of a run for the ``with`` block: checks it
+    (:func:`~drillstring._output.check_destination`, not another command's output), creates it
+    and takes its lock (see the module docstring); yields its path. At the end the lock is
+    released and its file removed, as is the folder if it was created here and is still empty
+    (a run interrupted before writing leaves nothing). Refusals raise
+    :class:`~drillstring.errors.ValidationError` naming ``field``; so does a folder held by
+    anyone else, also another ``with`` block of this process. Write the files inside it with
+    :func:`_write_files`."""
+    display = os.fsdecode(os.fspath(out_dir))
+    check_directory_name(display, field)
+    key = os.path.realpath(display)
+    check_destination(display, field=field, directory=True, files=(*output_names(plots), MARKER))
+    refuse_foreign_folder(display, "drill", field=field)
+    created = not os.path.isdir(key)
+    directory = make_directory(display)
+    lock = lock_directory(directory, field=field, busy="a folder no other run is writing to: it is locked by "
+                          "{holder} ({path}); wait for that run to finish or choose another output directory")
+    try:
+        refuse_foreign_folder(display, "drill", field=field)  # written by another command meanwhile
+        yield directory
+    finally:
+        unlock_directory(lock, directory)
+        if created:
+            try:
+                os.rmdir(key)  # only if empty
+            except OSError:
+                pass
+
+
+def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
+                  field: str = "out_dir") -> list[Path]:
     """Writes the run's files into ``out_dir`` (created if needed; see :data:`FILES`) and
     returns their paths. The folder and every file destination in it are checked first
     (:func:`~drillstring._output.check_destination`): a refused one raises
-    :class:`~drillstring.errors.ValidationError` before anything is written."""
-    check_destination(out_dir, field="out_dir", directory=True, files=output_names(plots))
-    directory = make_directory(out_dir)
+    :class:`~drillstring.errors.ValidationError` naming ``field`` before anything is written.
+    The folder is held (:func:`output_folder`) while it is written: :data:`MARKER` first, the
+    stale files of :data:`FILES` this run does not write removed, the files, then the marker
+    removed."""
+    with output_folder(out_dir, plots=plots, field=field) as directory:
+        return _write_files(result, directory, plots)
+
+
+def _write_files(result: DrillResult, directory: Path, plots: bool) -> list[Path]:
+    """The files of :func:`write_outputs` into ``directory``, held by :func:`output_folder`."""
     written: list[Path] = []
 
     def path(name: str) -> str:
         return os.path.join(os.fspath(directory), name)
 
+    marker = path(MARKER)
+    write_text(marker, f"drillstring drill (process {os.getpid()}) is writing this folder. If this file is still "
+               "here, that run did not finish: the files beside it may be missing or of an earlier run.\n")
+    names = output_names(plots)
+    for name in FILES:
+        if name not in names and os.path.lexists(path(name)) and not os.path.isdir(path(name)):
+            os.unlink(path(name))  # a file of an earlier run (a figure, with plots=False now)
     frame = result.to_pandas()
     frame.attrs = {}  # parquet keeps attrs as JSON metadata; the config and metrics have their own files
     written.append(atomic_write(path("series.parquet"), lambda tmp: frame.to_parquet(tmp), suffix=".parquet"))
@@ -82,7 +158,27 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
         for name, make in zip(PLOT_FILES, (time_histories, space_time_maps, torque_depth)):
             written.append(Path(os.fsdecode(os.fspath(save(make(result), path(name))))))
     written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots).encode("utf-8")))
+    os.unlink(marker)
     return written
+
+
+_MD_SPECIAL = frozenset("\\`*_[]<>|!~&$")
+
+
+def _md(text: str) -> str:
+    """``text`` (a name or message from the configuration or the core) as literal Markdown on
+    one line: the characters Markdown acts on mid-line backslash-escaped (no emphasis, code,
+    links, HTML, entities or table cells), control, format and line/paragraph-separator
+    characters shown as ``U+XXXX``."""
+    out = []
+    for ch in str(text):
+        if unicodedata.category(ch) in ("Cc", "Cf", "Zl", "Zp", "Cs"):
+            out.append(f"U+{ord(ch):04X}")
+        elif ch in _MD_SPECIAL:
+            out.append("\\" + ch)
+        else:
+            out.append(ch)
+    return "".join(out)
 
 
 def _fmt(value: float, digits: int = 4) -> str:
@@ -99,7 +195,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
     lines = [
         "# Drilling-system run",
         "",
-        f"Status: **{result.status}**" + (f" ({result.message})" if result.message else ""),
+        f"Status: **{result.status}**" + (f" ({_md(result.message)})" if result.message else ""),
         "",
         "## System",
         "",
@@ -107,7 +203,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         "|---|---:|---:|---:|---:|---:|",
     ]
     for s in cfg.sections:
-        lines.append(f"| {s.name} | {s.length:.6g} | {s.outer_diameter:.6g} | {s.inner_diameter:.6g} | "
+        lines.append(f"| {_md(s.name)} | {s.length:.6g} | {s.outer_diameter:.6g} | {s.inner_diameter:.6g} | "
                      f"{s.shear_modulus / 1e9:.4g} | {s.density:.6g} |")
     inclination = cfg.well.inclination_deg
     survey = (f"{inclination:g}° constant" if isinstance(inclination, float) else
