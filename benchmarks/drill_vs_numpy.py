@@ -60,7 +60,7 @@ def drill_config(duration: float, cells: int) -> dict:
                  "mud_density": 0.0, "gravity": 9.81},
         "friction": {"static": 0.3, "kinetic_ratio": 0.65, "stick_speed": 1.5, "model": "set_valued"},
         "damping_rate": 2 * p["kt"] * dt_sub,
-        "top_drive": {"inertia": p["I_TD"], "torque_limit": None, "rpm": 40.0, "ramp_time": 1.0, "steps": [],
+        "top_drive": {"inertia": p["I_TD"], "torque_limit": 1e12, "rpm": 40.0, "ramp_time": 1.0, "steps": [],
                       "controller": {"type": "pi", "kp": 38e3, "ki": 100e3}, "control_interval": 0.01},
         "bit": {"on_bottom": False},
         "numerics": {"cells": cells, "duration": duration, "output_interval": 0.01, "field_interval": 0.0},

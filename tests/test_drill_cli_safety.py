@@ -21,7 +21,6 @@ from drillstring._output import lock_directory
 from drillstring.drilling import FILES, DrillConfig, drill, drill_map, load_drill_config
 from drillstring.drilling import output as drill_output
 from drillstring.drilling.lumped import lumped
-from drillstring.drilling.maps import check_map_memory
 from drillstring.drilling.output import MARKER, PLOT_FILES, report_markdown
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -360,22 +359,17 @@ def test_control_characters_in_names_round_trip_and_are_escaped_in_the_report(tm
 
 
 def test_a_map_counts_its_threads_and_real_series_memory(monkeypatch: pytest.MonkeyPatch) -> None:
-    refuse_work(monkeypatch)
+    # the core counts each run's series (56 bytes a sample: a run of 600,001 samples measured
+    # 50.7, with the period estimator's memory bounded; before, its FFT of the whole series made
+    # a map on 6 threads peak at 6.8 GB against a 2 GiB budget) times the threads at once
     cfg = load_drill_config(EXAMPLE).with_overrides(["numerics.duration=3000", "numerics.output_interval=0.001",
-                                                      "numerics.field_interval=0"])
-    monkeypatch.setenv("DRILLSTRING_MEMORY_BUDGET", "2G")
-    named = {"top_drive.rpm": [40.0] * 6}
-    check_map_memory(cfg, named, 6, 1, 6)  # one run of 3 million samples fits
-    with pytest.raises(ds.ValidationError, match="6 threads") as info:  # six at once do not
-        check_map_memory(cfg, named, 6, 6, 6)
+                                                      "numerics.field_interval=0", "numerics.cells=100"])
+    monkeypatch.setenv("DRILLSTRING_MEMORY_BUDGET", "500M")
+    with pytest.raises(ds.ValidationError, match="threads") as info:  # six runs of 3 million samples at once
+        drill_map(cfg, {"top_drive.rpm": [40.0] * 6}, threads=6)
     assert info.value.field == "threads" and "DRILLSTRING_MEMORY_BUDGET" in str(info.value)
-    with pytest.raises(ds.ValidationError, match="threads"):
-        drill_map(cfg, named, threads=6)
-    check_map_memory(cfg, named, 6, 6, 1)  # a chunk of one run solves one at a time
-    # an axis of longer runs counts the longest
-    with pytest.raises(ds.ValidationError, match="threads"):
-        check_map_memory(cfg.with_overrides(["numerics.duration=600"]), {"numerics.duration": [600.0, 3000.0]},
-                         6, 6, 6)
+    frame = drill_map(cfg, {"top_drive.rpm": [40.0]}, threads=1)  # one fits
+    assert list(frame["status"]) == ["success"], list(frame["message"])
 
 
 def test_a_map_does_not_count_snapshots_it_never_keeps() -> None:

@@ -115,7 +115,10 @@ def test_overrides() -> None:
     assert cfg.with_overrides([]) == cfg
     # null unsets an optional field; one inclination number replaces the survey
     assert cfg.top_drive.torque_limit == 4.0e4
-    assert cfg.with_overrides(["top_drive.torque_limit=null"]).top_drive.torque_limit is None
+    # a number (default 60 kN m, every controller); a very large value for no limit
+    assert cfg.with_overrides(["top_drive.torque_limit=1e12"]).top_drive.torque_limit == 1e12
+    with pytest.raises(ValidationError, match="top_drive.torque_limit"):
+        cfg.with_overrides(["top_drive.torque_limit=null"])
     flat = cfg.with_overrides(["well.inclination_deg=20"])
     assert flat.well.md is None and flat.well.inclination_deg == 20.0
     assert fails(lambda: cfg.with_overrides(["top_drive.rpm=null"])).field == "top_drive.rpm"

@@ -64,7 +64,9 @@ def test_elastic_energy_is_the_integral_of_the_quartic_law() -> None:
         "sections": [{"length": length, "outer_diameter": od, "inner_diameter": id_, "poisson_ratio": nu}],
         "nonlinearity": "consistent",
         "well": {"md": None, "inclination_deg": 0.0},
-        "top_drive": {"rpm": 3000.0, "ramp_time": 0.0, "controller": {"type": "speed"}},
+        # an ideal speed step (no motor lag, no torque limit) for strains of a few 1e-2
+        "top_drive": {"rpm": 3000.0, "ramp_time": 0.0, "controller": {"type": "speed"}, "motor_bandwidth": 1e12,
+                      "torque_limit": 1e12},
         "bit": {"bha_inertia": 5.0},
         "numerics": {"cells": 200, "duration": 0.01, "field_interval": 0.0, "max_shear_strain": 0.05},
     })

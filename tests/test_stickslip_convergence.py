@@ -80,3 +80,30 @@ def test_a_window_outside_the_run_says_why_there_are_no_metrics() -> None:
     cfg = ds.load_drill_config(EXAMPLE)
     r = ds.drill(cfg.with_overrides(["numerics.duration=2", "metrics.window=[5.0, 8.0]"]), progress=False)
     assert "no metrics" in r.message and "metrics.window" in r.message
+
+
+def test_check_grid_reports_every_metric_against_twice_the_cells() -> None:
+    cfg = ds.load_drill_config(EXAMPLE)
+    r = ds.drill(cfg, check_grid=True, progress=False)
+    g = r.grid_check
+    assert g is not None and (g.cells, g.refined_cells) == (1000, 2000)
+    rows = {row.metric: row for row in g.rows}
+    # the rows are the two runs' own metrics
+    fine = ds.drill(cfg.with_overrides(["numerics.cells=2000"]), progress=False).metrics
+    assert rows["ssi"].value == r.metrics.ssi and rows["ssi"].refined == fine.ssi
+    assert rows["ssi"].change == pytest.approx(fine.ssi / r.metrics.ssi - 1, rel=1e-12)
+    for name in ("ssi", "stuck_fraction", "period_s", "bit_rpm_mean", "motor_torque_max_Nm", "stick_slip", "settled"):
+        assert rows[name].within, rows[name]
+    # the reverse rotation at re-stick is not converged (-2.35 rpm at 1000 cells, -0.56 at 2000):
+    # the check says so, and the run's warnings carry it
+    assert not rows["bit_rpm_min"].within and not g.converged
+    assert any(w.startswith("grid check: bit_rpm_min") for w in r.warnings)
+    assert r.summary()["grid_check"]["rows"][0]["metric"] == "ssi"
+
+
+def test_check_grid_needs_a_grid_whose_double_the_core_accepts() -> None:
+    cfg = ds.load_drill_config(EXAMPLE).with_overrides(["numerics.max_cells=1500"])
+    with pytest.raises(ds.ValidationError, match="check_grid"):
+        ds.drill(cfg, check_grid=True)
+    with pytest.raises(ds.ValidationError, match="check_grid"):
+        ds.drill(cfg, check_grid="yes")  # type: ignore[arg-type]

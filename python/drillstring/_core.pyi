@@ -560,6 +560,8 @@ class DrillOutput(TypedDict):
     #: "success", "interrupted", "non_finite" or "out_of_memory".
     status: str
     message: str
+    #: What the configuration makes doubtful (a torque limit below the static torque).
+    warnings: list[str]
     metrics: DrillMetrics
     energy: DrillEnergy
     stats: DrillStats

@@ -571,8 +571,18 @@ def _add_drill(sub: Any) -> None:
                    "sections[0].length=3000, bit.on_bottom=true, top_drive.controller.type=soft_torque "
                    "(repeatable)")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    p.add_argument("--check-grid", action="store_true",
+                   help="also solve on twice the cells and report how much every metric moves (about four "
+                   "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning")
     _add_progress(p)
     p.set_defaults(func=_cmd_drill)
+
+
+def _change(kind: str, change: Optional[float]) -> str:
+    """A grid check's change as the console shows it."""
+    if change is None:
+        return "n/a"
+    return f"{100 * change:+.2g} %" if kind == "rel" else f"{change:+.3g}"
 
 
 def _cmd_drill(args: argparse.Namespace) -> int:
@@ -588,7 +598,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     # the folder is checked, created and locked before solving: a second run into it is refused now
     with output_folder(args.out, plots=plots, field="--out") as directory:
         start = time.perf_counter()
-        result = drill(config, progress=_show_progress(args))
+        result = drill(config, progress=_show_progress(args), check_grid=args.check_grid)
         seconds = time.perf_counter() - start
         m = result.metrics
         _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
@@ -600,6 +610,11 @@ def _cmd_drill(args: argparse.Namespace) -> int:
              f"cycle minimum {m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
         _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
              f"{'settled' if m.settled else 'not settled'}")
+        if result.grid_check is not None:
+            g = result.grid_check
+            moves = ", ".join(f"{r.metric} {_change(r.kind, r.change)}" for r in g.rows if r.kind != "equal")
+            _say(f"grid check, {g.cells} -> {g.refined_cells} cells: "
+                 f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
             _say(f"warning: {warning}")
         written = _write_files(result, directory, plots)
@@ -663,6 +678,10 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
          f"SSI {m.severity:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.cycle_period:.4g} s, "
          f"bit {m.rpm_min:.4g}..{m.rpm_max:.4g} rpm (mean {m.rpm_mean:.4g}), energy balance "
          f"{res.energy['balance_error']:.2g}")
+    _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
+         f"{'settled' if m.settled else 'not settled'}")
+    for warning in m.warnings:
+        _say(f"warning: {warning}")
     if args.out is not None:
         import pandas as pd
 

@@ -198,7 +198,8 @@ class Controller:
                                                  kind="float?")
     """Soft-torque tuning frequency, Hz (None: the string's first mode)."""
     z_factor: float = _default("top_drive.controller", "z_factor", unit="", kind="float")
-    """Soft-torque / Z-torque damping as a multiple of the top section's impedance ``J sqrt(G rho)``."""
+    """Soft-torque / Z-torque damping as a multiple of the top section's impedance ``J sqrt(G rho)``
+    (default 4: Simulator4nDOF's published SoftTorque gain ``4 Z`` and ZTorque factor ``0.25``)."""
     torque_highpass_time: float = _default("top_drive.controller", "torque_highpass_time", unit="s", kind="float")
     """Z-torque: time constant of the low-pass that takes the mean string torque out of the
     impedance feedback, s."""
@@ -210,8 +211,10 @@ class TopDrive:
 
     inertia: float = _default("top_drive", "inertia", unit="kg m^2", kind="float")
     """Rotor inertia, kg m^2."""
-    torque_limit: Optional[float] = _default("top_drive", "torque_limit", unit="N m", kind="float?")
-    """Largest motor torque, N m (None: unlimited)."""
+    torque_limit: float = _default("top_drive", "torque_limit", unit="N m", kind="float")
+    """Largest motor torque, N m, for every controller. Default 60 kN m, the continuous rating of a
+    large top drive; a run warns when the string's static torque exceeds it. A very large value
+    (1e12) for no limit."""
     rpm: float = _default("top_drive", "rpm", unit="rpm", kind="float")
     """Speed setpoint, rpm."""
     ramp_time: float = _default("top_drive", "ramp_time", unit="s", kind="float")
@@ -222,6 +225,11 @@ class TopDrive:
     """The speed controller."""
     control_interval: float = _default("top_drive", "control_interval", unit="s", kind="float")
     """Zero-order-hold period of the controller, s."""
+    motor_bandwidth: float = _default("top_drive", "motor_bandwidth", unit="Hz", kind="float")
+    """``speed`` and ``z_torque``: bandwidth of the motor's speed loop, Hz. The top speed follows
+    the speed these controllers ask for as a first-order lag of time constant
+    ``1 / (2 pi motor_bandwidth)``, so that the motor torque is a real drive's and converges as
+    the grid is refined."""
 
 
 @dataclass(frozen=True)

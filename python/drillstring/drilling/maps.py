@@ -12,7 +12,7 @@ switched off: they do not change the series or the metrics); its metrics are tho
 message naming the field; the other runs go on. The base configuration of a map has
 ``numerics.field_interval = 0`` (a map keeps no snapshots, so their size neither refuses it nor
 counts in its memory), and a map whose runs on its threads would not fit the memory budget is
-refused before any work (:func:`check_map_memory`).
+refused by the core before any work (each run's series and grid times the runs solved at once).
 
 With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumable store of the
 modal sweeps (:mod:`drillstring.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
@@ -44,7 +44,7 @@ import numpy as np
 
 from .. import _core
 from ..errors import ValidationError
-from ..limits import INT64_MAX, MEMORY_BUDGET_ENV, _human_bytes, as_int, check_run_count, memory_budget
+from ..limits import INT64_MAX, as_int, check_run_count, memory_budget
 from .config import DrillConfig, _assign, _load_document, _plain, check_field_type
 from .result import _CORE_METRICS, DrillMetrics
 from .solve import ConfigLike, _config
@@ -68,56 +68,6 @@ CHUNK_SIZE = 100
 STAT_COLUMNS: tuple[str, ...] = ("cells", "steps", "dt", "balance_error", "courant_peak")
 
 MapProgress = Union[bool, Callable[[int, int], Any]]
-
-#: Peak bytes a run of a map holds per sample of its series while it is solved (measured: about
-#: 240 with the metrics; the core's own check, ``drilling::map::run_bytes``, counts 48), per cell
-#: of its grid, and per row of the table: what :func:`check_map_memory` counts.
-RUN_SAMPLE_BYTES = 256
-RUN_CELL_BYTES = 128
-ROW_BYTES = 512
-#: The largest series a run may have (the core's ``MAX_OUTPUT_BYTES`` over 5 series of 8 bytes):
-#: a run asking for more is an ``"invalid"`` row, never solved.
-_MAX_SAMPLES = (512 << 20) // 40 + 1
-_MAX_DURATION = 86_400.0
-
-
-def _available_cores() -> int:
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except (AttributeError, OSError):  # pragma: no cover - not Linux
-        return max(1, os.cpu_count() or 1)
-
-
-def check_map_memory(cfg: DrillConfig, named: Mapping[str, list[Any]], runs: int, threads: Optional[int],
-                     per_call: int) -> None:
-    """Refuses, before any work, a map whose peak memory exceeds
-    :func:`~drillstring.limits.memory_budget`: on each of its threads (``None``: every core) the
-    run it solves (:data:`RUN_SAMPLE_BYTES` per series sample, :data:`RUN_CELL_BYTES` per cell,
-    for the longest series and the finest grid the axes ask for), plus :data:`ROW_BYTES` per row.
-    ``per_call`` is the number of runs solved at once (a chunk's). Raises
-    :class:`~drillstring.errors.ValidationError` naming ``threads``."""
-
-    def numbers(key: str) -> list[float]:
-        return [float(v) for v in named.get(key, []) if isinstance(v, (int, float)) and not isinstance(v, bool)
-                and math.isfinite(v) and v > 0]
-
-    nu = cfg.numerics
-    duration = min(max([nu.duration, *numbers("numerics.duration")]), _MAX_DURATION)
-    interval = min([nu.output_interval, *numbers("numerics.output_interval")])
-    cells = int(max([nu.cells, *numbers("numerics.cells")]))
-    samples = min(int(duration / interval) + 1, _MAX_SAMPLES)
-    per_run = samples * RUN_SAMPLE_BYTES + cells * RUN_CELL_BYTES + 4096
-    active = min(threads if threads is not None else min(_available_cores(), _core.MAX_THREADS), max(per_call, 1))
-    need = per_run * active + ROW_BYTES * runs
-    budget = memory_budget()
-    if need > budget:
-        raise ValidationError(
-            "threads", threads if threads is not None else f"{active} (every core)",
-            f"a map that fits the memory budget of {_human_bytes(budget)} ({MEMORY_BUDGET_ENV}): {active} threads "
-            f"each solving a run of {samples} samples and {cells} cells would need {_human_bytes(need)}; use fewer "
-            "threads, a shorter numerics.duration or a longer numerics.output_interval",
-        )
-
 
 def _plain_value(value: Any, field: str) -> Any:
     """An axis value as a JSON-ready plain value (numpy scalars unwrapped)."""
@@ -306,9 +256,6 @@ def drill_map(
     from ..sweeps import check_client
 
     check_client(client)
-    if client is None:  # on a cluster, each worker's memory is its own
-        per_call = runs if out is None else min(runs, int(chunk_size or CHUNK_SIZE))
-        check_map_memory(cfg, named, runs, None if threads is None else int(threads), per_call)
     report, close = _progress_hook(progress, runs)
     combos = list(itertools.product(*named.values()))
     count = None if threads is None else int(threads)

@@ -73,8 +73,9 @@ METRIC_DEFINITIONS: dict[str, str] = {
                       "at rest while the string above it is stuck (converges with the grid)",
     "period_s": "stick-slip period from the autocorrelation of the motor torque, s; null with fewer than two "
                 "cycles in the window",
-    "bit_rpm_min": "lowest bit speed, rpm; at re-stick the end of a coarse grid undershoots below 0 by an amount "
-                   "that falls with the cell size",
+    "bit_rpm_min": "lowest bit speed, rpm; off bottom the stopping front reflects at the free end at re-stick and "
+                   "turns the bit back by a few rpm for some tens of ms, an amount that varies from cycle to cycle "
+                   "and between grids (not converged: check it with check_grid)",
     "bit_rpm_max": "highest bit speed, rpm",
     "bit_rpm_mean": "time-weighted mean bit speed, rpm",
     "motor_torque_min_Nm": "lowest motor torque, N m",
@@ -166,6 +167,102 @@ class DrillMetrics:
         return {f.name: (None if math.isnan(v := getattr(self, f.name)) else v) for f in dataclasses.fields(self)}
 
 
+#: How far each metric may move between a run and the same run on twice the cells before a grid
+#: check (:func:`drillstring.drill` with ``check_grid=True``, ``drillstring drill --check-grid``)
+#: warns: ``(kind, tolerance)`` with kind ``"rel"`` (relative change), ``"abs"`` (in the
+#: metric's unit) or ``"equal"`` (a verdict that must not change).
+GRID_TOLERANCES: dict[str, tuple[str, float]] = {
+    "ssi": ("rel", 0.05),
+    "stuck_fraction": ("abs", 0.03),
+    "period_s": ("rel", 0.02),
+    "bit_rpm_min": ("abs", 1.0),
+    "bit_rpm_max": ("rel", 0.05),
+    "bit_rpm_mean": ("rel", 0.02),
+    "motor_torque_min_Nm": ("rel", 0.03),
+    "motor_torque_max_Nm": ("rel", 0.03),
+    "breakoff_torque_Nm": ("rel", 0.001),
+    "stick_slip": ("equal", 0.0),
+    "settled": ("equal", 0.0),
+}
+
+
+@dataclass(frozen=True)
+class GridCheckRow:
+    """One metric of a grid check: its value on the run's grid and on twice the cells."""
+
+    metric: str
+    value: Optional[float]
+    refined: Optional[float]
+    change: Optional[float]
+    """``refined - value`` (``"abs"``), ``refined / value - 1`` (``"rel"``; None when ``value``
+    is 0), or 0 / 1 for a verdict that kept / changed."""
+    kind: str
+    tolerance: float
+    within: bool
+    """The change is within the tolerance (a metric undefined on one grid only is not)."""
+
+
+@dataclass(frozen=True)
+class GridCheck:
+    """A run repeated on twice the cells (:data:`GRID_TOLERANCES`): how much every metric moved."""
+
+    cells: int
+    refined_cells: int
+    rows: tuple[GridCheckRow, ...]
+
+    @classmethod
+    def compare(cls, base: DrillMetrics, refined: DrillMetrics, cells: int, refined_cells: int) -> GridCheck:
+        """The rows of :data:`GRID_TOLERANCES` from the metrics of the two runs."""
+        rows = []
+        for name, (kind, tol) in GRID_TOLERANCES.items():
+            a, b = float(getattr(base, name)), float(getattr(refined, name))
+            change: Optional[float]
+            if math.isnan(a) or math.isnan(b):
+                change, within = None, math.isnan(a) and math.isnan(b)
+            elif kind == "equal":
+                change = float(a != b)
+                within = a == b
+            elif kind == "rel":
+                change = None if a == 0 else b / a - 1.0
+                within = (a == b) if change is None else abs(change) <= tol
+            else:
+                change = b - a
+                within = abs(change) <= tol
+            rows.append(GridCheckRow(name, None if math.isnan(a) else a, None if math.isnan(b) else b, change,
+                                     kind, tol, within))
+        return cls(cells, refined_cells, tuple(rows))
+
+    @property
+    def converged(self) -> bool:
+        """Every metric within its tolerance."""
+        return all(r.within for r in self.rows)
+
+    def warnings(self) -> list[str]:
+        """One sentence per metric that moved more than its tolerance."""
+        out = []
+        for r in self.rows:
+            if r.within:
+                continue
+            if r.change is None:
+                what = f"is {r.value} on {self.cells} cells and {r.refined} on {self.refined_cells}"
+            elif r.kind == "equal":
+                what = (f"changes from {bool(r.value)} on {self.cells} cells to {bool(r.refined)} on "
+                        f"{self.refined_cells}")
+            elif r.kind == "rel":
+                what = (f"moves by {100 * r.change:+.3g} % from {self.cells} to {self.refined_cells} cells "
+                        f"(tolerance {100 * r.tolerance:g} %)")
+            else:
+                what = (f"moves by {r.change:+.4g} from {self.cells} to {self.refined_cells} cells "
+                        f"(tolerance {r.tolerance:g})")
+            out.append(f"grid check: {r.metric} {what}: not converged, refine numerics.cells")
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (``metrics.json``'s ``grid_check``)."""
+        return {"cells": self.cells, "refined_cells": self.refined_cells, "converged": self.converged,
+                "rows": [dataclasses.asdict(r) for r in self.rows]}
+
+
 @dataclass(frozen=True)
 class DrillProfile:
     """The static friction profile of the string in the well (``_core.drill_profile``)."""
@@ -223,9 +320,13 @@ class DrillResult:
         ``first_mode_hz``.
     status, message : str
         How the solve ended (``"success"`` or a failure status, see :class:`~drillstring.errors.SolveError`).
+    grid_check : GridCheck or None
+        With ``drill(..., check_grid=True)``: every metric against the same run on twice the
+        cells (its moves beyond :data:`GRID_TOLERANCES` are in ``warnings``).
     warnings : tuple of str
-        What in the metrics cannot be trusted as it stands (a window that is not settled, an
-        undefined severity or period, a period its cross-check disagrees with); empty when all can.
+        What makes the run or its metrics doubtful: a torque limit below the string's static
+        torque, a window that is not settled, an undefined severity or period, a period its
+        cross-check disagrees with; empty when nothing does.
     """
 
     def __init__(self, config: DrillConfig, raw: Mapping[str, Any], profile: DrillProfile) -> None:
@@ -243,9 +344,11 @@ class DrillResult:
             self.field_t.size, self.z.size)
         self.profile = profile
         self.metrics = DrillMetrics.from_core(raw["metrics"])
-        self.warnings: tuple[str, ...] = tuple(str(w) for w in raw["metrics"].get("warnings", ()))
+        self.warnings: tuple[str, ...] = tuple(
+            str(w) for w in (*raw.get("warnings", ()), *raw["metrics"].get("warnings", ())))
         self.energy: dict[str, float] = {str(k): float(v) for k, v in dict(raw.get("energy") or {}).items()}
         self.stats: dict[str, Any] = dict(raw.get("stats") or {})
+        self.grid_check: Optional[GridCheck] = None
         self.status: str = str(raw["status"])
         self.message: str = str(raw["message"])
 
@@ -283,6 +386,8 @@ class DrillResult:
         out.update(self.metrics.to_dict())
         out["stick_slip_criterion"] = STICK_SLIP_CRITERION
         out["warnings"] = list(self.warnings)
+        if self.grid_check is not None:
+            out["grid_check"] = self.grid_check.to_dict()
         out["definitions"] = dict(METRIC_DEFINITIONS)
         out["window"] = [self.metrics.window_start, self.metrics.window_end]
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}

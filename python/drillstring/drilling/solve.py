@@ -10,7 +10,7 @@ from .. import _core
 from .._progress import ProgressOption, SolveProgress, check_progress
 from ..errors import SolveError, ValidationError
 from .config import DrillConfig, load_drill_config
-from .result import DrillProfile, DrillResult
+from .result import DrillProfile, DrillResult, GridCheck
 
 __all__ = ["drill", "friction_profile"]
 
@@ -33,7 +33,8 @@ def friction_profile(config: ConfigLike) -> DrillProfile:
     return DrillProfile.from_core(_core.drill_profile(_config(config).to_json()))
 
 
-def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, check: bool = True) -> DrillResult:
+def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, check: bool = True,
+          check_grid: bool = False) -> DrillResult:
     """Solves the drilling system ``config`` over ``numerics.duration`` in the core.
 
     Parameters
@@ -48,6 +49,10 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
     check : bool
         Raise :class:`~drillstring.errors.SolveError` (with ``.result``) when the solve stops
         early (default); ``False`` returns the partial result with its ``status``.
+    check_grid : bool
+        Also solve the configuration on twice the cells (about four times the work) and report
+        in ``result.grid_check`` how much every metric moved; a move beyond its tolerance
+        (:data:`~drillstring.drilling.result.GRID_TOLERANCES`) is added to ``result.warnings``.
 
     Returns
     -------
@@ -64,9 +69,30 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
         Ctrl-C (the core stops within a few tens of milliseconds).
     """
     cfg = _config(config)
-    if not isinstance(check, bool):
-        raise ValidationError("check", check, "True or False")
+    for name, flag in (("check", check), ("check_grid", check_grid)):
+        if not isinstance(flag, bool):
+            raise ValidationError(name, flag, "True or False")
     option = check_progress(False if progress is None else progress)
+    refined_cfg = None
+    if check_grid:
+        refined_cells = 2 * cfg.numerics.cells
+        try:
+            refined_cfg = cfg.with_overrides({"numerics.cells": refined_cells})
+        except ValidationError as exc:
+            raise ValidationError(
+                "check_grid", f"numerics.cells = {cfg.numerics.cells}",
+                f"a grid whose double ({refined_cells} cells) the core accepts: {exc}") from exc
+    result = _solve(cfg, option, check)
+    if refined_cfg is not None:
+        refined = _solve(refined_cfg, option, check)
+        result.grid_check = GridCheck.compare(result.metrics, refined.metrics, cfg.numerics.cells,
+                                              refined_cfg.numerics.cells)
+        result.warnings = (*result.warnings, *result.grid_check.warnings())
+    return result
+
+
+def _solve(cfg: DrillConfig, option: ProgressOption, check: bool) -> DrillResult:
+    """One run of ``cfg`` (see :func:`drill`)."""
     text = cfg.to_json()
     profile = DrillProfile.from_core(_core.drill_profile(text))
     duration = cfg.numerics.duration

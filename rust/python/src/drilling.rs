@@ -91,6 +91,7 @@ fn run_dict(py: Python<'_>, run: drilling::DrillRun) -> PyResult<Bound<'_, PyDic
     d.set_item("torque_field", PyArray1::from_vec(py, run.torque_field).reshape([nt, nz])?)?;
     d.set_item("status", run.status.name())?;
     d.set_item("message", run.message)?;
+    d.set_item("warnings", run.warnings)?;
 
     let m = stick_slip_dict(py, run.metrics.as_ref())?;
     m.set_item("window_start", run.window[0])?;

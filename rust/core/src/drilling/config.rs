@@ -23,6 +23,17 @@ pub const MAX_SECTIONS: usize = 1_000;
 pub const MAX_DURATION: f64 = 86_400.0;
 /// Largest memory of a run's outputs (series and field snapshots), bytes (512 MiB).
 pub const MAX_OUTPUT_BYTES: usize = 512 << 20;
+/// The default motor torque limit, N m ([`TopDrive::torque_limit`]).
+pub const DEFAULT_TORQUE_LIMIT: f64 = 60e3;
+/// Largest number of cell updates (cells times time steps) of one run: about half an hour at
+/// the 6e8 cell updates per second one core of a 2-core AMD EPYC reaches (Well B, 1000 cells,
+/// 60 s in 0.11 s). A run asking more is refused before it starts, naming what makes it long.
+pub const MAX_CELL_STEPS: f64 = 1e12;
+/// Largest outer diameter of a section, m (a hard limit against unit mistakes and overflow;
+/// drill strings are below 0.5 m).
+pub const MAX_DIAMETER: f64 = 10.0;
+/// Longest section, m.
+pub const MAX_SECTION_LENGTH: f64 = 100_000.0;
 /// Number of output series stored per sample (`t`, surface and bit speed, motor and bit torque).
 pub(crate) const SERIES: usize = 5;
 
@@ -196,7 +207,12 @@ pub struct Controller {
     /// with the BHA inertia).
     pub tuning_frequency: Option<f64>,
     /// `soft_torque`, `z_torque`: the damping the top drive presents, in units of the top
-    /// section's impedance `Z = J sqrt(G rho)`.
+    /// section's impedance `Z = J sqrt(G rho)`. Default 4, the published defaults of
+    /// Simulator4nDOF (NORCE): its SoftTorque proportional gain `4 Z` and its ZTorque factor
+    /// `0.25 / Z` on the high-passed torque (`1 / (z_factor Z)` here). On
+    /// `examples/on-bottom-3000m.toml` at 40 rpm both then remove the stick-slip the PI
+    /// controller leaves (SSI 0.22 and 0.04 against 1.16); at 1 `soft_torque` made it worse
+    /// (1.47).
     pub z_factor: f64,
     /// `z_torque`: time constant of the low-pass that takes the mean string torque out of the
     /// impedance feedback (so that only the torque waves reduce the speed), s. Default
@@ -212,7 +228,7 @@ impl Default for Controller {
             kp: 38e3,
             ki: 100e3,
             tuning_frequency: None,
-            z_factor: 1.0,
+            z_factor: 4.0,
             torque_highpass_time: 20.0 / (2.0 * std::f64::consts::PI),
         }
     }
@@ -224,8 +240,11 @@ impl Default for Controller {
 pub struct TopDrive {
     /// kg m^2.
     pub inertia: f64,
-    /// N m; None: unlimited. The motor torque is clipped to `[-limit, limit]` (anti-windup).
-    pub torque_limit: Option<f64>,
+    /// N m: the motor torque is clipped to `[-limit, limit]` (anti-windup), for every
+    /// controller. Default 60 kN m: the continuous rating of a large top drive, as Simulator4nDOF
+    /// (NORCE) sets its maximum top-drive torque; a run whose static torque exceeds it is warned
+    /// that the string may never break free. A very large value (1e12) for no limit.
+    pub torque_limit: f64,
     /// Setpoint, rpm.
     pub rpm: f64,
     /// Time constant of the first-order approach of the setpoint from 0, s (0: a step).
@@ -235,6 +254,14 @@ pub struct TopDrive {
     pub controller: Controller,
     /// Period of the zero-order hold of `pi` and `soft_torque`, s.
     pub control_interval: f64,
+    /// `speed`, `z_torque`: the bandwidth of the motor's speed loop, Hz. The top speed follows
+    /// the speed these controllers ask for as a first-order lag of time constant
+    /// `1 / (2 pi motor_bandwidth)` (exact over each step), so that the motor torque is the
+    /// torque of a real drive and converges as the grid is refined (an ideal speed source asks
+    /// the top-drive inertia times the jump of the speed over one step, a torque that grows as
+    /// `1 / dt`). Default 10 Hz, the order of a variable-frequency drive's speed loop, well above
+    /// a string's torsional modes (0.1-2 Hz).
+    pub motor_bandwidth: f64,
 }
 
 impl Default for TopDrive {
@@ -243,12 +270,13 @@ impl Default for TopDrive {
     fn default() -> Self {
         TopDrive {
             inertia: 2900.0,
-            torque_limit: None,
+            torque_limit: DEFAULT_TORQUE_LIMIT,
             rpm: 40.0,
             ramp_time: 1.0,
             steps: Vec::new(),
             controller: Controller::default(),
             control_interval: 0.01,
+            motor_bandwidth: 10.0,
         }
     }
 }
@@ -559,8 +587,29 @@ impl DrillConfig {
         let mut min_density = f64::INFINITY;
         for (i, s) in self.sections.iter().enumerate() {
             let f = |k: &str| format!("sections[{i}].{k}");
-            pos(f("length"), s.length, "m")?;
-            pos(f("outer_diameter"), s.outer_diameter, "m")?;
+            if !(s.length.is_finite() && s.length > 0.0 && s.length <= MAX_SECTION_LENGTH) {
+                return Err(Error::invalid(
+                    f("length"),
+                    Num(s.length),
+                    format!("a finite number > 0 m, at most {MAX_SECTION_LENGTH} m"),
+                ));
+            }
+            if !(s.outer_diameter.is_finite() && s.outer_diameter > 0.0 && s.outer_diameter <= MAX_DIAMETER) {
+                return Err(Error::invalid(
+                    f("outer_diameter"),
+                    Num(s.outer_diameter),
+                    format!("a finite number > 0 m, at most {MAX_DIAMETER} m (in metres: 5 in = 0.127 m)"),
+                ));
+            }
+            if let Some(d) = s.contact_diameter {
+                if !(d.is_finite() && d > 0.0 && d <= MAX_DIAMETER) {
+                    return Err(Error::invalid(
+                        f("contact_diameter"),
+                        Num(d),
+                        format!("a finite number > 0 m, at most {MAX_DIAMETER} m, or null for the outer diameter"),
+                    ));
+                }
+            }
             if !(s.inner_diameter.is_finite() && s.inner_diameter >= 0.0 && s.inner_diameter < s.outer_diameter) {
                 return Err(Error::invalid(
                     f("inner_diameter"),
@@ -640,8 +689,13 @@ impl DrillConfig {
         nonneg("damping_rate", self.damping_rate, "1/s")?;
         let td = &self.top_drive;
         pos("top_drive.inertia", td.inertia, "kg m^2")?;
-        if let Some(l) = td.torque_limit {
-            pos("top_drive.torque_limit", l, "N m, or null for unlimited")?;
+        pos("top_drive.motor_bandwidth", td.motor_bandwidth, "Hz")?;
+        if td.torque_limit.is_nan() || td.torque_limit <= 0.0 {
+            return Err(Error::invalid(
+                "top_drive.torque_limit",
+                Num(td.torque_limit),
+                "a number > 0 N m (a very large value, 1e12, for no limit)",
+            ));
         }
         finite("top_drive.rpm", td.rpm, "rpm")?;
         nonneg("top_drive.ramp_time", td.ramp_time, "s")?;
@@ -760,6 +814,37 @@ impl DrillConfig {
                     fields >> 20
                 ),
             ));
+        }
+        let steps = (self.numerics.duration / grid.dt).ceil();
+        let work = steps * grid.cells() as f64;
+        if work > MAX_CELL_STEPS {
+            // a section shorter than a cell of the others sets the step
+            let travel: f64 = grid.props.iter().zip(&grid.speed).map(|(p, c)| p.length / c).sum();
+            let short = (0..grid.props.len()).find(|&i| {
+                grid.counts[i] == 1 && grid.props[i].length / grid.speed[i] < travel / self.numerics.cells as f64
+            });
+            let what = format!(
+                "a run of at most {} cell updates (cells x time steps; this one needs {}: {} cells x {} steps of {} s, \
+                 about {} h)",
+                Num(MAX_CELL_STEPS),
+                Num(work),
+                grid.cells(),
+                Num(steps),
+                Num(grid.dt),
+                Num((work / 6e8 / 3600.0 * 10.0).round() / 10.0)
+            );
+            return Err(match short {
+                Some(i) => Error::invalid(
+                    format!("sections[{i}].length"),
+                    Num(self.sections[i].length),
+                    format!("a section long enough for a reasonable time step (its travel time sets the step): {what}"),
+                ),
+                None => Error::invalid(
+                    "numerics.cells",
+                    self.numerics.cells,
+                    format!("fewer cells or a shorter numerics.duration: {what}"),
+                ),
+            });
         }
         Ok(())
     }

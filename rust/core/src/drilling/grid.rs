@@ -295,6 +295,9 @@ pub fn breakoff_torque(cfg: &DrillConfig) -> Result<f64> {
                 }
             }
             depth.push(bottom);
+            // a station within rounding of a section's end (800 against 800.0000000000001 m)
+            // gives equal depths: keep them strictly increasing
+            depth.dedup_by(|later, earlier| *later <= *earlier);
             let limit: Vec<f64> = depth
                 .iter()
                 .map(|&d| p.friction_limit(cfg.friction.static_coefficient, cfg.well.gravity, inclination(cfg, d)))
@@ -327,6 +330,14 @@ pub fn min_cycle_torque_from(wall_breakoff: f64, kinetic_ratio: f64, bit_static:
     let static_torque = wall_breakoff + bit_static;
     let kinetic_torque = kinetic_ratio * wall_breakoff + bit_kinetic;
     2.0 * kinetic_torque - static_torque
+}
+
+/// The static torque the motor must exceed to break the string free, N m: the wall's
+/// break-off torque `breakoff` ([`breakoff_torque`]) and, with the bit on bottom, its static
+/// torque `W r mu_s`.
+pub fn static_torque(cfg: &DrillConfig, breakoff: f64) -> f64 {
+    let b = &cfg.bit;
+    breakoff + if b.on_bottom && b.weight_on_bit > 0.0 { b.weight_on_bit * b.radius * b.mu_static } else { 0.0 }
 }
 
 /// [`min_cycle_torque_from`] of a configuration whose wall break-off torque is `breakoff`

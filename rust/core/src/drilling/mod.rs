@@ -37,6 +37,8 @@ pub mod solver;
 #[cfg(test)]
 mod tests;
 
-pub use config::{DrillConfig, MAX_CELLS, MAX_DURATION, MAX_OUTPUT_BYTES, MAX_SECTIONS};
+pub use config::{
+    DrillConfig, DEFAULT_TORQUE_LIMIT, MAX_CELLS, MAX_CELL_STEPS, MAX_DURATION, MAX_OUTPUT_BYTES, MAX_SECTIONS,
+};
 pub use grid::{breakoff_torque, min_cycle_torque, min_cycle_torque_from, Grid};
-pub use solver::{friction_profile, solve, DrillRun, DrillStats, EnergyBalance, Profile, Simulation};
+pub use solver::{friction_profile, solve, DrillRun, DrillStats, EnergyBalance, Profile, Simulation, RUNAWAY_FACTOR};

@@ -108,9 +108,13 @@ use crate::solution::Status;
 
 use super::bit::slip_torque;
 use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity, SERIES};
-use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid, SectionProps};
+use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, static_torque, Grid, SectionProps};
 
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
+
+/// A run whose top-drive or bit speed exceeds this many times the largest setpoint (or 1 rad/s)
+/// has diverged: it ends with the status `non_finite` and a message saying so.
+pub const RUNAWAY_FACTOR: f64 = 1000.0;
 
 /// The energy balance of a run, J (from the start to the end reached).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -190,6 +194,9 @@ pub struct DrillRun {
     pub min_cycle_torque: f64,
     pub status: Status,
     pub message: String,
+    /// What the configuration makes doubtful (a torque limit the string's static torque
+    /// exceeds); the metrics' own are [`StickSlip::warnings`].
+    pub warnings: Vec<String>,
     pub stats: DrillStats,
 }
 
@@ -272,6 +279,9 @@ struct Control {
     z_factor: f64,
     /// `z_torque`: low-passed string torque at the top.
     slow_torque: f64,
+    /// `speed`, `z_torque`: `1 - exp(-2 pi motor_bandwidth dt)`, the fraction of the speed
+    /// asked for the top reaches in a step.
+    motor_lag: f64,
     slow_factor: f64,
 }
 
@@ -358,16 +368,18 @@ impl<'c> Simulation<'c> {
             }
             _ => (c.kp, c.ki),
         };
+        check_control_loop(cfg, &grid, kp)?;
         let control = Control {
             kind: c.kind,
             kp,
             ki,
-            limit: td.torque_limit.unwrap_or(f64::INFINITY),
+            limit: td.torque_limit,
             integral: 0.0,
             torque: 0.0,
             next: 0.0,
             z_factor: c.z_factor,
             slow_torque: 0.0,
+            motor_lag: 1.0 - (-2.0 * PI * td.motor_bandwidth * dt).exp(),
             slow_factor: 1.0 - (-dt / c.torque_highpass_time).exp(),
         };
         let nl = (cfg.nonlinearity == Nonlinearity::Consistent).then(|| Nonlinear {
@@ -599,6 +611,8 @@ impl<'c> Simulation<'c> {
                     let z = ctl.z_factor;
                     (z * self.setpoint + beta1 + ctl.slow_torque / z0) / (z + 1.0)
                 };
+                // The motor's speed loop: a first-order lag towards the speed asked for.
+                let wanted = omega + (wanted - omega) * ctl.motor_lag;
                 let tm = inertia * (wanted - omega) / dt + z0 * (wanted - beta1);
                 if tm.abs() <= ctl.limit {
                     (wanted, tm)
@@ -768,6 +782,7 @@ impl<'c> Simulation<'c> {
             min_cycle_torque: min_cycle_torque(cfg, breakoff),
             status: Status::Success,
             message: String::new(),
+            warnings: run_warnings(cfg, breakoff),
             stats: DrillStats {
                 cells: nz,
                 steps: 0,
@@ -803,6 +818,9 @@ impl<'c> Simulation<'c> {
             return run;
         }
         let mut poller = Poller::new(interrupt);
+        let td = &cfg.top_drive;
+        let fastest = td.steps.iter().map(|s| s[1].abs()).fold(td.rpm.abs(), f64::max) / RPM_PER_RAD_S;
+        let runaway = RUNAWAY_FACTOR * fastest.max(1.0);
         let stride = (steps / 1000).max(1);
         // (t, omega_top, omega_bit, motor, bit) at the previous step end.
         let mut prev = [0.0, self.omega_top, self.bit_speed(), f64::NAN, f64::NAN];
@@ -817,6 +835,18 @@ impl<'c> Simulation<'c> {
             }
             let (motor, bit) = self.step(t);
             t = (n + 1) as f64 * dt;
+            if self.omega_top.abs().max(self.omega_bit.abs()) > runaway {
+                run.status = Status::NonFinite;
+                run.message = format!(
+                    "the solution diverged: the {} speed reached {} rpm, more than {} times the largest setpoint, \
+                     at t = {} s (a grid too coarse for the controller or the bit law: raise numerics.cells)",
+                    if self.omega_top.abs() > runaway { "top-drive" } else { "bit" },
+                    Num(self.omega_top.abs().max(self.omega_bit.abs()) * RPM_PER_RAD_S),
+                    RUNAWAY_FACTOR,
+                    Num(t)
+                );
+                break;
+            }
             run.stats.steps = n + 1;
             let cur = [t, self.omega_top, self.bit_speed(), motor, bit];
             if n == 0 {
@@ -953,6 +983,73 @@ impl<'c> Simulation<'c> {
         }
         finite
     }
+}
+
+/// The warnings of a configuration with the wall break-off torque `breakoff` (see
+/// [`DrillRun::warnings`]).
+fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
+    let mut out = Vec::new();
+    let needed = static_torque(cfg, breakoff);
+    let limit = cfg.top_drive.torque_limit;
+    if limit < needed {
+        out.push(format!(
+            "top_drive.torque_limit = {} N m is below the static torque of the string, {} N m (the wall's \
+             break-off torque{}): the motor may never break it free",
+            Num(limit),
+            Num(needed),
+            if needed > breakoff { " and the bit's" } else { "" }
+        ));
+    }
+    out
+}
+
+/// Refuses a proportional gain that the sampled controller loop cannot hold on this grid.
+///
+/// The `pi` and `soft_torque` torque is computed from the top speed at a sample and held for
+/// `h = max(dt, control_interval)`; the top drive then answers implicitly,
+/// `(I / h + Z) Omega' = I / h Omega + kp (setpoint - Omega) + ...`, so the speed error is
+/// multiplied by `(I / h - kp) / (I / h + Z)` per sample: the loop oscillates with a growing
+/// amplitude (speeds of 1e52 rpm on 1 to 4 cells) unless `kp < 2 I / h + Z`. The error names
+/// `numerics.cells` (with the count that holds) when the step is the longer, else the gain.
+fn check_control_loop(cfg: &DrillConfig, grid: &Grid, kp: f64) -> Result<()> {
+    let td = &cfg.top_drive;
+    let c = &td.controller;
+    if !matches!(c.kind, ControllerKind::Pi | ControllerKind::SoftTorque) {
+        return Ok(());
+    }
+    let z = grid.props[0].impedance;
+    let h = grid.dt.max(td.control_interval);
+    let bound = 2.0 * td.inertia / h + z;
+    if kp < bound {
+        return Ok(());
+    }
+    let gain = if c.kind == ControllerKind::Pi { "top_drive.controller.kp" } else { "top_drive.controller.z_factor" };
+    if grid.dt > td.control_interval && kp > z {
+        // the step that holds: dt < 2 I / (kp - Z), on the same travel time
+        let needed = (grid.cells() as f64 * grid.dt * (kp - z) / (2.0 * td.inertia)).floor() + 1.0;
+        return Err(Error::invalid(
+            "numerics.cells",
+            cfg.numerics.cells,
+            format!(
+                "at least {} cells: with a step of {} s the controller's gain {gain} = {} N m s/rad is at \
+                 least 2 I / dt + Z = {} N m s/rad, and the sampled top-drive loop is unstable",
+                Num(needed),
+                Num(grid.dt),
+                Num(kp),
+                Num(bound)
+            ),
+        ));
+    }
+    Err(Error::invalid(
+        gain,
+        Num(if c.kind == ControllerKind::Pi { kp } else { c.z_factor }),
+        format!(
+            "a gain below 2 I / control_interval + Z = {} N m s/rad (kp here {} N m s/rad): above it the sampled \
+             top-drive loop is unstable; lower the gain or top_drive.control_interval",
+            Num(bound),
+            Num(kp)
+        ),
+    ))
 }
 
 /// The per-step constants of the sources.

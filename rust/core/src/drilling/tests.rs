@@ -21,12 +21,18 @@ fn polar(od: f64, id: f64) -> f64 {
 }
 
 /// A frictionless vertical string, ideal speed-controlled top at rest, bit off bottom.
+/// A motor bandwidth, Hz, at which the top speed reaches the speed asked for within a step.
+const IDEAL_MOTOR: f64 = 1e12;
+
 fn frictionless(sections: Vec<Section>, cells: usize, duration: f64) -> DrillConfig {
     let mut cfg = DrillConfig { sections, ..DrillConfig::default() };
     cfg.well.md = None;
     cfg.well.inclination_deg = Inclination::Constant(0.0);
     cfg.friction.static_coefficient = 0.0;
     cfg.top_drive.controller.kind = ControllerKind::Speed;
+    // an ideal speed source: no motor lag, no torque limit
+    cfg.top_drive.motor_bandwidth = IDEAL_MOTOR;
+    cfg.top_drive.torque_limit = f64::INFINITY;
     cfg.top_drive.rpm = 0.0;
     cfg.top_drive.ramp_time = 0.0;
     cfg.numerics.cells = cells;
@@ -284,7 +290,7 @@ fn loaded(model: FrictionModel) -> DrillConfig {
     cfg.friction.model = model;
     cfg.damping_rate = 0.05;
     cfg.bit = Bit { on_bottom: true, weight_on_bit: 5e4, bha_inertia: 50.0, ..Bit::default() };
-    cfg.top_drive.torque_limit = Some(30e3);
+    cfg.top_drive.torque_limit = 30e3;
     cfg.numerics.cells = 700;
     cfg.numerics.duration = 30.0;
     cfg
@@ -344,8 +350,10 @@ fn a_torque_below_break_off_leaves_the_lower_string_exactly_at_rest() {
     let mut cfg = DrillConfig { sections: vec![section(2500.0, 0.146529, 0.123024)], ..DrillConfig::default() };
     let breakoff = breakoff_torque(&cfg).unwrap();
     let limit = 0.25 * breakoff;
-    cfg.top_drive.torque_limit = Some(limit);
-    cfg.top_drive.controller.kp = 1e7;
+    cfg.top_drive.torque_limit = limit;
+    // saturated: 4.2 rad/s of error times kp is 80 times the limit (and kp within the stable
+    // gains of the sampled loop, below 2 I / control_interval)
+    cfg.top_drive.controller.kp = 5e5;
     cfg.bit = Bit { on_bottom: true, weight_on_bit: 1e5, ..Bit::default() };
     cfg.numerics.duration = 20.0;
     cfg.numerics.field_interval = 0.1;
@@ -494,7 +502,8 @@ fn soft_torque_gains_from_impedance_and_first_mode() {
     let p = &cfg.sections[0];
     let z = polar(p.outer_diameter, p.inner_diameter) * (p.shear_modulus * p.density).sqrt();
     let w = 2.0 * PI * run.stats.first_mode_hz;
-    assert!((run.stats.kp / z - 1.0).abs() < 1e-12);
+    assert_eq!(cfg.top_drive.controller.z_factor, 4.0);
+    assert!((run.stats.kp / (4.0 * z) - 1.0).abs() < 1e-12);
     assert!((run.stats.ki / (w * w * 2900.0) - 1.0).abs() < 1e-12);
     // Uniform string without BHA: the first mode is c / (4 L).
     let c = (p.shear_modulus / p.density).sqrt();
@@ -536,7 +545,7 @@ fn bit_on_bottom_sticks_and_slips_with_positive_bit_work() {
     for bha in [0.0, 100.0] {
         let mut cfg = loaded(FrictionModel::SetValued);
         cfg.bit = Bit { on_bottom: true, weight_on_bit: 1e5, bha_inertia: bha, ..Bit::default() };
-        cfg.top_drive.torque_limit = None;
+        cfg.top_drive.torque_limit = f64::INFINITY;
         let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
         let (m, e) = (run.metrics.unwrap(), run.energy);
         eprintln!(
@@ -1036,4 +1045,101 @@ fn a_courant_number_below_one_shortens_the_step() {
     assert!(run.energy.upwind_loss > 0.0 && run.energy.balance_error.abs() < 1e-10, "{:?}", run.energy);
     cfg.numerics.courant = 1.5;
     assert_eq!(cfg.validate().unwrap_err().field(), "numerics.courant");
+}
+
+/// A proportional gain the sampled top-drive loop cannot hold on the grid is refused, naming
+/// the cells (with a count that holds) when the step is longer than the control interval
+/// (before: 1 to 4 cells ran to bit speeds of 1e52 rpm and "success").
+#[test]
+fn an_unstable_controller_loop_is_refused() {
+    let json = r#"{
+      "sections": [{"length": 3200.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
+      "numerics": {"cells": 4, "duration": 5.0, "field_interval": 0}
+    }"#;
+    let mut cfg = DrillConfig::from_json(json).unwrap();
+    let err = Simulation::new(&cfg).err().expect("refused");
+    assert_eq!(err.field(), "numerics.cells", "{err}");
+    let needed: usize = err.to_string().split("at least ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+    cfg.numerics.cells = needed;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, Status::Success, "{}", run.message);
+    assert!(run.surface_rpm.iter().all(|w| w.abs() < 200.0));
+    cfg.numerics.cells = needed - 1;
+    assert_eq!(Simulation::new(&cfg).err().expect("refused").field(), "numerics.cells");
+    // a gain above 2 I / control_interval on a fine grid names the gain
+    cfg.numerics.cells = 2000;
+    cfg.top_drive.controller.kp = 1e6;
+    assert_eq!(Simulation::new(&cfg).err().expect("refused").field(), "top_drive.controller.kp");
+}
+
+/// A state beyond the runaway bound ends the run with `non_finite` and a message that says the
+/// solution diverged, never "success".
+#[test]
+fn a_runaway_ends_with_a_status() {
+    let mut cfg = frictionless(vec![section(1000.0, 0.14, 0.1)], 100, 1.0);
+    cfg.top_drive.rpm = 60.0;
+    let mut sim = Simulation::new(&cfg).unwrap();
+    let n = sim.grid().cells();
+    let fast = 2.0 * RUNAWAY_FACTOR * 60.0 / RPM;
+    sim.set_state(&vec![fast; n], &vec![0.0; n], 0.0, fast).unwrap();
+    let run = sim.run(&Never, &mut |_| {});
+    assert_eq!(run.status, Status::NonFinite);
+    assert!(run.message.contains("diverged") && run.message.contains("speed reached"), "{}", run.message);
+}
+
+/// Unit mistakes and overflow are refused naming the field (before: an outer diameter of 1e50 m
+/// succeeded with every energy 0 and 1e154 m said "invalid limit"); a run of more cell updates
+/// than the limit is refused before it starts.
+#[test]
+fn absurd_sizes_are_refused_naming_the_field() {
+    let mut cfg = DrillConfig::default();
+    for od in [1e50, 1e154, 171.0] {
+        cfg.sections[0].outer_diameter = od;
+        assert_eq!(cfg.validate().unwrap_err().field(), "sections[0].outer_diameter", "{od}");
+    }
+    cfg.sections[0].outer_diameter = 0.146529;
+    cfg.sections[0].length = 1e9;
+    assert_eq!(cfg.validate().unwrap_err().field(), "sections[0].length");
+    cfg.sections[0].length = 3000.0;
+    cfg.numerics.cells = 1_000_000;
+    cfg.numerics.duration = 86_400.0;
+    cfg.numerics.output_interval = 10.0;
+    cfg.numerics.field_interval = 0.0;
+    let err = cfg.validate().unwrap_err();
+    assert_eq!(err.field(), "numerics.cells", "{err}");
+    assert!(err.to_string().contains("cell updates"), "{err}");
+}
+
+/// A torque limit below the string's static torque is warned about.
+#[test]
+fn a_torque_limit_below_the_static_torque_warns() {
+    let mut cfg = DrillConfig::default();
+    cfg.numerics.duration = 1.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert!(run.warnings.is_empty(), "{:?}", run.warnings);
+    cfg.top_drive.torque_limit = 0.5 * run.breakoff_torque;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.warnings.len(), 1);
+    assert!(run.warnings[0].contains("top_drive.torque_limit") && run.warnings[0].contains("never break"));
+}
+
+/// A section boundary within rounding of a survey station is solved (before: `drill` refused
+/// 800.0000000000001 m against the station at 800 m with an error naming no field), with the
+/// break-off torque of the boundary at 800 m to rounding.
+#[test]
+fn a_section_boundary_at_a_station_within_rounding_is_solved() {
+    let json = |l: f64| {
+        format!(
+            r#"{{"sections": [{{"length": {l:?}, "outer_diameter": 0.127, "inner_diameter": 0.1086}},
+                {{"length": 2400.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}}],
+              "well": {{"md": [0.0, 800.0, 1800.0, 4000.0], "inclination_deg": [0.0, 0.0, 30.0, 30.0]}},
+              "numerics": {{"duration": 1.0}}}}"#
+        )
+    };
+    let exact = breakoff_torque(&DrillConfig::from_json(&json(800.0)).unwrap()).unwrap();
+    for l in [800.0000000000001, 799.9999999999999] {
+        let cfg = DrillConfig::from_json(&json(l)).unwrap();
+        cfg.validate().unwrap();
+        assert!((breakoff_torque(&cfg).unwrap() / exact - 1.0).abs() < 1e-12);
+    }
 }

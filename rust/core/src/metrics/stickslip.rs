@@ -15,7 +15,8 @@
 //!     window, so that it is NaN unless the window holds two cycles; it does not depend on
 //!     where the window starts for a periodic signal. `periodicity` is the autocorrelation at
 //!     that lag (1 for an exactly periodic series) and `period_cycles` the window's length in
-//!     periods. Without a torque series these are NaN;
+//!     periods. Without a torque series, or for a bit stuck throughout the window (no cycle of
+//!     the bit, whatever the torque does), these are NaN;
 //!   - the cross-check `slip_period`: the mean interval between the bit's slip onsets (its
 //!     speed rising through `stick_speed` in the direction of its mean, linearly
 //!     interpolated, for a slip that carries it above its mean speed), NaN with fewer than
@@ -101,7 +102,11 @@ impl StickSlip {
         if self.stuck_fraction >= 1.0 {
             out.push("the bit never turns in the window (stuck throughout)".to_string());
         }
-        if self.cycle_period.is_nan() && self.torque_max.is_finite() && self.torque_max > self.torque_min {
+        if self.cycle_period.is_nan()
+            && self.stuck_fraction < 1.0
+            && self.torque_max.is_finite()
+            && self.torque_max > self.torque_min
+        {
             out.push("period_s undefined: the window holds fewer than two cycles, or no periodic motion".to_string());
         }
         if self.cycle_period.is_finite()
@@ -413,6 +418,9 @@ pub fn stick_slip(
         }
     };
     let stuck_fraction = (time_within(tw, w, stick_speed) / span).min(1.0);
+    // a bit that never turns has no stick-slip cycle (the torque may still oscillate above it)
+    let (cycle_period, periodicity) =
+        if stuck_fraction >= 1.0 { (f64::NAN, f64::NAN) } else { (cycle_period, periodicity) };
     let (slip_onsets, slip_period) = slip_onsets(tw, w, stick_speed, mean);
     let mut series: Vec<(&[f64], f64)> = vec![(w, stick_speed)];
     if let Some(m) = motor_torque {
