@@ -478,28 +478,12 @@ def drill_profile(config_json: str) -> DrillProfile:
         as :func:`drill_validate`.
     """
 
-class DrillMetrics(TypedDict):
-    #: First and last sample of the window, s (NaN when it holds fewer than 2 samples).
-    t_start: float
-    t_end: float
-    #: The window asked for (default: the last half of the run), s.
+class DrillMetrics(StickSlipDict):
+    #: The metrics of :class:`StickSlipDict` (``t_start``, ``t_end``: first and last sample of
+    #: the window, s, NaN when it holds fewer than 2 samples), and
+    #: the window asked for (default: the last half of the run), s.
     window_start: float
     window_end: float
-    severity: float
-    stuck_fraction: float
-    rpm_min: float
-    rpm_max: float
-    rpm_mean: float
-    torque_min: float
-    torque_max: float
-    cycle_period: float
-    period_cycles: float
-    periodicity: float
-    slip_period: float
-    slip_onsets: int
-    stick_slip: bool
-    settled: bool
-    warnings: list[str]
     breakoff_torque: float
     #: The minimum motor torque of a stick-slip cycle implied by break-off, 2 K - S (S the static
     #: torque of the wall and, on bottom, the bit; K the same at the kinetic torques), N m.
@@ -623,25 +607,8 @@ def lumped_defaults() -> tuple[str, str]:
     numerics ``duration``, ``dt``, ``output_interval``, ``initial`` ([wr, phi, wb]),
     ``window`` (null or [t_start, t_end]), ``stick_speed``."""
 
-class LumpedMetrics(TypedDict):
-    #: Of ``metrics::stick_slip`` with the spring torque as the torque series.
-    t_start: float
-    t_end: float
-    severity: float
-    stuck_fraction: float
-    rpm_min: float
-    rpm_max: float
-    rpm_mean: float
-    torque_min: float
-    torque_max: float
-    cycle_period: float
-    period_cycles: float
-    periodicity: float
-    slip_period: float
-    slip_onsets: int
-    stick_slip: bool
-    settled: bool
-    warnings: list[str]
+class LumpedMetrics(StickSlipDict):
+    """Of ``metrics::stick_slip`` with the spring torque as the torque series."""
 
 class LumpedEnergy(TypedDict):
     #: J: motor_work = (kinetic_top + kinetic_bit + spring - initial) + viscous_loss + friction_loss.

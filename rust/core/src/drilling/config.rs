@@ -768,6 +768,30 @@ impl DrillConfig {
                     "[t_start, t_end] with t_start < t_end (s), or null for the last half of the run",
                 ));
             }
+            // at least two series samples t = k output_interval inside the window (the samples
+            // the metrics are computed from, as `metrics::stick_slip` selects them)
+            let dt = self.numerics.output_interval;
+            let last = self.series_samples().saturating_sub(1) as f64;
+            let mut lo = (a.max(0.0) / dt).floor();
+            while lo * dt < a {
+                lo += 1.0;
+            }
+            let mut hi = (b / dt).floor().min(last);
+            while hi >= 0.0 && hi * dt > b {
+                hi -= 1.0;
+            }
+            if hi - lo < 1.0 {
+                return Err(Error::invalid(
+                    "metrics.window",
+                    format!("[{}, {}]", Num(a), Num(b)),
+                    format!(
+                        "a window holding at least 2 samples of the run's series (0 to numerics.duration = {} s \
+                         every {} s)",
+                        Num(self.numerics.duration),
+                        Num(dt)
+                    ),
+                ));
+            }
         }
         nonneg("metrics.stick_speed", m.stick_speed, "rad/s")?;
         Ok(())

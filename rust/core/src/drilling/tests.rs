@@ -1143,3 +1143,20 @@ fn a_section_boundary_at_a_station_within_rounding_is_solved() {
         assert!((breakoff_torque(&cfg).unwrap() / exact - 1.0).abs() < 1e-12);
     }
 }
+
+/// A metrics window that holds fewer than two samples of the run is refused naming it (before:
+/// all-null metrics and "success").
+#[test]
+fn a_metrics_window_outside_the_run_is_refused() {
+    let mut cfg = DrillConfig::default();
+    cfg.numerics.duration = 2.0;
+    for (w, ok) in
+        [([5.0, 8.0], false), ([-3.0, -1.0], false), ([0.005, 0.015], false), ([0.0, 0.01], true), ([1.5, 9.0], true)]
+    {
+        cfg.metrics.window = Some(w);
+        match cfg.validate() {
+            Ok(()) => assert!(ok, "{w:?} accepted"),
+            Err(e) => assert!(!ok && e.field() == "metrics.window", "{w:?}: {e}"),
+        }
+    }
+}
