@@ -82,9 +82,12 @@
 //!   absorbs an incident torque wave completely at `z_factor = 1`;
 //! * `speed`: the top speed is the setpoint.
 //!
-//! `speed` and `z_torque` impose the top speed and infer the motor torque
-//! (`I_TD dOmega/dt + tau_top`); with a `torque_limit` exceeded they fall back to the clipped
-//! torque. The setpoint approaches its target (`rpm`, then `steps`) as a first-order lag of time
+//! `speed` and `z_torque` ask for a top speed, which the motor's speed loop follows as a
+//! first-order lag of time constant `1 / (2 pi top_drive.motor_bandwidth)` (exact over the
+//! step), and infer the motor torque (`I_TD dOmega/dt + tau_top`, bounded as the grid is
+//! refined); with `top_drive.torque_limit` exceeded they fall back to the clipped torque. The
+//! `pi` and `soft_torque` gains are checked against the sampled loop's stability bound
+//! `kp < 2 I_TD / max(dt, control_interval) + Z` before a run. The setpoint approaches its target (`rpm`, then `steps`) as a first-order lag of time
 //! constant `ramp_time`, exactly over each step.
 //!
 //! # Energy
