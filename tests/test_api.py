@@ -146,3 +146,10 @@ def test_plain_install_has_what_the_readme_uses():
     sources = "".join(p.read_text(encoding="utf-8") for p in (ROOT / "python/drillstring").glob("*.py"))
     assert "drillstring[" not in sources and "drillstring[" not in README
     assert "pip install '.[dask]'" in README
+
+
+def test_import_does_not_load_the_report_engine() -> None:
+    # the paper report's Jinja2 templates are compiled when a report is rendered, not on import
+    code = "import drillstring, sys; print('jinja2' in sys.modules)"
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
+    assert done.stdout.strip() == "False", done.stdout + done.stderr

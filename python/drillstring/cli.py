@@ -829,8 +829,9 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     _say(f"drill-map: {len(frame)} runs ({', '.join(f'{n} {s}' for s, n in counts.items())}) in {seconds:.3g} s "
          f"({len(frame) / seconds:.3g} runs/s){f', {redone} stored chunk(s) recomputed' if redone else ''}")
     if len(ok):
-        _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip (SSI >= 1) in {(ok['ssi'] >= 1).sum()} "
-             f"runs, the bit stuck some of the time in {(ok['stuck_fraction'] > 0).sum()}")
+        _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip (the bit stops during part of the "
+             f"window) in {int((ok['stick_slip'] == 1).sum())} runs, settled in {int((ok['settled'] == 1).sum())} of "
+             f"{len(ok)}")
     from ._output import write_text
 
     written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),

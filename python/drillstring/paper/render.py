@@ -5,14 +5,17 @@ Markdown; the HTML template converts it with :func:`inline_html`."""
 from __future__ import annotations
 
 import base64
+import functools
 import re
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import jinja2
 from markupsafe import Markup, escape
 
 from .document import Block
+
+if TYPE_CHECKING:  # pragma: no cover - Jinja2 is loaded when a report is rendered, not on import
+    import jinja2
 
 _INLINE = re.compile(r"`([^`]+)`|\*\*([^*]+)\*\*|\[([^\]]+)\]\(([^)\s]+)\)|\*([^*\s][^*]*)\*")
 
@@ -112,6 +115,8 @@ _HTML = """\
 
 
 def _environment(autoescape: bool) -> jinja2.Environment:
+    import jinja2
+
     env = jinja2.Environment(autoescape=autoescape, trim_blocks=True, lstrip_blocks=True,
                              keep_trailing_newline=True, undefined=jinja2.StrictUndefined)
     env.filters["cell"] = _cell
@@ -119,17 +124,21 @@ def _environment(autoescape: bool) -> jinja2.Environment:
     return env
 
 
-_MD_TEMPLATE = _environment(False).from_string(_MARKDOWN)
-_HTML_TEMPLATE = _environment(True).from_string(_HTML)
+@functools.cache
+def _template(kind: str) -> jinja2.Template:
+    """The compiled ``"markdown"`` or ``"html"`` template (compiled once, on first use)."""
+    if kind == "html":
+        return _environment(True).from_string(_HTML)
+    return _environment(False).from_string(_MARKDOWN)
 
 
 def markdown(doc: Sequence[Block]) -> str:
     """The report as Markdown."""
-    return _MD_TEMPLATE.render(blocks=doc).rstrip("\n") + "\n"
+    return _template("markdown").render(blocks=doc).rstrip("\n") + "\n"
 
 
 def html(doc: Sequence[Block], images: Mapping[str, bytes]) -> str:
     """The report as one self-contained HTML page; ``images`` holds the PNG of each image block
     (kept in memory rather than read back: an output may be a FIFO or a device)."""
     encoded = {name: base64.b64encode(data).decode("ascii") for name, data in images.items()}
-    return _HTML_TEMPLATE.render(blocks=doc, images=encoded, title=doc[0].text, css=Markup(_CSS))
+    return _template("html").render(blocks=doc, images=encoded, title=doc[0].text, css=Markup(_CSS))
