@@ -1,6 +1,6 @@
 """Type stubs of the compiled module ``drillstring._core`` (Rust, PyO3)."""
 
-from typing import Callable, Literal, Optional, TypedDict
+from typing import Callable, Literal, Optional, TypedDict, final
 
 import numpy as np
 from numpy.typing import NDArray
@@ -23,18 +23,19 @@ class SolveOutput(TypedDict):
     #: Energy taken out by the damping up to each sample; None without damping.
     dissipated: Optional[NDArray[np.float64]]
 
+@final
 class ModalSystem:
     """``M q'' + c M q' + K q + grad V(q) = 0`` with diagonal M, K, quartic potential terms
     and the viscous damping rate ``c >= 0`` (1/s)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         mass: NDArray[np.float64],
         stiffness: NDArray[np.float64],
         quartic_index: NDArray[np.int64],
         quartic_coef: NDArray[np.float64],
         damping_rate: float = 0.0,
-    ) -> None: ...
+    ) -> ModalSystem: ...
     @staticmethod
     def spectral(
         k: NDArray[np.float64],
@@ -124,12 +125,13 @@ def coefficients(
     ``ValidationError`` naming the input, or ``parameters`` when a coefficient is not finite
     (or ``k1``, ``k2`` not ``> 0``)."""
 
+@final
 class PdeSystem:
     """The torsion PDE on ``nodes`` grid points ``z_j = j l / (nodes - 1)`` (lumped-mass linear
     finite elements; the discrete energy ``H_h`` is conserved by the semi-discrete system)."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         k1: float,
         k2: float,
         k3: float,
@@ -139,7 +141,7 @@ class PdeSystem:
         length: float,
         nodes: int,
         damping_rate: float = 0.0,
-    ) -> None: ...
+    ) -> PdeSystem: ...
     @property
     def nodes(self) -> int: ...
     @property
