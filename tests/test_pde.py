@@ -196,3 +196,10 @@ def test_convergence_study_small():
     diffs = [g.difference for g in res.grids if g.difference is not None]
     assert diffs[0] / diffs[1] == pytest.approx(4.0, rel=0.1)  # second order
     assert res.error(8, True) < res.error(3, True) < res.error(3, False)
+
+
+def test_the_node_limit_is_the_cores() -> None:
+    # one number: the Python check asks the core's limit
+    assert ds.pde.MAX_NODES == _core.PDE_MAX_NODES == 10_000_000
+    with pytest.raises(ds.ValidationError, match="nodes"):
+        ds.pde.pde_system(ds.preset("aluminum"), nodes=_core.PDE_MAX_NODES + 1)

@@ -125,6 +125,9 @@ def coefficients(
     ``ValidationError`` naming the input, or ``parameters`` when a coefficient is not finite
     (or ``k1``, ``k2`` not ``> 0``)."""
 
+PDE_MAX_NODES: int
+"""Largest grid of :class:`PdeSystem`, nodes."""
+
 @final
 class PdeSystem:
     """The torsion PDE on ``nodes`` grid points ``z_j = j l / (nodes - 1)`` (lumped-mass linear

@@ -33,8 +33,9 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["PdeSolution", "solve_pde", "pde_system", "MAX_NODES"]
 
-#: Largest grid accepted (memory of one state: 16 bytes a node a sample).
-MAX_NODES = 1_000_000
+#: Largest grid accepted (the core's ``pde::MAX_NODES``); the memory budget refuses smaller
+#: grids whose outputs would not fit (16 bytes a node a sample).
+MAX_NODES: int = _core.PDE_MAX_NODES
 
 InitialField = Union[None, "ArrayLike", Callable[["NDArray[np.float64]"], "ArrayLike"]]
 

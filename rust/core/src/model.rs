@@ -210,16 +210,24 @@ impl Coefficients {
     }
 }
 
+/// Poisson's ratio of an isotropic elastic material: `-1 < nu < 0.5` (the bulk and shear moduli
+/// positive); an error naming `field` otherwise. The one rule for the paper's model and the
+/// drilling sections.
+pub fn check_poisson_ratio(field: impl Into<String>, nu: f64) -> Result<()> {
+    if nu.is_finite() && nu > -1.0 && nu < 0.5 {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, Num(nu), "-1 < poisson_ratio < 0.5"))
+    }
+}
+
 fn check_physical(p: &Physical) -> Result<()> {
     for (name, value) in [("youngs_modulus", p.youngs_modulus), ("density", p.density)] {
         if !(value.is_finite() && value > 0.0) {
             return Err(Error::invalid(name, Num(value), format!("0 < {name} < inf")));
         }
     }
-    let nu = p.poisson_ratio;
-    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-        return Err(Error::invalid("poisson_ratio", Num(nu), "-1 < poisson_ratio < 0.5"));
-    }
+    check_poisson_ratio("poisson_ratio", p.poisson_ratio)?;
     if !p.omega.is_finite() {
         return Err(Error::invalid("omega", Num(p.omega), "a finite real number (rad/s, any sign)"));
     }

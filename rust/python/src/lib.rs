@@ -41,6 +41,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::coefficients, m)?)?;
     m.add_class::<pde::PdeSystem>()?;
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
+    m.add("PDE_MAX_NODES", drillstring_core::pde::MAX_NODES)?;
     m.add_function(wrap_pyfunction!(sweep::batch_solve, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::batch_plan, m)?)?;
     m.add("MAX_THREADS", drillstring_core::sweep::MAX_THREADS)?;

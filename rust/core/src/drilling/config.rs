@@ -619,9 +619,7 @@ impl DrillConfig {
             }
             pos(f("shear_modulus"), s.shear_modulus, "Pa")?;
             pos(f("density"), s.density, "kg/m^3")?;
-            if !(s.poisson_ratio.is_finite() && s.poisson_ratio > 0.0 && s.poisson_ratio < 0.5) {
-                return Err(Error::invalid(f("poisson_ratio"), Num(s.poisson_ratio), "a number in (0, 0.5) (-)"));
-            }
+            crate::model::check_poisson_ratio(f("poisson_ratio"), s.poisson_ratio)?;
             for (k, v, unit) in [
                 ("contact_diameter", s.contact_diameter, "m"),
                 ("polar_moment", s.polar_moment, "m^4"),

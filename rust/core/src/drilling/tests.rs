@@ -947,7 +947,8 @@ fn consistent_fields_are_bad_input_when_out_of_range() {
         DrillConfig::from_json(&json).and_then(|c| c.validate()).err().map_or("ok".into(), |e| e.field().to_string())
     };
     assert_eq!(field(r#", "poisson_ratio": 0.5"#), "sections[0].poisson_ratio");
-    assert_eq!(field(r#", "poisson_ratio": 0"#), "sections[0].poisson_ratio");
+    assert_eq!(field(r#", "poisson_ratio": -1"#), "sections[0].poisson_ratio");
+    assert_eq!(field(r#", "poisson_ratio": 0"#), "ok"); // the one rule of model::check_poisson_ratio: -1 < nu < 0.5
     assert_eq!(field(r#", "poisson_ratio": 0.25"#), "ok");
     assert_eq!(field(r#", "quartic_moment": 0"#), "sections[0].quartic_moment");
     assert_eq!(field(r#", "quartic_moment": -1e-7"#), "sections[0].quartic_moment");
