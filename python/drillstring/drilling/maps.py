@@ -286,9 +286,9 @@ def _attach(exc: BaseException, frame: pd.DataFrame) -> None:
 def _solve(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
            report: Optional[Callable[[float], None]], offset: int) -> tuple[pd.DataFrame, Optional[BaseException]]:
     """Solves the runs ``combos`` in one core call; the table and the exception that stopped it."""
-    # no field snapshots in any run, also with a numerics.field_interval axis (see _map_config)
-    runs_json = json.dumps([[*zip(named, combo), ("numerics.field_interval", 0.0)] for combo in combos],
-                           allow_nan=False)
+    # no field snapshots in any run, also with a numerics.field_interval axis: the core's
+    # drilling::map::run_config drops them
+    runs_json = json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
     hook = None if report is None else (lambda done: report(offset + done))
     raw = _core.drill_map(cfg.to_json(), runs_json, threads, memory_budget(), hook)
     return _frame(named, combos, raw, cfg), raw.get("interrupt")

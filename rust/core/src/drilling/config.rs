@@ -210,8 +210,8 @@ pub struct Controller {
     /// section's impedance `Z = J sqrt(G rho)`. Default 4, the published defaults of
     /// Simulator4nDOF (NORCE): its SoftTorque proportional gain `4 Z` and its ZTorque factor
     /// `0.25 / Z` on the high-passed torque (`1 / (z_factor Z)` here). On
-    /// `examples/on-bottom-3000m.toml` at 40 rpm both then remove the stick-slip the PI
-    /// controller leaves (SSI 0.22 and 0.04 against 1.16); at 1 `soft_torque` made it worse
+    /// `examples/on-bottom-3000m.toml` at 40 rpm (300 cells) both then remove the stick-slip the
+    /// PI controller leaves (SSI 0.21 and 0.03 against 1.12); at 1 `soft_torque` made it worse
     /// (1.47).
     pub z_factor: f64,
     /// `z_torque`: time constant of the low-pass that takes the mean string torque out of the

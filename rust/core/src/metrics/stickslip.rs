@@ -467,20 +467,22 @@ mod tests {
         (0..n).map(|j| end * j as f64 / (n - 1) as f64).collect()
     }
 
+    /// A stick-slip-like sawtooth of period `period`: from -1 up to 1 over the fraction `rise`
+    /// of each cycle, then down; and the time since the cycle began.
+    fn sawtooth(t: f64, period: f64, rise: f64) -> (f64, f64) {
+        let phase = (t / period).fract();
+        let saw = if phase < rise { -1.0 + 2.0 * phase / rise } else { 1.0 - 2.0 * (phase - rise) / (1.0 - rise) };
+        (saw, phase * period)
+    }
+
     /// A stick-slip-like torque: a slow build-up over 80 % of each 10 s cycle and a fast drop,
     /// with a wiggle that crosses the mean several times on the way up. One cycle counts once.
     #[test]
     fn wiggles_on_a_slope_are_not_cycles() {
         let period = 10.0;
         let t = grid(6001, 60.0);
-        let torque: Vec<f64> = t
-            .iter()
-            .map(|&t| {
-                let phase = (t / period).fract();
-                let saw = if phase < 0.8 { -1.0 + 2.0 * phase / 0.8 } else { 1.0 - 2.0 * (phase - 0.8) / 0.2 };
-                saw + 0.1 * (2.0 * PI * t / 0.5).sin()
-            })
-            .collect();
+        let torque: Vec<f64> =
+            t.iter().map(|&t| sawtooth(t, period, 0.8).0 + 0.1 * (2.0 * PI * t / 0.5).sin()).collect();
         let w = vec![1.0; t.len()];
         let mean = time_mean(&t, &torque);
         let crossings = t.windows(2).zip(torque.windows(2)).filter(|(_, x)| x[0] < mean && x[1] >= mean).count();
@@ -558,9 +560,7 @@ mod tests {
         let torque: Vec<f64> = t
             .iter()
             .map(|&t| {
-                let phase = (t / period).fract();
-                let saw = if phase < 0.85 { -1.0 + 2.0 * phase / 0.85 } else { 1.0 - 2.0 * (phase - 0.85) / 0.15 };
-                let since = phase * period;
+                let (saw, since) = sawtooth(t, period, 0.85);
                 saw + 0.6 * (-((since - 1.4) / 0.2).powi(2)).exp()
             })
             .collect();
