@@ -40,6 +40,7 @@ pub mod solution;
 pub mod sweep;
 pub mod system;
 pub mod terms;
+pub mod well;
 
 pub use error::{Error, Num, Result};
 pub use interrupt::{CancelFlag, Interrupt};

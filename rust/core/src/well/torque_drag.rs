@@ -1,0 +1,554 @@
+//! Static soft-string torque and drag (Johancsik, Friesen & Dawson 1984, SPE 11380): the string
+//! lies on the low or high side of the hole along the well's path, carries an effective
+//! tension (buoyed weight, so the mud's pressure is in the weight and not in the tension)
+//! and no bending moment; each element presses on the wall with the normal force that
+//! balances its weight and the pull of the tension around the curve, and the wall's Coulomb
+//! friction on it opposes the axial motion (tripping) or the rotation (rotating, where all the
+//! friction is taken as torque: the usual limit of a rotary speed far above the axial speed).
+//!
+//! An element from `md_a` (top) to `md_b` (bottom) of directions `t_a`, `t_b` carries the
+//! tension `T_b` at its bottom. Its normal force is
+//! `N = |T_b (t_b - t_a) + w L z_perp|`, with `w` the buoyed weight per length, `L` its
+//! length and `z_perp` the component of the downward unit vector normal to the element's mean
+//! direction (Johancsik's `sqrt((T da sin i)^2 + (T di + W sin i)^2)` written as a vector, so
+//! that builds, drops and turns need no sign rules). Then, stepping up from the bit,
+//! `T_a = T_b + w L cos(i) + s mu N` (`s = +1` picking up, `-1` slacking off, 0 rotating) and,
+//! rotating, `M_a = M_b + mu r N` (`r` the contact radius). The continuous form is the limit of
+//! short elements: `-dT/ds = w cos(i) + s mu n`, `-dM/ds = mu r n`,
+//! `n = |T dt/ds + w z_perp|` per length, integrated here by the classical Runge-Kutta
+//! method on the same nodes.
+//!
+//! Hook load = the tension at the surface plus the travelling block's weight (no sheave
+//! friction). On bottom the bit carries the compression `-WOB` and the torque on bit.
+
+use serde::Serialize;
+
+use super::{dot, Trajectory};
+use crate::error::{Error, Num, Result};
+
+/// The largest element the torque-and-drag steps take by default, m.
+pub const DEFAULT_STEP: f64 = 1.0;
+
+/// A piece of the string of uniform properties, from the bit up (the order is from the top,
+/// like the configuration's sections).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    pub length: f64,
+    /// Buoyed weight per length, N/m.
+    pub weight: f64,
+    /// The radius the wall's friction acts at, m.
+    pub contact_radius: f64,
+}
+
+/// A friction factor over a depth interval `[top_md, bottom_md)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionInterval {
+    pub top_md: f64,
+    pub bottom_md: f64,
+    pub mu: f64,
+}
+
+/// The friction factor along the hole: `mu` where no interval covers a depth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Friction {
+    pub mu: f64,
+    pub intervals: Vec<FrictionInterval>,
+}
+
+impl Friction {
+    pub fn uniform(mu: f64) -> Friction {
+        Friction { mu, intervals: Vec::new() }
+    }
+
+    /// The factor at `md` (the first interval holding it; intervals are half-open, top
+    /// included).
+    pub fn at(&self, md: f64) -> f64 {
+        self.intervals.iter().find(|iv| md >= iv.top_md && md < iv.bottom_md).map_or(self.mu, |iv| iv.mu)
+    }
+}
+
+/// The four operations of a torque-and-drag analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Operation {
+    /// Tripping out (moving up), off bottom, not rotating.
+    PickUp,
+    /// Tripping in (moving down), off bottom, not rotating.
+    SlackOff,
+    /// Rotating off bottom, no axial motion.
+    RotatingOffBottom,
+    /// Rotating on bottom: the bit carries `-WOB` and the torque on bit.
+    RotatingOnBottom,
+}
+
+impl Operation {
+    pub const ALL: [Operation; 4] =
+        [Operation::PickUp, Operation::SlackOff, Operation::RotatingOffBottom, Operation::RotatingOnBottom];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Operation::PickUp => "pickup",
+            Operation::SlackOff => "slackoff",
+            Operation::RotatingOffBottom => "rotating",
+            Operation::RotatingOnBottom => "rotating_on_bottom",
+        }
+    }
+
+    /// The sign of the axial friction in `T_a = T_b + W cos i + s mu N`.
+    fn drag_sign(self) -> f64 {
+        match self {
+            Operation::PickUp => 1.0,
+            Operation::SlackOff => -1.0,
+            _ => 0.0,
+        }
+    }
+
+    fn rotating(self) -> bool {
+        matches!(self, Operation::RotatingOffBottom | Operation::RotatingOnBottom)
+    }
+}
+
+/// How the profile is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scheme {
+    /// Johancsik's elements, stepped from the bit up with the tension at each element's bottom.
+    Stepwise,
+    /// The continuous equations by the classical Runge-Kutta method between the nodes.
+    Continuous,
+}
+
+/// The string in the hole and the loads on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setup {
+    /// From the top of the string; their lengths sum to the bit's depth.
+    pub pieces: Vec<Piece>,
+    pub friction: Friction,
+    /// N (on bottom).
+    pub weight_on_bit: f64,
+    /// N m (on bottom).
+    pub bit_torque: f64,
+    /// N, added to the surface tension in hook loads.
+    pub block_weight: f64,
+    /// The longest element, m.
+    pub step: f64,
+}
+
+/// The profile of one operation, at nodes from the surface (md 0) to the bit.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Profile {
+    pub md: Vec<f64>,
+    /// Effective tension, N (negative: compression).
+    pub tension: Vec<f64>,
+    /// N m.
+    pub torque: Vec<f64>,
+    /// Normal force per length of the element below each node (the bit's: the element above), N/m.
+    pub normal_force: Vec<f64>,
+}
+
+impl Profile {
+    /// The hook load of this operation with the block weight `block`, N.
+    pub fn surface_tension(&self) -> f64 {
+        self.tension.first().copied().unwrap_or(0.0)
+    }
+
+    pub fn surface_torque(&self) -> f64 {
+        self.torque.first().copied().unwrap_or(0.0)
+    }
+
+    /// The largest normal force per length and its depth.
+    pub fn max_normal_force(&self) -> (f64, f64) {
+        self.normal_force.iter().zip(&self.md).fold((0.0, 0.0), |best, (&n, &d)| if n > best.0 { (n, d) } else { best })
+    }
+}
+
+/// The nodes of a string whose bit is at `bit_md`: every piece end, survey station and
+/// friction-interval end within, and at most `step` apart.
+fn nodes(traj: &Trajectory, setup: &Setup, bit_md: f64) -> Vec<f64> {
+    let mut breaks = vec![0.0, bit_md];
+    let mut d = 0.0;
+    for p in &setup.pieces {
+        d += p.length;
+        breaks.push(d);
+    }
+    breaks.extend(traj.survey.md.iter().copied());
+    for iv in &setup.friction.intervals {
+        breaks.push(iv.top_md);
+        breaks.push(iv.bottom_md);
+    }
+    breaks.retain(|&x| (0.0..=bit_md).contains(&x));
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup_by(|b, a| *b - *a <= 1e-9 * bit_md.max(1.0));
+    *breaks.last_mut().unwrap() = bit_md;
+    let mut out = Vec::with_capacity((bit_md / setup.step) as usize + breaks.len() + 1);
+    for w in breaks.windows(2) {
+        let n = ((w[1] - w[0]) / setup.step).ceil().max(1.0) as usize;
+        for k in 0..n {
+            out.push(w[0] + (w[1] - w[0]) * k as f64 / n as f64);
+        }
+    }
+    out.push(bit_md);
+    out
+}
+
+/// The piece at `md` from the top (the last one at and below its end).
+fn piece_at(pieces: &[Piece], md: f64) -> &Piece {
+    let mut d = 0.0;
+    for p in pieces {
+        d += p.length;
+        if md < d {
+            return p;
+        }
+    }
+    pieces.last().expect("at least one piece")
+}
+
+impl Setup {
+    /// Checks the setup against the trajectory: pieces, friction factors, loads and step.
+    pub fn validate(&self, traj: &Trajectory) -> Result<()> {
+        if self.pieces.is_empty() {
+            return Err(Error::invalid("sections", "none", "at least one section"));
+        }
+        for (i, p) in self.pieces.iter().enumerate() {
+            if !(p.length.is_finite() && p.length > 0.0) {
+                return Err(Error::invalid(format!("sections[{i}].length"), Num(p.length), "a finite length > 0 m"));
+            }
+            if !p.weight.is_finite() || !(p.contact_radius.is_finite() && p.contact_radius > 0.0) {
+                return Err(Error::invalid(format!("sections[{i}]"), Num(p.weight), "a finite buoyed weight and contact radius > 0"));
+            }
+        }
+        let mu_ok = |m: f64| m.is_finite() && (0.0..=10.0).contains(&m);
+        if !mu_ok(self.friction.mu) {
+            return Err(Error::invalid("friction.static", Num(self.friction.mu), "a friction factor in [0, 10]"));
+        }
+        for (j, iv) in self.friction.intervals.iter().enumerate() {
+            if !mu_ok(iv.mu) {
+                return Err(Error::invalid(format!("friction.intervals[{j}].static"), Num(iv.mu), "a friction factor in [0, 10]"));
+            }
+            if !(iv.top_md.is_finite() && iv.top_md >= 0.0 && iv.bottom_md.is_finite() && iv.bottom_md > iv.top_md) {
+                return Err(Error::invalid(
+                    format!("friction.intervals[{j}].bottom_md"),
+                    Num(iv.bottom_md),
+                    format!("a finite depth > top_md = {} m (top_md >= 0)", Num(iv.top_md)),
+                ));
+            }
+        }
+        for (name, v) in
+            [("bit.weight_on_bit", self.weight_on_bit), ("torque_drag.bit_torque", self.bit_torque), ("torque_drag.block_weight", self.block_weight)]
+        {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(Error::invalid(name, Num(v), "a finite number >= 0"));
+            }
+        }
+        if !(self.step.is_finite() && self.step > 0.0) {
+            return Err(Error::invalid("torque_drag.step", Num(self.step), "a finite element length > 0 m"));
+        }
+        let depth = self.depth();
+        if depth > traj.survey.depth() * (1.0 + 1e-12) {
+            return Err(Error::invalid(
+                "well.survey",
+                format!("stations to {} m", Num(traj.survey.depth())),
+                format!("a survey reaching the bit at {} m (well.extend = true continues the last station straight on)", Num(depth)),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The string's length: the bit's depth with the string all in the hole, m.
+    pub fn depth(&self) -> f64 {
+        self.pieces.iter().map(|p| p.length).sum()
+    }
+
+    /// The profile of `op` along `traj` with the bit at the string's depth.
+    pub fn solve(&self, traj: &Trajectory, op: Operation, scheme: Scheme) -> Profile {
+        self.solve_at(traj, op, scheme, self.depth(), None)
+    }
+
+    /// The profile with the bit at `bit_md` (`<=` the string's length: the string's top pieces
+    /// out of the hole; the bottom `bit_md` metres of it in), with the friction factor `mu`
+    /// everywhere if given.
+    pub fn solve_at(&self, traj: &Trajectory, op: Operation, scheme: Scheme, bit_md: f64, mu: Option<f64>) -> Profile {
+        let on_bottom = op == Operation::RotatingOnBottom;
+        let bit = if on_bottom { (-self.weight_on_bit, self.bit_torque) } else { (0.0, 0.0) };
+        self.profile(traj, op, scheme, bit_md, mu, bit)
+    }
+
+    /// The profile from the bit's tension and torque `bit`, N and N m.
+    fn profile(&self, traj: &Trajectory, op: Operation, scheme: Scheme, bit_md: f64, mu: Option<f64>, bit: (f64, f64)) -> Profile {
+        let offset = self.depth() - bit_md;
+        let pieces = &self.pieces;
+        let piece = |md: f64| piece_at(pieces, md + offset);
+        let friction = |md: f64| mu.unwrap_or_else(|| self.friction.at(md));
+        let md = nodes(traj, self, bit_md);
+        let n = md.len();
+        let mut tension = vec![0.0; n];
+        let mut torque = vec![0.0; n];
+        let mut normal = vec![0.0; n];
+        (tension[n - 1], torque[n - 1]) = bit;
+        let sign = op.drag_sign();
+        let rotating = op.rotating();
+        let mut lower = traj.at(md[n - 1]);
+        for j in (0..n - 1).rev() {
+            let upper = traj.at(md[j]);
+            let mid = 0.5 * (md[j] + md[j + 1]);
+            let p = piece(mid);
+            let mu = friction(mid);
+            let length = md[j + 1] - md[j];
+            let (ta, tb) = (upper.tangent, lower.tangent);
+            match scheme {
+                Scheme::Stepwise => {
+                    let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
+                    let m = dot(mean, mean).sqrt();
+                    mean.iter_mut().for_each(|x| *x /= m);
+                    let w = p.weight * length;
+                    let cos_i = mean[2];
+                    let t = tension[j + 1];
+                    let v = [
+                        t * (tb[0] - ta[0]) - w * cos_i * mean[0],
+                        t * (tb[1] - ta[1]) - w * cos_i * mean[1],
+                        t * (tb[2] - ta[2]) + w * (1.0 - cos_i * mean[2]),
+                    ];
+                    let nf = dot(v, v).sqrt();
+                    tension[j] = t + w * cos_i + sign * mu * nf;
+                    torque[j] = torque[j + 1] + if rotating { mu * p.contact_radius * nf } else { 0.0 };
+                    normal[j] = nf / length;
+                }
+                Scheme::Continuous => {
+                    // y = (T, M) against the depth going up, s = md[j + 1] -> md[j]
+                    let arc = traj.interval(mid);
+                    let rhs = |s: f64, t: f64| -> (f64, f64, f64) {
+                        let q = traj.at_on(s, arc);
+                        let k = traj.curvature_vector_on(s, arc);
+                        let z = [-q.tangent[2] * q.tangent[0], -q.tangent[2] * q.tangent[1], 1.0 - q.tangent[2] * q.tangent[2]];
+                        let v = [t * k[0] + p.weight * z[0], t * k[1] + p.weight * z[1], t * k[2] + p.weight * z[2]];
+                        let nf = dot(v, v).sqrt();
+                        // d/d(-s): tension and torque grow going up
+                        (p.weight * q.tangent[2] + sign * mu * nf, if rotating { mu * p.contact_radius * nf } else { 0.0 }, nf)
+                    };
+                    let (s0, h) = (md[j + 1], length);
+                    let (t0, m0) = (tension[j + 1], torque[j + 1]);
+                    let k1 = rhs(s0, t0);
+                    let k2 = rhs(s0 - h / 2.0, t0 + h / 2.0 * k1.0);
+                    let k3 = rhs(s0 - h / 2.0, t0 + h / 2.0 * k2.0);
+                    let k4 = rhs(s0 - h, t0 + h * k3.0);
+                    tension[j] = t0 + h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+                    torque[j] = m0 + h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+                    normal[j] = (k1.2 + 2.0 * k2.2 + 2.0 * k3.2 + k4.2) / 6.0;
+                }
+            }
+            lower = upper;
+        }
+        normal[n - 1] = if n > 1 { normal[n - 2] } else { 0.0 };
+        Profile { md, tension, torque, normal_force: normal }
+    }
+}
+
+/// The summary of the four operations.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TorqueDrag {
+    pub hook_load_pickup_n: f64,
+    pub hook_load_slackoff_n: f64,
+    pub hook_load_rotating_n: f64,
+    pub hook_load_rotating_on_bottom_n: f64,
+    pub surface_torque_off_bottom_nm: f64,
+    pub surface_torque_on_bottom_nm: f64,
+    pub max_normal_force_n_per_m: f64,
+    pub max_normal_force_md: f64,
+    pub max_normal_force_operation: &'static str,
+    /// In the order of [`Operation::ALL`].
+    pub profiles: Vec<Profile>,
+}
+
+/// All four operations.
+pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> Result<TorqueDrag> {
+    setup.validate(traj)?;
+    let profiles: Vec<Profile> = Operation::ALL.iter().map(|&op| setup.solve(traj, op, scheme)).collect();
+    let hook = |k: usize| profiles[k].surface_tension() + setup.block_weight;
+    let (mut best, mut at, mut which) = (0.0, 0.0, Operation::ALL[0].name());
+    for (op, p) in Operation::ALL.iter().zip(&profiles) {
+        let (n, d) = p.max_normal_force();
+        if n > best {
+            (best, at, which) = (n, d, op.name());
+        }
+    }
+    Ok(TorqueDrag {
+        hook_load_pickup_n: hook(0),
+        hook_load_slackoff_n: hook(1),
+        hook_load_rotating_n: hook(2),
+        hook_load_rotating_on_bottom_n: hook(3),
+        surface_torque_off_bottom_nm: profiles[2].surface_torque(),
+        surface_torque_on_bottom_nm: profiles[3].surface_torque(),
+        max_normal_force_n_per_m: best,
+        max_normal_force_md: at,
+        max_normal_force_operation: which,
+        profiles,
+    })
+}
+
+/// Hook loads against bit depth while tripping (the broomstick plot): for each friction factor
+/// in `mus` and each bit depth in `depths` (each within `(0, string length]`), the pick-up,
+/// slack-off and rotating hook loads, N, as `[mu][depth]` rows of `(pickup, slackoff, rotating)`.
+pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64]) -> Result<Vec<Vec<[f64; 3]>>> {
+    setup.validate(traj)?;
+    let length = setup.depth();
+    for (j, &d) in depths.iter().enumerate() {
+        if !(d.is_finite() && d > 0.0 && d <= length) {
+            return Err(Error::invalid(format!("depths[{j}]"), Num(d), format!("a bit depth in (0, {}] m", Num(length))));
+        }
+    }
+    for (j, &m) in mus.iter().enumerate() {
+        if !(m.is_finite() && (0.0..=10.0).contains(&m)) {
+            return Err(Error::invalid(format!("friction_factors[{j}]"), Num(m), "a friction factor in [0, 10]"));
+        }
+    }
+    Ok(mus
+        .iter()
+        .map(|&mu| {
+            depths
+                .iter()
+                .map(|&d| {
+                    let hook = |op| setup.solve_at(traj, op, Scheme::Stepwise, d, Some(mu)).surface_tension() + setup.block_weight;
+                    [hook(Operation::PickUp), hook(Operation::SlackOff), hook(Operation::RotatingOffBottom)]
+                })
+                .collect()
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::well::{Survey, Trajectory};
+
+    fn traj(md: &[f64], inc: &[f64], azi: &[f64]) -> Trajectory {
+        Trajectory::new(Survey::from_degrees("well", md, inc, azi).unwrap())
+    }
+
+    fn setup(length: f64, weight: f64, mu: f64) -> Setup {
+        Setup {
+            pieces: vec![Piece { length, weight, contact_radius: 0.1 }],
+            friction: Friction::uniform(mu),
+            weight_on_bit: 0.0,
+            bit_torque: 0.0,
+            block_weight: 0.0,
+            step: 1.0,
+        }
+    }
+
+    /// A straight inclined hole: `T = w L (cos i +- mu sin i)`, `M = mu r w L sin i`.
+    #[test]
+    fn straight_inclined_section() {
+        let (l, w, mu, inc) = (2000.0, 300.0, 0.25, 40f64);
+        let t = traj(&[0.0, l], &[inc, inc], &[10.0, 10.0]);
+        let s = setup(l, w, mu);
+        let i = inc.to_radians();
+        for scheme in [Scheme::Stepwise, Scheme::Continuous] {
+            let td = analyse(&t, &s, scheme).unwrap();
+            let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+            assert!(rel(td.hook_load_pickup_n, w * l * (i.cos() + mu * i.sin())) < 1e-12);
+            assert!(rel(td.hook_load_slackoff_n, w * l * (i.cos() - mu * i.sin())) < 1e-12);
+            assert!(rel(td.hook_load_rotating_n, w * l * i.cos()) < 1e-12);
+            assert!(rel(td.surface_torque_off_bottom_nm, mu * 0.1 * w * l * i.sin()) < 1e-12);
+            assert!(rel(td.max_normal_force_n_per_m, w * i.sin()) < 1e-12);
+        }
+    }
+
+    /// A weightless string around an arc of angle beta with a pull at its end: the capstan
+    /// `T2 = T1 exp(mu beta)` picking up, `T1 exp(-mu beta)` slacking off; the stepped form
+    /// converges at first order, the continuous one at fourth.
+    #[test]
+    fn capstan_on_a_weightless_arc() {
+        let (r, beta_deg, mu, pull) = (300.0, 90f64, 0.3, 1e5);
+        let beta = beta_deg.to_radians();
+        let l = r * beta;
+        let t = traj(&[0.0, l], &[90.0, 90.0], &[0.0, beta_deg]);
+        let err = |scheme, step: f64, op: Operation| {
+            let mut s = setup(l, 0.0, mu);
+            s.step = step;
+            let p = s.profile(&t, op, scheme, l, None, (pull, 0.0));
+            let exact = pull * (op.drag_sign() * mu * beta).exp();
+            (p.surface_tension() - exact).abs() / exact
+        };
+        for op in [Operation::PickUp, Operation::SlackOff] {
+            let (e1, e2) = (err(Scheme::Stepwise, 10.0, op), err(Scheme::Stepwise, 5.0, op));
+            let order = (e1 / e2).log2();
+            assert!((order - 1.0).abs() < 0.1, "stepwise order {order} ({e1}, {e2})");
+            let (c1, c2) = (err(Scheme::Continuous, 40.0, op), err(Scheme::Continuous, 20.0, op));
+            let order = (c1 / c2).log2();
+            assert!(c1 < 1e-6 && (order - 4.0).abs() < 0.3, "continuous order {order} ({c1}, {c2})");
+        }
+    }
+
+    /// In a vertical build the tension pulls the string to the high side and the weight to
+    /// the low side: the normal force is their difference, `|T / R - w sin i|`, in a drop
+    /// their sum.
+    #[test]
+    fn tension_and_weight_oppose_in_a_build_and_add_in_a_drop() {
+        let (r, w) = (1000.0, 200.0);
+        let l = r * 30f64.to_radians();
+        let build = traj(&[0.0, 100.0, 100.0 + l, 3000.0], &[0.0, 0.0, 30.0, 30.0], &[0.0; 4]);
+        let drop = traj(&[0.0, 100.0, 100.0 + l, 3000.0], &[60.0, 60.0, 30.0, 30.0], &[0.0; 4]);
+        let s = setup(3000.0, w, 0.0);
+        for (t, sign) in [(&build, -1.0), (&drop, 1.0)] {
+            let p = s.solve(t, Operation::RotatingOffBottom, Scheme::Continuous);
+            let k = p.md.iter().position(|&d| d >= 100.0 + l / 2.0).unwrap();
+            let q = t.at(p.md[k]);
+            let expect = (p.tension[k] / r + sign * w * q.inc.sin()).abs();
+            assert!((p.normal_force[k] - expect).abs() / expect < 1e-2, "{} vs {expect}", p.normal_force[k]);
+        }
+    }
+
+    /// The stepped model converges to the continuous one at first order on a 3-D well.
+    #[test]
+    fn stepwise_converges_to_continuous() {
+        let t = traj(
+            &[0.0, 400.0, 1200.0, 2000.0, 2600.0, 4000.0],
+            &[0.0, 0.0, 45.0, 45.0, 20.0, 20.0],
+            &[0.0, 0.0, 30.0, 80.0, 120.0, 120.0],
+        );
+        let mut s = setup(4000.0, 250.0, 0.3);
+        s.pieces = vec![
+            Piece { length: 3700.0, weight: 250.0, contact_radius: 0.08 },
+            Piece { length: 300.0, weight: 1200.0, contact_radius: 0.1 },
+        ];
+        s.weight_on_bit = 1e5;
+        s.bit_torque = 5e3;
+        s.step = 0.25;
+        let fine = s.solve(&t, Operation::PickUp, Scheme::Continuous).surface_tension();
+        let mut errs = Vec::new();
+        for step in [20.0, 10.0] {
+            s.step = step;
+            errs.push((s.solve(&t, Operation::PickUp, Scheme::Stepwise).surface_tension() - fine).abs() / fine);
+        }
+        let order = (errs[0] / errs[1]).log2();
+        assert!((order - 1.0).abs() < 0.2, "order {order} {errs:?}");
+    }
+
+    #[test]
+    fn friction_intervals_and_short_surveys() {
+        let t = traj(&[0.0, 1000.0], &[50.0, 50.0], &[0.0, 0.0]);
+        let mut s = setup(1000.0, 100.0, 0.2);
+        s.friction.intervals.push(FrictionInterval { top_md: 0.0, bottom_md: 600.0, mu: 0.1 });
+        let td = analyse(&t, &s, Scheme::Stepwise).unwrap();
+        let sin = 50f64.to_radians().sin();
+        let expect = 0.1 * 100.0 * sin * (0.1 * 600.0 + 0.2 * 400.0);
+        assert!((td.surface_torque_off_bottom_nm - expect).abs() / expect < 1e-12);
+        s.pieces[0].length = 1200.0;
+        assert_eq!(analyse(&t, &s, Scheme::Stepwise).unwrap_err().field(), "well.survey");
+    }
+
+    #[test]
+    fn broomstick_hook_loads_bracket_the_rotating_one() {
+        let t = traj(&[0.0, 500.0, 1500.0, 3000.0], &[0.0, 0.0, 60.0, 60.0], &[0.0; 4]);
+        let s = setup(3000.0, 300.0, 0.25);
+        let depths: Vec<f64> = (1..=30).map(|k| k as f64 * 100.0).collect();
+        let b = broomstick(&t, &s, &depths, &[0.0, 0.2, 0.4]).unwrap();
+        for row in &b[0] {
+            assert!((row[0] - row[2]).abs() < 1e-9 && (row[1] - row[2]).abs() < 1e-9);
+        }
+        for (lo, hi) in b[1].iter().zip(&b[2]) {
+            assert!(hi[0] >= lo[0] && hi[1] <= lo[1] && lo[1] <= lo[2] && lo[2] <= lo[0]);
+        }
+        // vertical part: no drag at any friction
+        assert!((b[2][3][0] - 300.0 * 400.0).abs() < 1e-6);
+    }
+}
