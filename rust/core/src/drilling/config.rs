@@ -14,6 +14,7 @@ use crate::error::{Error, Num, Result};
 use crate::metrics::STICK_SPEED;
 
 use super::grid::Grid;
+use crate::well::plan::SegmentSpec;
 
 /// Largest number of cells a run may have (`numerics.max_cells` may lower it).
 pub const MAX_CELLS: usize = 10_000_000;
@@ -123,6 +124,24 @@ pub struct Well {
     pub mud_density: f64,
     /// m/s^2.
     pub gravity: f64,
+    /// Degrees clockwise from north: one constant angle, or a table at the stations `well.md`.
+    pub azimuth_deg: Inclination,
+    /// A survey file (CSV: columns md, inc, azi; units in the header as `md_m` / `md_ft`,
+    /// `inc_deg` / `inc_rad`, ...; default m and degrees), in place of `md`,
+    /// `inclination_deg` and `azimuth_deg`. A relative path is relative to the working
+    /// directory here; the TOML loader makes it relative to the configuration file.
+    pub survey: Option<String>,
+    /// A plan in place of the stations: segments `{hold = m}`, `{build = deg/30 m,
+    /// inclination = deg}`, `{drop = ..., inclination = ...}`, `{turn = deg/30 m, azimuth =
+    /// deg}` from the surface, vertical at azimuth `azimuth_deg` (a constant).
+    pub plan: Option<Vec<SegmentSpec>>,
+    /// A survey (stations, file or plan) shorter than the string is refused, unless `extend`
+    /// is true: then the hole goes straight on in the last station's direction.
+    pub extend: bool,
+    /// The stations read from `survey` when the configuration was parsed (md m, inclination
+    /// and azimuth degrees).
+    #[serde(skip)]
+    pub survey_stations: Option<std::sync::Arc<[Vec<f64>; 3]>>,
 }
 
 impl Default for Well {
@@ -133,6 +152,11 @@ impl Default for Well {
             inclination_deg: Inclination::Table(vec![0.0, 0.0, 60.0, 60.0]),
             mud_density: 0.0,
             gravity: 9.81,
+            azimuth_deg: Inclination::Constant(0.0),
+            survey: None,
+            plan: None,
+            extend: false,
+            survey_stations: None,
         }
     }
 }
@@ -161,6 +185,40 @@ pub struct Friction {
     pub model: FrictionModel,
     /// rad/s, for `regularised`.
     pub regularisation_speed: f64,
+    /// The normal force the wall's friction limit is made of: `soft_string` (default), the
+    /// normal force of the static soft-string torque-and-drag solution (buoyed weight and
+    /// tension times curvature, rotating off bottom, or on bottom with the bit's weight), or
+    /// `weight`, the buoyed weight times the sine of the inclination alone (Aarsnes & Shor 2018,
+    /// eq. 6, to reproduce their model).
+    pub contact: Contact,
+    /// Static friction factors over depth intervals (cased and open hole differ); `static`
+    /// applies where no interval does. The kinetic factor is `kinetic_ratio` times the static
+    /// one everywhere.
+    pub intervals: Vec<FrictionInterval>,
+}
+
+/// The normal force of the wall's friction limit ([`Friction::contact`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Contact {
+    /// `g sin(inc) (rho - rho_mud) A` per metre (Aarsnes & Shor 2018).
+    Weight,
+    /// The soft-string normal force per metre of [`crate::well::torque_drag`].
+    SoftString,
+}
+
+impl Contact {
+    pub const NAMES: [&'static str; 2] = ["weight", "soft_string"];
+}
+
+/// A static friction factor over `[top_md, bottom_md)`, m.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionInterval {
+    pub top_md: f64,
+    pub bottom_md: f64,
+    #[serde(rename = "static")]
+    pub static_coefficient: f64,
 }
 
 impl Default for Friction {
@@ -172,6 +230,8 @@ impl Default for Friction {
             stick_speed: 1.5,
             model: FrictionModel::SetValued,
             regularisation_speed: 0.1,
+            contact: Contact::SoftString,
+            intervals: Vec::new(),
         }
     }
 }
@@ -379,6 +439,34 @@ impl Default for MetricsConfig {
     }
 }
 
+/// The static torque-and-drag analysis (`drillstring torque-drag`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TorqueDragConfig {
+    /// The torque on bit when drilling (rotating on bottom), N m.
+    pub bit_torque: f64,
+    /// The travelling block's weight (with hook and top drive), added to hook loads, N.
+    pub block_weight: f64,
+    /// The longest element of the stepped solution, m.
+    pub step: f64,
+    /// The friction factors of the broomstick plot (uniform along the hole).
+    pub friction_factors: Vec<f64>,
+    /// Bit depths of the broomstick plot, evenly spaced to the string's length.
+    pub broomstick_points: usize,
+}
+
+impl Default for TorqueDragConfig {
+    fn default() -> Self {
+        TorqueDragConfig {
+            bit_torque: 0.0,
+            block_weight: 0.0,
+            step: crate::well::torque_drag::DEFAULT_STEP,
+            friction_factors: vec![0.1, 0.2, 0.3, 0.4],
+            broomstick_points: 100,
+        }
+    }
+}
+
 /// A drilling-system run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -395,6 +483,7 @@ pub struct DrillConfig {
     pub bit: Bit,
     pub numerics: Numerics,
     pub metrics: MetricsConfig,
+    pub torque_drag: TorqueDragConfig,
 }
 
 impl Default for DrillConfig {
@@ -410,6 +499,7 @@ impl Default for DrillConfig {
             bit: Bit::default(),
             numerics: Numerics::default(),
             metrics: MetricsConfig::default(),
+            torque_drag: TorqueDragConfig::default(),
         }
     }
 }
@@ -469,6 +559,28 @@ fn check_shape(path: &str, user: &Value, template: &Value) -> Result<()> {
         }
         Value::Array(t) => match user {
             Value::Array(u) => {
+                if path == "friction.intervals" {
+                    for (i, v) in u.iter().enumerate() {
+                        let p = format!("{path}[{i}]");
+                        let Value::Object(m) = v else {
+                            return Err(Error::invalid(p, shown(v), "a table of top_md, bottom_md, static"));
+                        };
+                        require(&p, m, &["top_md", "bottom_md", "static"])?;
+                        for (k, x) in m {
+                            if !["top_md", "bottom_md", "static"].contains(&k.as_str()) {
+                                return Err(Error::invalid(
+                                    join(&p, k),
+                                    "an unknown field",
+                                    "one of top_md, bottom_md, static",
+                                ));
+                            }
+                            if !x.is_number() {
+                                return Err(Error::invalid(join(&p, k), shown(x), "a number"));
+                            }
+                        }
+                    }
+                    return Ok(());
+                }
                 if path == "top_drive.steps" {
                     for (i, step) in u.iter().enumerate() {
                         let ok = matches!(step, Value::Array(p) if p.len() == 2 && p.iter().all(Value::is_number));
@@ -488,12 +600,49 @@ fn check_shape(path: &str, user: &Value, template: &Value) -> Result<()> {
                 }
                 Ok(())
             }
-            Value::Number(_) if path == "well.inclination_deg" => Ok(()),
+            Value::Number(_) if path == "well.inclination_deg" || path == "well.azimuth_deg" => Ok(()),
             _ => Err(Error::invalid(path, shown(user), "an array")),
         },
+        Value::Number(_) if path == "well.azimuth_deg" && user.is_array() => {
+            check_shape(path, user, &Value::Array(vec![]))
+        }
         Value::Number(_) if !user.is_number() => Err(Error::invalid(path, shown(user), "a number")),
         Value::Bool(_) if !user.is_boolean() => Err(Error::invalid(path, shown(user), "true or false")),
         Value::String(_) if !user.is_string() => Err(Error::invalid(path, shown(user), "a string")),
+        Value::Null if path == "well.survey" => match user {
+            Value::Null | Value::String(_) => Ok(()),
+            _ => Err(Error::invalid(path, shown(user), "the path of a survey file (a string)")),
+        },
+        Value::Null if path == "well.plan" => match user {
+            Value::Null => Ok(()),
+            Value::Array(u) => {
+                let keys = ["hold", "build", "drop", "turn", "inclination", "azimuth"];
+                for (i, v) in u.iter().enumerate() {
+                    let p = format!("{path}[{i}]");
+                    let Value::Object(m) = v else {
+                        return Err(Error::invalid(
+                            p,
+                            shown(v),
+                            "a table such as {hold = 500} or {build = 3, inclination = 60}",
+                        ));
+                    };
+                    for (k, x) in m {
+                        if !keys.contains(&k.as_str()) {
+                            return Err(Error::invalid(
+                                join(&p, k),
+                                "an unknown field",
+                                format!("one of {}", keys.join(", ")),
+                            ));
+                        }
+                        if !x.is_number() {
+                            return Err(Error::invalid(join(&p, k), shown(x), "a number"));
+                        }
+                    }
+                }
+                Ok(())
+            }
+            _ => Err(Error::invalid(path, shown(user), "a list of segments")),
+        },
         // Optional fields (default None): null, a number or an array of numbers.
         Value::Null => match user {
             Value::Null | Value::Number(_) => Ok(()),
@@ -541,6 +690,7 @@ impl DrillConfig {
             ("top_drive.controller.type", user.pointer("/top_drive/controller/type"), &ControllerKind::NAMES[..]),
             ("friction.model", user.pointer("/friction/model"), &["set_valued", "regularised"][..]),
             ("nonlinearity", user.pointer("/nonlinearity"), &Nonlinearity::NAMES[..]),
+            ("friction.contact", user.pointer("/friction/contact"), &Contact::NAMES[..]),
         ] {
             if let Some(v) = value {
                 if !v.as_str().is_some_and(|s| names.contains(&s)) {
@@ -548,7 +698,11 @@ impl DrillConfig {
                 }
             }
         }
-        for (path, pointer) in [("numerics.cells", "/numerics/cells"), ("numerics.max_cells", "/numerics/max_cells")] {
+        for (path, pointer) in [
+            ("numerics.cells", "/numerics/cells"),
+            ("numerics.max_cells", "/numerics/max_cells"),
+            ("torque_drag.broomstick_points", "/torque_drag/broomstick_points"),
+        ] {
             if let Some(v) = user.pointer(pointer) {
                 if v.as_u64().is_none() {
                     return Err(Error::invalid(path, shown(v), "a positive integer"));
@@ -557,12 +711,36 @@ impl DrillConfig {
         }
         let constant_without_md =
             user.pointer("/well/md").is_none() && user.pointer("/well/inclination_deg").is_some_and(Value::is_number);
+        // a survey file or a plan replaces the stations: refuse both
+        let given = |p: &str| user.pointer(p).is_some_and(|v| !v.is_null());
+        let sources: Vec<&str> =
+            [("well.survey", "/well/survey"), ("well.plan", "/well/plan"), ("well.md", "/well/md")]
+                .into_iter()
+                .filter(|(_, p)| given(p))
+                .map(|(n, _)| n)
+                .collect();
+        if sources.len() > 1 {
+            return Err(Error::invalid(
+                sources[1],
+                format!("both {} and {}", sources[0], sources[1]),
+                "one of well.survey (a file), well.plan (segments), well.md with well.inclination_deg",
+            ));
+        }
+        let stations_replaced = given("/well/survey") || given("/well/plan");
+        if stations_replaced && user.pointer("/well/inclination_deg").is_some_and(|v| !v.is_null()) {
+            return Err(Error::invalid(
+                "well.inclination_deg",
+                "a value with a survey file or plan",
+                "no value (the survey file or plan gives the inclinations)",
+            ));
+        }
         let mut cfg: DrillConfig = serde_json::from_value(user)
             .map_err(|e| Error::invalid("config", e.to_string(), "a valid configuration"))?;
-        if constant_without_md {
+        if constant_without_md || stations_replaced {
             // A constant inclination needs no survey depths (the default ones are a table's).
             cfg.well.md = None;
         }
+        super::well::load_survey(&mut cfg)?;
         Ok(cfg)
     }
 
@@ -679,6 +857,41 @@ impl DrillConfig {
             ));
         }
         nonneg("well.gravity", w.gravity, "m/s^2")?;
+        match &w.azimuth_deg {
+            Inclination::Constant(a) => within("well.azimuth_deg", *a, 0.0, 360.0, "degrees")?,
+            Inclination::Table(v) => {
+                for (j, a) in v.iter().enumerate() {
+                    within(format!("well.azimuth_deg[{j}]"), *a, 0.0, 360.0, "degrees")?;
+                }
+            }
+        }
+        super::well::survey(self)?;
+        for (j, iv) in self.friction.intervals.iter().enumerate() {
+            let f = |k: &str| format!("friction.intervals[{j}].{k}");
+            nonneg(f("top_md"), iv.top_md, "m")?;
+            if !(iv.bottom_md.is_finite() && iv.bottom_md > iv.top_md) {
+                return Err(Error::invalid(
+                    f("bottom_md"),
+                    Num(iv.bottom_md),
+                    format!("a finite depth > top_md = {} m", Num(iv.top_md)),
+                ));
+            }
+            nonneg(f("static"), iv.static_coefficient, "-")?;
+        }
+        let tdc = &self.torque_drag;
+        nonneg("torque_drag.bit_torque", tdc.bit_torque, "N m")?;
+        nonneg("torque_drag.block_weight", tdc.block_weight, "N")?;
+        pos("torque_drag.step", tdc.step, "m")?;
+        if !(2..=100_000).contains(&tdc.broomstick_points) {
+            return Err(Error::invalid(
+                "torque_drag.broomstick_points",
+                tdc.broomstick_points,
+                "an integer in 2..=100000",
+            ));
+        }
+        for (j, m) in tdc.friction_factors.iter().enumerate() {
+            within(format!("torque_drag.friction_factors[{j}]"), *m, 0.0, 10.0, "-")?;
+        }
         let fr = &self.friction;
         nonneg("friction.static", fr.static_coefficient, "-")?;
         within("friction.kinetic_ratio", fr.kinetic_ratio, 0.0, 1.0, "-")?;

@@ -6,7 +6,8 @@ use std::f64::consts::PI;
 use crate::error::{Error, Num, Result};
 use crate::model::{consistent_k5, p_wave_modulus, youngs_modulus};
 
-use super::config::{DrillConfig, Inclination, Nonlinearity, Section};
+use super::config::{Contact, DrillConfig, Inclination, Nonlinearity, Section};
+use super::well;
 
 /// Subdivisions of each interval between breakpoints (section ends, survey stations) in the
 /// quadrature of the break-off torque (trapezoidal on this and half as many, extrapolated:
@@ -246,13 +247,22 @@ impl Grid {
         let mut section_of = Vec::with_capacity(total);
         let mut limit = Vec::with_capacity(total);
         let mut top = 0.0;
+        let traj = well::trajectory(cfg)?;
+        let contact = match cfg.friction.contact {
+            Contact::SoftString => Some(well::contact_profile(cfg, &traj)?),
+            Contact::Weight => None,
+        };
         for (s, p) in props.iter().enumerate() {
             let h = spacing[s];
             for j in 0..counts[s] {
                 let zc = top + (j as f64 + 0.5) * h;
                 z.push(zc);
                 section_of.push(s);
-                limit.push(p.friction_limit(cfg.friction.static_coefficient, cfg.well.gravity, inclination(cfg, zc)));
+                let mu = well::friction_factor(cfg, zc);
+                limit.push(match &contact {
+                    None => p.friction_limit(mu, cfg.well.gravity, traj.at(zc).inc),
+                    Some(profile) => (mu * p.contact_radius * well::normal_force_at(profile, zc)).max(0.0),
+                });
             }
             top += p.length;
         }
@@ -275,9 +285,19 @@ impl Grid {
 /// [`crate::metrics::break_off_torque`] on grids refined between the survey stations
 /// (two grids, Richardson-extrapolated).
 pub fn breakoff_torque(cfg: &DrillConfig) -> Result<f64> {
+    let traj = well::trajectory(cfg)?;
+    if cfg.friction.contact == Contact::SoftString {
+        // the rotating soft-string torque at the surface without a torque on bit: the sum of
+        // mu r N over the elements, the limit integrated element by element
+        return Ok(well::contact_profile(cfg, &traj)?.torque[0]);
+    }
     let mut top = 0.0;
     let mut total = 0.0;
-    let stations: &[f64] = cfg.well.md.as_deref().unwrap_or(&[]);
+    let mut stations: Vec<f64> = traj.survey.md.clone();
+    for iv in &cfg.friction.intervals {
+        stations.extend([iv.top_md, iv.bottom_md]);
+    }
+    stations.sort_by(f64::total_cmp);
     for s in &cfg.sections {
         let p = SectionProps::new(s, cfg.well.mud_density);
         let bottom = top + p.length;
@@ -300,7 +320,7 @@ pub fn breakoff_torque(cfg: &DrillConfig) -> Result<f64> {
             depth.dedup_by(|later, earlier| *later <= *earlier);
             let limit: Vec<f64> = depth
                 .iter()
-                .map(|&d| p.friction_limit(cfg.friction.static_coefficient, cfg.well.gravity, inclination(cfg, d)))
+                .map(|&d| p.friction_limit(well::friction_factor(cfg, d), cfg.well.gravity, traj.at(d).inc))
                 .collect();
             *sum = crate::metrics::break_off_torque(&depth, &limit)?;
         }

@@ -33,6 +33,7 @@ pub mod grid;
 pub mod lumped;
 pub mod map;
 pub mod solver;
+pub mod well;
 
 #[cfg(test)]
 mod tests;

@@ -254,13 +254,15 @@ fn break_off_torque_is_the_integral_of_the_friction_limit() {
     let per_sin = mu * g * RHO * area * od / 2.0;
     // Constant 30 degrees.
     let mut cfg = DrillConfig { sections: vec![section(2500.0, od, id)], ..DrillConfig::default() };
+    cfg.friction.contact = Contact::Weight;
     cfg.well.md = None;
     cfg.well.inclination_deg = Inclination::Constant(30.0);
     let exact = per_sin * 0.5 * 2500.0;
     let got = breakoff_torque(&cfg).unwrap();
     assert!((got / exact - 1.0).abs() < 1e-12, "{got} vs {exact}");
     // Well B survey: 0 to 500 m vertical, linear to 60 deg at 1600 m, 60 deg beyond.
-    let cfg = DrillConfig { sections: vec![section(2500.0, od, id)], ..DrillConfig::default() };
+    let mut cfg = DrillConfig { sections: vec![section(2500.0, od, id)], ..DrillConfig::default() };
+    cfg.friction.contact = Contact::Weight;
     let b = (PI / 3.0) / 1100.0;
     let exact = per_sin * ((1.0 - (PI / 3.0).cos()) / b + (PI / 3.0).sin() * 900.0);
     let got = breakoff_torque(&cfg).unwrap();
@@ -288,6 +290,7 @@ fn loaded(model: FrictionModel) -> DrillConfig {
     collar.shear_modulus = 67e9;
     let mut cfg = DrillConfig { sections: vec![section(2270.0, 0.146529, 0.123024), collar], ..DrillConfig::default() };
     cfg.friction.model = model;
+    cfg.friction.contact = Contact::Weight;
     cfg.damping_rate = 0.05;
     cfg.bit = Bit { on_bottom: true, weight_on_bit: 5e4, bha_inertia: 50.0, ..Bit::default() };
     cfg.top_drive.torque_limit = 30e3;
@@ -457,6 +460,7 @@ fn defaults_round_trip_and_well_b_example_parses() {
          "shear_modulus": 61e9, "density": 7850.0,
          "polar_moment": 5.169666634679985e-4, "area": 0.02286618845760419}],
       "damping_rate": 0.08333333333333334,
+      "friction": {"contact": "weight"},
       "top_drive": {"inertia": 2900.0, "rpm": 40.0, "ramp_time": 1.0, "controller": {"type": "pi", "kp": 38e3, "ki": 100e3},
                     "control_interval": 0.01},
       "friction": {"static": 0.3, "kinetic_ratio": 0.65, "stick_speed": 1.5},
@@ -589,6 +593,7 @@ fn well_b_agrees_with_the_published_model() {
          "shear_modulus": 67e9, "density": 8622.131147540984,
          "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
       "damping_rate": 0.08333333333333334,
+      "friction": {"contact": "weight"},
       "numerics": {"cells": 1000, "duration": 60.0, "field_interval": 0}
     }"#;
     let cfg = DrillConfig::from_json(json).unwrap();
@@ -675,6 +680,7 @@ fn linear_runs_are_unchanged() {
          "shear_modulus": 67e9, "density": 8622.131147540984,
          "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
       "damping_rate": 0.08333333333333334,
+      "friction": {"contact": "weight"},
       "numerics": {"cells": 1000, "duration": 20.0, "field_interval": 0}
     }"#;
     let cfg = DrillConfig::from_json(json).unwrap();
@@ -900,6 +906,7 @@ fn well_b_with_the_consistent_law_changes_little() {
          "shear_modulus": 67e9, "density": 8622.131147540984,
          "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
       "damping_rate": 0.08333333333333334,
+      "friction": {"contact": "weight"},
       "numerics": {"cells": 1000, "duration": 60.0, "field_interval": 0}
     }"#;
     let mut cfg = DrillConfig::from_json(json).unwrap();
@@ -1134,6 +1141,7 @@ fn a_section_boundary_at_a_station_within_rounding_is_solved() {
             r#"{{"sections": [{{"length": {l:?}, "outer_diameter": 0.127, "inner_diameter": 0.1086}},
                 {{"length": 2400.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}}],
               "well": {{"md": [0.0, 800.0, 1800.0, 4000.0], "inclination_deg": [0.0, 0.0, 30.0, 30.0]}},
+              "friction": {{"contact": "weight"}},
               "numerics": {{"duration": 1.0}}}}"#
         )
     };

@@ -49,6 +49,10 @@ pub struct Survey {
     pub md: Vec<f64>,
     pub inc: Vec<f64>,
     pub azi: Vec<f64>,
+    /// The inclinations as given, degrees.
+    pub inc_deg: Vec<f64>,
+    /// The azimuths as given (360 as 0), degrees.
+    pub azi_deg: Vec<f64>,
 }
 
 impl Survey {
@@ -58,7 +62,11 @@ impl Survey {
     /// (360 read as 0). `field` names the input in messages (`well`, or a file).
     pub fn from_degrees(field: &str, md: &[f64], inc_deg: &[f64], azi_deg: &[f64]) -> Result<Survey> {
         if md.is_empty() {
-            return Err(Error::invalid(format!("{field}.md"), "no stations", "at least one station (md 0 at the surface)"));
+            return Err(Error::invalid(
+                format!("{field}.md"),
+                "no stations",
+                "at least one station (md 0 at the surface)",
+            ));
         }
         for (name, n) in [("inclination_deg", inc_deg.len()), ("azimuth_deg", azi_deg.len())] {
             if n != md.len() {
@@ -90,7 +98,11 @@ impl Survey {
         }
         for (j, &x) in inc_deg.iter().enumerate() {
             if !(0.0..=180.0).contains(&x) {
-                return Err(Error::invalid(format!("{field}.inclination_deg[{j}]"), Num(x), "0 <= inclination <= 180 degrees"));
+                return Err(Error::invalid(
+                    format!("{field}.inclination_deg[{j}]"),
+                    Num(x),
+                    "0 <= inclination <= 180 degrees",
+                ));
             }
         }
         for (j, &x) in azi_deg.iter().enumerate() {
@@ -98,10 +110,13 @@ impl Survey {
                 return Err(Error::invalid(format!("{field}.azimuth_deg[{j}]"), Num(x), "0 <= azimuth <= 360 degrees"));
             }
         }
+        let azi_deg: Vec<f64> = azi_deg.iter().map(|x| x % 360.0).collect();
         Ok(Survey {
             md: md.to_vec(),
             inc: inc_deg.iter().map(|x| x.to_radians()).collect(),
-            azi: azi_deg.iter().map(|x| (x % 360.0).to_radians()).collect(),
+            azi: azi_deg.iter().map(|x| x.to_radians()).collect(),
+            inc_deg: inc_deg.to_vec(),
+            azi_deg,
         })
     }
 
@@ -243,8 +258,8 @@ impl Trajectory {
         let position = [pa[0] + half * (ta[0] + t[0]), pa[1] + half * (ta[1] + t[1]), pa[2] + half * (ta[2] + t[2])];
         let planar = s.azi[a] == s.azi[b] || s.inc[a] == 0.0 || s.inc[b] == 0.0;
         let (inc, azi) = if planar {
-            let deg = |x: f64| x.to_degrees();
-            let inc = (deg(s.inc[a]) + f * (deg(s.inc[b]) - deg(s.inc[a]))).to_radians();
+            let (ia, ib) = (s.inc_deg[a], s.inc_deg[b]);
+            let inc = (ia + f * (ib - ia)).to_radians();
             let azi = if s.inc[a] == 0.0 { s.azi[b] } else { s.azi[a] };
             (inc, azi)
         } else {

@@ -75,10 +75,16 @@ impl SegmentSpec {
             }
         };
         let needs = |name: &str, x: Option<f64>, other: &str| {
-            x.ok_or_else(|| Error::invalid(format!("{field}.{name}"), "missing", format!("the target of the {other}, deg")))
+            x.ok_or_else(|| {
+                Error::invalid(format!("{field}.{name}"), "missing", format!("the target of the {other}, deg"))
+            })
         };
         let refuse = |name: &str, x: Option<f64>| match x {
-            Some(v) => Err(Error::invalid(format!("{field}.{name}"), Num(v), "no value here (only build and drop take inclination, turn takes azimuth)")),
+            Some(v) => Err(Error::invalid(
+                format!("{field}.{name}"),
+                Num(v),
+                "no value here (only build and drop take inclination, turn takes azimuth)",
+            )),
             None => Ok(()),
         };
         if let Some(length) = self.hold {
@@ -89,12 +95,17 @@ impl SegmentSpec {
         if let Some(rate) = self.turn {
             refuse("inclination", self.inclination)?;
             if !(rate.is_finite() && rate != 0.0) {
-                return Err(Error::invalid(format!("{field}.turn"), Num(rate), "a finite rate != 0 deg/30 m (positive clockwise)"));
+                return Err(Error::invalid(
+                    format!("{field}.turn"),
+                    Num(rate),
+                    "a finite rate != 0 deg/30 m (positive clockwise)",
+                ));
             }
             return Ok(Segment::Turn { rate, azimuth: needs("azimuth", self.azimuth, "turn")? });
         }
         refuse("azimuth", self.azimuth)?;
-        let (name, rate) = if let Some(r) = self.build { ("build", r) } else { ("drop", self.drop.unwrap_or(f64::NAN)) };
+        let (name, rate) =
+            if let Some(r) = self.build { ("build", r) } else { ("drop", self.drop.unwrap_or(f64::NAN)) };
         let rate = positive(name, rate, "deg/30 m")?;
         let inclination = needs("inclination", self.inclination, name)?;
         Ok(Segment::Build { rate: if name == "drop" { -rate } else { rate }, inclination })
@@ -117,7 +128,11 @@ pub fn stations(segments: &[Segment], azimuth: f64) -> Result<(Vec<f64>, Vec<f64
             }
             Segment::Build { rate, inclination } => {
                 if !(0.0..=180.0).contains(&inclination) {
-                    return Err(Error::invalid(format!("{field}.inclination"), Num(inclination), "0 <= inclination <= 180 deg"));
+                    return Err(Error::invalid(
+                        format!("{field}.inclination"),
+                        Num(inclination),
+                        "0 <= inclination <= 180 deg",
+                    ));
                 }
                 let change = inclination - i0;
                 if change == 0.0 || change.signum() != rate.signum() {
@@ -140,7 +155,8 @@ pub fn stations(segments: &[Segment], azimuth: f64) -> Result<(Vec<f64>, Vec<f64
                     return Err(Error::invalid(field, "a turn of a vertical well", "a build before the turn"));
                 }
                 // the way the rate's sign turns: clockwise (positive) or anticlockwise
-                let change = if rate > 0.0 { (azimuth - a0).rem_euclid(360.0) } else { -(a0 - azimuth).rem_euclid(360.0) };
+                let change =
+                    if rate > 0.0 { (azimuth - a0).rem_euclid(360.0) } else { -(a0 - azimuth).rem_euclid(360.0) };
                 let length = change / rate * RATE_LENGTH;
                 let n = (length / TURN_STATION_INTERVAL).ceil().max(1.0) as usize;
                 for k in 1..=n {
@@ -187,8 +203,11 @@ mod tests {
 
     #[test]
     fn a_turn_is_sampled_and_ends_on_target() {
-        let segs =
-            [Segment::Hold { length: 100.0 }, Segment::Build { rate: 3.0, inclination: 90.0 }, Segment::Turn { rate: -3.0, azimuth: 270.0 }];
+        let segs = [
+            Segment::Hold { length: 100.0 },
+            Segment::Build { rate: 3.0, inclination: 90.0 },
+            Segment::Turn { rate: -3.0, azimuth: 270.0 },
+        ];
         let (md, _inc, azi) = stations(&segs, 0.0).unwrap();
         assert_eq!(*azi.last().unwrap(), 270.0);
         // 90 degrees anticlockwise at 3 deg/30 m: 900 m, in 30 m stations
@@ -200,7 +219,9 @@ mod tests {
     fn specs_name_the_field() {
         let e = SegmentSpec { build: Some(3.0), ..Default::default() }.segment("well.plan[1]").unwrap_err();
         assert_eq!(e.field(), "well.plan[1].inclination");
-        let e = SegmentSpec { hold: Some(3.0), build: Some(1.0), ..Default::default() }.segment("well.plan[0]").unwrap_err();
+        let e = SegmentSpec { hold: Some(3.0), build: Some(1.0), ..Default::default() }
+            .segment("well.plan[0]")
+            .unwrap_err();
         assert_eq!(e.field(), "well.plan[0]");
         let e = stations(&[Segment::Build { rate: 3.0, inclination: 0.0 }], 0.0).unwrap_err();
         assert_eq!(e.field(), "well.plan[0].inclination");

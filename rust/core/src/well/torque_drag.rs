@@ -203,8 +203,27 @@ fn piece_at(pieces: &[Piece], md: f64) -> &Piece {
 }
 
 impl Setup {
-    /// Checks the setup against the trajectory: pieces, friction factors, loads and step.
+    /// Checks the setup against the trajectory: pieces, friction factors, loads and step, and
+    /// that the survey reaches the bit (a survey of one station is a straight hole).
     pub fn validate(&self, traj: &Trajectory) -> Result<()> {
+        self.validate_string()?;
+        let depth = self.depth();
+        // a survey of one station is a straight hole, of any length
+        if traj.survey.len() > 1 && depth > traj.survey.depth() * (1.0 + 1e-12) {
+            return Err(Error::invalid(
+                "well.survey",
+                format!("stations to {} m", Num(traj.survey.depth())),
+                format!(
+                    "a survey reaching the bit at {} m (well.extend = true continues the last station straight on)",
+                    Num(depth)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks pieces, friction factors, loads and step.
+    pub fn validate_string(&self) -> Result<()> {
         if self.pieces.is_empty() {
             return Err(Error::invalid("sections", "none", "at least one section"));
         }
@@ -213,16 +232,24 @@ impl Setup {
                 return Err(Error::invalid(format!("sections[{i}].length"), Num(p.length), "a finite length > 0 m"));
             }
             if !p.weight.is_finite() || !(p.contact_radius.is_finite() && p.contact_radius > 0.0) {
-                return Err(Error::invalid(format!("sections[{i}]"), Num(p.weight), "a finite buoyed weight and contact radius > 0"));
+                return Err(Error::invalid(
+                    format!("sections[{i}]"),
+                    Num(p.weight),
+                    "a finite buoyed weight and contact radius > 0",
+                ));
             }
         }
-        let mu_ok = |m: f64| m.is_finite() && (0.0..=10.0).contains(&m);
+        let mu_ok = |m: f64| m.is_finite() && m >= 0.0;
         if !mu_ok(self.friction.mu) {
-            return Err(Error::invalid("friction.static", Num(self.friction.mu), "a friction factor in [0, 10]"));
+            return Err(Error::invalid("friction.static", Num(self.friction.mu), "a finite friction factor >= 0"));
         }
         for (j, iv) in self.friction.intervals.iter().enumerate() {
             if !mu_ok(iv.mu) {
-                return Err(Error::invalid(format!("friction.intervals[{j}].static"), Num(iv.mu), "a friction factor in [0, 10]"));
+                return Err(Error::invalid(
+                    format!("friction.intervals[{j}].static"),
+                    Num(iv.mu),
+                    "a finite friction factor >= 0",
+                ));
             }
             if !(iv.top_md.is_finite() && iv.top_md >= 0.0 && iv.bottom_md.is_finite() && iv.bottom_md > iv.top_md) {
                 return Err(Error::invalid(
@@ -232,23 +259,17 @@ impl Setup {
                 ));
             }
         }
-        for (name, v) in
-            [("bit.weight_on_bit", self.weight_on_bit), ("torque_drag.bit_torque", self.bit_torque), ("torque_drag.block_weight", self.block_weight)]
-        {
+        for (name, v) in [
+            ("bit.weight_on_bit", self.weight_on_bit),
+            ("torque_drag.bit_torque", self.bit_torque),
+            ("torque_drag.block_weight", self.block_weight),
+        ] {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(Error::invalid(name, Num(v), "a finite number >= 0"));
             }
         }
         if !(self.step.is_finite() && self.step > 0.0) {
             return Err(Error::invalid("torque_drag.step", Num(self.step), "a finite element length > 0 m"));
-        }
-        let depth = self.depth();
-        if depth > traj.survey.depth() * (1.0 + 1e-12) {
-            return Err(Error::invalid(
-                "well.survey",
-                format!("stations to {} m", Num(traj.survey.depth())),
-                format!("a survey reaching the bit at {} m (well.extend = true continues the last station straight on)", Num(depth)),
-            ));
         }
         Ok(())
     }
@@ -273,7 +294,15 @@ impl Setup {
     }
 
     /// The profile from the bit's tension and torque `bit`, N and N m.
-    fn profile(&self, traj: &Trajectory, op: Operation, scheme: Scheme, bit_md: f64, mu: Option<f64>, bit: (f64, f64)) -> Profile {
+    fn profile(
+        &self,
+        traj: &Trajectory,
+        op: Operation,
+        scheme: Scheme,
+        bit_md: f64,
+        mu: Option<f64>,
+        bit: (f64, f64),
+    ) -> Profile {
         let offset = self.depth() - bit_md;
         let pieces = &self.pieces;
         let piece = |md: f64| piece_at(pieces, md + offset);
@@ -318,11 +347,19 @@ impl Setup {
                     let rhs = |s: f64, t: f64| -> (f64, f64, f64) {
                         let q = traj.at_on(s, arc);
                         let k = traj.curvature_vector_on(s, arc);
-                        let z = [-q.tangent[2] * q.tangent[0], -q.tangent[2] * q.tangent[1], 1.0 - q.tangent[2] * q.tangent[2]];
+                        let z = [
+                            -q.tangent[2] * q.tangent[0],
+                            -q.tangent[2] * q.tangent[1],
+                            1.0 - q.tangent[2] * q.tangent[2],
+                        ];
                         let v = [t * k[0] + p.weight * z[0], t * k[1] + p.weight * z[1], t * k[2] + p.weight * z[2]];
                         let nf = dot(v, v).sqrt();
                         // d/d(-s): tension and torque grow going up
-                        (p.weight * q.tangent[2] + sign * mu * nf, if rotating { mu * p.contact_radius * nf } else { 0.0 }, nf)
+                        (
+                            p.weight * q.tangent[2] + sign * mu * nf,
+                            if rotating { mu * p.contact_radius * nf } else { 0.0 },
+                            nf,
+                        )
                     };
                     let (s0, h) = (md[j + 1], length);
                     let (t0, m0) = (tension[j + 1], torque[j + 1]);
@@ -358,9 +395,15 @@ pub struct TorqueDrag {
     pub profiles: Vec<Profile>,
 }
 
-/// All four operations.
+/// All four operations; the survey must reach the bit ([`Setup::validate`]).
 pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> Result<TorqueDrag> {
     setup.validate(traj)?;
+    Ok(analyse_unchecked(traj, setup, scheme))
+}
+
+/// [`analyse`] of a setup already checked ([`Setup::validate_string`]; the trajectory
+/// continues straight on below its last station).
+pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> TorqueDrag {
     let profiles: Vec<Profile> = Operation::ALL.iter().map(|&op| setup.solve(traj, op, scheme)).collect();
     let hook = |k: usize| profiles[k].surface_tension() + setup.block_weight;
     let (mut best, mut at, mut which) = (0.0, 0.0, Operation::ALL[0].name());
@@ -370,7 +413,7 @@ pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> Result<Torqu
             (best, at, which) = (n, d, op.name());
         }
     }
-    Ok(TorqueDrag {
+    TorqueDrag {
         hook_load_pickup_n: hook(0),
         hook_load_slackoff_n: hook(1),
         hook_load_rotating_n: hook(2),
@@ -381,18 +424,22 @@ pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> Result<Torqu
         max_normal_force_md: at,
         max_normal_force_operation: which,
         profiles,
-    })
+    }
 }
 
 /// Hook loads against bit depth while tripping (the broomstick plot): for each friction factor
 /// in `mus` and each bit depth in `depths` (each within `(0, string length]`), the pick-up,
 /// slack-off and rotating hook loads, N, as `[mu][depth]` rows of `(pickup, slackoff, rotating)`.
 pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64]) -> Result<Vec<Vec<[f64; 3]>>> {
-    setup.validate(traj)?;
+    setup.validate_string()?;
     let length = setup.depth();
     for (j, &d) in depths.iter().enumerate() {
         if !(d.is_finite() && d > 0.0 && d <= length) {
-            return Err(Error::invalid(format!("depths[{j}]"), Num(d), format!("a bit depth in (0, {}] m", Num(length))));
+            return Err(Error::invalid(
+                format!("depths[{j}]"),
+                Num(d),
+                format!("a bit depth in (0, {}] m", Num(length)),
+            ));
         }
     }
     for (j, &m) in mus.iter().enumerate() {
@@ -406,7 +453,9 @@ pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64])
             depths
                 .iter()
                 .map(|&d| {
-                    let hook = |op| setup.solve_at(traj, op, Scheme::Stepwise, d, Some(mu)).surface_tension() + setup.block_weight;
+                    let hook = |op| {
+                        setup.solve_at(traj, op, Scheme::Stepwise, d, Some(mu)).surface_tension() + setup.block_weight
+                    };
                     [hook(Operation::PickUp), hook(Operation::SlackOff), hook(Operation::RotatingOffBottom)]
                 })
                 .collect()
