@@ -19,6 +19,7 @@ mod modal;
 mod model;
 mod pde;
 mod sweep;
+mod well;
 
 /// The vector instruction path of the core's hot loops on this machine: `"avx512+fma"`,
 /// `"avx2+fma"` or `"baseline"` (`DRILLSTRING_SIMD=avx2` or `=baseline` pins a narrower one).
@@ -66,6 +67,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lumped::lumped_solve, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::lumped_equilibria, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::min_cycle_torque, m)?)?;
+    m.add_function(wrap_pyfunction!(well::well_trajectory, m)?)?;
+    m.add_function(wrap_pyfunction!(well::well_torque_drag, m)?)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

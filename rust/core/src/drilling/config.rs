@@ -740,13 +740,28 @@ impl DrillConfig {
             // A constant inclination needs no survey depths (the default ones are a table's).
             cfg.well.md = None;
         }
+        if stations_replaced {
+            cfg.well.inclination_deg = Inclination::Constant(0.0);
+        }
         super::well::load_survey(&mut cfg)?;
         Ok(cfg)
     }
 
     /// The configuration as JSON, every default filled in.
     pub fn to_json(&self) -> String {
-        serde_json::to_string(self).unwrap_or_else(|_| "{}".into())
+        let Ok(mut value) = serde_json::to_value(self) else { return "{}".into() };
+        // a survey file or a plan gives the stations: leave the unused station fields out, so
+        // that the JSON parses back to the same configuration
+        if self.well.survey.is_some() || self.well.plan.is_some() {
+            if let Some(Value::Object(w)) = value.get_mut("well") {
+                w.remove("md");
+                w.remove("inclination_deg");
+                if self.well.survey.is_some() {
+                    w.remove("azimuth_deg");
+                }
+            }
+        }
+        value.to_string()
     }
 
     /// Checks every value's range, naming the dotted field; also the discretisation (cell
@@ -811,7 +826,9 @@ impl DrillConfig {
             min_density = min_density.min(s.density);
         }
         let w = &self.well;
+        let replaced = w.survey.is_some() || w.plan.is_some();
         match (&w.md, &w.inclination_deg) {
+            _ if replaced => {}
             (None, Inclination::Constant(x)) => within("well.inclination_deg", *x, 0.0, 180.0, "degrees")?,
             (Some(_), Inclination::Constant(_)) => {
                 return Err(Error::invalid(

@@ -396,4 +396,29 @@ mod tests {
         cfg.friction.contact = super::super::config::Contact::Weight;
         assert!(super::super::grid::breakoff_torque(&cfg).unwrap() > breakoff);
     }
+
+    #[test]
+    fn survey_and_plan_configurations_round_trip() {
+        let p = write("rt.csv", "md_m,inc_deg,azi_deg\n0,0,0\n500,0,0\n1500,40,30\n3000,40,60\n");
+        let json = format!(
+            r#"{{"sections": [{{"length": 2500, "outer_diameter": 0.127, "inner_diameter": 0.1}}], "well": {{"survey": {p:?}}}}}"#
+        );
+        let cfg = DrillConfig::from_json(&json).unwrap();
+        cfg.validate().unwrap();
+        let back = DrillConfig::from_json(&cfg.to_json()).unwrap();
+        assert_eq!(back, cfg);
+        assert_eq!(survey(&cfg).unwrap().md, vec![0.0, 500.0, 1500.0, 3000.0]);
+        let json = r#"{"sections": [{"length": 2500, "outer_diameter": 0.127, "inner_diameter": 0.1}],
+            "well": {"plan": [{"hold": 500}, {"build": 3, "inclination": 60}, {"hold": 2000}], "azimuth_deg": 45}}"#;
+        let cfg = DrillConfig::from_json(json).unwrap();
+        cfg.validate().unwrap();
+        assert_eq!(DrillConfig::from_json(&cfg.to_json()).unwrap(), cfg);
+        assert_eq!(survey(&cfg).unwrap().md, vec![0.0, 500.0, 1100.0, 3100.0]);
+        let both = r#"{"sections": [{"length": 100, "outer_diameter": 0.127, "inner_diameter": 0.1}],
+            "well": {"plan": [{"hold": 500}], "md": [0, 100], "inclination_deg": [0, 0]}}"#;
+        assert_eq!(DrillConfig::from_json(both).unwrap_err().field(), "well.md");
+        let bad = r#"{"sections": [{"length": 100, "outer_diameter": 0.127, "inner_diameter": 0.1}],
+            "well": {"plan": [{"hold": 500, "turn": 3}]}}"#;
+        assert_eq!(DrillConfig::from_json(bad).unwrap().validate().unwrap_err().field(), "well.plan[0]");
+    }
 }
