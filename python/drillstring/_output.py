@@ -463,6 +463,7 @@ FOLDER_SIGNS: dict[str, tuple[str, ...]] = {
     "drill": ("series.parquet", "series.csv", "metrics.json", "fields.npz"),
     "drill-map": ("map.parquet", "map.csv"),
     "sweep": ("results.parquet", "results.csv"),
+    "torque-drag": ("torque_drag.json", "broomstick.csv"),
 }
 
 

@@ -622,6 +622,50 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_torque_drag(sub: Any) -> None:
+    p = sub.add_parser(
+        "torque-drag",
+        help="static soft-string torque and drag: hook loads, surface torques, profiles, broomstick plot",
+        description="Solve the static soft-string torque and drag (Johancsik et al. 1984) of the configuration's "
+        "string in its well (minimum-curvature survey) for pick-up, slack-off, rotating off bottom and on bottom, "
+        "and the hook loads over bit depth for the friction factors of torque_drag.friction_factors; write "
+        "torque_drag.json, profiles.csv, broomstick.csv, survey.csv, config.toml and the figures into DIR.",
+        epilog="example: drillstring torque-drag examples/s-well-3d.toml --out s-well-td",
+    )
+    p.add_argument("config", metavar="CONFIG.toml", help="drilling configuration (the same file as for drill)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="change a field: dotted key and a TOML value, e.g. friction.static=0.25 (repeatable)")
+    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    p.set_defaults(func=_cmd_torque_drag)
+
+
+def _cmd_torque_drag(args: argparse.Namespace) -> int:
+    import time
+
+    from .drilling import load_drill_config
+    from .drilling.torque_drag import torque_drag, write_torque_drag
+
+    config = load_drill_config(args.config)
+    if args.overrides:
+        config = config.with_overrides(args.overrides)
+    start = time.perf_counter()
+    result = torque_drag(config)
+    seconds = time.perf_counter() - start
+    s = result.summary
+    _say(f"torque-drag: {config.length:.6g} m string, solved in {seconds:.2g} s (with the broomstick sweep)")
+    _say(f"hook load: pick-up {s['hook_load_pickup_N'] / 1e3:.1f} kN, slack-off {s['hook_load_slackoff_N'] / 1e3:.1f}"
+         f" kN, rotating {s['hook_load_rotating_N'] / 1e3:.1f} kN, rotating on bottom "
+         f"{s['hook_load_rotating_on_bottom_N'] / 1e3:.1f} kN (with the block weight; effective tension)")
+    _say(f"surface torque: off bottom {s['surface_torque_off_bottom_Nm'] / 1e3:.2f} kN m, on bottom "
+         f"{s['surface_torque_on_bottom_Nm'] / 1e3:.2f} kN m; largest normal force "
+         f"{s['max_normal_force_N_per_m']:.0f} N/m at {s['max_normal_force_md']:.0f} m "
+         f"({s['max_normal_force_operation']})")
+    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out")
+    _say(f"wrote {len(written)} files to {args.out}")
+    return 0
+
+
 def _add_lumped(sub: Any) -> None:
     p = sub.add_parser(
         "lumped",
@@ -868,6 +912,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_paper(sub)
     _add_sweep(sub)
     _add_drill(sub)
+    _add_torque_drag(sub)
     _add_drill_map(sub)
     _add_lumped(sub)
     return parser

@@ -1,11 +1,12 @@
 """Reference numbers from welleng 0.30.0 for the 3-D S-well survey and torque-and-drag case.
 
-Command (from /work/wt/welleng, with the virtual environment that holds welleng 0.30.0):
+Command (from the repository root, in a virtual environment holding welleng 0.30.0:
+`python -m venv /tmp/wl && /tmp/wl/bin/pip install welleng==0.30.0`):
 
-    venv/bin/python out/welleng_reference.py [--survey PATH] [--out DIR]
+    /tmp/wl/bin/python tests/reference/welleng/welleng_reference.py [--survey PATH] [--out DIR]
 
-Defaults: survey /work/main/examples/s-well-3d-survey.csv (columns md_m, inc_deg, azi_deg;
-read only), output directory = the folder of this script. Writes
+Defaults: survey examples/s-well-3d-survey.csv (columns md_m, inc_deg, azi_deg; read only),
+output directory = the folder of this script. Writes
 
     welleng_s_well_3d_survey.json       minimum curvature by welleng.survey.Survey
     welleng_s_well_3d_torque_drag.json  torque and drag: welleng as is, welleng corrected, direct
@@ -566,7 +567,7 @@ def profile_at(md, arr, grid):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--survey", default="/work/main/examples/s-well-3d-survey.csv")
+    ap.add_argument("--survey", default=str(Path(__file__).resolve().parents[3] / "examples" / "s-well-3d-survey.csv"))
     ap.add_argument("--out", default=str(Path(__file__).resolve().parent))
     args = ap.parse_args()
     outdir = Path(args.out)
