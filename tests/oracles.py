@@ -186,3 +186,64 @@ def galerkin_integrals(modes: int, rigid_mode: bool) -> tuple[NDArray[np.int64],
         rest = rest // base
     cos4, mixed, sin4 = _integer_integrals(quad)
     return indices, quad - first, cos4 / 8.0, mixed / 8.0, sin4 / 8.0
+
+
+# --------------------------------------------------------------------------- stick-slip metrics
+# A numpy port of the definitions of ``drillstring_core::metrics::stickslip`` (its module
+# documentation), computed directly: the similarity by explicit differences, not the FFT.
+
+RPM_PER_RAD_S = 60.0 / (2.0 * math.pi)
+
+
+def time_within(t: NDArray[np.float64], x: NDArray[np.float64], s: float) -> float:
+    """Time during which the linear interpolant of ``x`` has ``|x| <= s``."""
+    total = 0.0
+    for t0, t1, u, v in zip(t[:-1], t[1:], x[:-1], x[1:]):
+        if u == v:
+            total += (t1 - t0) if abs(u) <= s else 0.0
+            continue
+        a, b = (-s - u) / (v - u), (s - u) / (v - u)
+        total += max(0.0, min(max(a, b), 1.0) - max(min(a, b), 0.0)) * (t1 - t0)
+    return total
+
+
+def similarity_period(x: NDArray[np.float64], dt: float) -> float:
+    """Period of the uniformly sampled ``x``: the first local maximum of the similarity
+    ``s[k] = 1 - mean((y_j - y_{j+k})^2) / (2 var)`` after ``s`` first falls below 0 and within
+    80 % of the highest up to half the series, refined by a parabola; NaN without one."""
+    y = np.asarray(x, dtype=float) - np.mean(x)
+    m = y.size
+    var = float(np.mean(y * y))
+    half = m // 2
+    s = np.array([1.0 - np.mean((y[: m - k] - y[k:]) ** 2) / (2.0 * var) for k in range(half + 1)])
+    below = np.nonzero(s < 0.0)[0]
+    if below.size == 0:
+        return math.nan
+    k0 = int(below[0])
+    top = float(s[k0:half].max())
+    for k in range(max(k0, 1), half):
+        if s[k] >= 0.8 * top and s[k] >= s[k - 1] and s[k] >= s[k + 1]:
+            a, b, c = s[k - 1], s[k], s[k + 1]
+            curvature = a - 2.0 * b + c
+            delta = min(0.5, max(-0.5, 0.5 * (a - c) / curvature)) if curvature < 0 else 0.0
+            return float((k + delta) * dt)
+    return math.nan
+
+
+def stick_slip(t: NDArray[np.float64], omega: NDArray[np.float64], torque: NDArray[np.float64],
+               window: tuple[float, float], stick_speed: float) -> dict[str, float]:
+    """The stick-slip metrics of the samples in ``window`` (bit speed ``omega`` rad/s, motor
+    torque N m on uniform times ``t``), named as the drilling metrics are."""
+    keep = (t >= window[0]) & (t <= window[1])
+    tw, w, q = t[keep], omega[keep], torque[keep]
+    mean = float(np.trapezoid(w, tw) / (tw[-1] - tw[0]))
+    return {
+        "ssi": float((w.max() - w.min()) / (2.0 * abs(mean))),
+        "stuck_fraction": min(1.0, time_within(tw, w, stick_speed) / (tw[-1] - tw[0])),
+        "period_s": similarity_period(q, float(np.mean(np.diff(tw)))),
+        "bit_rpm_min": float(w.min()) * RPM_PER_RAD_S,
+        "bit_rpm_max": float(w.max()) * RPM_PER_RAD_S,
+        "bit_rpm_mean": mean * RPM_PER_RAD_S,
+        "motor_torque_min_Nm": float(q.min()),
+        "motor_torque_max_Nm": float(q.max()),
+    }

@@ -120,8 +120,17 @@ def test_cli_damping_rate(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:
     from drillstring.cli import main
 
     out = tmp_path / "run.csv"
-    code = main(["simulate", "--modes", "1", "--t-end", "0.05", "--damping-rate", "3", "--out", str(out)])
-    assert code == 0 and out.exists()
+    code = main(["simulate", "--modes", "1", "--t-end", "0.05", "--samples", "101", "--damping-rate", "3",
+                 "--out", str(out)])
+    assert code == 0
+    theta = np.loadtxt(out, delimiter=",", skiprows=1)[:, 1]
+    params = ds.Parameters()
+    damped = ds.simulate(params.replace(damping_rate=3.0), modes=1, t_end=0.05, samples=101)
+    undamped = ds.simulate(params, modes=1, t_end=0.05, samples=101)
+    z = 2 * params.length / 3
+    # the option reaches the model: the CSV is the damped run, not the undamped one
+    np.testing.assert_allclose(theta, damped.theta(z), rtol=1e-9, atol=1e-16)
+    assert np.max(np.abs(theta - undamped.theta(z))) > 1e-3 * np.max(np.abs(theta))
 
 
 def test_sweep_energy_drift_is_the_balance_error() -> None:

@@ -118,8 +118,21 @@ def test_figures() -> None:
     figs = map_figures(frame)
     assert set(figs) == {"ssi_map.png", "controllers.png"}
     assert len(controller_maps(frame, "top_drive.rpm", "friction.static").axes) == 3  # 2 panels + colour bar
-    ssi_map(frame, "top_drive.rpm", "friction.static")
-    ssi_lines(frame, "top_drive.rpm", "top_drive.controller.type")
+    # the map's cells and the lines are the runs' SSI averaged over the other axes
+    rpm, static, kind = (frame[k].to_numpy() for k in ("top_drive.rpm", "friction.static",
+                                                        "top_drive.controller.type"))
+    ssi = frame["ssi"].to_numpy(dtype=float)
+    cells = ssi_map(frame, "top_drive.rpm", "friction.static").axes[0].collections[0].get_array()
+    expected = [[ssi[(rpm == r) & (static == s)].mean() for r in (10.0, 60.0, 120.0)] for s in (0.1, 0.5)]
+    np.testing.assert_allclose(np.ma.filled(cells, np.nan).reshape(2, 3), expected, rtol=1e-15)
+    lines = ssi_lines(frame, "top_drive.rpm", "top_drive.controller.type").axes[0].get_lines()
+    kinds = ("pi", "soft_torque")
+    assert [line.get_label() for line in lines[:2]] == [f"top_drive.controller.type = {k}" for k in kinds]
+    for line, k in zip(lines, kinds):
+        np.testing.assert_array_equal(line.get_xdata(), [10.0, 60.0, 120.0])
+        means = [ssi[(rpm == r) & (kind == k)].mean() for r in (10.0, 60.0, 120.0)]
+        np.testing.assert_allclose(line.get_ydata(), means, rtol=1e-15)
+    assert np.ptp(ssi) > 0.1  # the runs differ: the averages above are not one number
     with pytest.raises(ValidationError, match="numeric axis"):
         ssi_map(frame, "top_drive.controller.type", "friction.static")
 

@@ -3,7 +3,6 @@
 import os
 
 import numpy as np
-import pandas as pd
 import pytest
 import xarray as xr
 
@@ -99,6 +98,3 @@ def test_save_replaces_a_file_atomically_and_refuses_a_directory(modal, tmp_path
     with pytest.raises(ds.ValidationError, match="path"):
         modal.save(tmp_path)
 
-
-def test_dataframe_is_a_pandas_frame(modal):
-    assert isinstance(modal.to_pandas(), pd.DataFrame)

@@ -59,3 +59,7 @@ def test_central_difference_error_is_second_order(rows):
 def test_table2_json_keys(rows):
     data = json.loads(table2_json(rows))
     assert [set(item) for item in data] == [{"method", "dt", "max_amplitude", "difference_percent"}] * 5
+    # the numbers survive the JSON exactly (repr round trip of floats)
+    assert [(d["method"], d["dt"], d["max_amplitude"], d["difference_percent"]) for d in data] == [
+        (r.method, r.dt, r.max_amplitude, r.difference_percent) for r in rows]
+    assert [d["dt"] for d in data] == [dt for _, dt, _, _ in PAPER_TABLE2]
