@@ -17,6 +17,7 @@ mod birkhoff;
 mod central;
 mod dop853;
 mod dopri5;
+pub(crate) mod events;
 mod fixed;
 mod form;
 mod grid;

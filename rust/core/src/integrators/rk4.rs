@@ -112,3 +112,15 @@ impl<S: OdeSystem + ?Sized> FixedScheme for Run<'_, S> {
         &mut self.stats
     }
 }
+
+/// One classical RK4 step of a small autonomous system `y' = f(y)` held in an array, in the
+/// form `y + h/6 (k1 + 2 k2 + 2 k3 + k4)`: the step of the event-located loop
+/// ([`super::events`]).
+pub(crate) fn rk4_step<const N: usize>(f: impl Fn(&[f64; N]) -> [f64; N], y: &[f64; N], h: f64) -> [f64; N] {
+    let add = |a: &[f64; N], k: &[f64; N], s: f64| -> [f64; N] { std::array::from_fn(|i| a[i] + s * k[i]) };
+    let k1 = f(y);
+    let k2 = f(&add(y, &k1, 0.5 * h));
+    let k3 = f(&add(y, &k2, 0.5 * h));
+    let k4 = f(&add(y, &k3, h));
+    std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
+}
