@@ -557,8 +557,7 @@ pub fn solve_lumped(
     let (k0, b0, s0) = model.energy(&y);
     let initial = k0 + b0 + s0;
     let mut sys = Switching { model: &model, mode, limit, sticks: 0, slips: 0, extra_friction: 0.0 };
-    let schedule =
-        Schedule { dt: num.dt, interval: num.output_interval, duration: num.duration, samples: n_out };
+    let schedule = Schedule { dt: num.dt, interval: num.output_interval, duration: num.duration, samples: n_out };
     let mut record = |sys: &Switching, t: f64, y: &State| {
         run.t.push(t);
         run.top_speed.push(y[0]);

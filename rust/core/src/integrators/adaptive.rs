@@ -223,6 +223,35 @@ pub(crate) fn integrate<P: Scheme, F: Form>(
     Ok(solve(&mut Run::<P, F>::new(form, t0, y0, t_end, opts), output, interrupt))
 }
 
+/// What the state of every adaptive solve holds: its options and span, the time and state
+/// reached, the state of the last attempt, the statistics.
+pub(crate) struct Core {
+    pub opts: AdaptiveOptions,
+    pub t_end: f64,
+    /// Largest step: `min(max_step, t_end - t0)`.
+    pub hmax: f64,
+    pub t: f64,
+    pub y: Vec<f64>,
+    pub y_new: Vec<f64>,
+    pub stats: Stats,
+}
+
+impl Core {
+    /// At `(t0, y0)`, nothing evaluated yet.
+    pub fn new(opts: &AdaptiveOptions, t0: f64, y0: Vec<f64>, t_end: f64) -> Self {
+        let n = y0.len();
+        Core {
+            opts: *opts,
+            t_end,
+            hmax: opts.max_step.min(t_end - t0),
+            t: t0,
+            y: y0,
+            y_new: vec![0.0; n],
+            stats: Stats::default(),
+        }
+    }
+}
+
 /// What the one adaptive loop ([`solve`]) drives: an embedded pair's state with its step
 /// attempt (the new state and its scaled error norm), the move to an accepted step with its
 /// output samples, and its step-size control. Implemented by the explicit Runge-Kutta pairs
@@ -230,17 +259,9 @@ pub(crate) fn integrate<P: Scheme, F: Form>(
 pub(crate) trait Stepper {
     /// The step-size control constants.
     fn control(&self) -> Control;
-    /// The options of the solve.
-    fn opts(&self) -> &AdaptiveOptions;
-    /// The current time and the end of the span.
-    fn t(&self) -> f64;
-    fn t_end(&self) -> f64;
-    /// Largest step: `min(max_step, t_end - t0)`.
-    fn hmax(&self) -> f64;
-    /// The current state and the state of the last attempt.
-    fn y(&self) -> &[f64];
-    fn y_new(&self) -> &[f64];
-    fn stats(&mut self) -> &mut Stats;
+    /// The span, the time, the state and the statistics.
+    fn core(&self) -> &Core;
+    fn core_mut(&mut self) -> &mut Core;
     /// Attempts the step `t -> t + h`: the new state and the scaled error norm.
     fn attempt(&mut self, h: f64) -> f64;
     /// Accepts the attempted step of size `h` ending at `t_new`: output samples and the move
@@ -280,14 +301,15 @@ pub(crate) trait Stepper {
 /// per step attempt: the samples, the status and the statistics.
 pub(crate) fn solve<R: Stepper>(run: &mut R, output: &Output, interrupt: &dyn Interrupt) -> Solution {
     let mut sampler = Sampler::new(output);
-    let mut sol = sampler.solution(run.y().len(), 1024);
+    let mut sol = sampler.solution(run.core().y.len(), 1024);
     let sampler = &mut sampler;
-    if let Err(err) = sampler.start(&mut sol, run.t(), run.y()) {
-        let (status, message) = record_failure(err, run.t(), run.t());
+    let c = run.core();
+    if let Err(err) = sampler.start(&mut sol, c.t, &c.y) {
+        let (status, message) = record_failure(err, c.t, c.t);
         sol.fail(status, message);
     } else {
-        let mut h = match run.opts().first_step {
-            Some(h) => h.min(run.hmax()),
+        let mut h = match c.opts.first_step {
+            Some(h) => h.min(c.hmax),
             None => run.hinit(),
         };
         h = run.lead_in(h);
@@ -300,11 +322,12 @@ pub(crate) fn solve<R: Stepper>(run: &mut R, output: &Output, interrupt: &dyn In
         if let Outcome::Failed(status, message) = outcome {
             sol.fail(status, message);
         } else if let Err(err) = flushed {
-            let (status, message) = record_failure(err, run.t(), run.t());
+            let t = run.core().t;
+            let (status, message) = record_failure(err, t, t);
             sol.fail(status, message);
         }
     }
-    sol.stats = *run.stats();
+    sol.stats = run.core().stats;
     sol
 }
 
@@ -324,13 +347,13 @@ fn step_loop<R: Stepper>(
     poller: &mut Poller,
 ) -> Outcome {
     let c = run.control();
-    let (t_end, hmax, max_steps) = (run.t_end(), run.hmax(), run.opts().max_steps);
+    let (t_end, hmax, max_steps) = (run.core().t_end, run.core().hmax, run.core().opts.max_steps);
     let growth = run.max_growth();
     let mut facold: f64 = 1e-4;
     let mut reject = false;
     let mut attempts: u64 = 0;
     loop {
-        let t = run.t();
+        let t = run.core().t;
         if attempts >= max_steps {
             return Outcome::Failed(Status::MaxStepsReached, max_steps_message(t, t_end, max_steps));
         }
@@ -349,7 +372,7 @@ fn step_loop<R: Stepper>(
         attempts += 1;
         let err = run.attempt(h);
         if !err.is_finite() {
-            run.stats().nreject += 1;
+            run.core_mut().stats.nreject += 1;
             reject = true;
             h *= 0.2;
             continue;
@@ -358,7 +381,7 @@ fn step_loop<R: Stepper>(
         if err <= 1.0 {
             facold = err.max(1e-4);
             let t_new = if last { t_end } else { t + h };
-            if !all_finite(run.y_new()) {
+            if !all_finite(&run.core().y_new) {
                 return Outcome::Failed(Status::NonFinite, non_finite_message(t, t_new));
             }
             if let Err(err) = run.accept(h, t_new, sampler, sol) {
@@ -379,7 +402,7 @@ fn step_loop<R: Stepper>(
         } else {
             h_new = c.rejected_step(h, err);
             reject = true;
-            run.stats().nreject += 1;
+            run.core_mut().stats.nreject += 1;
         }
         h = h_new;
     }
@@ -388,13 +411,7 @@ fn step_loop<R: Stepper>(
 /// The state of one adaptive solve; all buffers are allocated here, once.
 pub(crate) struct Run<'a, P, F> {
     form: &'a F,
-    opts: &'a AdaptiveOptions,
-    t_end: f64,
-    /// Largest step: `min(max_step, t_end - t0)`.
-    hmax: f64,
-    t: f64,
-    y: Vec<f64>,
-    y_new: Vec<f64>,
+    core: Core,
     ytmp: Vec<f64>,
     /// Scratch of the error estimate, `2 n`.
     work: Vec<f64>,
@@ -402,7 +419,6 @@ pub(crate) struct Run<'a, P, F> {
     init: Vec<f64>,
     k: Stages,
     dense: Stages,
-    stats: Stats,
     scheme: PhantomData<P>,
 }
 
@@ -412,31 +428,24 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
         let n = y0.len();
         let mut run = Run {
             form,
-            opts,
-            t_end,
-            hmax: opts.max_step.min(t_end - t0),
-            t: t0,
-            y: y0.to_vec(),
-            y_new: vec![0.0; n],
+            core: Core::new(opts, t0, y0.to_vec(), t_end),
             ytmp: vec![0.0; n],
             work: vec![0.0; 2 * n],
             init: Vec::new(),
             k: Stages::new(P::ROWS, form.row_len()),
             dense: Stages::new(P::DENSE_ROWS, n),
-            stats: Stats::default(),
             scheme: PhantomData,
         };
-        form.eval_at(&mut run.k, 0, t0, &run.y);
-        run.stats.nfev += 1;
+        form.eval_at(&mut run.k, 0, t0, &run.core.y);
+        run.core.stats.nfev += 1;
         run
     }
 
     /// `k[FSAL] = f(t_new, y_new)`.
     fn eval_fsal(&mut self, t_new: f64) {
-        self.form.eval_at(&mut self.k, P::FSAL, t_new, &self.y_new);
-        self.stats.nfev += 1;
+        self.form.eval_at(&mut self.k, P::FSAL, t_new, &self.core.y_new);
+        self.core.stats.nfev += 1;
     }
-
 }
 
 impl<P: Scheme, F: Form> Stepper for Run<'_, P, F> {
@@ -444,46 +453,32 @@ impl<P: Scheme, F: Form> Stepper for Run<'_, P, F> {
         P::CONTROL
     }
 
-    fn opts(&self) -> &AdaptiveOptions {
-        self.opts
+    fn core(&self) -> &Core {
+        &self.core
     }
 
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn t_end(&self) -> f64 {
-        self.t_end
-    }
-
-    fn hmax(&self) -> f64 {
-        self.hmax
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn y_new(&self) -> &[f64] {
-        &self.y_new
-    }
-
-    fn stats(&mut self) -> &mut Stats {
-        &mut self.stats
+    fn core_mut(&mut self) -> &mut Core {
+        &mut self.core
     }
 
     /// The stages, `y_new` and the error norm.
     fn attempt(&mut self, h: f64) -> f64 {
         let tab = P::TABLEAU;
         for s in 1..tab.stages() {
-            self.form.eval_stage(&mut self.k, s, self.t + tab.c[s] * h, h, &self.y, tab.a[s], &mut self.ytmp);
+            self.form.eval_stage(&mut self.k, s, self.core.t + tab.c[s] * h, h, &self.core.y, tab.a[s], &mut self.ytmp);
         }
-        self.stats.nfev += (tab.stages() - 1) as u64;
-        self.form.advance(&self.k, tab.b, h, &self.y, &mut self.y_new, &mut self.ytmp);
+        self.core.stats.nfev += (tab.stages() - 1) as u64;
+        self.form.advance(&self.k, tab.b, h, &self.core.y, &mut self.core.y_new, &mut self.ytmp);
         if P::FSAL_IN_ERROR {
-            self.eval_fsal(self.t + h);
+            self.eval_fsal(self.core.t + h);
         }
-        let step = Attempt { h, y: &self.y, y_new: &self.y_new, rtol: self.opts.rtol, atol: self.opts.atol };
+        let step = Attempt {
+            h,
+            y: &self.core.y,
+            y_new: &self.core.y_new,
+            rtol: self.core.opts.rtol,
+            atol: self.core.opts.atol,
+        };
         P::error_norm(self.form, &self.k, &step, &mut self.work)
     }
 
@@ -495,51 +490,58 @@ impl<P: Scheme, F: Form> Stepper for Run<'_, P, F> {
         sampler: &mut Sampler,
         sol: &mut Solution,
     ) -> std::result::Result<(), RecordError> {
-        self.stats.naccept += 1;
+        self.core.stats.naccept += 1;
         if !P::FSAL_IN_ERROR {
             self.eval_fsal(t_new);
         }
         if sampler.needs_interpolant(t_new) {
             let extra = P::dense_prepare(
                 self.form,
-                self.t,
+                self.core.t,
                 h,
-                &self.y,
-                &self.y_new,
+                &self.core.y,
+                &self.core.y_new,
                 &mut self.k,
                 &mut self.ytmp,
                 &mut self.dense,
             );
-            self.stats.nfev += extra;
-            self.stats.ndense += extra;
+            self.core.stats.nfev += extra;
+            self.core.stats.ndense += extra;
         }
         // The samples of the step in one block, written in place: the continuous extension's
         // coefficients were formed once above; per sample only the nested evaluation.
-        let (t, y, dense, dim) = (self.t, &self.y, &self.dense, self.y.len());
-        sampler.record_block(sol, t_new, &self.y_new, |times, out| {
+        let (t, y, dense, dim) = (self.core.t, &self.core.y, &self.dense, self.core.y.len());
+        sampler.record_block(sol, t_new, &self.core.y_new, |times, out| {
             for (&t_out, row) in times.iter().zip(out.chunks_exact_mut(dim)) {
                 P::dense_eval(dense, y, (t_out - t) / h, row);
             }
         })?;
-        std::mem::swap(&mut self.y, &mut self.y_new);
+        std::mem::swap(&mut self.core.y, &mut self.core.y_new);
         self.k.copy_row(P::FSAL, 0);
-        self.t = t_new;
+        self.core.t = t_new;
         Ok(())
     }
 
     /// From `f(t0, y0)` in row 0.
     fn hinit(&mut self) -> f64 {
-        let n = self.y.len();
+        let n = self.core.y.len();
         self.init.resize(2 * n, 0.0);
         let (f0, f1) = self.init.split_at_mut(n);
         // f(t0, y0) over the whole state, from row 0 (no new evaluation).
-        self.form.combine(&self.k, &[1.0], 0.0, &self.y, f0);
-        let (form, t) = (self.form, self.t);
-        let tol = (self.opts.rtol, self.opts.atol);
-        let guess = initial_step(&self.y, f0, f1, &mut self.ytmp, tol, P::CONTROL.hinit_order, self.hmax, |h, y, f| {
-            form.rhs(t + h, y, f)
-        });
-        self.stats.nfev += 1;
+        self.form.combine(&self.k, &[1.0], 0.0, &self.core.y, f0);
+        let (form, t) = (self.form, self.core.t);
+        let tol = (self.core.opts.rtol, self.core.opts.atol);
+        let guess = initial_step(
+            &self.core.y,
+            f0,
+            f1,
+            &mut self.ytmp,
+            tol,
+            P::CONTROL.hinit_order,
+            self.core.hmax,
+            |h, y, f| form.rhs(t + h, y, f),
+        );
+        self.core.stats.nfev += 1;
         guess
     }
 }
@@ -654,6 +656,6 @@ pub(crate) mod testing {
             run.attempt(h);
             run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
         }
-        run.y
+        run.core.y
     }
 }

@@ -12,35 +12,14 @@
 //! cubic Hermite with derivative `a(q)`. `Stats::nfev` counts evaluations of `a`
 //! (one per grid point).
 
-use super::fixed::{FixedScheme, SecondOrderEnds};
-use super::sampling::{RecordError, Sampler};
-use crate::error::Result;
-use crate::interrupt::Interrupt;
-use crate::options::{FixedOptions, Output};
+use super::fixed::{FixedScheme, SecondOrderEnds, SecondOrderScheme};
+use super::sampling::{Recorded, Sampler};
+use super::Method;
 use crate::solution::{Solution, Stats};
 use crate::system::SecondOrderSystem;
 
-/// Solves `q'' = a(q)` from `(q0, v0)` by central differences (see the module docs).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t0: f64,
-    q0: &[f64],
-    v0: &[f64],
-    t_end: f64,
-    output: &Output,
-    opts: &FixedOptions,
-    interrupt: &dyn Interrupt,
-) -> Result<Solution> {
-    if sys.velocity_dependent() {
-        return Err(super::refuse_velocity_dependent(super::Method::Central));
-    }
-    let check = || super::check_state("q0", q0, sys.dof()).and_then(|()| super::check_state("v0", v0, sys.dof()));
-    super::fixed::integrate((t0, t_end), output, opts, interrupt, check, |dt| Run::new(sys, q0, v0, dt))
-}
-
 /// Buffers of one central-difference solve, allocated once.
-struct Run<'a, S: ?Sized> {
+pub(crate) struct Central<'a, S: ?Sized> {
     sys: &'a S,
     dt: f64,
     /// `q_{n-1}`.
@@ -54,11 +33,13 @@ struct Run<'a, S: ?Sized> {
     stats: Stats,
 }
 
-impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
+impl<'a, S: SecondOrderSystem + ?Sized> SecondOrderScheme<'a, S> for Central<'a, S> {
+    const METHOD: Method = Method::Central;
+
     /// Sets up `[q_0, v_0]`, `a(q_0)` and the start `q_1 = q_0 + dt v_0`.
     fn new(sys: &'a S, q0: &[f64], v0: &[f64], dt: f64) -> Self {
         let dof = q0.len();
-        let mut run = Run {
+        let mut run = Central {
             sys,
             dt,
             q_prev: q0.to_vec(),
@@ -73,7 +54,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     }
 }
 
-impl<S: SecondOrderSystem + ?Sized> FixedScheme for Run<'_, S> {
+impl<S: SecondOrderSystem + ?Sized> FixedScheme for Central<'_, S> {
     fn start(&self) -> &[f64] {
         &self.ends.state
     }
@@ -97,14 +78,7 @@ impl<S: SecondOrderSystem + ?Sized> FixedScheme for Run<'_, S> {
     }
 
     /// Records the interval `t -> t_new` and shifts the two-step history.
-    fn record(
-        &mut self,
-        t: f64,
-        t_new: f64,
-        _h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn record(&mut self, t: f64, t_new: f64, _h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         self.ends.record(t, t_new, self.dt, sampler, sol)?;
         // (q_{n-1}, q_n, q_{n+1}) <- (q_n, q_{n+1}, unused)
         std::mem::swap(&mut self.q_prev, &mut self.q);

@@ -5,12 +5,15 @@
 
 use super::grid::Grid;
 use super::hermite::hermite;
-use super::sampling::{record_failure, RecordError, Sampler};
+use super::sampling::{record_failure, Recorded, Sampler};
 use super::tableau::all_finite;
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
 use crate::options::{validate_span, FixedOptions, Output};
 use crate::solution::{Solution, Stats, Status};
+use crate::system::SecondOrderSystem;
+
+use super::Method;
 
 /// A fixed-step scheme as the loop of [`integrate`] drives it.
 pub(crate) trait FixedScheme {
@@ -22,14 +25,7 @@ pub(crate) trait FixedScheme {
     fn new_state(&self) -> &[f64];
     /// Records the samples of the step `t -> t_new` of size `h` (interpolated inside it) and
     /// moves to the new state.
-    fn record(
-        &mut self,
-        t: f64,
-        t_new: f64,
-        h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError>;
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded;
     fn stats(&mut self) -> &mut Stats;
 }
 
@@ -82,6 +78,34 @@ fn steps<R: FixedScheme>(
     Ok(())
 }
 
+/// A scheme for `q'' = a(q)` on the state `[q, v]`, solved by [`second_order`].
+pub(crate) trait SecondOrderScheme<'a, S: ?Sized>: FixedScheme {
+    /// The method, named when forces that depend on the velocity are refused.
+    const METHOD: Method;
+    /// The scheme at `(q0, v0)` with the grid's step `dt` (`a(q0)` evaluated).
+    fn new(sys: &'a S, q0: &[f64], v0: &[f64], dt: f64) -> Self;
+}
+
+/// Solves `q'' = a(q)` from `(q0, v0)` by the scheme `R`: a system whose forces depend on the
+/// velocity is refused (an error naming `method`), then [`integrate`] with `q0`, `v0` checked.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn second_order<'a, R: SecondOrderScheme<'a, S>, S: SecondOrderSystem + ?Sized>(
+    sys: &'a S,
+    t0: f64,
+    q0: &[f64],
+    v0: &[f64],
+    t_end: f64,
+    output: &Output,
+    opts: &FixedOptions,
+    interrupt: &dyn Interrupt,
+) -> Result<Solution> {
+    if sys.velocity_dependent() {
+        return Err(super::refuse_velocity_dependent(R::METHOD));
+    }
+    let check = || super::check_state("q0", q0, sys.dof()).and_then(|()| super::check_state("v0", v0, sys.dof()));
+    integrate((t0, t_end), output, opts, interrupt, check, |dt| R::new(sys, q0, v0, dt))
+}
+
 /// The ends of a step of a second-order scheme, `[q, v]` and `a(q)` at both, and its samples:
 /// `q` by cubic Hermite with derivative `v`, `v` by cubic Hermite with derivative `a(q)`.
 pub(crate) struct SecondOrderEnds {
@@ -110,14 +134,7 @@ impl SecondOrderEnds {
     }
 
     /// Records the samples of the step `t -> t_new` of size `h` and moves to its end.
-    pub fn record(
-        &mut self,
-        t: f64,
-        t_new: f64,
-        h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    pub fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         let dof = self.dof;
         let (q0, v0) = self.state.split_at(dof);
         let (q1, v1) = self.state_new.split_at(dof);

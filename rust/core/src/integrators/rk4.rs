@@ -12,7 +12,7 @@
 
 use super::fixed::FixedScheme;
 use super::hermite::hermite;
-use super::sampling::{RecordError, Sampler};
+use super::sampling::{Recorded, Sampler};
 use super::tableau::{Stages, RK4};
 use crate::error::Result;
 use crate::interrupt::Interrupt;
@@ -84,14 +84,7 @@ impl<S: OdeSystem + ?Sized> FixedScheme for Run<'_, S> {
         &self.y_new
     }
 
-    fn record(
-        &mut self,
-        t: f64,
-        t_new: f64,
-        h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         if sampler.needs_interpolant(t_new) {
             self.sys.rhs(t_new, &self.y_new, &mut self.f_new);
             self.stats.nfev += 1;

@@ -27,14 +27,14 @@
 //! node); otherwise the steps are those of every-step output, and they do not depend on how
 //! many output times there are.
 
-use super::adaptive::{initial_step, min_step, solve, Control, Stepper};
+use super::adaptive::{initial_step, min_step, solve, Control, Core, Stepper};
 use super::birkhoff::Birkhoff;
 use super::sampling::{RecordError, Sampler};
 use super::tableau::{all_finite, Stages};
 use crate::error::Result;
 use crate::interrupt::Interrupt;
 use crate::options::{validate_span, AdaptiveOptions, Output};
-use crate::solution::{Solution, Stats};
+use crate::solution::Solution;
 use crate::system::SecondOrderSystem;
 
 /// An embedded explicit Runge-Kutta-Nystrom pair for `q'' = a(q)` as data.
@@ -91,14 +91,9 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
 struct Run<'a, S: ?Sized> {
     pair: &'static RknPair,
     sys: &'a S,
-    opts: &'a AdaptiveOptions,
     n: usize,
-    t_end: f64,
-    hmax: f64,
-    t: f64,
-    /// `[q, v]`.
-    y: Vec<f64>,
-    y_new: Vec<f64>,
+    /// The state `[q, v]`.
+    core: Core,
     /// A stage position, `n`.
     qs: Vec<f64>,
     /// The error estimate `[e_q, e_v]`, `2 n`.
@@ -107,7 +102,6 @@ struct Run<'a, S: ?Sized> {
     k: Stages,
     /// The interpolant of the step ends, for output times (`None`: every-step output).
     dense: Option<Birkhoff>,
-    stats: Stats,
 }
 
 impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
@@ -119,7 +113,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         q0: &[f64],
         v0: &[f64],
         t_end: f64,
-        opts: &'a AdaptiveOptions,
+        opts: &AdaptiveOptions,
         dense: bool,
     ) -> Self {
         assert!(pair.stages() <= MAX_STAGES, "{} stages exceed {MAX_STAGES}", pair.stages());
@@ -127,21 +121,15 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         let mut run = Run {
             pair,
             sys,
-            opts,
             n,
-            t_end,
-            hmax: opts.max_step.min(t_end - t0),
-            t: t0,
-            y: [q0, v0].concat(),
-            y_new: vec![0.0; 2 * n],
+            core: Core::new(opts, t0, [q0, v0].concat(), t_end),
             qs: vec![0.0; n],
             err: vec![0.0; 2 * n],
             k: Stages::new(pair.stages(), n),
             dense: dense.then(|| Birkhoff::new(n)),
-            stats: Stats::default(),
         };
         sys.acceleration(q0, run.k.row_mut(0));
-        run.stats.nfev += 1;
+        run.core.stats.nfev += 1;
         run
     }
 
@@ -164,7 +152,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         }
         d.skip(ends.len());
         // `extra_ends` left the state at `t0` as it found it.
-        d.push(self.t, &self.y, self.k.row(0));
+        d.push(self.core.t, &self.core.y, self.k.row(0));
         if ends.is_empty() {
             h
         } else {
@@ -193,7 +181,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     #[allow(clippy::type_complexity)]
     fn extra_ends(&mut self, h: f64) -> (Vec<(f64, Vec<f64>, Vec<f64>)>, f64) {
         let n = self.n;
-        let (t0, y0, a0) = (self.t, self.y.clone(), self.k.row(0).to_vec());
+        let (t0, y0, a0) = (self.core.t, self.core.y.clone(), self.k.row(0).to_vec());
         let mut ends: Vec<(f64, Vec<f64>, Vec<f64>)> = Vec::with_capacity(LEAD_IN);
         let (sign, mut size) = (h.signum(), h.abs());
         let mut t = t0;
@@ -202,23 +190,22 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                 break;
             }
             let err = self.attempt(sign * size);
-            self.stats.ndense += (self.pair.stages() - 1) as u64;
-            if err.is_nan() || err > 1.0 || !all_finite(&self.y_new) {
+            self.core.stats.ndense += (self.pair.stages() - 1) as u64;
+            if err.is_nan() || err > 1.0 || !all_finite(&self.core.y_new) {
                 size = if err.is_finite() { self.pair.control.rejected_step(size, err) } else { 0.2 * size };
                 continue;
             }
-            std::mem::swap(&mut self.y, &mut self.y_new);
+            std::mem::swap(&mut self.core.y, &mut self.core.y_new);
             t += sign * size;
-            self.sys.acceleration(&self.y[..n], self.k.row_mut(0));
-            self.stats.nfev += 1;
-            self.stats.ndense += 1;
-            ends.push((t, self.y.clone(), self.k.row(0).to_vec()));
+            self.sys.acceleration(&self.core.y[..n], self.k.row_mut(0));
+            self.core.stats.nfev += 1;
+            self.core.stats.ndense += 1;
+            ends.push((t, self.core.y.clone(), self.k.row(0).to_vec()));
         }
-        self.y.copy_from_slice(&y0);
+        self.core.y.copy_from_slice(&y0);
         self.k.row_mut(0).copy_from_slice(&a0);
         (ends, sign * size)
     }
-
 }
 
 impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
@@ -226,44 +213,24 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
         self.pair.control
     }
 
-    fn opts(&self) -> &AdaptiveOptions {
-        self.opts
+    fn core(&self) -> &Core {
+        &self.core
     }
 
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn t_end(&self) -> f64 {
-        self.t_end
-    }
-
-    fn hmax(&self) -> f64 {
-        self.hmax
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn y_new(&self) -> &[f64] {
-        &self.y_new
-    }
-
-    fn stats(&mut self) -> &mut Stats {
-        &mut self.stats
+    fn core_mut(&mut self) -> &mut Core {
+        &mut self.core
     }
 
     /// The stages, `y_new` and the error norm.
     fn attempt(&mut self, h: f64) -> f64 {
         let (pair, n) = (self.pair, self.n);
-        let (q, v) = self.y.split_at(n);
+        let (q, v) = self.core.y.split_at(n);
         for s in 1..pair.stages() {
             self.k.axpy_combine_plus(q, h * h, pair.a[s], v, h * pair.c[s], &mut self.qs);
             self.sys.acceleration(&self.qs, self.k.row_mut(s));
         }
-        self.stats.nfev += (pair.stages() - 1) as u64;
-        let (q_new, v_new) = self.y_new.split_at_mut(n);
+        self.core.stats.nfev += (pair.stages() - 1) as u64;
+        let (q_new, v_new) = self.core.y_new.split_at_mut(n);
         self.k.axpy_combine_plus(q, h * h, pair.b, v, h, q_new);
         self.k.axpy_combine(v, h, pair.bp, v_new);
         let mut weights = [0.0; MAX_STAGES];
@@ -276,8 +243,14 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
             *w = h * e;
         }
         self.k.combine(&weights[..pair.stages()], e_v);
-        let (sum, _) =
-            super::adaptive::scaled_sums(&self.err, &self.err, &self.y, &self.y_new, self.opts.rtol, self.opts.atol);
+        let (sum, _) = super::adaptive::scaled_sums(
+            &self.err,
+            &self.err,
+            &self.core.y,
+            &self.core.y_new,
+            self.core.opts.rtol,
+            self.core.opts.atol,
+        );
         (sum / (2 * n) as f64).sqrt()
     }
 
@@ -290,17 +263,17 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
         sampler: &mut Sampler,
         sol: &mut Solution,
     ) -> std::result::Result<(), RecordError> {
-        self.stats.naccept += 1;
-        std::mem::swap(&mut self.y, &mut self.y_new);
-        self.t = t_new;
-        self.sys.acceleration(&self.y[..self.n], self.k.row_mut(0));
-        self.stats.nfev += 1;
+        self.core.stats.naccept += 1;
+        std::mem::swap(&mut self.core.y, &mut self.core.y_new);
+        self.core.t = t_new;
+        self.sys.acceleration(&self.core.y[..self.n], self.k.row_mut(0));
+        self.core.stats.nfev += 1;
         match self.dense.as_mut() {
             Some(d) => {
-                d.push(t_new, &self.y, self.k.row(0));
+                d.push(t_new, &self.core.y, self.k.row(0));
                 d.emit(sampler, sol, false)
             }
-            None => sampler.record(sol, t_new, &self.y, &mut [], |_, _| {}),
+            None => sampler.record(sol, t_new, &self.core.y, &mut [], |_, _| {}),
         }
     }
 
@@ -310,17 +283,17 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
         let mut f0 = vec![0.0; 2 * n];
         let mut f1 = vec![0.0; 2 * n];
         let mut ytmp = vec![0.0; 2 * n];
-        f0[..n].copy_from_slice(&self.y[n..]);
+        f0[..n].copy_from_slice(&self.core.y[n..]);
         f0[n..].copy_from_slice(self.k.row(0));
         let sys = self.sys;
-        let tol = (self.opts.rtol, self.opts.atol);
+        let tol = (self.core.opts.rtol, self.core.opts.atol);
         let order = self.pair.control.hinit_order;
-        let guess = initial_step(&self.y, &f0, &mut f1, &mut ytmp, tol, order, self.hmax, |_, y, f| {
+        let guess = initial_step(&self.core.y, &f0, &mut f1, &mut ytmp, tol, order, self.core.hmax, |_, y, f| {
             let (fq, fv) = f.split_at_mut(n);
             fq.copy_from_slice(&y[n..]);
             sys.acceleration(&y[..n], fv);
         });
-        self.stats.nfev += 1;
+        self.core.stats.nfev += 1;
         guess
     }
 
@@ -394,6 +367,6 @@ pub(crate) mod testing {
             est = run.err.iter().fold(est, |m, e| m.max(e.abs()));
             run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
         }
-        (run.y, est)
+        (run.core.y, est)
     }
 }

@@ -16,52 +16,33 @@
 //! interpolated by cubic Hermite with derivative `v`, and `v` by cubic Hermite with
 //! derivative `a(q)`, exactly as for central differences.
 
-use super::fixed::{FixedScheme, SecondOrderEnds};
-use super::sampling::{RecordError, Sampler};
-use crate::error::Result;
-use crate::interrupt::Interrupt;
-use crate::options::{FixedOptions, Output};
+use super::fixed::{FixedScheme, SecondOrderEnds, SecondOrderScheme};
+use super::sampling::{Recorded, Sampler};
+use super::Method;
 use crate::solution::{Solution, Stats};
 use crate::system::SecondOrderSystem;
 
-/// Solves `q'' = a(q)` from `(q0, v0)` by velocity Verlet (see the module docs).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t0: f64,
-    q0: &[f64],
-    v0: &[f64],
-    t_end: f64,
-    output: &Output,
-    opts: &FixedOptions,
-    interrupt: &dyn Interrupt,
-) -> Result<Solution> {
-    if sys.velocity_dependent() {
-        return Err(super::refuse_velocity_dependent(super::Method::Verlet));
-    }
-    let check = || super::check_state("q0", q0, sys.dof()).and_then(|()| super::check_state("v0", v0, sys.dof()));
-    super::fixed::integrate((t0, t_end), output, opts, interrupt, check, |_| Run::new(sys, q0, v0))
-}
-
 /// Buffers of one Verlet solve, allocated once.
-struct Run<'a, S: ?Sized> {
+pub(crate) struct Verlet<'a, S: ?Sized> {
     sys: &'a S,
     /// `[q_n, v_n]`, `a(q_n)` and `[q_{n+1}, v_{n+1}]`, `a(q_{n+1})`.
     ends: SecondOrderEnds,
     stats: Stats,
 }
 
-impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
+impl<'a, S: SecondOrderSystem + ?Sized> SecondOrderScheme<'a, S> for Verlet<'a, S> {
+    const METHOD: Method = Method::Verlet;
+
     /// Sets up `[q_0, v_0]` and `a(q_0)`.
-    fn new(sys: &'a S, q0: &[f64], v0: &[f64]) -> Self {
-        let mut run = Run { sys, ends: SecondOrderEnds::new(q0, v0), stats: Stats::default() };
+    fn new(sys: &'a S, q0: &[f64], v0: &[f64], _dt: f64) -> Self {
+        let mut run = Verlet { sys, ends: SecondOrderEnds::new(q0, v0), stats: Stats::default() };
         sys.acceleration(q0, &mut run.ends.acc);
         run.stats.nfev += 1;
         run
     }
 }
 
-impl<S: SecondOrderSystem + ?Sized> FixedScheme for Run<'_, S> {
+impl<S: SecondOrderSystem + ?Sized> FixedScheme for Verlet<'_, S> {
     fn start(&self) -> &[f64] {
         &self.ends.state
     }
@@ -88,14 +69,7 @@ impl<S: SecondOrderSystem + ?Sized> FixedScheme for Run<'_, S> {
         &self.ends.state_new
     }
 
-    fn record(
-        &mut self,
-        t: f64,
-        t_new: f64,
-        h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         self.ends.record(t, t_new, h, sampler, sol)
     }
 
@@ -109,6 +83,8 @@ mod tests {
     use super::super::tests::{slope, Duffing, Harmonic};
     use super::super::{rk4, verlet, Method, SolveOptions};
     use super::*;
+    use crate::error::Result;
+    use crate::options::{FixedOptions, Output};
     use crate::solution::Status;
     use crate::system::FirstOrder;
 
