@@ -32,7 +32,7 @@
 use std::marker::PhantomData;
 
 use super::form::Form;
-use super::sampling::{record_failure, RecordError, Sampler};
+use super::sampling::{record_failure, Recorded, Sampler};
 use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Num;
 use crate::error::Result;
@@ -266,13 +266,7 @@ pub(crate) trait Stepper {
     fn attempt(&mut self, h: f64) -> f64;
     /// Accepts the attempted step of size `h` ending at `t_new`: output samples and the move
     /// to the new state. `Err`: a sample could not be recorded (see [`Sampler::record`]).
-    fn accept(
-        &mut self,
-        h: f64,
-        t_new: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError>;
+    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded;
     /// Hairer's initial step guess ([`initial_step`]).
     fn hinit(&mut self) -> f64;
     /// The largest ratio of consecutive steps (`None`: no bound but `hmax`); with a bound a
@@ -287,12 +281,7 @@ pub(crate) trait Stepper {
     }
     /// After the loop (`done`: the size of the last step when `t_end` was reached): samples
     /// still to be recorded.
-    fn finish(
-        &mut self,
-        _done: Option<f64>,
-        _sampler: &mut Sampler,
-        _sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn finish(&mut self, _done: Option<f64>, _sampler: &mut Sampler, _sol: &mut Solution) -> Recorded {
         Ok(())
     }
 }
@@ -483,13 +472,7 @@ impl<P: Scheme, F: Form> Stepper for Run<'_, P, F> {
     }
 
     /// FSAL derivative, output samples, and the move to the new state.
-    fn accept(
-        &mut self,
-        h: f64,
-        t_new: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         self.core.stats.naccept += 1;
         if !P::FSAL_IN_ERROR {
             self.eval_fsal(t_new);

@@ -138,3 +138,30 @@ pub(crate) fn solve<const N: usize, S: EventSystem<N>>(
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solution::reserve_outputs;
+
+    /// The bisection brackets the sign change of `h^2 - 2` in adjacent numbers around sqrt(2).
+    #[test]
+    fn locate_brackets_the_root_to_the_last_bit() {
+        let (lo, hi) = locate(|h| h * h - 2.0, 4.0);
+        assert!(lo * lo - 2.0 <= 0.0 && hi * hi - 2.0 > 0.0);
+        assert_eq!(f64::from_bits(lo.to_bits() + 1), hi);
+        assert!((lo - std::f64::consts::SQRT_2).abs() <= f64::EPSILON * 2.0);
+    }
+
+    /// Output storage the system cannot give is refused with its size, not an abort.
+    #[test]
+    fn an_impossible_output_reservation_is_refused_with_its_size() {
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        assert!(reserve_outputs(&mut [(&mut a, 10), (&mut b, 20)]).is_ok());
+        assert!(a.capacity() >= 10 && b.capacity() >= 20);
+        let huge = usize::MAX / 16;
+        let err = reserve_outputs(&mut [(&mut a, huge), (&mut b, 3)]).unwrap_err();
+        assert_eq!(err.bytes, (huge + 3) * 8);
+        assert!(err.outputs_message().starts_with("the outputs ("), "{}", err.outputs_message());
+    }
+}

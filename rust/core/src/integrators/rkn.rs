@@ -29,7 +29,7 @@
 
 use super::adaptive::{initial_step, min_step, solve, Control, Core, Stepper};
 use super::birkhoff::Birkhoff;
-use super::sampling::{RecordError, Sampler};
+use super::sampling::{Recorded, Sampler};
 use super::tableau::{all_finite, Stages};
 use crate::error::Result;
 use crate::interrupt::Interrupt;
@@ -256,13 +256,7 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
 
     /// The acceleration at `t_new` (`K_0` of the next step), the output samples, and the move
     /// to the new state.
-    fn accept(
-        &mut self,
-        _h: f64,
-        t_new: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn accept(&mut self, _h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         self.core.stats.naccept += 1;
         std::mem::swap(&mut self.core.y, &mut self.core.y_new);
         self.core.t = t_new;
@@ -313,12 +307,7 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
 
     /// With output times, the ends after `t_end` when it was reached ([`Run::lead_out`]), then
     /// the output intervals still waiting for later step ends, from the ends reached.
-    fn finish(
-        &mut self,
-        done: Option<f64>,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn finish(&mut self, done: Option<f64>, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         if let (Some(h_last), true) = (done, self.dense.is_some()) {
             self.lead_out(h_last);
         }
