@@ -79,6 +79,25 @@ pub struct OutOfMemory {
     pub bytes: usize,
 }
 
+impl OutOfMemory {
+    /// The message of a run whose outputs could not be allocated up front.
+    pub fn outputs_message(self) -> String {
+        format!("the outputs ({} MiB) could not be allocated", self.bytes >> 20)
+    }
+}
+
+/// Reserves, exactly and without aborting, room for `len` more values in each output vector
+/// `(vector, len)` (the sample storage of a run, sized up front). `Err` carries the bytes of
+/// all of them; the vectors reserved before the refusal keep their room.
+pub fn reserve_outputs(outputs: &mut [(&mut Vec<f64>, usize)]) -> std::result::Result<(), OutOfMemory> {
+    if outputs.iter_mut().all(|(v, len)| v.try_reserve_exact(*len).is_ok()) {
+        Ok(())
+    } else {
+        let values = outputs.iter().fold(0usize, |sum, (_, len)| sum.saturating_add(*len));
+        Err(OutOfMemory { bytes: values.saturating_mul(8) })
+    }
+}
+
 /// The samples of one solve: `t[k]` and the state `y[k * dim .. (k + 1) * dim]`.
 ///
 /// When the solve stops early (any status other than [`Status::Success`]) the samples
@@ -114,7 +133,7 @@ impl Solution {
             dissipated: Vec::new(),
         };
         let values = capacity.saturating_mul(dim);
-        if sol.t.try_reserve_exact(capacity).is_err() || sol.y.try_reserve_exact(values).is_err() {
+        if reserve_outputs(&mut [(&mut sol.t, capacity), (&mut sol.y, values)]).is_err() {
             sol.t = Vec::new();
             sol.y = Vec::new();
         }

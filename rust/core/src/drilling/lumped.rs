@@ -60,17 +60,16 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Num, Result};
-use crate::interrupt::{Interrupt, Poller};
+use crate::integrators::events::{self, EventSystem, Schedule};
+use crate::interrupt::Interrupt;
 use crate::metrics::{stick_slip, StickSlip, STICK_SPEED};
-use crate::solution::Status;
+use crate::solution::{reserve_outputs, Status};
 
 use super::bit::{friction_coefficient, slip_torque};
 use super::config::{finite, nonneg, pos, MAX_DURATION, MAX_OUTPUT_BYTES};
 
 /// The most output samples of a run: five series of `f64` within [`MAX_OUTPUT_BYTES`].
 pub const MAX_SAMPLES: usize = MAX_OUTPUT_BYTES / (5 * 8);
-/// Consecutive switches without advancing time before a run stops (`step_size_underflow`).
-const MAX_STALLED: u32 = 16;
 /// The most time steps of a run.
 pub const MAX_STEPS: f64 = 1e9;
 
@@ -426,36 +425,73 @@ impl<'p> Model<'p> {
         ]
     }
 
-    fn rk4(&self, mode: Mode, y: &State, h: f64) -> State {
-        let add = |a: &State, k: &State, s: f64| -> State { std::array::from_fn(|i| a[i] + s * k[i]) };
-        let k1 = self.rhs(mode, y);
-        let k2 = self.rhs(mode, &add(y, &k1, 0.5 * h));
-        let k3 = self.rhs(mode, &add(y, &k2, 0.5 * h));
-        let k4 = self.rhs(mode, &add(y, &k3, h));
-        std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
-    }
-
     fn energy(&self, y: &State) -> (f64, f64, f64) {
         let p = self.p;
         (0.5 * p.jr * y[0] * y[0], 0.5 * p.jb * y[2] * y[2], 0.5 * p.kt * y[1] * y[1])
     }
+}
 
-    /// The largest `h` in `[0, h_max]` with `event(rk4(y, h)) <= 0` given `event(y) <= 0 <
-    /// event(rk4(y, h_max))`, by bisection to the last bit; returns `(h_before, h_after)`.
-    fn locate(&self, mode: Mode, y: &State, h_max: f64, event: impl Fn(&State) -> f64) -> (f64, f64) {
-        let (mut lo, mut hi) = (0.0, h_max);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
+/// The model in its current mode as the event-located loop ([`events::solve`]) steps it, with
+/// the counts of its switches and the bit's kinetic energy rounded away where it comes to rest.
+struct Switching<'m, 'p> {
+    model: &'m Model<'p>,
+    mode: Mode,
+    /// The static limit `Wob Rb mu_sb`.
+    limit: f64,
+    sticks: u64,
+    slips: u64,
+    extra_friction: f64,
+}
+
+impl EventSystem<6> for Switching<'_, '_> {
+    fn rhs(&self, y: &State) -> State {
+        self.model.rhs(self.mode, y)
+    }
+
+    /// Slipping in the direction `dir`: `-dir wb` (the bit reaches rest); stuck: the applied
+    /// torque's excess over the static limit.
+    fn root(&self, y: &State) -> f64 {
+        match self.mode {
+            Mode::Slip(dir) => -dir * y[2],
+            Mode::Stuck => self.model.applied(y).abs() - self.limit,
+        }
+    }
+
+    /// A slipping bit stops where it reaches rest; a stuck one slips from the first state
+    /// past the static limit.
+    fn stop_before(&self) -> bool {
+        matches!(self.mode, Mode::Slip(_))
+    }
+
+    /// Slipping: at rest (or below `d_v` in magnitude) the bit sticks if the applied torque is
+    /// within the static limit, else (at rest) slips on in the direction of that torque.
+    /// Stuck: past the limit the bit slips in the direction of the applied torque.
+    fn switch(&mut self, y1: &mut State, crossed: bool) {
+        let p = self.model.p;
+        match self.mode {
+            Mode::Slip(_) => {
+                if crossed || y1[2].abs() < p.d_v {
+                    let a = self.model.applied(y1);
+                    if a.abs() <= self.limit {
+                        self.extra_friction += 0.5 * p.jb * y1[2] * y1[2];
+                        y1[2] = 0.0;
+                        self.mode = Mode::Stuck;
+                        self.sticks += 1;
+                    } else if crossed {
+                        // At rest with more than the static limit applied: slips on that way.
+                        self.extra_friction += 0.5 * p.jb * y1[2] * y1[2];
+                        y1[2] = 0.0;
+                        self.mode = Mode::Slip(a.signum());
+                    }
+                }
             }
-            if event(&self.rk4(mode, y, mid)) <= 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
+            Mode::Stuck => {
+                if crossed {
+                    self.mode = Mode::Slip(self.model.applied(y1).signum());
+                    self.slips += 1;
+                }
             }
         }
-        (lo, hi)
     }
 }
 
@@ -500,17 +536,15 @@ pub fn solve_lumped(
         status: Status::Success,
         message: String::new(),
     };
-    let reserved = [&mut run.t, &mut run.top_speed, &mut run.bit_speed, &mut run.spring_torque, &mut run.bit_torque]
-        .into_iter()
-        .all(|v| v.try_reserve_exact(n_out).is_ok());
-    if !reserved {
+    let outputs = [&mut run.t, &mut run.top_speed, &mut run.bit_speed, &mut run.spring_torque, &mut run.bit_torque];
+    if let Err(oom) = reserve_outputs(&mut outputs.map(|v| (v, n_out))) {
         run.status = Status::OutOfMemory;
-        run.message = format!("the outputs ({} MiB) could not be allocated", (n_out * 5 * 8) >> 20);
+        run.message = oom.outputs_message();
         return Ok(run);
     }
     let [wr0, phi0, wb0] = num.initial;
     let mut y: State = [wr0, phi0, wb0, 0.0, 0.0, 0.0];
-    let mut mode = if wb0 != 0.0 {
+    let mode = if wb0 != 0.0 {
         Mode::Slip(wb0.signum())
     } else {
         let a = model.applied(&y);
@@ -522,90 +556,19 @@ pub fn solve_lumped(
     };
     let (k0, b0, s0) = model.energy(&y);
     let initial = k0 + b0 + s0;
-    let mut extra_friction = 0.0;
-    let record = |run: &mut LumpedRun, t: f64, y: &State, mode: Mode| {
+    let mut sys = Switching { model: &model, mode, limit, sticks: 0, slips: 0, extra_friction: 0.0 };
+    let schedule = Schedule { dt: num.dt, interval: num.output_interval, duration: num.duration, samples: n_out };
+    let mut record = |sys: &Switching, t: f64, y: &State| {
         run.t.push(t);
         run.top_speed.push(y[0]);
         run.bit_speed.push(y[2]);
         run.spring_torque.push(p.kt * y[1]);
-        run.bit_torque.push(model.bit(mode, y));
+        run.bit_torque.push(model.bit(sys.mode, y));
     };
-    record(&mut run, 0.0, &y, mode);
-    let mut poller = Poller::new(interrupt);
-    let mut t = 0.0;
-    let mut k_out = 1usize;
-    let mut next_progress = 0.0;
-    let mut stalled = 0u32;
-    while k_out < n_out {
-        let t_out = (k_out as f64 * num.output_interval).min(num.duration);
-        if poller.poll(t) {
-            run.status = Status::Interrupted;
-            run.message = format!("interrupted at t = {} s", Num(t));
-            break;
-        }
-        let span = t_out - t;
-        let mut h = span.min(num.dt);
-        let mut y1 = model.rk4(mode, &y, h);
-        let mut next_mode = mode;
-        match mode {
-            Mode::Slip(dir) => {
-                let crossed = dir * y1[2] < 0.0;
-                if crossed {
-                    // The bit reaches rest within the step: stop there.
-                    h = model.locate(mode, &y, h, |s| -dir * s[2]).0;
-                    y1 = model.rk4(mode, &y, h);
-                }
-                if crossed || y1[2].abs() < p.d_v {
-                    let a = model.applied(&y1);
-                    if a.abs() <= limit {
-                        extra_friction += 0.5 * p.jb * y1[2] * y1[2];
-                        y1[2] = 0.0;
-                        next_mode = Mode::Stuck;
-                        run.sticks += 1;
-                    } else if crossed {
-                        // At rest with more than the static limit applied: slips on that way.
-                        extra_friction += 0.5 * p.jb * y1[2] * y1[2];
-                        y1[2] = 0.0;
-                        next_mode = Mode::Slip(a.signum());
-                    }
-                }
-            }
-            Mode::Stuck => {
-                if model.applied(&y1).abs() > limit {
-                    h = model.locate(mode, &y, h, |s| model.applied(s).abs() - limit).1;
-                    y1 = model.rk4(mode, &y, h);
-                    next_mode = Mode::Slip(model.applied(&y1).signum());
-                    run.slips += 1;
-                }
-            }
-        }
-        let reached = h >= span;
-        // A switch located at the very start of the step again and again (a torque grazing
-        // the static limit) would not advance: stop with a status instead of spinning.
-        stalled = if t + h > t { 0 } else { stalled + 1 };
-        if stalled > MAX_STALLED {
-            run.status = Status::StepSizeUnderflow;
-            run.message = format!("the stick and slip switches did not advance at t = {} s", Num(t));
-            break;
-        }
-        t = if reached { t_out } else { t + h };
-        y = y1;
-        mode = next_mode;
-        run.steps += 1;
-        if !y.iter().all(|v| v.is_finite()) {
-            run.status = Status::NonFinite;
-            run.message = format!("the state became non-finite before t = {} s", Num(t));
-            break;
-        }
-        if reached {
-            record(&mut run, t, &y, mode);
-            k_out += 1;
-        }
-        if t >= next_progress {
-            progress(t / num.duration);
-            next_progress = t + 1e-3 * num.duration;
-        }
-    }
+    let outcome = events::solve(&mut sys, &mut y, schedule, interrupt, &mut record, progress);
+    (run.steps, run.sticks, run.slips, run.status, run.message) =
+        (outcome.steps, sys.sticks, sys.slips, outcome.status, outcome.message);
+    let extra_friction = sys.extra_friction;
     let (kt_, kb, sp) = model.energy(&y);
     let friction = y[5] + extra_friction;
     let residual = y[3] - (kt_ + kb + sp - initial) - y[4] - friction;
@@ -727,55 +690,18 @@ pub fn equilibria(p: &LumpedParams) -> Result<Equilibria> {
     Ok(Equilibria { rotations, stuck_possible: p.tm <= p.static_limit(), regime })
 }
 
-/// The eigenvalues of a real 3x3 matrix, `(re, im)` by increasing real part (then imaginary):
-/// a real root of the characteristic cubic `l^3 + c2 l^2 + c1 l + c0` by bisection on the
-/// Cauchy bound and Newton polishing, the other two from the deflated quadratic.
+/// The eigenvalues of a real 3x3 matrix, `(re, im)` by increasing real part (then imaginary),
+/// by faer's real Schur decomposition (a real eigenvalue has `im = 0` exactly). NaN when the
+/// QR iteration does not converge (a matrix with non-finite entries).
 pub fn eigenvalues3(m: &[[f64; 3]; 3]) -> [(f64, f64); 3] {
-    let tr = m[0][0] + m[1][1] + m[2][2];
-    let minors = m[0][0] * m[1][1] - m[0][1] * m[1][0] + m[0][0] * m[2][2] - m[0][2] * m[2][0] + m[1][1] * m[2][2]
-        - m[1][2] * m[2][1];
-    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    let (c2, c1, c0) = (-tr, minors, -det);
-    let poly = |l: f64| ((l + c2) * l + c1) * l + c0;
-    let bound = 1.0 + c2.abs().max(c1.abs()).max(c0.abs());
-    let (mut lo, mut hi) = (-bound, bound);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if poly(mid) < 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    let mut r = 0.5 * (lo + hi);
-    for _ in 0..3 {
-        let d = (3.0 * r + 2.0 * c2) * r + c1;
-        if d != 0.0 {
-            let next = r - poly(r) / d;
-            if next.is_finite() && poly(next).abs() <= poly(r).abs() {
-                r = next;
-            }
-        }
-    }
-    // l^3 + c2 l^2 + c1 l + c0 = (l - r)(l^2 + b l + q)
-    let b = c2 + r;
-    let q = c1 + r * b;
-    let disc = b * b - 4.0 * q;
-    let mut out = if disc >= 0.0 {
-        let s = disc.sqrt();
-        // Stable quadratic roots.
-        let big = -0.5 * (b + s.copysign(b));
-        let (x1, x2) = if big != 0.0 { (big, q / big) } else { (0.0, 0.0) };
-        [(r, 0.0), (x1, 0.0), (x2, 0.0)]
-    } else {
-        let re = -0.5 * b;
-        let im = 0.5 * (-disc).sqrt();
-        [(r, 0.0), (re, -im), (re, im)]
+    let nan = [(f64::NAN, f64::NAN); 3];
+    let Ok(values) = faer::Mat::<f64>::from_fn(3, 3, |i, j| m[i][j]).eigenvalues() else {
+        return nan;
     };
+    let mut out = nan;
+    for (o, v) in out.iter_mut().zip(&values) {
+        *o = (v.re, v.im);
+    }
     out.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.total_cmp(&y.1)));
     out
 }

@@ -32,7 +32,7 @@
 use std::marker::PhantomData;
 
 use super::form::Form;
-use super::sampling::{record_failure, RecordError, Sampler};
+use super::sampling::{record_failure, Recorded, Sampler};
 use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Num;
 use crate::error::Result;
@@ -220,39 +220,195 @@ pub(crate) fn integrate<P: Scheme, F: Form>(
     interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
     validate(form, t0, y0, t_end, output, opts)?;
+    Ok(solve(&mut Run::<P, F>::new(form, t0, y0, t_end, opts), output, interrupt))
+}
+
+/// What the state of every adaptive solve holds: its options and span, the time and state
+/// reached, the state of the last attempt, the statistics.
+pub(crate) struct Core {
+    pub opts: AdaptiveOptions,
+    pub t_end: f64,
+    /// Largest step: `min(max_step, t_end - t0)`.
+    pub hmax: f64,
+    pub t: f64,
+    pub y: Vec<f64>,
+    pub y_new: Vec<f64>,
+    pub stats: Stats,
+}
+
+impl Core {
+    /// At `(t0, y0)`, nothing evaluated yet.
+    pub fn new(opts: &AdaptiveOptions, t0: f64, y0: Vec<f64>, t_end: f64) -> Self {
+        let n = y0.len();
+        Core {
+            opts: *opts,
+            t_end,
+            hmax: opts.max_step.min(t_end - t0),
+            t: t0,
+            y: y0,
+            y_new: vec![0.0; n],
+            stats: Stats::default(),
+        }
+    }
+}
+
+/// What the one adaptive loop ([`solve`]) drives: an embedded pair's state with its step
+/// attempt (the new state and its scaled error norm), the move to an accepted step with its
+/// output samples, and its step-size control. Implemented by the explicit Runge-Kutta pairs
+/// ([`Run`], any [`Scheme`]) and the Runge-Kutta-Nystrom pairs (`rkn.rs`).
+pub(crate) trait Stepper {
+    /// The step-size control constants.
+    fn control(&self) -> Control;
+    /// The span, the time, the state and the statistics.
+    fn core(&self) -> &Core;
+    fn core_mut(&mut self) -> &mut Core;
+    /// Attempts the step `t -> t + h`: the new state and the scaled error norm.
+    fn attempt(&mut self, h: f64) -> f64;
+    /// Accepts the attempted step of size `h` ending at `t_new`: output samples and the move
+    /// to the new state. `Err`: a sample could not be recorded (see [`Sampler::record`]).
+    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded;
+    /// Hairer's initial step guess ([`initial_step`]).
+    fn hinit(&mut self) -> f64;
+    /// The largest ratio of consecutive steps (`None`: no bound but `hmax`); with a bound a
+    /// step that would leave less than half a step to `t_end` is also replaced by two equal
+    /// ones (no short last step).
+    fn max_growth(&self) -> Option<f64> {
+        None
+    }
+    /// Before the loop, with the first step `h`: the size of the first step to take.
+    fn lead_in(&mut self, h: f64) -> f64 {
+        h
+    }
+    /// After the loop (`done`: the size of the last step when `t_end` was reached): samples
+    /// still to be recorded.
+    fn finish(&mut self, _done: Option<f64>, _sampler: &mut Sampler, _sol: &mut Solution) -> Recorded {
+        Ok(())
+    }
+}
+
+/// The one adaptive solve of a validated [`Stepper`] for `output`, polling `interrupt` once
+/// per step attempt: the samples, the status and the statistics.
+pub(crate) fn solve<R: Stepper>(run: &mut R, output: &Output, interrupt: &dyn Interrupt) -> Solution {
     let mut sampler = Sampler::new(output);
-    let mut sol = sampler.solution(y0.len(), 1024);
-    let mut run = Run::<P, F>::new(form, t0, y0, t_end, opts);
-    run.solve(&mut sampler, &mut sol, &mut Poller::new(interrupt));
-    sol.stats = run.stats;
-    Ok(sol)
+    let mut sol = sampler.solution(run.core().y.len(), 1024);
+    let sampler = &mut sampler;
+    let c = run.core();
+    if let Err(err) = sampler.start(&mut sol, c.t, &c.y) {
+        let (status, message) = record_failure(err, c.t, c.t);
+        sol.fail(status, message);
+    } else {
+        let mut h = match c.opts.first_step {
+            Some(h) => h.min(c.hmax),
+            None => run.hinit(),
+        };
+        h = run.lead_in(h);
+        let outcome = step_loop(run, h, sampler, &mut sol, &mut Poller::new(interrupt));
+        let done = match outcome {
+            Outcome::Done(h_last) => Some(h_last),
+            Outcome::Failed(..) => None,
+        };
+        let flushed = run.finish(done, sampler, &mut sol);
+        if let Outcome::Failed(status, message) = outcome {
+            sol.fail(status, message);
+        } else if let Err(err) = flushed {
+            let t = run.core().t;
+            let (status, message) = record_failure(err, t, t);
+            sol.fail(status, message);
+        }
+    }
+    sol.stats = run.core().stats;
+    sol
+}
+
+/// How the loop of [`step_loop`] ended.
+enum Outcome {
+    /// Reached `t_end`; the size of the last step.
+    Done(f64),
+    Failed(Status, String),
+}
+
+/// The accept/reject loop from step size `h` until `t_end`, a failure or an interrupt.
+fn step_loop<R: Stepper>(
+    run: &mut R,
+    mut h: f64,
+    sampler: &mut Sampler,
+    sol: &mut Solution,
+    poller: &mut Poller,
+) -> Outcome {
+    let c = run.control();
+    let (t_end, hmax, max_steps) = (run.core().t_end, run.core().hmax, run.core().opts.max_steps);
+    let growth = run.max_growth();
+    let mut facold: f64 = 1e-4;
+    let mut reject = false;
+    let mut attempts: u64 = 0;
+    loop {
+        let t = run.core().t;
+        if attempts >= max_steps {
+            return Outcome::Failed(Status::MaxStepsReached, max_steps_message(t, t_end, max_steps));
+        }
+        if poller.poll(t) {
+            return Outcome::Failed(Status::Interrupted, interrupted_message(t, t_end, attempts));
+        }
+        if h.is_nan() || h < min_step(t) {
+            return Outcome::Failed(Status::StepSizeUnderflow, underflow_message(h, t));
+        }
+        let (h_step, last) = clip_to_end(t, t_end, hmax, h);
+        h = h_step;
+        if growth.is_some() && !last && t + 1.5 * h > t_end {
+            // No short last step: it would be a near-coincident node of the interpolant.
+            h = 0.5 * (t_end - t);
+        }
+        attempts += 1;
+        let err = run.attempt(h);
+        if !err.is_finite() {
+            run.core_mut().stats.nreject += 1;
+            reject = true;
+            h *= 0.2;
+            continue;
+        }
+        let mut h_new = c.accepted_step(h, err, facold);
+        if err <= 1.0 {
+            facold = err.max(1e-4);
+            let t_new = if last { t_end } else { t + h };
+            if !all_finite(&run.core().y_new) {
+                return Outcome::Failed(Status::NonFinite, non_finite_message(t, t_new));
+            }
+            if let Err(err) = run.accept(h, t_new, sampler, sol) {
+                let (status, message) = record_failure(err, t, t_new);
+                return Outcome::Failed(status, message);
+            }
+            if last {
+                return Outcome::Done(h);
+            }
+            h_new = h_new.min(hmax);
+            if let Some(growth) = growth {
+                h_new = h_new.min(growth * h);
+            }
+            if reject {
+                h_new = h_new.min(h);
+            }
+            reject = false;
+        } else {
+            h_new = c.rejected_step(h, err);
+            reject = true;
+            run.core_mut().stats.nreject += 1;
+        }
+        h = h_new;
+    }
 }
 
 /// The state of one adaptive solve; all buffers are allocated here, once.
 pub(crate) struct Run<'a, P, F> {
     form: &'a F,
-    opts: &'a AdaptiveOptions,
-    t_end: f64,
-    /// Largest step: `min(max_step, t_end - t0)`.
-    hmax: f64,
-    t: f64,
-    y: Vec<f64>,
-    y_new: Vec<f64>,
+    core: Core,
     ytmp: Vec<f64>,
     /// Scratch of the error estimate, `2 n`.
     work: Vec<f64>,
-    /// Scratch of [`Run::hinit`]: two derivatives over the whole state, `2 n`.
+    /// Scratch of the initial step guess: two derivatives over the whole state, `2 n`.
     init: Vec<f64>,
     k: Stages,
     dense: Stages,
-    stats: Stats,
     scheme: PhantomData<P>,
-}
-
-/// How the loop of [`Run::solve`] ended.
-enum Outcome {
-    Done,
-    Failed(Status, String),
 }
 
 impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
@@ -261,187 +417,114 @@ impl<'a, P: Scheme, F: Form> Run<'a, P, F> {
         let n = y0.len();
         let mut run = Run {
             form,
-            opts,
-            t_end,
-            hmax: opts.max_step.min(t_end - t0),
-            t: t0,
-            y: y0.to_vec(),
-            y_new: vec![0.0; n],
+            core: Core::new(opts, t0, y0.to_vec(), t_end),
             ytmp: vec![0.0; n],
             work: vec![0.0; 2 * n],
             init: Vec::new(),
             k: Stages::new(P::ROWS, form.row_len()),
             dense: Stages::new(P::DENSE_ROWS, n),
-            stats: Stats::default(),
             scheme: PhantomData,
         };
-        form.eval_at(&mut run.k, 0, t0, &run.y);
-        run.stats.nfev += 1;
+        form.eval_at(&mut run.k, 0, t0, &run.core.y);
+        run.core.stats.nfev += 1;
         run
-    }
-
-    /// The step floor at the current time ([`min_step`]).
-    fn min_step(&self) -> f64 {
-        min_step(self.t)
-    }
-
-    fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) {
-        if let Err(err) = sampler.start(sol, self.t, &self.y) {
-            let (status, message) = record_failure(err, self.t, self.t);
-            sol.fail(status, message);
-            return;
-        }
-        let h = match self.opts.first_step {
-            Some(h) => h.min(self.hmax),
-            None => self.hinit(),
-        };
-        if let Outcome::Failed(status, message) = self.step_loop(h, sampler, sol, poller) {
-            sol.fail(status, message);
-        }
-    }
-
-    /// The accept/reject loop from step size `h` until `t_end`, a failure or an interrupt.
-    fn step_loop(&mut self, mut h: f64, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) -> Outcome {
-        let c = P::CONTROL;
-        let mut facold: f64 = 1e-4;
-        let mut reject = false;
-        let mut attempts: u64 = 0;
-        loop {
-            if attempts >= self.opts.max_steps {
-                return Outcome::Failed(Status::MaxStepsReached, self.max_steps_message());
-            }
-            if poller.poll(self.t) {
-                return Outcome::Failed(Status::Interrupted, interrupted_message(self.t, self.t_end, attempts));
-            }
-            if h.is_nan() || h < self.min_step() {
-                return Outcome::Failed(Status::StepSizeUnderflow, underflow_message(h, self.t));
-            }
-            let (h_step, last) = self.clip_to_end(h);
-            h = h_step;
-            attempts += 1;
-            let err = self.attempt(h);
-            if !err.is_finite() {
-                self.stats.nreject += 1;
-                reject = true;
-                h *= 0.2;
-                continue;
-            }
-            let mut h_new = c.accepted_step(h, err, facold);
-            if err <= 1.0 {
-                facold = err.max(1e-4);
-                let t_new = if last { self.t_end } else { self.t + h };
-                if !all_finite(&self.y_new) {
-                    return Outcome::Failed(Status::NonFinite, non_finite_message(self.t, t_new));
-                }
-                let t_old = self.t;
-                if let Err(err) = self.accept(h, t_new, sampler, sol) {
-                    let (status, message) = record_failure(err, t_old, t_new);
-                    return Outcome::Failed(status, message);
-                }
-                if last {
-                    return Outcome::Done;
-                }
-                h_new = h_new.min(self.hmax);
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                reject = false;
-            } else {
-                h_new = c.rejected_step(h, err);
-                reject = true;
-                self.stats.nreject += 1;
-            }
-            h = h_new;
-        }
-    }
-
-    /// Hairer's end-point rule: a step that would come within `1%` of `t_end` is stretched
-    /// to end exactly there (the last step). If that would exceed `max_step`, the rest is
-    /// split into two equal steps instead.
-    fn clip_to_end(&self, h: f64) -> (f64, bool) {
-        clip_to_end(self.t, self.t_end, self.hmax, h)
-    }
-
-    fn max_steps_message(&self) -> String {
-        max_steps_message(self.t, self.t_end, self.opts.max_steps)
-    }
-
-    /// Attempts the step `t -> t + h`: stages, `y_new` and the error norm.
-    pub fn attempt(&mut self, h: f64) -> f64 {
-        let tab = P::TABLEAU;
-        for s in 1..tab.stages() {
-            self.form.eval_stage(&mut self.k, s, self.t + tab.c[s] * h, h, &self.y, tab.a[s], &mut self.ytmp);
-        }
-        self.stats.nfev += (tab.stages() - 1) as u64;
-        self.form.advance(&self.k, tab.b, h, &self.y, &mut self.y_new, &mut self.ytmp);
-        if P::FSAL_IN_ERROR {
-            self.eval_fsal(self.t + h);
-        }
-        let step = Attempt { h, y: &self.y, y_new: &self.y_new, rtol: self.opts.rtol, atol: self.opts.atol };
-        P::error_norm(self.form, &self.k, &step, &mut self.work)
     }
 
     /// `k[FSAL] = f(t_new, y_new)`.
     fn eval_fsal(&mut self, t_new: f64) {
-        self.form.eval_at(&mut self.k, P::FSAL, t_new, &self.y_new);
-        self.stats.nfev += 1;
+        self.form.eval_at(&mut self.k, P::FSAL, t_new, &self.core.y_new);
+        self.core.stats.nfev += 1;
+    }
+}
+
+impl<P: Scheme, F: Form> Stepper for Run<'_, P, F> {
+    fn control(&self) -> Control {
+        P::CONTROL
     }
 
-    /// Accepts the attempted step of size `h` ending at `t_new`: FSAL derivative, output
-    /// samples, and the move to the new state. `Err`: a sample could not be recorded (see
-    /// [`Sampler::record`]).
-    pub fn accept(
-        &mut self,
-        h: f64,
-        t_new: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
-        self.stats.naccept += 1;
+    fn core(&self) -> &Core {
+        &self.core
+    }
+
+    fn core_mut(&mut self) -> &mut Core {
+        &mut self.core
+    }
+
+    /// The stages, `y_new` and the error norm.
+    fn attempt(&mut self, h: f64) -> f64 {
+        let tab = P::TABLEAU;
+        for s in 1..tab.stages() {
+            self.form.eval_stage(&mut self.k, s, self.core.t + tab.c[s] * h, h, &self.core.y, tab.a[s], &mut self.ytmp);
+        }
+        self.core.stats.nfev += (tab.stages() - 1) as u64;
+        self.form.advance(&self.k, tab.b, h, &self.core.y, &mut self.core.y_new, &mut self.ytmp);
+        if P::FSAL_IN_ERROR {
+            self.eval_fsal(self.core.t + h);
+        }
+        let step = Attempt {
+            h,
+            y: &self.core.y,
+            y_new: &self.core.y_new,
+            rtol: self.core.opts.rtol,
+            atol: self.core.opts.atol,
+        };
+        P::error_norm(self.form, &self.k, &step, &mut self.work)
+    }
+
+    /// FSAL derivative, output samples, and the move to the new state.
+    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+        self.core.stats.naccept += 1;
         if !P::FSAL_IN_ERROR {
             self.eval_fsal(t_new);
         }
         if sampler.needs_interpolant(t_new) {
             let extra = P::dense_prepare(
                 self.form,
-                self.t,
+                self.core.t,
                 h,
-                &self.y,
-                &self.y_new,
+                &self.core.y,
+                &self.core.y_new,
                 &mut self.k,
                 &mut self.ytmp,
                 &mut self.dense,
             );
-            self.stats.nfev += extra;
-            self.stats.ndense += extra;
+            self.core.stats.nfev += extra;
+            self.core.stats.ndense += extra;
         }
         // The samples of the step in one block, written in place: the continuous extension's
         // coefficients were formed once above; per sample only the nested evaluation.
-        let (t, y, dense, dim) = (self.t, &self.y, &self.dense, self.y.len());
-        sampler.record_block(sol, t_new, &self.y_new, |times, out| {
+        let (t, y, dense, dim) = (self.core.t, &self.core.y, &self.dense, self.core.y.len());
+        sampler.record_block(sol, t_new, &self.core.y_new, |times, out| {
             for (&t_out, row) in times.iter().zip(out.chunks_exact_mut(dim)) {
                 P::dense_eval(dense, y, (t_out - t) / h, row);
             }
         })?;
-        std::mem::swap(&mut self.y, &mut self.y_new);
+        std::mem::swap(&mut self.core.y, &mut self.core.y_new);
         self.k.copy_row(P::FSAL, 0);
-        self.t = t_new;
+        self.core.t = t_new;
         Ok(())
     }
 
-    /// Hairer's initial step guess ([`initial_step`]) from `f(t0, y0)` in row 0.
+    /// From `f(t0, y0)` in row 0.
     fn hinit(&mut self) -> f64 {
-        let n = self.y.len();
+        let n = self.core.y.len();
         self.init.resize(2 * n, 0.0);
         let (f0, f1) = self.init.split_at_mut(n);
         // f(t0, y0) over the whole state, from row 0 (no new evaluation).
-        self.form.combine(&self.k, &[1.0], 0.0, &self.y, f0);
-        let (form, t) = (self.form, self.t);
-        let tol = (self.opts.rtol, self.opts.atol);
-        let guess = initial_step(&self.y, f0, f1, &mut self.ytmp, tol, P::CONTROL.hinit_order, self.hmax, |h, y, f| {
-            form.rhs(t + h, y, f)
-        });
-        self.stats.nfev += 1;
+        self.form.combine(&self.k, &[1.0], 0.0, &self.core.y, f0);
+        let (form, t) = (self.form, self.core.t);
+        let tol = (self.core.opts.rtol, self.core.opts.atol);
+        let guess = initial_step(
+            &self.core.y,
+            f0,
+            f1,
+            &mut self.ytmp,
+            tol,
+            P::CONTROL.hinit_order,
+            self.core.hmax,
+            |h, y, f| form.rhs(t + h, y, f),
+        );
+        self.core.stats.nfev += 1;
         guess
     }
 }
@@ -452,8 +535,9 @@ pub(crate) fn min_step(t: f64) -> f64 {
     10.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE)
 }
 
-/// Hairer's end-point rule for the step `h` from `t` (see [`Run::clip_to_end`]): the step to
-/// take and whether it is the last.
+/// Hairer's end-point rule for the step `h` from `t`: a step that would come within `1%` of
+/// `t_end` is stretched to end exactly there (the last step); if that would exceed `hmax`, the
+/// rest is split into two equal steps instead. The step to take and whether it is the last.
 pub(crate) fn clip_to_end(t: f64, t_end: f64, hmax: f64, h: f64) -> (f64, bool) {
     let rest = t_end - t;
     if t + 1.01 * h <= t_end {
@@ -555,6 +639,6 @@ pub(crate) mod testing {
             run.attempt(h);
             run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
         }
-        run.y
+        run.core.y
     }
 }

@@ -17,6 +17,8 @@ mod birkhoff;
 mod central;
 mod dop853;
 mod dopri5;
+pub(crate) mod events;
+mod fixed;
 mod form;
 mod grid;
 mod hermite;
@@ -124,7 +126,7 @@ pub fn central_difference<S: SecondOrderSystem + ?Sized>(
     output: &Output,
     opts: &FixedOptions,
 ) -> Result<Solution> {
-    central::integrate(sys, t0, q0, v0, t_end, output, opts, &Never)
+    fixed::second_order::<central::Central<S>, S>(sys, t0, q0, v0, t_end, output, opts, &Never)
 }
 
 /// Velocity (Stormer-)Verlet, the symplectic kick-drift-kick scheme
@@ -141,7 +143,7 @@ pub fn verlet<S: SecondOrderSystem + ?Sized>(
     output: &Output,
     opts: &FixedOptions,
 ) -> Result<Solution> {
-    verlet::integrate(sys, t0, q0, v0, t_end, output, opts, &Never)
+    fixed::second_order::<verlet::Verlet<S>, S>(sys, t0, q0, v0, t_end, output, opts, &Never)
 }
 
 /// An integration method.
@@ -346,8 +348,12 @@ pub fn solve_second_order_with<S: SecondOrderSystem + ?Sized>(
         }
         Method::Rkn12 => rkn::integrate(&rkn12::RKN12, sys, t0, q0, v0, t_end, output, &opts.adaptive(), interrupt),
         Method::Rk4 => rk4::integrate(&first_order, t0, &y0(), t_end, output, &opts.fixed()?, interrupt),
-        Method::Central => central::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
-        Method::Verlet => verlet::integrate(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt),
+        Method::Central => {
+            fixed::second_order::<central::Central<S>, S>(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt)
+        }
+        Method::Verlet => {
+            fixed::second_order::<verlet::Verlet<S>, S>(sys, t0, q0, v0, t_end, output, &opts.fixed()?, interrupt)
+        }
     }
 }
 

@@ -6,18 +6,18 @@
 //! k4 = f(t + h, y + h k3),  y_new = y + h/6 (k1 + 2 k2 + 2 k3 + k4)
 //! ```
 //!
-//! on the uniform grid of [`Grid`]. Requested output times between grid points are
+//! on the uniform grid of [`super::grid::Grid`] ([`super::fixed`]). Requested output times between grid points are
 //! interpolated by cubic Hermite with the derivatives `f` at both ends; `f` at the end
 //! of a step is `k1` of the next, so it costs nothing except on the last step.
 
-use super::grid::Grid;
+use super::fixed::FixedScheme;
 use super::hermite::hermite;
-use super::sampling::{record_failure, RecordError, Sampler};
-use super::tableau::{all_finite, Stages, RK4};
+use super::sampling::{Recorded, Sampler};
+use super::tableau::{Stages, RK4};
 use crate::error::Result;
-use crate::interrupt::{Interrupt, Poller};
-use crate::options::{validate_span, FixedOptions, Output};
-use crate::solution::{Solution, Stats, Status};
+use crate::interrupt::Interrupt;
+use crate::options::{FixedOptions, Output};
+use crate::solution::{Solution, Stats};
 use crate::system::OdeSystem;
 
 /// Solves `y' = f(t, y)` on `[t0, t_end]` with classical RK4 (see the module docs).
@@ -30,25 +30,13 @@ pub(crate) fn integrate<S: OdeSystem + ?Sized>(
     opts: &FixedOptions,
     interrupt: &dyn Interrupt,
 ) -> Result<Solution> {
-    validate_span(t0, t_end, output)?;
-    opts.validate()?;
-    super::check_state("y0", y0, sys.dim())?;
-    let grid = Grid::new(t0, t_end, opts.dt);
-    let mut sampler = Sampler::new(output);
-    let hint = usize::try_from(grid.steps.min(opts.max_steps)).unwrap_or(usize::MAX).saturating_add(1);
-    let mut sol = sampler.solution(y0.len(), hint);
-    let mut run = Run::new(y0);
-    if let Err((status, message)) =
-        run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol, &mut Poller::new(interrupt))
-    {
-        sol.fail(status, message);
-    }
-    sol.stats = run.stats;
-    Ok(sol)
+    let check = || super::check_state("y0", y0, sys.dim());
+    super::fixed::integrate((t0, t_end), output, opts, interrupt, check, |_| Run::new(sys, y0))
 }
 
 /// Buffers of one RK4 solve, allocated once.
-struct Run {
+struct Run<'a, S: ?Sized> {
+    sys: &'a S,
     y: Vec<f64>,
     y_new: Vec<f64>,
     /// `f(t_{n+1}, y_{n+1})` when output inside the step needed it.
@@ -60,10 +48,11 @@ struct Run {
     stats: Stats,
 }
 
-impl Run {
-    fn new(y0: &[f64]) -> Self {
+impl<'a, S: OdeSystem + ?Sized> Run<'a, S> {
+    fn new(sys: &'a S, y0: &[f64]) -> Self {
         let n = y0.len();
         Run {
+            sys,
             y: y0.to_vec(),
             y_new: vec![0.0; n],
             f_new: vec![0.0; n],
@@ -73,54 +62,31 @@ impl Run {
             stats: Stats::default(),
         }
     }
+}
 
-    /// Steps through the grid, recording output; `Err` carries a failure status.
-    fn steps<S: OdeSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        grid: &Grid,
-        max_steps: u64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-        poller: &mut Poller,
-    ) -> std::result::Result<(), (Status, String)> {
-        sampler.start(sol, grid.t0, &self.y).map_err(|err| record_failure(err, grid.t0, grid.t0))?;
-        for n in 0..grid.steps {
-            grid.before_step(n, max_steps, poller)?;
-            let (t, t_new) = (grid.time(n), grid.time(n + 1));
-            self.step(sys, t, grid.dt);
-            if !all_finite(&self.y_new) {
-                return Err(grid.non_finite(n + 1));
-            }
-            self.stats.naccept += 1;
-            self.record(sys, t, t_new, grid.dt, sampler, sol).map_err(|err| record_failure(err, t, t_new))?;
-        }
-        Ok(())
+impl<S: OdeSystem + ?Sized> FixedScheme for Run<'_, S> {
+    fn start(&self) -> &[f64] {
+        &self.y
     }
 
     /// One RK4 step from `(t, y)` into `y_new`.
-    fn step<S: OdeSystem + ?Sized>(&mut self, sys: &S, t: f64, h: f64) {
+    fn step(&mut self, t: f64, h: f64) {
         if !self.k1_valid {
-            sys.rhs(t, &self.y, self.k.row_mut(0));
+            self.sys.rhs(t, &self.y, self.k.row_mut(0));
             self.stats.nfev += 1;
         }
-        self.stats.nfev += RK4.eval_stages(sys, t, h, &self.y, &mut self.k, &mut self.ytmp);
+        self.stats.nfev += RK4.eval_stages(self.sys, t, h, &self.y, &mut self.k, &mut self.ytmp);
         RK4.advance(h, &self.y, &self.k, &mut self.y_new);
         self.k1_valid = false;
     }
 
-    /// Records output of the step `t -> t_new` and moves to the new state.
-    fn record<S: OdeSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        t_new: f64,
-        h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
+    fn new_state(&self) -> &[f64] {
+        &self.y_new
+    }
+
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
         if sampler.needs_interpolant(t_new) {
-            sys.rhs(t_new, &self.y_new, &mut self.f_new);
+            self.sys.rhs(t_new, &self.y_new, &mut self.f_new);
             self.stats.nfev += 1;
             self.k1_valid = true;
         }
@@ -134,4 +100,20 @@ impl Run {
         }
         Ok(())
     }
+
+    fn stats(&mut self) -> &mut Stats {
+        &mut self.stats
+    }
+}
+
+/// One classical RK4 step of a small autonomous system `y' = f(y)` held in an array, in the
+/// form `y + h/6 (k1 + 2 k2 + 2 k3 + k4)`: the step of the event-located loop
+/// ([`super::events`]).
+pub(crate) fn rk4_step<const N: usize>(f: impl Fn(&[f64; N]) -> [f64; N], y: &[f64; N], h: f64) -> [f64; N] {
+    let add = |a: &[f64; N], k: &[f64; N], s: f64| -> [f64; N] { std::array::from_fn(|i| a[i] + s * k[i]) };
+    let k1 = f(y);
+    let k2 = f(&add(y, &k1, 0.5 * h));
+    let k3 = f(&add(y, &k2, 0.5 * h));
+    let k4 = f(&add(y, &k3, h));
+    std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
 }

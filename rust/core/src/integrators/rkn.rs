@@ -19,7 +19,7 @@
 //! ([`super::birkhoff`]), which needs the ends after the output interval: samples are
 //! recorded up to three steps late (and the rest at the end of the solve, or when it fails).
 //! For the first and last intervals the solve takes two steps backwards from `t0` and two
-//! beyond `t_end` ([`Run::lead_in`], [`Run::lead_out`]: 68 evaluations, counted in `nfev`
+//! beyond `t_end` ([`Run::lead_in_ends`], [`Run::lead_out`]: 68 evaluations, counted in `nfev`
 //! and `ndense`; the steps from `t0` to `t_end` are unchanged).
 //! With output times a step may at most double the previous one (the interpolant spans five
 //! steps and its error grows with their ratios), and a step that would leave less than half
@@ -27,17 +27,14 @@
 //! node); otherwise the steps are those of every-step output, and they do not depend on how
 //! many output times there are.
 
-use super::adaptive::{
-    clip_to_end, initial_step, interrupted_message, max_steps_message, min_step, non_finite_message, underflow_message,
-    Control,
-};
+use super::adaptive::{initial_step, min_step, solve, Control, Core, Stepper};
 use super::birkhoff::Birkhoff;
-use super::sampling::{record_failure, RecordError, Sampler};
+use super::sampling::{Recorded, Sampler};
 use super::tableau::{all_finite, Stages};
 use crate::error::Result;
-use crate::interrupt::{Interrupt, Poller};
+use crate::interrupt::Interrupt;
 use crate::options::{validate_span, AdaptiveOptions, Output};
-use crate::solution::{Solution, Stats, Status};
+use crate::solution::Solution;
 use crate::system::SecondOrderSystem;
 
 /// An embedded explicit Runge-Kutta-Nystrom pair for `q'' = a(q)` as data.
@@ -86,27 +83,17 @@ pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
 ) -> Result<Solution> {
     validate_span(t0, t_end, output)?;
     opts.validate()?;
-    let mut sampler = Sampler::new(output);
-    let mut sol = sampler.solution(2 * q0.len(), 1024);
     let dense = matches!(output, Output::Times(_));
-    let mut run = Run::new(pair, sys, t0, q0, v0, t_end, opts, dense);
-    run.solve(&mut sampler, &mut sol, &mut Poller::new(interrupt));
-    sol.stats = run.stats;
-    Ok(sol)
+    Ok(solve(&mut Run::new(pair, sys, t0, q0, v0, t_end, opts, dense), output, interrupt))
 }
 
 /// The state of one solve; all buffers are allocated here, once.
 struct Run<'a, S: ?Sized> {
     pair: &'static RknPair,
     sys: &'a S,
-    opts: &'a AdaptiveOptions,
     n: usize,
-    t_end: f64,
-    hmax: f64,
-    t: f64,
-    /// `[q, v]`.
-    y: Vec<f64>,
-    y_new: Vec<f64>,
+    /// The state `[q, v]`.
+    core: Core,
     /// A stage position, `n`.
     qs: Vec<f64>,
     /// The error estimate `[e_q, e_v]`, `2 n`.
@@ -115,14 +102,6 @@ struct Run<'a, S: ?Sized> {
     k: Stages,
     /// The interpolant of the step ends, for output times (`None`: every-step output).
     dense: Option<Birkhoff>,
-    stats: Stats,
-}
-
-/// How the loop of [`Run::solve`] ended.
-enum Outcome {
-    /// Reached `t_end`; the size of the last step.
-    Done(f64),
-    Failed(Status, String),
 }
 
 impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
@@ -134,7 +113,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         q0: &[f64],
         v0: &[f64],
         t_end: f64,
-        opts: &'a AdaptiveOptions,
+        opts: &AdaptiveOptions,
         dense: bool,
     ) -> Self {
         assert!(pair.stages() <= MAX_STAGES, "{} stages exceed {MAX_STAGES}", pair.stages());
@@ -142,166 +121,16 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         let mut run = Run {
             pair,
             sys,
-            opts,
             n,
-            t_end,
-            hmax: opts.max_step.min(t_end - t0),
-            t: t0,
-            y: [q0, v0].concat(),
-            y_new: vec![0.0; 2 * n],
+            core: Core::new(opts, t0, [q0, v0].concat(), t_end),
             qs: vec![0.0; n],
             err: vec![0.0; 2 * n],
             k: Stages::new(pair.stages(), n),
             dense: dense.then(|| Birkhoff::new(n)),
-            stats: Stats::default(),
         };
         sys.acceleration(q0, run.k.row_mut(0));
-        run.stats.nfev += 1;
+        run.core.stats.nfev += 1;
         run
-    }
-
-    fn solve(&mut self, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) {
-        if let Err(err) = sampler.start(sol, self.t, &self.y) {
-            let (status, message) = record_failure(err, self.t, self.t);
-            sol.fail(status, message);
-            return;
-        }
-        let mut h = match self.opts.first_step {
-            Some(h) => h.min(self.hmax),
-            None => self.hinit(),
-        };
-        if self.dense.is_some() {
-            h = self.lead_in(h);
-        }
-        let outcome = self.step_loop(h, sampler, sol, poller);
-        if let (Outcome::Done(h_last), true) = (&outcome, self.dense.is_some()) {
-            self.lead_out(*h_last);
-        }
-        // The output intervals still waiting for later step ends, from the ends reached.
-        let flushed = match self.dense.as_mut() {
-            Some(d) => d.emit(sampler, sol, true),
-            None => Ok(()),
-        };
-        if let Outcome::Failed(status, message) = outcome {
-            sol.fail(status, message);
-        } else if let Err(err) = flushed {
-            let (status, message) = record_failure(err, self.t, self.t);
-            sol.fail(status, message);
-        }
-    }
-
-    /// The accept/reject loop from step size `h` until `t_end`, a failure or an interrupt.
-    fn step_loop(&mut self, mut h: f64, sampler: &mut Sampler, sol: &mut Solution, poller: &mut Poller) -> Outcome {
-        let c = self.pair.control;
-        let mut facold: f64 = 1e-4;
-        let mut reject = false;
-        let mut attempts: u64 = 0;
-        loop {
-            if attempts >= self.opts.max_steps {
-                return Outcome::Failed(
-                    Status::MaxStepsReached,
-                    max_steps_message(self.t, self.t_end, self.opts.max_steps),
-                );
-            }
-            if poller.poll(self.t) {
-                return Outcome::Failed(Status::Interrupted, interrupted_message(self.t, self.t_end, attempts));
-            }
-            if h.is_nan() || h < min_step(self.t) {
-                return Outcome::Failed(Status::StepSizeUnderflow, underflow_message(h, self.t));
-            }
-            let (h_step, last) = clip_to_end(self.t, self.t_end, self.hmax, h);
-            h = h_step;
-            if self.dense.is_some() && !last && self.t + 1.5 * h > self.t_end {
-                // No short last step: it would be a near-coincident node of the interpolant.
-                h = 0.5 * (self.t_end - self.t);
-            }
-            attempts += 1;
-            let err = self.attempt(h);
-            if !err.is_finite() {
-                self.stats.nreject += 1;
-                reject = true;
-                h *= 0.2;
-                continue;
-            }
-            let mut h_new = c.accepted_step(h, err, facold);
-            if err <= 1.0 {
-                facold = err.max(1e-4);
-                let t_new = if last { self.t_end } else { self.t + h };
-                if !all_finite(&self.y_new) {
-                    return Outcome::Failed(Status::NonFinite, non_finite_message(self.t, t_new));
-                }
-                let t_old = self.t;
-                if let Err(err) = self.accept(t_new, sampler, sol) {
-                    let (status, message) = record_failure(err, t_old, t_new);
-                    return Outcome::Failed(status, message);
-                }
-                if last {
-                    return Outcome::Done(h);
-                }
-                h_new = h_new.min(self.hmax);
-                if self.dense.is_some() {
-                    h_new = h_new.min(DENSE_MAX_GROWTH * h);
-                }
-                if reject {
-                    h_new = h_new.min(h);
-                }
-                reject = false;
-            } else {
-                h_new = c.rejected_step(h, err);
-                reject = true;
-                self.stats.nreject += 1;
-            }
-            h = h_new;
-        }
-    }
-
-    /// Attempts the step `t -> t + h`: the stages, `y_new` and the error norm.
-    fn attempt(&mut self, h: f64) -> f64 {
-        let (pair, n) = (self.pair, self.n);
-        let (q, v) = self.y.split_at(n);
-        for s in 1..pair.stages() {
-            self.k.axpy_combine_plus(q, h * h, pair.a[s], v, h * pair.c[s], &mut self.qs);
-            self.sys.acceleration(&self.qs, self.k.row_mut(s));
-        }
-        self.stats.nfev += (pair.stages() - 1) as u64;
-        let (q_new, v_new) = self.y_new.split_at_mut(n);
-        self.k.axpy_combine_plus(q, h * h, pair.b, v, h, q_new);
-        self.k.axpy_combine(v, h, pair.bp, v_new);
-        let mut weights = [0.0; MAX_STAGES];
-        let (e_q, e_v) = self.err.split_at_mut(n);
-        for (w, &e) in weights.iter_mut().zip(pair.eq) {
-            *w = h * h * e;
-        }
-        self.k.combine(&weights[..pair.stages()], e_q);
-        for (w, &e) in weights.iter_mut().zip(pair.ev) {
-            *w = h * e;
-        }
-        self.k.combine(&weights[..pair.stages()], e_v);
-        let (sum, _) =
-            super::adaptive::scaled_sums(&self.err, &self.err, &self.y, &self.y_new, self.opts.rtol, self.opts.atol);
-        (sum / (2 * n) as f64).sqrt()
-    }
-
-    /// Accepts the attempted step ending at `t_new`: the acceleration there (`K_0` of the
-    /// next step), the output samples, and the move to the new state.
-    fn accept(
-        &mut self,
-        t_new: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
-        self.stats.naccept += 1;
-        std::mem::swap(&mut self.y, &mut self.y_new);
-        self.t = t_new;
-        self.sys.acceleration(&self.y[..self.n], self.k.row_mut(0));
-        self.stats.nfev += 1;
-        match self.dense.as_mut() {
-            Some(d) => {
-                d.push(t_new, &self.y, self.k.row(0));
-                d.emit(sampler, sol, false)
-            }
-            None => sampler.record(sol, t_new, &self.y, &mut [], |_, _| {}),
-        }
     }
 
     /// The ends before `t0` for the interpolants of the first intervals, then `t0` itself.
@@ -315,7 +144,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     /// size, reduced as the control asks) give the missing ends ([`Run::extra_ends`]); the
     /// forward solve starts from `(q0, v0)` as before. Returns the size of the first forward
     /// step: `h`, or the backward one if the control reduced it.
-    fn lead_in(&mut self, h: f64) -> f64 {
+    fn lead_in_ends(&mut self, h: f64) -> f64 {
         let (ends, hb) = self.extra_ends(-h);
         let d = self.dense.as_mut().expect("the lead-in is for output times");
         for (t, y, a) in ends.iter().rev() {
@@ -323,7 +152,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         }
         d.skip(ends.len());
         // `extra_ends` left the state at `t0` as it found it.
-        d.push(self.t, &self.y, self.k.row(0));
+        d.push(self.core.t, &self.core.y, self.k.row(0));
         if ends.is_empty() {
             h
         } else {
@@ -331,7 +160,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
         }
     }
 
-    /// The ends after `t_end` for the interpolants of the last intervals (as [`Run::lead_in`]
+    /// The ends after `t_end` for the interpolants of the last intervals (as [`Run::lead_in_ends`]
     /// at the start): [`LEAD_IN`] steps of size `h`, the last step of the solve, beyond
     /// `t_end`. No output time lies there, so only the windows use them. Without them the
     /// last interval was up to 40 times less accurate than the others (`tests/test_rkn12.py`).
@@ -352,7 +181,7 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
     #[allow(clippy::type_complexity)]
     fn extra_ends(&mut self, h: f64) -> (Vec<(f64, Vec<f64>, Vec<f64>)>, f64) {
         let n = self.n;
-        let (t0, y0, a0) = (self.t, self.y.clone(), self.k.row(0).to_vec());
+        let (t0, y0, a0) = (self.core.t, self.core.y.clone(), self.k.row(0).to_vec());
         let mut ends: Vec<(f64, Vec<f64>, Vec<f64>)> = Vec::with_capacity(LEAD_IN);
         let (sign, mut size) = (h.signum(), h.abs());
         let mut t = t0;
@@ -361,46 +190,136 @@ impl<'a, S: SecondOrderSystem + ?Sized> Run<'a, S> {
                 break;
             }
             let err = self.attempt(sign * size);
-            self.stats.ndense += (self.pair.stages() - 1) as u64;
-            if err.is_nan() || err > 1.0 || !all_finite(&self.y_new) {
+            self.core.stats.ndense += (self.pair.stages() - 1) as u64;
+            if err.is_nan() || err > 1.0 || !all_finite(&self.core.y_new) {
                 size = if err.is_finite() { self.pair.control.rejected_step(size, err) } else { 0.2 * size };
                 continue;
             }
-            std::mem::swap(&mut self.y, &mut self.y_new);
+            std::mem::swap(&mut self.core.y, &mut self.core.y_new);
             t += sign * size;
-            self.sys.acceleration(&self.y[..n], self.k.row_mut(0));
-            self.stats.nfev += 1;
-            self.stats.ndense += 1;
-            ends.push((t, self.y.clone(), self.k.row(0).to_vec()));
+            self.sys.acceleration(&self.core.y[..n], self.k.row_mut(0));
+            self.core.stats.nfev += 1;
+            self.core.stats.ndense += 1;
+            ends.push((t, self.core.y.clone(), self.k.row(0).to_vec()));
         }
-        self.y.copy_from_slice(&y0);
+        self.core.y.copy_from_slice(&y0);
         self.k.row_mut(0).copy_from_slice(&a0);
         (ends, sign * size)
     }
+}
 
-    /// Hairer's `hinit` on `y' = [v, a(q)]` with the pair's order.
+impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
+    fn control(&self) -> Control {
+        self.pair.control
+    }
+
+    fn core(&self) -> &Core {
+        &self.core
+    }
+
+    fn core_mut(&mut self) -> &mut Core {
+        &mut self.core
+    }
+
+    /// The stages, `y_new` and the error norm.
+    fn attempt(&mut self, h: f64) -> f64 {
+        let (pair, n) = (self.pair, self.n);
+        let (q, v) = self.core.y.split_at(n);
+        for s in 1..pair.stages() {
+            self.k.axpy_combine_plus(q, h * h, pair.a[s], v, h * pair.c[s], &mut self.qs);
+            self.sys.acceleration(&self.qs, self.k.row_mut(s));
+        }
+        self.core.stats.nfev += (pair.stages() - 1) as u64;
+        let (q_new, v_new) = self.core.y_new.split_at_mut(n);
+        self.k.axpy_combine_plus(q, h * h, pair.b, v, h, q_new);
+        self.k.axpy_combine(v, h, pair.bp, v_new);
+        let mut weights = [0.0; MAX_STAGES];
+        let (e_q, e_v) = self.err.split_at_mut(n);
+        for (w, &e) in weights.iter_mut().zip(pair.eq) {
+            *w = h * h * e;
+        }
+        self.k.combine(&weights[..pair.stages()], e_q);
+        for (w, &e) in weights.iter_mut().zip(pair.ev) {
+            *w = h * e;
+        }
+        self.k.combine(&weights[..pair.stages()], e_v);
+        let (sum, _) = super::adaptive::scaled_sums(
+            &self.err,
+            &self.err,
+            &self.core.y,
+            &self.core.y_new,
+            self.core.opts.rtol,
+            self.core.opts.atol,
+        );
+        (sum / (2 * n) as f64).sqrt()
+    }
+
+    /// The acceleration at `t_new` (`K_0` of the next step), the output samples, and the move
+    /// to the new state.
+    fn accept(&mut self, _h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+        self.core.stats.naccept += 1;
+        std::mem::swap(&mut self.core.y, &mut self.core.y_new);
+        self.core.t = t_new;
+        self.sys.acceleration(&self.core.y[..self.n], self.k.row_mut(0));
+        self.core.stats.nfev += 1;
+        match self.dense.as_mut() {
+            Some(d) => {
+                d.push(t_new, &self.core.y, self.k.row(0));
+                d.emit(sampler, sol, false)
+            }
+            None => sampler.record(sol, t_new, &self.core.y, &mut [], |_, _| {}),
+        }
+    }
+
+    /// On `y' = [v, a(q)]` with the pair's order.
     fn hinit(&mut self) -> f64 {
         let n = self.n;
         let mut f0 = vec![0.0; 2 * n];
         let mut f1 = vec![0.0; 2 * n];
         let mut ytmp = vec![0.0; 2 * n];
-        f0[..n].copy_from_slice(&self.y[n..]);
+        f0[..n].copy_from_slice(&self.core.y[n..]);
         f0[n..].copy_from_slice(self.k.row(0));
         let sys = self.sys;
-        let tol = (self.opts.rtol, self.opts.atol);
+        let tol = (self.core.opts.rtol, self.core.opts.atol);
         let order = self.pair.control.hinit_order;
-        let guess = initial_step(&self.y, &f0, &mut f1, &mut ytmp, tol, order, self.hmax, |_, y, f| {
+        let guess = initial_step(&self.core.y, &f0, &mut f1, &mut ytmp, tol, order, self.core.hmax, |_, y, f| {
             let (fq, fv) = f.split_at_mut(n);
             fq.copy_from_slice(&y[n..]);
             sys.acceleration(&y[..n], fv);
         });
-        self.stats.nfev += 1;
+        self.core.stats.nfev += 1;
         guess
+    }
+
+    /// With output times a step may at most double the previous one.
+    fn max_growth(&self) -> Option<f64> {
+        self.dense.as_ref().map(|_| DENSE_MAX_GROWTH)
+    }
+
+    /// With output times, the ends before `t0` ([`Run::lead_in_ends`]).
+    fn lead_in(&mut self, h: f64) -> f64 {
+        if self.dense.is_some() {
+            self.lead_in_ends(h)
+        } else {
+            h
+        }
+    }
+
+    /// With output times, the ends after `t_end` when it was reached ([`Run::lead_out`]), then
+    /// the output intervals still waiting for later step ends, from the ends reached.
+    fn finish(&mut self, done: Option<f64>, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+        if let (Some(h_last), true) = (done, self.dense.is_some()) {
+            self.lead_out(h_last);
+        }
+        match self.dense.as_mut() {
+            Some(d) => d.emit(sampler, sol, true),
+            None => Ok(()),
+        }
     }
 }
 
 /// Steps taken backwards from `t0` and forwards from `t_end` for the interpolants of the
-/// first and last intervals ([`Run::lead_in`], [`Run::lead_out`]): the interpolant takes three
+/// first and last intervals ([`Run::lead_in_ends`], [`Run::lead_out`]): the interpolant takes three
 /// ends on each side of its interval, these are two (with `t0` or `t_end`, three).
 const LEAD_IN: usize = 2;
 /// Attempts of the backward steps before the interpolants make do with the ends reached.
@@ -435,8 +354,8 @@ pub(crate) mod testing {
         for i in 1..=n {
             run.attempt(h);
             est = run.err.iter().fold(est, |m, e| m.max(e.abs()));
-            run.accept(t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
+            run.accept(h, t0 + i as f64 * h, &mut sampler, &mut sol).expect("finite every-step output");
         }
-        (run.y, est)
+        (run.core.y, est)
     }
 }

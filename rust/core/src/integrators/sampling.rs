@@ -15,6 +15,9 @@ pub(crate) enum RecordError {
     OutOfMemory { t: f64, bytes: usize },
 }
 
+/// The result of recording the samples of a step.
+pub(crate) type Recorded = Result<(), RecordError>;
+
 /// Largest number of values preallocated for the samples (the vectors grow past it).
 const MAX_PREALLOCATED_VALUES: usize = 1 << 24;
 

@@ -8,7 +8,7 @@
 //! v_{n+1}   = v_{n+1/2} + dt/2 a(q_{n+1})  (kick)
 //! ```
 //!
-//! on the uniform grid of [`Grid`]. `a(q_{n+1})` is reused as `a(q_n)` of the next step,
+//! on the uniform grid of [`super::grid::Grid`] ([`super::fixed`]). `a(q_{n+1})` is reused as `a(q_n)` of the next step,
 //! so a solve costs one evaluation of `a` per step plus one at the start
 //! (`Stats::nfev = steps + 1`). Being symplectic and symmetric, the scheme keeps the
 //! energy error of a Hamiltonian system bounded, `O(dt^2)`, with no secular drift over
@@ -16,143 +16,65 @@
 //! interpolated by cubic Hermite with derivative `v`, and `v` by cubic Hermite with
 //! derivative `a(q)`, exactly as for central differences.
 
-use super::grid::Grid;
-use super::hermite::hermite;
-use super::sampling::{record_failure, RecordError, Sampler};
-use super::tableau::all_finite;
-use crate::error::Result;
-use crate::interrupt::{Interrupt, Poller};
-use crate::options::{validate_span, FixedOptions, Output};
-use crate::solution::{Solution, Stats, Status};
+use super::fixed::{FixedScheme, SecondOrderEnds, SecondOrderScheme};
+use super::sampling::{Recorded, Sampler};
+use super::Method;
+use crate::solution::{Solution, Stats};
 use crate::system::SecondOrderSystem;
 
-/// Solves `q'' = a(q)` from `(q0, v0)` by velocity Verlet (see the module docs).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn integrate<S: SecondOrderSystem + ?Sized>(
-    sys: &S,
-    t0: f64,
-    q0: &[f64],
-    v0: &[f64],
-    t_end: f64,
-    output: &Output,
-    opts: &FixedOptions,
-    interrupt: &dyn Interrupt,
-) -> Result<Solution> {
-    if sys.velocity_dependent() {
-        return Err(super::refuse_velocity_dependent(super::Method::Verlet));
-    }
-    validate_span(t0, t_end, output)?;
-    opts.validate()?;
-    super::check_state("q0", q0, sys.dof())?;
-    super::check_state("v0", v0, sys.dof())?;
-    let grid = Grid::new(t0, t_end, opts.dt);
-    let mut sampler = Sampler::new(output);
-    let hint = usize::try_from(grid.steps.min(opts.max_steps)).unwrap_or(usize::MAX).saturating_add(1);
-    let mut sol = sampler.solution(2 * q0.len(), hint);
-    let mut run = Run::new(sys, q0, v0);
-    if let Err((status, message)) =
-        run.steps(sys, &grid, opts.max_steps, &mut sampler, &mut sol, &mut Poller::new(interrupt))
-    {
-        sol.fail(status, message);
-    }
-    sol.stats = run.stats;
-    Ok(sol)
-}
-
 /// Buffers of one Verlet solve, allocated once.
-struct Run {
-    dof: usize,
-    /// `[q_n, v_n]` and `a(q_n)`.
-    state: Vec<f64>,
-    acc: Vec<f64>,
-    /// `[q_{n+1}, v_{n+1}]` and `a(q_{n+1})`.
-    state_new: Vec<f64>,
-    acc_new: Vec<f64>,
-    buf: Vec<f64>,
+pub(crate) struct Verlet<'a, S: ?Sized> {
+    sys: &'a S,
+    /// `[q_n, v_n]`, `a(q_n)` and `[q_{n+1}, v_{n+1}]`, `a(q_{n+1})`.
+    ends: SecondOrderEnds,
     stats: Stats,
 }
 
-impl Run {
-    /// Sets up `state = [q_0, v_0]` and `a(q_0)`.
-    fn new<S: SecondOrderSystem + ?Sized>(sys: &S, q0: &[f64], v0: &[f64]) -> Self {
-        let dof = q0.len();
-        let mut run = Run {
-            dof,
-            state: [q0, v0].concat(),
-            acc: vec![0.0; dof],
-            state_new: vec![0.0; 2 * dof],
-            acc_new: vec![0.0; dof],
-            buf: vec![0.0; 2 * dof],
-            stats: Stats::default(),
-        };
-        sys.acceleration(q0, &mut run.acc);
+impl<'a, S: SecondOrderSystem + ?Sized> SecondOrderScheme<'a, S> for Verlet<'a, S> {
+    const METHOD: Method = Method::Verlet;
+
+    /// Sets up `[q_0, v_0]` and `a(q_0)`.
+    fn new(sys: &'a S, q0: &[f64], v0: &[f64], _dt: f64) -> Self {
+        let mut run = Verlet { sys, ends: SecondOrderEnds::new(q0, v0), stats: Stats::default() };
+        sys.acceleration(q0, &mut run.ends.acc);
         run.stats.nfev += 1;
         run
     }
+}
 
-    /// Steps through the grid, recording output; `Err` carries a failure status.
-    fn steps<S: SecondOrderSystem + ?Sized>(
-        &mut self,
-        sys: &S,
-        grid: &Grid,
-        max_steps: u64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-        poller: &mut Poller,
-    ) -> std::result::Result<(), (Status, String)> {
-        sampler.start(sol, grid.t0, &self.state).map_err(|err| record_failure(err, grid.t0, grid.t0))?;
-        for n in 0..grid.steps {
-            grid.before_step(n, max_steps, poller)?;
-            let (t, t_new) = (grid.time(n), grid.time(n + 1));
-            self.step(sys, grid.dt);
-            if !all_finite(&self.state_new) {
-                return Err(grid.non_finite(n + 1));
-            }
-            self.stats.naccept += 1;
-            self.record(t, t_new, grid.dt, sampler, sol).map_err(|err| record_failure(err, t, t_new))?;
-        }
-        Ok(())
+impl<S: SecondOrderSystem + ?Sized> FixedScheme for Verlet<'_, S> {
+    fn start(&self) -> &[f64] {
+        &self.ends.state
     }
 
-    /// One kick-drift-kick step from `(state, acc)` into `(state_new, acc_new)`.
-    fn step<S: SecondOrderSystem + ?Sized>(&mut self, sys: &S, dt: f64) {
+    /// One kick-drift-kick step.
+    fn step(&mut self, _t: f64, dt: f64) {
         let half = 0.5 * dt;
-        let (q, v) = self.state.split_at(self.dof);
-        let (q_new, v_new) = self.state_new.split_at_mut(self.dof);
-        for i in 0..self.dof {
-            let v_half = v[i] + half * self.acc[i];
+        let e = &mut self.ends;
+        let (q, v) = e.state.split_at(e.dof);
+        let (q_new, v_new) = e.state_new.split_at_mut(e.dof);
+        for i in 0..e.dof {
+            let v_half = v[i] + half * e.acc[i];
             q_new[i] = q[i] + dt * v_half;
             v_new[i] = v_half;
         }
-        sys.acceleration(q_new, &mut self.acc_new);
+        self.sys.acceleration(q_new, &mut e.acc_new);
         self.stats.nfev += 1;
-        for (v, &a) in v_new.iter_mut().zip(&self.acc_new) {
+        for (v, &a) in v_new.iter_mut().zip(&e.acc_new) {
             *v += half * a;
         }
     }
 
-    /// Records output of the step `t -> t_new` and moves to the new state.
-    fn record(
-        &mut self,
-        t: f64,
-        t_new: f64,
-        h: f64,
-        sampler: &mut Sampler,
-        sol: &mut Solution,
-    ) -> std::result::Result<(), RecordError> {
-        let dof = self.dof;
-        let (q0, v0) = self.state.split_at(dof);
-        let (q1, v1) = self.state_new.split_at(dof);
-        let (a0, a1) = (&self.acc, &self.acc_new);
-        sampler.record(sol, t_new, &self.state_new, &mut self.buf, |t_out, out| {
-            let theta = (t_out - t) / h;
-            let (q_out, v_out) = out.split_at_mut(dof);
-            hermite(theta, h, q0, v0, q1, v1, q_out);
-            hermite(theta, h, v0, a0, v1, a1, v_out);
-        })?;
-        std::mem::swap(&mut self.state, &mut self.state_new);
-        std::mem::swap(&mut self.acc, &mut self.acc_new);
-        Ok(())
+    fn new_state(&self) -> &[f64] {
+        &self.ends.state_new
+    }
+
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+        self.ends.record(t, t_new, h, sampler, sol)
+    }
+
+    fn stats(&mut self) -> &mut Stats {
+        &mut self.stats
     }
 }
 
@@ -161,6 +83,9 @@ mod tests {
     use super::super::tests::{slope, Duffing, Harmonic};
     use super::super::{rk4, verlet, Method, SolveOptions};
     use super::*;
+    use crate::error::Result;
+    use crate::options::{FixedOptions, Output};
+    use crate::solution::Status;
     use crate::system::FirstOrder;
 
     /// Largest error of the `[q, v]` samples against the exact harmonic solution.
