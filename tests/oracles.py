@@ -247,3 +247,89 @@ def stick_slip(t: NDArray[np.float64], omega: NDArray[np.float64], torque: NDArr
         "motor_torque_min_Nm": float(q.min()),
         "motor_torque_max_Nm": float(q.max()),
     }
+# --------------------------------------------------------------------------- the modal model
+# The former numpy evaluations of ``drillstring.galerkin.ModalCoefficients`` (force, dense
+# tensor, acceleration, basis) and of ``drillstring.stability`` (Jacobian, its eigenvalues by
+# LAPACK, the classification from eigenvalues); the package now asks the core for each.
+
+
+def cubic_force(quartic_index: NDArray[np.int64], quartic_coef: NDArray[np.float64],
+                q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``grad V(q)`` of ``V = sum_t C_t q_a q_b q_c q_d`` by scattering the four partial
+    derivatives of every term: ``q`` (m,) -> (m,), (m, S) -> (m, S)."""
+    qa = np.asarray(q, dtype=float)
+    m = qa.shape[0]
+    f = qa[quartic_index]  # (T, 4) or (T, 4, S)
+    one = np.ones_like(f[:, 0])
+    left = [one, f[:, 0], f[:, 0] * f[:, 1], f[:, 0] * f[:, 1] * f[:, 2]]
+    right = [f[:, 1] * f[:, 2] * f[:, 3], f[:, 2] * f[:, 3], f[:, 3], one]
+    coef = quartic_coef if qa.ndim == 1 else quartic_coef[:, None]
+    weights = np.concatenate([coef * left[k] * right[k] for k in range(4)])
+    target = quartic_index.T.ravel()  # position k of every term, k-major
+    if qa.ndim == 1:
+        return np.bincount(target, weights=weights, minlength=m).astype(float, copy=False)
+    samples = qa.shape[1]
+    flat = (target[:, None] * samples + np.arange(samples)).ravel()
+    force = np.bincount(flat, weights=weights.ravel(), minlength=m * samples)
+    return force.astype(float, copy=False).reshape(m, samples)
+
+
+def cubic_tensor(quartic_index: NDArray[np.int64], quartic_coef: NDArray[np.float64], m: int) -> NDArray[np.float64]:
+    """Dense symmetric ``T`` (m, m, m, m) with ``grad V_j = sum T_jbcd q_b q_c q_d`` and
+    ``V = 1/4 sum T_abcd q_a q_b q_c q_d``."""
+    tensor = np.zeros((m, m, m, m))
+    # each distinct ordering of term t is visited 24/mult_t times: 4 C_t / 24 each time
+    # gives 4 C_t / mult_t = 4 S_t per ordering, where V = sum_ordered S q q q q
+    value = quartic_coef / 6.0
+    for perm in itertools.permutations(range(4)):
+        np.add.at(tensor, tuple(quartic_index[:, p] for p in perm), value)
+    return tensor
+
+
+def modal_acceleration(mass: NDArray[np.float64], stiffness: NDArray[np.float64],
+                       quartic_index: NDArray[np.int64], quartic_coef: NDArray[np.float64],
+                       q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``q'' = -M^-1 (K q + grad V(q))``: ``q`` (m,) -> (m,), (m, S) -> (m, S)."""
+    qa = np.asarray(q, dtype=float)
+    shape = (-1,) + (1,) * (qa.ndim - 1)
+    force = cubic_force(quartic_index, quartic_coef, qa)
+    return -(stiffness.reshape(shape) * qa + force) / mass.reshape(shape)
+
+
+def mode_shapes(indices: NDArray[np.int64], length: float, z: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """``(cos(i pi z / l), -(i pi / l) sin(i pi z / l))`` as (len(z), m) arrays."""
+    wave = np.asarray(indices) * (math.pi / length)
+    arg = np.outer(np.atleast_1d(np.asarray(z, dtype=float)), wave)
+    return np.cos(arg), -wave * np.sin(arg)
+
+
+def jacobian(mass: NDArray[np.float64], stiffness: NDArray[np.float64], damping_rate: float) -> NDArray[np.float64]:
+    """``J = [[0, I], [-M^-1 K, -c I]]`` (2m, 2m) by a linear solve."""
+    m = mass.size
+    jac = np.zeros((2 * m, 2 * m))
+    jac[:m, m:] = np.eye(m)
+    jac[m:, :m] = -np.linalg.solve(np.diag(mass), np.diag(stiffness))
+    jac[m:, m:] = -damping_rate * np.eye(m)
+    return jac
+
+
+def jacobian_eigenvalues(jac: NDArray[np.float64]) -> NDArray[np.complex128]:
+    """The eigenvalues of ``jac`` by LAPACK, sorted by imaginary then real part."""
+    eig = np.linalg.eigvals(jac)
+    return eig[np.lexsort((eig.real, eig.imag))]
+
+
+def classify_eigenvalues(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
+    """The type of an equilibrium from the eigenvalues of its Jacobian (real parts within
+    ``rtol max |lambda|`` count as zero): ``"saddle"``, ``"degenerate"``, ``"stable focus"``,
+    ``"stable node"`` or ``"centre"``."""
+    lam = np.asarray(eigenvalues, dtype=complex)
+    scale = float(np.max(np.abs(lam))) if lam.size else 0.0
+    tol = rtol * scale
+    if np.any(lam.real > tol):
+        return "saddle"
+    if np.any(np.abs(lam) <= tol):
+        return "degenerate"
+    if lam.size and np.all(lam.real < -tol):
+        return "stable focus" if np.any(np.abs(lam.imag) > tol) else "stable node"
+    return "centre"

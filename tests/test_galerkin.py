@@ -1,4 +1,8 @@
-"""Tests of drillstring.galerkin: the Bubnov-Galerkin projection of eq. 18."""
+"""Tests of drillstring.galerkin: the Bubnov-Galerkin projection of eq. 18.
+
+Every number here comes from the core; the tests compare it with a closed form, SymPy, a
+quadrature or the numpy oracles of ``tests/oracles.py``, never with another path of the core.
+"""
 
 from __future__ import annotations
 
@@ -13,6 +17,7 @@ import oracles
 import pytest
 import sympy as sp
 
+import drillstring as ds
 from drillstring import galerkin
 from drillstring.coefficients import PDECoefficients
 from drillstring.errors import ValidationError
@@ -222,11 +227,13 @@ def test_energy_matches_sympy(symbolic: dict[str, Any], n: int, rigid: bool) -> 
 # ------------------------------------------------------------------------ internal consistency
 
 
-def test_cubic_tensor_consistency() -> None:
+def test_core_force_and_potential_are_the_dense_tensor_contractions() -> None:
+    """The numpy oracle's dense tensor of the compact terms, contracted, gives the core's force
+    and potential."""
     rng = np.random.default_rng(RNG_SEED)
     model = ModalCoefficients.from_coefficients(_random_coefficients(rng), 4, rigid_mode=True)
-    t = model.cubic_tensor()
     m = model.n_modes
+    t = oracles.cubic_tensor(model.quartic_index, model.quartic_coef, m)
     assert t.shape == (m, m, m, m)
     for perm in itertools.permutations(range(4)):
         np.testing.assert_array_equal(t, t.transpose(perm))
@@ -245,6 +252,19 @@ def test_cubic_tensor_consistency() -> None:
         assert model.potential(q) == pytest.approx(np.einsum("abcd,a,b,c,d", t, q, q, q, q) / 4)
 
 
+def test_cubic_tensor_is_deprecated_and_still_the_oracle_tensor() -> None:
+    model = ModalCoefficients.from_coefficients(_random_coefficients(np.random.default_rng(2)), 3, True)
+    with pytest.warns(DeprecationWarning, match="cubic_tensor"):
+        tensor = model.cubic_tensor()
+    expected = oracles.cubic_tensor(model.quartic_index, model.quartic_coef, model.n_modes)
+    assert np.array_equal(tensor, expected)
+    with pytest.warns(DeprecationWarning, match="MAX_TENSOR_MODES"):
+        assert galerkin.MAX_TENSOR_MODES == 64
+    big = project(Parameters(), modes=64, rigid_mode=True)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValidationError, match="modes"):
+        big.cubic_tensor()
+
+
 def test_gradient_matches_finite_differences() -> None:
     rng = np.random.default_rng(RNG_SEED + 1)
     model = ModalCoefficients.from_coefficients(_random_coefficients(rng), 5, rigid_mode=True)
@@ -259,24 +279,25 @@ def test_gradient_matches_finite_differences() -> None:
     np.testing.assert_allclose(model.cubic_force(q), fd, rtol=1e-8)
 
 
-def test_vectorised_shapes_match_columns() -> None:
-    model = project(preset("aluminum").replace(length=2.0), modes=4, rigid_mode=True)
-    rng = np.random.default_rng(3)
-    q = rng.normal(size=(model.n_modes, 7))
-    v = rng.normal(size=(model.n_modes, 7))
-    force = model.cubic_force(q)
-    pot = model.potential(q)
-    energy = model.energy(q, v)
-    acc = model.acceleration(q)
-    assert force.shape == q.shape and pot.shape == (7,) and energy.shape == (7,)
-    for s in range(7):
-        np.testing.assert_allclose(force[:, s], model.cubic_force(q[:, s]), rtol=1e-14)
-        np.testing.assert_allclose(acc[:, s], model.acceleration(q[:, s]), rtol=1e-14)
-        assert pot[s] == pytest.approx(model.potential(q[:, s]), rel=1e-14)
-        assert energy[s] == pytest.approx(model.energy(q[:, s], v[:, s]), rel=1e-14)
-    np.testing.assert_allclose(
-        acc, -(model.stiffness[:, None] * q + force) / model.mass[:, None], rtol=1e-14
-    )
+@pytest.mark.parametrize(("modes", "rigid"), [(1, False), (3, False), (4, True), (9, True)])
+def test_force_and_acceleration_match_the_numpy_oracle(modes: int, rigid: bool) -> None:
+    """The core's force and acceleration (term sum below the spectral crossover, spectral from
+    it) against the former numpy evaluation, for one state and for columns of states."""
+    model = project(preset("aluminum").replace(length=2.0), modes=modes, rigid_mode=rigid)
+    rng = np.random.default_rng(3 + modes)
+    q = rng.normal(scale=0.3, size=(model.n_modes, 7))
+    args = (model.quartic_index, model.quartic_coef)
+    force = oracles.cubic_force(*args, q)
+    acc = oracles.modal_acceleration(model.mass, model.stiffness, *args, q)
+    scale = oracles.cubic_force(model.quartic_index, np.abs(model.quartic_coef), np.abs(q))
+    linear = np.abs(model.stiffness[:, None] * q)
+    got_force, got_acc = model.cubic_force(q), model.acceleration(q)
+    assert got_force.shape == q.shape and got_acc.shape == q.shape
+    assert np.all(np.abs(got_force - force) <= 1e-13 * scale)
+    assert np.all(np.abs(got_acc - acc) <= 1e-13 * (scale + linear) / model.mass[:, None])
+    one = model.cubic_force(q[:, 0])
+    assert one.shape == (model.n_modes,)
+    assert np.all(np.abs(one - force[:, 0]) <= 1e-13 * scale[:, 0])
 
 
 def test_bad_state_shapes() -> None:
@@ -294,16 +315,21 @@ def test_selection_rule_odd_modes_stay_odd() -> None:
     model = ModalCoefficients.from_coefficients(_random_coefficients(rng), 7, rigid_mode=True)
     odd = model.indices % 2 == 1
     q = np.where(odd, rng.normal(size=model.n_modes), 0.0)
-    force = model.cubic_force(q)
+    terms = model.core_system(evaluation="terms")
+    force = terms.quartic_gradient(q)
     assert np.all(force[~odd] == 0.0)
     assert np.all(np.abs(force[odd]) > 0.0)
+    # the spectral evaluation (8 retained modes) forces the even modes only by round-off
+    spectral = model.cubic_force(q)
+    assert model.core_system().evaluation == "spectral"
+    assert np.all(np.abs(spectral[~odd]) <= 1e-13 * np.abs(force).max())
     # with an even mode moving, the rigid mode and the other even modes are forced
     q_even = q.copy()
     q_even[model.indices == 2] = 0.3
-    force_even = model.cubic_force(q_even)
+    force_even = terms.quartic_gradient(q_even)
     assert np.all(np.abs(force_even[~odd]) > 0.0)
     # theta -> -theta symmetry
-    np.testing.assert_array_equal(model.cubic_force(-q_even), -force_even)
+    np.testing.assert_array_equal(terms.quartic_gradient(-q_even), -force_even)
     # every stored term obeys i_a + i_b + i_c + i_d even
     assert np.all(model.indices[model.quartic_index].sum(axis=1) % 2 == 0)
 
@@ -376,17 +402,43 @@ def test_large_basis_is_cached_and_read_only() -> None:
 
 def test_linear_frequencies() -> None:
     params = preset("steel").replace(length=250.0)
-    k = PDECoefficients.from_parameters(params)
     model = project(params, modes=5, rigid_mode=True)
+    # closed form of the material: w_i^2 = (i pi c / l)^2 - Omega^2, c = 2 sqrt(G / rho)
+    g = params.youngs_modulus / (2 * (1 + params.poisson_ratio))
+    c = 2 * math.sqrt(g / params.density)
     i = np.arange(0, 6)
-    w2 = (k.k2 * (i * np.pi / 250.0) ** 2 - k.k6) / k.k1
+    w2 = (i * math.pi * c / 250.0) ** 2 - params.omega**2
     w = model.linear_frequencies
     assert math.isnan(w[0])
     np.testing.assert_allclose(w[1:], np.sqrt(w2[1:]), rtol=1e-13)
-    np.testing.assert_allclose(model.stiffness / model.mass, w2, rtol=1e-13)
-    np.testing.assert_allclose(w[1:], k.linear_frequencies(i[1:]), rtol=1e-13)
+    # without rotation the free-free string: w_i = i pi c / l, the rigid mode at rest
     still = project(params.replace(omega=0.0), modes=2, rigid_mode=True)
+    np.testing.assert_allclose(still.linear_frequencies, np.arange(3) * math.pi * c / 250.0, rtol=1e-13)
     assert still.linear_frequencies[0] == 0.0
+    # the numpy oracle of the diagonals: sqrt(K / M) where K >= 0, bit for bit
+    w2_model = model.stiffness / model.mass
+    assert np.array_equal(w, np.sqrt(np.where(w2_model >= 0, w2_model, np.nan)), equal_nan=True)
+
+
+def test_duffing_frequency_of_the_one_mode_solve() -> None:
+    """The one-mode core solve oscillates at the exact frequency of the Duffing equation with eq.
+    20's coefficients: ``w = pi sqrt(w0^2 + beta A^2) / (2 K(m))``, ``m = beta A^2 / (2 (w0^2 +
+    beta A^2))``, the amplitude ``A`` from the energy ``w0^2 A^2 / 2 + beta A^4 / 4 = v0^2 / 2``."""
+    from scipy.special import ellipk
+
+    params = preset("aluminum")
+    a1, a2, a3 = project(params, modes=1).duffing()
+    w0sq, beta, v0 = a2 / a1, a3 / a1, params.initial_velocities[0]
+    a_sq = (-w0sq / 2 + math.sqrt(w0sq**2 / 4 + beta * v0**2 / 2)) / (beta / 2)
+    stiff = w0sq + beta * a_sq
+    expected = math.pi * math.sqrt(stiff) / (2 * float(ellipk(beta * a_sq / (2 * stiff))))
+    res = ds.simulate(params, modes=1, t_end=0.5, rtol=1e-12, atol=1e-15, samples=20001)
+    q = res.q[0]
+    down = np.nonzero((q[:-1] > 0) & (q[1:] <= 0))[0]  # crossings from + to -: one per period
+    t = res.t[down] - q[down] * (res.t[down + 1] - res.t[down]) / (q[down + 1] - q[down])
+    frequency = 2 * math.pi / float(np.mean(np.diff(t)))
+    assert frequency == pytest.approx(expected, rel=1e-7)
+    assert abs(expected / math.sqrt(w0sq) - 1) > 1e-5  # the nonlinear shift is resolved
 
 
 def test_mass_and_stiffness_closed_forms() -> None:
@@ -407,6 +459,9 @@ def test_basis_and_derivative() -> None:
     model = project(Parameters(length=3.0), modes=3, rigid_mode=True)
     z = np.linspace(0.0, 3.0, 11)
     phi = model.basis(z)
+    # the core's mode shapes are the former numpy evaluation, bit for bit
+    shapes, slopes = oracles.mode_shapes(model.indices, 3.0, z)
+    assert np.array_equal(phi, shapes) and np.array_equal(model.basis_derivative(z), slopes)
     assert phi.shape == (11, 4)
     np.testing.assert_allclose(phi[:, 0], 1.0)
     np.testing.assert_allclose(phi[:, 2], np.cos(2 * np.pi * z / 3.0), atol=1e-15)
@@ -509,12 +564,16 @@ def test_energy_and_potential_match_numpy_oracle(modes: int, rigid: bool) -> Non
     assert np.array_equal(pickle.loads(pickle.dumps(model)).energy(q, v), model.energy(q, v))
 
 
-def test_core_system_energy_equals_model_energy() -> None:
-    model = project(preset("steel"), 3)
-    rng = np.random.default_rng(RNG_SEED)
-    q, v = rng.normal(size=(3, 5)), rng.normal(size=(3, 5))
-    assert np.array_equal(model.core_system(0.5).energy(q, v), model.energy(q, v))
-    assert np.array_equal(model.core_system().potential(q), model.potential(q))
+@pytest.mark.parametrize(("modes", "rigid"), [(3, False), (9, True)])
+def test_energy_is_conserved_along_a_solution(modes: int, rigid: bool) -> None:
+    """H of the modal model stays constant along an undamped solve (to the tolerance), and its
+    quartic part is a visible share of it (the test would see a wrong V)."""
+    params = preset("steel").replace(initial_velocities=(2.0, 1.0, 0.5))
+    model = project(params, modes, rigid)
+    res = ds.simulate(params, modes=modes, rigid_mode=rigid, t_end=0.2, rtol=1e-12, atol=1e-14, samples=200)
+    h = np.asarray(model.energy(res.q, res.qdot))
+    assert np.max(np.abs(h - h[0])) <= 1e-9 * abs(h[0])
+    assert np.max(np.abs(model.potential(res.q))) > 1e-6 * abs(h[0])
     with pytest.raises(ValidationError) as info:
         model.core_system().potential(np.zeros((2, 5)))
     assert info.value.field == "q"

@@ -5,12 +5,13 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import oracles
 import pytest
 
 import drillstring as ds
 from drillstring.coefficients import PDECoefficients, shear_modulus
 from drillstring.errors import ValidationError
-from drillstring.stability import analyse, classify, jacobian
+from drillstring.stability import analyse, jacobian
 
 
 def test_one_mode_eigenvalues_are_eq_29():
@@ -26,13 +27,30 @@ def test_one_mode_eigenvalues_are_eq_29():
     assert st.linear_frequencies_hz[0] == pytest.approx(w / (2 * math.pi), rel=1e-14)
 
 
+@pytest.mark.parametrize("damping", [0.0, 3.0, 900.0])
 @pytest.mark.parametrize("rigid", [False, True])
-def test_numpy_eigenvalues_are_the_modal_pairs(rigid):
-    st = analyse(ds.preset("steel").replace(length=250.0), modes=3, rigid_mode=rigid)
-    pairs = np.concatenate([st.mode_eigenvalues, -st.mode_eigenvalues])
+def test_core_eigenvalues_are_lapacks(rigid, damping):
+    """The core's closed-form eigenvalues (both roots of every mode) and Jacobian against the numpy
+    oracle: the Jacobian by a linear solve, its eigenvalues by LAPACK, the classification from
+    those eigenvalues."""
+    st = analyse(ds.preset("steel").replace(length=250.0, damping_rate=damping), modes=3, rigid_mode=rigid)
+    model = ds.project(ds.preset("steel").replace(length=250.0), modes=3, rigid_mode=rigid)
+    jac = oracles.jacobian(model.mass, model.stiffness, damping)
+    np.testing.assert_allclose(st.jacobian, jac, rtol=1e-15, atol=0)  # LAPACK divides by a reciprocal
+    lapack = oracles.jacobian_eigenvalues(jac)
+    scale = np.abs(lapack).max()
     key = lambda z: (round(z.imag, 6), round(z.real, 6))  # noqa: E731
-    np.testing.assert_allclose(sorted(st.eigenvalues, key=key), sorted(pairs, key=key), rtol=1e-10, atol=1e-12)
-    assert classify(st.eigenvalues) == st.classification
+    np.testing.assert_allclose(sorted(st.eigenvalues, key=key), sorted(lapack, key=key), rtol=0, atol=1e-12 * scale)
+    if damping == 0.0:
+        pairs = np.concatenate([st.mode_eigenvalues, -st.mode_eigenvalues])
+        np.testing.assert_allclose(sorted(pairs, key=key), sorted(lapack, key=key), rtol=0, atol=1e-12 * scale)
+    assert oracles.classify_eigenvalues(lapack) == st.classification
+
+
+def test_classify_is_deprecated():
+    st = analyse(ds.preset("aluminum").replace(omega=0.0), modes=1, rigid_mode=True)
+    with pytest.warns(DeprecationWarning, match="classify"):
+        assert ds.stability.classify(st.eigenvalues) == oracles.classify_eigenvalues(st.eigenvalues)
 
 
 def test_critical_speeds_match_the_formula():
@@ -61,8 +79,8 @@ def test_classification_flips_at_the_critical_speed(mode):
     assert above.mode_eigenvalues[k].real > 0 and above.mode_eigenvalues[k].imag == 0
     assert above.classification == "saddle"
     assert below.classification == ("centre" if mode == 1 else "saddle")  # lower modes already unstable
-    assert classify(above.eigenvalues) == "saddle"
-    assert classify(below.eigenvalues) == below.classification
+    assert oracles.classify_eigenvalues(above.eigenvalues) == "saddle"
+    assert oracles.classify_eigenvalues(below.eigenvalues) == below.classification
     # modes above the flipping one stay centres
     assert all(c == "centre" for c in above.mode_classification[mode:])
 

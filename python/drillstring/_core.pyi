@@ -57,6 +57,8 @@ class ModalSystem:
     def velocity_dependent(self) -> bool:
         """Whether the forces depend on the velocity (damping); see :func:`resolve_method`."""
     def acceleration(self, q: NDArray[np.float64]) -> NDArray[np.float64]: ...
+    def quartic_gradient(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The cubic force ``grad V(q)`` at one state ``q`` (m,)."""
     def energy(self, q: NDArray[np.float64], qdot: NDArray[np.float64]) -> NDArray[np.float64]:
         """``H = q'^T M q' / 2 + q^T K q / 2 + V(q)`` of each sample: ``q``, ``qdot`` (m, samples)."""
     def potential(self, q: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -124,6 +126,77 @@ def coefficients(
     ``"energy"``; ``"consistent"``: ``rho I_p, G I_p, 0, 0, M J4 / 2, 0``) and ``k6 / Omega^2``;
     ``ValidationError`` naming the input, or ``parameters`` when a coefficient is not finite
     (or ``k1``, ``k2`` not ``> 0``)."""
+
+def k6(k6_per_omega_squared: float, omega: float) -> float:
+    """The rotation term ``k6 = (k6 / Omega^2) Omega^2`` (N); exactly 0 when
+    ``k6_per_omega_squared == 0``."""
+
+def check_damping_rate(damping_rate: float) -> float:
+    """``damping_rate`` (1/s) if finite and ``>= 0``, else ``ValidationError`` naming it."""
+
+def frequency_squared(
+    k1: float, k2: float, k6: float, length: float, indices: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """``w_i^2 = (k2 (i pi / l)^2 - k6) / k1`` (rad^2/s^2) of each mode number ``i``."""
+
+def linear_frequencies(frequency_squared: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``sqrt(w^2)`` (rad/s) of each ``w^2 >= 0``, ``nan`` for a negative one."""
+
+def wave_speed(k1: float, k2: float) -> float:
+    """``sqrt(k2 / k1)`` (m/s), ``nan`` for ``k2 < 0``."""
+
+def critical_speeds(
+    k2: float, k6_per_omega_squared: float, length: float, indices: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """``(i pi / l) sqrt(k2 / (k6 / Omega^2))`` (rad/s) of each mode number ``i``; ``inf`` when
+    ``k6_per_omega_squared == 0``, ``nan`` for ``k2 < 0``."""
+
+def wave_speed_squared_of_rates(
+    rates: NDArray[np.float64], indices: NDArray[np.int64], length: float, omega: float
+) -> float:
+    """``k2 / k1`` that the rates ``K_ii / M_ii`` of a modal model with ``k6 = k1 Omega^2``
+    imply (the mean over its elastic modes); ``nan`` without one."""
+
+def modal_rates(mass: NDArray[np.float64], stiffness: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``K_ii / M_ii`` (1/s^2); ``ValidationError`` for a mass not finite and ``> 0`` or a
+    stiffness not finite."""
+
+def duffing(
+    indices: NDArray[np.int64],
+    mass: NDArray[np.float64],
+    stiffness: NDArray[np.float64],
+    quartic_coef: NDArray[np.float64],
+    length: float,
+) -> tuple[float, float, float]:
+    """``(a1, a2, a3)`` of eq. 19 / corrected eq. 20 of the single-mode (``i = 1``) model;
+    ``ValidationError`` naming ``modes`` for another basis."""
+
+def modal_jacobian(
+    mass: NDArray[np.float64], stiffness: NDArray[np.float64], damping_rate: float
+) -> NDArray[np.float64]:
+    """``[[0, I], [-M^-1 K, -c I]]`` (2m, 2m) at ``q = qdot = 0``."""
+
+class ModalStabilityDict(TypedDict):
+    rates: NDArray[np.float64]
+    mode_eigenvalues_real: NDArray[np.float64]
+    mode_eigenvalues_imag: NDArray[np.float64]
+    eigenvalues_real: NDArray[np.float64]
+    eigenvalues_imag: NDArray[np.float64]
+    mode_classification: list[str]
+    classification: str
+
+def modal_stability(
+    mass: NDArray[np.float64], stiffness: NDArray[np.float64], damping_rate: float
+) -> ModalStabilityDict:
+    """Rates, eigenvalues (per mode the root ``-c/2 + sqrt(c^2/4 - mu)``; all ``2m`` sorted by
+    imaginary then real part) and classification (``"centre"``, ``"stable focus"``,
+    ``"stable node"``, ``"degenerate"``, ``"saddle"``) of the equilibrium."""
+
+def mode_shapes(
+    indices: NDArray[np.int64], length: float, z: NDArray[np.float64], slope: bool = False
+) -> NDArray[np.float64]:
+    """``cos(i pi z / l)`` (or with ``slope`` its ``z``-derivative) as a (len(z), len(indices))
+    array."""
 
 PDE_MAX_NODES: int
 """Largest grid of :class:`PdeSystem`, nodes."""

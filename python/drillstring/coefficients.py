@@ -33,7 +33,6 @@ where ``G = E / (2 (1 + nu))`` and ``A, I_p, I_r, I_{x^2y^2}, J4`` are the secti
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Optional, Union
 
@@ -66,6 +65,13 @@ def _mode_numbers(indices: ArrayLike) -> NDArray[np.float64]:
     if not np.all(np.isfinite(values)) or np.any(values < 0):
         raise ValidationError("indices", indices, "finite mode numbers i >= 0")
     return values
+
+
+def _shaped(flat: NDArray[np.float64], like: NDArray[Any]) -> FloatOrArray:
+    """The core's values ``flat`` of the flattened ``like`` in its shape: a float for a 0-d
+    ``like``, else an array."""
+    result = np.asarray(flat, dtype=float).reshape(like.shape)
+    return float(result) if result.ndim == 0 else result
 
 
 @dataclass(frozen=True)
@@ -155,26 +161,27 @@ class PDECoefficients:
         return (self.k1, self.k2, self.k3, self.k4, self.k5, self.k6)
 
     def frequency_squared(self, indices: ArrayLike) -> FloatOrArray:
-        """Linearised ``w_i^2 = (k2 (i pi / l)^2 - k6) / k1`` (rad^2/s^2) of ``cos(i pi z/l)``.
+        """Linearised ``w_i^2 = (k2 (i pi / l)^2 - k6) / k1`` (rad^2/s^2) of ``cos(i pi z/l)``
+        (the core's ``stability::frequency_squared``).
 
         Negative for ``i = 0`` (rotation softening) and for any mode above its critical speed.
         Returns a float for a scalar ``i``, else an array of the same shape.
         """
         i = _mode_numbers(indices)
-        result = (self.k2 * (i * math.pi / self.length) ** 2 - self.k6) / self.k1
-        return float(result) if result.ndim == 0 else result
+        flat = _core.frequency_squared(self.k1, self.k2, self.k6, self.length, i.ravel())
+        return _shaped(flat, i)
 
     def linear_frequencies(self, indices: ArrayLike) -> FloatOrArray:
         """``w_i = sqrt(w_i^2)`` (rad/s) where ``w_i^2 >= 0``, ``nan`` where it is negative."""
         w2 = np.asarray(self.frequency_squared(indices), dtype=float)
-        result = np.sqrt(np.where(w2 >= 0.0, w2, np.nan))
-        return float(result) if result.ndim == 0 else result
+        return _shaped(_core.linear_frequencies(w2.ravel()), w2)
 
     @property
     def wave_speed(self) -> float:
         """Linear torsional wave speed ``c = sqrt(k2 / k1)`` (m/s): ``2 sqrt(G / rho)`` in the
-        paper model, ``sqrt(G / rho)`` in the consistent one; ``nan`` if ``k2 < 0``."""
-        return math.sqrt(self.k2 / self.k1) if self.k2 >= 0.0 else math.nan
+        paper model, ``sqrt(G / rho)`` in the consistent one; ``nan`` if ``k2 < 0`` (the core's
+        ``stability::wave_speed``)."""
+        return float(_core.wave_speed(self.k1, self.k2))
 
     def critical_speed(self, indices: ArrayLike) -> FloatOrArray:
         """``Omega_i = (i pi / l) sqrt(k2 / (k6 / Omega^2))`` (rad/s); paper model:
@@ -187,9 +194,4 @@ class PDECoefficients:
         """
         i = _mode_numbers(indices)
         rate = self.k1 if self.k6_per_omega_squared is None else self.k6_per_omega_squared
-        if rate == 0.0:
-            result = np.full(i.shape, math.inf)
-        else:
-            speed = math.sqrt(self.k2 / rate) if self.k2 >= 0.0 else math.nan
-            result = i * math.pi / self.length * speed
-        return float(result) if result.ndim == 0 else result
+        return _shaped(_core.critical_speeds(self.k2, rate, self.length, i.ravel()), i)

@@ -59,7 +59,7 @@ from __future__ import annotations
 
 import functools
 import itertools
-import math
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal, NamedTuple, Union
 
@@ -91,13 +91,25 @@ Evaluation = Literal["auto", "terms", "spectral"]
 #: Largest accepted number of elastic modes ``n`` (the core's limit).
 MAX_MODES: int = _core.GALERKIN_MAX_MODES
 
-#: Largest number of retained modes for which :meth:`ModalCoefficients.cubic_tensor` builds
-#: the dense ``(m, m, m, m)`` tensor.
-MAX_TENSOR_MODES = 64
+# Largest number of retained modes for which the deprecated ModalCoefficients.cubic_tensor
+# builds the dense (m, m, m, m) tensor (public as MAX_TENSOR_MODES, deprecated with it).
+_MAX_TENSOR_MODES = 64
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 FloatOrArray = Union[float, FloatArray]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "MAX_TENSOR_MODES":
+        warnings.warn(
+            "drillstring.galerkin.MAX_TENSOR_MODES is deprecated with ModalCoefficients.cubic_tensor"
+            " and will be removed in the next release",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return _MAX_TENSOR_MODES
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # --------------------------------------------------------------------------- validation
@@ -377,14 +389,11 @@ class ModalCoefficients:
 
     @property
     def linear_frequencies(self) -> FloatArray:
-        """``(m,)`` ``w_i = sqrt(K_ii / M_ii)`` in rad/s; ``nan`` where ``K_ii < 0``."""
-        w2 = self.stiffness / self.mass
-        return np.sqrt(np.where(w2 >= 0.0, w2, np.nan))
+        """``(m,)`` ``w_i = sqrt(K_ii / M_ii)`` in rad/s; ``nan`` where ``K_ii < 0`` (the core's
+        ``_core.modal_rates`` and ``_core.linear_frequencies``)."""
+        return _core.linear_frequencies(_core.modal_rates(self.mass, self.stiffness))
 
     # ------------------------------------------------------------------ potential and forces
-
-    def _factors(self, q: FloatArray) -> FloatArray:
-        return q[self.quartic_index]  # (T, 4) or (T, 4, S)
 
     def core_system(self, damping_rate: float = 0.0, evaluation: Evaluation = "auto") -> _core.ModalSystem:
         """This model as the core's modal system, with the viscous damping rate ``c`` (1/s).
@@ -432,34 +441,44 @@ class ModalCoefficients:
         value = self.core_system().potential(qa.reshape(self.n_modes, -1))
         return float(value[0]) if qa.ndim == 1 else value
 
+    def _per_state(self, q: FloatArray, evaluate: Any) -> FloatArray:
+        """``evaluate`` (a method of the core system taking one state) at ``q`` of shape
+        ``(m,)``, or at each column of ``q`` of shape ``(m, S)``."""
+        if q.ndim == 1:
+            return np.asarray(evaluate(np.ascontiguousarray(q)), dtype=float)
+        out = np.empty_like(q)
+        for s in range(q.shape[1]):
+            out[:, s] = evaluate(np.ascontiguousarray(q[:, s]))
+        return out
+
     def cubic_force(self, q: ArrayLike) -> FloatArray:
-        """``grad V(q)``, the cubic generalised force; same shape as ``q``."""
+        """``grad V(q)``, the cubic generalised force; same shape as ``q``.
+
+        Evaluated by the core (:meth:`core_system`), as :meth:`potential` is.
+        """
         qa = _as_state("q", q, self.n_modes)
-        m = self.n_modes
-        f = self._factors(qa)
-        one = np.ones_like(f[:, 0])
-        left = [one, f[:, 0], f[:, 0] * f[:, 1], f[:, 0] * f[:, 1] * f[:, 2]]
-        right = [f[:, 1] * f[:, 2] * f[:, 3], f[:, 2] * f[:, 3], f[:, 3], one]
-        coef = self.quartic_coef if qa.ndim == 1 else self.quartic_coef[:, None]
-        weights = np.concatenate([coef * left[k] * right[k] for k in range(4)])
-        target = self.quartic_index.T.ravel()  # position k of every term, k-major
-        if qa.ndim == 1:
-            return np.bincount(target, weights=weights, minlength=m).astype(float, copy=False)
-        samples = qa.shape[1]
-        flat = (target[:, None] * samples + np.arange(samples)).ravel()
-        force = np.bincount(flat, weights=weights.ravel(), minlength=m * samples)
-        return force.astype(float, copy=False).reshape(m, samples)
+        return self._per_state(qa, self.core_system().quartic_gradient)
 
     def cubic_tensor(self) -> FloatArray:
         """Dense symmetric ``T`` (m, m, m, m) with ``grad V_j = sum T_jbcd q_b q_c q_d``.
 
-        ``V = 1/4 sum T_abcd q_a q_b q_c q_d``. For tests and small models
-        (``m <= 64``).
+        ``V = 1/4 sum T_abcd q_a q_b q_c q_d``; at most 64 retained modes.
+
+        .. deprecated::
+            Removed in the next release: the core evaluates the force and the potential
+            (:meth:`cubic_force`, :meth:`potential`) from :attr:`quartic_index` and
+            :attr:`quartic_coef`.
         """
+        warnings.warn(
+            "ModalCoefficients.cubic_tensor is deprecated and will be removed in the next release;"
+            " use cubic_force, potential or quartic_index and quartic_coef",
+            DeprecationWarning,
+            stacklevel=2,
+        )
         m = self.n_modes
-        if m > MAX_TENSOR_MODES:
+        if m > _MAX_TENSOR_MODES:
             raise ValidationError(
-                "modes", m, f"at most {MAX_TENSOR_MODES} retained modes for a dense tensor"
+                "modes", m, f"at most {_MAX_TENSOR_MODES} retained modes for a dense tensor"
             )
         tensor = np.zeros((m, m, m, m))
         # each distinct ordering of term t is visited 24/mult_t times: 4 C_t / 24 each time
@@ -470,12 +489,10 @@ class ModalCoefficients:
         return tensor
 
     def acceleration(self, q: ArrayLike) -> FloatArray:
-        """``q'' = -M^{-1} (K q + grad V(q))``; same shape as ``q``."""
+        """``q'' = -M^{-1} (K q + grad V(q))`` (undamped); same shape as ``q``. Evaluated by the
+        core (:meth:`core_system`)."""
         qa = _as_state("q", q, self.n_modes)
-        force = self.cubic_force(qa)
-        if qa.ndim == 1:
-            return -(self.stiffness * qa + force) / self.mass
-        return -(self.stiffness[:, None] * qa + force) / self.mass[:, None]
+        return self._per_state(qa, self.core_system().acceleration)
 
     def energy(self, q: ArrayLike, qdot: ArrayLike) -> FloatOrArray:
         """``H = 1/2 q'^T M q' + 1/2 q^T K q + V(q)`` (J), the PDE energy of the Galerkin field.
@@ -495,37 +512,30 @@ class ModalCoefficients:
         Equal to the corrected eq. 20: ``a1 = k1``, ``a2 = k2 pi^2/l^2 - k6``,
         ``a3 = 3 k3/4 + k4 pi^2/(2 l^2) + 3 k5 pi^4/(4 l^4)``.
 
+        Computed by the core (``_core.duffing``).
+
         Raises
         ------
         ValidationError
             Unless the model is the single mode ``i = 1`` (``modes=1, rigid_mode=False``).
         """
-        if self.n_modes != 1 or int(self.indices[0]) != 1:
-            raise ValidationError(
-                "modes",
-                f"{self.n_modes} retained modes (i = {self.indices.tolist()})",
-                "exactly one mode i = 1 (modes=1, rigid_mode=False)",
-            )
-        norm = self.length / 2.0
-        quartic = 4.0 * float(np.sum(self.quartic_coef))
-        return DuffingCoefficients(
-            a1=float(self.mass[0]) / norm,
-            a2=float(self.stiffness[0]) / norm,
-            a3=quartic / norm,
+        a1, a2, a3 = _core.duffing(
+            self.indices, self.mass, self.stiffness, self.quartic_coef, self.length
         )
+        return DuffingCoefficients(a1=a1, a2=a2, a3=a3)
 
     # ------------------------------------------------------------------ fields
 
     def basis(self, z: ArrayLike) -> FloatArray:
-        """``phi_k(z) = cos(i_k pi z / l)`` as a ``(len(z), m)`` array."""
+        """``phi_k(z) = cos(i_k pi z / l)`` as a ``(len(z), m)`` array (the core's mode shapes,
+        which sweeps evaluate too)."""
         za = _as_positions("z", z)
-        return np.cos(np.outer(za, self.indices * (math.pi / self.length)))
+        return _core.mode_shapes(self.indices, self.length, za)
 
     def basis_derivative(self, z: ArrayLike) -> FloatArray:
         """``phi_k'(z) = -(i_k pi / l) sin(i_k pi z / l)`` as a ``(len(z), m)`` array."""
         za = _as_positions("z", z)
-        wave = self.indices * (math.pi / self.length)
-        return -wave * np.sin(np.outer(za, wave))
+        return _core.mode_shapes(self.indices, self.length, za, slope=True)
 
     def twist(self, q: ArrayLike, z: ArrayLike) -> FloatArray:
         """``theta(z) = sum_k q_k phi_k(z)``: ``(len(z),)`` for ``q (m,)``, else ``(len(z), S)``."""

@@ -29,10 +29,12 @@ import re
 import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from numbers import Real
 from typing import Any, Optional, Union
 
+from . import _core
 from .errors import ValidationError
-from .limits import as_float
+from .limits import _shown, as_float
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -286,13 +288,17 @@ class Parameters:
 
 
 def check_damping_rate(value: Any) -> float:
-    """A viscous damping rate (1/s) as a float: finite and ``>= 0``, else
-    :class:`~drillstring.errors.ValidationError` naming ``damping_rate``."""
-    allowed = "a finite real number >= 0 (1/s)"
-    damping = as_float("damping_rate", value, allowed)
-    if not damping >= 0.0:
-        raise ValidationError("damping_rate", value, allowed)
-    return damping
+    """A viscous damping rate (1/s) as a float: finite and ``>= 0`` (the core's rule,
+    ``_core.check_damping_rate``), else :class:`~drillstring.errors.ValidationError` naming
+    ``damping_rate``."""
+    try:
+        number = float(value) if isinstance(value, Real) and not isinstance(value, bool) else math.nan
+    except (OverflowError, ValueError, TypeError):
+        number = math.nan
+    try:
+        return float(_core.check_damping_rate(number))
+    except ValidationError as exc:
+        raise ValidationError("damping_rate", _shown(value), exc.allowed) from None
 
 
 def _toml_float(value: float) -> str:

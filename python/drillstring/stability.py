@@ -34,16 +34,23 @@ oscillates, a ``"stable node"`` when none does.
 The ``"consistent"`` model (:attr:`Parameters.model`) has no rotation softening (``k6 = 0``):
 ``K_ii / M_ii = (k2/k1) (i pi / l)^2`` for every ``Omega``, no mode has a critical speed
 (``inf``), and the rigid mode is neutral (``K_00 = 0``: ``"degenerate"``).
+
+The Rust core computes all of it (``drillstring_core::stability``: the Jacobian, the
+eigenvalues of each mode in closed form, the classification with a rate within ``1e-12`` of the
+largest ``|K_ii / M_ii|`` counted as zero, the same rule by which sweeps count unstable modes,
+and the critical speeds); this module arranges its answers.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional, Union
 
 import numpy as np
 
+from . import _core
 from .coefficients import PDECoefficients
 from .errors import ValidationError
 from .galerkin import ModalCoefficients, project
@@ -62,23 +69,13 @@ def jacobian(coefficients: ModalCoefficients, damping_rate: float = 0.0) -> NDAr
     """``J = [[0, I], [-M^-1 K, -c I]]`` (2m, 2m) of the first-order system at ``q = qdot = 0``
     (``c`` = ``damping_rate``, 1/s; the damping force ``-c M qdot`` gives ``-c I``)."""
     c = check_damping_rate(damping_rate)
-    m = coefficients.n_modes
-    jac = np.zeros((2 * m, 2 * m))
-    jac[:m, m:] = np.eye(m)
-    jac[m:, :m] = -np.linalg.solve(coefficients.mass_matrix, coefficients.stiffness_matrix)
-    jac[m:, m:] = -c * np.eye(m)
-    return jac
+    return _core.modal_jacobian(coefficients.mass, coefficients.stiffness, c)
 
 
-def _classify_mu(mu: NDArray[np.float64], scale: float, damping_rate: float = 0.0) -> str:
-    tol = 1e-12 * scale
-    if np.any(mu < -tol):
-        return "saddle"
-    if np.any(np.abs(mu) <= tol):
-        return "degenerate"
-    if damping_rate == 0.0:
-        return "centre"
-    return "stable focus" if np.any(mu > 0.25 * damping_rate**2) else "stable node"
+def _complex(real: NDArray[np.float64], imag: NDArray[np.float64]) -> NDArray[np.complex128]:
+    out = np.empty(real.size, dtype=complex)
+    out.real, out.imag = real, imag
+    return out
 
 
 def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
@@ -89,7 +86,17 @@ def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
     is zero (below the same tolerance); if every real part is negative (damping) ``"stable
     focus"`` when some eigenvalue is complex, else ``"stable node"``; otherwise ``"centre"``.
     Meant for the Jacobians of this module (:func:`jacobian`).
+
+    .. deprecated::
+        Removed in the next release: :func:`analyse` returns the classification the core
+        computes (:attr:`Stability.classification`, :attr:`Stability.mode_classification`).
     """
+    warnings.warn(
+        "drillstring.stability.classify is deprecated and will be removed in the next release;"
+        " use analyse(...).classification",
+        DeprecationWarning,
+        stacklevel=2,
+    )
     lam = np.asarray(eigenvalues, dtype=complex)
     scale = float(np.max(np.abs(lam))) if lam.size else 0.0
     tol = rtol * scale
@@ -111,7 +118,8 @@ class Stability:
     jacobian: NDArray[np.float64]
     """``(2m, 2m)`` Jacobian at the equilibrium."""
     eigenvalues: NDArray[np.complex128]
-    """``(2m,)`` eigenvalues of :attr:`jacobian` (numpy), sorted by imaginary then real part."""
+    """``(2m,)`` eigenvalues of :attr:`jacobian` (both roots of every mode, in closed form),
+    sorted by imaginary then real part."""
     mode_eigenvalues: NDArray[np.complex128]
     """``(m,)`` per mode the eigenvalue ``-c/2 + sqrt(c^2/4 - K_ii / M_ii)`` (principal root,
     ``Im >= 0``); without damping the mode contributes the pair ``+-`` it (``i w_i`` for a
@@ -127,8 +135,9 @@ class Stability:
     omega: Optional[float]
     """Rotation speed ``Omega`` (rad/s) the model was built for, when known."""
     critical_speeds: Optional[NDArray[np.float64]]
-    """``(m,)`` ``Omega_crit,i = (i pi / l) sqrt(k2 / k1)`` (rad/s), when ``omega`` is known;
-    ``inf`` for a model without rotation softening (``"consistent"``)."""
+    """``(m,)`` ``Omega_crit,i = (i pi / l) sqrt(k2 / k1)`` (rad/s,
+    :meth:`PDECoefficients.critical_speed`), when ``omega`` is known; ``inf`` for a model
+    without rotation softening (``"consistent"``)."""
     damping_rate: float = 0.0
     """The viscous damping rate ``c`` (1/s) of the linearisation."""
 
@@ -181,7 +190,7 @@ def analyse(
     >>> s.classification, round(float(s.mode_eigenvalues[0].imag), 2)
     ('centre', 195.4)
     """
-    softening = True
+    pde: Optional[PDECoefficients] = None
     if isinstance(source, Parameters):
         if omega is not None and float(omega) != source.omega:
             raise ValidationError("omega", omega, f"omitted or equal to params.omega = {source.omega}")
@@ -192,7 +201,7 @@ def analyse(
             )
         damping_rate = source.damping_rate
         coefficients = project(source, modes=modes, rigid_mode=rigid_mode)
-        softening = PDECoefficients.from_parameters(source).k6_per_omega_squared != 0.0
+        pde = PDECoefficients.from_parameters(source)
     elif isinstance(source, ModalCoefficients):
         coefficients = source
     else:
@@ -202,33 +211,23 @@ def analyse(
     if omega is not None and not math.isfinite(float(omega)):
         raise ValidationError("omega", omega, "a finite rotation speed, rad/s")
     c = check_damping_rate(0.0 if damping_rate is None else damping_rate)
-    jac = jacobian(coefficients, c)
-    eig = np.linalg.eigvals(jac)
-    eig = eig[np.lexsort((eig.real, eig.imag))]
-    mu = coefficients.stiffness / coefficients.mass  # eigenvalues of M^-1 K (diagonal)
-    scale = float(np.max(np.abs(mu))) if mu.size else 0.0
-    if c == 0.0:
-        mode_eig = np.sqrt(-mu + 0j)  # principal root: Re >= 0, Im >= 0
-    else:
-        mode_eig = -0.5 * c + np.sqrt(0.25 * c * c - mu + 0j)
-    mode_class = tuple(_classify_mu(np.array([m]), scale, c) for m in mu)
-    overall = _classify_mu(mu, scale, c)
+    raw = _core.modal_stability(coefficients.mass, coefficients.stiffness, c)
+    indices = coefficients.indices.copy()
     critical = None
-    if omega is not None and not softening:
-        critical = np.full(mu.shape, math.inf)  # k6 = 0 for every Omega: no critical speed
+    if pde is not None:
+        critical = np.asarray(pde.critical_speed(indices), dtype=float)
     elif omega is not None:
-        # (k2/k1) from the elastic modes: K_ii/M_ii + Omega^2 = (k2/k1) (i pi / l)^2
-        wave = coefficients.indices * (math.pi / coefficients.length)
-        elastic = coefficients.indices > 0
-        speed2 = float(np.mean((mu[elastic] + float(omega) ** 2) / wave[elastic] ** 2))
-        critical = wave * math.sqrt(speed2) if speed2 >= 0.0 else np.full(mu.shape, math.nan)
+        # a model known by its arrays is taken to be of the paper's family, k6 = k1 Omega^2:
+        # k2 / k1 from its rates and Omega, then the critical speeds of that wave speed
+        speed2 = _core.wave_speed_squared_of_rates(raw["rates"], indices, coefficients.length, float(omega))
+        critical = _core.critical_speeds(speed2, 1.0, coefficients.length, indices.astype(float))
     return Stability(
-        indices=coefficients.indices.copy(),
-        jacobian=jac,
-        eigenvalues=eig,
-        mode_eigenvalues=mode_eig,
-        mode_classification=mode_class,
-        classification=overall,
+        indices=indices,
+        jacobian=jacobian(coefficients, c),
+        eigenvalues=_complex(raw["eigenvalues_real"], raw["eigenvalues_imag"]),
+        mode_eigenvalues=_complex(raw["mode_eigenvalues_real"], raw["mode_eigenvalues_imag"]),
+        mode_classification=tuple(raw["mode_classification"]),
+        classification=raw["classification"],
         omega=None if omega is None else float(omega),
         critical_speeds=critical,
         damping_rate=c,

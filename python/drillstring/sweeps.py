@@ -52,7 +52,9 @@ The parameters of each run as requested (``length``, ``youngs_modulus``, ``densi
 * ``energy_drift`` = ``max |H - H(0)| / |H(0)|`` over the samples (with ``damping_rate > 0``
   the energy balance error ``max |H + dissipated - H(0)| / |H(0)|``);
 * ``unstable_modes``: the number of retained modes with ``K_ii < 0`` (linearly unstable at the
-  equilibrium; the rigid mode counts whenever ``omega != 0``); ``<NA>`` for invalid runs;
+  equilibrium, the saddles of :func:`drillstring.stability.analyse`: a ``K_ii / M_ii`` within
+  ``1e-12`` of the largest ``|K_jj / M_jj|`` counts as 0; the rigid mode counts whenever
+  ``omega^2`` exceeds that); ``<NA>`` for invalid runs;
 * ``nfev``: right-hand-side evaluations;
 * ``share_mode_<i>`` for each retained mode ``i``: the largest share of the quadratic modal
   energy ``E_i = (M_i qdot_i^2 + K_i q_i^2) / 2`` in ``sum_j E_j`` that mode ``i`` reached
@@ -181,7 +183,8 @@ def _coefficients(params: Parameters, cache: dict[tuple[Any, ...], tuple[float, 
 
     ``k1..k5`` do not depend on ``length`` and ``omega`` (the axes most sweeps vary): they are
     computed once per material, section and model, and ``k6 = (k6 / Omega^2) Omega^2`` per run
-    (``rho I_p Omega^2`` in the paper model, 0 in the consistent one).
+    by the core's rule (``_core.k6``: ``rho I_p Omega^2`` in the paper model, 0 in the
+    consistent one).
     """
     key = (params.youngs_modulus, params.density, params.poisson_ratio, params.outer_diameter,
            params.inner_diameter, params.k5_variant, params.model)
@@ -189,7 +192,7 @@ def _coefficients(params: Parameters, cache: dict[tuple[Any, ...], tuple[float, 
     if fixed is None:
         k = PDECoefficients.from_parameters(params.replace(omega=0.0))
         fixed = cache[key] = (k.k1, k.k2, k.k3, k.k4, k.k5, k.k6_per_omega_squared or 0.0)
-    return (*fixed[:5], fixed[5] * params.omega**2 if fixed[5] else 0.0)
+    return (*fixed[:5], _core.k6(fixed[5], params.omega))
 
 
 def columns(velocity_columns: int, indices: Sequence[int]) -> list[str]:
@@ -242,12 +245,11 @@ def _run_inputs(
     """``k1..k6``, length, initial modal velocities, section and damping rate of one run; raises
     ValidationError (or any other error: the row becomes ``"invalid"`` with its message)."""
     params = Parameters(**requested)
-    try:
-        k = _coefficients(params, material)
-    except OverflowError as exc:
+    k = _coefficients(params, material)
+    if not math.isfinite(k[5]):
         raise ValidationError(
             "omega", params.omega, "a rotation speed whose k6 = rho I_p omega^2 is a finite number"
-        ) from exc
+        )
     c = params.initial_velocities
     velocities = [c[i - 1] if 1 <= i <= len(c) else 0.0 for i in indices]
     section = 2.0 * params.length / 3.0 if task.z is None else float(task.z)

@@ -37,6 +37,7 @@ pub mod options;
 pub mod pde;
 pub mod simd;
 pub mod solution;
+pub mod stability;
 pub mod sweep;
 pub mod system;
 pub mod terms;

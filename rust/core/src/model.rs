@@ -175,6 +175,17 @@ pub fn bar_speed(youngs_modulus: f64, density: f64) -> f64 {
     (youngs_modulus / density).sqrt()
 }
 
+/// The rotation term `k6 = (k6 / Omega^2) Omega^2` of eq. 17 (N): `rho I_p Omega^2` in the paper
+/// model (`k6_per_omega_squared = k1`), exactly 0 without rotation softening (the consistent
+/// model, whatever `Omega`). `Omega^2` is evaluated as `powf`, as it always was.
+pub fn k6(k6_per_omega_squared: f64, omega: f64) -> f64 {
+    if k6_per_omega_squared == 0.0 {
+        0.0
+    } else {
+        k6_per_omega_squared * omega.powf(2.0)
+    }
+}
+
 /// The physical inputs of the coefficients (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Physical {
@@ -259,7 +270,7 @@ pub fn coefficients(p: &Physical, model: Model, k5: K5Variant) -> Result<Coeffic
                     k3: 2.0 * section.area * g / (1.0 - 2.0 * nu),
                     k4: g * ip * (5.0 - 6.0 * nu) / (4.0 * (1.0 - 2.0 * nu)),
                     k5: g * (section.i_r + sign * section.i_x2y2 * (5.0 - 6.0 * nu)) / (8.0 * (1.0 - 2.0 * nu)),
-                    k6: p.density * ip * p.omega.powf(2.0),
+                    k6: k6(k1, p.omega),
                 },
                 k6_per_omega_squared: k1,
             }
@@ -271,7 +282,7 @@ pub fn coefficients(p: &Physical, model: Model, k5: K5Variant) -> Result<Coeffic
                 k3: 0.0,
                 k4: 0.0,
                 k5: consistent_k5(p_wave_modulus(p.youngs_modulus, nu), section.j4),
-                k6: 0.0,
+                k6: k6(0.0, p.omega),
             },
             k6_per_omega_squared: 0.0,
         },
@@ -385,6 +396,9 @@ mod tests {
         assert!(close(k.k5, g * (ir - ixy * 2.96) / (8.0 * 0.32), 1e-13));
         assert!(close(k.k6, 2700.0 * ip * PI * PI, 1e-13));
         assert_eq!(c.k6_per_omega_squared, k.k1);
+        assert_eq!(k.k6, k6(k.k1, PI));
+        assert_eq!(k6(0.0, 1e200), 0.0);
+        assert_eq!(k6(2.0, -3.0), 18.0);
         let energy = coefficients(&ALUMINIUM, Model::Paper, K5Variant::Energy).unwrap();
         assert!(close(energy.k.k5, g * (ir + ixy * 2.96) / (8.0 * 0.32), 1e-13));
         assert_eq!([k.k1, k.k2, k.k3, k.k4, k.k6], [energy.k.k1, energy.k.k2, energy.k.k3, energy.k.k4, energy.k.k6]);

@@ -18,6 +18,7 @@ mod metrics;
 mod modal;
 mod model;
 mod pde;
+mod stability;
 mod sweep;
 mod well;
 
@@ -40,6 +41,18 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::p_wave_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(model::bar_speed, m)?)?;
     m.add_function(wrap_pyfunction!(model::coefficients, m)?)?;
+    m.add_function(wrap_pyfunction!(model::k6, m)?)?;
+    m.add_function(wrap_pyfunction!(model::check_damping_rate, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::frequency_squared, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::linear_frequencies, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::wave_speed, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::critical_speeds, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::wave_speed_squared_of_rates, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::modal_rates, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::duffing, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::modal_jacobian, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::modal_stability, m)?)?;
+    m.add_function(wrap_pyfunction!(stability::mode_shapes, m)?)?;
     m.add_class::<pde::PdeSystem>()?;
     m.add_function(wrap_pyfunction!(pde::solve_pde, m)?)?;
     m.add("PDE_MAX_NODES", drillstring_core::pde::MAX_NODES)?;

@@ -149,6 +149,19 @@ impl ModalSystem {
         Ok(PyArray1::from_vec(py, acc))
     }
 
+    /// The cubic force `grad V(q)` at one state `q` (shape (m,)).
+    fn quartic_gradient<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let q = to_vec(&q);
+        self.check_len(py, "q", q.len())?;
+        let mut force = vec![0.0; q.len()];
+        no_panic(|| self.inner.quartic_gradient(&q, &mut force))?;
+        Ok(PyArray1::from_vec(py, force))
+    }
+
     /// The energy H of each sample: `q` and `qdot` of shape (m, samples).
     fn energy<'py>(
         &self,

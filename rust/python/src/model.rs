@@ -41,6 +41,20 @@ pub(crate) fn bar_speed(youngs_modulus: f64, density: f64) -> f64 {
     model::bar_speed(youngs_modulus, density)
 }
 
+/// The rotation term `k6 = (k6 / Omega^2) Omega^2` (0 without rotation softening), N.
+#[pyfunction]
+pub(crate) fn k6(k6_per_omega_squared: f64, omega: f64) -> f64 {
+    model::k6(k6_per_omega_squared, omega)
+}
+
+/// The viscous damping rate `c` (1/s) if it is finite and `>= 0`, else a `ValidationError`
+/// naming `damping_rate` (the rule of the damping term).
+#[pyfunction]
+pub(crate) fn check_damping_rate(py: Python<'_>, damping_rate: f64) -> PyResult<f64> {
+    let term = drillstring_core::terms::ViscousDamping::new(damping_rate).map_err(|e| validation_error(py, e))?;
+    Ok(term.rate())
+}
+
 /// `k1 .. k6` and `k6_per_omega_squared` of `model` (`"paper"`, `"consistent"`) for the
 /// physical inputs, with the sign of `k5` of the paper model from `k5_variant`.
 #[pyfunction]

@@ -208,7 +208,8 @@ pub struct RunRecord {
     pub rms_theta: f64,
     pub dominant_frequency_hz: f64,
     pub energy_drift: f64,
-    /// `#{K_i < 0}`; `None` for an invalid spec.
+    /// The linearly unstable modes ([`crate::stability::unstable_modes`]: `K_ii / M_ii < 0`
+    /// beyond round-off); `None` for an invalid spec.
     pub unstable_modes: Option<u32>,
     /// Right-hand-side evaluations.
     pub nfev: u64,
@@ -399,7 +400,7 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
         Ok(sol) => sol,
         Err(e) => return invalid(e),
     };
-    let unstable = sys.stiffness().iter().filter(|&&k| k < 0.0).count() as u32;
+    let unstable = crate::stability::unstable_modes(sys.mass(), sys.stiffness()) as u32;
     let basis = shared.integrals.basis(spec.z, spec.length);
     let theta = metrics::section_twist(&sol.y, &basis);
     let status = RunStatus::Solved(sol.status);

@@ -218,8 +218,20 @@ impl GalerkinIntegrals {
     /// `cos(i_k pi z / l)` for every retained mode: theta at section `z` is the dot product
     /// of this with `q`.
     pub fn basis(&self, z: f64, length: f64) -> Vec<f64> {
-        self.indices.iter().map(|&i| (f64::from(i) * PI / length * z).cos()).collect()
+        self.indices.iter().map(|&i| mode_shape(i, z, length)).collect()
     }
+}
+
+/// The mode shape `phi_i(z) = cos(i pi z / l)` of the free-free basis (eq. 15), evaluated as
+/// `cos(z (i (pi / l)))`: the one evaluation of the basis (sweeps, single solves, plots).
+pub fn mode_shape(i: u32, z: f64, length: f64) -> f64 {
+    (z * (f64::from(i) * (PI / length))).cos()
+}
+
+/// Its slope `phi_i'(z) = -(i pi / l) sin(i pi z / l)`, zero at both ends (eq. 14).
+pub fn mode_slope(i: u32, z: f64, length: f64) -> f64 {
+    let wave = f64::from(i) * (PI / length);
+    -wave * (z * wave).sin()
 }
 
 /// `int_0^l cos^2(i pi z / l) dz`: `l` for `i = 0`, else `l / 2`.
@@ -320,6 +332,24 @@ mod tests {
         let expect =
             5.0 * l / 4.0 * 1.5 + 7.0 * PI * PI / (2.0 * l) * 1.25 + 11.0 * PI.powi(4) / (4.0 * l.powi(3)) * 6.0;
         assert!((t.coef - expect).abs() <= 1e-14 * expect.abs());
+    }
+
+    #[test]
+    fn mode_shapes_are_the_free_free_cosines() {
+        let l = 3.0;
+        for i in 0..5u32 {
+            let w = f64::from(i) * PI / l;
+            for z in [0.0, 0.7, 1.5, 3.0] {
+                assert!((mode_shape(i, z, l) - (w * z).cos()).abs() <= 1e-15);
+                assert!((mode_slope(i, z, l) + w * (w * z).sin()).abs() <= 1e-14);
+            }
+            // eq. 14: no slope at the free ends; the slope is the derivative of the shape
+            assert!(mode_slope(i, 0.0, l) == 0.0 && mode_slope(i, l, l).abs() <= 1e-14 * (1.0 + w));
+            let h = 1e-6;
+            let fd = (mode_shape(i, 1.1 + h, l) - mode_shape(i, 1.1 - h, l)) / (2.0 * h);
+            assert!((fd - mode_slope(i, 1.1, l)).abs() <= 1e-8);
+        }
+        assert_eq!(two_modes().basis(0.7, l), [mode_shape(1, 0.7, l), mode_shape(2, 0.7, l)]);
     }
 
     #[test]

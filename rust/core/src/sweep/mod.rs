@@ -14,7 +14,7 @@ pub use batch::{
     batch_solve, batch_solve_with, resolve_threads, RunRecord, RunSpec, RunStatus, SweepOptions, Trajectory,
     MAX_THREADS,
 };
-pub use integrals::{discretise_spectral, GalerkinIntegrals};
+pub use integrals::{discretise_spectral, mode_shape, mode_slope, GalerkinIntegrals};
 
 #[cfg(test)]
 mod tests;
