@@ -525,6 +525,39 @@ def drill_defaults() -> str:
     """The default drilling configuration as JSON (``sections`` holds one template section;
     ``length``, ``outer_diameter`` and ``inner_diameter`` of each section are required)."""
 
+def drill_config_override(
+    config_json: str, overrides_json: str, field: str = "overrides", validate: bool = True, parse: bool = True
+) -> str:
+    """The configuration ``config_json`` with ``overrides_json`` (a JSON list of
+    ``[dotted path, value]`` pairs: ``top_drive.rpm``, ``sections[1].length``, a table such as
+    ``top_drive.controller`` merged into it, ``null`` for None) set in order, parsed and (with
+    ``validate``) validated, as JSON with every default filled in. One number for
+    ``well.inclination_deg`` without a ``well.md`` override drops the survey depths. Without
+    ``parse``: the configuration with the values set, as JSON (only the paths checked).
+
+    Raises
+    ------
+    ValidationError
+        ``field`` for a malformed path or list; otherwise naming the dotted field: an index out
+        of range, a key through a value that is not a table, an unknown key (the allowed ones
+        listed), a wrong type, a value out of range (with ``validate``).
+    """
+
+def parameters_defaults() -> str:
+    """The paper model's default parameters as JSON (Table 1 of the paper, aluminium reference,
+    ``initial_velocities`` ``[0.1, 0.05, 0.02]``): the fields of :class:`drillstring.Parameters`."""
+
+def parameters_validate(params_json: str) -> str:
+    """The paper model's parameters ``params_json`` (a JSON object of some of the fields)
+    validated, every default filled in, as JSON.
+
+    Raises
+    ------
+    ValidationError
+        naming the field (``length``, ``initial_velocities[2]``) of an unknown key, a value of the
+        wrong type or out of range.
+    """
+
 def drill_validate(config_json: str) -> str:
     """The configuration with every default filled in, as JSON.
 

@@ -851,7 +851,7 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         key, values = _map_axis(text)
         if key in axes:
             raise ValidationError("--axis", text, f"each key once ({key} is given twice)")
-        axes[key] = check_axis(key, values, "--axis")
+        axes[key] = check_axis(key, values, "--axis", config)
     check_destination(args.out, field="--out", directory=True, files=DRILL_MAP_FILES)
     refuse_foreign_folder(args.out, "drill-map", field="--out")
     client = _dask_client(args.scheduler)

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from collections.abc import Mapping
 from numbers import Integral, Real
 from typing import Any, Optional
 
@@ -90,6 +91,31 @@ def _shown(value: Any) -> Any:
             digits += 1
         return f"an integer of {digits} digits"
     return value
+
+
+def json_ready(value: Any) -> Any:
+    """A plain value (numbers, strings, booleans, None, mappings, lists, tuples) as JSON can carry
+    it to the core, which checks it and names the field: numpy and other numbers as int or float;
+    a non-finite float, an integer too large for a float (which JSON has no form for) and any
+    other object as text (``"nan"``, ``"inf"``, its ``repr``), which the core refuses."""
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, Integral):
+        number = int(value)
+        if abs(number) < 2**63:
+            return number
+        try:
+            return float(number)
+        except OverflowError:  # too large for a float
+            return "inf" if number > 0 else "-inf"
+    if isinstance(value, Real):
+        real = float(value)
+        return real if math.isfinite(real) else repr(real)
+    if isinstance(value, Mapping):
+        return {str(k): json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_ready(v) for v in value]
+    return repr(value)
 
 
 def as_float(field: str, value: Any, allowed: str) -> float:

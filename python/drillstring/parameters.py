@@ -23,6 +23,7 @@ Other tables (e.g. ``[solver]``) may be present; :func:`load` reads only ``[para
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import os
 import re
@@ -34,7 +35,7 @@ from typing import Any, Optional, Union
 
 from . import _core
 from .errors import ValidationError
-from .limits import _shown, as_float
+from .limits import _shown, json_ready
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -143,47 +144,23 @@ class Parameters:
     damping_rate: float = 0.0
 
     def __post_init__(self) -> None:
-        def set_(name: str, value: Any) -> None:
-            object.__setattr__(self, name, value)
-
-        for name in ("length", "youngs_modulus", "density", "outer_diameter"):
-            value = as_float(name, getattr(self, name), f"a finite real number, 0 < {name} < inf")
-            if value <= 0.0:
-                raise ValidationError(name, getattr(self, name), f"0 < {name} < inf")
-            set_(name, value)
-
-        outer = self.outer_diameter
-        inner_allowed = f"0 <= inner_diameter < outer_diameter = {outer!r}"
-        inner = as_float("inner_diameter", self.inner_diameter, inner_allowed)
-        if not 0.0 <= inner < outer:
-            raise ValidationError("inner_diameter", self.inner_diameter, inner_allowed)
-        set_("inner_diameter", inner)
-
-        nu_allowed = "-1 < poisson_ratio < 0.5"
-        nu = as_float("poisson_ratio", self.poisson_ratio, nu_allowed)
-        if not -1.0 < nu < 0.5:
-            raise ValidationError("poisson_ratio", self.poisson_ratio, nu_allowed)
-        set_("poisson_ratio", nu)
-
-        set_("omega", as_float("omega", self.omega, "a finite real number (rad/s, any sign)"))
-        set_("damping_rate", check_damping_rate(self.damping_rate))
-
-        velocities = self.initial_velocities
-        if isinstance(velocities, (str, bytes, Mapping)) or not hasattr(velocities, "__iter__"):
-            raise ValidationError(
-                "initial_velocities",
-                velocities,
-                "a sequence of finite real numbers (C_1, C_2, ...) in rad/s",
-            )
-        coerced = []
-        for i, value in enumerate(velocities):
-            coerced.append(as_float(f"initial_velocities[{i}]", value, "a finite real number (rad/s)"))
-        set_("initial_velocities", tuple(coerced))
-
-        for name, choices in CHOICE_FIELDS.items():
-            value = getattr(self, name)
-            if not isinstance(value, str) or value not in choices:
-                raise ValidationError(name, value, "one of " + ", ".join(map(repr, choices)))
+        # The core is the one validator (``_core.parameters_validate``): its message, with the
+        # value as given here. Numbers are then stored as Python floats of the values given.
+        plain = {name: getattr(self, name) for name in self.field_names()}
+        velocities = plain["initial_velocities"]
+        if isinstance(velocities, (list, tuple)) or (hasattr(velocities, "__iter__")
+                                                     and not isinstance(velocities, (str, bytes, Mapping))):
+            plain["initial_velocities"] = list(velocities)
+        try:
+            _core.parameters_validate(json.dumps(json_ready(plain)))
+        except ValidationError as exc:
+            raise ValidationError(exc.field, _shown(_value_at(plain, exc.field, exc.value)), exc.allowed) from None
+        for name in self.field_names():
+            value = plain[name]
+            if name == "initial_velocities":
+                object.__setattr__(self, name, tuple(float(v) for v in value))
+            elif not isinstance(value, str):
+                object.__setattr__(self, name, float(value))
 
     # ------------------------------------------------------------------ copies and dicts
 
@@ -299,6 +276,20 @@ def check_damping_rate(value: Any) -> float:
         return float(_core.check_damping_rate(number))
     except ValidationError as exc:
         raise ValidationError("damping_rate", _shown(value), exc.allowed) from None
+
+
+def _value_at(plain: Mapping[str, Any], field: str, default: Any) -> Any:
+    """The value of ``plain`` at the field ``field`` (``length``, ``initial_velocities[2]``)."""
+    name, _, index = field.partition("[")
+    if name not in plain:
+        return default
+    value = plain[name]
+    if index:
+        try:
+            return value[int(index.rstrip("]"))]
+        except (TypeError, ValueError, IndexError, KeyError):
+            return default
+    return value
 
 
 def _toml_float(value: float) -> str:

@@ -10,9 +10,11 @@ Every default and every allowed range lives once, in Rust: the dataclass default
 ``_core.drill_defaults()``, and constructing a :class:`DrillConfig` sends it to
 ``_core.drill_validate``, which fills what is unset and refuses a bad value with a
 :class:`~drillstring.errors.ValidationError` naming the dotted field (``sections[1].outer_diameter``,
-``top_drive.controller.kp``). Python checks only the structure: unknown keys (the message lists the
-allowed ones) and types (numbers through :func:`drillstring.limits.as_float` / ``as_int``).
-A :class:`DrillConfig` is therefore always valid and normalised.
+``top_drive.controller.kp``; an unknown key lists the allowed ones, a value of the wrong type says
+what the field takes). :meth:`DrillConfig.with_overrides` sets its dotted keys in the core too
+(``_core.drill_config_override``), as the stick-slip maps set their axes. Python only builds the
+dataclasses from the core's normalised output. A :class:`DrillConfig` is therefore always valid
+and normalised.
 
 TOML (``examples/on-bottom-3000m.toml``)::
 
@@ -44,14 +46,14 @@ import math
 import os
 import re
 import sys
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional, Union
 
 from .. import _core
 from ..errors import ValidationError
-from ..limits import as_float, as_int
+from ..limits import json_ready
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -322,11 +324,15 @@ class DrillConfig:
     metrics: MetricsConfig = _table(MetricsConfig)
 
     def __post_init__(self) -> None:
-        checked = _check_fields(type(self), {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}, "")
-        normal = json.loads(_core.drill_validate(json.dumps(_unset_left_out(_plain(checked)), allow_nan=False)))
-        rebuilt = _build(type(self), normal, "")  # the fields of the normalised config
-        for f in dataclasses.fields(self):
-            object.__setattr__(self, f.name, rebuilt[f.name])
+        plain = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
+        normal = _core.drill_validate(_core_json(plain))
+        for name, value in _from_core(type(self), json.loads(normal)).items():
+            object.__setattr__(self, name, value)
+
+    @classmethod
+    def _from_core(cls, normal: str) -> DrillConfig:
+        """The config of the core's normalised JSON ``normal``."""
+        return cls(**_from_core(cls, json.loads(normal)))
 
     # ------------------------------------------------------------------ dicts and JSON
 
@@ -355,7 +361,7 @@ class DrillConfig:
         try:
             if not isinstance(data, Mapping):
                 raise ValidationError("config", data, "a table/mapping of the configuration")
-            return _build(cls, data, "", construct=True)
+            return cls._from_core(_core.drill_validate(_core_json(_plain(data))))
         except ValidationError as exc:
             if source is None or exc.source is not None:
                 raise
@@ -395,7 +401,9 @@ class DrillConfig:
         ``assignments`` is a list of ``"key=value"`` strings, as ``drillstring drill --set``
         takes them (the value is TOML: ``60``, ``3.5e4``, ``true``, ``"pi"``, ``[0, 30]``, and a
         bare word such as ``soft_torque`` is a string, ``null`` unsets an optional field such as
-        ``top_drive.torque_limit``), or a mapping of dotted keys to values. Setting
+        ``top_drive.controller.tuning_frequency``), or a mapping of dotted keys to values; a
+        table given for a table (``{"top_drive.controller": {"kp": 1.0}}``) is merged into it.
+        The core sets them (``_core.drill_config_override``, as a stick-slip map its axes). Setting
         ``well.inclination_deg`` to one number (a constant inclination) without ``well.md``
         drops the survey stations::
 
@@ -409,149 +417,41 @@ class DrillConfig:
             configuration (naming it and listing the keys allowed there), an index out of
             range, or a value of the wrong type or refused by the core (naming the field).
         """
-        data = self.to_dict()
         items = list(assignments.items() if isinstance(assignments, Mapping) else (
             _split_assignment(a) for a in _assignment_list(assignments)))
-        for key, value in items:
-            _assign(data, key, value)
-        keys = {str(key).replace(" ", "") for key, _ in items}
-        if "well.inclination_deg" in keys and "well.md" not in keys and not isinstance(
-                data["well"]["inclination_deg"], (list, tuple)):
-            data["well"]["md"] = None  # a constant inclination replaces the survey
-        return type(self).from_dict(data)
-
-
-# --------------------------------------------------------------------------- structure checks
-
-_KIND_TEXT = {
-    "float": "a number",
-    "float?": "a number",
-    "int": "an integer",
-    "bool": "true or false",
-    "str": "a string",
-    "floats?": "a list of numbers",
-    "float|floats": "a number or a list of numbers",
-    "pairs": "a list of [time, rpm] pairs of numbers",
-    "pair?": "a list of two numbers [start, end]",
-}
-
-
-def _expected(kind: str, unit: str) -> str:
-    text = _KIND_TEXT[kind]
-    return f"{text} ({unit})" if unit and kind not in ("bool", "str") else text
-
-
-def _join(path: str, key: str) -> str:
-    return f"{path}.{key}" if path else key
-
-
-def _number_list(value: Any, path: str, allowed: str) -> tuple[float, ...]:
-    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence):
-        raise ValidationError(path, value, allowed)
-    return tuple(as_float(f"{path}[{i}]", v, allowed) for i, v in enumerate(value))
-
-
-def _convert(kind: str, unit: str, value: Any, path: str) -> Any:
-    """One field's value in its Python type, or ``ValidationError`` naming ``path`` (types only:
-    ranges are the core's)."""
-    allowed = _expected(kind, unit)
-    if kind == "float":
-        return as_float(path, value, allowed)
-    if kind == "float?":
-        return None if value is None else as_float(path, value, allowed)
-    if kind == "int":
-        return as_int(path, value, -(2**63), 2**63 - 1, allowed)
-    if kind == "bool":
-        if not isinstance(value, bool):
-            raise ValidationError(path, value, allowed)
-        return value
-    if kind == "str":
-        if not isinstance(value, str):
-            raise ValidationError(path, value, allowed)
-        return value
-    if kind == "floats?":
-        return None if value is None else _number_list(value, path, allowed)
-    if kind == "float|floats":
-        if isinstance(value, Sequence) and not isinstance(value, (str, bytes)):
-            return _number_list(value, path, allowed)
-        return as_float(path, value, allowed)
-    if kind == "pair?":
-        if value is None:
-            return None
-        numbers = _number_list(value, path, allowed)
-        if len(numbers) != 2:
-            raise ValidationError(path, value, allowed)
-        return numbers
-    if kind == "pairs":
-        if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence):
-            raise ValidationError(path, value, allowed)
         pairs = []
-        for i, pair in enumerate(value):
-            numbers = _number_list(pair, f"{path}[{i}]", allowed)
-            if len(numbers) != 2:
-                raise ValidationError(f"{path}[{i}]", pair, allowed)
-            pairs.append((numbers[0], numbers[1]))
-        return tuple(pairs)
-    raise AssertionError(kind)  # pragma: no cover
+        for key, value in items:
+            if not isinstance(key, str):
+                raise ValidationError("--set", key, _SET_FORM)
+            pairs.append([key.strip(), json_ready(_plain(value))])
+        return type(self)._from_core(_core.drill_config_override(self.to_json(), json.dumps(pairs), "--set"))
+
+
+# --------------------------------------------------------------------------- the core's JSON
 
 
 _TABLES: dict[str, type] = {}  # field name -> dataclass of a sub-table (filled below)
 
 
-def _keys_text(cls: type) -> str:
-    return ", ".join(f.name for f in dataclasses.fields(cls))
-
-
-def _check_fields(cls: type, values: Mapping[str, Any], path: str) -> dict[str, Any]:
-    """The fields of ``cls`` given in ``values`` (a mapping of field names), each converted:
-    sub-tables become their dataclasses (from an instance or a mapping), numbers floats or ints.
-    Unknown keys raise ``ValidationError`` naming the key and listing the allowed ones."""
-    names = {f.name: f for f in dataclasses.fields(cls)}
+def _from_core(cls: type, data: Mapping[str, Any]) -> dict[str, Any]:
+    """The fields of ``cls`` from the core's normalised (validated) JSON ``data``: sub-tables as
+    their dataclasses, lists as tuples. No checks: the core made them."""
     out: dict[str, Any] = {}
-    for key, value in values.items():
-        where = _join(path, str(key))
-        f = names.get(key) if isinstance(key, str) else None
-        if f is None:
-            what = f"[{path}]" if path else "the configuration"
-            raise ValidationError(where, value, f"a key of {what}: one of {_keys_text(cls)}")
-        if key == "sections":
-            out[key] = _sections(value, where)
+    for f in dataclasses.fields(cls):
+        value = data[f.name]
+        if f.name == "sections":
+            out[f.name] = tuple(Section(**_from_core(Section, s)) for s in value)
         elif f.metadata.get("kind") == "table":
-            out[key] = _build(_TABLES[key], value, where)
+            table = _TABLES[f.name]
+            out[f.name] = table(**_from_core(table, value))
         else:
-            out[key] = _convert(f.metadata["kind"], f.metadata["unit"], value, where)
+            out[f.name] = _frozen(value)
     return out
 
 
-def _sections(value: Any, path: str) -> tuple[Section, ...]:
-    allowed = "a list of sections (tables with length, outer_diameter, inner_diameter, ...)"
-    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence):
-        raise ValidationError(path, value, allowed)
-    return tuple(_build(Section, item, f"{path}[{i}]") for i, item in enumerate(value))
-
-
-def _build(cls: type, value: Any, path: str, *, construct: bool = False) -> Any:
-    """An instance of the dataclass ``cls`` from an instance or a mapping, its fields checked
-    (see :func:`_check_fields`). Missing fields take the dataclass defaults; a missing field
-    without a default raises ``ValidationError`` naming it."""
-    if dataclasses.is_dataclass(value) and isinstance(value, cls):
-        value = {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
-    if not isinstance(value, Mapping):
-        what = f"a table [{path}]" if path else "a table of the configuration"
-        raise ValidationError(path or "config", value, f"{what} with the keys {_keys_text(cls)}")
-    checked = _check_fields(cls, value, path)
-    if cls is Well and "md" not in value and isinstance(checked.get("inclination_deg"), float):
-        checked["md"] = None  # one constant inclination: no survey stations (TOML has no null)
-    for f in dataclasses.fields(cls):
-        no_default = f.default is dataclasses.MISSING and f.default_factory is dataclasses.MISSING
-        if no_default and f.name not in checked:
-            allowed = ("at least one section: [[sections]] tables (length, outer_diameter, inner_diameter, ...)"
-                       if f.name == "sections" else "a value (required)")
-            raise ValidationError(_join(path, f.name), None, allowed)
-    if cls is DrillConfig and not construct:
-        # inside DrillConfig.__post_init__: the fields only (constructing would validate again)
-        return checked
-    return cls(**checked)
+def _core_json(plain: Any) -> str:
+    """The plain config ``plain`` as the JSON the core parses (unset fields left out)."""
+    return json.dumps(_unset_left_out(json_ready(plain)), allow_nan=False)
 
 
 def _unset_left_out(value: Any) -> Any:
@@ -660,10 +560,6 @@ _KEY_LINE = re.compile(rf"^\s*({_NAME}(?:\s*\.\s*{_NAME})*)\s*=")
 _TOKEN = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
 
 
-def _tokens(dotted: str) -> list[Union[str, int]]:
-    return [int(index) if index else name for name, index in _TOKEN.findall(dotted)]
-
-
 def _toml_line(path: PathLike, dotted: str) -> Optional[int]:
     """The 1-based line of the TOML file ``path`` that sets the field ``dotted``
     (``sections[1].length``, ``top_drive.controller.kp``, ``well.md[2]``), or of its table; None
@@ -673,7 +569,7 @@ def _toml_line(path: PathLike, dotted: str) -> Optional[int]:
             lines = handle.read().splitlines()
     except (OSError, UnicodeDecodeError):
         return None
-    target = _tokens(dotted)
+    target = [int(index) if index else name for name, index in _TOKEN.findall(dotted)]
     counts: dict[tuple[Union[str, int], ...], int] = {}
     table: list[Union[str, int]] = []
     best: tuple[int, Optional[int]] = (0, None)
@@ -703,7 +599,6 @@ def _toml_line(path: PathLike, dotted: str) -> Optional[int]:
 
 # --------------------------------------------------------------------------- overrides
 
-_PATH = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(\[\d+\])*(\.[A-Za-z_][A-Za-z0-9_]*(\[\d+\])*)*$")
 _BARE_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_-]*$")
 _SET_FORM = "key=value with a dotted key (top_drive.rpm, sections[0].length) and a TOML value"
 
@@ -774,86 +669,3 @@ def parse_values(raw: str, field: str, text: str) -> list[Any]:
             raise ValidationError(field, text, "comma-separated values (an empty value)")
         values.append(_parse_value(item, field, text))
     return values
-
-
-def field_kind(key: str) -> Optional[tuple[str, str]]:
-    """The kind and unit of the configuration field at the dotted ``key`` (``top_drive.rpm``,
-    ``sections[0].length``; see ``_KIND_TEXT``), or ``None`` for a sub-table, a list item or an
-    unknown key."""
-    cls: Any = DrillConfig
-    tokens = _tokens(key)
-    position = 0
-    while position < len(tokens):
-        token = tokens[position]
-        f = {f.name: f for f in dataclasses.fields(cls)}.get(token) if isinstance(token, str) else None
-        if f is None:
-            return None
-        rest = tokens[position + 1:]
-        if token == "sections":  # sections[i].key
-            if len(rest) < 2 or not isinstance(rest[0], int):
-                return None
-            cls, position = Section, position + 2
-            continue
-        kind = str(f.metadata.get("kind"))
-        if kind == "table":
-            if not rest:
-                return None
-            cls, position = _TABLES[str(token)], position + 1
-            continue
-        return (kind, str(f.metadata.get("unit", ""))) if not rest else None
-    return None
-
-
-def check_field_type(key: str, value: Any, field: str) -> Any:
-    """``value`` checked against the type of the field ``key`` (:func:`field_kind`; ranges are the
-    core's): the converted value, or ``ValidationError`` naming ``field``. Values of sub-tables and
-    unknown keys pass as they are."""
-    kind = field_kind(key)
-    if kind is None:
-        return value
-    try:
-        return _convert(kind[0], kind[1], value, key)
-    except ValidationError as exc:
-        raise ValidationError(field, value, f"a value of {key}: {exc.allowed}") from None
-
-
-def _assign(data: dict[str, Any], key: Any, value: Any) -> None:
-    """Sets ``data[key path] = value`` in the nested plain config ``data``; unknown keys and
-    indices out of range raise ``ValidationError`` naming the dotted key so far."""
-    if not isinstance(key, str) or not _PATH.match(key):
-        raise ValidationError("--set", key, _SET_FORM)
-    tokens = _tokens(key)
-    node: Any = data
-    where = ""
-    for position, token in enumerate(tokens):
-        last = position == len(tokens) - 1
-        if isinstance(token, int):
-            if not isinstance(node, list):
-                raise ValidationError(f"{where}[{token}]", value, f"a key without an index: {where} is not a list")
-            if not 0 <= token < len(node):
-                allowed = f"an index 0..{len(node) - 1} of {where}" if node else f"no index: {where} is empty"
-                raise ValidationError(f"{where}[{token}]", value, allowed)
-            where = f"{where}[{token}]"
-            if last:
-                node[token] = value
-            else:
-                node = node[token]
-            continue
-        name = _join(where, token)
-        if not isinstance(node, dict) or token not in node:
-            if isinstance(node, dict):
-                what = f"[{where}]" if where else "the configuration"
-                keys = ", ".join(node)
-                raise ValidationError(name, value, f"a key of {what}: one of {keys}")
-            if isinstance(node, list):
-                raise ValidationError(name, value, f"an index first: {where} is a list of {len(node)} "
-                                      f"({where}[0].{token})")
-            raise ValidationError(name, value, f"a key of a table: {where} is {node!r}, not a table")
-        where = name
-        if last:
-            if isinstance(node[token], dict) and isinstance(value, Mapping):
-                node[token].update(value)
-            else:
-                node[token] = value
-        else:
-            node = node[token]

@@ -45,7 +45,7 @@ from numpy.typing import NDArray
 from .. import _core
 from ..analysis import StickSlipMetrics, _stick_slip
 from ..errors import SolveError, ValidationError
-from ..limits import as_float
+from ..limits import as_float, json_ready
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -85,18 +85,11 @@ def _numerics(duration: Any, dt: Any, output_interval: Any, initial: Any, window
 
 
 def _params_json(params: Optional[Mapping[str, Any]]) -> str:
-    known = lumped_defaults()
-    out: dict[str, float] = {}
-    for key, value in (params or {}).items():
-        if key not in known:
-            raise ValidationError(key, value, f"a parameter name, one of {', '.join(known)}")
-        if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-            raise ValidationError(key, value, "a number")
-        number = float(value)
-        if not math.isfinite(number):
-            raise ValidationError(key, value, "a finite number")
-        out[key] = number
-    return json.dumps(out)
+    """``params`` as the JSON the core parses and validates (an unknown name, a value that is not
+    a number or out of range: ValidationError naming the field)."""
+    if params is not None and not isinstance(params, Mapping):
+        raise ValidationError("params", params, "a mapping of parameter names to numbers")
+    return json.dumps(json_ready(dict(params or {})))
 
 
 @dataclass(frozen=True)

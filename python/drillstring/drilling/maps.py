@@ -45,7 +45,7 @@ import numpy as np
 from .. import _core
 from ..errors import ValidationError
 from ..limits import INT64_MAX, as_int, check_run_count, memory_budget
-from .config import DrillConfig, _assign, _load_document, _plain, check_field_type
+from .config import DrillConfig, _load_document, _plain
 from .result import _CORE_METRICS, DrillMetrics
 from .solve import ConfigLike, _config
 
@@ -98,15 +98,27 @@ def _value_kind(value: Any) -> str:
     return "lists"
 
 
-def check_axis(key: str, values: Sequence[Any], field: str) -> list[Any]:
-    """The values of the axis ``key`` as JSON-ready plain values, each checked against the type of
-    the field ``key`` (``top_drive.rpm`` takes numbers, ``bit.on_bottom`` true/false, ...; ranges
-    are the core's: a value out of range is an ``"invalid"`` row) and all of one kind (numbers,
-    strings, true/false or lists, and ``None``: one column of the table), before anything is
-    solved. Raises :class:`~drillstring.errors.ValidationError` naming ``field``."""
+def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
+               config: Optional[DrillConfig] = None) -> list[Any]:
+    """The values of the axis ``key`` as JSON-ready plain values, each set in ``config`` (default:
+    the core's default configuration) by the core as a run of the map sets it
+    (``_core.drill_config_override``, not validated: a value out of range is an ``"invalid"``
+    row), so that a key not in the configuration, an index out of range or a value of the wrong
+    type (``top_drive.rpm`` takes numbers, ``bit.on_bottom`` true/false, ...) is refused before
+    anything is solved; and all of one kind (numbers, strings, true/false or lists, and ``None``:
+    one column of the table). Raises :class:`~drillstring.errors.ValidationError` naming ``field``
+    (the dotted path for a path error)."""
     plain = [_plain_value(v, field) for v in values]
+    base = config.to_json() if config is not None else _core.drill_defaults()
+    # the path (malformed, an index out of range, a key through a value): the core's message as it is
+    _core.drill_config_override(base, json.dumps([[key, plain[0] if plain else None]]), field, parse=False)
     for value in plain:
-        check_field_type(key, value, field)
+        try:
+            _core.drill_config_override(base, json.dumps([[key, value]]), field, validate=False)
+        except ValidationError as exc:
+            if exc.value == "an unknown field":
+                raise  # a key not in the configuration: named, the allowed keys listed
+            raise ValidationError(field, value, f"a value of {key}: {exc.allowed}") from None
     kinds = sorted({_value_kind(v) for v in plain} - {"null"})
     if len(kinds) > 1:
         raise ValidationError(field, f"{key}={', '.join(json.dumps(v) for v in plain)}",
@@ -118,7 +130,6 @@ def _axes(cfg: DrillConfig, axes: Any) -> dict[str, list[Any]]:
     if not isinstance(axes, Mapping) or not axes:
         raise ValidationError("axes", axes, "a non-empty mapping of dotted configuration keys to lists of values "
                               "(e.g. {'top_drive.rpm': [40, 80, 120]})")
-    data = cfg.to_dict()
     out: dict[str, list[Any]] = {}
     for path, values in axes.items():
         if not isinstance(path, str):
@@ -128,9 +139,7 @@ def _axes(cfg: DrillConfig, axes: Any) -> dict[str, list[Any]]:
             raise ValidationError(f"axes[{path!r}]", path, "each key once")
         if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)) or len(values) == 0:
             raise ValidationError(f"axes[{path!r}]", values, "a non-empty list of values")
-        plain = [_plain_value(v, f"axes[{path!r}]") for v in values]
-        _assign(json.loads(json.dumps(data)), key, plain[0])  # unknown keys and indices name the path
-        out[key] = check_axis(key, plain, f"axes[{path!r}]")
+        out[key] = check_axis(key, values, f"axes[{path!r}]", cfg)
     return out
 
 

@@ -35,6 +35,7 @@ pub mod modal;
 pub mod model;
 pub mod options;
 pub mod pde;
+mod schema;
 pub mod simd;
 pub mod solution;
 pub mod stability;

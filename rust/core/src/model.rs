@@ -22,8 +22,12 @@
 //!   so `k1 = rho I_p`, `k2 = G I_p`, `k3 = k4 = k6 = 0`, `k5 = M J4 / 2`: wave speed
 //!   `sqrt(G / rho)`, no force from a uniform twist, no dependence on a constant `Omega`.
 
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
 use crate::error::{Error, Num, Result};
 use crate::pde::PdeCoefficients;
+use crate::schema;
 use crate::terms::ModelTerms;
 use std::f64::consts::PI;
 
@@ -53,7 +57,7 @@ impl Model {
         Model::ALL
             .into_iter()
             .find(|m| m.name() == name)
-            .ok_or_else(|| Error::invalid("model", format!("{name:?}"), "one of 'paper', 'consistent'"))
+            .ok_or_else(|| Error::invalid("model", format!("{name:?}"), MODEL_TEXT))
     }
 }
 
@@ -83,7 +87,7 @@ impl K5Variant {
         K5Variant::ALL
             .into_iter()
             .find(|v| v.name() == name)
-            .ok_or_else(|| Error::invalid("k5_variant", format!("{name:?}"), "one of 'paper', 'energy'"))
+            .ok_or_else(|| Error::invalid("k5_variant", format!("{name:?}"), K5_TEXT))
     }
 }
 
@@ -107,13 +111,7 @@ impl Section {
     /// `r = d/2`. Powers are evaluated as `powf` (the C library's `pow`), the way the
     /// Python reference evaluated them, so that values are reproduced bit for bit.
     pub fn annulus(outer_diameter: f64, inner_diameter: f64) -> Result<Section> {
-        if !(outer_diameter.is_finite() && outer_diameter > 0.0) {
-            return Err(Error::invalid("outer_diameter", Num(outer_diameter), "0 < outer_diameter < inf"));
-        }
-        if !(inner_diameter.is_finite() && (0.0..outer_diameter).contains(&inner_diameter)) {
-            let allowed = format!("0 <= inner_diameter < outer_diameter = {}", Num(outer_diameter));
-            return Err(Error::invalid("inner_diameter", Num(inner_diameter), allowed));
-        }
+        check_diameters(outer_diameter, inner_diameter)?;
         let r_out = outer_diameter / 2.0;
         let r_in = inner_diameter / 2.0;
         let r6 = r_out.powf(6.0) - r_in.powf(6.0);
@@ -143,6 +141,25 @@ impl Section {
             }
         }
         Ok(section)
+    }
+}
+
+/// The diameters of an annulus: `0 < D < inf`, `0 <= d < D` (m); an error naming the field.
+fn check_diameters(outer_diameter: f64, inner_diameter: f64) -> Result<()> {
+    positive("outer_diameter", outer_diameter)?;
+    if !(inner_diameter.is_finite() && (0.0..outer_diameter).contains(&inner_diameter)) {
+        let allowed = format!("0 <= inner_diameter < outer_diameter = {}", Num(outer_diameter));
+        return Err(Error::invalid("inner_diameter", Num(inner_diameter), allowed));
+    }
+    Ok(())
+}
+
+/// `0 < value < inf`, else an error naming `name`.
+fn positive(name: &str, value: f64) -> Result<()> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, Num(value), format!("0 < {name} < inf")))
     }
 }
 
@@ -233,16 +250,122 @@ pub fn check_poisson_ratio(field: impl Into<String>, nu: f64) -> Result<()> {
 }
 
 fn check_physical(p: &Physical) -> Result<()> {
-    for (name, value) in [("youngs_modulus", p.youngs_modulus), ("density", p.density)] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(Error::invalid(name, Num(value), format!("0 < {name} < inf")));
-        }
-    }
+    positive("youngs_modulus", p.youngs_modulus)?;
+    positive("density", p.density)?;
     check_poisson_ratio("poisson_ratio", p.poisson_ratio)?;
     if !p.omega.is_finite() {
         return Err(Error::invalid("omega", Num(p.omega), "a finite real number (rad/s, any sign)"));
     }
     Ok(())
+}
+
+/// The paper model's parameters (Python's `drillstring.Parameters`), SI units: the physical
+/// inputs, the string length, the initial modal velocities `C_1, C_2, ...` (rad/s), the model
+/// and `k5` variant by name and the viscous damping rate (1/s). Defaults: Table 1 of the paper
+/// (aluminium reference) with `C = (0.1, 0.05, 0.02)`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Parameters {
+    pub length: f64,
+    pub youngs_modulus: f64,
+    pub density: f64,
+    pub poisson_ratio: f64,
+    pub outer_diameter: f64,
+    pub inner_diameter: f64,
+    pub omega: f64,
+    pub initial_velocities: Vec<f64>,
+    pub k5_variant: String,
+    pub model: String,
+    pub damping_rate: f64,
+}
+
+impl Default for Parameters {
+    fn default() -> Self {
+        Parameters {
+            length: 100.0,
+            youngs_modulus: 0.7e11,
+            density: 2.7e3,
+            poisson_ratio: 0.34,
+            outer_diameter: 0.20,
+            inner_diameter: 0.12,
+            omega: 2.0 * PI * 0.5,
+            initial_velocities: vec![0.1, 0.05, 0.02],
+            k5_variant: "paper".into(),
+            model: "paper".into(),
+            damping_rate: 0.0,
+        }
+    }
+}
+
+/// What a field of [`Parameters`] takes, for an error of its type.
+fn parameter_text(field: &str) -> Option<String> {
+    Some(match field {
+        "length" | "youngs_modulus" | "density" | "outer_diameter" => {
+            format!("a finite real number, 0 < {field} < inf")
+        }
+        "inner_diameter" => "a finite real number, 0 <= inner_diameter < outer_diameter".into(),
+        "poisson_ratio" => "a finite real number, -1 < poisson_ratio < 0.5".into(),
+        "omega" => OMEGA_TEXT.into(),
+        "damping_rate" => DAMPING_TEXT.into(),
+        "initial_velocities" => "a sequence of finite real numbers (C_1, C_2, ...) in rad/s".into(),
+        "k5_variant" => K5_TEXT.into(),
+        "model" => MODEL_TEXT.into(),
+        f if f.starts_with("initial_velocities[") => VELOCITY_TEXT.into(),
+        _ => return None,
+    })
+}
+
+const OMEGA_TEXT: &str = "a finite real number (rad/s, any sign)";
+const DAMPING_TEXT: &str = "a finite real number >= 0 (1/s)";
+const VELOCITY_TEXT: &str = "a finite real number (rad/s)";
+const MODEL_TEXT: &str = "one of 'paper', 'consistent'";
+const K5_TEXT: &str = "one of 'paper', 'energy'";
+
+impl Parameters {
+    /// Parses and validates parameters from a JSON object (every field optional: the
+    /// defaults); an error names the field (`initial_velocities[2]`) and what it takes.
+    pub fn from_json(json: &str) -> Result<Parameters> {
+        let user: Value = serde_json::from_str(json)
+            .map_err(|e| Error::invalid("parameters", format!("text that is not JSON ({e})"), "a JSON object"))?;
+        if !user.is_object() {
+            return Err(Error::invalid("parameters", schema::kind(&user), "a table/mapping of parameter fields"));
+        }
+        let p: Parameters = schema::parse(&user).map_err(|e| {
+            let Error::InvalidInput { field, value, allowed } = e;
+            let allowed = if value == "an unknown field" { allowed } else { parameter_text(&field).unwrap_or(allowed) };
+            Error::InvalidInput { field, value, allowed }
+        })?;
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The parameters as JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(self).unwrap_or_else(|_| "{}".into())
+    }
+
+    /// Checks every field's range, naming it.
+    pub fn validate(&self) -> Result<()> {
+        positive("length", self.length)?;
+        positive("youngs_modulus", self.youngs_modulus)?;
+        positive("density", self.density)?;
+        check_diameters(self.outer_diameter, self.inner_diameter)?;
+        check_poisson_ratio("poisson_ratio", self.poisson_ratio)?;
+        if !self.omega.is_finite() {
+            return Err(Error::invalid("omega", Num(self.omega), OMEGA_TEXT));
+        }
+        if !(self.damping_rate.is_finite() && self.damping_rate >= 0.0) {
+            return Err(Error::invalid("damping_rate", Num(self.damping_rate), DAMPING_TEXT));
+        }
+        for (i, c) in self.initial_velocities.iter().enumerate() {
+            if !c.is_finite() {
+                return Err(Error::invalid(format!("initial_velocities[{i}]"), Num(*c), VELOCITY_TEXT));
+            }
+        }
+        K5Variant::parse(&self.k5_variant)?;
+        Model::parse(&self.model)?;
+        Ok(())
+    }
 }
 
 /// The coefficients `k1 .. k6` of `model` (module docs) for the physical inputs `p`; `k5`

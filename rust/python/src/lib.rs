@@ -9,6 +9,7 @@
 
 use pyo3::prelude::*;
 
+mod config;
 mod convert;
 mod drill_map;
 mod drilling;
@@ -75,6 +76,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(config::drill_config_override, m)?)?;
+    m.add_function(wrap_pyfunction!(config::parameters_defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(config::parameters_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drill_map::drill_map, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::lumped_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::lumped_solve, m)?)?;

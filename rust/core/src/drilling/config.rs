@@ -12,6 +12,7 @@ use serde_json::{Map, Value};
 
 use crate::error::{Error, Num, Result};
 use crate::metrics::STICK_SPEED;
+use crate::schema::{self, join, kind, shown};
 
 use super::grid::Grid;
 use crate::well::plan::SegmentSpec;
@@ -508,151 +509,27 @@ impl Default for DrillConfig {
 const REQUIRED_TOP: [&str; 1] = ["sections"];
 const REQUIRED_SECTION: [&str; 3] = ["length", "outer_diameter", "inner_diameter"];
 
-fn join(path: &str, key: &str) -> String {
-    if path.is_empty() {
-        key.to_string()
-    } else {
-        format!("{path}.{key}")
+/// A drilling configuration's error of the schema parse, in its own words: a top-drive step
+/// names the step (`top_drive.steps[1]`, `[time s, rpm]`), the inclination its two forms.
+fn refine(user: &Value, error: Error) -> Error {
+    let Error::InvalidInput { field, value, allowed } = error;
+    if let Some(rest) = field.strip_prefix("top_drive.steps[") {
+        let index = rest.split(']').next().unwrap_or("");
+        let step = user.pointer(&format!("/top_drive/steps/{index}")).map_or(value, shown);
+        return Error::invalid(format!("top_drive.steps[{index}]"), step, "[time s, rpm]");
     }
+    if allowed.contains("untagged enum Inclination") {
+        return Error::invalid(field, value, "a number or an array of numbers (degrees)");
+    }
+    Error::InvalidInput { field, value, allowed }
 }
 
-fn kind(v: &Value) -> &'static str {
-    match v {
-        Value::Null => "null",
-        Value::Bool(_) => "a boolean",
-        Value::Number(_) => "a number",
-        Value::String(_) => "a string",
-        Value::Array(_) => "an array",
-        Value::Object(_) => "an object",
-    }
-}
-
-fn shown(v: &Value) -> String {
-    let s = v.to_string();
-    if s.len() > 60 {
-        format!("{}...", &s[..s.char_indices().take(57).last().map_or(0, |(i, c)| i + c.len_utf8())])
-    } else {
-        s
-    }
-}
-
-/// Checks the keys and value types of `user` against the serialised defaults `template`,
-/// naming the dotted path of the first mismatch (serde's own errors carry no path).
-fn check_shape(path: &str, user: &Value, template: &Value) -> Result<()> {
-    match template {
-        Value::Object(t) => {
-            let Value::Object(u) = user else {
-                return Err(Error::invalid(path, shown(user), "an object"));
-            };
-            for (k, v) in u {
-                let Some(tv) = t.get(k) else {
-                    let keys: Vec<&str> = t.keys().map(String::as_str).collect();
-                    return Err(Error::invalid(
-                        join(path, k),
-                        "an unknown field",
-                        format!("one of {}", keys.join(", ")),
-                    ));
-                };
-                check_shape(&join(path, k), v, tv)?;
-            }
-            Ok(())
-        }
-        Value::Array(t) => match user {
-            Value::Array(u) => {
-                if path == "friction.intervals" {
-                    for (i, v) in u.iter().enumerate() {
-                        let p = format!("{path}[{i}]");
-                        let Value::Object(m) = v else {
-                            return Err(Error::invalid(p, shown(v), "a table of top_md, bottom_md, static"));
-                        };
-                        require(&p, m, &["top_md", "bottom_md", "static"])?;
-                        for (k, x) in m {
-                            if !["top_md", "bottom_md", "static"].contains(&k.as_str()) {
-                                return Err(Error::invalid(
-                                    join(&p, k),
-                                    "an unknown field",
-                                    "one of top_md, bottom_md, static",
-                                ));
-                            }
-                            if !x.is_number() {
-                                return Err(Error::invalid(join(&p, k), shown(x), "a number"));
-                            }
-                        }
-                    }
-                    return Ok(());
-                }
-                if path == "top_drive.steps" {
-                    for (i, step) in u.iter().enumerate() {
-                        let ok = matches!(step, Value::Array(p) if p.len() == 2 && p.iter().all(Value::is_number));
-                        if !ok {
-                            return Err(Error::invalid(format!("{path}[{i}]"), shown(step), "[time s, rpm]"));
-                        }
-                    }
-                    return Ok(());
-                }
-                for (i, v) in u.iter().enumerate() {
-                    let p = format!("{path}[{i}]");
-                    match t.first() {
-                        Some(first @ Value::Object(_)) => check_shape(&p, v, first)?,
-                        _ if !v.is_number() => return Err(Error::invalid(p, shown(v), "a number")),
-                        _ => {}
-                    }
-                }
-                Ok(())
-            }
-            Value::Number(_) if path == "well.inclination_deg" || path == "well.azimuth_deg" => Ok(()),
-            _ => Err(Error::invalid(path, shown(user), "an array")),
-        },
-        Value::Number(_) if path == "well.azimuth_deg" && user.is_array() => {
-            check_shape(path, user, &Value::Array(vec![]))
-        }
-        Value::Number(_) if !user.is_number() => Err(Error::invalid(path, shown(user), "a number")),
-        Value::Bool(_) if !user.is_boolean() => Err(Error::invalid(path, shown(user), "true or false")),
-        Value::String(_) if !user.is_string() => Err(Error::invalid(path, shown(user), "a string")),
-        Value::Null if path == "well.survey" => match user {
-            Value::Null | Value::String(_) => Ok(()),
-            _ => Err(Error::invalid(path, shown(user), "the path of a survey file (a string)")),
-        },
-        Value::Null if path == "well.plan" => match user {
-            Value::Null => Ok(()),
-            Value::Array(u) => {
-                let keys = ["hold", "build", "drop", "turn", "inclination", "azimuth"];
-                for (i, v) in u.iter().enumerate() {
-                    let p = format!("{path}[{i}]");
-                    let Value::Object(m) = v else {
-                        return Err(Error::invalid(
-                            p,
-                            shown(v),
-                            "a table such as {hold = 500} or {build = 3, inclination = 60}",
-                        ));
-                    };
-                    for (k, x) in m {
-                        if !keys.contains(&k.as_str()) {
-                            return Err(Error::invalid(
-                                join(&p, k),
-                                "an unknown field",
-                                format!("one of {}", keys.join(", ")),
-                            ));
-                        }
-                        if !x.is_number() {
-                            return Err(Error::invalid(join(&p, k), shown(x), "a number"));
-                        }
-                    }
-                }
-                Ok(())
-            }
-            _ => Err(Error::invalid(path, shown(user), "a list of segments")),
-        },
-        // Optional fields (default None): null, a number or an array of numbers.
-        Value::Null => match user {
-            Value::Null | Value::Number(_) => Ok(()),
-            Value::Array(u) => match u.iter().position(|v| !v.is_number()) {
-                Some(i) => Err(Error::invalid(format!("{path}[{i}]"), shown(&u[i]), "a number")),
-                None => Ok(()),
-            },
-            _ => Err(Error::invalid(path, shown(user), "null or a number")),
-        },
-        _ => Ok(()),
+/// The constant-inclination rule, the one place it lives: one inclination number
+/// (`well.inclination_deg = 20`) with no survey depths given means no survey (`well.md` null;
+/// the default depths are the default table's).
+fn constant_inclination(well: &mut Map<String, Value>, md_given: bool) {
+    if !md_given && well.get("inclination_deg").is_some_and(Value::is_number) {
+        well.insert("md".into(), Value::Null);
     }
 }
 
@@ -672,7 +549,12 @@ impl DrillConfig {
     pub fn from_json(json: &str) -> Result<DrillConfig> {
         let user: Value = serde_json::from_str(json)
             .map_err(|e| Error::invalid("config", format!("text that is not JSON ({e})"), "a JSON object"))?;
-        let Value::Object(map) = &user else {
+        DrillConfig::from_value(user)
+    }
+
+    /// [`DrillConfig::from_json`] of a parsed JSON value.
+    pub fn from_value(mut user: Value) -> Result<DrillConfig> {
+        let Value::Object(map) = &mut user else {
             return Err(Error::invalid("config", kind(&user), "a JSON object"));
         };
         require("", map, &REQUIRED_TOP)?;
@@ -683,66 +565,33 @@ impl DrillConfig {
                 }
             }
         }
-        let template = serde_json::to_value(DrillConfig::default())
-            .map_err(|e| Error::invalid("config", e.to_string(), "serialisable defaults"))?;
-        check_shape("", &user, &template)?;
-        for (path, value, names) in [
-            ("top_drive.controller.type", user.pointer("/top_drive/controller/type"), &ControllerKind::NAMES[..]),
-            ("friction.model", user.pointer("/friction/model"), &["set_valued", "regularised"][..]),
-            ("nonlinearity", user.pointer("/nonlinearity"), &Nonlinearity::NAMES[..]),
-            ("friction.contact", user.pointer("/friction/contact"), &Contact::NAMES[..]),
-        ] {
-            if let Some(v) = value {
-                if !v.as_str().is_some_and(|s| names.contains(&s)) {
-                    return Err(Error::invalid(path, shown(v), format!("one of {}", names.join(", "))));
-                }
-            }
-        }
-        for (path, pointer) in [
-            ("numerics.cells", "/numerics/cells"),
-            ("numerics.max_cells", "/numerics/max_cells"),
-            ("torque_drag.broomstick_points", "/torque_drag/broomstick_points"),
-        ] {
-            if let Some(v) = user.pointer(pointer) {
-                if v.as_u64().is_none() {
-                    return Err(Error::invalid(path, shown(v), "a positive integer"));
-                }
-            }
-        }
-        let constant_without_md =
-            user.pointer("/well/md").is_none() && user.pointer("/well/inclination_deg").is_some_and(Value::is_number);
-        // a survey file or a plan replaces the stations: refuse both
-        let given = |p: &str| user.pointer(p).is_some_and(|v| !v.is_null());
-        let sources: Vec<&str> =
-            [("well.survey", "/well/survey"), ("well.plan", "/well/plan"), ("well.md", "/well/md")]
-                .into_iter()
-                .filter(|(_, p)| given(p))
-                .map(|(n, _)| n)
-                .collect();
+        // a survey file or a plan replaces the stations: refuse both, and an inclination beside them
+        let well_value = |key: &str| map.get("well").and_then(|w| w.get(key)).is_some_and(|v| !v.is_null());
+        let sources: Vec<&str> = ["survey", "plan", "md"].into_iter().filter(|k| well_value(k)).collect();
         if sources.len() > 1 {
             return Err(Error::invalid(
-                sources[1],
-                format!("both {} and {}", sources[0], sources[1]),
+                format!("well.{}", sources[1]),
+                format!("both well.{} and well.{}", sources[0], sources[1]),
                 "one of well.survey (a file), well.plan (segments), well.md with well.inclination_deg",
             ));
         }
-        let stations_replaced = given("/well/survey") || given("/well/plan");
-        if stations_replaced && user.pointer("/well/inclination_deg").is_some_and(|v| !v.is_null()) {
+        let stations_replaced = well_value("survey") || well_value("plan");
+        if stations_replaced && well_value("inclination_deg") {
             return Err(Error::invalid(
                 "well.inclination_deg",
                 "a value with a survey file or plan",
                 "no value (the survey file or plan gives the inclinations)",
             ));
         }
-        let mut cfg: DrillConfig = serde_json::from_value(user)
-            .map_err(|e| Error::invalid("config", e.to_string(), "a valid configuration"))?;
-        if constant_without_md || stations_replaced {
-            // A constant inclination needs no survey depths (the default ones are a table's).
-            cfg.well.md = None;
+        if let Some(Value::Object(well)) = map.get_mut("well") {
+            let md_given = well.contains_key("md");
+            constant_inclination(well, md_given);
+            if stations_replaced {
+                well.insert("md".into(), Value::Null);
+                well.insert("inclination_deg".into(), Value::from(0.0));
+            }
         }
-        if stations_replaced {
-            cfg.well.inclination_deg = Inclination::Constant(0.0);
-        }
+        let mut cfg = schema::parse(&user).map_err(|e| refine(&user, e))?;
         super::well::load_survey(&mut cfg)?;
         Ok(cfg)
     }
@@ -1100,6 +949,161 @@ impl DrillConfig {
         }
         Ok(())
     }
+}
+
+/// One field override: a dotted path with indices (`top_drive.rpm`, `sections[1].length`) and
+/// its JSON value.
+pub type Override = (String, Value);
+
+/// The tokens of a dotted path with indices: `sections[1].length` -> `sections`, `1`, `length`.
+enum Token<'a> {
+    Key(&'a str),
+    Index(usize),
+}
+
+fn tokens(path: &str) -> Option<Vec<Token<'_>>> {
+    let mut out = Vec::new();
+    for part in path.split('.') {
+        let (name, mut rest) = part.split_once('[').map_or((part, ""), |(n, r)| (n, r));
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            return None;
+        }
+        out.push(Token::Key(name));
+        while !rest.is_empty() {
+            let (index, after) = rest.split_once(']')?;
+            out.push(Token::Index(index.parse().ok()?));
+            rest = match after.strip_prefix('[') {
+                Some(r) => r,
+                None if after.is_empty() => "",
+                None => return None,
+            };
+        }
+    }
+    Some(out)
+}
+
+/// The form of an override's path, as errors state it.
+pub const PATH_FORM: &str = "a dotted key with indices of the configuration (top_drive.rpm, sections[0].length)";
+
+/// Sets `path` to `value` in the JSON configuration `config`: a table given for a table is
+/// merged into it (its other keys kept), `null` sets null (an optional field's None; a
+/// required number refuses it when parsed). The path goes through the tables and lists of
+/// `config`; a key missing from a table is added (the parse names an unknown one and lists the
+/// allowed keys). `field` names a malformed path in the error (`--set`, `axis`).
+pub fn set_path(config: &mut Value, path: &str, value: &Value, field: &str) -> Result<()> {
+    let toks = tokens(path).ok_or_else(|| Error::invalid(field, path, PATH_FORM))?;
+    let mut node = config;
+    let mut at = String::new();
+    for (i, tok) in toks.iter().enumerate() {
+        let last = i + 1 == toks.len();
+        match tok {
+            Token::Key(name) => {
+                let here = join(&at, name);
+                let map = match node {
+                    Value::Object(map) => map,
+                    Value::Array(items) => {
+                        let allowed = format!("an index first: {at} is a list of {} ({at}[0].{name})", items.len());
+                        return Err(Error::invalid(here, shown(value), allowed));
+                    }
+                    other => {
+                        let allowed = format!("a key of a table: {at} is {}, not a table", shown(other));
+                        return Err(Error::invalid(here, shown(value), allowed));
+                    }
+                };
+                at = here;
+                if last {
+                    match (map.get_mut(*name), value) {
+                        (Some(Value::Object(old)), Value::Object(new)) => {
+                            old.extend(new.iter().map(|(k, v)| (k.clone(), v.clone())))
+                        }
+                        _ => {
+                            map.insert((*name).to_string(), value.clone());
+                        }
+                    }
+                    return Ok(());
+                }
+                node = map.entry((*name).to_string()).or_insert_with(|| Value::Object(Default::default()));
+            }
+            Token::Index(k) => {
+                let here = format!("{at}[{k}]");
+                let Value::Array(items) = node else {
+                    let allowed = format!("a key without an index: {at} is not a list");
+                    return Err(Error::invalid(here, shown(value), allowed));
+                };
+                let len = items.len();
+                let Some(item) = items.get_mut(*k) else {
+                    let allowed = match len {
+                        0 => format!("no index: {at} is empty"),
+                        n => format!("an index 0..{} of {at}", n - 1),
+                    };
+                    return Err(Error::invalid(here, shown(value), allowed));
+                };
+                at = here;
+                if last {
+                    *item = value.clone();
+                    return Ok(());
+                }
+                node = item;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Sets `overrides` in order in the JSON configuration `config` ([`set_path`]); one number for
+/// `well.inclination_deg` without a `well.md` override drops the survey depths (the
+/// constant-inclination rule of [`DrillConfig::from_json`]). `field` names a malformed path.
+pub fn apply_overrides(config: &mut Value, overrides: &[Override], field: &str) -> Result<()> {
+    for (path, v) in overrides {
+        set_path(config, path, v, field)?;
+    }
+    if overrides.iter().any(|(p, _)| p == "well.inclination_deg") {
+        let md_given = overrides.iter().any(|(p, _)| p == "well.md");
+        if let Some(Value::Object(well)) = config.get_mut("well") {
+            constant_inclination(well, md_given);
+        }
+    }
+    Ok(())
+}
+
+/// Overrides from JSON `[[path, value], ...]` (`items`, the parsed list); errors name `field`.
+pub(crate) fn override_pairs(items: Vec<Value>, field: &str, form: &str) -> Result<Vec<Override>> {
+    items
+        .into_iter()
+        .map(|pair| match pair {
+            Value::Array(mut kv) if kv.len() == 2 && kv[0].is_string() => {
+                let v = kv.pop().unwrap_or(Value::Null);
+                let k = kv.pop().and_then(|k| k.as_str().map(str::to_string)).unwrap_or_default();
+                Ok((k, v))
+            }
+            other => Err(Error::invalid(field, shown(&other), form)),
+        })
+        .collect()
+}
+
+/// The JSON configuration `config_json` with `overrides_json` (a JSON list of
+/// `[dotted path, value]` pairs) set ([`apply_overrides`]), not parsed: errors name a path that
+/// does not go through the configuration's tables and lists; `field` names a malformed path or
+/// list.
+pub fn override_value(config_json: &str, overrides_json: &str, field: &str) -> Result<Value> {
+    let mut config: Value = serde_json::from_str(config_json)
+        .map_err(|e| Error::invalid("config", format!("text that is not JSON ({e})"), "a JSON object"))?;
+    let form = "a list of [dotted path, value] pairs";
+    let items: Value = serde_json::from_str(overrides_json)
+        .map_err(|e| Error::invalid(field, format!("text that is not JSON ({e})"), form))?;
+    let Value::Array(items) = items else { return Err(Error::invalid(field, shown(&items), form)) };
+    apply_overrides(&mut config, &override_pairs(items, field, form)?, field)?;
+    Ok(config)
+}
+
+/// [`override_value`] parsed and, when `validate`, validated: the configuration (every default
+/// filled in). Errors name the dotted field.
+pub fn override_json(config_json: &str, overrides_json: &str, field: &str, validate: bool) -> Result<DrillConfig> {
+    let cfg = DrillConfig::from_value(override_value(config_json, overrides_json, field)?)?;
+    if validate {
+        cfg.validate()?;
+    }
+    Ok(cfg)
 }
 
 /// Samples `k interval` for `k = 0, 1, ...` up to `duration` (with a relative tolerance).

@@ -198,12 +198,16 @@ impl LumpedParams {
     }
 }
 
-/// Parses `json` (an object of some of the fields) over the defaults of `T`; an error naming
-/// `what` for text that is not such an object (an unknown field or a value of the wrong type).
+/// Parses `json` (an object of some of the fields) over the defaults of `T`; an error names
+/// `what` for text that is not a JSON object, else the field (an unknown one lists the known
+/// ones; a value of the wrong type says what the field takes), as the drilling configuration's.
 fn from_json<T: serde::de::DeserializeOwned>(json: &str, what: &str) -> Result<T> {
-    serde_json::from_str(json).map_err(|e| {
-        Error::invalid(what, format!("JSON that does not fit ({e})"), "an object of the known fields with numbers")
-    })
+    let user: serde_json::Value = serde_json::from_str(json)
+        .map_err(|e| Error::invalid(what, format!("text that is not JSON ({e})"), "a JSON object"))?;
+    if !user.is_object() {
+        return Err(Error::invalid(what, crate::schema::kind(&user), "a JSON object"));
+    }
+    crate::schema::parse(&user)
 }
 
 /// The largest step of the lumped model's RK4 in units of its fastest time scale:

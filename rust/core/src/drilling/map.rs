@@ -2,8 +2,8 @@
 //! overrides, solved in parallel; one row of metrics per run (no time series are kept).
 //!
 //! Each run is the base configuration (JSON) with its overrides set by dotted path
-//! (`top_drive.rpm`, `sections[1].length`, `top_drive.controller.type`), then
-//! [`DrillConfig::from_json`] and [`DrillConfig::validate`] as for a single run, and
+//! (`top_drive.rpm`, `sections[1].length`, `top_drive.controller.type`; [`apply_overrides`], as
+//! for Python's `DrillConfig.with_overrides`), then [`DrillConfig::from_json`] and [`DrillConfig::validate`] as for a single run, and
 //! [`solve`] with the field snapshots switched off (`numerics.field_interval = 0`: they do not
 //! change the dynamics, the series or the metrics). The metrics are the solve's own
 //! ([`crate::metrics::stick_slip`] over its window); the series are dropped when the run ends,
@@ -21,7 +21,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde_json::Value;
 
-use super::config::{DrillConfig, SERIES};
+pub use super::config::{apply_overrides, set_path, Override};
+use super::config::{override_pairs, DrillConfig, SERIES};
 use super::solver::{solve, DrillStats};
 use crate::error::{Error, Result};
 use crate::interrupt::{CancelFlag, Interrupt};
@@ -29,10 +30,6 @@ use crate::metrics::StickSlip;
 use crate::solution::Status;
 use crate::sweep::batch::run_on_pool;
 use crate::sweep::{resolve_threads, RunStatus};
-
-/// One field override of a run: a dotted path with indices and its JSON value
-/// (`null` removes the field, so it takes its default).
-pub type Override = (String, Value);
 
 /// The outcome of one run of a map. `metrics` is `None` unless the run succeeded.
 #[derive(Debug, Clone, PartialEq)]
@@ -67,94 +64,12 @@ impl MapRow {
     }
 }
 
-/// The tokens of a dotted path with indices: `sections[1].length` -> `sections`, `1`, `length`.
-enum Token<'a> {
-    Key(&'a str),
-    Index(usize),
-}
-
-fn tokens(path: &str) -> Option<Vec<Token<'_>>> {
-    let mut out = Vec::new();
-    for part in path.split('.') {
-        let (name, mut rest) = part.split_once('[').map_or((part, ""), |(n, r)| (n, r));
-        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
-            return None;
-        }
-        out.push(Token::Key(name));
-        while !rest.is_empty() {
-            let (index, after) = rest.split_once(']')?;
-            out.push(Token::Index(index.parse().ok()?));
-            rest = match after.strip_prefix('[') {
-                Some(r) => r,
-                None if after.is_empty() => "",
-                None => return None,
-            };
-        }
-    }
-    Some(out)
-}
-
-/// Sets `path` to `value` in the JSON configuration `config` (`null` removes the field). The
-/// path must exist in `config` or be a key of an object that exists (the core fills defaults
-/// later and refuses unknown keys, naming them). Setting `well.inclination_deg` to one number
-/// without also setting `well.md` drops the survey depths (a constant inclination), as
-/// `DrillConfig.with_overrides` does in Python.
-pub fn set_path(config: &mut Value, path: &str, value: &Value) -> Result<()> {
-    let form = "a dotted key with indices of the configuration (top_drive.rpm, sections[0].length)";
-    let toks = tokens(path).ok_or_else(|| Error::invalid("axis", path, form))?;
-    let mut node = config;
-    let mut where_ = String::new();
-    for (i, tok) in toks.iter().enumerate() {
-        let last = i + 1 == toks.len();
-        match tok {
-            Token::Key(name) => {
-                where_ = if where_.is_empty() { (*name).to_string() } else { format!("{where_}.{name}") };
-                let Value::Object(map) = node else {
-                    return Err(Error::invalid(where_, path, "a path through tables of the configuration"));
-                };
-                if last {
-                    if value.is_null() {
-                        map.remove(*name);
-                    } else {
-                        map.insert((*name).to_string(), value.clone());
-                    }
-                    return Ok(());
-                }
-                node = map.entry((*name).to_string()).or_insert_with(|| Value::Object(Default::default()));
-            }
-            Token::Index(k) => {
-                where_ = format!("{where_}[{k}]");
-                let Value::Array(items) = node else {
-                    return Err(Error::invalid(where_, path, "an index of a list of the configuration"));
-                };
-                let len = items.len();
-                let Some(item) = items.get_mut(*k) else {
-                    return Err(Error::invalid(where_, path, format!("an index below {len}")));
-                };
-                if last {
-                    *item = value.clone();
-                    return Ok(());
-                }
-                node = item;
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The configuration of one run: `base` with `overrides` set in order, parsed and validated.
+/// The configuration of one run: `base` with `overrides` set in order
+/// ([`apply_overrides`]), parsed and validated.
 pub fn run_config(base: &Value, overrides: &[Override]) -> Result<DrillConfig> {
     let mut value = base.clone();
-    for (path, v) in overrides {
-        set_path(&mut value, path, v)?;
-    }
-    let constant = overrides.iter().any(|(p, v)| p == "well.inclination_deg" && v.is_number());
-    if constant && !overrides.iter().any(|(p, _)| p == "well.md") {
-        if let Some(Value::Object(well)) = value.get_mut("well") {
-            well.remove("md");
-        }
-    }
-    let mut cfg = DrillConfig::from_json(&value.to_string())?;
+    apply_overrides(&mut value, overrides, "axis")?;
+    let mut cfg = DrillConfig::from_value(value)?;
     // a map keeps no snapshots: their size is neither checked nor counted
     cfg.numerics.field_interval = 0.0;
     cfg.validate()?;
@@ -171,17 +86,7 @@ pub fn parse_runs(json: &str) -> Result<Vec<Vec<Override>>> {
         .enumerate()
         .map(|(i, run)| {
             let Value::Array(pairs) = run else { return Err(Error::invalid(format!("runs[{i}]"), "not a list", form)) };
-            pairs
-                .into_iter()
-                .map(|pair| match pair {
-                    Value::Array(mut kv) if kv.len() == 2 && kv[0].is_string() => {
-                        let v = kv.pop().unwrap_or(Value::Null);
-                        let k = kv.pop().and_then(|k| k.as_str().map(str::to_string)).unwrap_or_default();
-                        Ok((k, v))
-                    }
-                    _ => Err(Error::invalid(format!("runs[{i}]"), "a malformed pair", form)),
-                })
-                .collect()
+            override_pairs(pairs, &format!("runs[{i}]"), form)
         })
         .collect()
 }
@@ -415,14 +320,18 @@ mod tests {
 
     #[test]
     fn paths() {
-        let mut v = json!({"a": {"b": [1, {"c": 2}]}});
-        set_path(&mut v, "a.b[1].c", &json!(5)).unwrap();
-        set_path(&mut v, "a.d", &json!("x")).unwrap();
-        set_path(&mut v, "a.d", &Value::Null).unwrap();
-        assert_eq!(v, json!({"a": {"b": [1, {"c": 5}]}}));
-        assert!(set_path(&mut v, "a.b[2].c", &json!(1)).is_err());
-        assert!(set_path(&mut v, "a..b", &json!(1)).is_err());
-        assert!(set_path(&mut v, "a.b[x]", &json!(1)).is_err());
-        assert!(set_path(&mut v, "a.b[0].c", &json!(1)).is_err());
+        let mut v = json!({"a": {"b": [1, {"c": 2}], "t": {"x": 1, "y": 2}}});
+        set_path(&mut v, "a.b[1].c", &json!(5), "axis").unwrap();
+        set_path(&mut v, "a.d", &json!("x"), "axis").unwrap();
+        set_path(&mut v, "a.d", &Value::Null, "axis").unwrap();
+        set_path(&mut v, "a.t", &json!({"y": 3}), "axis").unwrap();
+        assert_eq!(v, json!({"a": {"b": [1, {"c": 5}], "d": null, "t": {"x": 1, "y": 3}}}));
+        let message = |path: &str| set_path(&mut v.clone(), path, &json!(1), "axis").unwrap_err().to_string();
+        assert_eq!(message("a.b[2].c"), "invalid a.b[2]: got 1, expected an index 0..1 of a.b");
+        assert_eq!(message("a..b"), format!("invalid axis: got a..b, expected {}", super::super::config::PATH_FORM));
+        assert!(message("a.b[x]").starts_with("invalid axis: got a.b[x]"));
+        assert_eq!(message("a.b[0].c"), "invalid a.b[0].c: got 1, expected a key of a table: a.b[0] is 1, not a table");
+        assert_eq!(message("a.b.c"), "invalid a.b.c: got 1, expected an index first: a.b is a list of 2 (a.b[0].c)");
+        assert_eq!(message("a.d[0]"), "invalid a.d[0]: got 1, expected a key without an index: a.d is not a list");
     }
 }
