@@ -46,7 +46,7 @@ from . import section as section
 from . import stability as stability
 from ._core import __version__, simd_path
 from .coefficients import PDECoefficients
-from .drilling import DrillConfig, DrillMetrics, DrillResult, drill, drill_map, load_drill_config
+from .drilling import DrillConfig, DrillMetrics, DrillResult, TorqueDragResult, drill, drill_map, load_drill_config, torque_drag
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .grid import linspace, logspace
@@ -167,6 +167,8 @@ __all__ = [
     # the drilling system (stick-slip)
     "drill",
     "drill_map",
+    "torque_drag",
+    "TorqueDragResult",
     "DrillConfig",
     "DrillResult",
     "DrillMetrics",

@@ -25,6 +25,7 @@ from .config import (
     Numerics,
     Section,
     TopDrive,
+    TorqueDragConfig,
     Well,
     defaults,
     load_drill_config,
@@ -44,6 +45,7 @@ from .maps import controller_maps, drill_map, ssi_lines, ssi_map
 from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
 from .solve import drill, friction_profile
+from .torque_drag import TorqueDragResult, torque_drag, write_torque_drag
 
 __all__ = [
     "FILES",
@@ -63,6 +65,9 @@ __all__ = [
     "DrillResult",
     "drill",
     "drill_map",
+    "torque_drag",
+    "TorqueDragResult",
+    "write_torque_drag",
     "controller_maps",
     "ssi_lines",
     "ssi_map",
@@ -71,6 +76,7 @@ __all__ = [
     "Controller",
     "DrillConfig",
     "Friction",
+    "TorqueDragConfig",
     "MetricsConfig",
     "Numerics",
     "Section",

@@ -69,6 +69,7 @@ __all__ = [
     "Numerics",
     "Section",
     "TopDrive",
+    "TorqueDragConfig",
     "Well",
     "defaults",
     "load_drill_config",
@@ -155,8 +156,12 @@ class Section:
 
 @dataclass(frozen=True)
 class Well:
-    """The well path: inclination against measured depth (linear between survey stations,
-    constant beyond them), and the fluid and gravity that set the side force."""
+    """The well path and the fluid. The path is a survey of stations (measured depth,
+    inclination, azimuth) joined by minimum curvature, given one of three ways: the stations
+    ``md``, ``inclination_deg`` (and ``azimuth_deg``); a survey file ``survey`` (CSV with
+    columns md, inc, azi; units in the header as ``md_m``/``md_ft``, ``inc_deg``/``inc_rad``,
+    default m and degrees); or a ``plan`` of segments. One inclination number without ``md`` is
+    a straight hole. A survey shorter than the string is refused unless ``extend`` is true."""
 
     md: Optional[tuple[float, ...]] = _default("well", "md", unit="m", kind="floats?")
     """Measured depths of the survey stations, m (None with a constant inclination)."""
@@ -167,12 +172,27 @@ class Well:
     """Mud density for buoyancy, kg/m^3 (0: none)."""
     gravity: float = _default("well", "gravity", unit="m/s^2", kind="float")
     """Acceleration of gravity, m/s^2."""
+    azimuth_deg: Union[float, tuple[float, ...]] = _default("well", "azimuth_deg", unit="deg", kind="float|floats")
+    """Azimuth, degrees clockwise from north: one number for every station, or one per ``md``
+    station (with a plan: the azimuth of its first build)."""
+    survey: Optional[str] = _default("well", "survey", unit="", kind="str?")
+    """A survey file (CSV) in place of the stations; in a TOML file, relative to that file."""
+    plan: Optional[tuple[Mapping[str, float], ...]] = _default("well", "plan", unit="", kind="tables?")
+    """A plan in place of the stations, from the surface: ``{hold = m}``, ``{build = deg/30 m,
+    inclination = deg}``, ``{drop = deg/30 m, inclination = deg}``, ``{turn = deg/30 m (positive
+    clockwise), azimuth = deg}``; e.g. a J well ``[{hold = 500}, {build = 3, inclination = 60},
+    {hold = 2000}]``."""
+    extend: bool = _default("well", "extend", unit="", kind="bool")
+    """Continue a survey shorter than the string straight on from its last station (default:
+    refuse it)."""
 
 
 @dataclass(frozen=True)
 class Friction:
-    """Coulomb friction between the string and the wall (per metre: ``static * w(z) * r_contact``,
-    ``w`` the buoyed weight per metre times sin(inclination))."""
+    """Coulomb friction between the string and the wall: the static limit per metre is the
+    friction factor times the contact radius times the normal force per metre, the soft-string
+    one of the torque-and-drag solution (``contact = "soft_string"``: buoyed weight and tension
+    times curvature) or the buoyed weight times sin(inclination) (``"weight"``, Aarsnes & Shor)."""
 
     static: float = _default("friction", "static", unit="", kind="float")
     """Static friction coefficient."""
@@ -184,6 +204,12 @@ class Friction:
     """``"set_valued"`` (stick / slip switch) or ``"regularised"`` (smooth, ``tanh``-like)."""
     regularisation_speed: float = _default("friction", "regularisation_speed", unit="rad/s", kind="float")
     """Speed scale of the regularised model, rad/s."""
+    contact: str = _default("friction", "contact", unit="", kind="str")
+    """The normal force of the friction limit: ``"soft_string"`` (default; rotating off bottom,
+    or on bottom with the weight on bit) or ``"weight"`` (Aarsnes & Shor 2018, eq. 6)."""
+    intervals: tuple[Mapping[str, float], ...] = _default("friction", "intervals", unit="", kind="tables")
+    """Static friction factors over depth intervals, ``{top_md, bottom_md, static}`` (cased and
+    open hole); ``static`` applies elsewhere. In TOML: ``[[friction.intervals]]`` tables."""
 
 
 @dataclass(frozen=True)
@@ -291,6 +317,22 @@ class MetricsConfig:
     """The bit counts as stuck at or below this speed, rad/s."""
 
 
+@dataclass(frozen=True)
+class TorqueDragConfig:
+    """The static torque-and-drag analysis (``drillstring torque-drag``)."""
+
+    bit_torque: float = _default("torque_drag", "bit_torque", unit="N m", kind="float")
+    """Torque on bit when drilling (rotating on bottom), N m."""
+    block_weight: float = _default("torque_drag", "block_weight", unit="N", kind="float")
+    """Travelling block, hook and top drive, added to every hook load, N."""
+    step: float = _default("torque_drag", "step", unit="m", kind="float")
+    """The longest element of the stepped solution, m."""
+    friction_factors: tuple[float, ...] = _default("torque_drag", "friction_factors", unit="", kind="floats")
+    """The friction factors of the broomstick plot (each uniform along the hole)."""
+    broomstick_points: int = _default("torque_drag", "broomstick_points", unit="", kind="int")
+    """Bit depths of the broomstick plot, evenly spaced to the string's length."""
+
+
 def _table(cls: type) -> Any:
     return field(default_factory=cls, metadata={"kind": "table", "unit": "", "doc": ""})
 
@@ -322,6 +364,7 @@ class DrillConfig:
     bit: Bit = _table(Bit)
     numerics: Numerics = _table(Numerics)
     metrics: MetricsConfig = _table(MetricsConfig)
+    torque_drag: TorqueDragConfig = _table(TorqueDragConfig)
 
     def __post_init__(self) -> None:
         plain = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
@@ -476,7 +519,7 @@ def _plain(value: Any) -> Any:
 
 
 _TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Controller, bit=Bit, numerics=Numerics,
-               metrics=MetricsConfig)
+               metrics=MetricsConfig, torque_drag=TorqueDragConfig)
 
 
 # --------------------------------------------------------------------------- TOML writing
@@ -515,6 +558,8 @@ def _toml_value(value: Any) -> str:
         return _toml_string(value)
     if isinstance(value, list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):  # an inline table (a plan's segment, a friction interval)
+        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items() if v is not None) + "}"
     raise TypeError(f"no TOML form for {value!r}")  # pragma: no cover
 
 
@@ -551,7 +596,13 @@ def load_drill_config(path: PathLike) -> DrillConfig:
         and the dotted field.
     """
     source = os.fspath(path)
-    return DrillConfig.from_dict(_load_document(source), source=source)
+    document = _load_document(source)
+    well = document.get("well")
+    if isinstance(well, dict) and isinstance(well.get("survey"), str) and not os.path.isabs(well["survey"]):
+        # a survey file is relative to the configuration file
+        well = {**well, "survey": os.path.join(os.path.dirname(os.path.abspath(source)), well["survey"])}
+        document = {**document, "well": well}
+    return DrillConfig.from_dict(document, source=source)
 
 
 _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")

@@ -576,11 +576,12 @@ impl DrillConfig {
             ));
         }
         let stations_replaced = well_value("survey") || well_value("plan");
-        if stations_replaced && well_value("inclination_deg") {
+        let placeholder = map.get("well").and_then(|w| w.get("inclination_deg")).and_then(Value::as_f64) == Some(0.0);
+        if stations_replaced && well_value("inclination_deg") && !placeholder {
             return Err(Error::invalid(
                 "well.inclination_deg",
                 "a value with a survey file or plan",
-                "no value (the survey file or plan gives the inclinations)",
+                "no value, or 0 (the survey file or plan gives the inclinations)",
             ));
         }
         if let Some(Value::Object(well)) = map.get_mut("well") {
@@ -598,19 +599,9 @@ impl DrillConfig {
 
     /// The configuration as JSON, every default filled in.
     pub fn to_json(&self) -> String {
-        let Ok(mut value) = serde_json::to_value(self) else { return "{}".into() };
-        // a survey file or a plan gives the stations: leave the unused station fields out, so
-        // that the JSON parses back to the same configuration
-        if self.well.survey.is_some() || self.well.plan.is_some() {
-            if let Some(Value::Object(w)) = value.get_mut("well") {
-                w.remove("md");
-                w.remove("inclination_deg");
-                if self.well.survey.is_some() {
-                    w.remove("azimuth_deg");
-                }
-            }
-        }
-        value.to_string()
+        // with a survey file or a plan, `well.md` is null and `well.inclination_deg` the
+        // placeholder 0, which parse back to the same configuration
+        serde_json::to_string(self).unwrap_or_else(|_| "{}".into())
     }
 
     /// Checks every value's range, naming the dotted field; also the discretisation (cell
