@@ -104,11 +104,11 @@ def test_overrides() -> None:
     cfg = rich()
     new = cfg.with_overrides(["top_drive.rpm=60", "sections[0].length=3000", "bit.on_bottom=false",
                               "top_drive.controller.type=z_torque", 'sections[1].name="BHA"',
-                              "well.md=[0, 1000]", "well.inclination_deg = [0, 30]", "numerics.cells=200",
+                              "well.md=[0, 4000]", "well.inclination_deg = [0, 30]", "numerics.cells=200",
                               "top_drive.steps=[]", "metrics.window=[1.0, 3.0]"])
     assert new.top_drive.rpm == 60.0 and new.sections[0].length == 3000.0 and new.bit.on_bottom is False
     assert new.top_drive.controller.type == "z_torque" and new.sections[1].name == "BHA"
-    assert new.well.md == (0.0, 1000.0) and new.well.inclination_deg == (0.0, 30.0)
+    assert new.well.md == (0.0, 4000.0) and new.well.inclination_deg == (0.0, 30.0)
     assert new.numerics.cells == 200 and new.top_drive.steps == () and new.metrics.window == (1.0, 3.0)
     assert cfg == rich()  # the original is unchanged
     assert cfg.with_overrides({"top_drive.controller": {"kp": 1.0}}).top_drive.controller.type == "soft_torque"
