@@ -17,7 +17,9 @@ mod lumped;
 mod metrics;
 mod modal;
 mod model;
+mod options;
 mod pde;
+mod signal;
 mod sweep;
 
 /// The vector instruction path of the core's hot loops on this machine: `"avx512+fma"`,
@@ -66,6 +68,30 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lumped::lumped_solve, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::lumped_equilibria, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::min_cycle_torque, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::crossing_phase, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::phase_shift, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::amplitude_growth, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::is_bounded, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::modulation_depth, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::hull_area, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::phase_fill, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::ellipk, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::duffing_amplitude, m)?)?;
+    m.add_function(wrap_pyfunction!(signal::duffing_frequency, m)?)?;
+    m.add("BOUNDED_GROWTH", drillstring_core::metrics::signal::BOUNDED_GROWTH)?;
+    m.add("PHASE_FILL_BINS", drillstring_core::metrics::signal::PHASE_FILL_BINS)?;
+    m.add_function(wrap_pyfunction!(options::fixed_steps, m)?)?;
+    m.add_function(wrap_pyfunction!(options::fastest_mode, m)?)?;
+    m.add_function(wrap_pyfunction!(options::default_fixed_dt, m)?)?;
+    m.add_function(wrap_pyfunction!(options::default_section, m)?)?;
+    m.add("ADAPTIVE_MAX_STEPS", drillstring_core::options::ADAPTIVE_MAX_STEPS)?;
+    m.add("FIXED_MAX_STEPS", drillstring_core::options::FIXED_MAX_STEPS)?;
+    m.add("MAX_STEP_COUNT", drillstring_core::options::MAX_STEP_COUNT)?;
+    m.add("DEFAULT_FIXED_DT", drillstring_core::options::DEFAULT_FIXED_DT)?;
+    m.add("STEPS_PER_PERIOD", drillstring_core::options::STEPS_PER_PERIOD)?;
+    m.add("PDE_CFL_SHARE", drillstring_core::pde::CFL_SHARE)?;
+    m.add("PDE_MIN_RESOLVED_MODES", drillstring_core::pde::MIN_RESOLVED_MODES)?;
+    m.add("PDE_MODE_CONTENT_SHARE", drillstring_core::pde::MODE_CONTENT_SHARE)?;
     m.add_function(wrap_pyfunction!(simd_path, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
