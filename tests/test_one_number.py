@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 import drillstring as ds
-from drillstring import _core, analysis, limits, pde, simulate
+from drillstring import _core, analysis, limits, pde
 from drillstring.result import default_section
+from drillstring.simulate import _default_dt
 
 PACKAGE = Path(ds.__file__).parent
 
@@ -59,10 +60,10 @@ def test_constants_step_counts_and_default_steps_are_the_cores():
     # the modal default step: 1e-4 s, or 1/100 of the shortest period (independent arithmetic)
     coefficients = ds.project(ds.preset("aluminum"), modes=12)
     w_max = max(math.sqrt(abs(k / m)) for k, m in zip(coefficients.stiffness, coefficients.mass))
-    assert simulate._default_dt(coefficients) == min(_core.DEFAULT_FIXED_DT, 2 * math.pi / w_max / 100)
-    assert simulate._default_dt(coefficients) < _core.DEFAULT_FIXED_DT == 1e-4
+    assert _default_dt(coefficients) == min(_core.DEFAULT_FIXED_DT, 2 * math.pi / w_max / 100)
+    assert _default_dt(coefficients) < _core.DEFAULT_FIXED_DT == 1e-4
     slow = ds.project(ds.preset("aluminum"), modes=1)
-    assert simulate._default_dt(slow) == 1e-4
+    assert _default_dt(slow) == 1e-4
     # the PDE: half the CFL limit h / c
     params = ds.preset("aluminum")
     system = pde.pde_system(params, 101)
