@@ -25,7 +25,7 @@ pub const MAX_STEP_COUNT: u64 = 1 << 62;
 /// to rounding from getting an extra step), saturating at [`MAX_STEP_COUNT`].
 pub fn fixed_steps(span: f64, dt: f64) -> u64 {
     let ratio = span / dt;
-    if !(ratio < MAX_STEP_COUNT as f64) {
+    if ratio.is_nan() || ratio >= MAX_STEP_COUNT as f64 {
         return MAX_STEP_COUNT;
     }
     let n = (ratio - 1e-9).ceil();
