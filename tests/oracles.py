@@ -333,3 +333,162 @@ def classify_eigenvalues(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9
     if lam.size and np.all(lam.real < -tol):
         return "stable focus" if np.any(np.abs(lam.imag) > tol) else "stable node"
     return "centre"
+# --------------------------------------------------------------------------- signal metrics
+# The numpy versions of drillstring.analysis's signal metrics (the core computes them:
+# drillstring_core::metrics::signal); kept as oracles for tests/test_analysis.py.
+
+from numpy.typing import ArrayLike  # noqa: E402
+
+
+def crossing_phase(t: ArrayLike, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Zero-crossing times of ``x(t)`` (led by ``t[0]``) and the phase there: ``k pi`` at the ``k``-th."""
+    ta, xa = np.asarray(t, dtype=float), np.asarray(x, dtype=float)
+    sign = xa >= 0.0
+    idx = np.nonzero(sign[1:] != sign[:-1])[0]
+    if idx.size < 2:
+        raise ValueError("x", f"{idx.size} zero crossings", "at least two zero crossings")
+    x0, x1 = xa[idx], xa[idx + 1]
+    times = ta[idx] + (ta[idx + 1] - ta[idx]) * (x0 / (x0 - x1))
+    start = math.pi * (1.0 - (times[0] - ta[0]) / (times[1] - times[0]))
+    phases = start + math.pi * np.arange(1, times.size + 1)
+    return np.concatenate([[ta[0]], times]), np.concatenate([[start], phases])
+
+
+def _phase_at(times: NDArray[np.float64], phases: NDArray[np.float64], at: NDArray[np.float64]) -> NDArray[np.float64]:
+    out = np.interp(at, times, phases)
+    # beyond the last crossing: extrapolate with the last half period
+    slope = (phases[-1] - phases[-2]) / (times[-1] - times[-2])
+    late = at > times[-1]
+    out[late] = phases[-1] + slope * (at[late] - times[-1])
+    return out
+
+
+def phase_shift(t: ArrayLike, x_ref: ArrayLike, x: ArrayLike, at: ArrayLike | float | None = None
+                ) -> float | NDArray[np.float64]:
+    """Accumulated phase of ``x`` minus that of ``x_ref`` at ``at`` (default ``t[-1]``), by ``np.interp``."""
+    times_ref, phase_ref = crossing_phase(t, x_ref)
+    times_x, phase_x = crossing_phase(t, x)
+    ta = np.asarray(t, dtype=float)
+    when = np.atleast_1d(np.asarray(ta[-1] if at is None else at, dtype=float))
+    shift = _phase_at(times_x, phase_x, when) - _phase_at(times_ref, phase_ref, when)
+    return float(shift[0]) if np.ndim(ta[-1] if at is None else at) == 0 else shift
+
+
+def amplitude_growth(x: ArrayLike) -> float:
+    """``max |x|`` over the last half over that of the first half (inf when not finite)."""
+    xa = np.asarray(x, dtype=float).ravel()
+    if xa.size < 2:
+        raise ValueError("x", f"{xa.size} samples", "at least 2 samples")
+    if not np.all(np.isfinite(xa)):
+        return math.inf
+    half = xa.size // 2
+    first = float(np.max(np.abs(xa[:half])))
+    last = float(np.max(np.abs(xa[half:])))
+    if first == 0.0:
+        return math.nan if last == 0.0 else math.inf
+    return last / first
+
+
+def is_bounded(x: ArrayLike, factor: float = 1.5, *, limit: float | None = None) -> bool:
+    """Finite, growth ``<= factor`` and ``max |x| <= limit``."""
+    growth = amplitude_growth(x)
+    if not math.isfinite(growth) or growth > factor:
+        return False
+    return limit is None or float(np.max(np.abs(np.asarray(x, dtype=float)))) <= limit
+
+
+
+def modulation_depth(x: ArrayLike) -> float:
+    """``1 - min/max`` of the half-cycle peaks of each sign (``np.maximum.reduceat``), the larger."""
+    xa = np.asarray(x, dtype=float).ravel()
+    sign = xa >= 0.0
+    cuts = np.nonzero(sign[1:] != sign[:-1])[0] + 1
+    if cuts.size < 5:
+        return math.nan
+    peaks = np.maximum.reduceat(np.abs(xa), cuts)[:-1]  # complete half cycles between crossings
+    positive = sign[cuts[:-1]]
+    depths = []
+    for part in (peaks[positive], peaks[~positive]):
+        if part.size < 2 or part.max() <= 0:
+            return math.nan
+        depths.append(1.0 - float(part.min()) / float(part.max()))
+    return max(depths)
+
+
+def hull_area(x: ArrayLike, y: ArrayLike) -> float:
+    """Area of the convex hull of the points (``np.unique`` rows, monotone chain, shoelace by ``np.dot``)."""
+    pts = np.unique(np.column_stack([np.asarray(x, float).ravel(), np.asarray(y, float).ravel()]), axis=0)
+    if pts.shape[0] < 3:
+        return 0.0
+
+    def half(points: NDArray[np.float64]) -> list[tuple[float, float]]:
+        chain: list[tuple[float, float]] = []
+        for px, py in points.tolist():
+            while len(chain) >= 2:
+                (ax, ay), (bx, by) = chain[-2], chain[-1]
+                if (bx - ax) * (py - ay) - (by - ay) * (px - ax) > 0:
+                    break
+                chain.pop()
+            chain.append((px, py))
+        return chain
+
+    lower, upper = half(pts), half(pts[::-1])
+    hull = np.array(lower[:-1] + upper[:-1])
+    hx, hy = hull[:, 0], hull[:, 1]
+    return 0.5 * abs(float(np.dot(hx, np.roll(hy, -1)) - np.dot(hy, np.roll(hx, -1))))
+
+
+def phase_fill(x: ArrayLike, y: ArrayLike, bins: int = 32) -> float:
+    """Share of the cells of a ``bins x bins`` grid over the hull that the trajectory passes through."""
+    xa = np.asarray(x, dtype=float).ravel()
+    ya = np.asarray(y, dtype=float).ravel()
+    if xa.size < 3 or xa.shape != ya.shape:
+        raise ValueError("x", f"{xa.size} samples", "x and y of equal length >= 3")
+    span_x, span_y = float(np.ptp(xa)), float(np.ptp(ya))
+    if span_x == 0.0 or span_y == 0.0:
+        return 0.0
+    u = (xa - xa.min()) / span_x * bins * (1 - 1e-12)
+    v = (ya - ya.min()) / span_y * bins * (1 - 1e-12)
+    # subdivide every segment so that consecutive points are < 1/2 cell apart
+    steps = int(np.ceil(2.0 * max(np.max(np.abs(np.diff(u))), np.max(np.abs(np.diff(v)))))) + 1
+    frac = np.linspace(0.0, 1.0, steps, endpoint=False)
+    uu = (u[:-1, None] + np.diff(u)[:, None] * frac).ravel()
+    vv = (v[:-1, None] + np.diff(v)[:, None] * frac).ravel()
+    visited = np.zeros((bins, bins), dtype=bool)
+    visited[uu.astype(int), vv.astype(int)] = True
+    visited[int(u[-1]), int(v[-1])] = True
+    # cells whose centre lies inside the hull: the hull's area in cells, approximately
+    hull_cells = max(1.0, hull_area(u, v))
+    return min(1.0, float(visited.sum()) / hull_cells)
+
+
+def ellipk(m: float) -> float:
+    """``K(m)`` by the arithmetic-geometric mean."""
+    if not m < 1.0:
+        raise ValueError("m", m, "m < 1")
+    a, b = 1.0, math.sqrt(1.0 - m)
+    for _ in range(60):
+        if abs(a - b) <= 1e-16 * a:
+            break
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+    return math.pi / (2.0 * a)
+
+
+def duffing_amplitude(omega2: float, beta: float, velocity: float) -> float:
+    """Turning point of ``x'' + omega2 x + beta x^3 = 0`` from ``x = 0``, ``x' = v``."""
+    if beta == 0.0:
+        return abs(velocity) / math.sqrt(omega2)
+    disc = omega2 * omega2 + 2.0 * beta * velocity * velocity
+    if disc < 0.0:
+        raise ValueError("velocity", velocity, "below the separatrix of the softening oscillator")
+    # A^2 = (-omega2 + sqrt(disc)) / beta, written without cancellation
+    return math.sqrt(2.0 * velocity * velocity / (omega2 + math.sqrt(disc)))
+
+
+def duffing_frequency(omega2: float, beta: float, amplitude: float) -> float:
+    """Exact frequency (Hz) of ``x'' + omega2 x + beta x^3 = 0`` at amplitude ``A``."""
+    stiff = omega2 + beta * amplitude * amplitude
+    if not stiff > 0.0:
+        raise ValueError("amplitude", amplitude, "omega2 + beta A^2 > 0")
+    m = beta * amplitude * amplitude / (2.0 * stiff)
+    return math.sqrt(stiff) / (4.0 * ellipk(m))

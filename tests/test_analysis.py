@@ -141,3 +141,74 @@ def test_hull_area_and_fill():
     # a Lissajous figure of incommensurate frequencies sweeps its square
     t = np.linspace(0.0, 200.0, 200001)
     assert an.phase_fill(np.sin(t), np.sin(math.sqrt(2) * t)) > 0.9
+
+
+# --------------------------------------------------------------------------- the core vs the numpy oracles
+
+def _records():
+    """Records like the paper's: a beating two-mode twist, a decaying and a growing oscillation,
+    and a simulated one-mode response with its rate."""
+    rng = np.random.default_rng(7)
+    beat = 1e-3 * np.sin(2 * np.pi * 31.6 * T1) + 4e-4 * np.sin(2 * np.pi * 93.1 * T1 + 0.4)
+    decay = np.exp(-2.0 * T1) * np.cos(2 * np.pi * 12.3 * T1) + 1e-3 * rng.standard_normal(T1.size)
+    growth = np.exp(3.0 * T1) * np.sin(2 * np.pi * 7.7 * T1)
+    res = ds.simulate(ds.preset("aluminum"), modes=2, t_end=1.0, samples=T1.size)
+    section = res.theta(ds.result.default_section(res.params.length))
+    return {"beat": beat, "decay": decay, "growth": growth, "section": section,
+            "rate": res.theta_dot(ds.result.default_section(res.params.length))}
+
+
+def test_signal_metrics_are_the_oracles():
+    import oracles
+
+    records = _records()
+    for name, x in records.items():
+        times, phases = an.crossing_phase(T1, x)
+        want_times, want_phases = oracles.crossing_phase(T1, x)
+        np.testing.assert_array_equal(times, want_times, err_msg=name)
+        np.testing.assert_array_equal(phases, want_phases, err_msg=name)
+        at = np.array([-0.1, 0.0, 0.2, 0.5, times[-1], 0.999, 1.0, 1.3])
+        np.testing.assert_array_equal(an.phase_shift(T1, records["beat"], x, at),
+                                      oracles.phase_shift(T1, records["beat"], x, at), err_msg=name)
+        assert an.phase_shift(T1, records["beat"], x) == oracles.phase_shift(T1, records["beat"], x)
+        assert an.amplitude_growth(x) == oracles.amplitude_growth(x), name
+        for factor, limit in ((1.5, None), (1.01, None), (1.5, 1e-3), (100.0, 10.0)):
+            assert an.is_bounded(x, factor, limit=limit) == oracles.is_bounded(x, factor, limit=limit), name
+        assert an.modulation_depth(x) == oracles.modulation_depth(x), name
+    for pair in (("section", "rate"), ("beat", "decay"), ("growth", "beat")):
+        x, y = records[pair[0]], records[pair[1]]
+        assert an.hull_area(x, y) == pytest.approx(oracles.hull_area(x, y), rel=1e-13), pair
+        for bins in (8, 32):
+            assert an.phase_fill(x, y, bins) == pytest.approx(oracles.phase_fill(x, y, bins), rel=1e-13), pair
+    assert math.isnan(an.modulation_depth(T1[:50])) and math.isnan(oracles.modulation_depth(T1[:50]))
+    assert an.amplitude_growth([0.0, 1.0, np.inf]) == oracles.amplitude_growth([0.0, 1.0, np.inf]) == math.inf
+
+
+def test_duffing_references_are_the_oracles():
+    import oracles
+
+    for m in (-0.7, 0.0, 0.02, 0.3, 0.9, 0.999, 1 - 1e-12):
+        assert an.ellipk(m) == oracles.ellipk(m)
+    w2, beta = _duffing(ds.preset("aluminum"))
+    for velocity in (1e-3, 0.1, 2.0):
+        amplitude = an.duffing_amplitude(w2, beta, velocity)
+        assert amplitude == oracles.duffing_amplitude(w2, beta, velocity)
+        assert an.duffing_frequency(w2, beta, amplitude) == oracles.duffing_frequency(w2, beta, amplitude)
+    assert an.duffing_amplitude(w2, 0.0, -0.1) == oracles.duffing_amplitude(w2, 0.0, -0.1)
+    assert an.duffing_amplitude(w2, -1.0, 0.01) == oracles.duffing_amplitude(w2, -1.0, 0.01)
+
+
+@pytest.mark.parametrize(("call", "field"), [
+    (lambda: an.ellipk(1.0), "m"),
+    (lambda: an.ellipk(float("nan")), "m"),
+    (lambda: an.duffing_amplitude(1.0, -1.0, 1.0), "velocity"),
+    (lambda: an.duffing_frequency(1.0, -1.0, 1.0), "amplitude"),
+    (lambda: an.amplitude_growth([1.0]), "x"),
+    (lambda: an.phase_fill([0.0, 1.0], [0.0, 1.0]), "x"),
+    (lambda: an.phase_fill(T1, T1, 0), "bins"),
+    (lambda: an.hull_area(T1, T1[1:]), "y"),
+])
+def test_signal_metrics_refuse_bad_input(call, field):
+    with pytest.raises(ValidationError) as info:
+        call()
+    assert info.value.field == field

@@ -9,7 +9,7 @@ Quick start
 >>> import drillstring as ds
 >>> params = ds.preset("aluminum")              # Table 1, C = (0.1, 0.05, 0.02)
 >>> res = ds.simulate(params, modes=3, t_end=1.0)
->>> theta_k = res.theta(2 * params.length / 3)  # twist at z_k = 2l/3, rad
+>>> theta_k = res.theta(ds.result.default_section(params.length))  # twist at z_k = 2l/3, rad
 >>> res.energy_drift() < 1e-6
 True
 
@@ -46,7 +46,16 @@ from . import section as section
 from . import stability as stability
 from ._core import __version__, simd_path
 from .coefficients import PDECoefficients
-from .drilling import DrillConfig, DrillMetrics, DrillResult, TorqueDragResult, drill, drill_map, load_drill_config, torque_drag
+from .drilling import (
+    DrillConfig,
+    DrillMetrics,
+    DrillResult,
+    TorqueDragResult,
+    drill,
+    drill_map,
+    load_drill_config,
+    torque_drag,
+)
 from .errors import DrillstringError, SolveError, ValidationError
 from .galerkin import ModalCoefficients, project
 from .grid import linspace, logspace

@@ -239,6 +239,22 @@ class PdeSystem:
     def energy(self, q: NDArray[np.float64], qdot: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def initial_velocity_from_modes(self, c: NDArray[np.float64]) -> NDArray[np.float64]: ...
     def linear_frequencies_squared(self, count: int) -> NDArray[np.float64]: ...
+    def default_dt(self) -> float:
+        """The default step of the fixed-step methods: :data:`PDE_CFL_SHARE` of the CFL limit
+        ``h / c``, ``c = sqrt(k2 / k1)``, s."""
+    def fastest_mode(self, twist: NDArray[np.float64], velocity: NDArray[np.float64]) -> tuple[int, float]:
+        """``(i, w_i in rad/s)``: the highest cosine mode of the nodal ``twist`` and ``velocity``
+        (twist amplitude times ``w_i``, or velocity amplitude, at least
+        :data:`PDE_MODE_CONTENT_SHARE` of the largest), at least :data:`PDE_MIN_RESOLVED_MODES`
+        and at most ``nodes - 1``; ``w_i`` the continuum rate ``sqrt(|(k2 (i pi/l)^2 - k6)/k1|)``.
+        ``ValidationError`` for fields of another length than ``nodes``."""
+
+PDE_CFL_SHARE: float
+"""The default fixed step of a PDE solve is this share of the CFL limit ``h / c``."""
+PDE_MIN_RESOLVED_MODES: int
+"""The default output times of a PDE solve resolve at least this many modes."""
+PDE_MODE_CONTENT_SHARE: float
+"""A cosine mode of the initial state counts when its amplitude is this share of the largest."""
 
 def solve_pde(
     system: PdeSystem,
@@ -518,6 +534,85 @@ def break_off_torque(depth: NDArray[np.float64], limit: NDArray[np.float64]) -> 
         finite and >= 0 or of another length.
     """
     ...
+
+# --- Signal metrics of a response (drillstring_core::metrics::signal) ---
+
+BOUNDED_GROWTH: float
+"""Default largest :func:`amplitude_growth` that :func:`is_bounded` accepts."""
+PHASE_FILL_BINS: int
+"""Default cells per axis of the grid of :func:`phase_fill`."""
+
+def crossing_phase(t: NDArray[np.float64], x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(times, phases)`` of the zero crossings of ``x(t)`` (``k pi`` at the ``k``-th, linear
+    between samples), each led by ``t[0]`` and the phase extrapolated there from the first half
+    period. ``ValidationError`` (field ``x``): fewer than two crossings, another length than ``t``."""
+
+def phase_shift(
+    t: NDArray[np.float64], x_ref: NDArray[np.float64], x: NDArray[np.float64], at: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """The accumulated phase (rad) of ``x`` minus that of ``x_ref`` at each time of ``at``
+    (:func:`crossing_phase`, linear between crossings, the last half period beyond them)."""
+
+def amplitude_growth(x: NDArray[np.float64]) -> float:
+    """``max |x|`` over the last half of the record over that of the first half (``inf`` with a
+    non-finite sample or a zero first half, NaN when both are zero). ``ValidationError``: fewer
+    than 2 samples."""
+
+def is_bounded(x: NDArray[np.float64], factor: float = ..., limit: Optional[float] = None) -> bool:
+    """Finite, :func:`amplitude_growth` ``<= factor`` (default :data:`BOUNDED_GROWTH`) and
+    ``max |x| <= limit`` when given."""
+
+def modulation_depth(x: NDArray[np.float64]) -> float:
+    """``1 - min/max`` of the half-cycle peaks of each sign (the larger of the two); NaN with
+    fewer than two complete half cycles of each sign."""
+
+def hull_area(x: NDArray[np.float64], y: NDArray[np.float64]) -> float:
+    """Area of the convex hull of the points ``(x_k, y_k)``. ``ValidationError``: other lengths."""
+
+def phase_fill(x: NDArray[np.float64], y: NDArray[np.float64], bins: Optional[int] = None) -> float:
+    """Share of the cells of a ``bins x bins`` grid (None: :data:`PHASE_FILL_BINS`) over the
+    trajectory's convex hull that it passes through. ``ValidationError``: fewer than 3 samples
+    or other lengths (field ``x``), ``bins`` not an integer >= 1."""
+
+def ellipk(m: float) -> float:
+    """The complete elliptic integral of the first kind ``K(m)``. ``ValidationError``: ``m >= 1``."""
+
+def duffing_amplitude(omega2: float, beta: float, velocity: float) -> float:
+    """The turning point of ``x'' + omega2 x + beta x^3 = 0`` started at ``x = 0``,
+    ``x' = velocity``. ``ValidationError``: above the separatrix of a softening oscillator."""
+
+def duffing_frequency(omega2: float, beta: float, amplitude: float) -> float:
+    """The exact frequency (Hz) of ``x'' + omega2 x + beta x^3 = 0`` at amplitude ``amplitude``.
+    ``ValidationError``: ``omega2 + beta A^2 <= 0``."""
+
+# --- Defaults and limits of a solve (drillstring_core::options, model::default_section) ---
+
+ADAPTIVE_MAX_STEPS: int
+"""Default step limit of the adaptive methods (accepted + rejected steps)."""
+FIXED_MAX_STEPS: int
+"""Default step limit of the fixed-step methods."""
+MAX_STEP_COUNT: int
+"""The largest step count :func:`fixed_steps` reports (2^62)."""
+DEFAULT_FIXED_DT: float
+"""Default step of the fixed-step methods on a modal system, s (unless the fastest mode asks
+for a shorter one)."""
+STEPS_PER_PERIOD: float
+"""Steps per period of the fastest linear mode that the default fixed step gives at least."""
+
+def fixed_steps(span: float, dt: float) -> int:
+    """Steps of a fixed-step method over ``span``: ``ceil(span / dt - 1e-9)``, at least 1,
+    saturating at :data:`MAX_STEP_COUNT`."""
+
+def fastest_mode(mass: NDArray[np.float64], stiffness: NDArray[np.float64]) -> Optional[tuple[int, float]]:
+    """``(index, sqrt(|K_i / M_i|))`` of the fastest linear mode (the first of equals); None
+    without modes."""
+
+def default_fixed_dt(mass: NDArray[np.float64], stiffness: NDArray[np.float64]) -> float:
+    """:data:`DEFAULT_FIXED_DT`, or ``1 /`` :data:`STEPS_PER_PERIOD` of the shortest linear
+    period ``2 pi / max sqrt(|K_i / M_i|)`` if that is shorter, s."""
+
+def default_section(length: float) -> float:
+    """The section the paper reports its twist at, ``z_k = 2 l / 3`` (m)."""
 
 # --- The drilling system (issue #13): configuration as JSON, see /work/drill-contract.md ---
 

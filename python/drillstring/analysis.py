@@ -1,7 +1,7 @@
 """Signal metrics of simulated responses: spectral peaks, accumulated phase, boundedness.
 
 Used by the paper report (:mod:`drillstring.paper`) and by parameter sweeps. Every function
-takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed).
+takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed) and calls the core.
 
 * :func:`spectral_peaks` / :func:`dominant_frequencies`: Hann-windowed real FFT (zero-padded),
   local maxima of the magnitude, each refined by a parabola through the logarithms of the three
@@ -11,6 +11,8 @@ takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed).
   ``dominant_frequency_hz``.
 * :func:`phase_shift`: accumulated phase of one oscillation relative to another, from their
   zero-crossing times (see the function for why zero crossings rather than the analytic signal).
+  This and every function below are computed by the core (``drillstring_core::metrics::signal``
+  and ``::stickslip``); this module checks the records and converts them.
 * :func:`amplitude_growth` / :func:`is_bounded`: finite, and the largest ``|x|`` over the last
   half of the record is not much larger than over the first half.
 * :func:`modulation_depth`: how much the half-cycle peaks ``|x|`` vary; :func:`hull_area`: the
@@ -28,7 +30,6 @@ takes a uniformly sampled record ``x(t)`` (numpy arrays; no scipy needed).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, NamedTuple, Optional, Union
 
@@ -36,6 +37,7 @@ import numpy as np
 
 from . import _core
 from .errors import ValidationError
+from .limits import as_float
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import ArrayLike, NDArray
@@ -48,9 +50,11 @@ __all__ = [
     "phase_shift",
     "amplitude_growth",
     "is_bounded",
+    "BOUNDED_GROWTH",
     "modulation_depth",
     "hull_area",
     "phase_fill",
+    "PHASE_FILL_BINS",
     "ellipk",
     "duffing_amplitude",
     "duffing_frequency",
@@ -152,6 +156,11 @@ def dominant_frequencies(
     return _peaks(t, x, count, pad, threshold)[0]
 
 
+def _flat(x: ArrayLike) -> NDArray[np.float64]:
+    """``x`` as a contiguous 1-D float array (a 2-D record is flattened, as numpy's ``ravel``)."""
+    return np.ascontiguousarray(np.asarray(x, dtype=float).ravel())
+
+
 def crossing_phase(t: ArrayLike, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Zero-crossing times of ``x(t)`` and the phase (rad) the oscillation has there.
 
@@ -162,26 +171,10 @@ def crossing_phase(t: ArrayLike, x: ArrayLike) -> tuple[NDArray[np.float64], NDA
 
     Returns ``(times, phases)``, each of length (number of crossings + 1), the first entry
     being ``t[0]``. Fewer than two crossings raise :class:`~drillstring.errors.ValidationError`.
+    Computed by the core (``drillstring_core::metrics::signal``).
     """
     ta, xa, _ = _record(t, x)
-    sign = xa >= 0.0
-    idx = np.nonzero(sign[1:] != sign[:-1])[0]
-    if idx.size < 2:
-        raise ValidationError("x", f"{idx.size} zero crossings", "at least two zero crossings")
-    x0, x1 = xa[idx], xa[idx + 1]
-    times = ta[idx] + (ta[idx + 1] - ta[idx]) * (x0 / (x0 - x1))
-    start = math.pi * (1.0 - (times[0] - ta[0]) / (times[1] - times[0]))
-    phases = start + math.pi * np.arange(1, times.size + 1)
-    return np.concatenate([[ta[0]], times]), np.concatenate([[start], phases])
-
-
-def _phase_at(times: NDArray[np.float64], phases: NDArray[np.float64], at: NDArray[np.float64]) -> NDArray[np.float64]:
-    out = np.interp(at, times, phases)
-    # beyond the last crossing: extrapolate with the last half period
-    slope = (phases[-1] - phases[-2]) / (times[-1] - times[-2])
-    late = at > times[-1]
-    out[late] = phases[-1] + slope * (at[late] - times[-1])
-    return out
+    return _core.crossing_phase(ta, xa)
 
 
 def phase_shift(
@@ -197,11 +190,12 @@ def phase_shift(
 
     Method: the phase of each signal is ``k pi`` at its ``k``-th zero crossing (crossing
     times interpolated linearly between samples, see :func:`crossing_phase`) and linear in time
-    between crossings. For the symmetric oscillations of this model (``theta -> -theta``
-    symmetry) the crossings are exactly half a period apart, so the phase is exact at every
-    crossing and the accumulated difference needs no unwrapping. The analytic signal
-    (Hilbert transform) was not used: its phase is biased near the record ends by the FFT's
-    periodic extension, exactly where the accumulated shift is read.
+    between crossings (extrapolated with the last half period beyond the last crossing). For the
+    symmetric oscillations of this model (``theta -> -theta`` symmetry) the crossings are
+    exactly half a period apart, so the phase is exact at every crossing and the accumulated
+    difference needs no unwrapping. The analytic signal (Hilbert transform) was not used: its
+    phase is biased near the record ends by the FFT's periodic extension, exactly where the
+    accumulated shift is read. Computed by the core.
 
     >>> import numpy as np
     >>> t = np.linspace(0.0, 10.0, 40001)
@@ -209,46 +203,35 @@ def phase_shift(
     >>> round(float(np.degrees(shift)))
     1800
     """
-    times_ref, phase_ref = crossing_phase(t, x_ref)
-    times_x, phase_x = crossing_phase(t, x)
-    ta = np.asarray(t, dtype=float)
+    ta, ref, _ = _record(t, x_ref)
+    _, xa, _ = _record(t, x)
     when = np.atleast_1d(np.asarray(ta[-1] if at is None else at, dtype=float))
-    shift = _phase_at(times_x, phase_x, when) - _phase_at(times_ref, phase_ref, when)
+    shift = _core.phase_shift(ta, ref, xa, _flat(when)).reshape(when.shape)
     return float(shift[0]) if np.ndim(ta[-1] if at is None else at) == 0 else shift
 
 
 def amplitude_growth(x: ArrayLike) -> float:
     """``max |x|`` over the last half of the record divided by ``max |x|`` over the first half.
 
-    ``inf`` if the record has non-finite samples (a blown-up solution); ``nan`` if the first
-    half is identically zero.
+    ``inf`` if the record has non-finite samples (a blown-up solution); ``nan`` if both halves
+    are identically zero, ``inf`` if only the first is. Computed by the core.
     """
-    xa = np.asarray(x, dtype=float).ravel()
-    if xa.size < 2:
-        raise ValidationError("x", f"{xa.size} samples", "at least 2 samples")
-    if not np.all(np.isfinite(xa)):
-        return math.inf
-    half = xa.size // 2
-    first = float(np.max(np.abs(xa[:half])))
-    last = float(np.max(np.abs(xa[half:])))
-    if first == 0.0:
-        return math.nan if last == 0.0 else math.inf
-    return last / first
+    return _core.amplitude_growth(_flat(x))
 
 
-def is_bounded(x: ArrayLike, factor: float = 1.5, *, limit: Optional[float] = None) -> bool:
+#: Default largest :func:`amplitude_growth` that :func:`is_bounded` accepts.
+BOUNDED_GROWTH: float = _core.BOUNDED_GROWTH
+
+
+def is_bounded(x: ArrayLike, factor: float = BOUNDED_GROWTH, *, limit: Optional[float] = None) -> bool:
     """Whether the record looks bounded: finite, :func:`amplitude_growth` ``<= factor``, and
     ``max |x| <= limit`` when a limit is given.
 
     A conservative oscillation has growth close to 1 (1 exactly for a pure sine over whole
     periods); a linearly unstable mode grows exponentially and exceeds any fixed factor once
-    the record is a few e-folding times long.
+    the record is a few e-folding times long. Computed by the core.
     """
-    growth = amplitude_growth(x)
-    if not math.isfinite(growth) or growth > factor:
-        return False
-    return limit is None or float(np.max(np.abs(np.asarray(x, dtype=float)))) <= limit
-
+    return _core.is_bounded(_flat(x), float(factor), None if limit is None else float(limit))
 
 
 def modulation_depth(x: ArrayLike) -> float:
@@ -258,113 +241,55 @@ def modulation_depth(x: ArrayLike) -> float:
     half cycles at both ends of the record are left out). Positive and negative half cycles are
     taken separately, so that a steady but asymmetric waveform is not counted as modulated; the
     larger of the two depths is returned. ``nan`` with fewer than two complete half cycles of
-    each sign.
+    each sign. Computed by the core.
     """
-    xa = np.asarray(x, dtype=float).ravel()
-    sign = xa >= 0.0
-    cuts = np.nonzero(sign[1:] != sign[:-1])[0] + 1
-    if cuts.size < 5:
-        return math.nan
-    peaks = np.maximum.reduceat(np.abs(xa), cuts)[:-1]  # complete half cycles between crossings
-    positive = sign[cuts[:-1]]
-    depths = []
-    for part in (peaks[positive], peaks[~positive]):
-        if part.size < 2 or part.max() <= 0:
-            return math.nan
-        depths.append(1.0 - float(part.min()) / float(part.max()))
-    return max(depths)
+    return _core.modulation_depth(_flat(x))
 
 
 def hull_area(x: ArrayLike, y: ArrayLike) -> float:
-    """Area of the convex hull of the points ``(x_k, y_k)`` (monotone chain), in units x*y."""
-    pts = np.unique(np.column_stack([np.asarray(x, float).ravel(), np.asarray(y, float).ravel()]), axis=0)
-    if pts.shape[0] < 3:
-        return 0.0
-
-    def half(points: NDArray[np.float64]) -> list[tuple[float, float]]:
-        chain: list[tuple[float, float]] = []
-        for px, py in points.tolist():
-            while len(chain) >= 2:
-                (ax, ay), (bx, by) = chain[-2], chain[-1]
-                if (bx - ax) * (py - ay) - (by - ay) * (px - ax) > 0:
-                    break
-                chain.pop()
-            chain.append((px, py))
-        return chain
-
-    lower, upper = half(pts), half(pts[::-1])
-    hull = np.array(lower[:-1] + upper[:-1])
-    hx, hy = hull[:, 0], hull[:, 1]
-    return 0.5 * abs(float(np.dot(hx, np.roll(hy, -1)) - np.dot(hy, np.roll(hx, -1))))
+    """Area of the convex hull of the points ``(x_k, y_k)`` (monotone chain), in units x*y.
+    Computed by the core."""
+    return _core.hull_area(_flat(x), _flat(y))
 
 
-def phase_fill(x: ArrayLike, y: ArrayLike, bins: int = 32) -> float:
+#: Default cells per axis of the grid of :func:`phase_fill`.
+PHASE_FILL_BINS: int = _core.PHASE_FILL_BINS
+
+
+def phase_fill(x: ArrayLike, y: ArrayLike, bins: int = PHASE_FILL_BINS) -> float:
     """Fraction of the cells of a ``bins x bins`` grid over the trajectory's convex hull that
     the trajectory passes through (samples joined by straight segments).
 
     Scale-free (each axis normalised to the bounding box). About ``2.5/bins`` for one closed
     curve such as an ellipse, approaching 1 for an orbit that sweeps its whole region.
+    Computed by the core.
     """
-    xa = np.asarray(x, dtype=float).ravel()
-    ya = np.asarray(y, dtype=float).ravel()
-    if xa.size < 3 or xa.shape != ya.shape:
-        raise ValidationError("x", f"{xa.size} samples", "x and y of equal length >= 3")
-    span_x, span_y = float(np.ptp(xa)), float(np.ptp(ya))
-    if span_x == 0.0 or span_y == 0.0:
-        return 0.0
-    u = (xa - xa.min()) / span_x * bins * (1 - 1e-12)
-    v = (ya - ya.min()) / span_y * bins * (1 - 1e-12)
-    # subdivide every segment so that consecutive points are < 1/2 cell apart
-    steps = int(np.ceil(2.0 * max(np.max(np.abs(np.diff(u))), np.max(np.abs(np.diff(v)))))) + 1
-    frac = np.linspace(0.0, 1.0, steps, endpoint=False)
-    uu = (u[:-1, None] + np.diff(u)[:, None] * frac).ravel()
-    vv = (v[:-1, None] + np.diff(v)[:, None] * frac).ravel()
-    visited = np.zeros((bins, bins), dtype=bool)
-    visited[uu.astype(int), vv.astype(int)] = True
-    visited[int(u[-1]), int(v[-1])] = True
-    # cells whose centre lies inside the hull: the hull's area in cells, approximately
-    hull_cells = max(1.0, hull_area(u, v))
-    return min(1.0, float(visited.sum()) / hull_cells)
+    return _core.phase_fill(_flat(x), _flat(y), bins)
 
 
 def ellipk(m: float) -> float:
     """Complete elliptic integral of the first kind ``K(m) = int_0^{pi/2} (1 - m sin^2)^(-1/2)``
     (parameter ``m = k^2 < 1``), by the arithmetic-geometric mean: ``pi / (2 agm(1, sqrt(1-m)))``.
+    Computed by the core.
     """
-    if not m < 1.0:
-        raise ValidationError("m", m, "m < 1")
-    a, b = 1.0, math.sqrt(1.0 - m)
-    for _ in range(60):
-        if abs(a - b) <= 1e-16 * a:
-            break
-        a, b = 0.5 * (a + b), math.sqrt(a * b)
-    return math.pi / (2.0 * a)
+    return _core.ellipk(as_float("m", m, "m < 1"))
 
 
 def duffing_amplitude(omega2: float, beta: float, velocity: float) -> float:
     """Turning point ``A`` of ``x'' + omega2 x + beta x^3 = 0`` started at ``x = 0``, ``x' = v``.
 
-    From the energy ``v^2/2 = omega2 A^2/2 + beta A^4/4``.
+    From the energy ``v^2/2 = omega2 A^2/2 + beta A^4/4``. Computed by the core.
     """
-    if beta == 0.0:
-        return abs(velocity) / math.sqrt(omega2)
-    disc = omega2 * omega2 + 2.0 * beta * velocity * velocity
-    if disc < 0.0:
-        raise ValidationError("velocity", velocity, "below the separatrix of the softening oscillator")
-    # A^2 = (-omega2 + sqrt(disc)) / beta, written without cancellation
-    return math.sqrt(2.0 * velocity * velocity / (omega2 + math.sqrt(disc)))
+    return _core.duffing_amplitude(float(omega2), float(beta), float(velocity))
 
 
 def duffing_frequency(omega2: float, beta: float, amplitude: float) -> float:
     """Exact frequency (Hz) of ``x'' + omega2 x + beta x^3 = 0`` oscillating with amplitude ``A``.
 
     ``T = 4 K(m) / sqrt(omega2 + beta A^2)`` with ``m = beta A^2 / (2 (omega2 + beta A^2))``.
+    Computed by the core.
     """
-    stiff = omega2 + beta * amplitude * amplitude
-    if not stiff > 0.0:
-        raise ValidationError("amplitude", amplitude, "omega2 + beta A^2 > 0")
-    m = beta * amplitude * amplitude / (2.0 * stiff)
-    return math.sqrt(stiff) / (4.0 * ellipk(m))
+    return _core.duffing_frequency(float(omega2), float(beta), float(amplitude))
 
 
 #: Default stick threshold speed of :func:`stick_slip_metrics`, rad/s (about 0.1 rpm).

@@ -34,6 +34,7 @@ from .errors import DrillstringError, DrillstringWarning, ValidationError
 from .limits import INT64_MAX, as_float, check_run_count, memory_budget
 from .paper.table2 import format_table2, table2, table2_json
 from .parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
+from .result import default_section
 from .simulate import METHODS, PDE_METHODS, simulate
 
 __all__ = ["main"]
@@ -168,7 +169,7 @@ def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parame
     unknown = sorted(set(solver) - set(keys))
     if unknown:
         raise ValidationError(f"solver.{unknown[0]}", solver[unknown[0]], f"one of {', '.join(keys)} for this command")
-    z = solver.pop("z", 2 * params.length / 3)
+    z = solver.pop("z", default_section(params.length))
     allowed = f"a section 0 <= z <= length = {params.length:g} m"
     try:
         z = as_float("z", z, allowed)

@@ -30,6 +30,7 @@ from ._progress import on_terminal
 from .errors import SamplingWarning
 from .parameters import Parameters, preset
 from .pde import solve_pde
+from .result import default_section
 from .simulate import simulate
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -150,7 +151,7 @@ def study(
         terminal; a callable is called with each line instead.
     """
     params = preset("aluminum") if params is None else params
-    z = 2 * params.length / 3 if z is None else float(z)
+    z = default_section(params.length) if z is None else float(z)
     t_eval = np.linspace(0.0, t_end, samples)
     levels = 0
     while cells * 2**levels + 1 <= max_nodes:

@@ -35,6 +35,7 @@ from typing import Any, Optional
 
 import numpy as np
 
+from . import _core
 from .errors import SamplingWarning, ValidationError
 
 __all__ = [
@@ -62,11 +63,13 @@ __all__ = [
 #: suffix: powers of 1024) overrides it; so does assigning this constant.
 MEMORY_BUDGET = 2 * 1024**3
 MEMORY_BUDGET_ENV = "DRILLSTRING_MEMORY_BUDGET"
-#: Default step limit of the adaptive methods (accepted + rejected steps; the core's default).
-ADAPTIVE_MAX_STEPS = 10_000_000
-#: Default step limit of the fixed-step methods. Their step count ``ceil(t_end / dt)`` is known
-#: up front: a request needing more is refused before any work unless ``max_steps`` is given.
-FIXED_MAX_STEPS = 100_000_000
+#: Default step limit of the adaptive methods (accepted + rejected steps; the core's
+#: ``options::ADAPTIVE_MAX_STEPS``).
+ADAPTIVE_MAX_STEPS: int = _core.ADAPTIVE_MAX_STEPS
+#: Default step limit of the fixed-step methods (the core's ``options::FIXED_MAX_STEPS``). Their
+#: step count (:func:`fixed_steps`) is known up front: a request needing more is refused before
+#: any work unless ``max_steps`` is given.
+FIXED_MAX_STEPS: int = _core.FIXED_MAX_STEPS
 
 #: Largest integer option (a count of samples, nodes, steps, ...): what the core's 64-bit
 #: integers hold.
@@ -191,11 +194,8 @@ def check_output_size(field: str, value: Any, samples: int, state_dim: int, what
 
 def fixed_steps(t_end: float, dt: float) -> int:
     """The number of steps of a fixed-step method: ``ceil(t_end / dt - 1e-9)`` (at least 1;
-    saturating at 2^62 like the core's count)."""
-    ratio = t_end / dt
-    if not ratio < 2.0**62:
-        return 2**62
-    return max(math.ceil(ratio - 1e-9), 1)
+    saturating at ``_core.MAX_STEP_COUNT``, 2^62), the core's count (``options::fixed_steps``)."""
+    return _core.fixed_steps(float(t_end), float(dt))
 
 
 #: Memory a planned sweep run takes before it is solved, bytes: its parameter dict, its task

@@ -67,11 +67,13 @@ def _initial_field(name: str, value: InitialField, z: NDArray[np.float64]) -> Op
     return np.ascontiguousarray(arr)
 
 
-#: The default output times of :func:`solve_pde` resolve at least this many modes.
-MIN_RESOLVED_MODES = 3
+#: The default output times of :func:`solve_pde` resolve at least this many modes (the core's
+#: ``pde::MIN_RESOLVED_MODES``).
+MIN_RESOLVED_MODES: int = _core.PDE_MIN_RESOLVED_MODES
 #: A cosine mode of the initial condition counts (for the default output times) when its
-#: amplitude, in velocity units, is at least this share of the largest one.
-MODE_CONTENT_SHARE = 1e-3
+#: amplitude, in velocity units, is at least this share of the largest one (the core's
+#: ``pde::MODE_CONTENT_SHARE``).
+MODE_CONTENT_SHARE: float = _core.PDE_MODE_CONTENT_SHARE
 
 
 def fastest_mode(params: Parameters, twist: NDArray[np.float64], velocity: NDArray[np.float64]) -> tuple[float, str]:
@@ -81,29 +83,15 @@ def fastest_mode(params: Parameters, twist: NDArray[np.float64], velocity: NDArr
     cosine transform), and at least mode :data:`MIN_RESOLVED_MODES`. Returns its linear
     frequency ``w_i / 2 pi`` (Hz, :meth:`PDECoefficients.linear_frequencies`, the continuum
     value, which bounds the grid's) and ``"mode i"``. The grid's own highest modes are far
-    faster but carry no energy unless the initial condition puts it there."""
-    k = PDECoefficients.from_parameters(params)
-    n = twist.size
-    i = np.arange(n)
-    rates = np.sqrt(np.abs(np.asarray(k.frequency_squared(i), dtype=float)))
-
-    def cosine_amplitudes(field: NDArray[np.float64]) -> NDArray[np.float64]:
-        even = np.concatenate([field, field[-2:0:-1]])  # the even extension: a DCT-I by FFT
-        return np.abs(np.fft.rfft(even))[:n]
-
-    content = np.maximum(cosine_amplitudes(twist) * rates, cosine_amplitudes(velocity))
-    content[0] = 0.0  # the rigid mode has no oscillation to resolve
-    top = float(content.max())
-    highest = int(np.nonzero(content >= MODE_CONTENT_SHARE * top)[0].max()) if top > 0.0 else 0
-    mode = min(max(highest, MIN_RESOLVED_MODES), n - 1)
-    return float(rates[mode]) / (2 * math.pi), f"mode {mode}"
+    faster but carry no energy unless the initial condition puts it there. Computed by the core
+    (``PdeSystem::fastest_mode``)."""
+    return _fastest(pde_system(params, np.asarray(twist).size), twist, velocity)
 
 
-def _default_dt(params: Parameters, nodes: int) -> float:
-    """Half the CFL limit ``h / c`` of the explicit schemes, ``c = sqrt(k2 / k1)``."""
-    k = PDECoefficients.from_parameters(params)
-    h = params.length / (nodes - 1)
-    return 0.5 * h / math.sqrt(k.k2 / k.k1)
+def _fastest(system: Any, twist: NDArray[np.float64], velocity: NDArray[np.float64]) -> tuple[float, str]:
+    mode, rate = system.fastest_mode(np.ascontiguousarray(twist, dtype=float),
+                                     np.ascontiguousarray(velocity, dtype=float))
+    return rate / (2 * math.pi), f"mode {mode}"
 
 
 class PdeSolution(TrajectoryResult):
@@ -259,10 +247,10 @@ def solve_pde(
     if velocity is None:
         velocity = np.asarray(system.initial_velocity_from_modes(np.asarray(params.initial_velocities, dtype=float)))
     if method in FIXED_STEP_METHODS and dt_f is None:
-        dt_f = _default_dt(params, z.size)
+        dt_f = system.default_dt()  # half the CFL limit h / c
     times = _output_times(
         t_eval, samples, t_end_f, method, state_dim=2 * z.size, dt=dt_f, max_steps=steps,
-        fastest=fastest_mode(params, q0, velocity), default_field="nodes", default_value=nodes,
+        fastest=_fastest(system, q0, velocity), default_field="nodes", default_value=nodes,
     )
     with SolveProgress(progress, t_end_f, "solve_pde") as bar:
         raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps,

@@ -29,6 +29,8 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
+from .result import default_section
+
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -69,7 +71,7 @@ def time_history_and_phase(result: Simulation, z: Optional[float] = None, title:
     ``z`` defaults to ``z_k = 2l/3``, the paper's section.
     """
     length = result.params.length
-    z = 2 * length / 3 if z is None else z
+    z = default_section(length) if z is None else z
     theta = result.theta(z)
     theta_dot = result.theta_dot(z)
     fig = _figure(figsize=(11, 4.2), layout="constrained")
@@ -128,7 +130,7 @@ def _runs(results: Runs) -> dict[str, Simulation]:
 
 
 def _section(result: Simulation, z: Optional[float]) -> float:
-    return 2.0 * result.params.length / 3.0 if z is None else float(z)
+    return default_section(result.params.length) if z is None else float(z)
 
 
 def _phase_axes_labels(ax: Axes, symbol: str) -> None:
@@ -408,7 +410,7 @@ def space_time(result: Any, z: Optional[float] = None, title: Optional[str] = No
     Uses ``result.field`` (``save_field_every``) when present, else every sample.
     """
     length = result.params.length
-    z = 2 * length / 3 if z is None else z
+    z = default_section(length) if z is None else z
     theta = result.q if result.field is None else result.field
     t = result.t if result.field_t is None else result.field_t
     stride = max(1, t.size // 1500)  # at most ~1500 columns drawn; data untouched

@@ -32,8 +32,9 @@ UNITS = {"t": "s", "z": "m", "theta": "rad", "theta_dot": "rad/s", "q": "rad", "
 
 
 def default_section(length: float) -> float:
-    """The section the paper reports, ``z_k = 2 l / 3`` (m)."""
-    return 2 * length / 3
+    """The section the paper reports, ``z_k = 2 l / 3`` (m): the core's
+    ``model::default_section``, the default section of every twist output."""
+    return _core.default_section(float(length))
 
 
 @dataclass(frozen=True)

@@ -159,17 +159,22 @@ def fastest_mode(coefficients: ModalCoefficients) -> tuple[float, str]:
     """The fastest retained linear mode of a Galerkin system: ``max sqrt(|K_ii / M_ii|) / 2 pi``
     (Hz; the growth rate of a mode beyond its critical speed counts as its frequency) and
     ``"mode i"``. The default output times resolve it (:func:`~drillstring.limits.default_samples`)."""
-    rates = np.sqrt(np.abs(coefficients.stiffness / coefficients.mass))
-    k = int(np.argmax(rates))
-    return float(rates[k]) / (2 * math.pi), f"mode {int(coefficients.indices[k])}"
+    fastest = _core.fastest_mode(*_mass_stiffness(coefficients))
+    if fastest is None:
+        raise ValidationError("modes", 0, "at least one retained mode")
+    k, rate = fastest
+    return rate / (2 * math.pi), f"mode {int(coefficients.indices[k])}"
+
+
+def _mass_stiffness(coefficients: ModalCoefficients) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    return (np.ascontiguousarray(coefficients.mass, dtype=float),
+            np.ascontiguousarray(coefficients.stiffness, dtype=float))
 
 
 def _default_dt(coefficients: ModalCoefficients) -> float:
-    """1e-4 s, or 1/100 of the shortest linear period if that is shorter."""
-    omega_max = float(np.sqrt(np.max(np.abs(coefficients.stiffness / coefficients.mass))))
-    if omega_max == 0.0:
-        return 1e-4
-    return min(1e-4, 2 * math.pi / omega_max / 100)
+    """The core's default fixed step (``options::default_fixed_dt``): ``_core.DEFAULT_FIXED_DT``
+    (1e-4 s), or 1/100 of the shortest linear period if that is shorter."""
+    return _core.default_fixed_dt(*_mass_stiffness(coefficients))
 
 
 class Simulation(TrajectoryResult):

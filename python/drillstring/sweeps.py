@@ -211,7 +211,7 @@ def _default_z(requested: Mapping[str, Any], z: Optional[float]) -> float:
     that is not a number)."""
     if z is not None:
         return z
-    return 2.0 * _as_float(requested.get("length")) / 3.0
+    return _core.default_section(_as_float(requested.get("length")))
 
 
 def parameter_columns(task: ChunkTask) -> pd.DataFrame:
@@ -252,7 +252,7 @@ def _run_inputs(
         )
     c = params.initial_velocities
     velocities = [c[i - 1] if 1 <= i <= len(c) else 0.0 for i in indices]
-    section = 2.0 * params.length / 3.0 if task.z is None else float(task.z)
+    section = _core.default_section(params.length) if task.z is None else float(task.z)
     return k, params.length, velocities, section, params.damping_rate
 
 

@@ -91,7 +91,7 @@ class Runs:
 
 def signal(kind: str, res: Simulation) -> tuple[np.ndarray, np.ndarray, str]:
     if kind.startswith("section"):
-        zk = 2.0 * res.params.length / 3.0
+        zk = _core.default_section(res.params.length)
         return res.theta(zk), res.theta_dot(zk), "θ(z_k)"
     return res.q[0], res.qdot[0], "θ_1"
 

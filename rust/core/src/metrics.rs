@@ -22,7 +22,9 @@
 //!   dissipated up to each sample;
 //! * [`compute`]: all of them for one run of a [`ModalSystem`] (what a sweep reports);
 //! * [`stickslip`]: stick-slip metrics of any bit-speed and motor-torque series, and the
-//!   static break-off torque of a well.
+//!   static break-off torque of a well;
+//! * [`signal`]: the phase, growth, modulation and phase-plane metrics of a response and the
+//!   exact one-mode (Duffing) amplitude and frequency that the paper report reads.
 
 use std::sync::Arc;
 
@@ -33,6 +35,7 @@ use crate::error::{Error, Result};
 use crate::modal::ModalSystem;
 use crate::system::{potential_history, Energy};
 
+pub mod signal;
 pub mod stickslip;
 pub use stickslip::{break_off_torque, stick_slip, StickSlip, STICK_SPEED};
 

@@ -163,6 +163,12 @@ fn positive(name: &str, value: f64) -> Result<()> {
     }
 }
 
+/// The section the paper reports its twist at, `z_k = 2 l / 3` (m) of a string of length `l`:
+/// the default section of every twist output.
+pub fn default_section(length: f64) -> f64 {
+    2.0 * length / 3.0
+}
+
 /// Shear modulus `G = E / (2 (1 + nu))` (isotropic Hooke's law), Pa.
 pub fn shear_modulus(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
     youngs_modulus / (2.0 * (1.0 + poisson_ratio))
@@ -431,6 +437,12 @@ pub fn coefficients(p: &Physical, model: Model, k5: K5Variant) -> Result<Coeffic
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn default_section_is_two_thirds_of_the_length() {
+        assert_eq!(default_section(300.0), 200.0);
+        assert_eq!(default_section(200.0), 400.0 / 3.0);
+    }
 
     const ALUMINIUM: Physical = Physical {
         youngs_modulus: 0.7e11,

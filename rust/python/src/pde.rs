@@ -151,6 +151,24 @@ impl PdeSystem {
         Ok(PyArray1::from_vec(py, w2.map_err(|e| validation_error(py, e))?))
     }
 
+    /// The default step of the fixed-step methods: half the CFL limit `h / c`, s.
+    fn default_dt(&self) -> f64 {
+        self.inner.default_dt()
+    }
+
+    /// The mode the default output times resolve, `(i, w_i in rad/s)`: the highest cosine mode
+    /// of the initial nodal `twist` and `velocity` (at least mode 3).
+    fn fastest_mode(
+        &self,
+        py: Python<'_>,
+        twist: PyReadonlyArray1<'_, f64>,
+        velocity: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<(usize, f64)> {
+        let (q, v) = (to_vec(&twist), to_vec(&velocity));
+        let sys = &self.inner;
+        py.detach(|| no_panic(|| sys.fastest_mode(&q, &v)))?.map_err(|e| validation_error(py, e))
+    }
+
     fn __repr__(&self) -> String {
         format!("PdeSystem(nodes={}, length={})", self.inner.nodes(), self.inner.length())
     }

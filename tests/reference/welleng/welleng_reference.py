@@ -120,7 +120,11 @@ import welleng
 from welleng.architecture import BHA, WellBore
 from welleng.survey import Survey, SurveyHeader
 from welleng.torque_drag import (
-    HookLoad, TorqueDrag, force_normal, force_tension_delta, torsion_delta,
+    HookLoad,
+    TorqueDrag,
+    force_normal,
+    force_tension_delta,
+    torsion_delta,
 )
 
 WELLENG_VERSION = getattr(welleng, "__version__", None) or "0.30.0"

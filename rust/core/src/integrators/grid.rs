@@ -1,8 +1,8 @@
 //! The uniform time grid of the fixed-step methods.
 //!
 //! The requested step `dt` is shrunk to the largest value `<= dt` that divides the span:
-//! `N = ceil((t_end - t0) / dt - 1e-9)` steps of `dt_eff = (t_end - t0) / N` (the `1e-9`
-//! keeps a span that is a multiple of `dt` up to rounding from getting an extra step).
+//! `N = ceil((t_end - t0) / dt - 1e-9)` steps ([`crate::options::fixed_steps`]) of
+//! `dt_eff = (t_end - t0) / N`.
 //! Grid times are computed as `t_n = t0 + n dt_eff`, never accumulated, and `t_N = t_end`
 //! exactly.
 
@@ -25,9 +25,8 @@ impl Grid {
     /// The grid for a requested step `dt > 0` on `t0 < t_end` (validated by the caller).
     pub fn new(t0: f64, t_end: f64, dt: f64) -> Self {
         let span = t_end - t0;
-        let n = (span / dt - 1e-9).ceil();
-        // `as` saturates: an absurd step count is caught by `max_steps`.
-        let steps = if n >= 1.0 { n as u64 } else { 1 };
+        // saturating: an absurd step count is caught by `max_steps`
+        let steps = crate::options::fixed_steps(span, dt);
         Grid { t0, t_end, steps, dt: span / steps as f64 }
     }
 
@@ -92,6 +91,6 @@ mod tests {
         assert_eq!(g.dt, 1.0);
         // Absurdly small dt saturates instead of panicking.
         let g = Grid::new(0.0, 1e300, 1e-300);
-        assert_eq!(g.steps, u64::MAX);
+        assert_eq!(g.steps, crate::options::MAX_STEP_COUNT);
     }
 }

@@ -52,11 +52,15 @@
 //! nodal values `q = th(z_j)` and `v = th_t(z_j)` as state: any method, and memory that
 //! grows only with the saved samples. Explicit methods are stable for steps up to about
 //! `h / c` (Verlet: `dt < 2 / w_max` with `w_max ~ 2 c / h`, `c = sqrt(k2 / k1)` the
-//! torsional wave speed).
+//! torsional wave speed); their default step is half of it ([`PdeSystem::default_dt`]), and the
+//! default output times resolve the highest cosine mode of the initial state
+//! ([`PdeSystem::fastest_mode`]).
 
+mod defaults;
 mod discretisation;
 mod eigen;
 
+pub use defaults::{CFL_SHARE, MIN_RESOLVED_MODES, MODE_CONTENT_SHARE};
 pub use discretisation::{PdeCoefficients, PdeSystem, MAX_NODES};
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use crate::error::{Error, Num, Result};
 use crate::integrators::{self, SolveOptions};
 use crate::interrupt::{CancelFlag, Interrupt, Never};
 use crate::metrics::{self, FftBuffers, FrequencyEstimator};
-use crate::options::{validate_span, Output};
+use crate::options::{default_fixed_dt, validate_span, Output};
 use crate::solution::Status;
 
 /// Largest number of threads of one batch solve.
@@ -67,7 +67,8 @@ pub struct RunSpec {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepOptions {
     /// Method and tolerances. For a fixed-step method without `dt`, each run takes
-    /// `min(1e-4, T_min / 100)` with `T_min` its shortest linear period (as `simulate`).
+    /// [`default_fixed_dt`], `min(1e-4, T_min / 100)` with `T_min` its shortest linear period
+    /// (as `simulate`).
     pub solve: SolveOptions,
     /// End time, s (the runs start at 0).
     pub t_end: f64,
@@ -351,16 +352,6 @@ fn run_guarded(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> Run
     })
 }
 
-/// `min(1e-4, T_min / 100)`: the default step of the fixed-step methods (as `simulate`).
-fn default_dt(mass: &[f64], stiffness: &[f64]) -> f64 {
-    let w2 = mass.iter().zip(stiffness).map(|(m, k)| (k / m).abs()).fold(0.0f64, f64::max);
-    if w2 == 0.0 {
-        1e-4
-    } else {
-        (2.0 * std::f64::consts::PI / w2.sqrt() / 100.0).min(1e-4)
-    }
-}
-
 fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunRecord {
     let m = shared.integrals.modes();
     if shared.cancel.is_cancelled() {
@@ -384,7 +375,7 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
     }
     let mut solve = shared.opts.solve;
     if !solve.method.is_adaptive() && solve.dt.is_none() {
-        solve.dt = Some(default_dt(sys.mass(), sys.stiffness()));
+        solve.dt = Some(default_fixed_dt(sys.mass(), sys.stiffness()));
     }
     let q0 = vec![0.0; m];
     let sol = match integrators::solve_second_order_with(
