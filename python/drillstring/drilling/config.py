@@ -74,13 +74,13 @@ __all__ = [
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-#: The default configuration of the core (``_core.drill_defaults()``), as parsed JSON.
-_DEFAULTS: dict[str, Any] = json.loads(_core.drill_defaults())
+#: The default configuration of the core (``_core.drill_defaults()``), as JSON values.
+_DEFAULTS: dict[str, Any] = _core.drill_defaults()
 
 
 def defaults() -> dict[str, Any]:
     """The core's default configuration as a plain dict (a fresh copy): what every unset field takes."""
-    return json.loads(_core.drill_defaults())
+    return _core.drill_defaults()
 
 
 def _frozen(value: Any) -> Any:
@@ -323,7 +323,7 @@ class DrillConfig:
 
     def __post_init__(self) -> None:
         checked = _check_fields(type(self), {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}, "")
-        normal = json.loads(_core.drill_validate(json.dumps(_unset_left_out(_plain(checked)), allow_nan=False)))
+        normal = _core.drill_validate(json.dumps(_unset_left_out(_plain(checked)), allow_nan=False))
         rebuilt = _build(type(self), normal, "")  # the fields of the normalised config
         for f in dataclasses.fields(self):
             object.__setattr__(self, f.name, rebuilt[f.name])
