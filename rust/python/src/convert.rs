@@ -444,17 +444,18 @@ impl<'py> ser::Serializer for ToPython<'py> {
         d.set_item(variant, value.serialize(self.element())?)?;
         Ok(d.into_any())
     }
-    fn serialize_seq(self, _len: Option<usize>) -> Result<Collect<'py>, SerError> {
+    fn serialize_seq(self, len: Option<usize>) -> Result<Collect<'py>, SerError> {
         let arrays = self.seq == Sequences::Arrays && !self.list;
         Ok(Collect {
             to: self.element(),
             items: if arrays { Items::Empty } else { Items::Objects(Vec::new()) },
             tuple: false,
+            len: len.unwrap_or(0),
         })
     }
-    fn serialize_tuple(self, _len: usize) -> Result<Collect<'py>, SerError> {
+    fn serialize_tuple(self, len: usize) -> Result<Collect<'py>, SerError> {
         let tuple = self.seq == Sequences::Arrays && !self.list;
-        Ok(Collect { to: self.element(), items: Items::Objects(Vec::new()), tuple })
+        Ok(Collect { to: self.element(), items: Items::Objects(Vec::new()), tuple, len })
     }
     fn serialize_tuple_struct(self, _name: &'static str, len: usize) -> Result<Collect<'py>, SerError> {
         self.serialize_tuple(len)
@@ -493,15 +494,22 @@ enum Numbers {
 }
 
 impl Numbers {
-    fn new(first: Num) -> Self {
+    /// Numbers starting with `first`, with room for `capacity`.
+    fn new(first: Num, capacity: usize) -> Self {
+        fn start<T>(x: T, capacity: usize) -> Vec<T> {
+            let mut v = Vec::with_capacity(capacity.max(1));
+            v.push(x);
+            v
+        }
         match first {
-            Num::Float(x) => Numbers::Float(vec![x]),
-            Num::Int(x) => Numbers::Int(vec![x]),
-            Num::Unsigned(x) => Numbers::Unsigned(vec![x]),
+            Num::Float(x) => Numbers::Float(start(x, capacity)),
+            Num::Int(x) => Numbers::Int(start(x, capacity)),
+            Num::Unsigned(x) => Numbers::Unsigned(start(x, capacity)),
         }
     }
 
     /// Appends `x`; false (nothing appended) when it is of another kind.
+    #[inline]
     fn push(&mut self, x: Num) -> bool {
         match (self, x) {
             (Numbers::Float(v), Num::Float(x)) => v.push(x),
@@ -567,10 +575,13 @@ struct Collect<'py> {
     to: ToPython<'py>,
     items: Items<'py>,
     tuple: bool,
+    /// The length serde announced (0 if none).
+    len: usize,
 }
 
 impl<'py> Collect<'py> {
     /// Appends `value` to the numbers when it is a number or a row of numbers that fits them.
+    #[inline]
     fn push_number<T: Serialize + ?Sized>(&mut self, value: &T) -> bool {
         let (row, cols) = match value.serialize(Number) {
             // the common case, one number into numbers of its kind
@@ -586,9 +597,11 @@ impl<'py> Collect<'py> {
         };
         match &mut self.items {
             Items::Empty => {
+                let row_len = row.len();
                 let mut it = row.into_iter();
                 let Some(first) = it.next() else { return false };
-                let mut numbers = Numbers::new(first);
+                let capacity = if cols.is_some() { self.len.saturating_mul(row_len) } else { self.len };
+                let mut numbers = Numbers::new(first, capacity);
                 if !it.all(|x| numbers.push(x)) {
                     return false;
                 }
