@@ -1,6 +1,6 @@
 """Type stubs of the compiled module ``drillstring._core`` (Rust, PyO3)."""
 
-from typing import Callable, Literal, Optional, TypedDict, final
+from typing import Any, Callable, Literal, Optional, TypedDict, final
 
 import numpy as np
 from numpy.typing import NDArray
@@ -616,9 +616,10 @@ def default_section(length: float) -> float:
 
 # --- The drilling system (issue #13): configuration as JSON, see /work/drill-contract.md ---
 
-def drill_defaults() -> str:
-    """The default drilling configuration as JSON (``sections`` holds one template section;
-    ``length``, ``outer_diameter`` and ``inner_diameter`` of each section are required)."""
+def drill_defaults() -> dict[str, Any]:
+    """The default drilling configuration as a new dict of JSON values (what ``json.loads`` of
+    its JSON gives; ``sections`` holds one template section; ``length``, ``outer_diameter`` and
+    ``inner_diameter`` of each section are required)."""
 
 def drill_config_override(
     config_json: str, overrides_json: str, field: str = "overrides", validate: bool = True, parse: bool = True
@@ -653,8 +654,8 @@ def parameters_validate(params_json: str) -> str:
         wrong type or out of range.
     """
 
-def drill_validate(config_json: str) -> str:
-    """The configuration with every default filled in, as JSON.
+def drill_validate(config_json: str) -> dict[str, Any]:
+    """The configuration with every default filled in, as a dict of JSON values.
 
     Raises
     ------
@@ -806,8 +807,8 @@ def drill_map(
 
 # ----------------------------------------------------------------- the lumped two-inertia model
 
-def lumped_defaults() -> tuple[str, str]:
-    """The default parameters and numerics of the lumped model as JSON objects:
+def lumped_defaults() -> tuple[dict[str, Any], dict[str, Any]]:
+    """The default parameters and numerics of the lumped model as dicts of JSON values:
     parameters ``jr``, ``jb``, ``kt``, ``ct``, ``cr``, ``cb``, ``rb``, ``mu_cb``, ``mu_sb``,
     ``gamma_b``, ``v_f``, ``d_v``, ``tm``, ``wob`` (Navarro-Lopez & Cortes 2007);
     numerics ``duration``, ``dt``, ``output_interval``, ``initial`` ([wr, phi, wb]),

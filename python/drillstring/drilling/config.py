@@ -77,13 +77,13 @@ __all__ = [
 
 PathLike = Union[str, "os.PathLike[str]"]
 
-#: The default configuration of the core (``_core.drill_defaults()``), as parsed JSON.
-_DEFAULTS: dict[str, Any] = json.loads(_core.drill_defaults())
+#: The default configuration of the core (``_core.drill_defaults()``), as JSON values.
+_DEFAULTS: dict[str, Any] = _core.drill_defaults()
 
 
 def defaults() -> dict[str, Any]:
     """The core's default configuration as a plain dict (a fresh copy): what every unset field takes."""
-    return json.loads(_core.drill_defaults())
+    return _core.drill_defaults()
 
 
 def _frozen(value: Any) -> Any:
@@ -369,13 +369,14 @@ class DrillConfig:
     def __post_init__(self) -> None:
         plain = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
         normal = _core.drill_validate(_core_json(plain))
-        for name, value in _from_core(type(self), json.loads(normal)).items():
+        for name, value in _from_core(type(self), normal).items():
             object.__setattr__(self, name, value)
 
     @classmethod
-    def _from_core(cls, normal: str) -> DrillConfig:
-        """The config of the core's normalised JSON ``normal``."""
-        return cls(**_from_core(cls, json.loads(normal)))
+    def _from_core(cls, normal: Union[str, Mapping[str, Any]]) -> DrillConfig:
+        """The config of the core's normalised configuration ``normal`` (JSON or its dict)."""
+        return cls(**_from_core(cls, json.loads(normal) if isinstance(normal, str) else normal))
+
 
     # ------------------------------------------------------------------ dicts and JSON
 

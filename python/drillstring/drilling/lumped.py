@@ -60,7 +60,7 @@ def lumped_defaults() -> dict[str, float]:
     as the core defines them: ``jr``, ``jb`` kg m^2; ``kt`` N m/rad; ``ct``, ``cr``, ``cb``
     N m s/rad; ``rb`` m; ``mu_cb``, ``mu_sb``; ``gamma_b`` s/rad; ``v_f``, ``d_v`` rad/s;
     ``tm`` N m; ``wob`` N."""
-    params: dict[str, float] = json.loads(_core.lumped_defaults()[0])
+    params: dict[str, float] = _core.lumped_defaults()[0]
     return params
 
 
@@ -218,7 +218,7 @@ def lumped(
     raw = _core.lumped_solve(params_json, json.dumps(numerics), progress)
     if progress is not None and raw["status"] == "success":
         progress(1.0)
-    full = json.loads(_core.lumped_defaults()[0])
+    full = _core.lumped_defaults()[0]
     full.update(json.loads(params_json))
     result = LumpedResult(
         params=full,

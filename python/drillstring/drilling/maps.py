@@ -109,7 +109,7 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     one column of the table). Raises :class:`~drillstring.errors.ValidationError` naming ``field``
     (the dotted path for a path error)."""
     plain = [_plain_value(v, field) for v in values]
-    base = config.to_json() if config is not None else _core.drill_defaults()
+    base = config.to_json() if config is not None else json.dumps(_core.drill_defaults())
     # the path (malformed, an index out of range, a key through a value): the core's message as it is
     _core.drill_config_override(base, json.dumps([[key, plain[0] if plain else None]]), field, parse=False)
     for value in plain:

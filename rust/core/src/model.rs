@@ -92,7 +92,7 @@ impl K5Variant {
 }
 
 /// Section properties of an annulus (eq. 8 and the fourth polar moment of the consistent model).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Section {
     /// `A = pi (R^2 - r^2)`, m^2.
     pub area: f64,
@@ -228,8 +228,9 @@ pub struct Physical {
 
 /// `k1 .. k6` of one model, and the factor `k6 / Omega^2` (`rho I_p` for the paper model, 0 for
 /// the consistent one: the rotation speed does not enter it).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Coefficients {
+    #[serde(flatten)]
     pub k: PdeCoefficients,
     /// `k6 = k6_per_omega_squared * Omega^2`.
     pub k6_per_omega_squared: f64,

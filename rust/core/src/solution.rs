@@ -2,6 +2,19 @@
 
 use std::fmt;
 
+use serde::{Serialize, Serializer};
+
+/// The name of the newtype struct [`serialize_list`] wraps a sequence in: a serialiser that
+/// makes numeric sequences arrays (the Python bindings) makes this one a list of values, even
+/// when empty; serde_json and the like see through it.
+pub const LIST: &str = "list";
+
+/// Serialises `values` (a sequence or a fixed-size array) as a list of values, not as a numeric
+/// array; for `#[serde(serialize_with = "...")]`.
+pub fn serialize_list<S: Serializer, V: Serialize + ?Sized>(values: &V, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_newtype_struct(LIST, values)
+}
+
 /// How a solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Status {
@@ -51,6 +64,13 @@ impl Status {
     }
 }
 
+/// A status serialises as its [`Status::name`].
+impl Serialize for Status {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
 impl fmt::Display for Status {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -58,7 +78,7 @@ impl fmt::Display for Status {
 }
 
 /// Work counters of one solve.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 pub struct Stats {
     /// Right-hand-side evaluations (for second-order fixed-step schemes: acceleration evaluations).
     pub nfev: u64,
@@ -102,8 +122,11 @@ pub fn reserve_outputs(outputs: &mut [(&mut Vec<f64>, usize)]) -> std::result::R
 ///
 /// When the solve stops early (any status other than [`Status::Success`]) the samples
 /// hold only the output times reached before it stopped.
-#[derive(Debug, Clone, PartialEq)]
+///
+/// Serialised as `t`, `y` (flat), `status`, `message`, the [`Stats`] and `dissipated`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Solution {
+    #[serde(skip)]
     pub dim: usize,
     pub t: Vec<f64>,
     /// Row-major, `t.len() * dim` values.
@@ -111,6 +134,7 @@ pub struct Solution {
     pub status: Status,
     /// Human-readable explanation of the status (empty on success).
     pub message: String,
+    #[serde(flatten)]
     pub stats: Stats,
     /// For a second-order system with velocity-dependent forces: the energy they dissipated
     /// from the start to each sample (one value per sample, integrated with the state, see

@@ -1,13 +1,15 @@
 //! Bindings of the drilling-system solver (`drillstring_core::drilling`): JSON configuration
-//! in, dicts of numpy arrays and floats out.
+//! in, dicts of numpy arrays and floats out (by [`to_python`]).
 
-use drillstring_core::drilling::{self, DrillConfig};
+use drillstring_core::drilling::{self, DrillConfig, DrillRun};
 use drillstring_core::interrupt::Interrupt;
-use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use serde::Serialize;
 
-use crate::convert::{no_panic, stick_slip_dict, validation_error, SignalCheck};
+use crate::convert::{
+    no_panic, reshape, to_dict, to_json_object, to_python, validation_error, SignalCheck, StickSlipReport,
+};
 
 fn parse(py: Python<'_>, config_json: &str) -> PyResult<DrillConfig> {
     let cfg = DrillConfig::from_json(config_json).map_err(|e| validation_error(py, e))?;
@@ -15,31 +17,26 @@ fn parse(py: Python<'_>, config_json: &str) -> PyResult<DrillConfig> {
     Ok(cfg)
 }
 
-/// The default configuration as JSON (`sections` holds one template section).
+/// The default configuration as a dict of JSON values (`sections` holds one template section).
 #[pyfunction]
-pub(crate) fn drill_defaults() -> String {
-    DrillConfig::default().to_json()
+pub(crate) fn drill_defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_json_object(py, &DrillConfig::default())
 }
 
-/// The configuration `config_json` with every default filled in, as JSON; raises
-/// `ValidationError` naming the dotted field of the first invalid value.
+/// The configuration `config_json` with every default filled in, as a dict of JSON values;
+/// raises `ValidationError` naming the dotted field of the first invalid value.
 #[pyfunction]
-pub(crate) fn drill_validate(py: Python<'_>, config_json: &str) -> PyResult<String> {
-    Ok(parse(py, config_json)?.to_json())
+pub(crate) fn drill_validate<'py>(py: Python<'py>, config_json: &str) -> PyResult<Bound<'py, PyAny>> {
+    to_json_object(py, &parse(py, config_json)?)
 }
 
 /// The friction profile: `z` (cell centres, m), `limit_per_m` (N m/m), `cumulative` (static
 /// friction torque below each cell centre, from the bit up, N m) and `breakoff_torque` (N m).
 #[pyfunction]
-pub(crate) fn drill_profile<'py>(py: Python<'py>, config_json: &str) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn drill_profile<'py>(py: Python<'py>, config_json: &str) -> PyResult<Bound<'py, PyAny>> {
     let cfg = parse(py, config_json)?;
     let profile = py.detach(|| no_panic(|| drilling::friction_profile(&cfg)))?.map_err(|e| validation_error(py, e))?;
-    let d = PyDict::new(py);
-    d.set_item("z", PyArray1::from_vec(py, profile.z))?;
-    d.set_item("limit_per_m", PyArray1::from_vec(py, profile.limit_per_m))?;
-    d.set_item("cumulative", PyArray1::from_vec(py, profile.cumulative))?;
-    d.set_item("breakoff_torque", profile.breakoff_torque)?;
-    Ok(d)
+    to_python(py, &profile)
 }
 
 /// The interrupt hook of a drilling solve: Python's signal handlers (Ctrl-C) and the progress
@@ -77,57 +74,36 @@ pub(crate) fn drill_solve<'py>(
     run_dict(py, run)
 }
 
-fn run_dict(py: Python<'_>, run: drilling::DrillRun) -> PyResult<Bound<'_, PyDict>> {
-    let d = PyDict::new(py);
-    let (nt, nz) = (run.field_t.len(), run.z.len());
-    d.set_item("t", PyArray1::from_vec(py, run.t))?;
-    d.set_item("surface_rpm", PyArray1::from_vec(py, run.surface_rpm))?;
-    d.set_item("bit_rpm", PyArray1::from_vec(py, run.bit_rpm))?;
-    d.set_item("motor_torque", PyArray1::from_vec(py, run.motor_torque))?;
-    d.set_item("bit_torque", PyArray1::from_vec(py, run.bit_torque))?;
-    d.set_item("field_t", PyArray1::from_vec(py, run.field_t))?;
-    d.set_item("z", PyArray1::from_vec(py, run.z))?;
-    d.set_item("omega_field", PyArray1::from_vec(py, run.omega_field).reshape([nt, nz])?)?;
-    d.set_item("torque_field", PyArray1::from_vec(py, run.torque_field).reshape([nt, nz])?)?;
-    d.set_item("status", run.status.name())?;
-    d.set_item("message", run.message)?;
-    d.set_item("warnings", run.warnings)?;
+/// A run as `drill_solve` returns it: the run's series, status, energy and stats, and under
+/// `metrics` the stick-slip metrics with the window and break-off values.
+#[derive(Serialize)]
+struct RunOutput<'a> {
+    #[serde(flatten)]
+    run: &'a DrillRun,
+    metrics: RunMetrics<'a>,
+}
 
-    let m = stick_slip_dict(py, run.metrics.as_ref())?;
-    m.set_item("window_start", run.window[0])?;
-    m.set_item("window_end", run.window[1])?;
-    m.set_item("breakoff_torque", run.breakoff_torque)?;
-    m.set_item("min_cycle_torque", run.min_cycle_torque)?;
-    d.set_item("metrics", m)?;
+#[derive(Serialize)]
+struct RunMetrics<'a> {
+    #[serde(flatten)]
+    stick_slip: StickSlipReport<'a>,
+    window_start: f64,
+    window_end: f64,
+    breakoff_torque: f64,
+    min_cycle_torque: f64,
+}
 
-    let e = PyDict::new(py);
-    let en = run.energy;
-    e.set_item("motor_work", en.motor_work)?;
-    e.set_item("initial", en.initial)?;
-    e.set_item("kinetic", en.kinetic)?;
-    e.set_item("elastic", en.elastic)?;
-    e.set_item("top_drive", en.top_drive)?;
-    e.set_item("bha", en.bha)?;
-    e.set_item("friction_loss", en.friction_loss)?;
-    e.set_item("damping_loss", en.damping_loss)?;
-    e.set_item("bit_loss", en.bit_loss)?;
-    e.set_item("numerical_loss", en.numerical_loss)?;
-    e.set_item("upwind_loss", en.upwind_loss)?;
-    e.set_item("inertia_loss", en.inertia_loss)?;
-    e.set_item("balance_error", en.balance_error)?;
-    d.set_item("energy", e)?;
-
-    let st = PyDict::new(py);
-    let s = run.stats;
-    st.set_item("cells", s.cells)?;
-    st.set_item("steps", s.steps)?;
-    st.set_item("dt", s.dt)?;
-    st.set_item("courant_min", s.courant_min)?;
-    st.set_item("courant_max", s.courant_max)?;
-    st.set_item("courant_peak", s.courant_peak)?;
-    st.set_item("kp", s.kp)?;
-    st.set_item("ki", s.ki)?;
-    st.set_item("first_mode_hz", s.first_mode_hz)?;
-    d.set_item("stats", st)?;
+fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
+    let metrics = RunMetrics {
+        stick_slip: StickSlipReport::new(run.metrics.as_ref()),
+        window_start: run.window[0],
+        window_end: run.window[1],
+        breakoff_torque: run.breakoff_torque,
+        min_cycle_torque: run.min_cycle_torque,
+    };
+    let d = to_dict(py, &RunOutput { run: &run, metrics })?;
+    let shape = [run.field_t.len(), run.z.len()];
+    reshape(&d, "omega_field", shape)?;
+    reshape(&d, "torque_field", shape)?;
     Ok(d)
 }

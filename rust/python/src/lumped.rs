@@ -1,18 +1,42 @@
 //! Bindings of the lumped two-inertia model (`drillstring_core::drilling::lumped`) and of the
-//! minimum cycle torque implied by break-off: JSON parameters in, dicts out.
+//! minimum cycle torque implied by break-off: JSON parameters in, dicts out (by [`to_python`]).
 
 use drillstring_core::drilling::{self, lumped};
-use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use serde::Serialize;
 
-use crate::convert::{no_panic, stick_slip_dict, validation_error, SignalCheck};
+use crate::convert::{no_panic, to_json_object, to_python, validation_error, SignalCheck, StickSlipReport};
 use crate::drilling::Fraction;
 
-/// The default parameters and numerics as JSON objects.
+/// The default parameters and numerics as dicts of JSON values.
 #[pyfunction]
-pub(crate) fn lumped_defaults() -> (String, String) {
-    (lumped::LumpedParams::default().to_json(), lumped::LumpedNumerics::default().to_json())
+pub(crate) fn lumped_defaults(py: Python<'_>) -> PyResult<(Bound<'_, PyAny>, Bound<'_, PyAny>)> {
+    let params = to_json_object(py, &lumped::LumpedParams::default())?;
+    Ok((params, to_json_object(py, &lumped::LumpedNumerics::default())?))
+}
+
+/// A lumped run as `lumped_solve` returns it.
+#[derive(Serialize)]
+struct RunOutput<'a> {
+    #[serde(flatten)]
+    run: &'a lumped::LumpedRun,
+    metrics: StickSlipReport<'a>,
+    stats: RunStats,
+}
+
+#[derive(Serialize)]
+struct RunStats {
+    steps: u64,
+    sticks: u64,
+    slips: u64,
+}
+
+/// The equilibria as `lumped_equilibria` returns them.
+#[derive(Serialize)]
+struct EquilibriaOutput<'a> {
+    #[serde(flatten)]
+    equilibria: &'a lumped::Equilibria,
+    static_limit: f64,
 }
 
 fn parse(py: Python<'_>, params_json: &str) -> PyResult<lumped::LumpedParams> {
@@ -28,7 +52,7 @@ pub(crate) fn lumped_solve<'py>(
     params_json: &str,
     numerics_json: &str,
     progress: Option<Py<PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let p = parse(py, params_json)?;
     let num = lumped::LumpedNumerics::from_json(numerics_json).map_err(|e| validation_error(py, e))?;
     let signals = SignalCheck::with_progress(py, progress);
@@ -37,56 +61,16 @@ pub(crate) fn lumped_solve<'py>(
     signals.finish()?;
     let run = solved.map_err(|e| validation_error(py, e))?;
 
-    let d = PyDict::new(py);
-    d.set_item("t", PyArray1::from_vec(py, run.t))?;
-    d.set_item("top_speed", PyArray1::from_vec(py, run.top_speed))?;
-    d.set_item("bit_speed", PyArray1::from_vec(py, run.bit_speed))?;
-    d.set_item("spring_torque", PyArray1::from_vec(py, run.spring_torque))?;
-    d.set_item("bit_torque", PyArray1::from_vec(py, run.bit_torque))?;
-    d.set_item("status", run.status.name())?;
-    d.set_item("message", run.message)?;
-    d.set_item("window", (run.window[0], run.window[1]))?;
-    d.set_item("metrics", stick_slip_dict(py, run.metrics.as_ref())?)?;
-    let e = PyDict::new(py);
-    let en = run.energy;
-    e.set_item("motor_work", en.motor_work)?;
-    e.set_item("initial", en.initial)?;
-    e.set_item("kinetic_top", en.kinetic_top)?;
-    e.set_item("kinetic_bit", en.kinetic_bit)?;
-    e.set_item("spring", en.spring)?;
-    e.set_item("viscous_loss", en.viscous_loss)?;
-    e.set_item("friction_loss", en.friction_loss)?;
-    e.set_item("balance_error", en.balance_error)?;
-    d.set_item("energy", e)?;
-    let st = PyDict::new(py);
-    st.set_item("steps", run.steps)?;
-    st.set_item("sticks", run.sticks)?;
-    st.set_item("slips", run.slips)?;
-    d.set_item("stats", st)?;
-    Ok(d)
+    let stats = RunStats { steps: run.steps, sticks: run.sticks, slips: run.slips };
+    to_python(py, &RunOutput { run: &run, metrics: StickSlipReport::new(run.metrics.as_ref()), stats })
 }
 
 /// The steady rotations of the lumped model, their eigenvalues and stability, and the regime.
 #[pyfunction]
-pub(crate) fn lumped_equilibria<'py>(py: Python<'py>, params_json: &str) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn lumped_equilibria<'py>(py: Python<'py>, params_json: &str) -> PyResult<Bound<'py, PyAny>> {
     let p = parse(py, params_json)?;
     let eq = no_panic(|| lumped::equilibria(&p))?.map_err(|e| validation_error(py, e))?;
-    let rotations = PyList::empty(py);
-    for r in &eq.rotations {
-        let d = PyDict::new(py);
-        d.set_item("speed", r.speed)?;
-        d.set_item("twist", r.twist)?;
-        let eig: Vec<(f64, f64)> = r.eigenvalues.to_vec();
-        d.set_item("eigenvalues", eig)?;
-        d.set_item("stable", r.stable)?;
-        rotations.append(d)?;
-    }
-    let d = PyDict::new(py);
-    d.set_item("rotations", rotations)?;
-    d.set_item("stuck_possible", eq.stuck_possible)?;
-    d.set_item("regime", eq.regime.name())?;
-    d.set_item("static_limit", p.static_limit())?;
-    Ok(d)
+    to_python(py, &EquilibriaOutput { equilibria: &eq, static_limit: p.static_limit() })
 }
 
 /// The minimum motor torque of a stick-slip cycle implied by break-off,

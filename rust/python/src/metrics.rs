@@ -4,9 +4,9 @@ use drillstring_core as core;
 use drillstring_core::metrics::FrequencyEstimator;
 use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict};
+use pyo3::types::PyBool;
 
-use crate::convert::{integer, no_panic, stick_slip_dict, to_vec, validation_error};
+use crate::convert::{integer, no_panic, to_python, to_vec, validation_error, StickSlipReport};
 
 /// `(frequencies, amplitudes)` of spectral peaks.
 type Peaks<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -121,12 +121,12 @@ pub(crate) fn stick_slip_metrics<'py>(
     motor_torque: Option<PyReadonlyArray1<'py, f64>>,
     window: Option<(f64, f64)>,
     stick_speed: f64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let (t, omega) = (to_vec(&t), to_vec(&omega_bit));
     let torque = motor_torque.map(|m| to_vec(&m));
     let m = no_panic(|| core::metrics::stick_slip(&t, &omega, torque.as_deref(), window, stick_speed))?
         .map_err(|e| validation_error(py, e))?;
-    stick_slip_dict(py, Some(&m))
+    to_python(py, &StickSlipReport::new(Some(&m)))
 }
 
 /// The static break-off torque of a well, N m: the trapezoidal integral of the friction limit

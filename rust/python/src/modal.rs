@@ -5,9 +5,8 @@ use drillstring_core::modal::{ModalSystem as CoreModalSystem, QuarticEvaluation,
 use drillstring_core::SecondOrderSystem;
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::convert::{no_panic, solve_to_dict, to_vec, validation_error, SolveArgs};
+use crate::convert::{no_panic, solve_binding, to_vec, validation_error};
 
 /// The quartic evaluation (`"terms"` or `"spectral"`) that `evaluation` (`"auto"`, `"terms"`
 /// or `"spectral"`) means for a system of `modes` retained modes; a `ValidationError` naming
@@ -232,36 +231,17 @@ impl ModalSystem {
     }
 }
 
-/// Integrates a modal system from `(q0, v0)` at `t = 0` to `t_end`.
-///
-/// Returns a dict with `t` (samples,), `y` (samples, 2m) holding `[q, qdot]`, `status`,
-/// `message`, `nfev`, `naccept`, `nreject`, and `dissipated` (samples,), the energy the
-/// damping took out up to each sample (None without damping). `t_eval=None` samples every
-/// step. `method` is a name of `resolve_method` (`"auto"` is resolved here by the same rule).
-/// With damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"` apply.
-///
-/// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
-/// within ~20 ms and is raised here.
-#[pyfunction]
-#[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, progress=None))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn solve_modal<'py>(
-    py: Python<'py>,
-    system: &Bound<'py, ModalSystem>,
-    q0: PyReadonlyArray1<'py, f64>,
-    v0: PyReadonlyArray1<'py, f64>,
-    t_end: f64,
-    t_eval: Option<PyReadonlyArray1<'py, f64>>,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    dt: Option<f64>,
-    max_steps: Option<&Bound<'py, PyAny>>,
-    first_step: Option<f64>,
-    max_step: f64,
-    progress: Option<Py<PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let sys: &CoreModalSystem = &system.get().inner;
-    let args = SolveArgs { q0, v0, t_end, t_eval, method, rtol, atol, dt, max_steps, first_step, max_step, progress };
-    solve_to_dict(py, sys, args)
+solve_binding! {
+    /// Integrates a modal system from `(q0, v0)` at `t = 0` to `t_end`.
+    ///
+    /// Returns a dict with `t` (samples,), `y` (samples, 2m) holding `[q, qdot]`, `status`,
+    /// `message`, `nfev`, `naccept`, `nreject`, and `dissipated` (samples,), the energy the
+    /// damping took out up to each sample (None without damping). `t_eval=None` samples every
+    /// step. `method` is a name of `resolve_method` (`"auto"` is resolved here by the same rule).
+    /// With damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"` apply.
+    ///
+    /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
+    /// within ~20 ms and is raised here.
+    solve_modal,
+    ModalSystem
 }

@@ -2,25 +2,14 @@
 
 use drillstring_core::model::{self, K5Variant, Model, Physical, Section};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::convert::validation_error;
-
-fn section_dict<'py>(py: Python<'py>, s: &Section) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("area", s.area)?;
-    out.set_item("polar_moment", s.polar_moment)?;
-    out.set_item("i_r", s.i_r)?;
-    out.set_item("i_x2y2", s.i_x2y2)?;
-    out.set_item("j4", s.j4)?;
-    Ok(out)
-}
+use crate::convert::{to_python, validation_error};
 
 /// Section properties of the annulus `D`, `d` (m): `area`, `polar_moment`, `i_r`, `i_x2y2`, `j4`.
 #[pyfunction]
-pub(crate) fn section<'py>(py: Python<'py>, outer_diameter: f64, inner_diameter: f64) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn section<'py>(py: Python<'py>, outer_diameter: f64, inner_diameter: f64) -> PyResult<Bound<'py, PyAny>> {
     let s = Section::annulus(outer_diameter, inner_diameter).map_err(|e| validation_error(py, e))?;
-    section_dict(py, &s)
+    to_python(py, &s)
 }
 
 /// Shear modulus `G = E / (2 (1 + nu))`, Pa.
@@ -69,16 +58,10 @@ pub(crate) fn coefficients<'py>(
     omega: f64,
     k5_variant: &str,
     model: &str,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let err = |e| validation_error(py, e);
     let which = Model::parse(model).map_err(err)?;
     let k5 = K5Variant::parse(k5_variant).map_err(err)?;
     let p = Physical { youngs_modulus, density, poisson_ratio, outer_diameter, inner_diameter, omega };
-    let c = model::coefficients(&p, which, k5).map_err(err)?;
-    let out = PyDict::new(py);
-    for (name, value) in ["k1", "k2", "k3", "k4", "k5", "k6"].into_iter().zip(c.k.to_array()) {
-        out.set_item(name, value)?;
-    }
-    out.set_item("k6_per_omega_squared", c.k6_per_omega_squared)?;
-    Ok(out)
+    to_python(py, &model::coefficients(&p, which, k5).map_err(err)?)
 }

@@ -5,9 +5,8 @@ use drillstring_core::pde::{PdeCoefficients, PdeSystem as CorePdeSystem};
 use drillstring_core::SecondOrderSystem;
 use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::convert::{integer, no_panic, solve_to_dict, to_vec, validation_error, SolveArgs};
+use crate::convert::{integer, no_panic, solve_binding, to_vec, validation_error};
 
 /// The torsion PDE discretised on `nodes` grid points `z_j = j l / (nodes - 1)` (lumped-mass
 /// linear finite elements: the discrete energy `H_h` is conserved by the semi-discrete system).
@@ -187,37 +186,18 @@ impl PdeSystem {
     }
 }
 
-/// Integrates the PDE system from nodal `(q0, v0) = (theta, theta_t)(z_j, 0)` to `t_end`.
-///
-/// Returns a dict with `t` (samples,), `y` (samples, 2N) holding `[theta, theta_t]` at the
-/// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`, `dissipated` (samples,) (the
-/// energy the damping took out, None without damping). `t_eval=None` samples every step. Any
-/// method (`"dop853"`, `"dopri5"`, `"rkn12"`, `"rk4"`, `"central"`, `"verlet"`, or `"auto"`,
-/// see `resolve_method`; with damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"`); the
-/// fixed-step ones need `dt`.
-///
-/// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
-/// within ~20 ms and is raised here.
-#[pyfunction]
-#[pyo3(signature = (system, q0, v0, t_end, t_eval, method, rtol, atol, dt=None, max_steps=None, first_step=None, max_step=f64::INFINITY, progress=None))]
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn solve_pde<'py>(
-    py: Python<'py>,
-    system: &Bound<'py, PdeSystem>,
-    q0: PyReadonlyArray1<'py, f64>,
-    v0: PyReadonlyArray1<'py, f64>,
-    t_end: f64,
-    t_eval: Option<PyReadonlyArray1<'py, f64>>,
-    method: &str,
-    rtol: f64,
-    atol: f64,
-    dt: Option<f64>,
-    max_steps: Option<&Bound<'py, PyAny>>,
-    first_step: Option<f64>,
-    max_step: f64,
-    progress: Option<Py<PyAny>>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let sys: &CorePdeSystem = &system.get().inner;
-    let args = SolveArgs { q0, v0, t_end, t_eval, method, rtol, atol, dt, max_steps, first_step, max_step, progress };
-    solve_to_dict(py, sys, args)
+solve_binding! {
+    /// Integrates the PDE system from nodal `(q0, v0) = (theta, theta_t)(z_j, 0)` to `t_end`.
+    ///
+    /// Returns a dict with `t` (samples,), `y` (samples, 2N) holding `[theta, theta_t]` at the
+    /// nodes, `status`, `message`, `nfev`, `naccept`, `nreject`, `dissipated` (samples,) (the
+    /// energy the damping took out, None without damping). `t_eval=None` samples every step. Any
+    /// method (`"dop853"`, `"dopri5"`, `"rkn12"`, `"rk4"`, `"central"`, `"verlet"`, or `"auto"`,
+    /// see `resolve_method`; with damping only `"dop853"`, `"dopri5"`, `"rk4"` and `"auto"`); the
+    /// fixed-step ones need `dt`.
+    ///
+    /// Runs without the GIL; Ctrl-C (any exception raised by a Python signal handler) stops it
+    /// within ~20 ms and is raised here.
+    solve_pde,
+    PdeSystem
 }

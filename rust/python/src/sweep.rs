@@ -7,7 +7,9 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{integer, no_panic, to_vec, validation_error, SignalCheck};
+use serde::Serialize;
+
+use crate::convert::{integer, no_panic, to_python, to_vec, validation_error, SignalCheck};
 
 fn invalid(py: Python<'_>, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> PyErr {
     validation_error(py, core::Error::invalid(field, value, allowed))
@@ -61,7 +63,7 @@ pub(crate) fn scale_integrals<'py>(
     cos4: PyReadonlyArray1<'py, f64>,
     mixed: PyReadonlyArray1<'py, f64>,
     sin4: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let integrals = integrals_from_arrays(py, &indices, &quartic_index, &cos4, &mixed, &sin4)?;
     let k = to_vec(&k);
     let k: [f64; 6] =
@@ -69,12 +71,23 @@ pub(crate) fn scale_integrals<'py>(
     let (mass, stiffness, terms) = drillstring_core::terms::ModelTerms::from_coefficients(k)
         .and_then(|model| integrals.coefficients(&model, length))
         .map_err(|e| validation_error(py, e))?;
-    let out = PyDict::new(py);
-    out.set_item("mass", PyArray1::from_vec(py, mass))?;
-    out.set_item("stiffness", PyArray1::from_vec(py, stiffness))?;
-    let coef: Vec<f64> = terms.iter().map(|t| t.coef).collect();
-    out.set_item("quartic_coef", PyArray1::from_vec(py, coef))?;
-    Ok(out)
+    let quartic_coef: Vec<f64> = terms.iter().map(|t| t.coef).collect();
+    to_python(py, &ScaledSystem { mass, stiffness, quartic_coef })
+}
+
+/// What `scale_integrals` returns.
+#[derive(Serialize)]
+struct ScaledSystem {
+    mass: Vec<f64>,
+    stiffness: Vec<f64>,
+    quartic_coef: Vec<f64>,
+}
+
+/// What `batch_plan` returns.
+#[derive(Serialize)]
+struct BatchPlan {
+    threads: usize,
+    bytes: u64,
 }
 
 fn threads_allowed() -> String {
@@ -95,7 +108,7 @@ pub(crate) fn batch_plan<'py>(
     threads: Option<&Bound<'py, PyAny>>,
     keep_trajectories: bool,
     memory_budget: Option<u64>,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, PyAny>> {
     let samples: usize = integer(py, "samples", samples, "an integer >= 4")?;
     let threads: Option<usize> = match threads {
         Some(t) if !t.is_none() => Some(integer(py, "threads", t, &threads_allowed())?),
@@ -110,10 +123,7 @@ pub(crate) fn batch_plan<'py>(
         memory_budget,
     };
     opts.check_memory(modes, runs, threads).map_err(|e| validation_error(py, e))?;
-    let out = PyDict::new(py);
-    out.set_item("threads", threads)?;
-    out.set_item("bytes", opts.memory_bytes(modes, runs, threads))?;
-    Ok(out)
+    to_python(py, &BatchPlan { threads, bytes: opts.memory_bytes(modes, runs, threads) })
 }
 
 /// Solves `R` runs of one Galerkin basis in parallel (GIL released) and returns columns.

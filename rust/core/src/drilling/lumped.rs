@@ -63,7 +63,7 @@ use crate::error::{Error, Num, Result};
 use crate::integrators::events::{self, EventSystem, Schedule};
 use crate::interrupt::Interrupt;
 use crate::metrics::{stick_slip, StickSlip, STICK_SPEED};
-use crate::solution::{reserve_outputs, Status};
+use crate::solution::{reserve_outputs, serialize_list, Status};
 
 use super::bit::{friction_coefficient, slip_torque};
 use super::config::{finite, nonneg, pos, MAX_DURATION, MAX_OUTPUT_BYTES};
@@ -334,7 +334,7 @@ impl LumpedNumerics {
 }
 
 /// The energy balance of a lumped run, J.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct LumpedEnergy {
     /// `int Tm wr dt`.
     pub motor_work: f64,
@@ -351,8 +351,8 @@ pub struct LumpedEnergy {
     pub balance_error: f64,
 }
 
-/// A lumped run.
-#[derive(Debug, Clone, PartialEq)]
+/// A lumped run (serialised without `metrics`, `steps`, `sticks`, `slips`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LumpedRun {
     /// Samples at `k output_interval`: time s, top and bit speed rad/s, the spring torque
     /// `kt phi` and the bit torque N m.
@@ -364,12 +364,16 @@ pub struct LumpedRun {
     /// Through [`crate::metrics::stick_slip`] of the bit speed with the spring torque as the
     /// torque series (its min / max and the cycle period); None with fewer than 2 samples in
     /// the window.
+    #[serde(skip)]
     pub metrics: Option<StickSlip>,
     pub window: [f64; 2],
     pub energy: LumpedEnergy,
     /// Time steps taken (events split steps) and stick / slip switches.
+    #[serde(skip)]
     pub steps: u64,
+    #[serde(skip)]
     pub sticks: u64,
+    #[serde(skip)]
     pub slips: u64,
     pub status: Status,
     pub message: String,
@@ -594,20 +598,22 @@ pub fn solve_lumped(
 }
 
 /// A steady rotation of the lumped model and its linear stability.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Equilibrium {
     /// `wr = wb`, rad/s.
     pub speed: f64,
     /// The twist `phi = (Tm - cr w) / kt`, rad.
     pub twist: f64,
     /// The eigenvalues of the Jacobian as `(re, im)`, by increasing real part.
+    #[serde(serialize_with = "serialize_list")]
     pub eigenvalues: [(f64, f64); 3],
     /// All real parts < 0.
     pub stable: bool,
 }
 
 /// What the equilibria imply (see the module).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
 pub enum Regime {
     StableRotation,
     Unstable,
@@ -625,7 +631,7 @@ impl Regime {
 }
 
 /// The equilibria of a parameter set.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Equilibria {
     /// The steady rotations, by increasing speed (0, 1 or 2).
     pub rotations: Vec<Equilibrium>,

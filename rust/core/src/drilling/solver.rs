@@ -104,10 +104,12 @@
 
 use std::f64::consts::PI;
 
+use serde::Serialize;
+
 use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Poller};
 use crate::metrics::{stick_slip, StickSlip};
-use crate::solution::Status;
+use crate::solution::{serialize_list, Status};
 
 use super::bit::slip_torque;
 use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity, SERIES};
@@ -120,7 +122,7 @@ const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
 pub const RUNAWAY_FACTOR: f64 = 1000.0;
 
 /// The energy balance of a run, J (from the start to the end reached).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct EnergyBalance {
     /// `sum dt tau_m Omega'`.
     pub motor_work: f64,
@@ -149,7 +151,7 @@ pub struct EnergyBalance {
 }
 
 /// Counters and discretisation of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct DrillStats {
     pub cells: usize,
     /// Time steps taken.
@@ -170,8 +172,9 @@ pub struct DrillStats {
     pub first_mode_hz: f64,
 }
 
-/// The result of a run.
-#[derive(Debug, Clone, PartialEq)]
+/// The result of a run (serialised without the metrics and what goes with them: `metrics`,
+/// `window`, `breakoff_torque`, `min_cycle_torque`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DrillRun {
     /// Series at `k output_interval`: time s, top-drive and bit speed rpm, motor and bit torque N m.
     pub t: Vec<f64>,
@@ -188,23 +191,28 @@ pub struct DrillRun {
     pub torque_field: Vec<f64>,
     pub energy: EnergyBalance,
     /// Stick-slip metrics over the window (None when the window holds fewer than 2 samples).
+    #[serde(skip)]
     pub metrics: Option<StickSlip>,
     /// The window `[t_start, t_end]` asked for.
+    #[serde(skip)]
     pub window: [f64; 2],
+    #[serde(skip)]
     pub breakoff_torque: f64,
     /// The minimum motor torque of a stick-slip cycle implied by break-off
     /// ([`super::grid::min_cycle_torque`]), N m.
+    #[serde(skip)]
     pub min_cycle_torque: f64,
     pub status: Status,
     pub message: String,
     /// What the configuration makes doubtful (a torque limit the string's static torque
     /// exceeds); the metrics' own are [`StickSlip::warnings`].
+    #[serde(serialize_with = "serialize_list")]
     pub warnings: Vec<String>,
     pub stats: DrillStats,
 }
 
 /// The friction profile of a configuration.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Profile {
     /// Cell centres, m.
     pub z: Vec<f64>,

@@ -32,6 +32,8 @@
 //! * [`break_off_torque`]: the static break-off torque of a well, the integral over measured
 //!   depth of the friction limit per metre (trapezoidal).
 
+use serde::Serialize;
+
 use crate::error::{Error, Num, Result};
 
 /// Default stick threshold speed, rad/s (about 0.1 rpm): the bit counts as stuck while
@@ -42,7 +44,7 @@ pub const STICK_SPEED: f64 = 1e-2;
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * std::f64::consts::PI);
 
 /// The stick-slip metrics of one window.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StickSlip {
     /// First and last sample time in the window, s.
     pub t_start: f64,
@@ -85,6 +87,27 @@ pub const PERIOD_SAMPLES: usize = 1 << 14;
 pub const PERIOD_AGREEMENT: f64 = 0.05;
 
 impl StickSlip {
+    /// What a window without metrics (fewer than 2 samples) reports: NaN values, no slip
+    /// onsets, neither verdict.
+    pub const UNDEFINED: StickSlip = StickSlip {
+        t_start: f64::NAN,
+        t_end: f64::NAN,
+        severity: f64::NAN,
+        stuck_fraction: f64::NAN,
+        rpm_min: f64::NAN,
+        rpm_max: f64::NAN,
+        rpm_mean: f64::NAN,
+        torque_min: f64::NAN,
+        torque_max: f64::NAN,
+        cycle_period: f64::NAN,
+        period_cycles: f64::NAN,
+        periodicity: f64::NAN,
+        slip_period: f64::NAN,
+        slip_onsets: 0,
+        stick_slip: false,
+        settled: false,
+    };
+
     /// Short sentences on what in these metrics cannot be trusted as they stand (empty when
     /// every one can).
     pub fn warnings(&self) -> Vec<String> {

@@ -18,7 +18,7 @@ use crate::terms::{Boundary, EnergyTerm, ModelTerms, ViscousDamping};
 pub const MAX_NODES: usize = 10_000_000;
 
 /// The coefficients `k1 .. k6` of the PDE (model notes, eq. 18).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PdeCoefficients {
     pub k1: f64,
     pub k2: f64,

@@ -30,11 +30,14 @@ use std::f64::consts::PI;
 
 use crate::error::Num;
 use crate::error::{Error, Result};
+use serde::Serialize;
+
 use crate::modal::{check_model, ModalSystem, QuarticEvaluation, QuarticTerm, SpectralQuartic};
 use crate::terms::{Boundary, EnergyTerm, ModelTerms};
 
-/// The dimensionless quartic integrals of the retained basis `cos(i_k pi z / l)`.
-#[derive(Debug, Clone, PartialEq)]
+/// The dimensionless quartic integrals of the retained basis `cos(i_k pi z / l)` (serialised
+/// without the boundary).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GalerkinIntegrals {
     /// Mode numbers `i_k` of the retained basis, strictly increasing (`0` first for the
     /// rigid mode).
@@ -48,6 +51,7 @@ pub struct GalerkinIntegrals {
     /// `mult_t i_a i_b i_c i_d int_0^1 s_a s_b s_c s_d ds` per term.
     pub sin4: Vec<f64>,
     /// The boundary conditions whose basis these are the integrals of.
+    #[serde(skip)]
     pub boundary: Boundary,
 }
 
