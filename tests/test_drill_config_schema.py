@@ -48,7 +48,7 @@ def _frozen(value: Any) -> Any:
 
 
 def test_every_dataclass_field_and_default_is_the_cores() -> None:
-    defaults = json.loads(_core.drill_defaults())
+    defaults = _core.drill_defaults()
     for cls, core in _tables(defaults):
         fields = {f.name: f for f in dataclasses.fields(cls)}
         assert set(fields) == set(core), cls.__name__
