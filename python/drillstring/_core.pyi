@@ -675,6 +675,13 @@ class DrillProfile(TypedDict):
     cumulative: NDArray[np.float64]
     #: Integral of the limit over the string (refined quadrature), N m.
     breakoff_torque: float
+    #: The well at the cell centres: inclination, azimuth (degrees), TVD (m), dogleg severity
+    #: (degrees per 30 m), and the static friction factor there.
+    inclination_deg: NDArray[np.float64]
+    azimuth_deg: NDArray[np.float64]
+    tvd: NDArray[np.float64]
+    dls_deg_per_30m: NDArray[np.float64]
+    friction_factor: NDArray[np.float64]
 
 def drill_profile(config_json: str) -> DrillProfile:
     """The friction profile and static break-off torque of a configuration.

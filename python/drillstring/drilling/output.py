@@ -146,7 +146,9 @@ def _write_files(result: DrillResult, directory: Path, plots: bool) -> list[Path
             np.savez_compressed(
                 handle, t=result.field_t, z=result.z, omega_rpm=result.omega_field, torque_Nm=result.torque_field,
                 profile_z=profile.z, limit_per_m=profile.limit_per_m, cumulative_Nm=profile.cumulative,
-                breakoff_torque_Nm=np.float64(profile.breakoff_torque),
+                breakoff_torque_Nm=np.float64(profile.breakoff_torque), inclination_deg=profile.inclination_deg,
+                azimuth_deg=profile.azimuth_deg, tvd_m=profile.tvd, dls_deg_per_30m=profile.dls_deg_per_30m,
+                friction_factor=profile.friction_factor,
             )
 
     written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
@@ -247,7 +249,8 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
     lines += ["", "## Files", "",
               "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque",
               "- `metrics.json`: the metrics above, window, status, energy balance",
-              "- `fields.npz`: t, z, omega_rpm[t, z], torque_Nm[t, z] and the friction profile",
+              "- `fields.npz`: t, z, omega_rpm[t, z], torque_Nm[t, z] and the friction profile (with the well at "
+              "the cells: inclination, azimuth, TVD, dogleg severity, friction factor)",
               "- `config.toml`: the configuration solved (normalised: every default filled)"]
     if plots:
         lines += ["", "## Figures", ""]

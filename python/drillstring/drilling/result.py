@@ -7,7 +7,7 @@ import dataclasses
 import math
 import os
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Optional, Union
 
@@ -263,6 +263,10 @@ class GridCheck:
                 "rows": [dataclasses.asdict(r) for r in self.rows]}
 
 
+def _no_cells() -> NDArray[np.float64]:
+    return np.zeros(0)
+
+
 @dataclass(frozen=True)
 class DrillProfile:
     """The static friction profile of the string in the well (``_core.drill_profile``)."""
@@ -276,13 +280,23 @@ class DrillProfile:
     to turn everything below it from rest), N m."""
     breakoff_torque: float
     """Its value at the surface: the break-off torque, N m."""
+    inclination_deg: NDArray[np.float64] = field(default_factory=_no_cells)
+    """The well at the cell centres (minimum curvature): inclination, degrees."""
+    azimuth_deg: NDArray[np.float64] = field(default_factory=_no_cells)
+    """Azimuth at the cell centres, degrees clockwise from north."""
+    tvd: NDArray[np.float64] = field(default_factory=_no_cells)
+    """True vertical depth of the cell centres, m."""
+    dls_deg_per_30m: NDArray[np.float64] = field(default_factory=_no_cells)
+    """Curvature of the well at the cell centres as a dogleg severity, degrees per 30 m."""
+    friction_factor: NDArray[np.float64] = field(default_factory=_no_cells)
+    """Static friction factor at the cell centres (``friction.static`` or an interval's)."""
 
     @classmethod
     def from_core(cls, raw: Mapping[str, Any]) -> DrillProfile:
-        return cls(z=np.asarray(raw["z"], dtype=np.float64),
-                   limit_per_m=np.asarray(raw["limit_per_m"], dtype=np.float64),
-                   cumulative=np.asarray(raw["cumulative"], dtype=np.float64),
-                   breakoff_torque=float(raw["breakoff_torque"]))
+        arrays = {k: np.asarray(raw[k], dtype=np.float64) for k in (
+            "z", "limit_per_m", "cumulative", "inclination_deg", "azimuth_deg", "tvd", "dls_deg_per_30m",
+            "friction_factor")}
+        return cls(breakoff_torque=float(raw["breakoff_torque"]), **arrays)
 
 
 class DrillResult:

@@ -222,6 +222,14 @@ pub struct Profile {
     pub cumulative: Vec<f64>,
     /// The integral of the limit over the string, N m.
     pub breakoff_torque: f64,
+    /// The well at the cell centres (minimum curvature): inclination and azimuth, degrees,
+    /// true vertical depth, m, and the curvature as a dogleg severity, degrees per 30 m.
+    pub inclination_deg: Vec<f64>,
+    pub azimuth_deg: Vec<f64>,
+    pub tvd: Vec<f64>,
+    pub dls_deg_per_30m: Vec<f64>,
+    /// The static friction factor at the cell centres (`friction.static` or an interval's).
+    pub friction_factor: Vec<f64>,
 }
 
 /// The friction profile at the cell centres and the break-off torque of a valid configuration.
@@ -236,7 +244,19 @@ pub fn friction_profile(cfg: &DrillConfig) -> Result<Profile> {
         cumulative[j] = below + 0.5 * piece;
         below += piece;
     }
-    Ok(Profile { z: grid.z, limit_per_m: grid.limit, cumulative, breakoff_torque: breakoff_torque(cfg)? })
+    let traj = super::well::trajectory(cfg)?;
+    let points: Vec<_> = grid.z.iter().map(|&z| traj.at(z)).collect();
+    Ok(Profile {
+        inclination_deg: points.iter().map(|p| p.inc.to_degrees()).collect(),
+        azimuth_deg: points.iter().map(|p| p.azi.to_degrees()).collect(),
+        tvd: points.iter().map(|p| p.position[2]).collect(),
+        dls_deg_per_30m: points.iter().map(|p| p.curvature.to_degrees() * 30.0).collect(),
+        friction_factor: grid.z.iter().map(|&z| super::well::friction_factor(cfg, z)).collect(),
+        z: grid.z,
+        limit_per_m: grid.limit,
+        cumulative,
+        breakoff_torque: breakoff_torque(cfg)?,
+    })
 }
 
 /// Runs a configuration (validated first) from rest; see [`Simulation`].
