@@ -169,3 +169,15 @@ def test_a_survey_shorter_than_the_string_is_refused_unless_extended(tmp_path: P
         ds.DrillConfig.from_dict(base)
     extended = ds.DrillConfig.from_dict({**base, "well": {"survey": str(survey), "extend": True}})
     assert ds.torque_drag(extended).trajectory["md"][-1] == 500.0
+
+
+def test_drill_says_which_contact_it_uses(tmp_path: Path) -> None:
+    proc = subprocess.run([sys.executable, "-m", "drillstring", "drill", str(EXAMPLE), "--out", str(tmp_path / "d"),
+                           "--no-plots", "--set", "numerics.duration=5"], capture_output=True, text=True,
+                          cwd=tmp_path, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert "wall contact: soft_string" in proc.stdout
+    assert "`soft_string`" in (tmp_path / "d" / "report.md").read_text()
+    fields = np.load(tmp_path / "d" / "fields.npz")
+    assert fields["dls_deg_per_30m"].max() == pytest.approx(2.56, abs=0.01)  # the survey's largest dogleg
+    assert set(np.unique(fields["friction_factor"])) == {0.2, 0.3}  # cased above 1800 m, open below

@@ -604,6 +604,10 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         m = result.metrics
         _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
              f"simulated in {seconds:.2g} s ({result.status})")
+        _say(f"wall contact: {config.friction.contact} ("
+             + ("soft-string normal force: buoyed weight and tension times curvature"
+                if config.friction.contact == "soft_string" else "buoyed weight times sin(inclination)")
+             + f"), break-off torque {result.metrics.breakoff_torque_Nm / 1e3:.4g} kN m")
         _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
              f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
              f"(mean {m.bit_rpm_mean:.4g}), motor torque {m.motor_torque_min_Nm / 1e3:.4g}.."

@@ -208,14 +208,23 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         lines.append(f"| {_md(s.name)} | {s.length:.6g} | {s.outer_diameter:.6g} | {s.inner_diameter:.6g} | "
                      f"{s.shear_modulus / 1e9:.4g} | {s.density:.6g} |")
     inclination = cfg.well.inclination_deg
-    survey = (f"{inclination:g}° constant" if isinstance(inclination, float) else
-              ", ".join(f"{i:g}° at {md:g} m" for md, i in zip(cfg.well.md or (), inclination)))
+    if cfg.well.survey is not None:
+        survey = f"survey file {_md(cfg.well.survey)} (minimum curvature)"
+    elif cfg.well.plan is not None:
+        survey = f"a plan of {len(cfg.well.plan)} segments (minimum curvature)"
+    else:
+        survey = (f"{inclination:g}° constant" if isinstance(inclination, float) else
+                  ", ".join(f"{i:g}° at {md:g} m" for md, i in zip(cfg.well.md or (), inclination)))
+    contact = ("the soft-string normal force (buoyed weight and tension times curvature)"
+               if cfg.friction.contact == "soft_string" else "the buoyed weight times sin(inclination)")
     on_bottom = (f"on bottom, WOB {bit.weight_on_bit / 1e3:.4g} kN, r {bit.radius:g} m, "
                  f"mu_s {bit.mu_static:g}, mu_k {bit.mu_kinetic:g}" if bit.on_bottom else "off bottom")
     lines += [
         "",
-        f"- Well: {survey}; wall friction mu {cfg.friction.static:g} (kinetic x{cfg.friction.kinetic_ratio:g}, "
-        f"{cfg.friction.model})",
+        f"- Well: {survey}; wall friction mu {cfg.friction.static:g}"
+        + (f" (and {len(cfg.friction.intervals)} depth interval(s) of their own)" if cfg.friction.intervals else "")
+        + f" (kinetic x{cfg.friction.kinetic_ratio:g}, {cfg.friction.model}) on the contact force "
+        f"`{cfg.friction.contact}`: {contact}",
         f"- Top drive: {td.rpm:g} rpm, {td.controller.type} controller, inertia {td.inertia:g} kg m²",
         f"- Bit: {on_bottom}",
         f"- Numerics: {cfg.numerics.cells} cells asked"
