@@ -112,7 +112,7 @@ use crate::metrics::{stick_slip, StickSlip};
 use crate::solution::{serialize_list, Status};
 
 use super::bit::slip_torque;
-use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity, SERIES};
+use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity};
 use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, static_torque, Grid, SectionProps};
 
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
@@ -826,18 +826,19 @@ impl<'c> Simulation<'c> {
                 first_mode_hz: self.first_mode / (2.0 * PI),
             },
         };
-        let reserved = [&mut run.t, &mut run.surface_rpm, &mut run.bit_rpm, &mut run.motor_torque, &mut run.bit_torque]
-            .into_iter()
-            .all(|v| v.try_reserve_exact(n_series).is_ok())
-            && run.field_t.try_reserve_exact(n_fields).is_ok()
-            && run.omega_field.try_reserve_exact(n_fields * nz).is_ok()
-            && run.torque_field.try_reserve_exact(n_fields * nz).is_ok();
-        if !reserved {
+        let reserved = crate::solution::reserve_outputs(&mut [
+            (&mut run.t, n_series),
+            (&mut run.surface_rpm, n_series),
+            (&mut run.bit_rpm, n_series),
+            (&mut run.motor_torque, n_series),
+            (&mut run.bit_torque, n_series),
+            (&mut run.field_t, n_fields),
+            (&mut run.omega_field, n_fields * nz),
+            (&mut run.torque_field, n_fields * nz),
+        ]);
+        if let Err(oom) = reserved {
             run.status = Status::OutOfMemory;
-            run.message = format!(
-                "the outputs ({} MiB) could not be allocated",
-                ((n_series * SERIES + n_fields * (2 * nz + 1)) * 8) >> 20
-            );
+            run.message = oom.outputs_message();
             return run;
         }
 

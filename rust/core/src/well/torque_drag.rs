@@ -231,7 +231,7 @@ impl Setup {
             if !(p.length.is_finite() && p.length > 0.0) {
                 return Err(Error::invalid(format!("sections[{i}].length"), Num(p.length), "a finite length > 0 m"));
             }
-            if !p.weight.is_finite() || !(p.contact_radius.is_finite() && p.contact_radius > 0.0) {
+            if !(p.weight.is_finite() && p.contact_radius.is_finite() && p.contact_radius > 0.0) {
                 return Err(Error::invalid(
                     format!("sections[{i}]"),
                     Num(p.weight),
