@@ -666,6 +666,33 @@ def drill_validate(config_json: str) -> dict[str, Any]:
         exceed the memory limit (512 MiB).
     """
 
+def well_trajectory(config_json: str) -> dict[str, NDArray[np.float64]]:
+    """The survey stations of a drilling configuration and their minimum-curvature trajectory:
+    ``md`` (m), ``inc_deg``, ``azi_deg``, ``north``, ``east``, ``tvd`` (m) and
+    ``dls_deg_per_30m`` (of the interval ending at each station).
+
+    Raises
+    ------
+    ValidationError
+        naming the field of an invalid configuration or survey (a survey file: its row and column).
+    """
+
+def well_torque_drag(config_json: str) -> dict[str, Any]:
+    """The static soft-string torque and drag of a drilling configuration's string in its well:
+    ``hook_load_pickup_N``, ``hook_load_slackoff_N``, ``hook_load_rotating_N``,
+    ``hook_load_rotating_on_bottom_N``, ``surface_torque_off_bottom_Nm``,
+    ``surface_torque_on_bottom_Nm``, ``max_normal_force_N_per_m``, ``max_normal_force_md``,
+    ``max_normal_force_operation``; ``profiles`` (per operation ``pickup``, ``slackoff``,
+    ``rotating``, ``rotating_on_bottom``: ``md``, ``tension_N``, ``torque_Nm``,
+    ``normal_force_N_per_m``) and ``broomstick`` (``depth_m``, ``friction_factors``, and the
+    hook loads ``pickup``, ``slackoff``, ``rotating`` as arrays ``[factor, depth]``, N).
+
+    Raises
+    ------
+    ValidationError
+        naming the field of an invalid configuration or survey.
+    """
+
 class DrillProfile(TypedDict):
     #: Cell centres (measured depth from the top), m.
     z: NDArray[np.float64]

@@ -555,6 +555,18 @@ def _cmd_sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_drilling_config_arguments(p: argparse.ArgumentParser) -> None:
+    """The arguments of a command on one drilling configuration: CONFIG.toml, --out, --set, --no-plots."""
+    p.add_argument("config", metavar="CONFIG.toml", help="drilling configuration (examples/*.toml; one file "
+                   "describes a well for drill and torque-drag)")
+    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="change a field: dotted key with indices and a TOML value, e.g. top_drive.rpm=60, "
+                   "sections[0].length=3000, bit.on_bottom=true, top_drive.controller.type=soft_torque "
+                   "(repeatable)")
+    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+
+
 def _add_drill(sub: Any) -> None:
     p = sub.add_parser(
         "drill",
@@ -565,13 +577,7 @@ def _add_drill(sub: Any) -> None:
         "(fields.npz), figures, the configuration solved (config.toml) and report.md into DIR.",
         epilog="example: drillstring drill examples/on-bottom-3000m.toml --out drill-run --set top_drive.rpm=120",
     )
-    p.add_argument("config", metavar="CONFIG.toml", help="drilling-system configuration (examples/*.toml)")
-    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
-    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
-                   help="change a field: dotted key with indices and a TOML value, e.g. top_drive.rpm=60, "
-                   "sections[0].length=3000, bit.on_bottom=true, top_drive.controller.type=soft_torque "
-                   "(repeatable)")
-    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    _add_drilling_config_arguments(p)
     p.add_argument("--check-grid", action="store_true",
                    help="also solve on twice the cells and report how much every metric moves (about four "
                    "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning")
@@ -637,11 +643,7 @@ def _add_torque_drag(sub: Any) -> None:
         "torque_drag.json, profiles.csv, broomstick.csv, survey.csv, config.toml and the figures into DIR.",
         epilog="example: drillstring torque-drag examples/s-well-3d.toml --out s-well-td",
     )
-    p.add_argument("config", metavar="CONFIG.toml", help="drilling configuration (the same file as for drill)")
-    p.add_argument("--out", required=True, metavar="DIR", help="output directory (created if needed)")
-    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
-                   help="change a field: dotted key and a TOML value, e.g. friction.static=0.25 (repeatable)")
-    p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    _add_drilling_config_arguments(p)
     p.set_defaults(func=_cmd_torque_drag)
 
 

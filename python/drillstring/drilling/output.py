@@ -23,7 +23,7 @@ import unicodedata
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
@@ -75,26 +75,30 @@ def output_names(plots: bool = True) -> tuple[str, ...]:
 
 @contextmanager
 def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
-                  field: str = "out_dir") -> Iterator[Path]:
+                  field: str = "out_dir", command: str = "drill",
+                  names: Optional[tuple[str, ...]] = None) -> Iterator[Path]:
     """Holds the output folder ``out_dir`` of a run for the ``with`` block: checks it
     (:func:`~drillstring._output.check_destination`, not another command's output), creates it
     and takes its lock (see the module docstring); yields its path. At the end the lock is
     released and its file removed, as is the folder if it was created here and is still empty
     (a run interrupted before writing leaves nothing). Refusals raise
     :class:`~drillstring.errors.ValidationError` naming ``field``; so does a folder held by
-    anyone else, also another ``with`` block of this process. Write the files inside it with
+    anyone else, also another ``with`` block of this process. ``command`` names the command
+    whose folder it is (another command's is refused) and ``names`` the files it writes
+    (default: :func:`output_names`). Write the files inside it with
     :func:`_write_files`."""
     display = os.fsdecode(os.fspath(out_dir))
     check_directory_name(display, field)
     key = os.path.realpath(display)
-    check_destination(display, field=field, directory=True, files=(*output_names(plots), MARKER))
-    refuse_foreign_folder(display, "drill", field=field)
+    files = output_names(plots) if names is None else names
+    check_destination(display, field=field, directory=True, files=(*files, MARKER))
+    refuse_foreign_folder(display, command, field=field)
     created = not os.path.isdir(key)
     directory = make_directory(display)
     lock = lock_directory(directory, field=field, busy="a folder no other run is writing to: it is locked by "
                           "{holder} ({path}); wait for that run to finish or choose another output directory")
     try:
-        refuse_foreign_folder(display, "drill", field=field)  # written by another command meanwhile
+        refuse_foreign_folder(display, command, field=field)  # written by another command meanwhile
         yield directory
     finally:
         unlock_directory(lock, directory)

@@ -21,25 +21,18 @@ from __future__ import annotations
 
 import json
 import os
-from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
 from .. import _core
-from .._output import (
-    atomic_write,
-    check_destination,
-    check_directory_name,
-    lock_directory,
-    make_directory,
-    refuse_foreign_folder,
-    unlock_directory,
-    write_text,
-)
+from .._output import atomic_write, write_text
+from .output import MARKER as _MARKER
+from .output import output_folder
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -64,7 +57,6 @@ TD_DATA_FILES: tuple[str, ...] = ("torque_drag.json", "profiles.csv", "broomstic
 #: Its figures (skipped with ``--no-plots``).
 TD_PLOT_FILES: tuple[str, ...] = ("torque_drag.png", "broomstick.png", "well_path.png")
 TD_FILES: tuple[str, ...] = (*TD_DATA_FILES, *TD_PLOT_FILES)
-_MARKER = "INCOMPLETE"
 
 
 @dataclass(frozen=True)
@@ -170,27 +162,8 @@ def torque_drag(config: Union[DrillConfig, str, os.PathLike[str]]) -> TorqueDrag
 # --- output folder -------------------------------------------------------------------------------------------
 
 
-@contextmanager
-def _folder(out_dir: Union[str, os.PathLike[str]], names: tuple[str, ...], field: str) -> Iterator[Path]:
-    display = os.fsdecode(os.fspath(out_dir))
-    check_directory_name(display, field)
-    key = os.path.realpath(display)
-    check_destination(display, field=field, directory=True, files=(*names, _MARKER))
-    refuse_foreign_folder(display, "torque-drag", field=field)
-    created = not os.path.isdir(key)
-    directory = make_directory(display)
-    lock = lock_directory(directory, field=field, busy="a folder no other run is writing to: it is locked by "
-                          "{holder} ({path}); wait for that run to finish or choose another output directory")
-    try:
-        refuse_foreign_folder(display, "torque-drag", field=field)
-        yield directory
-    finally:
-        unlock_directory(lock, directory)
-        if created:
-            try:
-                os.rmdir(key)
-            except OSError:
-                pass
+def _csv(frame: pd.DataFrame, tmp: str) -> None:
+    frame.to_csv(tmp, index=False, float_format="%.10g")
 
 
 def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
@@ -201,7 +174,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
     first, locked while written, a marker file until complete, stale figures removed, another
     command's folder refused). Returns the paths written."""
     names = TD_FILES if plots else TD_DATA_FILES
-    with _folder(out_dir, names, field) as directory:
+    with output_folder(out_dir, field=field, command="torque-drag", names=names) as directory:
         def path(name: str) -> str:
             return os.path.join(os.fspath(directory), name)
 
@@ -214,9 +187,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
         written = [write_text(path("torque_drag.json"), json.dumps(result.to_json_dict(), indent=2) + "\n")]
         for name, frame in (("profiles.csv", result.profiles_frame()), ("broomstick.csv", result.broomstick_frame()),
                             ("survey.csv", result.survey_frame())):
-            written.append(atomic_write(path(name), lambda tmp, f=frame: f.to_csv(tmp, index=False,
-                                                                                   float_format="%.10g"),
-                                        suffix=".csv"))
+            written.append(atomic_write(path(name), partial(_csv, frame), suffix=".csv"))
         written.append(write_text(path("config.toml"), result.config.to_toml()))
         if plots:
             from ..plots import save
