@@ -49,6 +49,93 @@ pub struct MapRow {
     pub balance_error: f64,
 }
 
+/// The rows of a map as the columns of its table: one entry per run. A run without metrics
+/// (refused, failed, interrupted) has NaN in every metric column; the verdicts `stick_slip` and
+/// `settled` are 1 or 0 (NaN without metrics), so that every metric column is a float column.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct MapColumns {
+    /// The run's status name (`success`, `invalid`, ...).
+    pub status: Vec<&'static str>,
+    pub message: Vec<String>,
+    pub metrics: MetricColumns,
+    pub stats: StatColumns,
+}
+
+/// The metric columns of [`MapColumns`] (the names of [`StickSlip`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct MetricColumns {
+    pub t_start: Vec<f64>,
+    pub t_end: Vec<f64>,
+    pub window_start: Vec<f64>,
+    pub window_end: Vec<f64>,
+    pub severity: Vec<f64>,
+    pub stuck_fraction: Vec<f64>,
+    pub rpm_min: Vec<f64>,
+    pub rpm_max: Vec<f64>,
+    pub rpm_mean: Vec<f64>,
+    pub torque_min: Vec<f64>,
+    pub torque_max: Vec<f64>,
+    pub cycle_period: Vec<f64>,
+    pub period_cycles: Vec<f64>,
+    pub periodicity: Vec<f64>,
+    pub slip_period: Vec<f64>,
+    pub stick_slip: Vec<f64>,
+    pub settled: Vec<f64>,
+    pub breakoff_torque: Vec<f64>,
+    pub min_cycle_torque: Vec<f64>,
+}
+
+/// The solver columns of [`MapColumns`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct StatColumns {
+    pub cells: Vec<u64>,
+    pub steps: Vec<u64>,
+    pub dt: Vec<f64>,
+    pub balance_error: Vec<f64>,
+    pub courant_peak: Vec<f64>,
+}
+
+impl MapColumns {
+    pub fn new(rows: &[MapRow]) -> MapColumns {
+        let metric = |f: fn(&StickSlip) -> f64| -> Vec<f64> {
+            rows.iter().map(|r| r.metrics.as_ref().map_or(f64::NAN, f)).collect()
+        };
+        let row = |f: fn(&MapRow) -> f64| -> Vec<f64> { rows.iter().map(f).collect() };
+        MapColumns {
+            status: rows.iter().map(|r| r.status.name()).collect(),
+            message: rows.iter().map(|r| r.message.clone()).collect(),
+            metrics: MetricColumns {
+                t_start: metric(|s| s.t_start),
+                t_end: metric(|s| s.t_end),
+                window_start: row(|r| r.window[0]),
+                window_end: row(|r| r.window[1]),
+                severity: metric(|s| s.severity),
+                stuck_fraction: metric(|s| s.stuck_fraction),
+                rpm_min: metric(|s| s.rpm_min),
+                rpm_max: metric(|s| s.rpm_max),
+                rpm_mean: metric(|s| s.rpm_mean),
+                torque_min: metric(|s| s.torque_min),
+                torque_max: metric(|s| s.torque_max),
+                cycle_period: metric(|s| s.cycle_period),
+                period_cycles: metric(|s| s.period_cycles),
+                periodicity: metric(|s| s.periodicity),
+                slip_period: metric(|s| s.slip_period),
+                stick_slip: metric(|s| f64::from(u8::from(s.stick_slip))),
+                settled: metric(|s| f64::from(u8::from(s.settled))),
+                breakoff_torque: row(|r| r.breakoff_torque),
+                min_cycle_torque: row(|r| r.min_cycle_torque),
+            },
+            stats: StatColumns {
+                cells: rows.iter().map(|r| r.stats.cells as u64).collect(),
+                steps: rows.iter().map(|r| r.stats.steps).collect(),
+                dt: row(|r| r.stats.dt),
+                balance_error: row(|r| r.balance_error),
+                courant_peak: row(|r| r.stats.courant_peak),
+            },
+        }
+    }
+}
+
 impl MapRow {
     fn failed(status: RunStatus, message: String) -> Self {
         MapRow {
