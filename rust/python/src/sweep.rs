@@ -3,13 +3,13 @@
 use drillstring_core as core;
 use drillstring_core::integrators::{Method, SolveOptions};
 use drillstring_core::sweep::{self, GalerkinIntegrals, RunSpec, SweepOptions};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use serde::Serialize;
 
-use crate::convert::{integer, no_panic, to_python, to_vec, validation_error, SignalCheck};
+use crate::convert::{integer, no_panic, reshape, to_dict, to_python, to_vec, validation_error, SignalCheck};
 
 fn invalid(py: Python<'_>, field: &str, value: impl std::fmt::Display, allowed: impl Into<String>) -> PyErr {
     validation_error(py, core::Error::invalid(field, value, allowed))
@@ -224,34 +224,13 @@ pub(crate) fn batch_solve<'py>(
     let solved = py.detach(|| no_panic(|| sweep::batch_solve_with(&integrals, &runs, &opts, threads, &signals)))?;
     let records = solved.map_err(|e| validation_error(py, e))?;
 
-    let out = PyDict::new(py);
-    out.set_item("interrupt", signals.finish().err().map(|e| e.into_value(py)))?;
-    let column = |f: &dyn Fn(&sweep::RunRecord) -> f64| records.iter().map(f).collect::<Vec<f64>>();
-    out.set_item("status", records.iter().map(|r| r.status.name()).collect::<Vec<_>>())?;
-    out.set_item("message", records.iter().map(|r| r.message.as_str()).collect::<Vec<_>>())?;
-    out.set_item("max_theta", PyArray1::from_vec(py, column(&|r| r.max_theta)))?;
-    out.set_item("rms_theta", PyArray1::from_vec(py, column(&|r| r.rms_theta)))?;
-    out.set_item("dominant_frequency_hz", PyArray1::from_vec(py, column(&|r| r.dominant_frequency_hz)))?;
-    out.set_item("energy_drift", PyArray1::from_vec(py, column(&|r| r.energy_drift)))?;
-    let unstable: Vec<i64> = records.iter().map(|r| r.unstable_modes.map_or(-1, i64::from)).collect();
-    out.set_item("unstable_modes", PyArray1::from_vec(py, unstable))?;
-    let nfev: Vec<i64> = records.iter().map(|r| i64::try_from(r.nfev).unwrap_or(i64::MAX)).collect();
-    out.set_item("nfev", PyArray1::from_vec(py, nfev))?;
-    let shares: Vec<f64> = records.iter().flat_map(|r| r.max_share.iter().copied()).collect();
-    out.set_item("max_share", PyArray1::from_vec(py, shares).reshape([r, m])?)?;
-    if keep_trajectories {
-        let s = samples;
-        let mut y = vec![f64::NAN; r * s * 2 * m];
-        let mut theta = vec![f64::NAN; r * s];
-        for (i, rec) in records.iter().enumerate() {
-            if let Some(traj) = &rec.trajectory {
-                y[i * s * 2 * m..i * s * 2 * m + traj.y.len()].copy_from_slice(&traj.y);
-                theta[i * s..i * s + traj.theta.len()].copy_from_slice(&traj.theta);
-            }
-        }
-        out.set_item("t", PyArray1::from_vec(py, opts.times()))?;
-        out.set_item("y", PyArray1::from_vec(py, y).reshape([r, s, 2 * m])?)?;
-        out.set_item("theta", PyArray1::from_vec(py, theta).reshape([r, s])?)?;
-    }
+    let interrupt = signals.finish().err().map(|e| e.into_value(py));
+    let s = samples;
+    let columns = sweep::batch::BatchColumns::new(&records, m, keep_trajectories.then(|| opts.times()));
+    let out = to_dict(py, &columns)?;
+    out.set_item("interrupt", interrupt)?;
+    reshape(&out, "max_share", [r, m])?;
+    reshape(&out, "y", [r, s, 2 * m])?;
+    reshape(&out, "theta", [r, s])?;
     Ok(out)
 }

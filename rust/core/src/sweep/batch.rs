@@ -219,6 +219,66 @@ pub struct RunRecord {
     pub trajectory: Option<Trajectory>,
 }
 
+/// The records of a batch as the columns of its table, one entry per run: the metrics (NaN for
+/// a run without them), `unstable_modes` (-1 for an invalid spec), `nfev`, `max_share` (flat,
+/// runs x modes) and, when trajectories are kept, `t`, `y` (flat, runs x samples x 2 modes) and
+/// `theta` (runs x samples), NaN past where a run stopped.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BatchColumns {
+    pub status: Vec<&'static str>,
+    pub message: Vec<String>,
+    pub max_theta: Vec<f64>,
+    pub rms_theta: Vec<f64>,
+    pub dominant_frequency_hz: Vec<f64>,
+    pub energy_drift: Vec<f64>,
+    pub unstable_modes: Vec<i64>,
+    pub nfev: Vec<i64>,
+    pub max_share: Vec<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub y: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub theta: Option<Vec<f64>>,
+}
+
+impl BatchColumns {
+    /// The columns of `records` (`modes` retained modes); with `times` (the output times of
+    /// kept trajectories), the trajectories too.
+    pub fn new(records: &[RunRecord], modes: usize, times: Option<Vec<f64>>) -> BatchColumns {
+        let column = |f: fn(&RunRecord) -> f64| records.iter().map(f).collect::<Vec<f64>>();
+        let (y, theta) = match &times {
+            Some(t) => {
+                let (r, s) = (records.len(), t.len());
+                let mut y = vec![f64::NAN; r * s * 2 * modes];
+                let mut theta = vec![f64::NAN; r * s];
+                for (i, rec) in records.iter().enumerate() {
+                    if let Some(traj) = &rec.trajectory {
+                        y[i * s * 2 * modes..i * s * 2 * modes + traj.y.len()].copy_from_slice(&traj.y);
+                        theta[i * s..i * s + traj.theta.len()].copy_from_slice(&traj.theta);
+                    }
+                }
+                (Some(y), Some(theta))
+            }
+            None => (None, None),
+        };
+        BatchColumns {
+            status: records.iter().map(|r| r.status.name()).collect(),
+            message: records.iter().map(|r| r.message.clone()).collect(),
+            max_theta: column(|r| r.max_theta),
+            rms_theta: column(|r| r.rms_theta),
+            dominant_frequency_hz: column(|r| r.dominant_frequency_hz),
+            energy_drift: column(|r| r.energy_drift),
+            unstable_modes: records.iter().map(|r| r.unstable_modes.map_or(-1, i64::from)).collect(),
+            nfev: records.iter().map(|r| i64::try_from(r.nfev).unwrap_or(i64::MAX)).collect(),
+            max_share: records.iter().flat_map(|r| r.max_share.iter().copied()).collect(),
+            t: times,
+            y,
+            theta,
+        }
+    }
+}
+
 impl RunRecord {
     fn failed(status: RunStatus, message: String, modes: usize) -> Self {
         RunRecord {
