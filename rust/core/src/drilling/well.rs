@@ -276,13 +276,58 @@ pub fn torque_drag(cfg: &DrillConfig) -> Result<TorqueDrag> {
     Ok(torque_drag::analyse_unchecked(&traj, &s, Scheme::Stepwise))
 }
 
-/// The hook loads of the broomstick plot: bit depths `depths`, m, and for each friction factor
-/// of `torque_drag.friction_factors` rows of (pick-up, slack-off, rotating) hook loads, N.
+/// The hook loads of the broomstick plot: bit depths `depth_m`, and for each friction factor
+/// of `torque_drag.friction_factors` a row of pick-up, slack-off and rotating hook loads over
+/// the depths, N.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Broomstick {
+    #[serde(rename = "depth_m")]
     pub depths: Vec<f64>,
     pub friction_factors: Vec<f64>,
-    pub hook_loads: Vec<Vec<[f64; 3]>>,
+    pub pickup: Vec<Vec<f64>>,
+    pub slackoff: Vec<Vec<f64>>,
+    pub rotating: Vec<Vec<f64>>,
+}
+
+/// The torque and drag of a configuration with its broomstick (what `torque-drag` reports).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TorqueDragReport {
+    #[serde(flatten)]
+    pub summary: TorqueDrag,
+    pub broomstick: Broomstick,
+}
+
+/// The survey stations and their minimum-curvature positions, as table columns.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TrajectoryTable {
+    pub md: Vec<f64>,
+    pub inc_deg: Vec<f64>,
+    pub azi_deg: Vec<f64>,
+    pub north: Vec<f64>,
+    pub east: Vec<f64>,
+    pub tvd: Vec<f64>,
+    /// Of the interval ending at each station (0 at the first).
+    pub dls_deg_per_30m: Vec<f64>,
+}
+
+impl TrajectoryTable {
+    pub fn new(traj: &Trajectory) -> TrajectoryTable {
+        let column = |k: usize| traj.position.iter().map(|p| p[k]).collect::<Vec<f64>>();
+        TrajectoryTable {
+            md: traj.survey.md.clone(),
+            inc_deg: traj.survey.inc_deg.clone(),
+            azi_deg: traj.survey.azi_deg.clone(),
+            north: column(0),
+            east: column(1),
+            tvd: column(2),
+            dls_deg_per_30m: traj.dls_deg_per_30m(),
+        }
+    }
+}
+
+/// [`torque_drag`] and [`broomstick`] of a configuration.
+pub fn report(cfg: &DrillConfig) -> Result<TorqueDragReport> {
+    Ok(TorqueDragReport { summary: torque_drag(cfg)?, broomstick: broomstick(cfg)? })
 }
 
 pub fn broomstick(cfg: &DrillConfig) -> Result<Broomstick> {
@@ -295,8 +340,9 @@ pub fn broomstick(cfg: &DrillConfig) -> Result<Broomstick> {
     let length = s.depth();
     let depths: Vec<f64> = (1..=n).map(|k| length * k as f64 / n as f64).collect();
     let mus = cfg.torque_drag.friction_factors.clone();
-    let hook_loads = torque_drag::broomstick(&traj, &s, &depths, &mus)?;
-    Ok(Broomstick { depths, friction_factors: mus, hook_loads })
+    let rows = torque_drag::broomstick(&traj, &s, &depths, &mus)?;
+    let column = |k: usize| rows.iter().map(|row| row.iter().map(|r| r[k]).collect()).collect();
+    Ok(Broomstick { depths, friction_factors: mus, pickup: column(0), slackoff: column(1), rotating: column(2) })
 }
 
 /// The soft-string profile the dynamic model takes its wall contact from: rotating on bottom

@@ -138,10 +138,13 @@ pub struct Setup {
 pub struct Profile {
     pub md: Vec<f64>,
     /// Effective tension, N (negative: compression).
+    #[serde(rename = "tension_N")]
     pub tension: Vec<f64>,
     /// N m.
+    #[serde(rename = "torque_Nm")]
     pub torque: Vec<f64>,
     /// Normal force per length of the element below each node (the bit's: the element above), N/m.
+    #[serde(rename = "normal_force_N_per_m")]
     pub normal_force: Vec<f64>,
 }
 
@@ -379,20 +382,38 @@ impl Setup {
     }
 }
 
-/// The summary of the four operations.
+/// The summary of the four operations (serialised under the names of `torque_drag.json`,
+/// `hook_load_pickup_N`, ..., and the profiles by operation name).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TorqueDrag {
+    #[serde(rename = "hook_load_pickup_N")]
     pub hook_load_pickup_n: f64,
+    #[serde(rename = "hook_load_slackoff_N")]
     pub hook_load_slackoff_n: f64,
+    #[serde(rename = "hook_load_rotating_N")]
     pub hook_load_rotating_n: f64,
+    #[serde(rename = "hook_load_rotating_on_bottom_N")]
     pub hook_load_rotating_on_bottom_n: f64,
+    #[serde(rename = "surface_torque_off_bottom_Nm")]
     pub surface_torque_off_bottom_nm: f64,
+    #[serde(rename = "surface_torque_on_bottom_Nm")]
     pub surface_torque_on_bottom_nm: f64,
+    #[serde(rename = "max_normal_force_N_per_m")]
     pub max_normal_force_n_per_m: f64,
     pub max_normal_force_md: f64,
     pub max_normal_force_operation: &'static str,
     /// In the order of [`Operation::ALL`].
+    #[serde(serialize_with = "by_operation")]
     pub profiles: Vec<Profile>,
+}
+
+fn by_operation<S: serde::Serializer>(profiles: &[Profile], s: S) -> std::result::Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut map = s.serialize_map(Some(profiles.len()))?;
+    for (op, p) in Operation::ALL.iter().zip(profiles) {
+        map.serialize_entry(op.name(), p)?;
+    }
+    map.end()
 }
 
 /// All four operations; the survey must reach the bit ([`Setup::validate`]).
