@@ -21,7 +21,7 @@ import drillstring as ds
 from drillstring import _core
 from drillstring.cli import main
 from drillstring.errors import SolveError, ValidationError
-from drillstring.grid import expand_grid
+from drillstring.studies.sweep_axes import expand_grid
 
 P = ds.preset("aluminum")
 NAN, INF = math.nan, math.inf
@@ -225,7 +225,7 @@ OPTION_CASES: list[tuple[str, Callable[[], Any], type, str]] = [
      ValidationError, "method"),
     ("pde-damped-verlet", lambda: ds.solve_pde(P.replace(damping_rate=1.0), nodes=20, method="verlet", t_end=0.01),
      ValidationError, "method"),
-    ("stability-damping-negative", lambda: ds.stability.analyse(ds.project(P, modes=1), damping_rate=-1.0),
+    ("stability-damping-negative", lambda: ds.studies.stability.analyse(ds.project(P, modes=1), damping_rate=-1.0),
      ValidationError, "damping_rate"),
 ]
 

@@ -13,16 +13,7 @@ import pytest
 
 from drillstring import _core
 from drillstring.drilling import DrillConfig, drill, drill_map
-from drillstring.drilling.config import (
-    Bit,
-    Controller,
-    Friction,
-    MetricsConfig,
-    Numerics,
-    Section,
-    TopDrive,
-    Well,
-)
+from drillstring.drilling.config import Bit, Controller, Friction, MetricsConfig, Numerics, Section, TopDrive, Well
 from drillstring.errors import ValidationError
 
 REQUIRED = {"length", "outer_diameter", "inner_diameter"}  # a section's required fields

@@ -15,15 +15,8 @@ import pytest
 
 import drillstring as ds
 from drillstring import _core
-from drillstring import analysis as an
-from drillstring.drilling import (
-    FILES,
-    DrillConfig,
-    DrillProfile,
-    DrillResult,
-    friction_profile,
-    load_drill_config,
-)
+from drillstring.drilling import FILES, DrillConfig, DrillProfile, DrillResult, friction_profile, load_drill_config
+from drillstring.drilling import metrics as metrics_module
 from drillstring.drilling.plots import space_time_maps, time_histories, torque_depth
 from drillstring.errors import SolveError, ValidationError
 
@@ -150,7 +143,7 @@ def synthetic(cfg: DrillConfig, fields: bool = True) -> DrillResult:
     torque = 1.2e4 + 4e3 * np.sin(2 * np.pi * 0.5 * t)
     z = np.linspace(5.0, 995.0, 100)
     ft = np.arange(0.0, 10.01, 0.5) if fields else np.zeros(0)
-    m = an.stick_slip_metrics(t, bit * RAD_S, torque, window=(5.0, 10.0))
+    m = metrics_module.stick_slip_metrics(t, bit * RAD_S, torque, window=(5.0, 10.0))
     raw = {
         "t": t, "surface_rpm": np.full(t.size, 40.0), "bit_rpm": bit, "motor_torque": torque,
         "bit_torque": 0.2 * torque, "z": z, "field_t": ft,
@@ -215,7 +208,7 @@ def test_well_b_example_reproduces_the_published_code() -> None:
     data = ROOT / "tests" / "data" / "aarsnes_shor"
     series = np.loadtxt(data / "series.csv", delimiter=",", skiprows=1)
     t, motor, _, bit = series.T
-    ref = an.stick_slip_metrics(t, bit, motor, window=(30.0, 60.0))
+    ref = metrics_module.stick_slip_metrics(t, bit, motor, window=(30.0, 60.0))
     res = ds.drill(EXAMPLES / "aarsnes-shor-well-b.toml")
     m = res.metrics
     scalars = dict(line.split(",") for line in (data / "scalars.csv").read_text().split()[1:])

@@ -1,4 +1,4 @@
-"""Tests of drillstring.section (eq. 8) and drillstring.coefficients (eq. 17)."""
+"""Tests of drillstring.model.cross_section (eq. 8) and drillstring.model.coefficients (eq. 17)."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy.integrate import dblquad
 
-from drillstring.coefficients import PDECoefficients, shear_modulus
 from drillstring.errors import ValidationError
-from drillstring.parameters import Parameters, preset
-from drillstring.section import Section
+from drillstring.model.coefficients import PDECoefficients, shear_modulus
+from drillstring.model.cross_section import Section
+from drillstring.model.parameters import Parameters, preset
 
 
 def _polar_integral(f: Any, r_in: float, r_out: float) -> float:

@@ -11,10 +11,10 @@ pd = pytest.importorskip("pandas")
 
 import drillstring as ds  # noqa: E402
 from drillstring import _core  # noqa: E402
-from drillstring.analysis import dominant_frequencies  # noqa: E402
-from drillstring.coefficients import PDECoefficients  # noqa: E402
-from drillstring.galerkin import dimensionless_integrals  # noqa: E402
-from drillstring.grid import expand_grid  # noqa: E402
+from drillstring.model.coefficients import PDECoefficients  # noqa: E402
+from drillstring.model.galerkin import dimensionless_integrals  # noqa: E402
+from drillstring.studies.analysis import dominant_frequencies  # noqa: E402
+from drillstring.studies.sweep_axes import expand_grid  # noqa: E402
 
 ALUMINUM = ds.preset("aluminum")
 FAST = {"t_end": 0.2, "samples": 256}
@@ -191,7 +191,7 @@ def test_progress_bar_on_request(capsys):
 def test_per_run_coefficients_are_those_of_the_parameters():
     import importlib
 
-    sweep_module = importlib.import_module("drillstring.sweeps")
+    sweep_module = importlib.import_module("drillstring.studies.sweeps")
     cache: dict = {}
     for params in (ALUMINUM, ALUMINUM.replace(omega=-7.3, length=3.0), ds.preset("steel").replace(k5_variant="energy"),
                    ALUMINUM.replace(omega=123.4, inner_diameter=0.0)):

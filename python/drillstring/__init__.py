@@ -18,8 +18,8 @@ The API
 ``__all__`` lists the functions, classes and constants above; the modules behind them
 (``analysis``, ``coefficients``, ``convergence``, ``drilling``, ``galerkin``, ``grid``, ``limits``,
 ``paper``, ``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
-``ds.sweep`` is the function; its module is ``drillstring.sweeps`` (``import drillstring.sweeps``).
-``ds.table2`` is the function; its module is ``drillstring.paper.table2``.
+``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps`` (``import drillstring.studies.sweeps``).
+``ds.table2`` is the function; its module is ``drillstring.studies.table2``.
 
 The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
 ``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
@@ -32,20 +32,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 # The modules, re-exported as attributes (``x as x``), not part of ``__all__``.
-from . import analysis as analysis
-from . import coefficients as coefficients
-from . import convergence as convergence
 from . import drilling as drilling
-from . import galerkin as galerkin
-from . import grid as grid
+from . import io as io
 from . import limits as limits
-from . import paper as paper
-from . import pde as pde
+from . import model as model
 from . import plots as plots
-from . import section as section
-from . import stability as stability
+from . import solvers as solvers
+from . import studies as studies
 from ._core import __version__, simd_path
-from .coefficients import PDECoefficients
 from .drilling import (
     DrillConfig,
     DrillMetrics,
@@ -57,13 +51,14 @@ from .drilling import (
     torque_drag,
 )
 from .errors import DrillstringError, SolveError, ValidationError
-from .galerkin import ModalCoefficients, project
-from .grid import linspace, logspace
-from .paper.table2 import Table2Row, table2
-from .parameters import PRESETS, Parameters, load, preset
-from .pde import PdeSolution, solve_pde
-from .simulate import METHODS, Method, Simulation, SolverStats, simulate
-from .sweeps import SweepTrajectories
+from .model.coefficients import PDECoefficients
+from .model.galerkin import ModalCoefficients, project
+from .model.parameters import PRESETS, Parameters, load, preset
+from .solvers.modal import METHODS, Method, Simulation, SolverStats, simulate
+from .solvers.pde import PdeSolution, solve_pde
+from .studies.sweep_axes import linspace, logspace
+from .studies.sweeps import SweepTrajectories
+from .studies.table2 import Table2Row, table2
 
 if TYPE_CHECKING:  # pragma: no cover
     # The return type of sweep() follows ``trajectories`` (the runtime function is sweeps.sweep;
@@ -72,6 +67,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from typing import Any, Literal, Optional, Union, overload
 
     import pandas as pd
+
+    from . import report as report
 
     @overload
     def sweep(
@@ -147,7 +144,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only
 else:
-    from .sweeps import sweep
+    from .studies.sweeps import sweep
 
 __all__ = [
     "__version__",
@@ -190,3 +187,49 @@ __all__ = [
     "ValidationError",
     "SolveError",
 ]
+
+
+#: The package's modules before its layout by subject, each attribute name -> its new module:
+#: ``ds.<old>`` works for one release and warns.
+_MOVED_MODULES = {
+    "parameters": "model.parameters",
+    "section": "model.cross_section",
+    "coefficients": "model.coefficients",
+    "galerkin": "model.galerkin",
+    "simulate": "solvers.modal",
+    "pde": "solvers.pde",
+    "result": "solvers.trajectory",
+    "analysis": "studies.analysis",
+    "stability": "studies.stability",
+    "convergence": "studies.convergence",
+    "sweeps": "studies.sweeps",
+    "grid": "studies.sweep_axes",
+    "_output": "io.output",
+    "_atomic": "io.atomic",
+    "_progress": "io.progress",
+    "sweep_store": "io.sweep_store",
+    "paper": "report",
+}
+
+if not TYPE_CHECKING:
+
+    def __getattr__(name: str) -> object:
+        """PEP 562: the reproduction report loads on first use (``ds.report``), as scipy's
+        submodules do; the old module attributes warn and give their new modules."""
+        import importlib
+
+        if name == "report":
+            return importlib.import_module("drillstring.report")
+        if name in _MOVED_MODULES:
+            import warnings
+
+            new = _MOVED_MODULES[name]
+            message = f"drillstring.{name} is deprecated: use drillstring.{new} (the old name works for one release)"
+            warnings.warn(message, DeprecationWarning, stacklevel=2)
+            # a module split in two keeps its old path (a forwarding shim) as the attribute
+            old = name in ("analysis", "sweeps",)
+            return importlib.import_module(f"drillstring.{name}" if old else f"drillstring.{new}")
+        raise AttributeError(f"module 'drillstring' has no attribute {name!r}")
+
+    def __dir__() -> list[str]:
+        return sorted(set(globals()) | {"report"})

@@ -5,7 +5,7 @@ matplotlib is imported lazily and figures are built with :class:`matplotlib.figu
 a returned figure as usual (``fig.axes``, ``ax.lines``) and write it with :func:`save` or
 ``fig.savefig``.
 
-The paper's figures (``drillstring paper``, :mod:`drillstring.paper`) are built from:
+The paper's figures (``drillstring paper``, :mod:`drillstring.report`) are built from:
 
 * :func:`modal_response`, :func:`modal_phase_portrait`: one modal coordinate ``theta_i(t)`` and
   its phase portrait (Figs. 1, 2);
@@ -29,13 +29,13 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
-from .result import default_section
+from .solvers.trajectory import default_section
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from .simulate import Simulation
+    from .solvers.modal import Simulation
 
 __all__ = [
     "COLORS",
@@ -208,7 +208,7 @@ def linear_vs_nonlinear(
     accumulated phase shift of the nonlinear response (zero crossings, :func:`analysis.phase_shift`)
     over the whole record, the window shaded.
     """
-    from .analysis import phase_shift
+    from .studies.analysis import phase_shift
 
     k = int(np.nonzero(linear.indices == mode)[0][0])
     mask = _window_mask(linear.t, window)
@@ -283,7 +283,7 @@ def section_response(
 ) -> Figure:
     """``theta(z_k, t)`` at the section ``z_k`` (default ``2l/3`` of each string), Figs. 6, 8, 10.
 
-    ``results`` is one :class:`~drillstring.simulate.Simulation` or a mapping
+    ``results`` is one :class:`~drillstring.solvers.modal.Simulation` or a mapping
     ``{"l = 100 m": sim, ...}`` (the keys label the curves). Several runs: all overlaid on the
     top panel and each again below on its own scale. One run: below it, with ``modal`` (default
     for one run), the modal contributions ``theta_i(t) cos(i pi z_k / l)`` whose sum it is.
@@ -447,8 +447,8 @@ def plot_path(path: Any, field: str = "path") -> Any:
     import matplotlib
     from matplotlib.backend_bases import FigureCanvasBase
 
-    from ._output import is_path, is_stream
     from .errors import ValidationError
+    from .io.output import is_path, is_stream
 
     if not is_path(path) or is_stream(path):
         return path
@@ -466,12 +466,12 @@ def save(fig: Figure, path: Any, dpi: int = 130) -> Any:
     """Saves a figure to ``path`` (format from the extension, else matplotlib's default) and
     returns the path written (:func:`plot_path`). A file is replaced atomically (an interrupted
     save leaves the old one), a symlink is written through, a device, FIFO or ``"-"`` is streamed
-    into (see :mod:`drillstring._output`); an open file object is written directly."""
+    into (see :mod:`drillstring.io.output`); an open file object is written directly."""
     import os
 
     import matplotlib
 
-    from ._output import is_path, write_to
+    from .io.output import is_path, write_to
 
     target = plot_path(path)
     extension = os.path.splitext(os.fsdecode(os.fspath(target)))[1].lstrip(".") if is_path(target) else ""
@@ -555,8 +555,8 @@ def _critical_speeds(table: Any, length: np.ndarray, count: int) -> list[np.ndar
     """The critical speeds ``Omega_crit,i(l)`` of :meth:`PDECoefficients.critical_speed` for
     i = 1..count at each length, for the material and section of the first row; none when a run
     uses a model without rotation softening (``model="consistent"``: no critical speed)."""
-    from .coefficients import PDECoefficients
-    from .parameters import Parameters
+    from .model.coefficients import PDECoefficients
+    from .model.parameters import Parameters
 
     if "model" in table and (table["model"].astype(str) != "paper").any():
         return []
@@ -603,7 +603,7 @@ def sweep_metric(
     Parameters
     ----------
     table : pandas.DataFrame
-        A :func:`drillstring.sweep` table (:mod:`drillstring.sweeps`).
+        A :func:`drillstring.sweep` table (:mod:`drillstring.studies.sweeps`).
     metric : str
         A column, e.g. ``"max_theta"``, ``"dominant_frequency_hz"``, ``"share_mode_1"``.
     axes : sequence of str, optional
@@ -706,7 +706,7 @@ def sweep_plots(table: Any, out_dir: object, axes: Optional[Sequence[str]] = Non
     Nothing is written when the sweep has no varying axis."""
     import os
 
-    from .sweeps import METRICS
+    from .studies.sweeps import METRICS
 
     if not _sweep_axes(table, axes):
         return []

@@ -432,8 +432,8 @@ class DrillConfig:
     def save(self, path: Any) -> Path:
         """Writes :meth:`to_toml` to ``path`` and returns the path written (atomic replacement,
         symlinks written through, devices and ``"-"`` streamed into; see
-        :mod:`drillstring._output`)."""
-        from .._output import write_text
+        :mod:`drillstring.io.output`)."""
+        from ..io.output import write_text
 
         return write_text(path, self.to_toml())
 
@@ -581,7 +581,7 @@ def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
 
 
 def _load_document(path: PathLike) -> dict[str, Any]:
-    from ..parameters import load_toml
+    from ..model.parameters import load_toml
 
     return load_toml(path)
 

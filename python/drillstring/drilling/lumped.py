@@ -43,9 +43,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import _core
-from ..analysis import StickSlipMetrics, _stick_slip
 from ..errors import SolveError, ValidationError
 from ..limits import as_float, json_ready
+from .metrics import StickSlipMetrics, stick_slip_from_core
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -224,7 +224,7 @@ def lumped(
         params=full,
         t=raw["t"], top_speed=raw["top_speed"], bit_speed=raw["bit_speed"],
         spring_torque=raw["spring_torque"], bit_torque=raw["bit_torque"],
-        metrics=_stick_slip(raw["metrics"]), window=(float(raw["window"][0]), float(raw["window"][1])),
+        metrics=stick_slip_from_core(raw["metrics"]), window=(float(raw["window"][0]), float(raw["window"][1])),
         energy=dict(cast("dict[str, float]", raw["energy"])),
         stats=dict(raw["stats"]),
         status=str(raw["status"]), message=str(raw["message"]),

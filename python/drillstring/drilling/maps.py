@@ -15,7 +15,7 @@ counts in its memory), and a map whose runs on its threads would not fit the mem
 refused by the core before any work (each run's series and grid times the runs solved at once).
 
 With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumable store of the
-modal sweeps (:mod:`drillstring.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
+modal sweeps (:mod:`drillstring.io.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
 with a SHA-256 record each, one writer at a time); the same call again reuses every verified
 chunk, recomputes missing or failed ones and solves only the interrupted runs of a chunk; the
 whole table is written as ``map.parquet`` and ``map.csv`` at the end. Without ``out`` the map is
@@ -169,7 +169,7 @@ def _progress_hook(
     if progress is None or progress is False:
         return None, lambda done: None
     if progress is True:
-        from .._progress import bar
+        from ..io.progress import bar
 
         tq = bar(total, "drill map", "runs")
 
@@ -262,7 +262,7 @@ def drill_map(
     for values in named.values():
         runs *= len(values)
     check_run_count("axes", {k: len(v) for k, v in named.items()}, runs)
-    from ..sweeps import check_client
+    from ..io.cluster import check_client
 
     check_client(client)
     report, close = _progress_hook(progress, runs)
@@ -349,19 +349,18 @@ class _Chunk:
 def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
              report: Optional[Callable[[float], None]], out: Any, size: int, client: Any,
              ) -> tuple[pd.DataFrame, Optional[BaseException]]:
-    """The map in chunks of ``size`` runs: stored in a :class:`~drillstring.sweep_store.SweepStore`
+    """The map in chunks of ``size`` runs: stored in a :class:`~drillstring.io.sweep_store.SweepStore`
     in ``out`` (resumable) if given, solved locally or on the Dask cluster ``client``."""
     import contextlib
 
     import pandas as pd
 
-    from .._output import MAP_FORMAT, atomic_write
     from ..errors import ResumeWarning
-    from ..sweep_store import SweepStore
-    from ..sweeps import _core_build
+    from ..io.output import MAP_FORMAT, atomic_write
+    from ..io.sweep_store import SweepStore, core_build
 
     identity = {"format": MAP_FORMAT, "drillstring_version": _core.__version__,
-                "core_build": _core_build(), "chunk_size": size, "runs": len(combos)}
+                "core_build": core_build(), "chunk_size": size, "runs": len(combos)}
     fingerprint = _digest({**identity, "config": cfg.to_dict(), "axes": named})
     chunks = range(0, len(combos), size)
     manifest = {**identity, "fingerprint": fingerprint, "chunks": len(chunks), "axes": list(named)}
@@ -430,9 +429,9 @@ def _on_dask(client: Any, cfg: DrillConfig, named: Mapping[str, list[Any]], jobs
              threads: Optional[int], finished: Callable[[_Chunk, pd.DataFrame], None],
              report: Callable[[int], None], done: int) -> None:
     """Submits every chunk as a task and hands each result to ``finished`` as it completes."""
-    from ..sweeps import _require_distributed
+    from ..io.cluster import require_distributed
 
-    distributed = _require_distributed()
+    distributed = require_distributed()
     own = None
     if isinstance(client, str):
         own = client = distributed.Client(client)

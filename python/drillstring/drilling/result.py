@@ -42,7 +42,7 @@ UNITS: dict[str, str] = {
 }
 
 
-#: The names of the core's metrics (those of :class:`drillstring.analysis.StickSlipMetrics`) by
+#: The names of the core's metrics (those of :class:`drillstring.drilling.metrics.StickSlipMetrics`) by
 #: the names of :class:`DrillMetrics`.
 _CORE_METRICS = {
     "ssi": "severity",
@@ -100,7 +100,7 @@ def _number(value: Any) -> float:
 class DrillMetrics:
     """Stick-slip metrics of a run over its window, as the core computes them
     (``drillstring_core::metrics::stickslip``, the function behind
-    :func:`drillstring.analysis.stick_slip_metrics`). NaN where a metric is undefined (no full
+    :func:`drillstring.drilling.metrics.stick_slip_metrics`). NaN where a metric is undefined (no full
     cycle in the window: no period)."""
 
     window_start: float
@@ -148,7 +148,7 @@ class DrillMetrics:
     @classmethod
     def from_core(cls, metrics: Mapping[str, Any]) -> DrillMetrics:
         """From the ``metrics`` dict of ``_core.drill_solve`` (the names of
-        :func:`drillstring.analysis.stick_slip_metrics`: ``severity``, ``rpm_min``, ...;
+        :func:`drillstring.drilling.metrics.stick_slip_metrics`: ``severity``, ``rpm_min``, ...;
         ``None`` read as NaN)."""
         values: dict[str, Any] = {}
         for f in dataclasses.fields(cls):
@@ -399,7 +399,7 @@ class DrillResult:
         written: ``series.parquet``, ``series.csv``, ``metrics.json``, ``fields.npz``,
         ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
         ``report.md``. The destinations are checked before anything is written; every file is
-        written atomically (see :mod:`drillstring._output`)."""
+        written atomically (see :mod:`drillstring.io.output`)."""
         from .output import write_outputs
 
         return write_outputs(self, out_dir, plots=plots)

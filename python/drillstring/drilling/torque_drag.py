@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Union
 import numpy as np
 
 from .. import _core
-from .._output import (
+from ..io.output import (
     atomic_write,
     check_destination,
     check_directory_name,

@@ -12,7 +12,7 @@ Layout of ``DIR``::
 
 Guarantees
 ----------
-* **Atomic files.** Every file is written through :mod:`drillstring._output`: to a temporary
+* **Atomic files.** Every file is written through :mod:`drillstring.io.output`: to a temporary
   name in its final directory, flushed to disk and renamed over its final name, so a reader
   never sees a half-written file: after an interruption a chunk file is either complete or
   absent.
@@ -46,7 +46,9 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any, Optional
 
-from ._output import (
+from .. import _core
+from ..errors import ResumeWarning, ValidationError
+from .output import (
     LOCK,
     MAP_FORMAT,
     check_directory_name,
@@ -55,7 +57,9 @@ from ._output import (
     refuse_foreign_folder,
     write_bytes,
 )
-from .errors import ResumeWarning, ValidationError
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -101,7 +105,7 @@ def _sha256(data: bytes) -> str:
 
 def _lock(root: Path) -> IO[str]:
     """Takes the exclusive lock of ``root`` (see the module docstring and
-    :func:`drillstring._output.lock_directory`); returns the open lock file."""
+    :func:`drillstring.io.output.lock_directory`); returns the open lock file."""
     return lock_directory(
         root, field="out_dir", busy="a directory no other sweep is writing to: it is locked by {holder} ({path}). "
         "Wait for that sweep to finish (then re-run to resume or reuse it) or choose another output directory",
@@ -156,7 +160,7 @@ class SweepStore:
         ------
         ValidationError
             ``field="out_dir"``: the directory holds another sweep, or another command's output
-            (:func:`drillstring._output.refuse_foreign_folder`), or files that are not a sweep's,
+            (:func:`drillstring.io.output.refuse_foreign_folder`), or files that are not a sweep's,
             or an unreadable manifest, or cannot be created, or another process is
             writing to it.
         """
@@ -308,3 +312,14 @@ def _difference(old: dict[str, Any], new: dict[str, Any]) -> str:
     if not changed:
         changed = ["the parameter sets"]
     return "changed: " + ", ".join(changed)
+
+
+def core_build() -> str:
+    """A hash of the compiled core (its file), so that chunks of another build are not mixed in."""
+    path = getattr(_core, "__file__", None)
+    digest = hashlib.sha256(_core.__version__.encode())
+    if path and os.path.exists(path):
+        with open(path, "rb") as handle:
+            for block in iter(lambda: handle.read(1 << 20), b""):
+                digest.update(block)
+    return digest.hexdigest()[:16]

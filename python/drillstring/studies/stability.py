@@ -50,11 +50,11 @@ from typing import TYPE_CHECKING, Optional, Union
 
 import numpy as np
 
-from . import _core
-from .coefficients import PDECoefficients
-from .errors import ValidationError
-from .galerkin import ModalCoefficients, project
-from .parameters import Parameters, check_damping_rate
+from .. import _core
+from ..errors import ValidationError
+from ..model.coefficients import PDECoefficients
+from ..model.galerkin import ModalCoefficients, project
+from ..model.parameters import Parameters, check_damping_rate
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import NDArray
@@ -92,7 +92,7 @@ def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
         computes (:attr:`Stability.classification`, :attr:`Stability.mode_classification`).
     """
     warnings.warn(
-        "drillstring.stability.classify is deprecated and will be removed in the next release;"
+        "drillstring.studies.stability.classify is deprecated and will be removed in the next release;"
         " use analyse(...).classification",
         DeprecationWarning,
         stacklevel=2,

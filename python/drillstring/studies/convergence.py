@@ -1,6 +1,6 @@
 """How many modes does an honest answer need? The truncation study against the PDE itself.
 
-The reference is the finite-difference PDE solution (:func:`~drillstring.pde.solve_pde`) on grids
+The reference is the finite-difference PDE solution (:func:`~drillstring.solvers.pde.solve_pde`) on grids
 of ``N - 1 = cells, 2 cells, 4 cells, ...`` intervals. The scheme is second order, so successive
 grids give Richardson-extrapolated solutions ``R = (4 theta_{h/2} - theta_h) / 3`` (fourth order);
 the grid is refined until two successive extrapolations (or two plain grids) agree to ``tol``
@@ -24,14 +24,14 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 
-from ._output import make_directory, write_bytes
-from ._progress import bar as progress_bar
-from ._progress import on_terminal
-from .errors import SamplingWarning
-from .parameters import Parameters, preset
-from .pde import solve_pde
-from .result import default_section
-from .simulate import simulate
+from ..errors import SamplingWarning
+from ..io.output import make_directory, write_bytes
+from ..io.progress import bar as progress_bar
+from ..io.progress import on_terminal
+from ..model.parameters import Parameters, preset
+from ..solvers.modal import simulate
+from ..solvers.pde import solve_pde
+from ..solvers.trajectory import default_section
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -309,7 +309,7 @@ def render(result: ConvergenceStudy) -> dict[str, bytes]:
 
 def write(result: ConvergenceStudy, out_dir: Any) -> list[Path]:
     """Writes :data:`FILES` (:func:`render`) into ``out_dir`` (created if needed) and returns
-    their paths; see :mod:`drillstring._output` for how existing files, symlinks and devices
+    their paths; see :mod:`drillstring.io.output` for how existing files, symlinks and devices
     there are treated."""
     out = make_directory(out_dir)
     return [write_bytes(out / name, data, field="out_dir") for name, data in render(result).items()]

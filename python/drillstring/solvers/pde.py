@@ -19,14 +19,14 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 
-from . import _core
-from ._output import is_stream, write_to
-from ._progress import ProgressOption, SolveProgress, check_progress
-from .coefficients import PDECoefficients
-from .errors import SolveError, ValidationError
-from .parameters import Parameters
-from .result import TrajectoryResult
-from .simulate import FIXED_STEP_METHODS, PDE_METHODS, Method, _count, _output_times, check_solver_options
+from .. import _core
+from ..errors import SolveError, ValidationError
+from ..io.output import is_stream, write_to
+from ..io.progress import ProgressOption, SolveProgress, check_progress
+from ..model.coefficients import PDECoefficients
+from ..model.parameters import Parameters
+from .modal import FIXED_STEP_METHODS, PDE_METHODS, Method, _count, _output_times, check_solver_options
+from .trajectory import TrajectoryResult
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import ArrayLike, NDArray
@@ -110,7 +110,7 @@ class PdeSolution(TrajectoryResult):
     field_t : ndarray or None
         The times of ``field``.
     status, message, stats, method, params
-        As :class:`~drillstring.simulate.Simulation`.
+        As :class:`~drillstring.solvers.modal.Simulation`.
 
     ``theta(z)`` interpolates linearly between nodes (second order, like the scheme).
     """
@@ -154,7 +154,7 @@ class PdeSolution(TrajectoryResult):
         to a compressed ``.npz`` and returns the path written (:func:`field_path`: ``.npz`` is
         appended to a file name without it, as numpy does). A file is replaced atomically (an
         interrupted write leaves the old one), a symlink is written through, a device, FIFO or
-        ``"-"`` is streamed into (see :mod:`drillstring._output`); an open file object is
+        ``"-"`` is streamed into (see :mod:`drillstring.io.output`); an open file object is
         written directly."""
         theta = self.q if self.field is None else self.field
         t = self.t if self.field_t is None else self.field_t
@@ -208,7 +208,7 @@ def solve_pde(
     nodes : int
         Grid points ``N >= 3`` including both ends.
     t_end, method, rtol, atol, t_eval, dt, samples, max_steps, check, progress
-        As :func:`~drillstring.simulate.simulate`; ``method`` may also be ``"verlet"``
+        As :func:`~drillstring.solvers.modal.simulate`; ``method`` may also be ``"verlet"``
         (symplectic, fixed step). Fixed-step methods default to half the CFL limit ``h / c``.
         The default ``samples`` resolve the highest mode of the initial condition, and at least
         mode 3 (:func:`fastest_mode`), with 20 samples per period (at least 1001 samples, at

@@ -33,9 +33,9 @@ from dataclasses import dataclass, field
 from numbers import Real
 from typing import Any, Optional, Union
 
-from . import _core
-from .errors import ValidationError
-from .limits import _shown, json_ready
+from .. import _core
+from ..errors import ValidationError
+from ..limits import _shown, json_ready
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -116,7 +116,7 @@ class Parameters:
         (Green-Lagrange strain, St Venant-Kirchhoff energy): ``k2 = G I_p``,
         ``k3 = k4 = k6 = 0``, ``k5 = M J4 / 2``; wave speed ``sqrt(G / rho)``, no force from a
         uniform twist, independent of a constant ``Omega``
-        (:mod:`drillstring.coefficients`).
+        (:mod:`drillstring.model.coefficients`).
     damping_rate:
         Viscous damping rate ``c`` in 1/s, finite and ``>= 0`` (default 0: the paper's
         undamped model). Adds the force ``-rho I_p c theta_t`` per unit length (the convention
@@ -258,8 +258,8 @@ class Parameters:
     def save(self, path: PathLike) -> os.PathLike[str]:
         """Write :meth:`to_toml` to ``path`` (UTF-8) and return the path written: an existing file
         is replaced atomically, a symlink is written through, a device, FIFO or ``"-"`` is
-        streamed into (see :mod:`drillstring._output`); the path is a :class:`pathlib.Path`."""
-        from ._output import write_text
+        streamed into (see :mod:`drillstring.io.output`); the path is a :class:`pathlib.Path`."""
+        from ..io.output import write_text
 
         return write_text(path, self.to_toml())
 

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any, Callable, Optional, Union
 
-from .errors import ValidationError
+from ..errors import ValidationError
 
 __all__ = [
     "STDOUT",

@@ -9,7 +9,7 @@ boundary conditions ``phi_k'(0) = phi_k'(l) = 0`` (eq. 14).
 
 Reduced equations
 -----------------
-Eq. 18 is the Euler-Lagrange equation of ``H`` (see :mod:`drillstring.coefficients`). Projecting
+Eq. 18 is the Euler-Lagrange equation of ``H`` (see :mod:`drillstring.model.coefficients`). Projecting
 it onto ``phi_j``, ``int_0^l (k1 theta_tt - RHS) phi_j dz = 0``, and integrating the
 ``d/dz (...)`` terms by parts (the boundary terms carry ``theta_z = 0`` at both ends and vanish)
 gives the Ritz equations of the modal energy::
@@ -66,10 +66,10 @@ from typing import TYPE_CHECKING, Any, Literal, NamedTuple, Union
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from . import _core
+from .. import _core
+from ..errors import ValidationError
+from ..limits import as_float, as_int
 from .coefficients import PDECoefficients
-from .errors import ValidationError
-from .limits import as_float, as_int
 
 if TYPE_CHECKING:
     from .parameters import Parameters
@@ -103,7 +103,7 @@ FloatOrArray = Union[float, FloatArray]
 def __getattr__(name: str) -> Any:
     if name == "MAX_TENSOR_MODES":
         warnings.warn(
-            "drillstring.galerkin.MAX_TENSOR_MODES is deprecated with ModalCoefficients.cubic_tensor"
+            "drillstring.model.galerkin.MAX_TENSOR_MODES is deprecated with ModalCoefficients.cubic_tensor"
             " and will be removed in the next release",
             DeprecationWarning,
             stacklevel=2,
@@ -568,8 +568,8 @@ def project(
     Parameters
     ----------
     source:
-        A :class:`~drillstring.parameters.Parameters` (``k1..k6`` from eq. 17) or explicit
-        :class:`~drillstring.coefficients.PDECoefficients`.
+        A :class:`~drillstring.model.parameters.Parameters` (``k1..k6`` from eq. 17) or explicit
+        :class:`~drillstring.model.coefficients.PDECoefficients`.
     modes:
         Number ``n`` of elastic modes ``i = 1..n``, ``1 <= n <= 256``.
     rigid_mode:

@@ -1,8 +1,8 @@
-"""Sweep grids: axes of :class:`~drillstring.parameters.Parameters` fields and their product.
+"""Sweep grids: axes of :class:`~drillstring.model.parameters.Parameters` fields and their product.
 
 A grid is a mapping ``{field: values}``. The keys are :class:`Parameters` field names, or
 ``c1``, ``c2``, ..., ``c256`` for one initial velocity ``C_i`` (the other ``C_j`` keep their base
-values; missing ones are 0; ``i`` is at most :data:`~drillstring.galerkin.MAX_MODES`, the largest
+values; missing ones are 0; ``i`` is at most :data:`~drillstring.model.galerkin.MAX_MODES`, the largest
 model). The values are
 
 * a list, tuple or 1-D array of values (``initial_velocities``: a list of sequences);
@@ -27,10 +27,10 @@ from typing import Any, Union
 
 import numpy as np
 
-from .errors import ValidationError
-from .galerkin import MAX_MODES
-from .limits import as_float, as_int, check_run_count
-from .parameters import Parameters
+from ..errors import ValidationError
+from ..limits import as_float, as_int, check_run_count
+from ..model.galerkin import MAX_MODES
+from ..model.parameters import Parameters
 
 __all__ = [
     "linspace",

@@ -14,7 +14,7 @@ from typing import Any, Callable, Optional, Union
 
 from tqdm import tqdm
 
-from .errors import ValidationError
+from ..errors import ValidationError
 
 __all__ = ["ProgressOption", "SolveProgress", "check_progress", "on_terminal", "bar"]
 

@@ -14,12 +14,12 @@ from typing import TYPE_CHECKING, Any, Literal, Optional, get_args
 
 import numpy as np
 
-from . import _core, limits
-from ._progress import ProgressOption, SolveProgress, check_progress
-from .errors import SolveError, ValidationError
-from .galerkin import Evaluation, ModalCoefficients, project
-from .parameters import Parameters
-from .result import SolverStats, TrajectoryResult
+from .. import _core, limits
+from ..errors import SolveError, ValidationError
+from ..io.progress import ProgressOption, SolveProgress, check_progress
+from ..model.galerkin import Evaluation, ModalCoefficients, project
+from ..model.parameters import Parameters
+from .trajectory import SolverStats, TrajectoryResult
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import ArrayLike, NDArray

@@ -9,7 +9,7 @@
 
 How it works
 ------------
-The runs (the Cartesian product of a grid, see :mod:`drillstring.grid`, or an explicit list)
+The runs (the Cartesian product of a grid, see :mod:`drillstring.studies.sweep_axes`, or an explicit list)
 are split into chunks of ``chunk_size`` runs. A chunk is solved by one call of the Rust batch
 solver (``drillstring._core.batch_solve``): each run's ``k1..k6`` (eq. 17) scale the
 dimensionless Galerkin integrals of the basis, generated once, into its modal system; the runs
@@ -26,7 +26,7 @@ blocks in run order.
 * A problem of one run (a value out of range, a number too large for a float, a coefficient
   that overflows) is that run's row (status ``"invalid"`` and a message); the others are solved.
 * ``out_dir``: chunks are written as they finish (atomically, see
-  :mod:`drillstring.sweep_store`, which also locks the directory against a second writer);
+  :mod:`drillstring.io.sweep_store`, which also locks the directory against a second writer);
   running the same sweep again with the same ``out_dir`` resumes: it reuses each stored chunk
   that verifies against the plan and its checksum, recomputes (and names, with a
   :class:`~drillstring.errors.ResumeWarning`) those that do not, and returns the same table as
@@ -48,11 +48,11 @@ The parameters of each run as requested (``length``, ``youngs_modulus``, ``densi
 * ``max_theta`` = ``max |theta(z, t)|`` (rad) and ``rms_theta`` (rad) over the samples;
 * ``dominant_frequency_hz``: the strongest peak of the Hann-windowed spectrum of
   ``theta(z, t)`` (zero-padded x8, log-parabolic interpolation;
-  :func:`drillstring.analysis.dominant_frequencies`);
+  :func:`drillstring.studies.analysis.dominant_frequencies`);
 * ``energy_drift`` = ``max |H - H(0)| / |H(0)|`` over the samples (with ``damping_rate > 0``
   the energy balance error ``max |H + dissipated - H(0)| / |H(0)|``);
 * ``unstable_modes``: the number of retained modes with ``K_ii < 0`` (linearly unstable at the
-  equilibrium, the saddles of :func:`drillstring.stability.analyse`: a ``K_ii / M_ii`` within
+  equilibrium, the saddles of :func:`drillstring.studies.stability.analyse`: a ``K_ii / M_ii`` within
   ``1e-12`` of the largest ``|K_jj / M_jj|`` counts as 0; the rigid mode counts whenever
   ``omega^2`` exceeds that); ``<NA>`` for invalid runs;
 * ``nfev``: right-hand-side evaluations;
@@ -69,7 +69,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
 import warnings
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -78,16 +77,18 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
-from . import _core
-from ._progress import bar as progress_bar
-from ._progress import on_terminal
-from .coefficients import PDECoefficients
-from .errors import ValidationError
-from .galerkin import dimensionless_integrals
-from .grid import apply_overrides, expand_grid, linspace, logspace, run_overrides
-from .limits import as_float, check_table_size, memory_budget
-from .parameters import CHOICE_FIELDS, Parameters, preset
-from .simulate import FIXED_STEP_METHODS, SWEEP_METHODS, check_solver_options
+from .. import _core
+from ..errors import ValidationError
+from ..io.cluster import check_client, require_distributed
+from ..io.progress import bar as progress_bar
+from ..io.progress import on_terminal
+from ..io.sweep_store import core_build
+from ..limits import as_float, check_table_size, memory_budget
+from ..model.coefficients import PDECoefficients
+from ..model.galerkin import dimensionless_integrals
+from ..model.parameters import CHOICE_FIELDS, Parameters, preset
+from ..solvers.modal import FIXED_STEP_METHODS, SWEEP_METHODS, check_solver_options
+from .sweep_axes import apply_overrides, expand_grid, linspace, logspace, run_overrides
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -116,25 +117,6 @@ _FORMAT = 1
 _NUMERIC_FIELDS = tuple(
     name for name in Parameters.field_names() if name != "initial_velocities" and name not in CHOICE_FIELDS
 )
-
-
-def check_client(client: Any) -> None:
-    """Refuses a ``client`` that is neither None, a scheduler address nor a Dask client
-    (anything with ``submit``), naming the field."""
-    if client is None or (isinstance(client, str) and client.strip()) or callable(getattr(client, "submit", None)):
-        return
-    raise ValidationError("client", client, "a dask.distributed.Client or a scheduler address (a non-empty str)")
-
-
-def _require_distributed() -> Any:
-    try:
-        import distributed
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise ImportError(
-            "running a sweep on a Dask cluster needs dask.distributed: "
-            "pip install '.[dask]' in the drillstring checkout"
-        ) from exc
-    return distributed
 
 
 # --------------------------------------------------------------------------- one chunk
@@ -399,17 +381,6 @@ def _progress_bar(total: int, enabled: bool) -> Any:
                         "[{elapsed}<{remaining}, {rate_fmt}]")
 
 
-def _core_build() -> str:
-    """A hash of the compiled core (its file), so that chunks of another build are not mixed in."""
-    path = getattr(_core, "__file__", None)
-    digest = hashlib.sha256(_core.__version__.encode())
-    if path and os.path.exists(path):
-        with open(path, "rb") as handle:
-            for block in iter(lambda: handle.read(1 << 20), b""):
-                digest.update(block)
-    return digest.hexdigest()[:16]
-
-
 def _check_count(field: str, value: Any, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
         raise ValidationError(field, value, f"an integer >= {minimum}")
@@ -478,15 +449,15 @@ def sweep(
         The parameters the grid varies (a preset name or a ``{field: value}`` mapping with an
         optional ``"preset"`` key are accepted); default :class:`Parameters()`.
     grid : mapping, optional
-        ``{field: values}``; the runs are the Cartesian product (:mod:`drillstring.grid`:
+        ``{field: values}``; the runs are the Cartesian product (:mod:`drillstring.studies.sweep_axes`:
         lists, :func:`linspace`, :func:`logspace`, ``c1``/``c2``/... for single velocities).
     runs : list of Parameters or mappings, optional
         Instead of ``grid``: explicit parameter sets (a mapping overrides fields of
         ``base_params``). An invalid set becomes a row with status ``"invalid"``.
     modes, rigid_mode : int, bool
-        The basis, as in :func:`~drillstring.simulate.simulate`.
+        The basis, as in :func:`~drillstring.solvers.modal.simulate`.
     t_end, method, rtol, atol, dt, max_steps :
-        Solver options, as in :func:`~drillstring.simulate.simulate` (``rtol`` default 1e-8),
+        Solver options, as in :func:`~drillstring.solvers.modal.simulate` (``rtol`` default 1e-8),
         with a named method (not ``"auto"``). ``max_steps`` applies to each run.
     samples : int
         Uniform samples of ``0 <= t <= t_end`` the metrics are computed from (>= 4).
@@ -498,7 +469,7 @@ def sweep(
         Runs per chunk (unit of progress, resumption and Dask tasks).
     out_dir : path, optional
         Write chunks as they finish and ``results.parquet`` / ``results.csv`` at the end;
-        resume a previous, interrupted run of the same sweep (:mod:`drillstring.sweep_store`).
+        resume a previous, interrupted run of the same sweep (:mod:`drillstring.io.sweep_store`).
     client : dask.distributed.Client or str, optional
         Run the chunks on this Dask cluster (a str is a scheduler address to connect to).
     progress : bool, optional
@@ -566,12 +537,12 @@ def sweep(
     store = None
     fingerprint = ""
     if out_dir is not None:
-        from .sweep_store import SweepStore
+        from ..io.sweep_store import SweepStore
 
         identity = {
             "format": _FORMAT,
             "drillstring_version": _core.__version__,
-            "core_build": _core_build(),
+            "core_build": core_build(),
             "solver": solver,
             "z": z,
             "chunk_size": size,
@@ -674,7 +645,7 @@ def _resume(
             summary["reused"].append(task.index)
             frames[task.index] = frame
     if summary["recomputed"]:
-        from .errors import ResumeWarning
+        from ..errors import ResumeWarning
 
         reasons = "; ".join(f"chunk {i}: {why}" for i, why in summary["recomputed"].items())
         warnings.warn(
@@ -734,7 +705,7 @@ def _run_tasks(
 
 def _run_on_dask(client: Any, jobs: list[_Job], finished: Any) -> None:
     """Submit every chunk as a task and hand each result to ``finished`` as it completes."""
-    distributed = _require_distributed()
+    distributed = require_distributed()
     own = None
     if isinstance(client, str):
         own = client = distributed.Client(client)

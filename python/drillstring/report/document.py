@@ -1,9 +1,9 @@
 """The report as a document: its types (:class:`ReproductionReport`, :class:`FigureResult`) and
 its content, a list of :class:`Block` (headings, paragraphs, lists, images, code, tables) that
-:mod:`drillstring.paper.render` turns into Markdown and HTML.
+:mod:`drillstring.report.render` turns into Markdown and HTML.
 
-Numbers come from the measurements (:mod:`drillstring.paper.measure`), the checks
-(:mod:`drillstring.paper.checks`), Table 2 (:mod:`drillstring.paper.table2`), the stability analysis and
+Numbers come from the measurements (:mod:`drillstring.report.measure`), the checks
+(:mod:`drillstring.report.checks`), Table 2 (:mod:`drillstring.studies.table2`), the stability analysis and
 the truncation study; this module only formats them.
 """
 
@@ -16,12 +16,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
 
-from .. import convergence as _convergence
+from ..studies import convergence as _convergence
+from ..studies.table2 import PAPER_TABLE2, Table2Row
 from .checks import CRITERIA
 from .fmt import hz, pct, sci
 from .measure import CurveMetrics, PhysicsNotes, StabilityRow
 from .specs import ATOL, RTOL, SAMPLES_PER_SECOND
-from .table2 import PAPER_TABLE2, Table2Row
 
 
 @dataclass(frozen=True)
@@ -158,7 +158,7 @@ def build(rep: ReproductionReport, ctx: dict[str, Any], command: str) -> list[Bl
                      f"{rep.samples_per_second} output samples per second, z_k = 2l/3, "
                      "C = (0.1, 0.05, 0.02) rad/s, k5 as printed (`k5_variant=\"paper\"`). Dominant "
                      "frequencies: Hann-windowed FFT of the plotted signal, 8x zero padding, "
-                     "log-parabolic peak interpolation (`drillstring.analysis.dominant_frequencies`). "
+                     "log-parabolic peak interpolation (`drillstring.studies.analysis.dominant_frequencies`). "
                      "Bounded: finite and max |x| over the second half of the window at most 1.5x "
                      "that over the first half. Energy drift: max |H(t) - H(0)| / H(0)."))
     shown = _Shown()
@@ -223,7 +223,8 @@ def build(rep: ReproductionReport, ctx: dict[str, Any], command: str) -> list[Bl
                      "quartic term)."))
     doc.append(p("Data: [stability.csv](stability.csv) (one row per retained mode; the mode "
                      "contributes the eigenvalue pair ± eigenvalue_real + i eigenvalue_imag). "
-                     "`drillstring.stability.analyse(ds.preset(\"aluminum\").replace(length=500.0), modes=3)`."))
+                     "`drillstring.studies.stability.analyse(ds.preset(\"aluminum\").replace(length=500.0), "
+                     "modes=3)`."))
     study = rep.notes.get("convergence")
     if study is not None:
         doc += _convergence_section(study)
@@ -235,7 +236,7 @@ def build(rep: ReproductionReport, ctx: dict[str, Any], command: str) -> list[Bl
     a1, a2, a3 = ctx["one_mode"]["a"]
     doc.append(ol([
         "Eq. 9: the I_r term multiplies θ_z⁴, not θ_z². The software builds every coefficient from "
-        "the energy H with k5/4 θ_z⁴ (`drillstring.coefficients`), whose Euler-Lagrange equation is "
+        "the energy H with k5/4 θ_z⁴ (`drillstring.model.coefficients`), whose Euler-Lagrange equation is "
         "eq. 18.",
         "k5 (eqs. 12, 17): re-deriving from eqs. 5-7 gives a plus sign, G (I_r + I_x2y2 (5-6ν))/(8(1-2ν)); "
         "the paper prints a minus. The default `k5_variant=\"paper\"` keeps the printed sign (used "
@@ -387,7 +388,7 @@ def _table2_summary(rows: Sequence[Table2Row]) -> str:
 
 
 def _version() -> str:
-    from .. import __version__
+    from .._core import __version__
 
     return __version__
 

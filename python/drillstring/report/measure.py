@@ -3,9 +3,9 @@ plotted curve, the reference values the checks compare them with, the stability 
 physics notes.
 
 Every number comes from a shared function: the spectra, envelopes and phase-plane measures from
-:mod:`drillstring.analysis`, the modal coefficients from :func:`drillstring.project`, the linear
-frequencies, wave speeds and critical speeds from :class:`drillstring.coefficients.PDECoefficients`,
-the eigenvalues from :func:`drillstring.stability.analyse`.
+:mod:`drillstring.studies.analysis`, the modal coefficients from :func:`drillstring.project`, the linear
+frequencies, wave speeds and critical speeds from :class:`drillstring.model.coefficients.PDECoefficients`,
+the eigenvalues from :func:`drillstring.studies.stability.analyse`.
 """
 
 from __future__ import annotations
@@ -16,13 +16,14 @@ from typing import Any, Callable
 
 import numpy as np
 
-from .. import _core, analysis
-from ..coefficients import PDECoefficients
+from .. import _core
 from ..errors import ValidationError
-from ..galerkin import project
-from ..parameters import Parameters, preset
-from ..simulate import Simulation, simulate
-from ..stability import analyse
+from ..model.coefficients import PDECoefficients
+from ..model.galerkin import project
+from ..model.parameters import Parameters, preset
+from ..solvers.modal import Simulation, simulate
+from ..studies import analysis
+from ..studies.stability import analyse
 from .specs import OMEGA6, PARAMETER_SETS, RUNS, FigureSpec
 
 
@@ -296,7 +297,7 @@ class PhysicsNotes:
 
 
 def physics_notes() -> PhysicsNotes:
-    """The numbers of the physics notes, from :class:`drillstring.coefficients.PDECoefficients`."""
+    """The numbers of the physics notes, from :class:`drillstring.model.coefficients.PDECoefficients`."""
     al, steel = preset("aluminum"), preset("steel")
 
     def coef(p: Parameters, model: str) -> PDECoefficients:

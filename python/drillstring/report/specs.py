@@ -15,7 +15,7 @@ import os
 from dataclasses import dataclass
 from typing import Any, Optional, Union
 
-from ..parameters import Parameters, preset
+from ..model.parameters import Parameters, preset
 
 #: Solver settings of every run of the report.
 METHOD = "dop853"
@@ -55,7 +55,7 @@ class RunSpec:
         return int(round(per_second * self.t_end * scale)) + 1
 
     def kwargs(self, scale: float, per_second: int) -> dict[str, Any]:
-        """Keyword arguments of :func:`drillstring.simulate` (besides ``params``)."""
+        """Keyword arguments of :func:`drillstring.solvers.modal` (besides ``params``)."""
         out: dict[str, Any] = {
             "modes": self.modes,
             "t_end": self.t_end * scale,

@@ -4,9 +4,9 @@
 
 * ``fig01.png`` ... ``fig15.png``: the paper's figures (same content and parameters; the plot
   functions are in :mod:`drillstring.plots`), each with the data behind it as ``figNN.csv``;
-* ``table2.csv``: Table 2 (:func:`drillstring.paper.table2.table2`);
+* ``table2.csv``: Table 2 (:func:`drillstring.studies.table2.table2`);
 * ``stability.csv``: eigenvalues of the Jacobian at the equilibrium, classification and critical
-  speeds (:mod:`drillstring.stability`) for 1, 2 and 3 modes on every parameter set of the
+  speeds (:mod:`drillstring.studies.stability`) for 1, 2 and 3 modes on every parameter set of the
   figures;
 * ``report.md`` and ``report.html`` (self-contained, images embedded): per figure and table the
   paper's claim and the numbers measured here that check it (amplitude, dominant frequencies
@@ -16,13 +16,13 @@
 
 The package is split by job:
 
-* :mod:`~drillstring.paper.specs`: the figures as data (runs, time spans, what is plotted, the
+* :mod:`~drillstring.report.specs`: the figures as data (runs, time spans, what is plotted, the
   paper's claim);
-* :mod:`~drillstring.paper.measure`: the runs and the numbers measured on them;
-* :mod:`~drillstring.paper.checks`: one checker per figure group, each stating its criterion;
-* :mod:`~drillstring.paper.document` and :mod:`~drillstring.paper.render`: the report as a list
+* :mod:`~drillstring.report.measure`: the runs and the numbers measured on them;
+* :mod:`~drillstring.report.checks`: one checker per figure group, each stating its criterion;
+* :mod:`~drillstring.report.document` and :mod:`~drillstring.report.render`: the report as a list
   of blocks and its Markdown and HTML through Jinja2 templates;
-* :mod:`~drillstring.paper.run`: :func:`reproduce` and :func:`figure`, the files written.
+* :mod:`~drillstring.report.run`: :func:`reproduce` and :func:`figure`, the files written.
 """
 
 from __future__ import annotations

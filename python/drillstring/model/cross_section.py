@@ -20,9 +20,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Optional
 
-from . import _core
-from .errors import ValidationError
-from .limits import as_float
+from .. import _core
+from ..errors import ValidationError
+from ..limits import as_float
 
 __all__ = ["Section"]
 

@@ -1,6 +1,6 @@
 """The reproduction: :func:`reproduce` runs the figures (plots, data, measurements, checks), Table 2,
 the stability table and the truncation study, and writes every file through
-:mod:`drillstring._output`; :func:`figure` gives one figure alone.
+:mod:`drillstring.io.output`; :func:`figure` gives one figure alone.
 """
 
 from __future__ import annotations
@@ -16,19 +16,20 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .. import analysis, plots
-from .. import convergence as _convergence
-from .._output import check_destination, make_directory, write_bytes, write_text
-from .._progress import bar as progress_bar
+from .. import plots
 from ..errors import ValidationError
-from ..parameters import preset
-from ..stability import analyse
+from ..io.output import check_destination, make_directory, write_bytes, write_text
+from ..io.progress import bar as progress_bar
+from ..model.parameters import preset
+from ..studies import analysis
+from ..studies import convergence as _convergence
+from ..studies.stability import analyse
+from ..studies.table2 import table2, write_table2_csv
 from . import document, render, specs
 from .checks import assess
 from .document import FigureResult, ReproductionReport
 from .measure import Runs, StabilityRow, measure, physics_notes, references, safe, signal, stability_rows, window_mask
 from .specs import DPI, RUNS, SAMPLES_PER_SECOND, FigureSpec, PathLike
-from .table2 import table2, write_table2_csv
 
 
 def _plot(spec: FigureSpec, runs: Runs, window: tuple[float, float], title: str) -> Any:
@@ -136,7 +137,7 @@ def reproduce(
     command :
         The command line to quote in the report (default: the equivalent ``drillstring paper``).
     convergence :
-        Add the truncation study beyond the paper (:mod:`drillstring.convergence`: Galerkin
+        Add the truncation study beyond the paper (:mod:`drillstring.studies.convergence`: Galerkin
         models against the converged PDE solution; ``convergence.csv``, ``grids.csv``,
         ``reference.csv``, ``convergence.png``).
 

@@ -19,9 +19,9 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._output import write_text
-from ..parameters import Parameters, preset
-from ..simulate import Method, simulate
+from ..io.output import write_text
+from ..model.parameters import Parameters, preset
+from ..solvers.modal import Method, simulate
 
 __all__ = ["Table2Row", "PAPER_TABLE2", "table2", "format_table2", "write_table2_csv", "table2_json"]
 
@@ -103,7 +103,7 @@ def table2_json(rows: Sequence[Table2Row]) -> str:
 
 def write_table2_csv(rows: Sequence[Table2Row], path: Any) -> Path:
     """Writes the rows as CSV (method, dt, max_amplitude, difference_percent) to ``path`` and
-    returns it (see :mod:`drillstring._output` for how existing files, symlinks, devices and
+    returns it (see :mod:`drillstring.io.output` for how existing files, symlinks, devices and
     ``"-"`` are treated)."""
     text = io.StringIO(newline="")
     writer = csv.writer(text)

@@ -1,7 +1,7 @@
 """What a solve returns: samples of the state, the twist at any section, energy, statistics.
 
-:class:`TrajectoryResult` is shared by the modal model (:class:`~drillstring.simulate.Simulation`)
-and the finite-difference PDE (:class:`~drillstring.pde.PdeSolution`); they differ only in how
+:class:`TrajectoryResult` is shared by the modal model (:class:`~drillstring.solvers.modal.Simulation`)
+and the finite-difference PDE (:class:`~drillstring.solvers.pde.PdeSolution`); they differ only in how
 the state maps to the twist ``theta(z, t)`` (a Galerkin basis or interpolation between nodes).
 """
 
@@ -14,16 +14,16 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
-from . import _core
-from ._output import atomic_write, write_to
-from .errors import ValidationError
+from .. import _core
+from ..errors import ValidationError
+from ..io.output import atomic_write, write_to
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     import xarray as xr
     from numpy.typing import ArrayLike, NDArray
 
-    from .parameters import Parameters
+    from ..model.parameters import Parameters
 
 __all__ = ["SolverStats", "TrajectoryResult", "UNITS", "default_section"]
 
@@ -161,7 +161,7 @@ class TrajectoryResult:
         """Writes :meth:`table` at section ``z`` as CSV to ``path`` (or an open file object) and
         returns the path written. A file is replaced atomically (an interrupted write leaves the
         old one), a symlink is written through, a device or FIFO is streamed into, ``"-"`` is
-        standard output (see :mod:`drillstring._output`)."""
+        standard output (see :mod:`drillstring.io.output`)."""
         header, data = self.table(z)
         return write_to(
             path,
@@ -174,7 +174,7 @@ class TrajectoryResult:
     def _attributes(self) -> dict[str, Any]:
         """The run's parameters and solver outcome as netCDF-ready attributes (numbers, strings
         and 1-D float arrays)."""
-        from ._core import __version__
+        from .._core import __version__
 
         attrs: dict[str, Any] = {}
         for name, value in self.params.to_dict().items():
@@ -246,6 +246,6 @@ class TrajectoryResult:
         """Writes :meth:`to_xarray` to ``path`` as netCDF-4 (HDF5, through h5netcdf) and returns
         the path. Read it back with ``xarray.open_dataset(path)``. A file is replaced atomically
         (an interrupted write leaves the old one), a symlink is written through, a device, FIFO
-        or ``"-"`` is streamed into (see :mod:`drillstring._output`)."""
+        or ``"-"`` is streamed into (see :mod:`drillstring.io.output`)."""
         dataset = self.to_xarray()
         return atomic_write(path, lambda tmp: dataset.to_netcdf(tmp, engine="h5netcdf"), suffix=".nc")
