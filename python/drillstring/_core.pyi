@@ -666,6 +666,30 @@ def drill_validate(config_json: str) -> dict[str, Any]:
         exceed the memory limit (512 MiB).
     """
 
+def well_trajectory(config_json: str) -> dict[str, NDArray[np.float64]]:
+    """The survey stations of the configuration's well and their minimum-curvature trajectory:
+    ``md`` (m), ``inc_deg``, ``azi_deg``, ``north``, ``east``, ``tvd`` (m) and
+    ``dls_deg_per_30m`` (of the interval ending at each station).
+
+    Raises
+    ------
+    ValidationError
+        As :func:`drill_validate`, or naming the survey field the trajectory cannot be built from.
+    """
+
+def well_torque_drag(config_json: str) -> dict[str, Any]:
+    """The static soft-string torque and drag of the configuration's string: the summary
+    (``hook_load_pickup_N``, ..., ``max_normal_force_operation``), ``profiles`` (per operation:
+    ``md``, ``tension_N``, ``torque_Nm``, ``normal_force_N_per_m``) and ``broomstick``
+    (``depth_m``, ``friction_factors`` and the ``pickup``, ``slackoff`` and ``rotating`` hook
+    loads, N, as 2-D arrays ``[factor, depth]``).
+
+    Raises
+    ------
+    ValidationError
+        As :func:`well_trajectory`.
+    """
+
 class DrillProfile(TypedDict):
     #: Cell centres (measured depth from the top), m.
     z: NDArray[np.float64]

@@ -24,6 +24,7 @@ import os
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Union
 
@@ -214,8 +215,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
         written = [write_text(path("torque_drag.json"), json.dumps(result.to_json_dict(), indent=2) + "\n")]
         for name, frame in (("profiles.csv", result.profiles_frame()), ("broomstick.csv", result.broomstick_frame()),
                             ("survey.csv", result.survey_frame())):
-            written.append(atomic_write(path(name), lambda tmp, f=frame: f.to_csv(tmp, index=False,
-                                                                                   float_format="%.10g"),
+            written.append(atomic_write(path(name), partial(frame.to_csv, index=False, float_format="%.10g"),
                                         suffix=".csv"))
         written.append(write_text(path("config.toml"), result.config.to_toml()))
         if plots:
