@@ -25,7 +25,7 @@ strain, St Venant-Kirchhoff energy, kinetic energy ``rho I_p (Omega + theta_t)^2
   ``M = lambda + 2 mu = E (1 - nu) / ((1 + nu) (1 - 2 nu))`` and ``J4 = int r^4 dA``.
 
 where ``G = E / (2 (1 + nu))`` and ``A, I_p, I_r, I_{x^2y^2}, J4`` are the section properties
-(:class:`~drillstring.model.cross_section.Section`). The formulas are evaluated in the Rust core
+(:class:`~drillstring.model.cross_section.CrossSection`). The formulas are evaluated in the Rust core
 (``drillstring_core::model``). Eq. 18 is the Euler-Lagrange equation of the energy
 ``H = int_0^l [k1/2 theta_t^2 + k2/2 theta_z^2 + k3/4 theta^4
 + k4/2 theta^2 theta_z^2 + k5/4 theta_z^4 - k6/2 theta^2] dz``, which it conserves.

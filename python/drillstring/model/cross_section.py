@@ -18,13 +18,14 @@ the diameters and holds the values.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import TYPE_CHECKING, Any, Optional
 
 from .. import _core
+from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import as_float
 
-__all__ = ["Section"]
+__all__ = ["CrossSection"]
 
 
 def _positive_finite(field: str, value: Any) -> float:
@@ -35,7 +36,7 @@ def _positive_finite(field: str, value: Any) -> float:
 
 
 @dataclass(frozen=True)
-class Section:
+class CrossSection:
     """Cross-section properties entering the coefficients ``k1..k6`` (eqs. 8, 17).
 
     Attributes
@@ -70,7 +71,7 @@ class Section:
         return self.polar_moment / 2.0
 
     @classmethod
-    def annulus(cls, outer_diameter: float, inner_diameter: float) -> Section:
+    def annulus(cls, outer_diameter: float, inner_diameter: float) -> CrossSection:
         """Properties of a hollow circular section.
 
         Parameters
@@ -82,7 +83,7 @@ class Section:
 
         Returns
         -------
-        Section
+        CrossSection
             ``A``, ``I_p``, ``I_r`` and ``I_{x^2 y^2}`` of eq. 8, and ``J4``.
 
         Raises
@@ -97,3 +98,13 @@ class Section:
         if not 0.0 <= small < big:
             raise ValidationError("inner_diameter", inner_diameter, allowed)
         return cls(**_core.section(big, small))
+
+
+#: Old names of this module's classes, for one release: ``Section`` is :class:`CrossSection`
+#: (``drillstring.drilling.StringSection`` is a length of pipe).
+_RENAMED = {"Section": "CrossSection"}
+
+if not TYPE_CHECKING:
+
+    def __getattr__(name: str) -> Any:
+        return renamed(__name__, name, globals())
