@@ -1,4 +1,4 @@
-"""Stick-slip metrics of bit-speed and motor-torque series (``drillstring.studies.analysis``
+"""Stick-slip metrics of bit-speed and motor-torque series (``drillstring.drilling.metrics``
 ``stick_slip_metrics``, ``break_off_torque``; computed by ``drillstring_core::metrics::stickslip``)
 against analytic values, and the refusal of bad input naming the argument."""
 
@@ -24,13 +24,13 @@ def test_sinusoidal_speed_has_severity_a_and_is_never_stuck() -> None:
     t = np.linspace(0.0, 4.0, 24001)  # 6 whole periods
     omega = w0 * (1.0 + a * np.sin(2 * np.pi * f * t))
     m = metrics_module.stick_slip_metrics(t, omega)
-    assert m.severity == pytest.approx(a, abs=1e-6)
+    assert m.ssi == pytest.approx(a, abs=1e-6)
     assert m.stuck_fraction == 0.0
-    assert m.rpm_mean == pytest.approx(w0 * RPM, rel=1e-9)
-    assert m.rpm_min == pytest.approx(w0 * (1 - a) * RPM, rel=1e-6)
-    assert m.rpm_max == pytest.approx(w0 * (1 + a) * RPM, rel=1e-6)
-    assert math.isnan(m.torque_min) and math.isnan(m.torque_max) and math.isnan(m.cycle_period)
-    assert (m.t_start, m.t_end) == (0.0, 4.0)
+    assert m.bit_rpm_mean == pytest.approx(w0 * RPM, rel=1e-9)
+    assert m.bit_rpm_min == pytest.approx(w0 * (1 - a) * RPM, rel=1e-6)
+    assert m.bit_rpm_max == pytest.approx(w0 * (1 + a) * RPM, rel=1e-6)
+    assert math.isnan(m.motor_torque_min_Nm) and math.isnan(m.motor_torque_max_Nm) and math.isnan(m.period_s)
+    assert (m.window_start, m.window_end) == (0.0, 4.0)
 
 
 @pytest.mark.parametrize("a", [1.5, 2.0, 4.0])
@@ -42,9 +42,9 @@ def test_clipped_speed_is_stuck_for_the_arccos_fraction(a: float) -> None:
     m = metrics_module.stick_slip_metrics(t, omega, stick_speed=0.0)
     assert m.stuck_fraction == pytest.approx(math.acos(1.0 / a) / math.pi, abs=3e-4)
     mean = w0 * (math.sqrt(a * a - 1.0) + math.pi - math.acos(1.0 / a)) / math.pi
-    assert m.rpm_mean == pytest.approx(mean * RPM, rel=1e-4)
-    assert m.rpm_min == 0.0
-    assert m.severity == pytest.approx(w0 * (1.0 + a) / (2.0 * mean), rel=1e-4)
+    assert m.bit_rpm_mean == pytest.approx(mean * RPM, rel=1e-4)
+    assert m.bit_rpm_min == 0.0
+    assert m.ssi == pytest.approx(w0 * (1.0 + a) / (2.0 * mean), rel=1e-4)
 
 
 def test_square_wave_and_its_period() -> None:
@@ -55,11 +55,11 @@ def test_square_wave_and_its_period() -> None:
     torque = np.where(stuck, 900.0, 300.0)
     m = metrics_module.stick_slip_metrics(t, omega, torque, window=(0.0, 7.99))
     assert m.stuck_fraction == pytest.approx(0.3, abs=1e-3)
-    assert m.severity == pytest.approx(5.0 / (2 * 3.5), rel=1e-3)
-    assert (m.torque_min, m.torque_max) == (300.0, 900.0)
+    assert m.ssi == pytest.approx(5.0 / (2 * 3.5), rel=1e-3)
+    assert (m.motor_torque_min_Nm, m.motor_torque_max_Nm) == (300.0, 900.0)
     # the period from the similarity of the torque with itself shifted, resampled to 16384
     # samples over the window: exact to a fraction of a resampled step (4.9e-4 s)
-    assert m.cycle_period == pytest.approx(2.0, abs=1e-4)
+    assert m.period_s == pytest.approx(2.0, abs=1e-4)
 
 
 def test_motor_torque_period_of_a_sine_and_fewer_than_two_cycles() -> None:
@@ -67,17 +67,18 @@ def test_motor_torque_period_of_a_sine_and_fewer_than_two_cycles() -> None:
     torque = 2e3 + 5e2 * np.sin(2 * np.pi * 1.25 * t + 0.4)
     omega = np.full(t.size, 10.0)
     m = metrics_module.stick_slip_metrics(t, omega, torque)
-    assert m.cycle_period == pytest.approx(0.8, rel=1e-4)
-    assert m.torque_min == pytest.approx(1.5e3, rel=1e-5) and m.torque_max == pytest.approx(2.5e3, rel=1e-5)
-    assert m.severity == 0.0
+    assert m.period_s == pytest.approx(0.8, rel=1e-4)
+    assert m.motor_torque_min_Nm == pytest.approx(1.5e3, rel=1e-5)
+    assert m.motor_torque_max_Nm == pytest.approx(2.5e3, rel=1e-5)
+    assert m.ssi == 0.0
     # 1.25 cycles in the window: no period
-    assert math.isnan(metrics_module.stick_slip_metrics(t, omega, torque, window=(0.0, 1.0)).cycle_period)
+    assert math.isnan(metrics_module.stick_slip_metrics(t, omega, torque, window=(0.0, 1.0)).period_s)
 
 
 def test_zero_mean_speed_gives_nan_severity_and_the_threshold_counts() -> None:
     t = np.linspace(0.0, 1.0, 101)
     m = metrics_module.stick_slip_metrics(t, np.zeros(t.size))
-    assert math.isnan(m.severity) and m.stuck_fraction == 1.0
+    assert math.isnan(m.ssi) and m.stuck_fraction == 1.0
     # |omega| = 0.1 |t - 0.5| * 2 <= 0.05 for |t - 0.5| <= 0.25: half the time
     half = metrics_module.stick_slip_metrics(t, 0.2 * np.abs(t - 0.5), stick_speed=0.05)
     assert half.stuck_fraction == pytest.approx(0.5, abs=1e-12)

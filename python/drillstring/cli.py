@@ -721,8 +721,8 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
     res = lumped(params, duration=args.duration, initial=args.initial)
     m = res.metrics
     _say(f"run from ({', '.join(f'{x:g}' for x in args.initial)}), window {res.window[0]:g}-{res.window[1]:g} s: "
-         f"SSI {m.severity:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.cycle_period:.4g} s, "
-         f"bit {m.rpm_min:.4g}..{m.rpm_max:.4g} rpm (mean {m.rpm_mean:.4g}), energy balance "
+         f"SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.period_s:.4g} s, "
+         f"bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), energy balance "
          f"{res.energy['balance_error']:.2g}")
     _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
          f"{'settled' if m.settled else 'not settled'}")

@@ -46,7 +46,8 @@ from .. import _core
 from ..errors import ValidationError
 from ..limits import INT64_MAX, as_int, check_run_count, memory_budget
 from .config import DrillConfig, _load_document, _plain
-from .result import _CORE_METRICS, DrillMetrics
+from .metrics import core_value
+from .result import METRICS
 from .solve import ConfigLike, _config
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -58,8 +59,8 @@ __all__ = ["CONTROLLER_AXIS", "METRIC_COLUMNS", "controller_maps", "drill_map", 
 #: The axis of the controller type (one panel per controller in :func:`controller_maps`).
 CONTROLLER_AXIS = "top_drive.controller.type"
 
-#: The metric columns of a map, in order (the fields of :class:`DrillMetrics`, as in ``metrics.json``).
-METRIC_COLUMNS: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(DrillMetrics))
+#: The metric columns of a map, in order (those of ``metrics.json``, :data:`~drillstring.drilling.result.METRICS`).
+METRIC_COLUMNS: tuple[str, ...] = METRICS
 
 #: Runs per stored chunk of a map with ``out`` (default).
 CHUNK_SIZE = 100
@@ -480,7 +481,8 @@ def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: M
     columns["message"] = list(raw["message"])
     metrics = raw["metrics"]
     for name in METRIC_COLUMNS:
-        columns[name] = np.asarray(metrics.get(_CORE_METRICS.get(name, name), []), dtype=float)
+        value = core_value(metrics, name)
+        columns[name] = np.asarray([] if value is None else value, dtype=float)
     for name in STAT_COLUMNS:
         columns[name] = np.asarray(raw["stats"].get(name, []))
     frame = pd.DataFrame(columns)

@@ -3,8 +3,12 @@
 
 from __future__ import annotations
 
+import dataclasses
+import math
+import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional
+from typing import TYPE_CHECKING, Any, Optional, TypeVar, cast
 
 import numpy as np
 
@@ -15,44 +19,85 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
 
-__all__ = ["STICK_SPEED", "StickSlipMetrics", "stick_slip_metrics", "break_off_torque"]
+__all__ = ["STICK_SPEED", "CORE_NAMES", "StickSlipMetrics", "stick_slip_metrics", "break_off_torque"]
 
 
 #: Default stick threshold speed of :func:`stick_slip_metrics`, rad/s (about 0.1 rpm).
 STICK_SPEED: float = _core.STICK_SPEED
 
 
+#: The core's names of the metrics (``drillstring_core::metrics::stickslip`` and the dicts of
+#: ``_core.drill_solve``, ``_core.drill_map``, ``_core.lumped_solve``) by their names here, the
+#: drilling names of ``metrics.json`` and a map's columns. The core's names of the stick-slip
+#: metrics were this package's names before, and work for one release as properties that warn.
+CORE_NAMES: dict[str, str] = {
+    "window_start": "t_start",
+    "window_end": "t_end",
+    "ssi": "severity",
+    "bit_rpm_min": "rpm_min",
+    "bit_rpm_max": "rpm_max",
+    "bit_rpm_mean": "rpm_mean",
+    "motor_torque_min_Nm": "torque_min",
+    "motor_torque_max_Nm": "torque_max",
+    "period_s": "cycle_period",
+    "slip_period_s": "slip_period",
+    "breakoff_torque_Nm": "breakoff_torque",
+    "min_cycle_torque_Nm": "min_cycle_torque",
+}
+
+#: The metrics that are verdicts (booleans; 1 / 0 in a map's table) and counts.
+VERDICTS = ("stick_slip", "settled")
+_COUNTS = ("slip_onsets",)
+
+
+def core_value(d: Mapping[str, Any], name: str) -> Any:
+    """The metric ``name`` of a dict of the core: under its own name when the dict has it (a drill
+    run's ``window_start``, the window asked for), else under the core's name (None if absent)."""
+    return d[name] if name in d else d.get(CORE_NAMES.get(name, name))
+
+
+_M = TypeVar("_M", bound="StickSlipMetrics")
+
+
+def _old_name(self: StickSlipMetrics, old: str, new: str) -> Any:
+    warnings.warn(f"{type(self).__name__}.{old} is deprecated: use .{new} (the old name works for one release)",
+                  DeprecationWarning, stacklevel=3)
+    return getattr(self, new)
+
+
 @dataclass(frozen=True)
 class StickSlipMetrics:
-    """Stick-slip metrics of one window (see :func:`stick_slip_metrics`)."""
+    """Stick-slip metrics of one window (see :func:`stick_slip_metrics`), by the names of
+    ``metrics.json``. NaN where a metric is undefined (no torque series, no full cycle)."""
 
-    t_start: float
-    """First sample time in the window, s."""
-    t_end: float
-    """Last sample time in the window, s."""
-    severity: float
-    """``(max - min) / (2 |mean|)`` of the bit speed (NaN when the mean is 0)."""
+    window_start: float
+    """Start of the window the metrics cover, s: its first sample (a drill run's
+    :class:`~drillstring.drilling.DrillMetrics`: the window asked for)."""
+    window_end: float
+    """End of the window, s: its last sample (a drill run's: the window asked for)."""
+    ssi: float
+    """Stick-slip severity ``(max - min) / (2 |mean|)`` of the bit speed (NaN when the mean is 0)."""
     stuck_fraction: float
     """Fraction of the window's time with ``|omega_bit| <= stick_speed``."""
-    rpm_min: float
-    rpm_max: float
-    rpm_mean: float
+    bit_rpm_min: float
+    bit_rpm_max: float
+    bit_rpm_mean: float
     """Time-weighted (trapezoidal) mean bit speed, rpm."""
-    torque_min: float
-    """Motor torque minimum (NaN without a torque series)."""
-    torque_max: float
-    cycle_period: float
-    """The motor torque's period from its autocorrelation (the similarity of the series with
-    itself shifted, searched up to half the window), s (NaN with fewer than two cycles in the
-    window or without a torque series)."""
+    motor_torque_min_Nm: float
+    """Motor torque minimum (NaN without a torque series; the lumped model's spring torque)."""
+    motor_torque_max_Nm: float
+    period_s: float
+    """Stick-slip period, s: the motor torque's period from its autocorrelation (the similarity of
+    the series with itself shifted, searched up to half the window); NaN with fewer than two cycles
+    in the window or without a torque series. It does not depend on where the window starts."""
     period_cycles: float
     """The window's length in periods (NaN without one)."""
     periodicity: float
     """Similarity of the motor torque with itself one period later (1: exactly periodic)."""
-    slip_period: float
-    """Mean interval between the bit's slip onsets (its speed rising through ``stick_speed`` in
-    the direction of its mean, for a slip that carries it above its mean speed), s (NaN with
-    fewer than three)."""
+    slip_period_s: float
+    """Cross-check of ``period_s``: the mean interval between the bit's slip onsets (its speed
+    rising through ``stick_speed`` in the direction of its mean, for a slip that carries it above
+    its mean speed; a partial slip is no cycle), s (NaN with fewer than three)."""
     slip_onsets: int
     """Slip onsets of the bit in the window."""
     stick_slip: bool
@@ -64,6 +109,80 @@ class StickSlipMetrics:
     means: not a transient."""
     warnings: tuple[str, ...] = ()
     """What in these metrics cannot be trusted as it stands (empty when all can)."""
+
+    @classmethod
+    def from_core(cls: type[_M], d: Mapping[str, Any]) -> _M:
+        """From a metrics dict of the core (its names, :data:`CORE_NAMES`; ``None`` read as NaN, the
+        ``warnings`` list as a tuple)."""
+        values: dict[str, Any] = {}
+        for f in dataclasses.fields(cls):
+            value = core_value(d, f.name)
+            if f.name == "warnings":
+                values[f.name] = tuple(str(w) for w in (value or ()))
+            elif f.name in VERDICTS:
+                values[f.name] = bool(value)
+            elif f.name in _COUNTS:
+                values[f.name] = int(value)
+            else:
+                values[f.name] = math.nan if value is None else float(value)
+        return cls(**values)
+
+    @property
+    def window(self) -> tuple[float, float]:
+        """``(window_start, window_end)``, s."""
+        return (self.window_start, self.window_end)
+
+    # The names before the drilling names, for one release (each warns).
+
+    @property
+    def t_start(self) -> float:
+        """Deprecated: :attr:`window_start`."""
+        return cast(float, _old_name(self, "t_start", "window_start"))
+
+    @property
+    def t_end(self) -> float:
+        """Deprecated: :attr:`window_end`."""
+        return cast(float, _old_name(self, "t_end", "window_end"))
+
+    @property
+    def severity(self) -> float:
+        """Deprecated: :attr:`ssi`."""
+        return cast(float, _old_name(self, "severity", "ssi"))
+
+    @property
+    def rpm_min(self) -> float:
+        """Deprecated: :attr:`bit_rpm_min`."""
+        return cast(float, _old_name(self, "rpm_min", "bit_rpm_min"))
+
+    @property
+    def rpm_max(self) -> float:
+        """Deprecated: :attr:`bit_rpm_max`."""
+        return cast(float, _old_name(self, "rpm_max", "bit_rpm_max"))
+
+    @property
+    def rpm_mean(self) -> float:
+        """Deprecated: :attr:`bit_rpm_mean`."""
+        return cast(float, _old_name(self, "rpm_mean", "bit_rpm_mean"))
+
+    @property
+    def torque_min(self) -> float:
+        """Deprecated: :attr:`motor_torque_min_Nm`."""
+        return cast(float, _old_name(self, "torque_min", "motor_torque_min_Nm"))
+
+    @property
+    def torque_max(self) -> float:
+        """Deprecated: :attr:`motor_torque_max_Nm`."""
+        return cast(float, _old_name(self, "torque_max", "motor_torque_max_Nm"))
+
+    @property
+    def cycle_period(self) -> float:
+        """Deprecated: :attr:`period_s`."""
+        return cast(float, _old_name(self, "cycle_period", "period_s"))
+
+    @property
+    def slip_period(self) -> float:
+        """Deprecated: :attr:`slip_period_s`."""
+        return cast(float, _old_name(self, "slip_period", "slip_period_s"))
 
 
 def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:
@@ -103,9 +222,8 @@ def stick_slip_metrics(
     Returns
     -------
     StickSlipMetrics
-        Severity ``SSI = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
-        min / max / mean, motor torque min / max and its cycle period (the mean interval
-        between upward crossings of its mean, one per cycle).
+        Severity ``ssi = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
+        min / max / mean, motor torque min / max and its period ``period_s``.
 
     Raises
     ------
@@ -128,12 +246,7 @@ def stick_slip_metrics(
     d = _core.stick_slip_metrics(
         ta, _series("omega_bit", omega_bit), torque, window=span, stick_speed=float(stick_speed)
     )
-    return stick_slip_from_core(d)
-
-
-def stick_slip_from_core(d: Any) -> StickSlipMetrics:
-    """:class:`StickSlipMetrics` from the core's dict (its ``warnings`` list as a tuple)."""
-    return StickSlipMetrics(**{**d, "warnings": tuple(d.get("warnings", ()))})
+    return StickSlipMetrics.from_core(d)
 
 
 def break_off_torque(depth: ArrayLike, limit: ArrayLike) -> float:
