@@ -25,8 +25,7 @@ def test_all_lists_functions_classes_and_constants_not_modules():
     for name in ds.__all__:
         assert hasattr(ds, name), name
         assert not isinstance(getattr(ds, name), types.ModuleType), name
-    for module in ("analysis", "coefficients", "convergence", "galerkin", "grid", "limits", "paper", "pde",
-                   "plots", "section", "stability"):
+    for module in ("drilling", "io", "limits", "model", "plots", "report", "solvers", "studies"):
         assert isinstance(getattr(ds, module), types.ModuleType) and module not in ds.__all__
 
 

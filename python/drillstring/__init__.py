@@ -73,7 +73,7 @@ if TYPE_CHECKING:  # pragma: no cover
     @overload
     def sweep(
         base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
+        axes: Optional[Mapping[str, Any]] = ...,
         *,
         runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
         modes: int = ...,
@@ -92,12 +92,13 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[False] = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
     ) -> pd.DataFrame: ...
 
     @overload
     def sweep(
         base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
+        axes: Optional[Mapping[str, Any]] = ...,
         *,
         runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
         modes: int = ...,
@@ -116,12 +117,13 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[True],
+        grid: Optional[Mapping[str, Any]] = ...,
     ) -> tuple[pd.DataFrame, SweepTrajectories]: ...
 
     @overload
     def sweep(
         base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
+        axes: Optional[Mapping[str, Any]] = ...,
         *,
         runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
         modes: int = ...,
@@ -140,6 +142,7 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: bool = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
     ) -> Union[pd.DataFrame, tuple[pd.DataFrame, SweepTrajectories]]: ...
 
     def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only

@@ -1,9 +1,9 @@
-"""Sweep grids: axes of :class:`~drillstring.model.parameters.Parameters` fields and their product.
+"""Sweep axes: values of :class:`~drillstring.model.parameters.Parameters` fields and their product.
 
-A grid is a mapping ``{field: values}``. The keys are :class:`Parameters` field names, or
-``c1``, ``c2``, ..., ``c256`` for one initial velocity ``C_i`` (the other ``C_j`` keep their base
-values; missing ones are 0; ``i`` is at most :data:`~drillstring.model.galerkin.MAX_MODES`, the largest
-model). The values are
+The axes are a mapping ``{field: values}`` (a sweep file's ``[grid]`` table). The keys are
+:class:`Parameters` field names, or ``c1``, ``c2``, ..., ``c256`` for one initial velocity ``C_i``
+(the other ``C_j`` keep their base values; missing ones are 0; ``i`` is at most
+:data:`~drillstring.model.galerkin.MAX_MODES`, the largest model). The values are
 
 * a list, tuple or 1-D array of values (``initial_velocities``: a list of sequences);
 * ``{"linspace": [start, stop, count]}``: ``count`` evenly spaced values, both ends included
@@ -13,8 +13,9 @@ model). The values are
   ``stop`` are the end *values*, not powers of ten as in ``numpy.logspace``;
 * a single value (a one-point axis).
 
-:func:`linspace` and :func:`logspace` build the two dicts in Python. The runs of a grid are the
-Cartesian product of its axes in the order given, the last axis varying fastest.
+:func:`linspace` and :func:`logspace` build the two dicts in Python. The runs are the
+Cartesian product of the axes in the order given, the last axis varying fastest
+(:func:`expand_axes`).
 """
 
 from __future__ import annotations
@@ -23,10 +24,11 @@ import itertools
 import math
 import re
 from collections.abc import Mapping, Sequence
-from typing import Any, Union
+from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
+from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import as_float, as_int, check_run_count
 from ..model.galerkin import MAX_MODES
@@ -36,7 +38,7 @@ __all__ = [
     "linspace",
     "logspace",
     "axis_values",
-    "expand_grid",
+    "expand_axes",
     "grid_fields",
     "run_overrides",
     "apply_overrides",
@@ -44,7 +46,7 @@ __all__ = [
 
 _VELOCITY_KEY = re.compile(r"^c([1-9][0-9]*)$")
 
-Grid = Mapping[str, Any]
+Axes = Mapping[str, Any]
 
 
 def linspace(start: float, stop: float, count: int) -> dict[str, list[float]]:
@@ -133,8 +135,9 @@ def axis_values(key: str, spec: Any) -> list[Any]:
     return [_plain(spec)]
 
 
-def expand_grid(grid: Grid) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
-    """Axes ``{key: values}`` and the runs of the Cartesian product, each a dict of overrides.
+def expand_axes(axes: Axes) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
+    """The values of each axis ``{key: values}`` and the runs of their Cartesian product, each a
+    dict of overrides. Errors name the field as a sweep file does (``grid.length``).
 
     Raises
     ------
@@ -142,14 +145,14 @@ def expand_grid(grid: Grid) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]
         For an unknown key or a malformed axis, or a product of more runs than the memory
         budget allows to plan (:func:`drillstring.limits.check_run_count`), before listing them.
     """
-    if not isinstance(grid, Mapping):
-        raise ValidationError("grid", grid, "a mapping {Parameters field: values}")
-    axes = {_check_key(key): axis_values(key, spec) for key, spec in grid.items()}
-    sizes = [len(values) for values in axes.values()]
-    check_run_count("grid", " x ".join(f"{len(v)} {k}" for k, v in axes.items()), math.prod(sizes))
-    names = list(axes)
-    runs = [dict(zip(names, combo)) for combo in itertools.product(*axes.values())]
-    return axes, runs
+    if not isinstance(axes, Mapping):
+        raise ValidationError("grid", axes, "a mapping {Parameters field: values}")
+    values = {_check_key(key): axis_values(key, spec) for key, spec in axes.items()}
+    sizes = [len(v) for v in values.values()]
+    check_run_count("grid", " x ".join(f"{len(v)} {k}" for k, v in values.items()), math.prod(sizes))
+    names = list(values)
+    runs = [dict(zip(names, combo)) for combo in itertools.product(*values.values())]
+    return values, runs
 
 
 def run_overrides(run: Union[Parameters, Mapping[str, Any]]) -> dict[str, Any]:
@@ -180,3 +183,13 @@ def apply_overrides(base: dict[str, Any], overrides: Mapping[str, Any]) -> dict[
             velocities[i - 1] = value
         full["initial_velocities"] = velocities
     return full
+
+
+#: Old names, for one release: ``expand_grid`` is :func:`expand_axes`, ``Grid`` is ``Axes``
+#: ("grid" names the cells of a model only; a sweep file keeps its ``[grid]`` table).
+_RENAMED = {"expand_grid": "expand_axes", "Grid": "Axes"}
+
+if not TYPE_CHECKING:
+
+    def __getattr__(name: str) -> Any:
+        return renamed(__name__, name, globals())

@@ -9,7 +9,7 @@
 
 How it works
 ------------
-The runs (the Cartesian product of a grid, see :mod:`drillstring.studies.sweep_axes`, or an explicit list)
+The runs (the Cartesian product of axes, see :mod:`drillstring.studies.sweep_axes`, or an explicit list)
 are split into chunks of ``chunk_size`` runs. A chunk is solved by one call of the Rust batch
 solver (``drillstring._core.batch_solve``): each run's ``k1..k6`` (eq. 17) scale the
 dimensionless Galerkin integrals of the basis, generated once, into its modal system; the runs
@@ -88,7 +88,7 @@ from ..model.coefficients import PDECoefficients
 from ..model.galerkin import dimensionless_integrals
 from ..model.parameters import CHOICE_FIELDS, Parameters, preset
 from ..solvers.modal import FIXED_STEP_METHODS, SWEEP_METHODS, check_solver_options
-from .sweep_axes import apply_overrides, expand_grid, linspace, logspace, run_overrides
+from .sweep_axes import apply_overrides, expand_axes, linspace, logspace, run_overrides
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -400,28 +400,28 @@ def _base(base_params: Any) -> Parameters:
 
 
 def _plan(
-    base: Parameters, grid: Optional[Mapping[str, Any]], runs: Optional[Iterable[Any]]
+    base: Parameters, axes: Optional[Mapping[str, Any]], runs: Optional[Iterable[Any]]
 ) -> tuple[dict[str, list[Any]], list[dict[str, Any]]]:
-    if grid is not None and runs is not None:
-        raise ValidationError("runs", "both grid and runs", "either a grid or an explicit list of runs")
+    if axes is not None and runs is not None:
+        raise ValidationError("runs", "both axes and runs", "either axes or an explicit list of runs")
     if runs is not None:
         if isinstance(runs, (str, bytes, Mapping)) or not isinstance(runs, Iterable):
             raise ValidationError("runs", runs, "a list of Parameters or of mappings {field: value}")
         overrides = [run_overrides(r) for r in runs]
         if not overrides:
             raise ValidationError("runs", [], "at least one run")
-        axes: dict[str, list[Any]] = {}
-    elif grid is not None:
-        axes, overrides = expand_grid(grid)
+        named: dict[str, list[Any]] = {}
+    elif axes is not None:
+        named, overrides = expand_axes(axes)
     else:
-        axes, overrides = {}, [{}]
+        named, overrides = {}, [{}]
     base_dict = base.to_dict()
-    return axes, [apply_overrides(base_dict, o) for o in overrides]
+    return named, [apply_overrides(base_dict, o) for o in overrides]
 
 
 def sweep(
     base_params: Union[Parameters, str, Mapping[str, Any], None] = None,
-    grid: Optional[Mapping[str, Any]] = None,
+    axes: Optional[Mapping[str, Any]] = None,
     *,
     runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = None,
     modes: int = 3,
@@ -440,19 +440,21 @@ def sweep(
     client: Any = None,
     progress: Optional[bool] = None,
     trajectories: bool = False,
+    grid: Optional[Mapping[str, Any]] = None,
 ) -> Any:
-    """Solve the Galerkin model for every parameter set of a grid (or list); one row per run.
+    """Solve the Galerkin model for every parameter set of the product of axes (or a list); one row per run.
 
     Parameters
     ----------
     base_params : Parameters, str or mapping, optional
-        The parameters the grid varies (a preset name or a ``{field: value}`` mapping with an
+        The parameters the axes vary (a preset name or a ``{field: value}`` mapping with an
         optional ``"preset"`` key are accepted); default :class:`Parameters()`.
-    grid : mapping, optional
+    axes : mapping, optional
         ``{field: values}``; the runs are the Cartesian product (:mod:`drillstring.studies.sweep_axes`:
-        lists, :func:`linspace`, :func:`logspace`, ``c1``/``c2``/... for single velocities).
+        lists, :func:`linspace`, :func:`logspace`, ``c1``/``c2``/... for single velocities). A
+        sweep file holds them in its ``[grid]`` table.
     runs : list of Parameters or mappings, optional
-        Instead of ``grid``: explicit parameter sets (a mapping overrides fields of
+        Instead of ``axes``: explicit parameter sets (a mapping overrides fields of
         ``base_params``). An invalid set becomes a row with status ``"invalid"``.
     modes, rigid_mode : int, bool
         The basis, as in :func:`~drillstring.solvers.modal.simulate`.
@@ -477,23 +479,31 @@ def sweep(
     trajectories : bool
         Also return every run's samples: the result is ``(table, SweepTrajectories)``. Only
         without ``out_dir`` and ``client``.
+    grid : mapping, optional
+        Deprecated name of ``axes`` (warns; works for one release).
 
     Returns
     -------
     pandas.DataFrame
         One row per run in run order (columns: see the module docstring); ``attrs["axes"]``
-        holds the grid axes, ``attrs["solver"]`` the solver options.
+        holds the axes, ``attrs["solver"]`` the solver options.
 
     Raises
     ------
     ValidationError
-        For bad shared input (solver options, grid keys, a foreign ``out_dir``); a bad
+        For bad shared input (solver options, axis keys, a foreign ``out_dir``); a bad
         parameter set is a row, not an error.
     ImportError
         Without dask for ``client`` (``pip install '.[dask]'`` in the drillstring checkout).
     """
+    if grid is not None:
+        warnings.warn("sweep(grid=...) is deprecated: use sweep(axes=...) (the old keyword works for one release)",
+                      DeprecationWarning, stacklevel=2)
+        if axes is not None:
+            raise ValidationError("grid", "both axes and grid", "axes only (grid is its deprecated name)")
+        axes = grid
     base = _base(base_params)
-    axes, fulls = _plan(base, grid, runs)
+    named, fulls = _plan(base, axes, runs)
     method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
         method, t_end, rtol, atol, dt, max_steps, methods=SWEEP_METHODS
     )
@@ -550,7 +560,7 @@ def sweep(
             "runs": len(fulls),
         }
         fingerprint = _digest({**identity, "parameters": fulls})
-        manifest = {**identity, "fingerprint": fingerprint, "chunks": len(tasks), "axes": list(axes)}
+        manifest = {**identity, "fingerprint": fingerprint, "chunks": len(tasks), "axes": list(named)}
         store = SweepStore.open(out_dir, manifest)
     try:
         table, raws = _run_tasks(tasks, names, store, fingerprint, client, len(fulls), progress)
@@ -559,7 +569,7 @@ def sweep(
     finally:
         if store is not None:
             store.close()
-    table.attrs["axes"] = {key: values for key, values in axes.items()}
+    table.attrs["axes"] = {key: values for key, values in named.items()}
     table.attrs["solver"] = dict(solver)
     if not trajectories:
         return table
