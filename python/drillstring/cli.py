@@ -32,8 +32,9 @@ from ._core import __version__
 from .errors import DrillstringError, DrillstringWarning, ValidationError
 from .io.output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
 from .io.progress import on_terminal
+from .io.toml import load_toml, toml_key_line, with_toml_line
 from .limits import INT64_MAX, as_float, check_run_count, memory_budget
-from .model.parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
+from .model.parameters import MODELS, PRESETS, Parameters, load, preset
 from .solvers.modal import METHODS, PDE_METHODS, simulate
 from .solvers.trajectory import default_section
 from .studies.table2 import format_table2, table2, table2_json

@@ -582,7 +582,7 @@ def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
 
 
 def _load_document(path: PathLike) -> dict[str, Any]:
-    from ..model.parameters import load_toml
+    from ..io.toml import load_toml
 
     return load_toml(path)
 
