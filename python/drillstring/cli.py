@@ -264,7 +264,7 @@ def _plot_target(args: argparse.Namespace) -> Any:
     """The file ``--plot`` writes (an extension appended as matplotlib does), or ``None``."""
     if not args.plot:
         return None
-    from .plots import plot_path
+    from .io.figures import plot_path
 
     return plot_path(args.plot, "--plot")
 
@@ -281,7 +281,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.out:
         _wrote(result.to_csv(args.out, z), info)
     if plot:
-        from .plots import save, time_history_and_phase
+        from .io.figures import save
+        from .plots import time_history_and_phase
 
         _wrote(save(time_history_and_phase(result, z), plot), info)
     return 0
@@ -327,7 +328,8 @@ def _cmd_pde(args: argparse.Namespace) -> int:
     if field:
         _wrote(result.save_field(field), info)
     if plot:
-        from .plots import save, space_time
+        from .io.figures import save
+        from .plots import space_time
 
         _wrote(save(space_time(result, z), plot), info)
     return 0
@@ -733,8 +735,8 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
         import pandas as pd
 
         from .drilling.lumped import lumped_figure
+        from .io.figures import save
         from .io.output import make_directory, write_text
-        from .plots import save
 
         make_directory(args.out)
         series = pd.DataFrame({"t_s": res.t, "top_speed_rad_s": res.top_speed, "bit_speed_rad_s": res.bit_speed,
@@ -767,8 +769,8 @@ def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
              f"SSI {row['ssi']:.3g}, stuck fraction {row['stuck_fraction']:.3g}, "
              f"bit {row['bit_rpm_min']:.4g}..{row['bit_rpm_max']:.4g} rpm")
     if args.out is not None:
+        from .io.figures import save
         from .io.output import make_directory, write_text
-        from .plots import save
 
         make_directory(args.out)
         written = [write_text(os.path.join(args.out, "lumped_sweep.csv"), frame.to_csv(index=False)),
@@ -885,7 +887,7 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
                write_text(os.path.join(args.out, "config.toml"), config.to_toml())]
     if not args.no_plots:
         from .drilling.maps import map_figures
-        from .plots import save
+        from .io.figures import save
 
         for name, fig in map_figures(frame).items():
             written.append(save(fig, os.path.join(args.out, name)))

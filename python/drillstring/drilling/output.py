@@ -152,7 +152,7 @@ def _write_files(result: DrillResult, directory: Path, plots: bool) -> list[Path
     written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
     written.append(write_text(path("config.toml"), result.config.to_toml()))
     if plots:
-        from ..plots import save
+        from ..io.figures import save
         from .plots import space_time_maps, time_histories, torque_depth
 
         for name, make in zip(PLOT_FILES, (time_histories, space_time_maps, torque_depth)):

@@ -219,7 +219,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
                                         suffix=".csv"))
         written.append(write_text(path("config.toml"), result.config.to_toml()))
         if plots:
-            from ..plots import save
+            from ..io.figures import save
 
             for name, make in zip(TD_PLOT_FILES, (profiles_figure, broomstick_figure, well_path_figure)):
                 written.append(Path(os.fsdecode(os.fspath(save(make(result), path(name))))))
