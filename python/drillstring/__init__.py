@@ -29,6 +29,7 @@ configuration values; the package :mod:`drillstring.drilling` holds the configur
 
 from __future__ import annotations
 
+import importlib as _importlib
 from typing import TYPE_CHECKING
 
 # The modules, re-exported as attributes (``x as x``), not part of ``__all__``.
@@ -191,6 +192,15 @@ __all__ = [
     "SolveError",
 ]
 
+
+# An old module path named like a function of the package (``drillstring.simulate``) is loaded
+# now, as it was when it was the function's module: importing it later would rebind the package's
+# attribute (``ds.simulate``) to the module.
+for _name in ("simulate",):
+    _function = globals()[_name]
+    _importlib.import_module(f"{__name__}.{_name}")
+    globals()[_name] = _function
+del _name, _function
 
 #: The package's modules before its layout by subject, each attribute name -> its new module:
 #: ``ds.<old>`` works for one release and warns.
