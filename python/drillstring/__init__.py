@@ -9,22 +9,27 @@ Quick start
 >>> import drillstring as ds
 >>> params = ds.preset("aluminum")              # Table 1, C = (0.1, 0.05, 0.02)
 >>> res = ds.simulate(params, modes=3, t_end=1.0)
->>> theta_k = res.theta(ds.result.default_section(params.length))  # twist at z_k = 2l/3, rad
+>>> theta_k = res.theta(ds.solvers.trajectory.default_section(params.length))  # z_k = 2l/3, rad
 >>> res.energy_drift() < 1e-6
 True
 
 The API
 -------
-``__all__`` lists the functions, classes and constants above; the modules behind them
-(``analysis``, ``coefficients``, ``convergence``, ``drilling``, ``galerkin``, ``grid``, ``limits``,
-``paper``, ``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
-``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps`` (``import drillstring.studies.sweeps``).
-``ds.table2`` is the function; its module is ``drillstring.studies.table2``.
+``__all__`` lists the functions, classes and constants above. The subpackages are attributes of
+the package as well: ``model`` (the paper's model: ``parameters``, ``cross_section``,
+``coefficients``, ``galerkin``), ``solvers`` (``modal``, ``pde``, ``trajectory``), ``studies``
+(``analysis``, ``stability``, ``convergence``, ``sweeps``, ``sweep_axes``, ``table2``),
+``drilling`` (the drilling system, its stick-slip ``metrics``, torque and drag, the lumped
+model), ``io`` (files, figures, TOML, progress, the sweep store), and the modules ``limits`` and
+``plots``; ``report`` (the reproduction report, ``drillstring paper``) is loaded on first use.
+``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps``.
+``ds.table2`` is the function; its module is ``drillstring.studies.table2``. The modules' old
+paths (``drillstring.analysis``, ``drillstring.paper``, ...) work for one release and warn.
 
 The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
 ``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
-:class:`DrillResult`, ``ds.drill_map(config, axes)`` a table of stick-slip metrics over a grid of
-configuration values; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
+:class:`DrillResult`, ``ds.drill_map(config, axes)`` a table of stick-slip metrics over the product
+of axes of configuration values; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
 """
 
 from __future__ import annotations
@@ -192,6 +197,11 @@ __all__ = [
     "SolveError",
 ]
 
+
+# The modules that were attributes of the package before its layout by subject are loaded with
+# it as before, so that ``ds.studies.stability``, ``ds.model.cross_section``, ... need no import.
+for _name in ("model.cross_section", "studies.analysis", "studies.convergence", "studies.stability"):
+    _importlib.import_module(f"{__name__}.{_name}")
 
 # An old module path named like a function of the package (``drillstring.simulate``) is loaded
 # now, as it was when it was the function's module: importing it later would rebind the package's
