@@ -8,7 +8,7 @@ import math
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional, TypeVar, cast
+from typing import TYPE_CHECKING, Any, Optional, TypeVar
 
 import numpy as np
 
@@ -59,10 +59,23 @@ def core_value(d: Mapping[str, Any], name: str) -> Any:
 _M = TypeVar("_M", bound="StickSlipMetrics")
 
 
-def _old_name(self: StickSlipMetrics, old: str, new: str) -> Any:
-    warnings.warn(f"{type(self).__name__}.{old} is deprecated: use .{new} (the old name works for one release)",
-                  DeprecationWarning, stacklevel=3)
-    return getattr(self, new)
+class _OldName:
+    """A metric under its old name (read-only): the value of ``new``, with a DeprecationWarning at
+    the caller's line."""
+
+    def __init__(self, new: str) -> None:
+        self.new = new
+        self.old = new
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.old = name
+
+    def __get__(self, instance: Any, owner: Optional[type] = None) -> Any:
+        if instance is None:
+            return self
+        warnings.warn(f"{type(instance).__name__}.{self.old} is deprecated: use .{self.new} (the old name works "
+                      "for one release)", DeprecationWarning, stacklevel=2)
+        return getattr(instance, self.new)
 
 
 @dataclass(frozen=True)
@@ -132,57 +145,17 @@ class StickSlipMetrics:
         """``(window_start, window_end)``, s."""
         return (self.window_start, self.window_end)
 
-    # The names before the drilling names, for one release (each warns).
-
-    @property
-    def t_start(self) -> float:
-        """Deprecated: :attr:`window_start`."""
-        return cast(float, _old_name(self, "t_start", "window_start"))
-
-    @property
-    def t_end(self) -> float:
-        """Deprecated: :attr:`window_end`."""
-        return cast(float, _old_name(self, "t_end", "window_end"))
-
-    @property
-    def severity(self) -> float:
-        """Deprecated: :attr:`ssi`."""
-        return cast(float, _old_name(self, "severity", "ssi"))
-
-    @property
-    def rpm_min(self) -> float:
-        """Deprecated: :attr:`bit_rpm_min`."""
-        return cast(float, _old_name(self, "rpm_min", "bit_rpm_min"))
-
-    @property
-    def rpm_max(self) -> float:
-        """Deprecated: :attr:`bit_rpm_max`."""
-        return cast(float, _old_name(self, "rpm_max", "bit_rpm_max"))
-
-    @property
-    def rpm_mean(self) -> float:
-        """Deprecated: :attr:`bit_rpm_mean`."""
-        return cast(float, _old_name(self, "rpm_mean", "bit_rpm_mean"))
-
-    @property
-    def torque_min(self) -> float:
-        """Deprecated: :attr:`motor_torque_min_Nm`."""
-        return cast(float, _old_name(self, "torque_min", "motor_torque_min_Nm"))
-
-    @property
-    def torque_max(self) -> float:
-        """Deprecated: :attr:`motor_torque_max_Nm`."""
-        return cast(float, _old_name(self, "torque_max", "motor_torque_max_Nm"))
-
-    @property
-    def cycle_period(self) -> float:
-        """Deprecated: :attr:`period_s`."""
-        return cast(float, _old_name(self, "cycle_period", "period_s"))
-
-    @property
-    def slip_period(self) -> float:
-        """Deprecated: :attr:`slip_period_s`."""
-        return cast(float, _old_name(self, "slip_period", "slip_period_s"))
+    # The names before the drilling names (the core's), for one release: each warns.
+    t_start = _OldName("window_start")
+    t_end = _OldName("window_end")
+    severity = _OldName("ssi")
+    rpm_min = _OldName("bit_rpm_min")
+    rpm_max = _OldName("bit_rpm_max")
+    rpm_mean = _OldName("bit_rpm_mean")
+    torque_min = _OldName("motor_torque_min_Nm")
+    torque_max = _OldName("motor_torque_max_Nm")
+    cycle_period = _OldName("period_s")
+    slip_period = _OldName("slip_period_s")
 
 
 def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:
