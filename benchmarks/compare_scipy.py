@@ -109,7 +109,7 @@ def main() -> None:
 
     params = ds.preset("aluminum")
     t_eval = np.linspace(0.0, 1.0, args.samples)
-    coeff = ds.galerkin.project(params, modes=3)
+    coeff = ds.model.galerkin.project(params, modes=3)
     q0, v0 = coeff.initial_state(params)
     m = len(coeff.indices)
     system = coeff.core_system(0.0, "auto")

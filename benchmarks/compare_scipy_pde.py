@@ -26,7 +26,7 @@ import numpy as np
 from _evalcost import per_call_time
 
 import drillstring as ds
-from drillstring.coefficients import PDECoefficients
+from drillstring.model.coefficients import PDECoefficients
 
 RTOL, ATOL = 1e-10, 1e-13
 
@@ -91,7 +91,7 @@ def main() -> None:
     params = ds.preset("aluminum")
     nodes = args.nodes
     t_eval = np.linspace(0.0, 1.0, 101)
-    system = ds.pde.pde_system(params, nodes)
+    system = ds.solvers.pde.pde_system(params, nodes)
     v0 = np.asarray(system.initial_velocity_from_modes(np.asarray(params.initial_velocities)))
     y0 = np.concatenate([np.zeros(nodes), v0])
     rhs = numpy_rhs(params, nodes)

@@ -3,7 +3,7 @@
 Aluminium preset (Table 1), C = (0.1, 0.05, 0.02) on modes 1-3, the rigid mode included (n + 1
 coordinates), DOP853, rtol = 1e-10, atol = 1e-12, output only at t = 0 and t_end. Per size n:
 
-* terms: quartic terms of the basis (``drillstring.galerkin.dimensionless_integrals(n, True)``);
+* terms: quartic terms of the basis (``drillstring.model.galerkin.dimensionless_integrals(n, True)``);
 * setup: ``galerkin.project`` + building the core ``ModalSystem`` (``core_system()``: the term
   sum below ``_core.SPECTRAL_MIN_MODES`` retained modes, the pseudo-spectral evaluation from there
   on; column "rhs") (best of the repeats), which ``ds.simulate`` does before it integrates;
@@ -39,7 +39,7 @@ RTOL, ATOL = 1e-10, 1e-12
 
 
 def build(params: ds.Parameters, n: int):
-    coeff = ds.galerkin.project(params, modes=n, rigid_mode=True)
+    coeff = ds.model.galerkin.project(params, modes=n, rigid_mode=True)
     return coeff, coeff.core_system()
 
 
@@ -76,7 +76,7 @@ def main() -> None:
     print("-" * len(head))
     rows = []
     for n in args.modes:
-        terms = ds.galerkin.dimensionless_integrals(n, True).n_terms
+        terms = ds.model.galerkin.dimensionless_integrals(n, True).n_terms
         setup = float("inf")
         for _ in range(max(1, args.repeat)):
             start = time.perf_counter()

@@ -34,7 +34,7 @@ def main() -> None:
     print(head)
     print("-" * len(head))
     for n in args.modes:
-        coeff = ds.galerkin.project(params, modes=n, rigid_mode=True)
+        coeff = ds.model.galerkin.project(params, modes=n, rigid_mode=True)
         q0, v0 = coeff.initial_state(params)
         omega_max = float(np.sqrt(np.abs(coeff.stiffness / coeff.mass)).max())
         dt = min(1e-4, 0.5 / omega_max)

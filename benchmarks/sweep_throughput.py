@@ -5,7 +5,7 @@ string length l = 100..500 m and rotation speed Omega = 0..100 rad/s (mode 1 is 
 unstable above Omega_crit,1 = (pi/l) sqrt(4G/rho), i.e. for l > 195 m in the upper part of the
 grid), DOP853 with rtol 1e-8, atol 1e-12, metrics from 1024 samples at z_k = 2l/3.
 
-Measured end to end through ``drillstring.sweeps`` (planning, parameter validation, the Rust
+Measured end to end through ``drillstring.studies.sweeps`` (planning, parameter validation, the Rust
 batch solves, the table): runs per second on 1 and 2 threads and the parallel efficiency
 ``rate_2 / (2 rate_1)``, with the time spent inside the Rust batch solve shown separately.
 The baseline is a Python loop of ``scipy.integrate.solve_ivp(method="DOP853")`` over the same
@@ -30,9 +30,9 @@ import numpy as np
 from _scipy_rhs import modal_rhs
 
 import drillstring as ds
-from drillstring.analysis import dominant_frequencies
+from drillstring.studies.analysis import dominant_frequencies
 
-sweep_module = importlib.import_module("drillstring.sweeps")
+sweep_module = importlib.import_module("drillstring.studies.sweeps")
 
 
 def machine_cpu() -> tuple[float, float]:

@@ -112,7 +112,7 @@ def galerkin_scaling(k: tuple[float, float, float, float, float, float], length:
                      indices: NDArray[np.int64], cos4: NDArray[np.float64], mixed: NDArray[np.float64],
                      sin4: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """``(mass, stiffness, quartic_coef)`` of the modal system: the dimensionless integrals
-    scaled by ``k1..k6`` and ``l`` (``drillstring.galerkin`` module docstring)."""
+    scaled by ``k1..k6`` and ``l`` (``drillstring.model.galerkin`` module docstring)."""
     k1, k2, k3, k4, k5, k6 = k
     i = indices.astype(float)
     norm = np.where(indices == 0, length, length / 2.0)  # int_0^l phi_i^2 dz
@@ -127,7 +127,7 @@ def galerkin_scaling(k: tuple[float, float, float, float, float, float], length:
 
 
 # --------------------------------------------------------------------------- Galerkin integrals
-# The former generator of ``drillstring.galerkin.dimensionless_integrals`` (now in the core,
+# The former generator of ``drillstring.model.galerkin.dimensionless_integrals`` (now in the core,
 # ``drillstring_core::galerkin``): integer arithmetic over the sign patterns, exact.
 
 # distinct-ordering count of a sorted quadruple, indexed by (a==b)*4 + (b==c)*2 + (c==d)
@@ -248,8 +248,8 @@ def stick_slip(t: NDArray[np.float64], omega: NDArray[np.float64], torque: NDArr
         "motor_torque_max_Nm": float(q.max()),
     }
 # --------------------------------------------------------------------------- the modal model
-# The former numpy evaluations of ``drillstring.galerkin.ModalCoefficients`` (force, dense
-# tensor, acceleration, basis) and of ``drillstring.stability`` (Jacobian, its eigenvalues by
+# The former numpy evaluations of ``drillstring.model.galerkin.ModalCoefficients`` (force, dense
+# tensor, acceleration, basis) and of ``drillstring.studies.stability`` (Jacobian, its eigenvalues by
 # LAPACK, the classification from eigenvalues); the package now asks the core for each.
 
 
@@ -334,7 +334,7 @@ def classify_eigenvalues(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9
         return "stable focus" if np.any(np.abs(lam.imag) > tol) else "stable node"
     return "centre"
 # --------------------------------------------------------------------------- signal metrics
-# The numpy versions of drillstring.analysis's signal metrics (the core computes them:
+# The numpy versions of drillstring.studies.analysis's signal metrics (the core computes them:
 # drillstring_core::metrics::signal); kept as oracles for tests/test_analysis.py.
 
 from numpy.typing import ArrayLike  # noqa: E402

@@ -1,4 +1,4 @@
-"""Signal metrics of drillstring.analysis: spectral peaks, phase shift, boundedness."""
+"""Signal metrics of drillstring.studies.analysis: spectral peaks, phase shift, boundedness."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import drillstring as ds
-from drillstring import analysis as an
 from drillstring.errors import ValidationError
+from drillstring.studies import analysis as an
 
 T1 = np.linspace(0.0, 1.0, 4001)  # the paper's 1-s records at 4000 samples per second
 
@@ -153,9 +153,9 @@ def _records():
     decay = np.exp(-2.0 * T1) * np.cos(2 * np.pi * 12.3 * T1) + 1e-3 * rng.standard_normal(T1.size)
     growth = np.exp(3.0 * T1) * np.sin(2 * np.pi * 7.7 * T1)
     res = ds.simulate(ds.preset("aluminum"), modes=2, t_end=1.0, samples=T1.size)
-    section = res.theta(ds.result.default_section(res.params.length))
+    section = res.theta(ds.solvers.trajectory.default_section(res.params.length))
     return {"beat": beat, "decay": decay, "growth": growth, "section": section,
-            "rate": res.theta_dot(ds.result.default_section(res.params.length))}
+            "rate": res.theta_dot(ds.solvers.trajectory.default_section(res.params.length))}
 
 
 def test_signal_metrics_are_the_oracles():

@@ -25,24 +25,23 @@ def test_all_lists_functions_classes_and_constants_not_modules():
     for name in ds.__all__:
         assert hasattr(ds, name), name
         assert not isinstance(getattr(ds, name), types.ModuleType), name
-    for module in ("analysis", "coefficients", "convergence", "galerkin", "grid", "limits", "paper", "pde",
-                   "plots", "section", "stability"):
+    for module in ("drilling", "io", "limits", "model", "plots", "report", "solvers", "studies"):
         assert isinstance(getattr(ds, module), types.ModuleType) and module not in ds.__all__
 
 
 def test_sweep_and_table2_are_functions_and_their_modules_are_importable():
     # the sweep module has its own name: importing it gives the module, never the function
-    import drillstring.sweeps as sweeps
+    import drillstring.studies.sweeps as sweeps
 
     assert isinstance(sweeps, types.ModuleType) and ds.sweep is sweeps.sweep
-    sweep_module = importlib.import_module("drillstring.sweeps")
-    import drillstring.paper.table2 as table2_module_imported
+    sweep_module = importlib.import_module("drillstring.studies.sweeps")
+    import drillstring.studies.table2 as table2_module_imported
 
     assert ds.table2 is table2_module_imported.table2
-    table2_module = importlib.import_module("drillstring.paper.table2")
+    table2_module = importlib.import_module("drillstring.studies.table2")
     assert isinstance(sweep_module, types.ModuleType) and ds.sweep is sweep_module.sweep
     assert isinstance(table2_module, types.ModuleType) and ds.table2 is table2_module.table2
-    from drillstring.sweeps import SweepTrajectories
+    from drillstring.studies.sweeps import SweepTrajectories
 
     assert ds.SweepTrajectories is SweepTrajectories
 

@@ -21,7 +21,7 @@ import drillstring as ds
 from drillstring import _core
 from drillstring.cli import main
 from drillstring.errors import SolveError, ValidationError
-from drillstring.grid import expand_grid
+from drillstring.studies.sweep_axes import expand_axes
 
 P = ds.preset("aluminum")
 NAN, INF = math.nan, math.inf
@@ -204,18 +204,18 @@ OPTION_CASES: list[tuple[str, Callable[[], Any], type, str]] = [
     ("t_eval-10**400", lambda: ds.simulate(P, t_eval=[0.0, HUGE]), ValidationError, "t_eval"),
     ("initial_twist-10**400", lambda: ds.solve_pde(P, nodes=20, initial_twist=[HUGE] * 20), ValidationError,
      "initial_twist"),
-    ("linspace-stop-10**400", lambda: expand_grid({"length": ds.linspace(100.0, HUGE, 3)}), ValidationError,
+    ("linspace-stop-10**400", lambda: expand_axes({"length": ds.linspace(100.0, HUGE, 3)}), ValidationError,
      "grid.length.stop"),
-    ("linspace-start-10**400", lambda: expand_grid({"omega": ds.linspace(-HUGE, 1.0, 3)}), ValidationError,
+    ("linspace-start-10**400", lambda: expand_axes({"omega": ds.linspace(-HUGE, 1.0, 3)}), ValidationError,
      "grid.omega.start"),
-    ("linspace-count-10**400", lambda: expand_grid({"length": ds.linspace(100.0, 200.0, HUGE)}), ValidationError,
+    ("linspace-count-10**400", lambda: expand_axes({"length": ds.linspace(100.0, 200.0, HUGE)}), ValidationError,
      "grid.length.count"),
-    ("logspace-stop-10**400", lambda: expand_grid({"length": ds.logspace(1.0, HUGE, 3)}), ValidationError,
+    ("logspace-stop-10**400", lambda: expand_axes({"length": ds.logspace(1.0, HUGE, 3)}), ValidationError,
      "grid.length.stop"),
-    ("linspace-count-float", lambda: expand_grid({"length": ds.linspace(100.0, 200.0, 3.0)}), ValidationError,
+    ("linspace-count-float", lambda: expand_axes({"length": ds.linspace(100.0, 200.0, 3.0)}), ValidationError,
      "grid.length.count"),
-    ("grid-key-c-400-digits", lambda: expand_grid({"c" + HUGE_TEXT: [0.1]}), ValidationError, "grid"),
-    ("grid-key-c257", lambda: expand_grid({"c257": [0.1]}), ValidationError, "grid"),  # no model has mode 257
+    ("grid-key-c-400-digits", lambda: expand_axes({"c" + HUGE_TEXT: [0.1]}), ValidationError, "grid"),
+    ("grid-key-c257", lambda: expand_axes({"c257": [0.1]}), ValidationError, "grid"),  # no model has mode 257
     ("from_dict-10**400", lambda: ds.Parameters.from_dict({"preset": "steel", "length": HUGE}), ValidationError,
      "length"),
     # methods that advance q'' = a(q) only refuse velocity-dependent (damping) forces
@@ -225,7 +225,7 @@ OPTION_CASES: list[tuple[str, Callable[[], Any], type, str]] = [
      ValidationError, "method"),
     ("pde-damped-verlet", lambda: ds.solve_pde(P.replace(damping_rate=1.0), nodes=20, method="verlet", t_end=0.01),
      ValidationError, "method"),
-    ("stability-damping-negative", lambda: ds.stability.analyse(ds.project(P, modes=1), damping_rate=-1.0),
+    ("stability-damping-negative", lambda: ds.studies.stability.analyse(ds.project(P, modes=1), damping_rate=-1.0),
      ValidationError, "damping_rate"),
 ]
 

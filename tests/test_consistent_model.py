@@ -19,10 +19,10 @@ import sympy as sp
 
 import drillstring as ds
 from drillstring import _core
-from drillstring.coefficients import PDECoefficients
-from drillstring.galerkin import project
-from drillstring.pde import pde_system
-from drillstring.stability import analyse
+from drillstring.model.coefficients import PDECoefficients
+from drillstring.model.galerkin import project
+from drillstring.solvers.pde import pde_system
+from drillstring.studies.stability import analyse
 
 ALUMINIUM = ds.Parameters(model="consistent")  # Table 1, 100 m
 STEEL = ds.preset("steel").replace(model="consistent", length=2000.0)

@@ -13,7 +13,7 @@ import pytest
 import drillstring as ds
 from drillstring import _core
 from drillstring.errors import ValidationError
-from drillstring.stability import analyse, jacobian
+from drillstring.studies.stability import analyse, jacobian
 
 C = 4.0  # 1/s
 ONE_MODE = ds.Parameters(initial_velocities=(0.01,))
@@ -44,7 +44,7 @@ def test_damped_pde_mode_decays_at_half_the_damping_rate() -> None:
     the first mode's amplitude follows the damped oscillator of the grid's own frequency."""
     params = ds.Parameters(initial_velocities=(1e-6,), damping_rate=C, omega=0.0)
     nodes = 121
-    system = ds.pde.pde_system(params, nodes)
+    system = ds.solvers.pde.pde_system(params, nodes)
     w = math.sqrt(system.linear_frequencies_squared(2)[1])
     sol = ds.solve_pde(params, nodes=nodes, t_end=0.5, samples=1001, rtol=1e-11, atol=1e-20)
     exact = _damped(w, C, 1e-6, sol.t)
@@ -114,7 +114,7 @@ def test_damping_rate_field_round_trips(tmp_path) -> None:
     path = p.save(tmp_path / "damped.toml")
     assert ds.load(path) == p
     assert p.replace(damping_rate=0).damping_rate == 0.0
-    assert ds.pde.pde_system(p, 10).damping_rate == 2.5
+    assert ds.solvers.pde.pde_system(p, 10).damping_rate == 2.5
 
 
 def test_cli_damping_rate(tmp_path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -17,11 +17,11 @@ from _cli import one_line_error, run_cli
 
 import drillstring as ds
 from drillstring import _core
-from drillstring._output import lock_directory
 from drillstring.drilling import FILES, DrillConfig, drill, drill_map, load_drill_config
 from drillstring.drilling import output as drill_output
 from drillstring.drilling.lumped import lumped
 from drillstring.drilling.output import MARKER, PLOT_FILES, report_markdown
+from drillstring.io.output import lock_directory
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "on-bottom-3000m.toml"
@@ -76,7 +76,7 @@ def test_a_folder_locked_by_another_process_is_refused(tmp_path: Path, capsys: p
     out = tmp_path / "out"
     out.mkdir()
     holder = subprocess.Popen(
-        [sys.executable, "-c", "import sys; from drillstring._output import lock_directory\n"
+        [sys.executable, "-c", "import sys; from drillstring.io.output import lock_directory\n"
          "h = lock_directory(sys.argv[1], field='x', busy='{holder}')\nprint('locked', flush=True); sys.stdin.read()",
          str(out)], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:

@@ -18,7 +18,7 @@ from drillstring.drilling import (
     Controller,
     DrillConfig,
     Numerics,
-    Section,
+    StringSection,
     TopDrive,
     Well,
     friction_profile,
@@ -36,8 +36,8 @@ PIPE = {"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}
 def rich() -> DrillConfig:
     """A configuration that sets something in every table."""
     return DrillConfig(
-        sections=(Section(name="pipe", **PIPE), Section(150.0, 0.1651, 0.0714, name="collars", density=7800.0,
-                                                        contact_diameter=0.17)),
+        sections=(StringSection(name="pipe", **PIPE),
+                  StringSection(150.0, 0.1651, 0.0714, name="collars", density=7800.0, contact_diameter=0.17)),
         well=Well(md=(0.0, 300.0, 1200.0), inclination_deg=(0.0, 0.0, 45.0), mud_density=1200.0),
         damping_rate=0.05,
         top_drive=TopDrive(rpm=80.0, steps=((5.0, 100.0), (8.0, 60.0)), torque_limit=4.0e4,
@@ -49,7 +49,7 @@ def rich() -> DrillConfig:
 
 def test_defaults_are_the_cores() -> None:
     core = _core.drill_defaults()
-    cfg = DrillConfig(sections=[Section(**PIPE)])
+    cfg = DrillConfig(sections=[StringSection(**PIPE)])
     for table, values in core.items():
         if table == "sections":
             for key, value in values[0].items():
@@ -72,7 +72,7 @@ def test_defaults_are_the_cores() -> None:
 def test_the_config_holds_what_the_core_normalises() -> None:
     cfg = rich()
     assert cfg.to_dict() == _core.drill_validate(cfg.to_json())
-    assert cfg.length == 1150.0 and cfg.sections[1].shear_modulus == Section(**PIPE).shear_modulus
+    assert cfg.length == 1150.0 and cfg.sections[1].shear_modulus == StringSection(**PIPE).shear_modulus
 
 
 def test_toml_json_and_dict_round_trips(tmp_path: Path) -> None:
@@ -92,7 +92,7 @@ def test_toml_json_and_dict_round_trips(tmp_path: Path) -> None:
 def test_mappings_and_integers_are_accepted_and_converted() -> None:
     cfg = DrillConfig(sections=[{"length": 1000, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
                       top_drive={"rpm": 60, "controller": {"type": "pi", "kp": 10}})
-    assert isinstance(cfg.sections, tuple) and isinstance(cfg.sections[0], Section)
+    assert isinstance(cfg.sections, tuple) and isinstance(cfg.sections[0], StringSection)
     assert cfg.sections[0].length == 1000.0 and isinstance(cfg.sections[0].length, float)
     assert cfg.top_drive.rpm == 60.0 and cfg.top_drive.controller.kp == 10.0
     assert cfg.top_drive.controller.ki == Controller().ki
@@ -242,13 +242,13 @@ def test_a_file_without_sections_or_not_toml(tmp_path: Path) -> None:
 
 
 def test_python_values_of_the_wrong_type() -> None:
-    assert fails(lambda: DrillConfig(sections=[Section(length="long", outer_diameter=0.1,  # type: ignore[arg-type]
+    assert fails(lambda: DrillConfig(sections=[StringSection(length="long", outer_diameter=0.1,  # type: ignore[arg-type]
                                                        inner_diameter=0.05)])).field == "sections[0].length"
-    assert fails(lambda: DrillConfig(sections=[Section(**PIPE)], damping_rate=math.nan)).field == "damping_rate"
-    assert fails(lambda: DrillConfig(sections=[Section(**PIPE)], numerics=3)).field == "numerics"  # type: ignore[arg-type]
+    assert fails(lambda: DrillConfig(sections=[StringSection(**PIPE)], damping_rate=math.nan)).field == "damping_rate"
+    assert fails(lambda: DrillConfig(sections=[StringSection(**PIPE)], numerics=3)).field == "numerics"  # type: ignore[arg-type]
     assert fails(lambda: DrillConfig(sections=[])).field == "sections"
-    assert fails(lambda: DrillConfig(sections=Section(**PIPE))).field == "sections"  # type: ignore[arg-type]
-    assert fails(lambda: DrillConfig(sections=[Section(**PIPE)], well=Well(md=(0.0,), inclination_deg="steep"))
+    assert fails(lambda: DrillConfig(sections=StringSection(**PIPE))).field == "sections"  # type: ignore[arg-type]
+    assert fails(lambda: DrillConfig(sections=[StringSection(**PIPE)], well=Well(md=(0.0,), inclination_deg="steep"))
                  ).field == "well.inclination_deg"  # type: ignore[arg-type]
     assert fails(lambda: DrillConfig.from_dict([1, 2])).field == "config"  # type: ignore[arg-type]
 

@@ -19,7 +19,7 @@ from drillstring.drilling.config import (
     Friction,
     MetricsConfig,
     Numerics,
-    Section,
+    StringSection,
     TopDrive,
     Well,
 )
@@ -32,7 +32,7 @@ def _tables(defaults: dict[str, Any]) -> list[tuple[type, dict[str, Any]]]:
     top = {k: v for k, v in defaults.items()}
     return [
         (DrillConfig, top),
-        (Section, defaults["sections"][0]),
+        (StringSection, defaults["sections"][0]),
         (Well, defaults["well"]),
         (Friction, defaults["friction"]),
         (TopDrive, defaults["top_drive"]),
@@ -55,7 +55,7 @@ def test_every_dataclass_field_and_default_is_the_cores() -> None:
         for name, f in fields.items():
             if isinstance(core[name], dict) or name == "sections":
                 continue  # a sub-table: checked as its own dataclass
-            if cls is Section and name in REQUIRED:
+            if cls is StringSection and name in REQUIRED:
                 assert f.default is dataclasses.MISSING, name
                 continue
             assert f.default == _frozen(core[name]), (cls.__name__, name)

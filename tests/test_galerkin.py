@@ -1,4 +1,4 @@
-"""Tests of drillstring.galerkin: the Bubnov-Galerkin projection of eq. 18.
+"""Tests of drillstring.model.galerkin: the Bubnov-Galerkin projection of eq. 18.
 
 Every number here comes from the core; the tests compare it with a closed form, SymPy, a
 quadrature or the numpy oracles of ``tests/oracles.py``, never with another path of the core.
@@ -18,16 +18,11 @@ import pytest
 import sympy as sp
 
 import drillstring as ds
-from drillstring import galerkin
-from drillstring.coefficients import PDECoefficients
 from drillstring.errors import ValidationError
-from drillstring.galerkin import (
-    ModalCoefficients,
-    dimensionless_integrals,
-    mode_numbers,
-    project,
-)
-from drillstring.parameters import Parameters, preset
+from drillstring.model import galerkin
+from drillstring.model.coefficients import PDECoefficients
+from drillstring.model.galerkin import ModalCoefficients, dimensionless_integrals, mode_numbers, project
+from drillstring.model.parameters import Parameters, preset
 
 RNG_SEED = 20240611
 

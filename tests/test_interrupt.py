@@ -21,7 +21,7 @@ import pytest
 from _children import Child, python_child
 
 import drillstring as ds
-from drillstring._atomic import atomic_path, atomic_write
+from drillstring.io.atomic import atomic_path, atomic_write
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -113,7 +113,8 @@ def test_cli_ctrl_c_exits_130_and_writes_no_partial_files(tmp_path: Path) -> Non
     old.write_text("previous results\n")
     script = """
         import sys, time
-        from drillstring import cli, pde, plots
+        from drillstring import cli, plots
+        from drillstring.solvers import pde
         print("ready", flush=True)
         code = cli.main(["pde", "--preset", "aluminum", "--nodes", "2000", "--t-end", "1000", "--samples", "11",
                          "--out", "run.csv", "--field", "field.npz", "--plot", "plot.png"])

@@ -106,7 +106,7 @@ def test_long_time_bit_speed_is_the_steady_root(wob: float) -> None:
     assert res.bit_speed[-1] == pytest.approx(root, rel=1e-6)
     assert res.top_speed[-1] == pytest.approx(root, rel=1e-6)
     assert res.spring_torque[-1] == pytest.approx(P["tm"] - P["cr"] * root, rel=1e-6)
-    assert res.metrics.severity < 1e-6 and res.metrics.stuck_fraction == 0.0
+    assert res.metrics.ssi < 1e-6 and res.metrics.stuck_fraction == 0.0
 
 
 def test_equilibria_count_and_stability_match_numpy() -> None:
@@ -147,7 +147,7 @@ def test_onset_linear_boundary_and_subcritical_coexistence() -> None:
 
     # below Wob_H, started near the rotation: settles
     below = lumped({"wob": hopf - 700.0}, duration=300.0, initial=near(hopf - 700.0, 1e-2))
-    assert below.metrics.severity < 1e-6 and below.metrics.stuck_fraction == 0.0
+    assert below.metrics.ssi < 1e-6 and below.metrics.stuck_fraction == 0.0
     # above Wob_H (below the fold), started near the rotation: grows into stick-slip
     mid = 0.5 * (hopf + fold)
     above = lumped({"wob": mid}, duration=400.0, initial=near(mid, 1e-3))
@@ -158,12 +158,12 @@ def test_onset_linear_boundary_and_subcritical_coexistence() -> None:
     assert above.metrics.stuck_fraction == 1.0
     # subcritical: below Wob_H but from rest, stick-slip; well below, from rest, steady
     coexist = lumped({"wob": 55e3}, duration=200.0)
-    assert coexist.metrics.stuck_fraction > 0.1 and coexist.metrics.severity >= 1.0
+    assert coexist.metrics.stuck_fraction > 0.1 and coexist.metrics.ssi >= 1.0
     assert growth(55e3) < 0
     settled = lumped({"wob": 50e3}, duration=200.0)
-    assert settled.metrics.severity < 1e-6
+    assert settled.metrics.ssi < 1e-6
     # the stick-slip cycle at 55 kN: period from the spring torque, bit speed from 0 up
-    assert coexist.metrics.rpm_min == 0.0 and 4.0 < coexist.metrics.cycle_period < 5.5
+    assert coexist.metrics.bit_rpm_min == 0.0 and 4.0 < coexist.metrics.period_s < 5.5
 
 
 def test_stick_phase_holds_within_the_static_limit_and_breaks_at_it() -> None:
@@ -270,7 +270,7 @@ def test_the_readme_example_says_what_it_prints() -> None:
     assert eq.regime == "stable_rotation"  # type: ignore[attr-defined]
     assert [round(r.speed, 2) for r in eq.rotations] == [0.67, 3.36]  # type: ignore[attr-defined]
     assert [r.stable for r in eq.rotations] == [False, True]  # type: ignore[attr-defined]
-    assert (round(m.severity, 2), round(m.stuck_fraction, 2), round(m.cycle_period, 2)) == (1.22, 0.28, 4.63)  # type: ignore[attr-defined]
+    assert (round(m.ssi, 2), round(m.stuck_fraction, 2), round(m.period_s, 2)) == (1.22, 0.28, 4.63)  # type: ignore[attr-defined]
     # the boundaries the README gives at tm = 6000 N m
     assert P["tm"] / (P["rb"] * P["mu_sb"]) == pytest.approx(48.2e3, rel=1e-3)
     assert round(hopf_wob() / 1e3, 1) == 58.7 and round(fold_wob() / 1e3, 1) == 59.1
@@ -317,8 +317,8 @@ def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
         speeds = [r.speed for r in eq.rotations]
         got = [row[f"rotation_{k}"] for k in (1, 2) if row[f"stable_{k}"] is not None]
         assert got == speeds and [row[f"stable_{k}"] for k in (1, 2)][:len(speeds)] == [r.stable for r in eq.rotations]
-        for column, value in [("ssi", res.metrics.severity), ("stuck_fraction", res.metrics.stuck_fraction),
-                              ("bit_rpm_max", res.metrics.rpm_max), ("period_s", res.metrics.cycle_period)]:
+        for column, value in [("ssi", res.metrics.ssi), ("stuck_fraction", res.metrics.stuck_fraction),
+                              ("bit_rpm_max", res.metrics.bit_rpm_max), ("period_s", res.metrics.period_s)]:
             assert row[column] == value or (np.isnan(row[column]) and np.isnan(value)), column
     assert list(frame["regime"]) == ["stable_rotation", "stable_rotation", "stuck"]
     assert frame["stuck_fraction"][0] == 0.0 and 0.1 < frame["stuck_fraction"][1] < 1.0

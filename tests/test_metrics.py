@@ -14,8 +14,8 @@ from oracles import spectral_peaks as peaks_oracle
 
 import drillstring as ds
 from drillstring import _core
-from drillstring import analysis as an
 from drillstring.errors import ValidationError
+from drillstring.studies import analysis as an
 
 T1 = np.linspace(0.0, 1.0, 4001)
 DT = 1.0 / 4000.0

@@ -12,10 +12,13 @@ import numpy as np
 import pytest
 
 import drillstring as ds
-from drillstring import _core, analysis, coefficients, galerkin, limits, parameters, pde, stability, sweeps
+from drillstring import _core, limits
 from drillstring.errors import ValidationError
-from drillstring.result import default_section
-from drillstring.simulate import _default_dt
+from drillstring.model import coefficients, galerkin, parameters
+from drillstring.solvers import pde
+from drillstring.solvers.modal import _default_dt
+from drillstring.solvers.trajectory import default_section
+from drillstring.studies import analysis, stability, sweeps
 
 PACKAGE = Path(ds.__file__).parent
 CORE = Path(__file__).resolve().parents[1] / "rust" / "core" / "src"
@@ -145,8 +148,8 @@ def test_constants_default_section_is_two_thirds_of_the_length():
         assert default_section(length) == _core.default_section(length) == 2.0 * length / 3.0
     res = ds.simulate(ds.preset("aluminum"), modes=1, t_end=0.01)
     assert ds.plots._section(res, None) == _core.default_section(res.params.length)
-    assert ds.sweeps._default_z({"length": 150.0}, None) == 100.0
-    assert math.isnan(ds.sweeps._default_z({"length": "x"}, None))
+    assert ds.studies.sweeps._default_z({"length": 150.0}, None) == 100.0
+    assert math.isnan(ds.studies.sweeps._default_z({"length": "x"}, None))
 
 
 def test_constants_step_counts_and_default_steps_are_the_cores():
@@ -183,7 +186,7 @@ def test_constants_the_pde_default_output_resolves_the_cores_mode():
     velocity = np.cos(5 * np.pi * z / params.length) + 0.1 * np.cos(9 * np.pi * z / params.length)
     hz, mode = pde.fastest_mode(params, np.zeros(z.size), velocity)
     assert mode == "mode 9"
-    k = ds.coefficients.PDECoefficients.from_parameters(params)
+    k = ds.model.coefficients.PDECoefficients.from_parameters(params)
     assert hz == pytest.approx(float(k.linear_frequencies(9)) / (2 * math.pi), rel=1e-15)
     assert pde.fastest_mode(params, np.zeros(z.size), np.zeros(z.size))[1] == f"mode {_core.PDE_MIN_RESOLVED_MODES}"
 

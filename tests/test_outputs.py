@@ -33,8 +33,8 @@ import pytest
 from _cli import one_line_error, run_cli
 
 import drillstring as ds
-from drillstring._output import OutputError, atomic_write, check_destination, command_inputs, write_bytes
-from drillstring.paper.table2 import Table2Row, write_table2_csv
+from drillstring.io.output import OutputError, atomic_write, check_destination, command_inputs, write_bytes
+from drillstring.studies.table2 import Table2Row, write_table2_csv
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX special files")
 
@@ -162,7 +162,7 @@ def test_python_writers_go_through_the_same_mechanism(tmp_path):
 
 
 def test_convergence_files_go_through_the_same_mechanism(tmp_path):
-    from drillstring import convergence
+    from drillstring.studies import convergence
 
     result = convergence.study(ds.preset("aluminum"), t_end=0.01, samples=11, modes=(1,), cells=8, max_nodes=33,
                                tol=1e-2)
@@ -342,7 +342,7 @@ def test_a_config_as_field_or_plot_of_pde_is_refused(tmp_path, capsys, monkeypat
     ds.preset("aluminum").save(config)  # [parameters] only: pde has no "modes"
     before = config.read_bytes()
     (tmp_path / "field.npz").symlink_to(config)
-    refuse_call(monkeypatch, "drillstring.pde", "solve_pde")
+    refuse_call(monkeypatch, "drillstring.solvers.pde", "solve_pde")
     code, _, err = run_cli(capsys, "pde", str(config), "--field", str(tmp_path / "field"))
     assert code == 2
     one_line_error(err, "--field", "field.npz")
@@ -377,8 +377,8 @@ def unwritable_dir(tmp_path: Path) -> Iterator[Path]:
 
 def test_an_unwritable_directory_is_refused_before_solving(capsys, monkeypatch, unwritable_dir):
     refuse_call(monkeypatch, "drillstring.cli", "simulate")
-    refuse_call(monkeypatch, "drillstring.pde", "solve_pde")
-    refuse_call(monkeypatch, "drillstring.convergence", "study")
+    refuse_call(monkeypatch, "drillstring.solvers.pde", "solve_pde")
+    refuse_call(monkeypatch, "drillstring.studies.convergence", "study")
     target = str(unwritable_dir / "run.csv")
     for args in (["simulate", "--out", target], ["simulate", "--plot", str(unwritable_dir / "p.png")],
                  ["pde", "--field", target], ["convergence", "--out", str(unwritable_dir / "conv")]):
@@ -392,12 +392,12 @@ def test_an_unwritable_directory_is_refused_before_solving(capsys, monkeypatch, 
     [
         ("simulate", "drillstring.cli", "simulate", ["--out", "{bad}/run.csv"]),
         ("simulate", "drillstring.cli", "simulate", ["--plot", "{bad}/plot.png"]),
-        ("pde", "drillstring.pde", "solve_pde", ["--out", "{bad}/run.csv"]),
-        ("pde", "drillstring.pde", "solve_pde", ["--field", "{bad}/field"]),
-        ("pde", "drillstring.pde", "solve_pde", ["--plot", "{bad}/map.png"]),
-        ("convergence", "drillstring.convergence", "study", ["--out", "{bad}/dir"]),
-        ("paper", "drillstring.paper", "reproduce", ["--out", "{bad}/dir"]),
-        ("sweep", "drillstring.sweeps", "sweep", ["--out", "{bad}/dir"]),
+        ("pde", "drillstring.solvers.pde", "solve_pde", ["--out", "{bad}/run.csv"]),
+        ("pde", "drillstring.solvers.pde", "solve_pde", ["--field", "{bad}/field"]),
+        ("pde", "drillstring.solvers.pde", "solve_pde", ["--plot", "{bad}/map.png"]),
+        ("convergence", "drillstring.studies.convergence", "study", ["--out", "{bad}/dir"]),
+        ("paper", "drillstring.report", "reproduce", ["--out", "{bad}/dir"]),
+        ("sweep", "drillstring.studies.sweeps", "sweep", ["--out", "{bad}/dir"]),
     ],
 )
 def test_a_destination_under_a_regular_file_is_refused_before_any_work(
@@ -420,8 +420,9 @@ def test_a_destination_under_a_regular_file_is_refused_before_any_work(
 
 @pytest.mark.parametrize("command", ["convergence", "paper", "sweep"])
 def test_an_output_directory_that_is_a_file_or_holds_a_directory_is_refused(tmp_path, capsys, monkeypatch, command):
-    module, name = {"convergence": ("drillstring.convergence", "study"), "paper": ("drillstring.paper", "reproduce"),
-                    "sweep": ("drillstring.sweeps", "sweep")}[command]
+    module, name = {"convergence": ("drillstring.studies.convergence", "study"), "paper": ("drillstring.report",
+                                                                                           "reproduce"),
+                    "sweep": ("drillstring.studies.sweeps", "sweep")}[command]
     refuse_call(monkeypatch, module, name)
     prefix = []
     if command == "sweep":
@@ -443,9 +444,9 @@ def test_an_output_directory_that_is_a_file_or_holds_a_directory_is_refused(tmp_
 
 
 def test_paper_reproduce_checks_its_files_before_any_run(tmp_path, monkeypatch):
-    from drillstring import paper
+    from drillstring import report as paper
 
-    refuse_call(monkeypatch, "drillstring.paper", "_Runs")
+    refuse_call(monkeypatch, "drillstring.report", "_Runs")
     (tmp_path / "fig03.csv").mkdir()
     with pytest.raises(ds.ValidationError) as info:
         paper.reproduce(tmp_path, t_end_scale=0.1)

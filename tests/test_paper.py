@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import drillstring as ds
-from drillstring import paper
+from drillstring import report as paper
 from drillstring.cli import main
 
 SCALE = paper.QUICK_T_END_SCALE  # 0.1: the 1-s runs last 0.1 s, the 10-s runs 1 s
@@ -109,7 +109,7 @@ def test_figure_data_equal_direct_simulate(quick):
     close(fig5["theta1_linear"], lin.q[0][tail])
     close(fig5["theta1_nonlinear"], nl.q[0][tail])
     assert fig5["phase_shift_deg"][-1] == pytest.approx(
-        np.degrees(ds.analysis.phase_shift(nl.t, lin.q[0], nl.q[0], 10 * SCALE)), rel=1e-9)
+        np.degrees(ds.studies.analysis.phase_shift(nl.t, lin.q[0], nl.q[0], 10 * SCALE)), rel=1e-9)
     # Fig. 10: l = 500 m, theta and theta_dot at z_k = 2l/3
     fig10 = columns(out / "fig10.csv")
     l500 = ds.simulate(al.replace(length=500.0), modes=3, t_end=SCALE, samples=round(SPS * SCALE) + 1, **KW)
@@ -293,7 +293,7 @@ def _covered(fig, ax):
 
 
 def test_convergence_legends_cover_no_curve():
-    from drillstring import convergence
+    from drillstring.studies import convergence
 
     params = ds.preset("aluminum")
     t = np.linspace(0.0, 1.0, 1001)
@@ -329,7 +329,7 @@ def test_sweep_maps_label_each_critical_speed():
     assert labels == [r"$\Omega_{crit,1}$", r"$\Omega_{crit,2}$", r"$\Omega_{crit,3}$"]
     # each label sits on its curve at the right edge: Omega_crit,i(l) = i * 37.2 rad/s at l = 525 m
     right = fig.axes[0].get_xlim()[1]
-    crit = ds.coefficients.PDECoefficients.from_parameters(base.replace(length=right)).critical_speed([1, 2, 3])
+    crit = ds.model.coefficients.PDECoefficients.from_parameters(base.replace(length=right)).critical_speed([1, 2, 3])
     positions = sorted(text.xy for text in fig.axes[0].texts)
     assert [x for x, _ in positions] == pytest.approx([right] * 3, rel=1e-6) and right == 525.0
     assert sorted(y for _, y in positions) == pytest.approx(list(crit), rel=1e-2)
@@ -383,8 +383,8 @@ def test_every_figure_has_one_checker_stating_its_criterion():
 
 
 def test_markdown_and_html_rendering_of_the_blocks():
-    from drillstring.paper import document as d
-    from drillstring.paper import render
+    from drillstring.report import document as d
+    from drillstring.report import render
 
     doc = [d.h1("Title <x>"), d.p("See `a|b` and **bold**, *it* [f](f.csv)."), d.ul(["one", "two"]),
            d.ol(["first"]), d.img("f.png", "a figure"), d.code("x = 1 < 2"), d.table(["h|1", "h2"], [[1, "a|b"]])]

@@ -1,4 +1,4 @@
-"""Tests of drillstring.parameters: defaults, presets, validation, dict and TOML I/O."""
+"""Tests of drillstring.model.parameters: defaults, presets, validation, dict and TOML I/O."""
 
 from __future__ import annotations
 
@@ -11,13 +11,8 @@ import numpy as np
 import pytest
 
 from drillstring.errors import ValidationError
-from drillstring.parameters import (
-    PRESETS,
-    Parameters,
-    load,
-    load_toml,
-    preset,
-)
+from drillstring.io.toml import load_toml
+from drillstring.model.parameters import PRESETS, Parameters, load, preset
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "examples"

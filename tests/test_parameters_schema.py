@@ -13,7 +13,7 @@ import pytest
 from drillstring import _core
 from drillstring.drilling.lumped import lumped, lumped_defaults
 from drillstring.errors import ValidationError
-from drillstring.parameters import Parameters, check_damping_rate
+from drillstring.model.parameters import Parameters, check_damping_rate
 
 
 def test_every_parameters_field_and_default_is_the_cores() -> None:

@@ -120,7 +120,7 @@ def test_galerkin_with_rigid_mode_converges_to_pde():
 
 
 def test_pde_frequencies_approach_modal_frequencies():
-    system = ds.pde.pde_system(REF, 241)
+    system = ds.solvers.pde.pde_system(REF, 241)
     w2 = np.asarray(system.linear_frequencies_squared(4))
     k = ds.PDECoefficients.from_parameters(REF)
     exact = (k.k2 * (np.arange(4) * math.pi / REF.length) ** 2 - k.k6) / k.k1
@@ -189,7 +189,7 @@ def test_pde_cli(tmp_path):
 
 
 def test_convergence_study_small():
-    from drillstring import convergence
+    from drillstring.studies import convergence
 
     res = convergence.study(REF, t_end=0.2, samples=201, modes=(3, 8), cells=60, max_nodes=241, tol=1e-3)
     assert res.converged and res.grids[-1].nodes == 241
@@ -200,6 +200,6 @@ def test_convergence_study_small():
 
 def test_the_node_limit_is_the_cores() -> None:
     # one number: the Python check asks the core's limit
-    assert ds.pde.MAX_NODES == _core.PDE_MAX_NODES == 10_000_000
+    assert ds.solvers.pde.MAX_NODES == _core.PDE_MAX_NODES == 10_000_000
     with pytest.raises(ds.ValidationError, match="nodes"):
-        ds.pde.pde_system(ds.preset("aluminum"), nodes=_core.PDE_MAX_NODES + 1)
+        ds.solvers.pde.pde_system(ds.preset("aluminum"), nodes=_core.PDE_MAX_NODES + 1)

@@ -86,7 +86,7 @@ def test_command_line_progress_flag(command, capsys):
 
 
 def test_convergence_progress_lines(capsys):
-    from drillstring import convergence
+    from drillstring.studies import convergence
 
     convergence.study(ALUMINUM, t_end=0.01, samples=11, modes=(1,), cells=8, max_nodes=33, progress=True)
     lines = capsys.readouterr().err.splitlines()
@@ -108,7 +108,7 @@ def test_on_a_terminal_commands_show_bars_by_default(monkeypatch):
 
 
 def test_convergence_bar_on_a_terminal_counts_solves(monkeypatch):
-    from drillstring import convergence
+    from drillstring.studies import convergence
 
     terminal = _Terminal()
     monkeypatch.setattr(sys, "stderr", terminal)

@@ -17,7 +17,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import drillstring as ds
-from drillstring.coefficients import PDECoefficients
+from drillstring.model.coefficients import PDECoefficients
 
 SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 

@@ -46,7 +46,7 @@ def test_rkn12_dense_output_as_accurate_at_both_ends_of_the_span(t_end):
 @pytest.mark.parametrize("c1", [0.1, 3.0])
 def test_rkn12_one_mode_period_equals_exact_duffing_period(c1):
     params = REF.replace(initial_velocities=(c1,))
-    a1, a2, a3 = ds.galerkin.project(params, modes=1).duffing()
+    a1, a2, a3 = ds.model.galerkin.project(params, modes=1).duffing()
     exact = duffing_period(a1, a2, a3, c1)
     res = ds.simulate(params, modes=1, t_end=0.5, method="rkn12", rtol=1e-12, atol=1e-15, samples=50001)
     measured = np.diff(crossings(res.t, res.q[0])).mean()

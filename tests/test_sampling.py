@@ -13,12 +13,14 @@ import pandas as pd
 import pytest
 
 import drillstring as ds
-from drillstring import analysis, limits, paper
+from drillstring import limits
+from drillstring import report as paper
 from drillstring.cli import main
-from drillstring.coefficients import PDECoefficients
 from drillstring.errors import DrillstringWarning, SamplingWarning
-from drillstring.galerkin import project
-from drillstring.simulate import fastest_mode
+from drillstring.model.coefficients import PDECoefficients
+from drillstring.model.galerkin import project
+from drillstring.solvers.modal import fastest_mode
+from drillstring.studies import analysis
 
 ALUMINIUM = ds.preset("aluminum")
 README = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")

@@ -1,4 +1,4 @@
-"""Tests of drillstring.section (eq. 8) and drillstring.coefficients (eq. 17)."""
+"""Tests of drillstring.model.cross_section (eq. 8) and drillstring.model.coefficients (eq. 17)."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy.integrate import dblquad
 
-from drillstring.coefficients import PDECoefficients, shear_modulus
 from drillstring.errors import ValidationError
-from drillstring.parameters import Parameters, preset
-from drillstring.section import Section
+from drillstring.model.coefficients import PDECoefficients, shear_modulus
+from drillstring.model.cross_section import CrossSection
+from drillstring.model.parameters import Parameters, preset
 
 
 def _polar_integral(f: Any, r_in: float, r_out: float) -> float:
@@ -31,7 +31,7 @@ def _polar_integral(f: Any, r_in: float, r_out: float) -> float:
 
 @pytest.mark.parametrize(("big", "small"), [(0.20, 0.12), (0.3, 0.0), (1.0, 0.9), (2.5, 1.0)])
 def test_annulus_matches_numerical_integration(big: float, small: float) -> None:
-    section = Section.annulus(big, small)
+    section = CrossSection.annulus(big, small)
     r_out, r_in = big / 2, small / 2
     assert section.area == pytest.approx(_polar_integral(lambda x, y: 1.0, r_in, r_out), rel=1e-10)
     assert section.polar_moment == pytest.approx(
@@ -49,7 +49,7 @@ def test_annulus_matches_numerical_integration(big: float, small: float) -> None
 
 
 def test_table_1_section_values() -> None:
-    s = Section.annulus(0.20, 0.12)
+    s = CrossSection.annulus(0.20, 0.12)
     assert s.area == pytest.approx(math.pi * (0.01 - 0.0036), rel=1e-14)
     assert s.polar_moment == pytest.approx(math.pi * 8.704e-5 / 2, rel=1e-13)
     assert s.i_r == pytest.approx(math.pi * (1e-6 - 4.6656e-8) / 4, rel=1e-13)
@@ -71,13 +71,13 @@ def test_table_1_section_values() -> None:
 )
 def test_annulus_rejects_bad_diameters(outer: Any, inner: Any, field: str) -> None:
     with pytest.raises(ValidationError) as info:
-        Section.annulus(outer, inner)
+        CrossSection.annulus(outer, inner)
     assert info.value.field == field and field in str(info.value)
 
 
 def test_section_rejects_nonpositive() -> None:
     with pytest.raises(ValidationError, match="i_r"):
-        Section(area=1.0, polar_moment=1.0, i_r=0.0, i_x2y2=1.0)
+        CrossSection(area=1.0, polar_moment=1.0, i_r=0.0, i_x2y2=1.0)
 
 
 def test_shear_modulus() -> None:
@@ -108,7 +108,7 @@ def test_k5_variants_differ_by_sign_only() -> None:
     params = preset("steel")
     paper = PDECoefficients.from_parameters(params)
     energy = PDECoefficients.from_parameters(params.replace(k5_variant="energy"))
-    s = Section.annulus(0.2, 0.12)
+    s = CrossSection.annulus(0.2, 0.12)
     g = shear_modulus(2.1e11, 0.28)
     factor = g / (8 * (1 - 2 * 0.28))
     assert paper.k5 == pytest.approx(factor * (s.i_r - s.i_x2y2 * (5 - 6 * 0.28)), rel=1e-13)
@@ -217,7 +217,7 @@ def _random_parameters(count: int) -> list[Parameters]:
 def test_rust_paper_coefficients_equal_the_formulas_bit_for_bit() -> None:
     for p in _random_parameters(300):
         section, k = _paper_oracle(p)
-        s = Section.annulus(p.outer_diameter, p.inner_diameter)
+        s = CrossSection.annulus(p.outer_diameter, p.inner_diameter)
         assert (s.area, s.polar_moment, s.i_r, s.i_x2y2) == section, p
         c = PDECoefficients.from_parameters(p)
         assert c.as_tuple() == k, p
@@ -230,7 +230,7 @@ def test_rust_paper_coefficients_equal_the_formulas_bit_for_bit() -> None:
 
 def test_j4_is_the_fourth_polar_moment() -> None:
     for big, small in [(0.20, 0.12), (0.3, 0.0), (2.5, 1.0)]:
-        s = Section.annulus(big, small)
+        s = CrossSection.annulus(big, small)
         assert s.j4 is not None
         r_out, r_in = big / 2, small / 2
         assert s.j4 == pytest.approx(_polar_integral(lambda x, y: (x**2 + y**2) ** 2, r_in, r_out), rel=1e-10)
@@ -268,7 +268,7 @@ def test_coefficients_given_directly_keep_the_paper_critical_speed() -> None:
 
 def test_overflowing_diameter_is_named() -> None:
     with pytest.raises(ValidationError) as info:
-        Section.annulus(1e100, 0.0)
+        CrossSection.annulus(1e100, 0.0)
     assert info.value.field == "outer_diameter"
     with pytest.raises(ValidationError) as info:
         PDECoefficients.from_parameters(Parameters(outer_diameter=1e100, inner_diameter=0.0))

@@ -34,7 +34,7 @@ def duffing_period(a1: float, a2: float, a3: float, c: float) -> float:
 def test_linear_frequencies_at_small_amplitude():
     # C = 1e-6 rad/s: amplitudes ~5e-9 rad, the cubic terms shift frequencies by ~1e-12
     params = REF
-    coeff = ds.galerkin.project(params, modes=3)
+    coeff = ds.model.galerkin.project(params, modes=3)
     for i, mode in enumerate([1, 2, 3]):
         c = [0.0, 0.0, 0.0]
         c[i] = 1e-6
@@ -48,7 +48,7 @@ def test_linear_frequencies_at_small_amplitude():
 
 
 def coeff_k(params: ds.Parameters) -> tuple[float, float, float]:
-    k = ds.coefficients.PDECoefficients.from_parameters(params)
+    k = ds.model.coefficients.PDECoefficients.from_parameters(params)
     return k.k1, k.k2, k.k6
 
 
@@ -56,7 +56,7 @@ def coeff_k(params: ds.Parameters) -> tuple[float, float, float]:
 @pytest.mark.parametrize("method", ["dop853", "dopri5"])
 def test_one_mode_period_equals_exact_duffing_period(c1, method):
     params = REF.replace(initial_velocities=(c1,))
-    a1, a2, a3 = ds.galerkin.project(params, modes=1).duffing()
+    a1, a2, a3 = ds.model.galerkin.project(params, modes=1).duffing()
     exact = duffing_period(a1, a2, a3, c1)
     res = ds.simulate(params, modes=1, t_end=0.5, method=method, rtol=1e-12, atol=1e-15, samples=50001)
     measured = np.diff(crossings(res.t, res.q[0])).mean()
@@ -75,7 +75,7 @@ def test_energy_drift_three_modes_dop853(rigid):
 def test_agrees_with_scipy_dop853():
     from scipy.integrate import solve_ivp
 
-    coeff = ds.galerkin.project(REF, modes=3)
+    coeff = ds.model.galerkin.project(REF, modes=3)
     q0, v0 = coeff.initial_state(REF)
 
     def rhs(_t, y):

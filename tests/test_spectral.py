@@ -9,9 +9,9 @@ import pytest
 import drillstring as ds
 from drillstring import _core
 from drillstring.errors import ValidationError
-from drillstring.galerkin import ModalCoefficients, project
-from drillstring.parameters import preset
-from drillstring.simulate import simulate
+from drillstring.model.galerkin import ModalCoefficients, project
+from drillstring.model.parameters import preset
+from drillstring.solvers.modal import simulate
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> float:

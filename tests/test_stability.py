@@ -1,4 +1,4 @@
-"""Linear stability of the equilibrium (paper sec. 3.6): drillstring.stability."""
+"""Linear stability of the equilibrium (paper sec. 3.6): drillstring.studies.stability."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import oracles
 import pytest
 
 import drillstring as ds
-from drillstring.coefficients import PDECoefficients, shear_modulus
 from drillstring.errors import ValidationError
-from drillstring.stability import analyse, jacobian
+from drillstring.model.coefficients import PDECoefficients, shear_modulus
+from drillstring.studies.stability import analyse, jacobian
 
 
 def test_one_mode_eigenvalues_are_eq_29():
@@ -50,7 +50,7 @@ def test_core_eigenvalues_are_lapacks(rigid, damping):
 def test_classify_is_deprecated():
     st = analyse(ds.preset("aluminum").replace(omega=0.0), modes=1, rigid_mode=True)
     with pytest.warns(DeprecationWarning, match="classify"):
-        assert ds.stability.classify(st.eigenvalues) == oracles.classify_eigenvalues(st.eigenvalues)
+        assert ds.studies.stability.classify(st.eigenvalues) == oracles.classify_eigenvalues(st.eigenvalues)
 
 
 def test_critical_speeds_match_the_formula():

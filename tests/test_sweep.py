@@ -11,10 +11,10 @@ pd = pytest.importorskip("pandas")
 
 import drillstring as ds  # noqa: E402
 from drillstring import _core  # noqa: E402
-from drillstring.analysis import dominant_frequencies  # noqa: E402
-from drillstring.coefficients import PDECoefficients  # noqa: E402
-from drillstring.galerkin import dimensionless_integrals  # noqa: E402
-from drillstring.grid import expand_grid  # noqa: E402
+from drillstring.model.coefficients import PDECoefficients  # noqa: E402
+from drillstring.model.galerkin import dimensionless_integrals  # noqa: E402
+from drillstring.studies.analysis import dominant_frequencies  # noqa: E402
+from drillstring.studies.sweep_axes import expand_axes  # noqa: E402
 
 ALUMINUM = ds.preset("aluminum")
 FAST = {"t_end": 0.2, "samples": 256}
@@ -134,7 +134,7 @@ def test_shared_options_are_validated_up_front():
         ds.sweep(ALUMINUM, {"lenght": [100.0]})
     with pytest.raises(ds.ValidationError, match="modes"):
         ds.sweep(ALUMINUM, {"length": [100.0]}, modes=0)
-    with pytest.raises(ds.ValidationError, match="either a grid or"):
+    with pytest.raises(ds.ValidationError, match="either axes or"):
         ds.sweep(ALUMINUM, {"length": [100.0]}, runs=[{}])
 
 
@@ -142,7 +142,7 @@ def test_shared_options_are_validated_up_front():
 
 
 def test_grid_axes_and_product_order():
-    axes, runs = expand_grid({
+    axes, runs = expand_axes({
         "length": ds.linspace(100.0, 300.0, 3),
         "omega": {"logspace": [0.1, 10.0, 3]},
         "c2": [0.0, 0.5],
@@ -151,9 +151,9 @@ def test_grid_axes_and_product_order():
     np.testing.assert_allclose(axes["omega"], [0.1, 1.0, 10.0])
     assert len(runs) == 18 and runs[1] == {"length": 100.0, "omega": 0.1, "c2": 0.5}
     with pytest.raises(ds.ValidationError, match="not powers of ten"):
-        expand_grid({"omega": ds.logspace(-1, 2, 4)})
+        expand_axes({"omega": ds.logspace(-1, 2, 4)})
     with pytest.raises(ds.ValidationError, match="linspace"):
-        expand_grid({"omega": {"linspace": [0, 1]}})
+        expand_axes({"omega": {"linspace": [0, 1]}})
 
 
 def test_table_columns_and_velocity_keys():
@@ -191,7 +191,7 @@ def test_progress_bar_on_request(capsys):
 def test_per_run_coefficients_are_those_of_the_parameters():
     import importlib
 
-    sweep_module = importlib.import_module("drillstring.sweeps")
+    sweep_module = importlib.import_module("drillstring.studies.sweeps")
     cache: dict = {}
     for params in (ALUMINUM, ALUMINUM.replace(omega=-7.3, length=3.0), ds.preset("steel").replace(k5_variant="energy"),
                    ALUMINUM.replace(omega=123.4, inner_diameter=0.0)):

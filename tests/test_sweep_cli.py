@@ -12,7 +12,7 @@ pd = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
 from drillstring.cli import main  # noqa: E402
-from drillstring.parameters import load_toml  # noqa: E402
+from drillstring.io.toml import load_toml  # noqa: E402
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "sweep_length_speed.toml"
 

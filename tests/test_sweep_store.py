@@ -12,8 +12,8 @@ import importlib  # noqa: E402
 import drillstring as ds  # noqa: E402
 from drillstring.errors import ResumeWarning  # noqa: E402
 
-# the module (``drillstring.sweeps`` the attribute is the function)
-sweep_module = importlib.import_module("drillstring.sweeps")
+# the module (``drillstring.studies.sweeps`` the attribute is the function)
+sweep_module = importlib.import_module("drillstring.studies.sweeps")
 
 GRID = {"length": ds.linspace(100.0, 200.0, 5), "omega": [0.0, 30.0, 60.0, 90.0]}  # 20 runs
 OPTIONS = {"t_end": 0.2, "samples": 256, "chunk_size": 3}  # 7 chunks, the last one short
@@ -221,7 +221,7 @@ def test_two_writers_on_one_directory_are_refused_with_the_holder_named(tmp_path
     stale = out / "chunks" / ".chunk-00000.parquet.0123.tmp.parquet"
     stale.write_bytes(b"being written")
     holder = subprocess.Popen(
-        [sys.executable, "-c", "import sys, drillstring.sweep_store as s; from pathlib import Path\n"
+        [sys.executable, "-c", "import sys, drillstring.io.sweep_store as s; from pathlib import Path\n"
          "store = s.SweepStore(Path(sys.argv[1]), {}, s._lock(Path(sys.argv[1])))\n"
          "print('locked', flush=True); sys.stdin.read()", str(out)],
         stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
@@ -241,7 +241,7 @@ def test_two_writers_on_one_directory_are_refused_with_the_holder_named(tmp_path
 
 def test_the_lock_is_held_for_the_whole_sweep_and_released_after(tmp_path, monkeypatch):
     out = tmp_path / "run"
-    from drillstring.sweep_store import SweepStore
+    from drillstring.io.sweep_store import SweepStore
 
     seen = []
     real = sweep_module._solve_chunk_raw
@@ -267,7 +267,7 @@ def test_a_ctrl_c_during_a_chunk_save_is_raised_after_chunk_and_record(tmp_path,
 
     import pandas as pd
 
-    from drillstring import sweep_store
+    from drillstring.io import sweep_store
 
     seen: list[list[str]] = []
     store_dir = tmp_path / "store"

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from drillstring.paper.table2 import PAPER_TABLE2, table2, table2_json
+from drillstring.studies.table2 import PAPER_TABLE2, table2, table2_json
 
 
 @pytest.fixture(scope="module")

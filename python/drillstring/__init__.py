@@ -9,43 +9,43 @@ Quick start
 >>> import drillstring as ds
 >>> params = ds.preset("aluminum")              # Table 1, C = (0.1, 0.05, 0.02)
 >>> res = ds.simulate(params, modes=3, t_end=1.0)
->>> theta_k = res.theta(ds.result.default_section(params.length))  # twist at z_k = 2l/3, rad
+>>> theta_k = res.theta(ds.solvers.trajectory.default_section(params.length))  # z_k = 2l/3, rad
 >>> res.energy_drift() < 1e-6
 True
 
 The API
 -------
-``__all__`` lists the functions, classes and constants above; the modules behind them
-(``analysis``, ``coefficients``, ``convergence``, ``drilling``, ``galerkin``, ``grid``, ``limits``,
-``paper``, ``pde``, ``plots``, ``section``, ``stability``) are attributes of the package as well.
-``ds.sweep`` is the function; its module is ``drillstring.sweeps`` (``import drillstring.sweeps``).
-``ds.table2`` is the function; its module is ``drillstring.paper.table2``.
+``__all__`` lists the functions, classes and constants above. The subpackages are attributes of
+the package as well: ``model`` (the paper's model: ``parameters``, ``cross_section``,
+``coefficients``, ``galerkin``), ``solvers`` (``modal``, ``pde``, ``trajectory``), ``studies``
+(``analysis``, ``stability``, ``convergence``, ``sweeps``, ``sweep_axes``, ``table2``),
+``drilling`` (the drilling system, its stick-slip ``metrics``, torque and drag, the lumped
+model), ``io`` (files, figures, TOML, progress, the sweep store), and the modules ``limits`` and
+``plots``; ``report`` (the reproduction report, ``drillstring paper``) is loaded on first use.
+``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps``.
+``ds.table2`` is the function; its module is ``drillstring.studies.table2``. The modules' old
+paths (``drillstring.analysis``, ``drillstring.paper``, ...) work for one release and warn.
 
 The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
 ``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
-:class:`DrillResult`, ``ds.drill_map(config, axes)`` a table of stick-slip metrics over a grid of
-configuration values; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
+:class:`DrillResult`, ``ds.drill_map(config, axes)`` a table of stick-slip metrics over the product
+of axes of configuration values; the package :mod:`drillstring.drilling` holds the configuration dataclasses.
 """
 
 from __future__ import annotations
 
+import importlib as _importlib
 from typing import TYPE_CHECKING
 
 # The modules, re-exported as attributes (``x as x``), not part of ``__all__``.
-from . import analysis as analysis
-from . import coefficients as coefficients
-from . import convergence as convergence
 from . import drilling as drilling
-from . import galerkin as galerkin
-from . import grid as grid
+from . import io as io
 from . import limits as limits
-from . import paper as paper
-from . import pde as pde
+from . import model as model
 from . import plots as plots
-from . import section as section
-from . import stability as stability
+from . import solvers as solvers
+from . import studies as studies
 from ._core import __version__, simd_path
-from .coefficients import PDECoefficients
 from .drilling import (
     DrillConfig,
     DrillMetrics,
@@ -57,13 +57,14 @@ from .drilling import (
     torque_drag,
 )
 from .errors import DrillstringError, SolveError, ValidationError
-from .galerkin import ModalCoefficients, project
-from .grid import linspace, logspace
-from .paper.table2 import Table2Row, table2
-from .parameters import PRESETS, Parameters, load, preset
-from .pde import PdeSolution, solve_pde
-from .simulate import METHODS, Method, Simulation, SolverStats, simulate
-from .sweeps import SweepTrajectories
+from .model.coefficients import PDECoefficients
+from .model.galerkin import ModalCoefficients, project
+from .model.parameters import PRESETS, Parameters, load, preset
+from .solvers.modal import METHODS, Method, Simulation, SolverStats, simulate
+from .solvers.pde import PdeSolution, solve_pde
+from .studies.sweep_axes import linspace, logspace
+from .studies.sweeps import SweepTrajectories
+from .studies.table2 import Table2Row, table2
 
 if TYPE_CHECKING:  # pragma: no cover
     # The return type of sweep() follows ``trajectories`` (the runtime function is sweeps.sweep;
@@ -73,10 +74,12 @@ if TYPE_CHECKING:  # pragma: no cover
 
     import pandas as pd
 
+    from . import report as report
+
     @overload
     def sweep(
         base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
+        axes: Optional[Mapping[str, Any]] = ...,
         *,
         runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
         modes: int = ...,
@@ -95,12 +98,13 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[False] = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
     ) -> pd.DataFrame: ...
 
     @overload
     def sweep(
         base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
+        axes: Optional[Mapping[str, Any]] = ...,
         *,
         runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
         modes: int = ...,
@@ -119,12 +123,13 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[True],
+        grid: Optional[Mapping[str, Any]] = ...,
     ) -> tuple[pd.DataFrame, SweepTrajectories]: ...
 
     @overload
     def sweep(
         base_params: Union[Parameters, str, Mapping[str, Any], None] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
+        axes: Optional[Mapping[str, Any]] = ...,
         *,
         runs: Optional[Iterable[Union[Parameters, Mapping[str, Any]]]] = ...,
         modes: int = ...,
@@ -143,11 +148,12 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: bool = ...,
+        grid: Optional[Mapping[str, Any]] = ...,
     ) -> Union[pd.DataFrame, tuple[pd.DataFrame, SweepTrajectories]]: ...
 
     def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only
 else:
-    from .sweeps import sweep
+    from .studies.sweeps import sweep
 
 __all__ = [
     "__version__",
@@ -190,3 +196,63 @@ __all__ = [
     "ValidationError",
     "SolveError",
 ]
+
+
+# The modules that were attributes of the package before its layout by subject are loaded with
+# it as before, so that ``ds.studies.stability``, ``ds.model.cross_section``, ... need no import.
+for _name in ("model.cross_section", "studies.analysis", "studies.convergence", "studies.stability"):
+    _importlib.import_module(f"{__name__}.{_name}")
+
+# An old module path named like a function of the package (``drillstring.simulate``) is loaded
+# now, as it was when it was the function's module: importing it later would rebind the package's
+# attribute (``ds.simulate``) to the module.
+for _name in ("simulate",):
+    _function = globals()[_name]
+    _importlib.import_module(f"{__name__}.{_name}")
+    globals()[_name] = _function
+del _name, _function
+
+#: The package's modules before its layout by subject, each attribute name -> its new module:
+#: ``ds.<old>`` works for one release and warns.
+_MOVED_MODULES = {
+    "parameters": "model.parameters",
+    "section": "model.cross_section",
+    "coefficients": "model.coefficients",
+    "galerkin": "model.galerkin",
+    "simulate": "solvers.modal",
+    "pde": "solvers.pde",
+    "result": "solvers.trajectory",
+    "analysis": "studies.analysis",
+    "stability": "studies.stability",
+    "convergence": "studies.convergence",
+    "sweeps": "studies.sweeps",
+    "grid": "studies.sweep_axes",
+    "_output": "io.output",
+    "_atomic": "io.atomic",
+    "_progress": "io.progress",
+    "sweep_store": "io.sweep_store",
+    "paper": "report",
+}
+
+if not TYPE_CHECKING:
+
+    def __getattr__(name: str) -> object:
+        """PEP 562: the reproduction report loads on first use (``ds.report``), as scipy's
+        submodules do; the old module attributes warn and give their new modules."""
+        import importlib
+
+        if name == "report":
+            return importlib.import_module("drillstring.report")
+        if name in _MOVED_MODULES:
+            import warnings
+
+            new = _MOVED_MODULES[name]
+            message = f"drillstring.{name} is deprecated: use drillstring.{new} (the old name works for one release)"
+            warnings.warn(message, DeprecationWarning, stacklevel=2)
+            # a module split in two keeps its old path (a forwarding shim) as the attribute
+            old = name in ("analysis", "sweeps",)
+            return importlib.import_module(f"drillstring.{name}" if old else f"drillstring.{new}")
+        raise AttributeError(f"module 'drillstring' has no attribute {name!r}")
+
+    def __dir__() -> list[str]:
+        return sorted(set(globals()) | {"report"})

@@ -1,7 +1,18 @@
-"""Former home of the atomic writer; kept as a re-export of :mod:`drillstring._output`."""
+"""Deprecated: ``drillstring._atomic`` moved to ``drillstring.io.atomic``. This path works for one
+release; each name used through it warns with a DeprecationWarning."""
 
 from __future__ import annotations
 
-from ._output import atomic_path, atomic_write, is_path, write_bytes
+from typing import Any
 
-__all__ = ["atomic_path", "atomic_write", "is_path", "write_bytes"]
+from drillstring._deprecated import forward, names
+
+_TARGETS = ('drillstring.io.atomic',)
+
+
+def __getattr__(name: str) -> Any:
+    return forward(__name__, name, _TARGETS)
+
+
+def __dir__() -> list[str]:
+    return names(_TARGETS)

@@ -11,7 +11,7 @@ with "drillstring: interrupted" and exit status 130; output files are written at
 interrupted run leaves none half-written.
 
 Every output destination is checked before any work is done (:func:`_check_outputs`,
-:func:`drillstring._output.check_destination`); a command never writes over its own input file;
+:func:`drillstring.io.output.check_destination`); a command never writes over its own input file;
 ``-`` writes a file output to standard output (the messages then go to stderr); a closed or
 failing standard output is an error (exit status 2), never silently lost output.
 """
@@ -27,15 +27,17 @@ import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any, NoReturn, Optional, TextIO
 
-from . import __version__, _core
-from ._output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
-from ._progress import on_terminal
+from . import _core
+from ._core import __version__
 from .errors import DrillstringError, DrillstringWarning, ValidationError
+from .io.output import STDOUT, OutputError, check_destination, command_inputs, is_stdout
+from .io.progress import on_terminal
+from .io.toml import load_toml, toml_key_line, with_toml_line
 from .limits import INT64_MAX, as_float, check_run_count, memory_budget
-from .paper.table2 import format_table2, table2, table2_json
-from .parameters import MODELS, PRESETS, Parameters, load, load_toml, preset, toml_key_line, with_toml_line
-from .result import default_section
-from .simulate import METHODS, PDE_METHODS, simulate
+from .model.parameters import MODELS, PRESETS, Parameters, load, preset
+from .solvers.modal import METHODS, PDE_METHODS, simulate
+from .solvers.trajectory import default_section
+from .studies.table2 import format_table2, table2, table2_json
 
 __all__ = ["main"]
 
@@ -182,7 +184,7 @@ def _model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parame
 
 def _say(text: str, file: Optional[TextIO] = None) -> None:
     """Prints a line of the command's report; a failing standard output raises
-    :class:`~drillstring._output.OutputError` naming it (never silently lost output)."""
+    :class:`~drillstring.io.output.OutputError` naming it (never silently lost output)."""
     stream = sys.stdout if file is None else file
     if stream is None:
         raise OutputError(errno.EBADF, "it is closed", "standard output")
@@ -262,7 +264,7 @@ def _plot_target(args: argparse.Namespace) -> Any:
     """The file ``--plot`` writes (an extension appended as matplotlib does), or ``None``."""
     if not args.plot:
         return None
-    from .plots import plot_path
+    from .io.figures import plot_path
 
     return plot_path(args.plot, "--plot")
 
@@ -279,7 +281,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.out:
         _wrote(result.to_csv(args.out, z), info)
     if plot:
-        from .plots import save, time_history_and_phase
+        from .io.figures import save
+        from .plots import time_history_and_phase
 
         _wrote(save(time_history_and_phase(result, z), plot), info)
     return 0
@@ -308,7 +311,7 @@ PDE_KEYS = ("nodes", "t_end", "method", "rtol", "atol", "dt", "samples", "z")
 
 
 def _cmd_pde(args: argparse.Namespace) -> int:
-    from .pde import field_path, solve_pde
+    from .solvers.pde import field_path, solve_pde
 
     params, solver, z = _model_inputs(args, PDE_KEYS)
     field = field_path(args.field) if args.field else None
@@ -325,7 +328,8 @@ def _cmd_pde(args: argparse.Namespace) -> int:
     if field:
         _wrote(result.save_field(field), info)
     if plot:
-        from .plots import save, space_time
+        from .io.figures import save
+        from .plots import space_time
 
         _wrote(save(space_time(result, z), plot), info)
     return 0
@@ -358,7 +362,7 @@ def _ints(text: str) -> tuple[int, ...]:
 
 
 def _cmd_convergence(args: argparse.Namespace) -> int:
-    from . import convergence
+    from .studies import convergence
 
     if args.config and args.preset:
         raise ValidationError("--preset", args.preset, "either a config file or --preset, not both")
@@ -408,7 +412,7 @@ def _add_paper(sub: Any) -> None:
 
 
 def _cmd_paper(args: argparse.Namespace) -> int:
-    from . import paper
+    from . import report as paper
 
     scale = args.t_end_scale if args.t_end_scale is not None else (
         paper.QUICK_T_END_SCALE if args.quick else 1.0)
@@ -511,8 +515,8 @@ def _dask_client(address: Optional[str]) -> Any:
 def _cmd_sweep(args: argparse.Namespace) -> int:
     import time
 
-    from .sweep_store import MANIFEST, RESULTS_CSV, RESULTS_PARQUET
-    from .sweeps import sweep
+    from .io.sweep_store import MANIFEST, RESULTS_CSV, RESULTS_PARQUET
+    from .studies.sweeps import sweep
 
     base, solver, grid = _sweep_config(args.config)
     check_destination(args.out, field="--out", directory=True, files=(MANIFEST, RESULTS_PARQUET, RESULTS_CSV))
@@ -726,8 +730,8 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
     res = lumped(params, duration=args.duration, initial=args.initial)
     m = res.metrics
     _say(f"run from ({', '.join(f'{x:g}' for x in args.initial)}), window {res.window[0]:g}-{res.window[1]:g} s: "
-         f"SSI {m.severity:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.cycle_period:.4g} s, "
-         f"bit {m.rpm_min:.4g}..{m.rpm_max:.4g} rpm (mean {m.rpm_mean:.4g}), energy balance "
+         f"SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.period_s:.4g} s, "
+         f"bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), energy balance "
          f"{res.energy['balance_error']:.2g}")
     _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
          f"{'settled' if m.settled else 'not settled'}")
@@ -736,9 +740,9 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
     if args.out is not None:
         import pandas as pd
 
-        from ._output import make_directory, write_text
         from .drilling.lumped import lumped_figure
-        from .plots import save
+        from .io.figures import save
+        from .io.output import make_directory, write_text
 
         make_directory(args.out)
         series = pd.DataFrame({"t_s": res.t, "top_speed_rad_s": res.top_speed, "bit_speed_rad_s": res.bit_speed,
@@ -771,8 +775,8 @@ def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
              f"SSI {row['ssi']:.3g}, stuck fraction {row['stuck_fraction']:.3g}, "
              f"bit {row['bit_rpm_min']:.4g}..{row['bit_rpm_max']:.4g} rpm")
     if args.out is not None:
-        from ._output import make_directory, write_text
-        from .plots import save
+        from .io.figures import save
+        from .io.output import make_directory, write_text
 
         make_directory(args.out)
         written = [write_text(os.path.join(args.out, "lumped_sweep.csv"), frame.to_csv(index=False)),
@@ -847,8 +851,8 @@ def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
 def _cmd_drill_map(args: argparse.Namespace) -> int:
     import time
 
-    from ._output import refuse_foreign_folder
     from .drilling.maps import _map_config, check_axis, drill_map
+    from .io.output import refuse_foreign_folder
 
     config = _map_config(args.config)  # no field snapshots: a map keeps none
     if args.overrides:
@@ -883,13 +887,13 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip (the bit stops during part of the "
              f"window) in {int((ok['stick_slip'] == 1).sum())} runs, settled in {int((ok['settled'] == 1).sum())} of "
              f"{len(ok)}")
-    from ._output import write_text
+    from .io.output import write_text
 
     written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),
                write_text(os.path.join(args.out, "config.toml"), config.to_toml())]
     if not args.no_plots:
         from .drilling.maps import map_figures
-        from .plots import save
+        from .io.figures import save
 
         for name, fig in map_figures(frame).items():
             written.append(save(fig, os.path.join(args.out, name)))

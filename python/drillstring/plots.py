@@ -5,7 +5,7 @@ matplotlib is imported lazily and figures are built with :class:`matplotlib.figu
 a returned figure as usual (``fig.axes``, ``ax.lines``) and write it with :func:`save` or
 ``fig.savefig``.
 
-The paper's figures (``drillstring paper``, :mod:`drillstring.paper`) are built from:
+The paper's figures (``drillstring paper``, :mod:`drillstring.report`) are built from:
 
 * :func:`modal_response`, :func:`modal_phase_portrait`: one modal coordinate ``theta_i(t)`` and
   its phase portrait (Figs. 1, 2);
@@ -29,13 +29,14 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
-from .result import default_section
+from .io.figures import plot_path, save  # noqa: F401 (plot_path stays importable from here)
+from .solvers.trajectory import default_section
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from .simulate import Simulation
+    from .solvers.modal import Simulation
 
 __all__ = [
     "COLORS",
@@ -208,7 +209,7 @@ def linear_vs_nonlinear(
     accumulated phase shift of the nonlinear response (zero crossings, :func:`analysis.phase_shift`)
     over the whole record, the window shaded.
     """
-    from .analysis import phase_shift
+    from .studies.analysis import phase_shift
 
     k = int(np.nonzero(linear.indices == mode)[0][0])
     mask = _window_mask(linear.t, window)
@@ -283,7 +284,7 @@ def section_response(
 ) -> Figure:
     """``theta(z_k, t)`` at the section ``z_k`` (default ``2l/3`` of each string), Figs. 6, 8, 10.
 
-    ``results`` is one :class:`~drillstring.simulate.Simulation` or a mapping
+    ``results`` is one :class:`~drillstring.solvers.modal.Simulation` or a mapping
     ``{"l = 100 m": sim, ...}`` (the keys label the curves). Several runs: all overlaid on the
     top panel and each again below on its own scale. One run: below it, with ``modal`` (default
     for one run), the modal contributions ``theta_i(t) cos(i pi z_k / l)`` whose sum it is.
@@ -436,49 +437,6 @@ def space_time(result: Any, z: Optional[float] = None, title: Optional[str] = No
     return fig
 
 
-def plot_path(path: Any, field: str = "path") -> Any:
-    """The file :func:`save` writes for ``path``: a file name without an extension gets
-    matplotlib's default format (``savefig.format``, normally ``.png``) appended, as ``savefig``
-    does, unless ``path`` is streamed into (``"-"``, a device or a FIFO); an open file object is
-    returned as it is. An extension that is not an image format matplotlib writes raises
-    :class:`~drillstring.errors.ValidationError` naming ``field``."""
-    import os
-
-    import matplotlib
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    from ._output import is_path, is_stream
-    from .errors import ValidationError
-
-    if not is_path(path) or is_stream(path):
-        return path
-    text = os.fsdecode(os.fspath(path))
-    extension = os.path.splitext(text)[1].lstrip(".").lower()
-    if not extension:
-        return f"{text}.{matplotlib.rcParams['savefig.format']}"
-    formats = sorted(FigureCanvasBase.get_supported_filetypes())
-    if extension not in formats:
-        raise ValidationError(field, text, "a file name ending in one of ." + ", .".join(formats))
-    return path
-
-
-def save(fig: Figure, path: Any, dpi: int = 130) -> Any:
-    """Saves a figure to ``path`` (format from the extension, else matplotlib's default) and
-    returns the path written (:func:`plot_path`). A file is replaced atomically (an interrupted
-    save leaves the old one), a symlink is written through, a device, FIFO or ``"-"`` is streamed
-    into (see :mod:`drillstring._output`); an open file object is written directly."""
-    import os
-
-    import matplotlib
-
-    from ._output import is_path, write_to
-
-    target = plot_path(path)
-    extension = os.path.splitext(os.fsdecode(os.fspath(target)))[1].lstrip(".") if is_path(target) else ""
-    fmt = extension.lower() or matplotlib.rcParams["savefig.format"]
-    return write_to(target, lambda handle: fig.savefig(handle, dpi=dpi, format=fmt), suffix=f".{fmt}")
-
-
 # --------------------------------------------------------------------------- parameter sweeps
 
 #: Axis labels (with units) of the sweep table's parameter and metric columns.
@@ -555,8 +513,8 @@ def _critical_speeds(table: Any, length: np.ndarray, count: int) -> list[np.ndar
     """The critical speeds ``Omega_crit,i(l)`` of :meth:`PDECoefficients.critical_speed` for
     i = 1..count at each length, for the material and section of the first row; none when a run
     uses a model without rotation softening (``model="consistent"``: no critical speed)."""
-    from .coefficients import PDECoefficients
-    from .parameters import Parameters
+    from .model.coefficients import PDECoefficients
+    from .model.parameters import Parameters
 
     if "model" in table and (table["model"].astype(str) != "paper").any():
         return []
@@ -603,7 +561,7 @@ def sweep_metric(
     Parameters
     ----------
     table : pandas.DataFrame
-        A :func:`drillstring.sweep` table (:mod:`drillstring.sweeps`).
+        A :func:`drillstring.sweep` table (:mod:`drillstring.studies.sweeps`).
     metric : str
         A column, e.g. ``"max_theta"``, ``"dominant_frequency_hz"``, ``"share_mode_1"``.
     axes : sequence of str, optional
@@ -706,7 +664,7 @@ def sweep_plots(table: Any, out_dir: object, axes: Optional[Sequence[str]] = Non
     Nothing is written when the sweep has no varying axis."""
     import os
 
-    from .sweeps import METRICS
+    from .studies.sweeps import METRICS
 
     if not _sweep_axes(table, axes):
         return []

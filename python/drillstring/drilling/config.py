@@ -1,7 +1,7 @@
 """Configuration of the drilling-system simulator: frozen dataclasses, TOML, ``--set`` overrides.
 
 A :class:`DrillConfig` mirrors the configuration of the Rust core (``drillstring_core::drilling``):
-the string as :class:`Section` s from the top, the :class:`Well` survey, the side-wall
+the string as :class:`StringSection` s from the top, the :class:`Well` survey, the side-wall
 :class:`Friction`, the :class:`TopDrive` and its :class:`Controller`, the :class:`Bit`, the
 :class:`Numerics` and where the stick-slip metrics are measured (:class:`MetricsConfig`). SI units;
 angles in degrees and speeds in rpm where the field name says so.
@@ -49,9 +49,10 @@ import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 from .. import _core
+from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import json_ready
 
@@ -67,7 +68,7 @@ __all__ = [
     "Friction",
     "MetricsConfig",
     "Numerics",
-    "Section",
+    "StringSection",
     "TopDrive",
     "TorqueDragConfig",
     "Well",
@@ -119,7 +120,7 @@ def _default(table: Optional[str], key: str, *, unit: str, kind: str, doc: str =
 
 
 @dataclass(frozen=True)
-class Section:
+class StringSection:
     """One section of the string (drill pipe, heavy-weight pipe, collars), listed from the top.
 
     The polar moment ``J`` and area ``A`` follow from the diameters (``pi/32 (OD^4 - ID^4)``,
@@ -351,7 +352,7 @@ class DrillConfig:
     :func:`dataclasses.replace`.
     """
 
-    sections: tuple[Section, ...]
+    sections: tuple[StringSection, ...]
     """The string from the top (at least one section)."""
     well: Well = _table(Well)
     friction: Friction = _table(Friction)
@@ -432,8 +433,8 @@ class DrillConfig:
     def save(self, path: Any) -> Path:
         """Writes :meth:`to_toml` to ``path`` and returns the path written (atomic replacement,
         symlinks written through, devices and ``"-"`` streamed into; see
-        :mod:`drillstring._output`)."""
-        from .._output import write_text
+        :mod:`drillstring.io.output`)."""
+        from ..io.output import write_text
 
         return write_text(path, self.to_toml())
 
@@ -484,7 +485,7 @@ def _from_core(cls: type, data: Mapping[str, Any]) -> dict[str, Any]:
     for f in dataclasses.fields(cls):
         value = data[f.name]
         if f.name == "sections":
-            out[f.name] = tuple(Section(**_from_core(Section, s)) for s in value)
+            out[f.name] = tuple(StringSection(**_from_core(StringSection, s)) for s in value)
         elif f.metadata.get("kind") == "table":
             table = _TABLES[f.name]
             out[f.name] = table(**_from_core(table, value))
@@ -581,7 +582,7 @@ def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
 
 
 def _load_document(path: PathLike) -> dict[str, Any]:
-    from ..parameters import load_toml
+    from ..io.toml import load_toml
 
     return load_toml(path)
 
@@ -721,3 +722,13 @@ def parse_values(raw: str, field: str, text: str) -> list[Any]:
             raise ValidationError(field, text, "comma-separated values (an empty value)")
         values.append(_parse_value(item, field, text))
     return values
+
+
+#: Old names, for one release: ``Section`` is :class:`StringSection` (a length of pipe;
+#: ``drillstring.model.cross_section.CrossSection`` is the paper model's cross-section).
+_RENAMED = {"Section": "StringSection"}
+
+if not TYPE_CHECKING:
+
+    def __getattr__(name: str) -> Any:
+        return renamed(__name__, name, globals())

@@ -43,9 +43,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import _core
-from ..analysis import StickSlipMetrics, _stick_slip
 from ..errors import SolveError, ValidationError
 from ..limits import as_float, json_ready
+from .metrics import StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -110,7 +110,7 @@ class LumpedResult:
     """The bit-rock torque: the slip law while slipping, the holding torque while stuck, N m."""
     metrics: StickSlipMetrics
     """Over ``window``, of the bit speed with the spring torque as the torque series
-    (``torque_min``, ``torque_max``, ``cycle_period`` are the spring torque's)."""
+    (``motor_torque_min_Nm``, ``motor_torque_max_Nm``, ``period_s`` are the spring torque's)."""
     window: tuple[float, float]
     energy: dict[str, float]
     """``motor_work``, ``initial``, ``kinetic_top``, ``kinetic_bit``, ``spring`` (at the end),
@@ -224,7 +224,7 @@ def lumped(
         params=full,
         t=raw["t"], top_speed=raw["top_speed"], bit_speed=raw["bit_speed"],
         spring_torque=raw["spring_torque"], bit_torque=raw["bit_torque"],
-        metrics=_stick_slip(raw["metrics"]), window=(float(raw["window"][0]), float(raw["window"][1])),
+        metrics=StickSlipMetrics.from_core(raw["metrics"]), window=(float(raw["window"][0]), float(raw["window"][1])),
         energy=dict(cast("dict[str, float]", raw["energy"])),
         stats=dict(raw["stats"]),
         status=str(raw["status"]), message=str(raw["message"]),
@@ -259,7 +259,7 @@ def lumped_figure(result: LumpedResult, title: Optional[str] = None) -> Figure:
     bottom.legend(fontsize="small")
     m = result.metrics
     top.set_title(title or f"Lumped two-inertia model, wob = {result.params['wob'] * 1e-3:g} kN, "
-                  f"tm = {result.params['tm']:g} N m: SSI {m.severity:.3g}, stuck {m.stuck_fraction:.2f}")
+                  f"tm = {result.params['tm']:g} N m: SSI {m.ssi:.3g}, stuck {m.stuck_fraction:.2f}")
     return fig
 
 
@@ -325,10 +325,10 @@ def lumped_sweep(
         rows.append({
             name: float(value), "regime": eq.regime, "stuck_possible": eq.stuck_possible,
             "static_limit_Nm": eq.static_limit, "rotation_1": speeds[0], "stable_1": stable[0],
-            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status, "ssi": m.severity,
-            "stuck_fraction": m.stuck_fraction, "period_s": m.cycle_period, "bit_rpm_min": m.rpm_min,
-            "bit_rpm_max": m.rpm_max, "bit_rpm_mean": m.rpm_mean, "spring_torque_min_Nm": m.torque_min,
-            "spring_torque_max_Nm": m.torque_max, "balance_error": res.energy.get("balance_error", math.nan),
+            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status, "ssi": m.ssi,
+            "stuck_fraction": m.stuck_fraction, "period_s": m.period_s, "bit_rpm_min": m.bit_rpm_min,
+            "bit_rpm_max": m.bit_rpm_max, "bit_rpm_mean": m.bit_rpm_mean, "spring_torque_min_Nm": m.motor_torque_min_Nm,
+            "spring_torque_max_Nm": m.motor_torque_max_Nm, "balance_error": res.energy.get("balance_error", math.nan),
         })
         if progress is not None:
             progress((k + 1) / len(values))

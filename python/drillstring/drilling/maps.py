@@ -15,7 +15,7 @@ counts in its memory), and a map whose runs on its threads would not fit the mem
 refused by the core before any work (each run's series and grid times the runs solved at once).
 
 With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumable store of the
-modal sweeps (:mod:`drillstring.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
+modal sweeps (:mod:`drillstring.io.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
 with a SHA-256 record each, one writer at a time); the same call again reuses every verified
 chunk, recomputes missing or failed ones and solves only the interrupted runs of a chunk; the
 whole table is written as ``map.parquet`` and ``map.csv`` at the end. Without ``out`` the map is
@@ -46,7 +46,8 @@ from .. import _core
 from ..errors import ValidationError
 from ..limits import INT64_MAX, as_int, check_run_count, memory_budget
 from .config import DrillConfig, _load_document, _plain
-from .result import _CORE_METRICS, DrillMetrics
+from .metrics import core_value
+from .result import METRICS
 from .solve import ConfigLike, _config
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -58,8 +59,8 @@ __all__ = ["CONTROLLER_AXIS", "METRIC_COLUMNS", "controller_maps", "drill_map", 
 #: The axis of the controller type (one panel per controller in :func:`controller_maps`).
 CONTROLLER_AXIS = "top_drive.controller.type"
 
-#: The metric columns of a map, in order (the fields of :class:`DrillMetrics`, as in ``metrics.json``).
-METRIC_COLUMNS: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(DrillMetrics))
+#: The metric columns of a map, in order (those of ``metrics.json``, :data:`~drillstring.drilling.result.METRICS`).
+METRIC_COLUMNS: tuple[str, ...] = METRICS
 
 #: Runs per stored chunk of a map with ``out`` (default).
 CHUNK_SIZE = 100
@@ -169,7 +170,7 @@ def _progress_hook(
     if progress is None or progress is False:
         return None, lambda done: None
     if progress is True:
-        from .._progress import bar
+        from ..io.progress import bar
 
         tq = bar(total, "drill map", "runs")
 
@@ -262,7 +263,7 @@ def drill_map(
     for values in named.values():
         runs *= len(values)
     check_run_count("axes", {k: len(v) for k, v in named.items()}, runs)
-    from ..sweeps import check_client
+    from ..io.cluster import check_client
 
     check_client(client)
     report, close = _progress_hook(progress, runs)
@@ -349,19 +350,18 @@ class _Chunk:
 def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
              report: Optional[Callable[[float], None]], out: Any, size: int, client: Any,
              ) -> tuple[pd.DataFrame, Optional[BaseException]]:
-    """The map in chunks of ``size`` runs: stored in a :class:`~drillstring.sweep_store.SweepStore`
+    """The map in chunks of ``size`` runs: stored in a :class:`~drillstring.io.sweep_store.SweepStore`
     in ``out`` (resumable) if given, solved locally or on the Dask cluster ``client``."""
     import contextlib
 
     import pandas as pd
 
-    from .._output import MAP_FORMAT, atomic_write
     from ..errors import ResumeWarning
-    from ..sweep_store import SweepStore
-    from ..sweeps import _core_build
+    from ..io.output import MAP_FORMAT, atomic_write
+    from ..io.sweep_store import SweepStore, core_build
 
     identity = {"format": MAP_FORMAT, "drillstring_version": _core.__version__,
-                "core_build": _core_build(), "chunk_size": size, "runs": len(combos)}
+                "core_build": core_build(), "chunk_size": size, "runs": len(combos)}
     fingerprint = _digest({**identity, "config": cfg.to_dict(), "axes": named})
     chunks = range(0, len(combos), size)
     manifest = {**identity, "fingerprint": fingerprint, "chunks": len(chunks), "axes": list(named)}
@@ -430,9 +430,9 @@ def _on_dask(client: Any, cfg: DrillConfig, named: Mapping[str, list[Any]], jobs
              threads: Optional[int], finished: Callable[[_Chunk, pd.DataFrame], None],
              report: Callable[[int], None], done: int) -> None:
     """Submits every chunk as a task and hands each result to ``finished`` as it completes."""
-    from ..sweeps import _require_distributed
+    from ..io.cluster import require_distributed
 
-    distributed = _require_distributed()
+    distributed = require_distributed()
     own = None
     if isinstance(client, str):
         own = client = distributed.Client(client)
@@ -481,7 +481,8 @@ def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: M
     columns["message"] = list(raw["message"])
     metrics = raw["metrics"]
     for name in METRIC_COLUMNS:
-        columns[name] = np.asarray(metrics.get(_CORE_METRICS.get(name, name), []), dtype=float)
+        value = core_value(metrics, name)
+        columns[name] = np.asarray([] if value is None else value, dtype=float)
     for name in STAT_COLUMNS:
         columns[name] = np.asarray(raw["stats"].get(name, []))
     frame = pd.DataFrame(columns)

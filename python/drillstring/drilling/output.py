@@ -1,17 +1,17 @@
 """The output folder of a drilling-system run (``drillstring drill --out DIR``,
-:meth:`DrillResult.save`). Every file goes through :mod:`drillstring._output`: written to a
+:meth:`DrillResult.save`). Every file goes through :mod:`drillstring.io.output`: written to a
 temporary file and renamed into place, never over an input of the command.
 
 The folder is written as a whole (:func:`output_folder`):
 
-* **one writer**: the folder is locked (:func:`drillstring._output.lock_directory`, the lock of
+* **one writer**: the folder is locked (:func:`drillstring.io.output.lock_directory`, the lock of
   the sweep and map stores) while a run writes it (``drillstring drill`` takes it before solving);
   a second run into it is refused, naming the process that holds it;
 * **complete or marked partial**: :data:`MARKER` is written first and removed last, so a folder
   whose writing was interrupted says so; the files of :data:`FILES` this run does not write (the
   figures with ``plots=False``) are removed, so the folder never mixes files of two runs;
 * **its own folder**: a folder holding another command's output (a ``drill-map`` or ``sweep``
-  store) is refused (:func:`drillstring._output.refuse_foreign_folder`).
+  store) is refused (:func:`drillstring.io.output.refuse_foreign_folder`).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
-from .._output import (
+from ..io.output import (
     atomic_write,
     check_destination,
     check_directory_name,
@@ -78,7 +78,7 @@ def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
                   field: str = "out_dir", command: str = "drill",
                   names: Optional[tuple[str, ...]] = None) -> Iterator[Path]:
     """Holds the output folder ``out_dir`` of a run for the ``with`` block: checks it
-    (:func:`~drillstring._output.check_destination`, not another command's output), creates it
+    (:func:`~drillstring.io.output.check_destination`, not another command's output), creates it
     and takes its lock (see the module docstring); yields its path. At the end the lock is
     released and its file removed, as is the folder if it was created here and is still empty
     (a run interrupted before writing leaves nothing). Refusals raise
@@ -113,7 +113,7 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
                   field: str = "out_dir") -> list[Path]:
     """Writes the run's files into ``out_dir`` (created if needed; see :data:`FILES`) and
     returns their paths. The folder and every file destination in it are checked first
-    (:func:`~drillstring._output.check_destination`): a refused one raises
+    (:func:`~drillstring.io.output.check_destination`): a refused one raises
     :class:`~drillstring.errors.ValidationError` naming ``field`` before anything is written.
     The folder is held (:func:`output_folder`) while it is written: :data:`MARKER` first, the
     stale files of :data:`FILES` this run does not write removed, the files, then the marker
@@ -158,7 +158,7 @@ def _write_files(result: DrillResult, directory: Path, plots: bool) -> list[Path
     written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
     written.append(write_text(path("config.toml"), result.config.to_toml()))
     if plots:
-        from ..plots import save
+        from ..io.figures import save
         from .plots import space_time_maps, time_histories, torque_depth
 
         for name, make in zip(PLOT_FILES, (time_histories, space_time_maps, torque_depth)):

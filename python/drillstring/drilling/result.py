@@ -14,12 +14,13 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 import numpy as np
 
 from .config import DrillConfig
+from .metrics import StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     from numpy.typing import NDArray
 
-__all__ = ["SERIES", "UNITS", "DrillMetrics", "DrillProfile", "DrillResult"]
+__all__ = ["SERIES", "UNITS", "METRICS", "DrillMetrics", "DrillProfile", "DrillResult"]
 
 #: The time series of a run, in the order of the tables (``t`` is the index).
 SERIES: tuple[str, ...] = ("surface_rpm", "bit_rpm", "motor_torque", "bit_torque")
@@ -41,24 +42,6 @@ UNITS: dict[str, str] = {
     "min_cycle_torque": "N m",
 }
 
-
-#: The names of the core's metrics (those of :class:`drillstring.analysis.StickSlipMetrics`) by
-#: the names of :class:`DrillMetrics`.
-_CORE_METRICS = {
-    "ssi": "severity",
-    "period_s": "cycle_period",
-    "bit_rpm_min": "rpm_min",
-    "bit_rpm_max": "rpm_max",
-    "bit_rpm_mean": "rpm_mean",
-    "motor_torque_min_Nm": "torque_min",
-    "motor_torque_max_Nm": "torque_max",
-    "breakoff_torque_Nm": "breakoff_torque",
-    "min_cycle_torque_Nm": "min_cycle_torque",
-    "slip_period_s": "slip_period",
-}
-
-#: The metrics that are verdicts (booleans; 1 / 0 in a map's table).
-_VERDICTS = ("stick_slip", "settled")
 
 #: The criterion of the ``stick_slip`` verdict, as ``metrics.json`` states it.
 STICK_SLIP_CRITERION = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
@@ -92,79 +75,31 @@ METRIC_DEFINITIONS: dict[str, str] = {
 }
 
 
-def _number(value: Any) -> float:
-    return float("nan") if value is None else float(value)
+#: The metrics of ``metrics.json`` and a map's columns, in order (the keys of :data:`METRIC_DEFINITIONS`).
+METRICS: tuple[str, ...] = tuple(METRIC_DEFINITIONS)
 
 
 @dataclass(frozen=True)
-class DrillMetrics:
+class DrillMetrics(StickSlipMetrics):
     """Stick-slip metrics of a run over its window, as the core computes them
     (``drillstring_core::metrics::stickslip``, the function behind
-    :func:`drillstring.analysis.stick_slip_metrics`). NaN where a metric is undefined (no full
-    cycle in the window: no period)."""
+    :func:`drillstring.drilling.metrics.stick_slip_metrics`: the metrics of
+    :class:`~drillstring.drilling.metrics.StickSlipMetrics`, with ``window_start`` and
+    ``window_end`` the window asked for, by default the last half of the run), and the static
+    torques of the string in the well. NaN where a metric is undefined (no full cycle in the
+    window: no period). ``metrics.json`` and a map hold :data:`METRICS`."""
 
-    window_start: float
-    """Start of the window the metrics cover, s (by default the last half of the run)."""
-    window_end: float
-    """End of the window, s."""
-    ssi: float
-    """Stick-slip severity ``(max - min) / (2 |mean|)`` of the bit speed."""
-    stuck_fraction: float
-    """Fraction of the window's time the bit is stuck."""
-    period_s: float
-    """Stick-slip period, s: the lag of the first full peak of the motor torque's
-    autocorrelation (the similarity of the series with itself shifted), searched up to half the
-    window; NaN when the window holds fewer than two cycles. It does not depend on where the
-    window starts."""
-    bit_rpm_min: float
-    bit_rpm_max: float
-    bit_rpm_mean: float
-    """Time-weighted mean bit speed, rpm."""
-    motor_torque_min_Nm: float
-    motor_torque_max_Nm: float
-    breakoff_torque_Nm: float
+    breakoff_torque_Nm: float = math.nan
     """Static break-off torque of the string in the well (the integral of the friction limit), N m."""
-    period_cycles: float
-    """The window's length in periods (NaN without a period)."""
-    periodicity: float
-    """Similarity of the motor torque with itself one period later (1: exactly periodic)."""
-    slip_period_s: float
-    """Cross-check of ``period_s``: the mean interval between the bit's slip onsets (its speed
-    rising through ``metrics.stick_speed`` for a slip that carries it above its mean speed; a
-    partial slip is no cycle), s; NaN with fewer than three onsets."""
-    stick_slip: bool
-    """The verdict: the bit stops (``|bit speed| <= metrics.stick_speed``) during part of the
-    window, neither never nor throughout (``0 < stuck_fraction < 1``)."""
-    settled: bool
-    """The window holds a steady regime: its first and last period (its halves without a
-    period) have the same bit-speed and motor-torque means and ranges to 5 % of the ranges plus
-    1 % of the means. False for a transient still decaying inside the window."""
-    min_cycle_torque_Nm: float
+    min_cycle_torque_Nm: float = math.nan
     """The minimum motor torque of a stick-slip cycle that break-off implies, ``2 K - S`` (``S`` the
     static torque of the wall and, on bottom, the bit; ``K`` the same contacts at their kinetic
     torque): ``breakoff (1 - 2 (1 - kinetic_ratio))`` off bottom, as ``tauMin`` of Aarsnes & Shor's
     code (``drillstring_core::drilling::grid::min_cycle_torque``), N m."""
 
-    @classmethod
-    def from_core(cls, metrics: Mapping[str, Any]) -> DrillMetrics:
-        """From the ``metrics`` dict of ``_core.drill_solve`` (the names of
-        :func:`drillstring.analysis.stick_slip_metrics`: ``severity``, ``rpm_min``, ...;
-        ``None`` read as NaN)."""
-        values: dict[str, Any] = {}
-        for f in dataclasses.fields(cls):
-            core = _CORE_METRICS.get(f.name, f.name)
-            value = metrics[core] if core in metrics else metrics.get(f.name)
-            values[f.name] = bool(value) if f.name in _VERDICTS else _number(value)
-        return cls(**values)
-
-    @property
-    def window(self) -> tuple[float, float]:
-        """``(window_start, window_end)``, s."""
-        return (self.window_start, self.window_end)
-
     def to_dict(self) -> dict[str, Optional[float]]:
-        """``{name: value}`` with NaN as ``None`` (JSON-ready)."""
-        return {f.name: (None if math.isnan(v := getattr(self, f.name)) else v) for f in dataclasses.fields(self)}
+        """``{name: value}`` of :data:`METRICS` with NaN as ``None`` (JSON-ready)."""
+        return {name: (None if math.isnan(v := getattr(self, name)) else v) for name in METRICS}
 
 
 #: How far each metric may move between a run and the same run on twice the cells before a grid
@@ -413,7 +348,7 @@ class DrillResult:
         written: ``series.parquet``, ``series.csv``, ``metrics.json``, ``fields.npz``,
         ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
         ``report.md``. The destinations are checked before anything is written; every file is
-        written atomically (see :mod:`drillstring._output`)."""
+        written atomically (see :mod:`drillstring.io.output`)."""
         from .output import write_outputs
 
         return write_outputs(self, out_dir, plots=plots)

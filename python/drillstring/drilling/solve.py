@@ -7,8 +7,8 @@ from collections.abc import Mapping
 from typing import Any, Optional, Union
 
 from .. import _core
-from .._progress import ProgressOption, SolveProgress, check_progress
 from ..errors import SolveError, ValidationError
+from ..io.progress import ProgressOption, SolveProgress, check_progress
 from .config import DrillConfig, load_drill_config
 from .result import DrillProfile, DrillResult, GridCheck
 

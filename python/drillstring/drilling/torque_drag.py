@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any, Union
 import numpy as np
 
 from .. import _core
-from .._output import atomic_write, write_text
+from ..io.output import atomic_write, write_text
 from .output import MARKER as _MARKER
 from .output import output_folder
 
@@ -190,7 +190,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
             written.append(atomic_write(path(name), partial(_csv, frame), suffix=".csv"))
         written.append(write_text(path("config.toml"), result.config.to_toml()))
         if plots:
-            from ..plots import save
+            from ..io.figures import save
 
             for name, make in zip(TD_PLOT_FILES, (profiles_figure, broomstick_figure, well_path_figure)):
                 written.append(Path(os.fsdecode(os.fspath(save(make(result), path(name))))))

@@ -1,0 +1,241 @@
+"""Stick-slip metrics of bit-speed and motor-torque series (computed by the core's
+``metrics::stickslip``), for drilling runs, the lumped model and field data."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Optional, TypeVar
+
+import numpy as np
+
+from .. import _core
+from ..errors import ValidationError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
+
+__all__ = ["STICK_SPEED", "CORE_NAMES", "StickSlipMetrics", "stick_slip_metrics", "break_off_torque"]
+
+
+#: Default stick threshold speed of :func:`stick_slip_metrics`, rad/s (about 0.1 rpm).
+STICK_SPEED: float = _core.STICK_SPEED
+
+
+#: The core's names of the metrics (``drillstring_core::metrics::stickslip`` and the dicts of
+#: ``_core.drill_solve``, ``_core.drill_map``, ``_core.lumped_solve``) by their names here, the
+#: drilling names of ``metrics.json`` and a map's columns. The core's names of the stick-slip
+#: metrics were this package's names before, and work for one release as properties that warn.
+CORE_NAMES: dict[str, str] = {
+    "window_start": "t_start",
+    "window_end": "t_end",
+    "ssi": "severity",
+    "bit_rpm_min": "rpm_min",
+    "bit_rpm_max": "rpm_max",
+    "bit_rpm_mean": "rpm_mean",
+    "motor_torque_min_Nm": "torque_min",
+    "motor_torque_max_Nm": "torque_max",
+    "period_s": "cycle_period",
+    "slip_period_s": "slip_period",
+    "breakoff_torque_Nm": "breakoff_torque",
+    "min_cycle_torque_Nm": "min_cycle_torque",
+}
+
+#: The metrics that are verdicts (booleans; 1 / 0 in a map's table) and counts.
+VERDICTS = ("stick_slip", "settled")
+_COUNTS = ("slip_onsets",)
+
+
+def core_value(d: Mapping[str, Any], name: str) -> Any:
+    """The metric ``name`` of a dict of the core: under its own name when the dict has it (a drill
+    run's ``window_start``, the window asked for), else under the core's name (None if absent)."""
+    return d[name] if name in d else d.get(CORE_NAMES.get(name, name))
+
+
+_M = TypeVar("_M", bound="StickSlipMetrics")
+
+
+class _OldName:
+    """A metric under its old name (read-only): the value of ``new``, with a DeprecationWarning at
+    the caller's line."""
+
+    def __init__(self, new: str) -> None:
+        self.new = new
+        self.old = new
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.old = name
+
+    def __get__(self, instance: Any, owner: Optional[type] = None) -> Any:
+        if instance is None:
+            return self
+        warnings.warn(f"{type(instance).__name__}.{self.old} is deprecated: use .{self.new} (the old name works "
+                      "for one release)", DeprecationWarning, stacklevel=2)
+        return getattr(instance, self.new)
+
+
+@dataclass(frozen=True)
+class StickSlipMetrics:
+    """Stick-slip metrics of one window (see :func:`stick_slip_metrics`), by the names of
+    ``metrics.json``. NaN where a metric is undefined (no torque series, no full cycle)."""
+
+    window_start: float
+    """Start of the window the metrics cover, s: its first sample (a drill run's
+    :class:`~drillstring.drilling.DrillMetrics`: the window asked for)."""
+    window_end: float
+    """End of the window, s: its last sample (a drill run's: the window asked for)."""
+    ssi: float
+    """Stick-slip severity ``(max - min) / (2 |mean|)`` of the bit speed (NaN when the mean is 0)."""
+    stuck_fraction: float
+    """Fraction of the window's time with ``|omega_bit| <= stick_speed``."""
+    bit_rpm_min: float
+    bit_rpm_max: float
+    bit_rpm_mean: float
+    """Time-weighted (trapezoidal) mean bit speed, rpm."""
+    motor_torque_min_Nm: float
+    """Motor torque minimum (NaN without a torque series; the lumped model's spring torque)."""
+    motor_torque_max_Nm: float
+    period_s: float
+    """Stick-slip period, s: the motor torque's period from its autocorrelation (the similarity of
+    the series with itself shifted, searched up to half the window); NaN with fewer than two cycles
+    in the window or without a torque series. It does not depend on where the window starts."""
+    period_cycles: float
+    """The window's length in periods (NaN without one)."""
+    periodicity: float
+    """Similarity of the motor torque with itself one period later (1: exactly periodic)."""
+    slip_period_s: float
+    """Cross-check of ``period_s``: the mean interval between the bit's slip onsets (its speed
+    rising through ``stick_speed`` in the direction of its mean, for a slip that carries it above
+    its mean speed; a partial slip is no cycle), s (NaN with fewer than three)."""
+    slip_onsets: int
+    """Slip onsets of the bit in the window."""
+    stick_slip: bool
+    """The verdict: the bit stops during part of the window (``0 < stuck_fraction < 1``)."""
+    settled: bool
+    """The first and the last whole periods of the window (as many as half of it holds; its
+    halves without a period) agree in the
+    means and ranges of the bit speed and the motor torque, to 5 % of the ranges plus 1 % of the
+    means: not a transient."""
+    warnings: tuple[str, ...] = ()
+    """What in these metrics cannot be trusted as it stands (empty when all can)."""
+
+    @classmethod
+    def from_core(cls: type[_M], d: Mapping[str, Any]) -> _M:
+        """From a metrics dict of the core (its names, :data:`CORE_NAMES`; ``None`` read as NaN, the
+        ``warnings`` list as a tuple)."""
+        values: dict[str, Any] = {}
+        for f in dataclasses.fields(cls):
+            value = core_value(d, f.name)
+            if f.name == "warnings":
+                values[f.name] = tuple(str(w) for w in (value or ()))
+            elif f.name in VERDICTS:
+                values[f.name] = bool(value)
+            elif f.name in _COUNTS:
+                values[f.name] = int(value)
+            else:
+                values[f.name] = math.nan if value is None else float(value)
+        return cls(**values)
+
+    @property
+    def window(self) -> tuple[float, float]:
+        """``(window_start, window_end)``, s."""
+        return (self.window_start, self.window_end)
+
+    # The names before the drilling names (the core's), for one release: each warns.
+    t_start = _OldName("window_start")
+    t_end = _OldName("window_end")
+    severity = _OldName("ssi")
+    rpm_min = _OldName("bit_rpm_min")
+    rpm_max = _OldName("bit_rpm_max")
+    rpm_mean = _OldName("bit_rpm_mean")
+    torque_min = _OldName("motor_torque_min_Nm")
+    torque_max = _OldName("motor_torque_max_Nm")
+    cycle_period = _OldName("period_s")
+    slip_period = _OldName("slip_period_s")
+
+
+def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:
+    xa = np.ascontiguousarray(x, dtype=float)
+    if xa.ndim != 1:
+        raise ValidationError(name, f"an array of shape {xa.shape}", "a 1-D array")
+    return xa
+
+
+def stick_slip_metrics(
+    t: ArrayLike,
+    omega_bit: ArrayLike,
+    motor_torque: Optional[ArrayLike] = None,
+    *,
+    window: Optional[tuple[float, float]] = None,
+    stick_speed: float = STICK_SPEED,
+) -> StickSlipMetrics:
+    """Stick-slip metrics of a bit-speed series (and optionally the motor torque).
+
+    Works on any series, uniformly or non-uniformly sampled (a simulation, another simulator,
+    field data); the series is taken as linear between samples and means are time-weighted
+    (trapezoidal rule). Computed by the core; nothing is recomputed here.
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times, s, finite and strictly increasing.
+    omega_bit : array_like
+        Bit angular speed, rad/s, one per time.
+    motor_torque : array_like, optional
+        Motor torque (any unit), one per time.
+    window : (t_start, t_end), optional
+        Only the samples with ``t_start <= t <= t_end`` (at least 2); None: all.
+    stick_speed : float
+        The bit counts as stuck while ``|omega_bit| <= stick_speed`` (rad/s, >= 0).
+
+    Returns
+    -------
+    StickSlipMetrics
+        Severity ``ssi = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
+        min / max / mean, motor torque min / max and its period ``period_s``.
+
+    Raises
+    ------
+    ValidationError
+        Naming the argument: ``t`` not strictly increasing, series of other lengths or not
+        finite, a window holding fewer than 2 samples, a negative ``stick_speed``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0.0, 10.0, 10001)
+    >>> omega = np.maximum(0.0, 10.0 * (1.0 + 2.0 * np.sin(2 * np.pi * 0.5 * t)))
+    >>> m = stick_slip_metrics(t, omega, window=(2.0, 10.0))
+    >>> round(m.stuck_fraction, 3)  # arccos(1/2) / pi
+    0.333
+    """
+    ta = _series("t", t)
+    torque = None if motor_torque is None else _series("motor_torque", motor_torque)
+    span = None if window is None else (float(window[0]), float(window[1]))
+    d = _core.stick_slip_metrics(
+        ta, _series("omega_bit", omega_bit), torque, window=span, stick_speed=float(stick_speed)
+    )
+    return StickSlipMetrics.from_core(d)
+
+
+def break_off_torque(depth: ArrayLike, limit: ArrayLike) -> float:
+    """The static break-off torque of a well, N m: the integral over measured depth of the
+    friction limit per metre (trapezoidal rule).
+
+    Parameters
+    ----------
+    depth : array_like
+        Measured depths, m, strictly increasing.
+    limit : array_like
+        Friction limit per metre at each depth, N m/m (>= 0).
+
+    Examples
+    --------
+    >>> break_off_torque([0.0, 1000.0, 2500.0], [4.0, 4.0, 4.0])
+    10000.0
+    """
+    return _core.break_off_torque(_series("depth", depth), _series("limit", limit))

@@ -1,0 +1,1 @@
+"""Files, progress, the verified sweep store and cluster helpers (internal)."""
