@@ -14,7 +14,7 @@ use drillstring_core::interrupt::Interrupt;
 use drillstring_core::metrics::StickSlip;
 use drillstring_core::solution::{serialize_list, LIST};
 use drillstring_core::{Output, SecondOrderSystem, Solution};
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
@@ -81,9 +81,18 @@ pub(crate) fn to_vec(a: &PyReadonlyArray1<'_, f64>) -> Vec<f64> {
 /// The dict every solve returns: `t` (samples,), `y` (samples, dim), `status`, `message`,
 /// `nfev`, `naccept`, `ndense`, `nreject`, `dissipated` (samples,), or None for a system whose
 /// forces do not depend on the velocity (`dissipative` false).
-pub(crate) fn solution_dict<'py>(py: Python<'py>, sol: &Solution, dissipative: bool) -> PyResult<Bound<'py, PyDict>> {
-    let out = to_dict(py, sol)?;
-    reshape(&out, "y", [sol.len(), sol.dim])?;
+pub(crate) fn solution_dict<'py>(
+    py: Python<'py>,
+    mut sol: Solution,
+    dissipative: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    // the samples, the large part, are handed to numpy as they are (no copy); the rest is
+    // serialised
+    let (samples, dim) = (sol.len(), sol.dim);
+    let (t, y) = (std::mem::take(&mut sol.t), std::mem::take(&mut sol.y));
+    let out = to_dict(py, &sol)?;
+    out.set_item("t", PyArray1::from_vec(py, t))?;
+    out.set_item("y", PyArray1::from_vec(py, y).reshape([samples, dim])?)?;
     if !dissipative {
         out.set_item("dissipated", py.None())?;
     }
@@ -254,7 +263,7 @@ pub(crate) fn solve_to_dict<'py, S: SecondOrderSystem + Sync + ?Sized>(
     })?;
     signals.finish()?;
     let sol = solved.map_err(|e| validation_error(py, e))?;
-    solution_dict(py, &sol, sys.velocity_dependent())
+    solution_dict(py, sol, sys.velocity_dependent())
 }
 
 /// Defines the `solve_*` binding `$name` of the system pyclass `$system` (its core system in
