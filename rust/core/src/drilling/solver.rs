@@ -1032,6 +1032,55 @@ fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
             if needed > breakoff { " and the bit's" } else { "" }
         ));
     }
+    out.extend(plausibility_warnings(cfg));
+    out
+}
+
+/// Drilling practice's ranges, beyond which a value is more likely a mistake (a unit, a digit)
+/// than a well: the bound, the field and the likely mistake.
+pub const PLAUSIBLE_OUTER_DIAMETER: f64 = 1.0;
+pub const PLAUSIBLE_BIT_RADIUS: f64 = 0.25;
+pub const PLAUSIBLE_STRING_LENGTH: f64 = 15_000.0;
+pub const PLAUSIBLE_RPM: f64 = 400.0;
+
+/// Warnings (not errors) for values far outside drilling practice: a pipe over
+/// [`PLAUSIBLE_OUTER_DIAMETER`] m across, a bit over 2 [`PLAUSIBLE_BIT_RADIUS`] m, a string
+/// longer than [`PLAUSIBLE_STRING_LENGTH`] m, a top-drive speed over [`PLAUSIBLE_RPM`] rpm.
+pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, s) in cfg.sections.iter().enumerate() {
+        if s.outer_diameter > PLAUSIBLE_OUTER_DIAMETER {
+            out.push(format!(
+                "sections[{i}].outer_diameter = {} m is over {} m: a diameter in mm or inches? (the configuration is in m)",
+                Num(s.outer_diameter),
+                Num(PLAUSIBLE_OUTER_DIAMETER)
+            ));
+        }
+    }
+    if cfg.bit.radius > PLAUSIBLE_BIT_RADIUS {
+        out.push(format!(
+            "bit.radius = {} m is a bit over {} m across: a diameter or inches? (bit.radius is half the diameter, in m)",
+            Num(cfg.bit.radius),
+            Num(2.0 * PLAUSIBLE_BIT_RADIUS)
+        ));
+    }
+    let length: f64 = cfg.sections.iter().map(|s| s.length).sum();
+    if length > PLAUSIBLE_STRING_LENGTH {
+        out.push(format!(
+            "the string is {} m long, over the {} m of the deepest wells: a length in feet? (the configuration is in m)",
+            Num(length),
+            Num(PLAUSIBLE_STRING_LENGTH)
+        ));
+    }
+    let rpm = std::iter::once(cfg.top_drive.rpm).chain(cfg.top_drive.steps.iter().map(|s| s[1]));
+    if let Some(fast) = rpm.map(f64::abs).filter(|r| *r > PLAUSIBLE_RPM).reduce(f64::max) {
+        out.push(format!(
+            "a top-drive speed of {} rpm is over the {} rpm of top drives: rad/s or a digit too many? \
+             (top_drive.rpm and top_drive.steps are in rpm)",
+            Num(fast),
+            Num(PLAUSIBLE_RPM)
+        ));
+    }
     out
 }
 

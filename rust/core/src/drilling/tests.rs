@@ -1169,3 +1169,20 @@ fn a_metrics_window_outside_the_run_is_refused() {
         }
     }
 }
+
+#[test]
+fn values_outside_drilling_practice_warn_naming_the_field() {
+    let mut cfg = DrillConfig::default();
+    assert!(super::solver::plausibility_warnings(&cfg).is_empty());
+    cfg.sections[0].outer_diameter = 171.0;
+    cfg.sections[0].inner_diameter = 100.0;
+    cfg.bit.radius = 8.5;
+    cfg.top_drive.rpm = -1e300;
+    cfg.sections[0].length = 30_000.0;
+    let w = super::solver::plausibility_warnings(&cfg);
+    assert_eq!(w.len(), 4, "{w:?}");
+    assert!(w[0].starts_with("sections[0].outer_diameter = 171 m"));
+    assert!(w[1].starts_with("bit.radius = 8.5 m"));
+    assert!(w[2].contains("30000 m long"));
+    assert!(w[3].contains("1e+300 rpm"));
+}
