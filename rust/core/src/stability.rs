@@ -247,6 +247,26 @@ pub struct Stability {
     pub classification: Classification,
 }
 
+/// Serialised as `rates`, the real and imaginary parts of the eigenvalues as separate columns
+/// (`mode_eigenvalues_real`, `mode_eigenvalues_imag`, `eigenvalues_real`, `eigenvalues_imag`),
+/// `mode_classification` (names) and `classification` (a name).
+impl serde::Serialize for Stability {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let part = |v: &[(f64, f64)], k: usize| v.iter().map(|c| if k == 0 { c.0 } else { c.1 }).collect::<Vec<f64>>();
+        let mut map = s.serialize_map(Some(7))?;
+        map.serialize_entry("rates", &self.rates)?;
+        map.serialize_entry("mode_eigenvalues_real", &part(&self.mode_eigenvalues, 0))?;
+        map.serialize_entry("mode_eigenvalues_imag", &part(&self.mode_eigenvalues, 1))?;
+        map.serialize_entry("eigenvalues_real", &part(&self.eigenvalues, 0))?;
+        map.serialize_entry("eigenvalues_imag", &part(&self.eigenvalues, 1))?;
+        let names: Vec<&str> = self.mode_classification.iter().map(|c| c.name()).collect();
+        map.serialize_entry("mode_classification", &names)?;
+        map.serialize_entry("classification", self.classification.name())?;
+        map.end()
+    }
+}
+
 /// Rates, eigenvalues and classification of the equilibrium of the modal system with the
 /// diagonal `mass` and `stiffness` and the damping rate `c`. Errors as [`jacobian`].
 pub fn analyse(mass: &[f64], stiffness: &[f64], damping_rate: f64) -> Result<Stability> {

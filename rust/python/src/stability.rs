@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{to_vec, validation_error};
+use crate::convert::{to_dict, to_vec, validation_error};
 
 /// Mode numbers as `u32`, or a `ValidationError` naming `indices`.
 fn mode_numbers(py: Python<'_>, indices: &PyReadonlyArray1<'_, i64>) -> PyResult<Vec<u32>> {
@@ -125,15 +125,6 @@ pub(crate) fn modal_jacobian<'py>(
     PyArray1::from_vec(py, jac).reshape([2 * m, 2 * m])
 }
 
-fn complex_parts<'py>(
-    py: Python<'py>,
-    values: &[(f64, f64)],
-) -> (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>) {
-    let re = values.iter().map(|v| v.0).collect();
-    let im = values.iter().map(|v| v.1).collect();
-    (PyArray1::from_vec(py, re), PyArray1::from_vec(py, im))
-}
-
 /// The linear stability of the equilibrium of a modal system: a dict with `rates` (m,),
 /// `mode_eigenvalues_real`, `mode_eigenvalues_imag` (m,), `eigenvalues_real`,
 /// `eigenvalues_imag` (2m,, sorted by imaginary then real part), `mode_classification` (list of
@@ -147,18 +138,7 @@ pub(crate) fn modal_stability<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let s =
         stability::analyse(&to_vec(&mass), &to_vec(&stiffness), damping_rate).map_err(|e| validation_error(py, e))?;
-    let out = PyDict::new(py);
-    out.set_item("rates", PyArray1::from_vec(py, s.rates))?;
-    let (re, im) = complex_parts(py, &s.mode_eigenvalues);
-    out.set_item("mode_eigenvalues_real", re)?;
-    out.set_item("mode_eigenvalues_imag", im)?;
-    let (re, im) = complex_parts(py, &s.eigenvalues);
-    out.set_item("eigenvalues_real", re)?;
-    out.set_item("eigenvalues_imag", im)?;
-    let names: Vec<&str> = s.mode_classification.iter().map(|c| c.name()).collect();
-    out.set_item("mode_classification", names)?;
-    out.set_item("classification", s.classification.name())?;
-    Ok(out)
+    to_dict(py, &s)
 }
 
 /// The mode shapes `cos(i pi z / l)` (`slope=False`) or their slopes `-(i pi / l) sin(i pi z / l)`
