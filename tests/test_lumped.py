@@ -363,3 +363,18 @@ def test_sweep_and_output_on_the_command_line(capsys: pytest.CaptureFixture[str]
         code, out, err = run_cli(capsys, "lumped", *args)
         assert code == 2
         one_line_error(err, needle)
+
+
+def test_lumped_params_are_typed_with_the_cores_defaults_and_validation() -> None:
+    from drillstring import _core
+    from drillstring.drilling import LumpedParams
+
+    assert LumpedParams().to_dict() == _core.lumped_defaults()[0] == lumped_defaults()
+    p = LumpedParams(wob=60e3)
+    # a LumpedParams and the mapping of the same values give the same run
+    a = lumped(p, duration=20.0)
+    b = lumped({"wob": 60e3}, duration=20.0)
+    assert a.params == b.params and np.array_equal(a.bit_speed, b.bit_speed)
+    with pytest.raises(ValidationError) as info:
+        LumpedParams(kt=-1.0)
+    assert info.value.field == "kt"

@@ -35,6 +35,7 @@ from .config import (
 )
 from .lumped import (
     LumpedEquilibria,
+    LumpedParams,
     LumpedResult,
     LumpedRotation,
     lumped,
@@ -53,6 +54,7 @@ from .torque_drag import TorqueDragResult, torque_drag, write_torque_drag
 __all__ = [
     "FILES",
     "LumpedEquilibria",
+    "LumpedParams",
     "LumpedResult",
     "LumpedRotation",
     "lumped",

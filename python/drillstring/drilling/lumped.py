@@ -33,11 +33,12 @@ True
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Optional, cast
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -51,8 +52,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     from matplotlib.figure import Figure
 
-__all__ = ["LumpedEquilibria", "LumpedResult", "LumpedRotation", "lumped", "lumped_defaults", "lumped_equilibria",
-           "lumped_figure", "lumped_sweep", "lumped_sweep_figure"]
+__all__ = ["LumpedEquilibria", "LumpedParams", "LumpedResult", "LumpedRotation", "lumped", "lumped_defaults",
+           "lumped_equilibria", "lumped_figure", "lumped_sweep", "lumped_sweep_figure"]
 
 
 def lumped_defaults() -> dict[str, float]:
@@ -62,6 +63,49 @@ def lumped_defaults() -> dict[str, float]:
     ``tm`` N m; ``wob`` N."""
     params: dict[str, float] = _core.lumped_defaults()[0]
     return params
+
+
+_CORE_DEFAULTS: dict[str, float] = _core.lumped_defaults()[0]
+
+
+def _param(name: str, doc: str) -> Any:
+    return field(default=_CORE_DEFAULTS[name], metadata={"doc": doc})
+
+
+@dataclass(frozen=True)
+class LumpedParams:
+    """The parameters of the lumped two-inertia model (Navarro-Lopez & Cortes 2007), every
+    default the core's (:func:`lumped_defaults`). Constructing one has the core validate it:
+    a value out of range raises :class:`~drillstring.errors.ValidationError` naming the field.
+    :func:`lumped`, :func:`lumped_equilibria` and :func:`lumped_sweep` take one, or a mapping
+    of some of the names.
+
+    >>> p = LumpedParams(wob=60e3)
+    >>> p.tm, p.wob
+    (6000.0, 60000.0)
+    """
+
+    jr: float = _param("jr", "rotary table (top) inertia, kg m^2")
+    jb: float = _param("jb", "bit (bottom) inertia, kg m^2")
+    kt: float = _param("kt", "torsional stiffness of the string, N m/rad")
+    ct: float = _param("ct", "torsional damping of the string, N m s/rad")
+    cr: float = _param("cr", "viscous damping at the top, N m s/rad")
+    cb: float = _param("cb", "viscous damping at the bit, N m s/rad")
+    rb: float = _param("rb", "bit radius, m")
+    mu_cb: float = _param("mu_cb", "bit Coulomb (kinetic) friction coefficient")
+    mu_sb: float = _param("mu_sb", "bit static friction coefficient")
+    gamma_b: float = _param("gamma_b", "decay of the friction from static to kinetic, s/rad")
+    v_f: float = _param("v_f", "velocity of the friction law's decay, rad/s")
+    d_v: float = _param("d_v", "stick band of the bit speed, rad/s")
+    tm: float = _param("tm", "motor torque at the top, N m")
+    wob: float = _param("wob", "weight on bit, N")
+
+    def __post_init__(self) -> None:
+        _core.lumped_equilibria(_params_json(self.to_dict()))  # the core's validation, naming the field
+
+    def to_dict(self) -> dict[str, float]:
+        """The parameters as a plain dict of the core's names."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
 
 def _numerics(duration: Any, dt: Any, output_interval: Any, initial: Any, window: Any = None,
@@ -84,9 +128,12 @@ def _numerics(duration: Any, dt: Any, output_interval: Any, initial: Any, window
     return numerics
 
 
-def _params_json(params: Optional[Mapping[str, Any]]) -> str:
-    """``params`` as the JSON the core parses and validates (an unknown name, a value that is not
-    a number or out of range: ValidationError naming the field)."""
+def _params_json(params: Optional[Any]) -> str:
+    """``params`` (a :class:`LumpedParams` or a mapping of some of the names) as the JSON the core
+    parses and validates (an unknown name, a value that is not a number or out of range:
+    ValidationError naming the field)."""
+    if isinstance(params, LumpedParams):
+        params = params.to_dict()
     if params is not None and not isinstance(params, Mapping):
         raise ValidationError("params", params, "a mapping of parameter names to numbers")
     return json.dumps(json_ready(dict(params or {})))
@@ -150,7 +197,7 @@ class LumpedEquilibria:
     """``wob rb mu_sb``, N m."""
 
 
-def lumped_equilibria(params: Optional[Mapping[str, Any]] = None) -> LumpedEquilibria:
+def lumped_equilibria(params: Union[LumpedParams, Mapping[str, Any], None] = None) -> LumpedEquilibria:
     """The steady rotations of the lumped model with ``params`` (over :func:`lumped_defaults`),
     their stability and the regime (computed by the core).
 
@@ -169,7 +216,7 @@ def lumped_equilibria(params: Optional[Mapping[str, Any]] = None) -> LumpedEquil
 
 
 def lumped(
-    params: Optional[Mapping[str, Any]] = None,
+    params: Union[LumpedParams, Mapping[str, Any], None] = None,
     *,
     duration: float = 200.0,
     dt: float = 1e-3,
@@ -274,7 +321,7 @@ SWEEP_COLUMNS: tuple[str, ...] = (
 def lumped_sweep(
     name: str,
     values: Sequence[float],
-    params: Optional[Mapping[str, Any]] = None,
+    params: Union[LumpedParams, Mapping[str, Any], None] = None,
     *,
     duration: float = 200.0,
     dt: float = 1e-3,
@@ -316,7 +363,8 @@ def lumped_sweep(
     _numerics(duration, dt, 0.01, initial)  # refused before any run
     rows: list[dict[str, Any]] = []
     for k, value in enumerate(values):
-        p = {**(params or {}), name: value}
+        base = params.to_dict() if isinstance(params, LumpedParams) else dict(params or {})
+        p = {**base, name: value}
         eq = lumped_equilibria(p)
         res = lumped(p, duration=duration, dt=dt, initial=initial, check=False)
         speeds = [r.speed for r in eq.rotations] + [math.nan] * (2 - len(eq.rotations))
