@@ -17,7 +17,7 @@ from drillstring.model.parameters import Parameters, check_damping_rate
 
 
 def test_every_parameters_field_and_default_is_the_cores() -> None:
-    core = json.loads(_core.parameters_defaults())
+    core = _core.parameters_defaults()
     fields = {f.name: f.default for f in dataclasses.fields(Parameters)}
     assert set(fields) == set(core)
     for name, default in fields.items():

@@ -623,7 +623,7 @@ def drill_defaults() -> dict[str, Any]:
 
 def drill_config_override(
     config_json: str, overrides_json: str, field: str = "overrides", validate: bool = True, parse: bool = True
-) -> str:
+) -> dict[str, Any]:
     """The configuration ``config_json`` with ``overrides_json`` (a JSON list of
     ``[dotted path, value]`` pairs: ``top_drive.rpm``, ``sections[1].length``, a table such as
     ``top_drive.controller`` merged into it, ``null`` for None) set in order, parsed and (with
@@ -639,11 +639,11 @@ def drill_config_override(
         listed), a wrong type, a value out of range (with ``validate``).
     """
 
-def parameters_defaults() -> str:
+def parameters_defaults() -> dict[str, Any]:
     """The paper model's default parameters as JSON (Table 1 of the paper, aluminium reference,
     ``initial_velocities`` ``[0.1, 0.05, 0.02]``): the fields of :class:`drillstring.Parameters`."""
 
-def parameters_validate(params_json: str) -> str:
+def parameters_validate(params_json: str) -> dict[str, Any]:
     """The paper model's parameters ``params_json`` (a JSON object of some of the fields)
     validated, every default filled in, as JSON.
 
