@@ -49,34 +49,36 @@ class Child:
 
     def __init__(self, proc: subprocess.Popen[bytes]) -> None:
         self.proc = proc
-        self._stdout = b""  # read from the pipe before communicate()
+        self._read = {"stdout": b"", "stderr": b""}  # read from the pipes before communicate()
 
     @property
     def pid(self) -> int:
         return self.proc.pid
 
-    def read_line(self, timeout: float = START_TIMEOUT) -> str:
-        """The next line the child writes to stdout (without the newline); ``AssertionError`` if
-        none comes within ``timeout`` seconds or the child exits first (with its stderr)."""
-        assert self.proc.stdout is not None
+    def read_line(self, timeout: float = START_TIMEOUT, stream: str = "stdout") -> str:
+        """The next line the child writes to ``stream`` ("stdout" or "stderr"; without the
+        newline); ``AssertionError`` if none comes within ``timeout`` seconds or the child exits
+        first (with its stderr). What is read stays out of :meth:`communicate`'s result."""
+        pipe = self.proc.stdout if stream == "stdout" else self.proc.stderr
+        assert pipe is not None
         deadline = time.monotonic() + timeout
-        fd = self.proc.stdout.fileno()
+        fd = pipe.fileno()
         with selectors.DefaultSelector() as selector:
             selector.register(fd, selectors.EVENT_READ)
-            while b"\n" not in self._stdout:
+            while b"\n" not in self._read[stream]:
                 left = deadline - time.monotonic()
-                assert left > 0, f"no line from the child within {timeout:g} s; stdout so far {self._stdout!r}"
+                assert left > 0, f"no line on {stream} within {timeout:g} s; so far {self._read[stream]!r}"
                 if not selector.select(left):
                     continue
                 chunk = os.read(fd, 65536)
                 if not chunk:
                     self.proc.wait(timeout=10)
                     raise AssertionError(
-                        f"the child exited ({self.proc.returncode}) before writing a line; stdout "
-                        f"{self._stdout!r}, stderr {self._stderr_so_far()!r}"
+                        f"the child exited ({self.proc.returncode}) before writing a line on {stream}; "
+                        f"read so far {self._read!r}, stderr {self._stderr_so_far()!r}"
                     )
-                self._stdout += chunk
-        line, self._stdout = self._stdout.split(b"\n", 1)
+                self._read[stream] += chunk
+        line, self._read[stream] = self._read[stream].split(b"\n", 1)
         return line.decode()
 
     def _stderr_so_far(self) -> str:
@@ -96,9 +98,9 @@ class Child:
         """The rest of stdout and stderr once the child has exited (``subprocess.TimeoutExpired``
         after ``timeout`` seconds; the ``with`` block then kills it)."""
         out, err = self.proc.communicate(timeout=timeout)
-        text = (self._stdout + out).decode()
-        self._stdout = b""
-        return text, err.decode()
+        text, errors = (self._read["stdout"] + out).decode(), (self._read["stderr"] + err).decode()
+        self._read = {"stdout": b"", "stderr": b""}
+        return text, errors
 
     def kill(self) -> None:
         """SIGKILL to the child's whole process group (its own children too); reaps the child."""
