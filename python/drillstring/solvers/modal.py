@@ -10,7 +10,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Literal, Optional, get_args
+from typing import TYPE_CHECKING, Any, Callable, Literal, Optional, get_args
 
 import numpy as np
 
@@ -95,7 +95,7 @@ def _output_times(
     state_dim: int,
     dt: Optional[float],
     max_steps: Optional[int],
-    fastest: tuple[float, str],
+    fastest: Callable[[], tuple[float, str]],
     default_field: str = "samples",
     default_value: Any = None,
 ) -> Optional[NDArray[np.float64]]:
@@ -105,12 +105,13 @@ def _output_times(
     :data:`~drillstring.limits.FIXED_MAX_STEPS`
     steps without an explicit ``max_steps`` is refused (field ``dt``), and so is an output larger
     than :func:`~drillstring.limits.memory_budget` (field ``t_eval``, ``samples``, ``dt`` for every-step output, or
-    ``default_field`` for the default samples, e.g. ``nodes`` for the PDE). ``fastest`` is the
-    frequency (Hz) of the fastest mode to resolve and its description: the default samples
+    ``default_field`` for the default samples, e.g. ``nodes`` for the PDE). ``fastest()`` gives
+    the frequency (Hz) of the fastest mode to resolve and its description: the default samples
     resolve it (:func:`~drillstring.limits.default_samples`) and output times too sparse for it
-    are warned about (:func:`~drillstring.limits.check_sampling`).
+    are warned about (:func:`~drillstring.limits.check_sampling`). It is called only once the
+    output is known to fit (it is a pass over the whole state: on a huge grid the refusal comes
+    first).
     """
-    frequency_hz, mode = fastest
     if method in FIXED_STEP_METHODS:
         assert dt is not None
         steps = limits.fixed_steps(t_end, dt)
@@ -127,6 +128,10 @@ def _output_times(
             return None  # every step
     if t_eval is None:
         if samples is None:
+            # never fewer than MIN_DEFAULT_SAMPLES: refused at once if even those do not fit
+            limits.check_output_size(default_field, default_value, limits.MIN_DEFAULT_SAMPLES, state_dim,
+                                     f"the default {limits.MIN_DEFAULT_SAMPLES} samples")
+            frequency_hz, mode = fastest()
             n = limits.default_samples(t_end, frequency_hz, state_dim)
             limits.check_output_size(default_field, default_value, n, state_dim, f"the default {n} samples")
             request = None
@@ -134,6 +139,7 @@ def _output_times(
             n = _count("samples", samples, 2)
             limits.check_output_size("samples", samples, n, state_dim, "samples")
             request = f"samples = {n}"
+            frequency_hz, mode = fastest()
         uniform = np.linspace(0.0, t_end, n)
         limits.check_sampling(uniform, t_end, frequency_hz, mode, request)
         return uniform
@@ -151,7 +157,7 @@ def _output_times(
         raise ValidationError("t_eval", "an empty array", "at least one output time")
     limits.check_output_size("t_eval", f"{times.size} times", times.size, state_dim, "len(t_eval)")
     if times.size >= 3 and np.all(np.isfinite(times)) and np.all(np.diff(times) >= 0.0):  # else refused later
-        limits.check_sampling(times, t_end, frequency_hz, mode, "t_eval")
+        limits.check_sampling(times, t_end, *fastest(), "t_eval")
     return np.ascontiguousarray(times)
 
 
@@ -342,7 +348,7 @@ def simulate(
         dt_f = _default_dt(coefficients)
     times = _output_times(
         t_eval, samples, t_end_f, method, state_dim=2 * coefficients.n_modes, dt=dt_f, max_steps=steps,
-        fastest=fastest_mode(coefficients),
+        fastest=lambda: fastest_mode(coefficients),
     )
     system = coefficients.core_system(params.damping_rate, evaluation)
     method = _core.resolve_method(method, system.velocity_dependent, rtol_f)

@@ -250,7 +250,7 @@ def solve_pde(
         dt_f = system.default_dt()  # half the CFL limit h / c
     times = _output_times(
         t_eval, samples, t_end_f, method, state_dim=2 * z.size, dt=dt_f, max_steps=steps,
-        fastest=_fastest(system, q0, velocity), default_field="nodes", default_value=nodes,
+        fastest=lambda: _fastest(system, q0, velocity), default_field="nodes", default_value=nodes,
     )
     with SolveProgress(progress, t_end_f, "solve_pde") as bar:
         raw = _core.solve_pde(system, q0, velocity, t_end_f, times, method, rtol_f, atol_f, dt=dt_f, max_steps=steps,
