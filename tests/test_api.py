@@ -95,6 +95,7 @@ def test_readme_python_examples_run(tmp_path, monkeypatch, capsys):
     assert list(tmp_path.iterdir()) == []  # the examples write no files
 
 
+@pytest.mark.slow
 def test_readme_python_examples_type_check(tmp_path):
     """mypy (the project's configuration and cache) accepts the README's examples and rejects a
     wrong method name and a sweep table taken for a pair."""

@@ -45,6 +45,7 @@ def test_numpy_port_is_the_published_scheme(drill_vs_numpy, octave: dict[str, np
     assert np.abs(res["bit_speed"] - bit).max() < 1e-12 * np.abs(bit).max()
 
 
+@pytest.mark.slow
 def test_published_port_copy_is_the_published_scheme(drill_vs_numpy, octave: dict[str, np.ndarray]) -> None:  # type: ignore[no-untyped-def]
     pytest.importorskip("scipy")  # its parameter file interpolates the survey with scipy
     res = drill_vs_numpy.published_port(str(drill_vs_numpy.PUBLISHED), DURATION)

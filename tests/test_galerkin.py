@@ -176,6 +176,7 @@ def symbolic() -> dict[str, Any]:
 BASES = [(n, rigid) for rigid in (False, True) for n in (1, 2, 3)]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("n", "rigid"), BASES)
 def test_projection_matches_sympy(symbolic: dict[str, Any], n: int, rigid: bool) -> None:
     rng = np.random.default_rng([RNG_SEED, n, rigid])
@@ -205,6 +206,7 @@ def test_projection_matches_sympy(symbolic: dict[str, Any], n: int, rigid: bool)
         )
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("n", "rigid"), BASES)
 def test_energy_matches_sympy(symbolic: dict[str, Any], n: int, rigid: bool) -> None:
     rng = np.random.default_rng([RNG_SEED, 7, n, rigid])

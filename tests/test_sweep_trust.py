@@ -32,6 +32,7 @@ HEAVY = {"modes": 12, "rigid_mode": True, "t_end": 8.0, "chunk_size": 60, "threa
 HEAVY_GRID = {"length": {"linspace": [100.0, 300.0, 60]}}
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_ctrl_c_inside_a_heavy_chunk_stops_and_keeps_its_finished_runs(tmp_path: Path) -> None:
     script = f"""
