@@ -47,7 +47,8 @@ def _run(script: Path, out: Path, root: Path) -> str:
     seconds = time.perf_counter() - start
     figures = [v for v in namespace.values() if isinstance(v, Figure)]
     lines = [f"# {title.strip()}", "", text.strip(), "",
-             f"```{{literalinclude}} ../../gallery/{script.name}", ":language: python", f":lines: {first_code}-", "```", ""]
+             f"```{{literalinclude}} ../../gallery/{script.name}", ":language: python",
+             f":lines: {first_code}-", "```", ""]
     if printed.getvalue().strip():
         lines += ["It prints:", "", "```text", printed.getvalue().rstrip(), "```", ""]
     for k, fig in enumerate(figures):
@@ -63,7 +64,11 @@ def _build(app: Any) -> None:
     src = Path(app.srcdir)
     out = src / "_generated" / "gallery"
     out.mkdir(parents=True, exist_ok=True)
-    for script in sorted((src / "gallery").glob("*.py")):
+    scripts = sorted((src / "gallery").glob("*.py"))
+    for stale in out.iterdir():  # pages and figures of scripts that are gone
+        if not any(stale.name == f"{s.stem}.md" or stale.name.startswith(f"{s.stem}_") for s in scripts):
+            stale.unlink()
+    for script in scripts:
         page = _run(script, out, src.parent)
         target = out / f"{script.stem}.md"
         if not target.exists() or target.read_text(encoding="utf-8") != page:
