@@ -24,7 +24,8 @@ def reference():  # type: ignore[no-untyped-def]
 
 
 def _entry(unit: str, default: object, description: str, kind: str = "number") -> dict[str, object]:
-    return {"type": kind, "unit": unit, "label": description.split(",")[0], "default": default,
+    return {"type": kind, "unit": unit if kind in ("number", "integer") else None,
+            "label": description.split(",")[0], "default": default,
             "description": description}
 
 
@@ -34,6 +35,7 @@ def test_a_table_per_configuration_table_and_a_row_per_key(reference) -> None:  
         "sections[].outer_diameter": _entry("m", None, "outer diameter"),
         "damping_rate": _entry("1/s", 0.0, "viscous damping rate"),
         "top_drive.rpm": _entry("rpm", 40.0, "setpoint"),
+        "top_drive.controller": _entry("", None, "The top drive's controller.", "table"),
         "top_drive.controller.type": _entry("", "pi", "controller: one of speed, pi, soft_torque, z_torque", "string"),
         "top_drive.controller.kp": _entry("N m s/rad", 38e3, "proportional gain"),
     }
@@ -42,13 +44,14 @@ def test_a_table_per_configuration_table_and_a_row_per_key(reference) -> None:  
     assert titles == ["## top level", "## `[[sections]]`", "## `[top_drive]`", "## `[top_drive.controller]`"]
     rows = [line for line in page.splitlines() if line.startswith("| `")]
     assert rows == [
-        "| `damping_rate` | 1/s | `0.0` | viscous damping rate (number) |",
-        "| `length` | m | – | length of the section, from the top (number) |",
-        "| `outer_diameter` | m | – | outer diameter (number) |",
-        "| `rpm` | rpm | `40.0` | setpoint (number) |",
-        '| `type` | – | `"pi"` | controller: one of speed, pi, soft_torque, z_torque (string) |',
-        "| `kp` | N m s/rad | `38000.0` | proportional gain (number) |",
+        "| `damping_rate` | 1/s | `0.0` | viscous damping rate |",
+        "| `length` | m | – | length of the section, from the top |",
+        "| `outer_diameter` | m | – | outer diameter |",
+        "| `rpm` | rpm | `40.0` | setpoint |",
+        '| `type` |  | `"pi"` | controller: one of speed, pi, soft_torque, z_torque |',
+        "| `kp` | N m s/rad | `38000.0` | proportional gain |",
     ]
+    assert "The top drive's controller." in page  # a table's entry introduces its table
     assert "note" not in page  # the core's schema: no caveat
 
 
@@ -63,6 +66,6 @@ def test_the_page_of_this_core_lists_every_key(reference) -> None:  # type: igno
     page = reference.markdown(schema, complete)
     assert {"sections[].length", "top_drive.controller.kp", "bit.weight_on_bit", "numerics.cells"} <= {
         reference._normal(key) for key in schema}
-    for key in schema:
-        name = reference._normal(key).rsplit(".", 1)[-1]
-        assert f"| `{name}` |" in page, key
+    for key, entry in schema.items():
+        if entry["type"] != "table":
+            assert f"| `{key.rpartition('.')[2]}` |" in page, key

@@ -62,10 +62,23 @@ def _default(value: Any) -> str:
     return f"`{json.dumps(value)}`"
 
 
+def _unit(entry: dict[str, Any]) -> str:
+    unit = entry.get("unit")
+    if unit is None:
+        return ""  # not a number
+    return _cell(unit) if unit else "–"  # "" is dimensionless
+
+
 def markdown(entries: dict[str, dict[str, Any]], complete: bool) -> str:
-    """One markdown table per configuration table, in the schema's order."""
+    """One markdown table per configuration table, the top level first, then in the schema's
+    order; an entry of type ``table`` gives its table's introduction instead of a row."""
     groups: dict[str, list[str]] = {"": []}  # the top level first
-    for key in entries:
+    intros: dict[str, str] = {}
+    for key, entry in entries.items():
+        if entry.get("type") == "table":
+            intros[_normal(key)] = entry.get("description") or entry.get("label") or ""
+            groups.setdefault(_normal(key), [])
+            continue
         groups.setdefault(_table_of(_normal(key)), []).append(key)
     lines = []
     if not complete:
@@ -74,21 +87,20 @@ def markdown(entries: dict[str, dict[str, Any]], complete: bool) -> str:
     for table, keys in groups.items():
         if not keys:
             continue
-        title = f"`[{table.replace('[]', '')}]`" if table else "top level"
-        if table.endswith("[]") or "[]." in table:
-            title = f"`[[{table.replace('[]', '')}]]`" if table.endswith("[]") else f"`{table}`"
-        lines += [f"## {title}", "", "| key | unit | default | meaning |", "|---|---|---|---|"]
+        title = f"`[{table}]`" if table else "top level"
+        if table.endswith("[]") and "[]" not in table[:-2]:
+            title = f"`[[{table[:-2]}]]`"
+        elif "[]" in table:
+            title = f"`{table}`"
+        lines += [f"## {title}", ""]
+        if intros.get(table):
+            lines += [intros[table], ""]
+        lines += ["| key | unit | default | meaning |", "|---|---|---|---|"]
         for key in keys:
             entry = entries[key]
-            name = _normal(key)[len(table) + 1:] if table else key
+            name = key.rpartition(".")[2] if table else key
             meaning = entry.get("description") or entry.get("label") or ""
-            kind = entry.get("type") or ""
-            if kind and meaning:
-                meaning = f"{meaning} ({kind})"
-            elif kind:
-                meaning = f"({kind})"
-            lines.append(f"| `{name}` | {_cell(entry.get('unit') or '–')} | {_cell(_default(entry.get('default')))} "
-                         f"| {_cell(meaning)} |")
+            lines.append(f"| `{name}` | {_unit(entry)} | {_cell(_default(entry.get('default')))} | {_cell(meaning)} |")
         lines.append("")
     return "\n".join(lines)
 
