@@ -1,4 +1,5 @@
-"""The public API: names, types, the README's Python examples and what the README says about them."""
+"""The public API: names, types, the Python examples of the README and the documentation pages, and
+what they say about them."""
 
 import ast
 import importlib
@@ -10,6 +11,7 @@ import types
 import typing
 from pathlib import Path
 
+import _docs
 import numpy as np
 import pandas as pd
 import pytest
@@ -18,7 +20,14 @@ import drillstring as ds
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
-PYTHON_EXAMPLES = re.findall(r"```python\n(.*?)```", README, re.S)
+DOCS = _docs.text()  # the README and the documentation pages
+PYTHON_EXAMPLES = _docs.blocks("python")
+
+
+def _example(marker: str) -> str:
+    """The one Python example of the documentation that contains ``marker``."""
+    (block,) = [b for b in PYTHON_EXAMPLES if marker in b]
+    return block
 
 
 def test_all_lists_functions_classes_and_constants_not_modules():
@@ -82,27 +91,26 @@ def test_sweep_returns_what_the_overloads_say():
 
 
 def test_readme_python_examples_run(tmp_path, monkeypatch, capsys):
-    assert len(PYTHON_EXAMPLES) >= 2
     monkeypatch.chdir(tmp_path)
     first: dict = {}
-    exec(compile(PYTHON_EXAMPLES[0], "README example 1", "exec"), first)
+    exec(compile(_example("res.to_xarray()"), "the paper model's Python example", "exec"), first)
     assert first["res"].status == "success" and first["res"].indices.tolist() == list(range(9))
     assert 1e-4 < float(np.abs(first["theta"]).max()) < 1e-3
     assert first["df"].shape == (1868, 2) and first["data"]["q"].shape == (3, 1868)  # the default samples
     sweep: dict = {}
-    exec(compile(PYTHON_EXAMPLES[1], "README example 2", "exec"), sweep)
+    exec(compile(_example("ds.sweep("), "the sweep example", "exec"), sweep)
     assert sweep["df"].shape[0] == 41 * 41 and set(sweep["df"]["status"]) == {"success"}
     assert list(tmp_path.iterdir()) == []  # the examples write no files
 
 
 @pytest.mark.slow
 def test_readme_python_examples_type_check(tmp_path):
-    """mypy (the project's configuration and cache) accepts the README's examples and rejects a
+    """mypy (the project's configuration and cache) accepts the documentation's examples and rejects a
     wrong method name and a sweep table taken for a pair."""
     pytest.importorskip("mypy")
     files = []
     for k, code in enumerate(PYTHON_EXAMPLES):
-        files.append(tmp_path / f"readme_example_{k + 1}.py")
+        files.append(tmp_path / f"docs_example_{k + 1}.py")
         files[-1].write_text(code, encoding="utf-8")
     bad = tmp_path / "bad.py"
     bad.write_text('import drillstring as ds\n'
@@ -131,7 +139,7 @@ def test_nfev_counts_as_the_readme_says():
     for samples in (2, 1868):
         s = ds.simulate(params, method="dopri5", samples=samples).stats
         assert s.nfev == 2 + 6 * (s.naccept + s.nreject)
-    assert "17004 with `samples=2` and 20652 with the default 1868 samples" in README.replace("\n  ", " ")
+    assert "17004 with `samples=2` and 20652 with the default 1868 samples" in DOCS.replace("\n  ", " ")
 
 
 def test_plain_install_has_what_the_readme_uses():
@@ -146,6 +154,13 @@ def test_plain_install_has_what_the_readme_uses():
     sources = "".join(p.read_text(encoding="utf-8") for p in (ROOT / "python/drillstring").glob("*.py"))
     assert "drillstring[" not in sources and "drillstring[" not in README
     assert "pip install '.[dask]'" in README
+
+
+def test_dir_lists_the_api_and_no_import_machinery() -> None:
+    names = dir(ds)
+    assert "TYPE_CHECKING" not in names and "annotations" not in names
+    assert set(ds.__all__) <= set(names) and {"drilling", "report", "studies"} <= set(names)
+    assert names == sorted(names)
 
 
 def test_import_does_not_load_the_report_engine() -> None:

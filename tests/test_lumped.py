@@ -259,19 +259,17 @@ def test_bad_input_names_the_field(params: dict[str, object], kwargs: dict[str, 
 
 
 def test_the_readme_example_says_what_it_prints() -> None:
-    import re
-    from pathlib import Path
+    from _docs import blocks
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    (block,) = [b for b in re.findall(r"```python\n(.*?)```", readme, re.S) if "lumped_equilibria" in b]
+    (block,) = [b for b in blocks("python") if "lumped_equilibria" in b]
     names: dict[str, object] = {}
-    exec(compile(block, "README lumped example", "exec"), names)
+    exec(compile(block, "the documentation's lumped example", "exec"), names)
     eq, m = names["eq"], names["m"]
     assert eq.regime == "stable_rotation"  # type: ignore[attr-defined]
     assert [round(r.speed, 2) for r in eq.rotations] == [0.67, 3.36]  # type: ignore[attr-defined]
     assert [r.stable for r in eq.rotations] == [False, True]  # type: ignore[attr-defined]
     assert (round(m.ssi, 2), round(m.stuck_fraction, 2), round(m.period_s, 2)) == (1.22, 0.28, 4.63)  # type: ignore[attr-defined]
-    # the boundaries the README gives at tm = 6000 N m
+    # the boundaries the documentation gives at tm = 6000 N m
     assert P["tm"] / (P["rb"] * P["mu_sb"]) == pytest.approx(48.2e3, rel=1e-3)
     assert round(hopf_wob() / 1e3, 1) == 58.7 and round(fold_wob() / 1e3, 1) == 59.1
 

@@ -1,5 +1,6 @@
 """The README as a new user meets it: a fresh virtual environment, `pip install .` from the
-checkout, then every shell command and Python example of the README, as written.
+checkout, then every shell command and Python example of the README, as written. The commands of
+the documentation pages (docs/) parse with the CLI's parser, and their Python examples run.
 
 This builds an environment and installs the package and its dependencies from the package
 index, so it runs only where ``DRILLSTRING_README_VENV=1`` is set (``.ci/run`` sets it: once per
@@ -18,6 +19,7 @@ import sys
 import venv
 from pathlib import Path
 
+import _docs
 import pytest
 
 from drillstring.cli import build_parser
@@ -47,10 +49,10 @@ def _blocks(language: str) -> list[str]:
     return re.findall(rf"^```{language}\n(.*?)^```", text, flags=re.S | re.M)
 
 
-def _commands() -> list[str]:
-    """Every shell command of the README (comments removed), in order."""
+def _commands(blocks: list[str] | None = None) -> list[str]:
+    """Every shell command of the README (comments removed), in order, or of ``blocks``."""
     commands = []
-    for block in _blocks("bash"):
+    for block in _blocks("bash") if blocks is None else blocks:
         for line in block.splitlines():
             command = line.split(" #", 1)[0].strip()
             if command and not command.startswith("#"):
@@ -113,11 +115,10 @@ def test_every_readme_command_and_example_runs_in_a_fresh_environment(fresh_env:
           f"({sys.version.split()[0]})")
 
 
-def test_every_drillstring_command_of_the_readme_is_one_the_cli_accepts() -> None:
-    """The README's ``drillstring ...`` commands, split as a shell would, parse with the CLI's own
-    parser (an option or command renamed in the CLI and not in the README fails here)."""
+def _parsed(commands: list[str]) -> list[str]:
+    """The subcommand of every ``drillstring ...`` command, each parsed by the CLI's parser."""
     parsed = []
-    for command in _commands():
+    for command in commands:
         for part in command.split(" && "):
             argv = shlex.split(part)
             if argv[0] != "drillstring":
@@ -128,4 +129,34 @@ def test_every_drillstring_command_of_the_readme_is_one_the_cli_accepts() -> Non
                 raise AssertionError(f"README command {part!r} is refused by the CLI") from exc
             assert args.command == argv[1], part
             parsed.append(argv[1])
-    assert {"paper", "simulate", "table2", "pde", "convergence", "drill", "lumped", "sweep"} <= set(parsed), parsed
+    return parsed
+
+
+def test_every_drillstring_command_of_the_readme_is_one_the_cli_accepts() -> None:
+    """The README's ``drillstring ...`` commands, split as a shell would, parse with the CLI's own
+    parser (an option or command renamed in the CLI and not in the README fails here)."""
+    parsed = _parsed(_commands())
+    assert {"paper", "simulate", "table2", "pde", "convergence", "drill", "drill-map", "lumped",
+            "sweep"} <= set(parsed), parsed
+
+
+def test_every_drillstring_command_of_the_documentation_is_one_the_cli_accepts() -> None:
+    pages = [p for p in _docs.pages() if p != README]
+    parsed = _parsed(_commands(_docs.blocks("bash", pages)))
+    assert {"paper", "simulate", "pde", "sweep", "drill", "drill-map", "torque-drag"} <= set(parsed), parsed
+
+
+#: Examples that other tests run and check (tests/test_api.py, test_lumped.py, test_stickslip_metrics.py).
+RUN_ELSEWHERE = ("res.to_xarray()", "ds.sweep(", "lumped_equilibria", "stick_slip_metrics")
+
+
+def test_every_python_example_of_the_documentation_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The README's and the pages' Python examples, as written, from a folder holding the
+    checkout's ``examples/`` (the fresh-environment test above runs the README's once more)."""
+    shutil.copytree(ROOT / "examples", tmp_path / "examples")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    examples = [b for b in _docs.blocks("python") if not any(marker in b for marker in RUN_ELSEWHERE)]
+    assert len(examples) >= 5
+    for number, block in enumerate(examples):
+        exec(compile(block, f"documentation example {number}", "exec"), {"__name__": "__example__"})

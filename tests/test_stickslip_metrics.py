@@ -5,10 +5,9 @@ against analytic values, and the refusal of bad input naming the argument."""
 from __future__ import annotations
 
 import math
-import re
-from pathlib import Path
 from typing import Callable
 
+import _docs
 import numpy as np
 import pytest
 
@@ -119,7 +118,6 @@ def test_bad_input_names_the_argument(call: Callable[[], object], field: str) ->
 
 
 def test_readme_example(capsys: pytest.CaptureFixture[str]) -> None:
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    (code,) = [c for c in re.findall(r"```python\n(.*?)```", readme, re.S) if "stick_slip_metrics" in c]
-    exec(compile(code, "README stick-slip example", "exec"), {})
+    (code,) = [c for c in _docs.blocks("python") if "stick_slip_metrics" in c]
+    exec(compile(code, "the documentation's stick-slip example", "exec"), {})
     assert capsys.readouterr().out.splitlines() == ["SSI 1.23, stuck 0.334, period 4.00 s", "15000.0"]

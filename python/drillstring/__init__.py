@@ -255,4 +255,5 @@ if not TYPE_CHECKING:
         raise AttributeError(f"module 'drillstring' has no attribute {name!r}")
 
     def __dir__() -> list[str]:
-        return sorted(set(globals()) | {"report"})
+        # the API, the modules and the report; not the names this file needs for itself
+        return sorted((set(globals()) | {"report"}) - {"TYPE_CHECKING", "annotations"})

@@ -241,6 +241,9 @@ def _as_positions(name: str, value: ArrayLike) -> FloatArray:
 class ModalCoefficients:
     """Galerkin model ``M q'' + K q + grad V(q) = 0`` of eq. 18 (see the module docstring).
 
+    All arrays are read-only. Build with :func:`project`,
+    :meth:`from_parameters` or :meth:`from_coefficients`.
+
     Attributes
     ----------
     indices:
@@ -260,9 +263,6 @@ class ModalCoefficients:
         The ``k1..k6`` and ``l`` projected (set by :meth:`from_coefficients`), or ``None``
         for a model given by its arrays. With them :meth:`core_system` may evaluate the quartic
         force pseudo-spectrally.
-
-    All arrays are read-only. Build with :func:`project`,
-    :meth:`from_parameters` or :meth:`from_coefficients`.
     """
 
     indices: IntArray

@@ -45,9 +45,9 @@ class Table2Row:
     dt: float
     """Time step, s."""
     max_amplitude: float
-    """max |theta_1(t)| over 0 <= t <= 1, rad."""
+    """``max |theta_1(t)|`` over ``0 <= t <= 1``, rad."""
     difference_percent: float
-    """|A_h - A_ref| / A_ref * 100."""
+    """``|A_h - A_ref| / A_ref * 100``."""
 
 
 def _max_amplitude(params: Parameters, method: Method, dt: float, t_end: float) -> float:
