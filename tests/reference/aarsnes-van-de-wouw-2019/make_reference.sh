@@ -52,7 +52,7 @@ python3 "$HERE/make_headless.py" "$WORK" 30 30 norecord
 rm -rf "$WORK"
 
 # Torsional stability map of the non-dimensional model (MAIN_Torsional_FreqStabMap.m) and the
-# dimensional transfer functions of Coupled/freqPlots.m at the six cases.
+# dimensional transfer functions of Coupled/freqPlots.m swept over the rotary speed.
 WORK=$(mktemp -d)
 git --git-dir="$SRC" show "$COMMIT:Coupled - nondim/MAIN_Torsional_FreqStabMap.m" > "$WORK/MAIN_Torsional_FreqStabMap.m"
 git --git-dir="$SRC" show "$COMMIT:Coupled/parameters.m" > "$WORK/parameters.m"
