@@ -27,6 +27,7 @@
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
 //!   with a true stick phase, its steady rotations and their stability.
 
+pub mod axial;
 pub mod bit;
 pub mod config;
 pub mod grid;
