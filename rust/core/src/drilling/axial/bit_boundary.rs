@@ -6,19 +6,20 @@
 //! Each field meets the bit through its incoming Riemann invariant: with the characteristic
 //! arriving at the bit (`alpha = v + F / Z_a`, `alpha = omega + tau / Z_t`, [`super::section`])
 //! the bit's speeds and the forces the rock returns are related by
-//! `v = v_in - W / Z_a`, `omega = omega_in - T / Z_t` (Aarsnes & van de Wouw 2019, eqs. 9-12;
-//! their `waveStep_transportBRI.m`, `AbetaPp1 = Aalpha(P) - 2 wb c_a / (A_p E)`). A lumped BHA
+//! `v = v_in - W / Z_a`, `omega = omega_in - T / Z_t` (Aarsnes & van de Wouw 2019, the
+//! bit boundary of their `waveStep_transportBRI.m`, `AbetaPp1 = Aalpha(P) - 2 wb c_a / (A_p E)`). A lumped BHA
 //! of mass `M` (inertia `I`) stepped semi-implicitly, `M (v' - v) / dt = Z_a (v_in - v') + F - W`,
 //! has the same form with `Z = Z_a + M / dt` and `v_in = (M v / dt + Z_a v_in + F) / Z`
 //! ([`Port::lumped`]; the bit step of `drilling/solver.rs` does the same for the torsional BHA).
 //! `Z v_in` is the force that would hold the bit at rest (`W_hold`, `T_hold`).
 //!
 //! Given the depth of cut per revolution `d` of the step ([`super::cut_surface`]), the phases
-//! (Richard, Germay & Detournay, J. Sound Vib. 305 (2007) 432-456, sec. 2.2-2.3: contact
+//! (Richard, Germay & Detournay, J. Sound Vib. 305 (2007) 432-456, the bit-rock
+//! interaction and its stick phase: contact
 //! set-valued in the axial speed, the bit stuck when its angular speed vanishes, no rotation
 //! backwards in contact, loss of contact for `d <= 0`; Germay, Denoël & Detournay, "Multiple
 //! mode analysis of the self-excited vibrations of rotary drilling systems", J. Sound Vib. 325
-//! (2009) 362-381, sec. 2.2, for the bit bounce):
+//! (2009) 362-381, for the bit bounce):
 //!
 //! * **lift-off** (bit bounce), `d <= 0`: no contact, `W = T = 0`, `v = v_in`,
 //!   `omega = omega_in` (the bit may turn either way);
@@ -32,7 +33,7 @@
 //!   threshold is held, negative ones too: no backward rotation in contact), and the bit stops
 //!   axially with its rotation, the rock holding it (`v = 0`, `W = W_hold`) unless the string
 //!   pulls it up (`W_hold < 0`: `W = 0`, `v = v_in`): the cutters cannot advance without turning
-//!   (Richard et al. 2007, sec. 2.3; the published code's `g_wt` likewise).
+//!   (Richard et al. 2007; the published code's `g_wt` likewise).
 //!
 //! The solution is unique and exact (no thresholds on speeds); `omega` and `T` are continuous
 //! from cutting into stick (`omega -> 0` as `T_hold -> T*`), `W`, `T`, `v` and `omega` from
@@ -136,7 +137,7 @@ impl BitContact {
 /// The bit's speeds, weight and torque and its phase for the depth of cut per revolution
 /// `depth` (m) with the fields' ends `axial` and `torsion` (see the module).
 pub fn solve_bit(law: &DetournayBit, axial: Port, torsion: Port, depth: f64) -> BitContact {
-    if !(depth > 0.0) {
+    if depth.is_nan() || depth <= 0.0 {
         return BitContact {
             axial_speed: axial.free_speed,
             angular_speed: torsion.free_speed,

@@ -4,7 +4,7 @@
 //! Detournay & Defourny, "A phenomenological model for the drilling action of drag bits",
 //! Int. J. Rock Mech. Min. Sci. 29 (1992) 13-23, in the form of Richard, Germay & Detournay,
 //! "A simplified model to explore the root cause of stick-slip vibrations in drilling systems
-//! with drag bits", J. Sound Vib. 305 (2007) 432-456, sec. 2.2 (eqs. 4-7):
+//! with drag bits", J. Sound Vib. 305 (2007) 432-456 (the bit-rock interaction law):
 //!
 //! * cutting: `W_c = a zeta eps d`, `T_c = a^2 eps d / 2`;
 //! * frictional contact on the wear flats: `W_f = a l sigma`, `T_f = gamma mu a W_f / 2`;
@@ -17,8 +17,7 @@
 //!
 //! `d` is the depth of cut **per revolution**, `d = n d_n`, with `d_n` the depth of cut of one
 //! blade (the axial advance of the bit since the previous blade passed the same place, an angle
-//! `2 pi / n` earlier, [`super::cut_surface`]) and `n` the number of blades (Richard et al. 2007,
-//! eq. 2). In steady drilling at the rate of penetration `V` and rotary speed `Omega` (rad/s)
+//! `2 pi / n` earlier, [`super::cut_surface`]) and `n` the number of blades (Richard et al. 2007). In steady drilling at the rate of penetration `V` and rotary speed `Omega` (rad/s)
 //! `d_n = 2 pi V / (n Omega)` and `d = 2 pi V / Omega`, the advance per revolution.
 //!
 //! # Where the published code differs (Aarsnes & van de Wouw 2019)
@@ -32,7 +31,7 @@
 //!   [`DetournayBit::geometry`]);
 //! * `waveStep_transportBRI.m` uses `d = N max(l, 0)`, per revolution as here;
 //!   `waveStep_delayBRI.m` uses the blade's `d_n` itself in `W_c = K_a d` (a factor `n` less)
-//!   and the nearest earlier sample of the history (no interpolation);
+//!   and the first sample of the history more than a blade angle back (no interpolation);
 //! * the set-valued contact is decided with thresholds on the last cell's speeds
 //!   (`vb > 0.001`, `ob < 0.1`) instead of the exact phases of [`super::bit`].
 
@@ -106,14 +105,14 @@ impl DetournayBit {
     }
 
     /// The cutting weight `W_c = a zeta eps d`, N, at the depth of cut per revolution `d` (m,
-    /// `> 0`; Richard et al. 2007, eq. 4).
+    /// `> 0`; Richard et al. 2007).
     #[inline]
     pub fn cutting_weight(&self, depth: f64) -> f64 {
         self.radius * self.cutting_ratio * self.intrinsic_specific_energy * depth
     }
 
     /// The cutting torque `T_c = a^2 eps d / 2`, N m, at the depth of cut per revolution `d`
-    /// (m; Richard et al. 2007, eq. 4). `T_c Omega = eps pi a^2 V` in steady drilling: the
+    /// (m; Richard et al. 2007). `T_c Omega = eps pi a^2 V` in steady drilling: the
     /// intrinsic specific energy times the volume drilled per second.
     #[inline]
     pub fn cutting_torque(&self, depth: f64) -> f64 {
@@ -121,14 +120,14 @@ impl DetournayBit {
     }
 
     /// The full contact weight `W_f = a l sigma`, N, of the wear flats pressed on the rock while
-    /// the bit advances (Richard et al. 2007, eq. 5; at rest axially any value in `[0, W_f]`).
+    /// the bit advances (Richard et al. 2007; at rest axially any value in `[0, W_f]`).
     #[inline]
     pub fn contact_weight(&self) -> f64 {
         self.radius * self.wear_flat_length * self.contact_strength
     }
 
     /// The contact torque `T_f = gamma mu a W_f / 2`, N m, of the contact weight `W_f` (N;
-    /// Richard et al. 2007, eq. 5).
+    /// Richard et al. 2007).
     #[inline]
     pub fn contact_torque(&self, contact_weight: f64) -> f64 {
         0.5 * self.geometry * self.friction * self.radius * contact_weight
@@ -149,7 +148,7 @@ impl DetournayBit {
     /// Steady drilling at the rate of penetration `rop` (m/s, `>= 0`) and the rotary speed
     /// `omega` (rad/s, `> 0`): the depth of cut per revolution `d = 2 pi V / Omega`, the weight
     /// on bit `W = a zeta eps d + a l sigma` and the torque on bit
-    /// `T = a^2 eps d / 2 + gamma mu a W_f / 2` (Richard et al. 2007, eqs. 4-7, with the
+    /// `T = a^2 eps d / 2 + gamma mu a W_f / 2` (Richard et al. 2007, with the
     /// contact mobilised fully by the advancing bit).
     pub fn steady_state(&self, rop: f64, omega: f64) -> SteadyDrilling {
         let depth = std::f64::consts::TAU * rop / omega;
@@ -181,7 +180,7 @@ pub fn bit_area(radius: f64) -> f64 {
 
 /// The mechanical specific energy, Pa (J/m^3): the energy spent per volume of rock drilled,
 /// `MSE = WOB / A_bit + 2 pi N T / (A_bit ROP)` (Teale, "The concept of specific energy in rock
-/// drilling", Int. J. Rock Mech. Min. Sci. 2 (1965) 57-73, eq. 5), here with SI inputs:
+/// drilling", Int. J. Rock Mech. Min. Sci. 2 (1965) 57-73), here with SI inputs:
 /// `weight_on_bit` N, `torque` N m, `rotary_speed` rad/s (`2 pi N` with `N` in rev/s), `rop` m/s,
 /// `bit_area` m^2. `rop <= 0` (no rock drilled) gives `+inf` while torque work is spent and the
 /// first term alone otherwise.

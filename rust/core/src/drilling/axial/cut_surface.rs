@@ -1,10 +1,10 @@
 //! The regenerative depth of cut: the rock surface the blades leave behind, as a record of the
 //! bit's axial position against its angle, looked up one blade pass (`2 pi / n`) back.
 //!
-//! Richard, Germay & Detournay, J. Sound Vib. 305 (2007) 432-456, eqs. 1-3: the depth of cut of
+//! Richard, Germay & Detournay, J. Sound Vib. 305 (2007) 432-456: the depth of cut of
 //! a blade is `d_n(t) = x(t) - x(t - t_n)` with `x` the bit's axial position (down positive) and
 //! `t_n` the state-dependent delay of the previous blade, `phi(t) - phi(t - t_n) = 2 pi / n`;
-//! Aarsnes & van de Wouw, J. Sound Vib. 444 (2019) sec. 2.3, write the same delay as a transport
+//! Aarsnes & van de Wouw, J. Sound Vib. 444 (2019) 127-151, write the same delay as a transport
 //! equation for the cut surface (`l_t + (n omega / 2 pi) l_s = v_b`, `l(0) = 0`), advected by
 //! first-order upwind in their code. Here the delay is exact: the record holds pairs
 //! `(angle, surface depth)` in increasing angle, and the surface under a blade is the record
@@ -33,6 +33,9 @@
 //!   [`SurfaceRule::PreviousPass`] it is the pure delay `x(t) - x(t - t_n)` of Richard et al. and
 //!   Aarsnes & van de Wouw, which compares with the previous pass even when that pass was in the
 //!   air. The two agree while every blade cut (`d_n > 0`) during the last blade angle.
+//!
+//! Memory: one record per step that turns the bit, over one blade angle, i.e. about
+//! `2 pi / (n omega dt)` records at the angular speed `omega` (a stuck bit adds none).
 
 use std::collections::VecDeque;
 
@@ -222,12 +225,12 @@ mod tests {
             xs[k] + (t - k as f64 * dt) * speeds(k)
         };
         let mut cs = CutSurface::steady(n, SurfaceRule::Deepest, 0.0, 0.0, 0.0);
-        for k in 1..=4000 {
+        for (k, &x) in xs.iter().enumerate().skip(1) {
             let t = k as f64 * dt;
-            let dn = cs.depth_per_blade(omega * t, xs[k]);
-            let exact = if t < tau { xs[k] } else { xs[k] - xp(t - tau) };
+            let dn = cs.depth_per_blade(omega * t, x);
+            let exact = if t < tau { x } else { x - xp(t - tau) };
             assert!((dn - exact).abs() < 1e-15, "step {k}: {dn} vs {exact}");
-            cs.record(omega * t, xs[k]);
+            cs.record(omega * t, x);
         }
     }
 

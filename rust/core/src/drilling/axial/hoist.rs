@@ -7,7 +7,7 @@
 //! the PI of the top drive's `pi` controller on another measurement: `u = u_ff + kp e + ki int e`
 //! clamped to `[min_speed, max_speed]`, with conditional integration as anti-windup (no
 //! integration while the output is saturated in the error's direction; Åström & Hägglund,
-//! *Advanced PID Control*, ISA 2006, sec. 3.5), `e` the setpoint less the measured weight on
+//! *Advanced PID Control*, ISA 2006, on integrator windup), `e` the setpoint less the measured weight on
 //! bit or rate of penetration and `u_ff` the ROP setpoint itself in `rop` mode (0 in
 //! `weight_on_bit` mode): in steady drilling the block moves at the rate of penetration.
 //! Speeds are down positive (m/s), forces in N.

@@ -22,3 +22,6 @@ pub mod bitrock;
 pub mod cut_surface;
 pub mod hoist;
 pub mod section;
+
+#[cfg(test)]
+mod tests;

@@ -6,7 +6,7 @@
 //! field carries towards the bit is the compression `F = -N`, so that the axial field reads like
 //! the torsional one (`tau` carried down): the invariants `alpha = v + F / Z` (travelling down
 //! at `c`) and `beta = v - F / Z` (travelling up), and at the bit `F = WOB`,
-//! `v = alpha - WOB / Z` (Aarsnes & van de Wouw 2019, eqs. 9-12, whose strain is compressive;
+//! `v = alpha - WOB / Z` (Aarsnes & van de Wouw 2019, whose strain is compressive;
 //! their `waveStep_transportBRI.m`, `AbetaPp1 = Aalpha(P) - 2 wb c_a / (A_p E)`).
 
 use std::f64::consts::PI;
@@ -61,13 +61,13 @@ impl AxialSection {
     }
 
     /// The bar wave speed `c = sqrt(E / rho)`, m/s ([`bar_speed`]; Graff, *Wave Motion in
-    /// Elastic Solids*, 1975, sec. 2.1).
+    /// Elastic Solids*, 1975, ch. 2).
     pub fn wave_speed(&self) -> f64 {
         bar_speed(self.youngs_modulus, self.density)
     }
 
     /// The axial impedance `Z = A sqrt(E rho) = E A / c = rho A c`, N s/m: the force per unit
-    /// speed of a travelling wave, `F = Z v` (Graff 1975, sec. 2.1; Aarsnes & van de Wouw 2019,
+    /// speed of a travelling wave, `F = Z v` (Graff 1975, ch. 2; Aarsnes & van de Wouw 2019,
     /// `A_p E / c_a`).
     pub fn impedance(&self) -> f64 {
         self.area * (self.youngs_modulus * self.density).sqrt()
@@ -102,7 +102,7 @@ const TENSION_PANEL: f64 = 10.0;
 /// hole, less the weight on bit,
 /// `N(z) = -WOB + int_z^L (rho - rho_mud) A g cos(inc(s)) ds`
 /// (the soft-string effective tension without wall friction: Aadnoy, Fazaelizadeh & Hareland,
-/// "A 3D analytical model for wellbore friction", J. Can. Pet. Technol. 49 (2010) 25-36, eq. 1
+/// "A 3D analytical model for wellbore friction", J. Can. Pet. Technol. 49 (2010) 25-36,
 /// with `mu = 0`; buoyancy by the effective-tension rule with the same mud inside and outside,
 /// Lubinski 1950, as `SectionProps::buoyed_mass_per_length`). `inclination(md)` gives the
 /// inclination in rad at a measured depth; the integral is 3-point Gauss-Legendre on panels of at
@@ -170,8 +170,8 @@ pub enum AxialEnd {
 }
 
 /// The axial natural frequency `k >= 1` (Hz) of a uniform section with the ends `top` and
-/// `bottom` in closed form (Graff 1975, sec. 2.4; Rao, *Vibration of Continuous Systems*, 2007,
-/// table 9.1): `(2k - 1) c / (4 L)` for fixed-free and free-fixed, `k c / (2 L)` for fixed-fixed
+/// `bottom` in closed form (Graff 1975, ch. 2; Rao, *Vibration of Continuous Systems*, 2007,
+/// longitudinal vibration of bars): `(2k - 1) c / (4 L)` for fixed-free and free-fixed, `k c / (2 L)` for fixed-fixed
 /// and free-free (the rigid-body mode of free-free not counted); `None` with a mass end
 /// (transcendental) or `k = 0`.
 pub fn uniform_frequency(section: &AxialSection, top: AxialEnd, bottom: AxialEnd, k: usize) -> Option<f64> {
@@ -193,7 +193,7 @@ const SCAN_PER_SPACING: f64 = 32.0;
 
 /// The first `count` axial natural frequencies (Hz) of the string `sections` (top first) with
 /// the end conditions `top` and `bottom`, by the transfer matrix of the bar (Pestel & Leckie,
-/// *Matrix Methods in Elastomechanics*, 1963; Rao 2007, sec. 9.9): over a section of length `l`
+/// *Matrix Methods in Elastomechanics*, 1963; Rao 2007): over a section of length `l`
 /// at angular frequency `w`, with `k = w / c`, `theta = k l` and the state
 /// `(u, N / (w Z_ref))` (`N = E A u_z` the tension),
 /// `u(l) = cos(theta) u(0) + sin(theta) (Z_ref / Z) F(0)`,
