@@ -6,9 +6,9 @@
 //! Each field meets the bit through its incoming Riemann invariant: with the characteristic
 //! arriving at the bit (`alpha = v + F / Z_a`, `alpha = omega + tau / Z_t`, [`super::section`])
 //! the bit's speeds and the forces the rock returns are related by
-//! `v = v_in - W / Z_a`, `omega = omega_in - T / Z_t` (Aarsnes & van de Wouw 2019, the
-//! bit boundary of their `waveStep_transportBRI.m`, `AbetaPp1 = Aalpha(P) - 2 wb c_a / (A_p E)`). A lumped BHA
-//! of mass `M` (inertia `I`) stepped semi-implicitly, `M (v' - v) / dt = Z_a (v_in - v') + F - W`,
+//! `v = v_in - W / Z_a`, `omega = omega_in - T / Z_t` (Aarsnes & van de Wouw 2019, the bit
+//! boundary of their `waveStep_transportBRI.m`, `AbetaPp1 = Aalpha(P) - 2 wb c_a / (A_p E)`).
+//! A lumped BHA of mass `M` (inertia `I`) stepped semi-implicitly, `M (v' - v) / dt = Z_a (v_in - v') + F - W`,
 //! has the same form with `Z = Z_a + M / dt` and `v_in = (M v / dt + Z_a v_in + F) / Z`
 //! ([`Port::lumped`]; the bit step of `drilling/solver.rs` does the same for the torsional BHA).
 //! `Z v_in` is the force that would hold the bit at rest (`W_hold`, `T_hold`).
@@ -35,7 +35,7 @@
 //!   pulls it up (`W_hold < 0`: `W = 0`, `v = v_in`): the cutters cannot advance without turning
 //!   (Richard et al. 2007; the published code's `g_wt` likewise).
 //!
-//! The solution is unique and exact (no thresholds on speeds); `omega` and `T` are continuous
+//! Every input has one solution, exact (no thresholds on speeds); `omega` and `T` are continuous
 //! from cutting into stick (`omega -> 0` as `T_hold -> T*`), `W`, `T`, `v` and `omega` from
 //! cutting into lift-off on a rising bit (`W_f = 0`, `W_c, T_c -> 0` as `d -> 0`). The axial
 //! speed jumps to 0 when the bit sticks while advancing (the rigid stop of the law).
@@ -44,10 +44,11 @@
 //!
 //! The power into the rock is `P = W v + T omega`. Lift-off and stick: `P = 0`. Cutting:
 //! `P = eps a d (zeta v + a omega / 2) + W_f v + T_f omega`; the contact part is `>= 0` in every
-//! phase (`W_f > 0` only with `v >= 0`), the cutting part is the rock's specific energy times
-//! the drilled volume rate in steady drilling and `>= 0` unless the bit rises faster than
-//! `a omega / (2 zeta)` while still cutting: the rate-independent law can then return energy to
-//! the string, the mechanism of the regenerative (self-excited) axial vibration.
+//! phase (`W_f > 0` only with `v >= 0`); the cutting part is `>= 0` unless the bit rises faster
+//! than `a omega / (2 zeta)` while still cutting, when the rate-independent law returns energy
+//! to the axial motion (taken from the rotation: the regenerative coupling). In steady drilling
+//! its torque part `T_c omega` is the intrinsic specific energy times the drilled volume rate,
+//! `eps pi a^2 V`.
 
 use serde::Serialize;
 
@@ -191,16 +192,9 @@ mod tests {
         (Port::string(v_in, a * (200e9f64 * 8e3).sqrt()), Port::string(w_in, j * (77e9f64 * 8e3).sqrt()))
     }
 
-    const LAW: DetournayBit = DetournayBit {
-        radius: 0.108,
-        blades: 4,
-        intrinsic_specific_energy: 60e6,
-        cutting_ratio: 0.6,
-        contact_strength: 60e6,
-        wear_flat_length: 11e-3,
-        friction: 0.6,
-        geometry: 1.0,
-    };
+    /// The dimensional case of Aarsnes & van de Wouw (the default): a = 0.108 m, 4 blades,
+    /// eps = sigma = 60 MPa, zeta = 0.6, l = 11 mm, mu = 0.6, gamma = 1.
+    const LAW: DetournayBit = DetournayBit::PUBLISHED;
 
     #[test]
     fn cutting_with_full_contact_is_the_law() {

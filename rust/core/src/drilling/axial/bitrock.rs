@@ -64,20 +64,24 @@ pub struct DetournayBit {
 
 impl Default for DetournayBit {
     fn default() -> Self {
-        DetournayBit {
-            radius: 0.108,
-            blades: 4,
-            intrinsic_specific_energy: 60e6,
-            cutting_ratio: 0.6,
-            contact_strength: 60e6,
-            wear_flat_length: 11e-3,
-            friction: 0.6,
-            geometry: 1.0,
-        }
+        DetournayBit::PUBLISHED
     }
 }
 
 impl DetournayBit {
+    /// The dimensional case of Aarsnes & van de Wouw (2019), `Coupled/parameters.m` (their
+    /// `gamma = 1`; their code's contact torque is that of `geometry = 2` here, see the module).
+    pub const PUBLISHED: DetournayBit = DetournayBit {
+        radius: 0.108,
+        blades: 4,
+        intrinsic_specific_energy: 60e6,
+        cutting_ratio: 0.6,
+        contact_strength: 60e6,
+        wear_flat_length: 11e-3,
+        friction: 0.6,
+        geometry: 1.0,
+    };
+
     /// Refuses non-finite or out-of-range fields, naming `<prefix>.<field>` (e.g. `bit.radius`).
     pub fn validate(&self, prefix: &str) -> Result<()> {
         let positive = [("radius", self.radius), ("intrinsic_specific_energy", self.intrinsic_specific_energy)];

@@ -201,7 +201,9 @@ const SCAN_PER_SPACING: f64 = 32.0;
 /// at the junctions). The top state is `(0, 1)` fixed, `(1, 0)` free, `(1, -M w / Z_ref)` with a
 /// mass `M` (`M u_tt = N`); the frequencies are the roots of the bottom condition, `u`, `F` or
 /// `F - M w u / Z_ref` (`M u_tt = -N`), found by a scan at `pi / (32 tau)` and bisection to
-/// rounding. The rigid-body mode (free-free, or free with masses) at 0 is not listed.
+/// rounding. The rigid-body mode (free-free, or free with masses) at 0 is not listed. The scan
+/// stops at `4 (count + 2) pi / tau` (the `k`-th root lies near `k pi / tau` or below), so
+/// non-finite properties give fewer frequencies rather than no end.
 pub fn natural_frequencies(sections: &[AxialSection], top: AxialEnd, bottom: AxialEnd, count: usize) -> Vec<f64> {
     if sections.is_empty() || count == 0 {
         return Vec::new();
@@ -229,7 +231,8 @@ pub fn natural_frequencies(sections: &[AxialSection], top: AxialEnd, bottom: Axi
     let mut out = Vec::with_capacity(count);
     let mut a = 0.5 * step;
     let mut fa = f(a);
-    while out.len() < count {
+    let end = 4.0 * (count as f64 + 2.0) * PI / tau;
+    while out.len() < count && a < end {
         let b = a + step;
         let fb = f(b);
         if fa == 0.0 {
@@ -346,6 +349,8 @@ mod tests {
             assert_eq!(uniform_frequency(&s, AxialEnd::Free, AxialEnd::Free, k), Some(even));
         }
         assert_eq!(uniform_frequency(&s, AxialEnd::Fixed, AxialEnd::Mass(1.0), 1), None);
+        let broken = AxialSection { density: f64::NAN, ..s };
+        assert!(natural_frequencies(&[broken], AxialEnd::Fixed, AxialEnd::Free, 3).is_empty());
         // Two sections of the same pipe are one section.
         let two = natural_frequencies(&[pipe(700.0), pipe(1300.0)], AxialEnd::Fixed, AxialEnd::Free, 5);
         for (a, b) in two.iter().zip(&ff) {
