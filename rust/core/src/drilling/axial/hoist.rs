@@ -183,6 +183,21 @@ pub enum HoistCommand {
     HookLoad(f64),
 }
 
+impl HoistCommand {
+    /// The invariant entering the string's first cell, `alpha_0 = v + F / Z` (`F` the compression
+    /// carried down, [`super::section`]), from the invariant `beta_1 = v - F / Z` leaving it and
+    /// the top section's impedance `Z` (N s/m): an imposed speed gives `alpha_0 = 2 v - beta_1`,
+    /// a hook load `H` (the top's tension, `F = -H`) gives `v = beta_1 - H / Z` and
+    /// `alpha_0 = beta_1 - 2 H / Z` (the boundary rule of Aarsnes & van de Wouw's
+    /// `waveStep_transportBRI.m`, `Aalpha0 = -Abeta(1) + 2 V0` in their variables).
+    pub fn incoming(&self, beta_1: f64, impedance: f64) -> f64 {
+        match *self {
+            HoistCommand::Speed(v) => 2.0 * v - beta_1,
+            HoistCommand::HookLoad(h) => beta_1 - 2.0 * h / impedance,
+        }
+    }
+}
+
 /// What the autodriller measures (SI).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct HoistMeasurement {
@@ -278,6 +293,22 @@ mod tests {
             Hoist::new(HoistParams { ramp_time: 0.0, steps: vec![[0.5, -0.003]], ..HoistParams::default() }, 0.0);
         assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), 30.0 / 3600.0);
         assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), -0.003);
+    }
+
+    #[test]
+    fn commands_give_the_incoming_invariant() {
+        // alpha = v + F / Z, beta = v - F / Z, F the compression: a string hanging still from
+        // the hook load H has v = 0, F = -H at the top.
+        let (z, h) = (1.4e5, 9e5);
+        let beta = h / z;
+        let alpha = HoistCommand::HookLoad(h).incoming(beta, z);
+        assert!(((alpha + beta) / 2.0).abs() < 1e-12 && ((alpha - beta) / 2.0 * z + h).abs() < 1e-6);
+        // The same top lowered at 0.01 m/s under this load.
+        let beta = 0.01 + h / z;
+        let alpha = HoistCommand::Speed(0.01).incoming(beta, z);
+        assert!(((alpha + beta) / 2.0 - 0.01).abs() < 1e-15 && ((alpha - beta) / 2.0 * z + h).abs() < 1e-6);
+        let alpha = HoistCommand::HookLoad(h).incoming(beta, z);
+        assert!(((alpha + beta) / 2.0 - 0.01).abs() < 1e-15);
     }
 
     #[test]

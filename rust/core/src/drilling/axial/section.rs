@@ -83,6 +83,20 @@ impl AxialSection {
         self.density * self.area
     }
 
+    /// The buoyed weight per length `(rho - rho_mud) A g`, N/m (the effective-tension rule with
+    /// the same mud inside and outside, Lubinski 1950, as `SectionProps::buoyed_mass_per_length`).
+    pub fn buoyed_weight(&self, mud_density: f64, gravity: f64) -> f64 {
+        (self.density - mud_density) * self.area * gravity
+    }
+
+    /// The axial acceleration of the buoyed weight along a hole of inclination `inclination`
+    /// (rad), `(1 - rho_mud / rho) g cos(inc)`, m/s^2: the gravity source of the axial field
+    /// (`rho A v_t = N_z + (rho - rho_mud) A g cos(inc)`), whose static balance is
+    /// [`static_tension`].
+    pub fn buoyed_gravity(&self, mud_density: f64, gravity: f64, inclination: f64) -> f64 {
+        self.buoyed_weight(mud_density, gravity) * inclination.cos() / self.mass_per_length()
+    }
+
     /// The travel time of an axial wave through the section, `length / c`, s.
     pub fn travel_time(&self) -> f64 {
         self.length / self.wave_speed()
@@ -124,7 +138,7 @@ pub fn static_tension(
         tops.push(top);
         top += s.length;
     }
-    let weight = |s: &AxialSection| (s.density - mud_density) * s.area * gravity;
+    let weight = |s: &AxialSection| s.buoyed_weight(mud_density, gravity);
     // int_a^b cos(inc) ds on panels.
     let integral = |a: f64, b: f64| -> f64 {
         if b <= a {
@@ -316,6 +330,10 @@ mod tests {
         for (a, b) in n.iter().zip(expect) {
             assert!((a - b).abs() < 1e-9 * b.abs().max(1.0), "{a} vs {b}");
         }
+        // The gravity source balances the tension's gradient: rho A g_b = -dN/dz.
+        let g_b = sections[0].buoyed_gravity(rho_m, g, 0.0);
+        assert!((g_b * sections[0].mass_per_length() - wp).abs() < 1e-9 * wp);
+        assert!((g_b - (1.0 - rho_m / 8e3) * g).abs() < 1e-12);
         // Constant 30 degrees: times cos(30 deg).
         let inc = 30f64.to_radians();
         let n = static_tension(&sections, rho_m, g, &|_| inc, 0.0, &[0.0]);
