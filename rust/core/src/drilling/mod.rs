@@ -26,7 +26,11 @@
 //!   solved in parallel, one row of metrics each ([`map::solve_map`]);
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
 //!   with a true stick phase, its steady rotations and their stability.
+//! * [`axial`]: the bit on bottom as parts (axial section properties and statics, the Detournay
+//!   bit-rock law and MSE, the regenerative cut surface, the set-valued bit boundary, the hoist
+//!   and autodriller), not yet wired into [`solver`].
 
+pub mod axial;
 pub mod bit;
 pub mod config;
 pub mod grid;

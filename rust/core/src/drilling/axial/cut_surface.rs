@@ -1,0 +1,355 @@
+//! The regenerative depth of cut: the rock surface the blades leave behind, as a record of the
+//! bit's axial position against its angle, looked up one blade pass (`2 pi / n`) back.
+//!
+//! Richard, Germay & Detournay, J. Sound Vib. 305 (2007) 432-456: the depth of cut of
+//! a blade is `d_n(t) = x(t) - x(t - t_n)` with `x` the bit's axial position (down positive) and
+//! `t_n` the state-dependent delay of the previous blade, `phi(t) - phi(t - t_n) = 2 pi / n`;
+//! Aarsnes & van de Wouw, J. Sound Vib. 444 (2019) 127-151, write the same delay as a transport
+//! equation for the cut surface (`l_t + (n omega / 2 pi) l_s = v_b`, `l(0) = 0`), advected by
+//! first-order upwind in their code. Here the delay is exact: the record holds pairs
+//! `(angle, surface depth)` in increasing angle, and the surface under a blade is the record
+//! interpolated linearly in the angle at `phi - 2 pi / n`. Within a time step where the bit's
+//! axial and angular speeds are constant (the transport scheme's boundary values), the position
+//! is linear in the angle, so the interpolation reproduces the discrete motion exactly; a step
+//! turning the bit more than one blade angle interpolates to the current state itself.
+//!
+//! # Rules
+//!
+//! * **Stick** (the angle does not advance): the bit's position is merged into the last record
+//!   at that angle ([`SurfaceRule::Deepest`]: the deepest; [`SurfaceRule::PreviousPass`]: the
+//!   latest, as the published transport scheme, whose surface at the inlet is frozen while
+//!   `omega = 0`); the depth of cut keeps looking one blade angle back.
+//! * **Reverse rotation** (the angle falls below the largest angle reached, `phi_max`): nothing
+//!   is recorded (the cutters face away from the rock and do not cut). With
+//!   [`SurfaceRule::Deepest`] the blade is back over rock it has cut itself, so its depth of cut
+//!   is measured against the latest record of the place under it, the record at the angle
+//!   `phi + k 2 pi / n` closest below `phi_max` (`k >= 0`); it is `<= 0` unless the bit moved
+//!   below its own groove. With [`SurfaceRule::PreviousPass`] the angle is taken as `phi_max`
+//!   (reverse rotation counts as stick, as in the published transport scheme, which advects at
+//!   `max(omega, 0)`; give it the forward angle `int max(omega, 0) dt` to reproduce that code).
+//! * **Lift-off** (bit bounce, `d_n < 0`): with [`SurfaceRule::Deepest`] the surface is the
+//!   deepest cut of all passes, so a blade passing in the air leaves the rock as it was (the
+//!   record at an angle is `max(x, surface one blade angle back)`); with
+//!   [`SurfaceRule::PreviousPass`] it is the pure delay `x(t) - x(t - t_n)` of Richard et al. and
+//!   Aarsnes & van de Wouw, which compares with the previous pass even when that pass was in the
+//!   air. The two agree while every blade cut (`d_n > 0`) during the last blade angle.
+//!
+//! Memory: one record per step that turns the bit, over one blade angle, i.e. about
+//! `2 pi / (n omega dt)` records at the angular speed `omega` (a stuck bit adds none).
+
+use std::collections::VecDeque;
+
+/// How the rock surface remembers passes that did not cut (see the module).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurfaceRule {
+    /// The surface is the deepest cut of every pass (lift-off leaves the rock unchanged).
+    Deepest,
+    /// The pure delay `x(t) - x(t - t_n)`: the previous pass, cut or not (the published codes).
+    PreviousPass,
+}
+
+/// The cut surface: a ring buffer of `(angle rad, surface depth m)` pairs spanning at least one
+/// blade angle behind the largest angle reached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CutSurface {
+    blade_angle: f64,
+    rule: SurfaceRule,
+    record: VecDeque<(f64, f64)>,
+}
+
+impl CutSurface {
+    /// The surface left by steady drilling at `depth_per_revolution` (m) with `blades` blades,
+    /// the bit at the angle `angle` (rad) and position `position` (m): the helix
+    /// `x(psi) = position - (angle - psi) depth / (2 pi)`, so that the depth of cut per revolution
+    /// at the start is `depth_per_revolution` (0: flat rock just touched).
+    pub fn steady(blades: u32, rule: SurfaceRule, angle: f64, position: f64, depth_per_revolution: f64) -> Self {
+        let blade_angle = std::f64::consts::TAU / f64::from(blades.max(1));
+        let mut record = VecDeque::with_capacity(64);
+        record.push_back((angle - blade_angle, position - depth_per_revolution / f64::from(blades.max(1))));
+        record.push_back((angle, position));
+        CutSurface { blade_angle, rule, record }
+    }
+
+    /// The angle between blades `2 pi / n`, rad.
+    pub fn blade_angle(&self) -> f64 {
+        self.blade_angle
+    }
+
+    /// The largest angle the bit has reached, rad.
+    pub fn max_angle(&self) -> f64 {
+        self.record.back().map_or(f64::NEG_INFINITY, |r| r.0)
+    }
+
+    /// Records held (at least two).
+    pub fn len(&self) -> usize {
+        self.record.len()
+    }
+
+    /// Never empty (kept for the `len` convention).
+    pub fn is_empty(&self) -> bool {
+        self.record.is_empty()
+    }
+
+    /// The surface depth (m) recorded at the angle `key` (rad), linear in the angle between
+    /// records; beyond the last record, linear towards the bit's current `(angle, position)`.
+    fn surface_at(&self, key: f64, angle: f64, position: f64) -> f64 {
+        let r = &self.record;
+        let last = r[r.len() - 1];
+        if key >= last.0 {
+            return if angle > last.0 {
+                last.1 + (position - last.1) * ((key - last.0) / (angle - last.0))
+            } else {
+                last.1
+            };
+        }
+        let k = r.partition_point(|p| p.0 <= key);
+        if k == 0 {
+            return r[0].1;
+        }
+        let (a, b) = (r[k - 1], r[k]);
+        a.1 + (b.1 - a.1) * ((key - a.0) / (b.0 - a.0))
+    }
+
+    /// The depth of cut of a blade, `d_n` (m, negative when the bit is above the surface), with
+    /// the bit at `angle` (rad, cumulative) and axial `position` (m, down positive); the depth per
+    /// revolution is `n d_n`. Does not change the record.
+    pub fn depth_per_blade(&self, angle: f64, position: f64) -> f64 {
+        let top = self.max_angle();
+        let key = if angle >= top {
+            angle - self.blade_angle
+        } else {
+            match self.rule {
+                SurfaceRule::PreviousPass => top - self.blade_angle,
+                // The latest angle <= top of the place under the blade.
+                SurfaceRule::Deepest => angle + self.blade_angle * ((top - angle) / self.blade_angle).floor(),
+            }
+        };
+        position - self.surface_at(key, angle, position)
+    }
+
+    /// Records the bit at `angle` and `position` (after the step's depth of cut is used): a new
+    /// record when the angle advances, merged into the last one at an equal angle, nothing when
+    /// the bit has turned back. Records more than one blade angle behind are dropped (one is kept
+    /// before that for the interpolation).
+    pub fn record(&mut self, angle: f64, position: f64) {
+        let top = self.max_angle();
+        if angle < top {
+            return;
+        }
+        let surface = match self.rule {
+            SurfaceRule::PreviousPass => position,
+            SurfaceRule::Deepest => position.max(self.surface_at(angle - self.blade_angle, angle, position)),
+        };
+        if angle == top {
+            let last = self.record.back_mut().expect("at least two records");
+            last.1 = match self.rule {
+                SurfaceRule::PreviousPass => surface,
+                SurfaceRule::Deepest => last.1.max(surface),
+            };
+            return;
+        }
+        self.record.push_back((angle, surface));
+        let keep = angle - self.blade_angle;
+        while self.record.len() > 2 && self.record[1].0 <= keep {
+            self.record.pop_front();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{PI, TAU};
+
+    /// Steps a trajectory `(angle(t), position(t))` at `dt`, returning the depth per blade
+    /// before each record.
+    fn run(cs: &mut CutSurface, dt: f64, steps: usize, traj: impl Fn(f64) -> (f64, f64)) -> Vec<(f64, f64)> {
+        let mut out = Vec::with_capacity(steps);
+        for k in 1..=steps {
+            let t = k as f64 * dt;
+            let (phi, x) = traj(t);
+            out.push((t, cs.depth_per_blade(phi, x)));
+            cs.record(phi, x);
+        }
+        out
+    }
+
+    #[test]
+    fn steady_drilling_gives_rop_over_rotary_speed_per_revolution() {
+        // 4 blades, 30 rpm (pi rad/s), 30 m/h: d = V / (Omega / 2 pi) = 1/60 m per revolution.
+        let (n, omega, v) = (4u32, PI, 30.0 / 3600.0);
+        for rule in [SurfaceRule::Deepest, SurfaceRule::PreviousPass] {
+            // From flat rock: d = n v t while t < t_n = 0.5 s, then V 2 pi / Omega.
+            let mut cs = CutSurface::steady(n, rule, 0.0, 0.0, 0.0);
+            let dt = 0.5 / 97.3; // not a divisor of the blade period
+            let out = run(&mut cs, dt, 2000, |t| (omega * t, v * t));
+            for (t, dn) in out {
+                let expect = if t < 0.5 { v * t } else { v * 0.5 };
+                assert!((f64::from(n) * dn - f64::from(n) * expect).abs() < 1e-15, "t {t}: {dn} vs {expect}");
+            }
+            assert!(cs.len() < 110, "records beyond one blade angle are dropped: {}", cs.len());
+            // Started on the steady helix: exact from the first step.
+            let mut cs = CutSurface::steady(n, rule, 0.0, 0.0, 1.0 / 60.0);
+            for (_, dn) in run(&mut cs, 1e-3, 1500, |t| (omega * t, v * t)) {
+                assert!((4.0 * dn - 1.0 / 60.0).abs() < 1e-15);
+            }
+        }
+    }
+
+    #[test]
+    fn sinusoidal_motion_gives_the_delayed_difference() {
+        // x = V t + A sin(w t) at constant Omega: d_n(t) = x(t) - x(t - tau), tau = 2 pi/(n Omega).
+        let (n, omega, v, amp, w) = (3u32, 2.0 * PI, 0.01, 2e-3, 2.0 * PI * 1.7);
+        let tau = TAU / (f64::from(n) * omega);
+        let x = |t: f64| v * t + amp * (w * t).sin();
+        let dt = 1e-4;
+        let mut cs = CutSurface::steady(n, SurfaceRule::PreviousPass, 0.0, x(0.0), 0.0);
+        // History before t = 0: the surface is flat at x(0) (d = x(t) - x(0) for t < tau).
+        let out = run(&mut cs, dt, 30_000, |t| (omega * t, x(t)));
+        // Linear interpolation of a smooth x between samples: error <= A w^2 dt^2 / 8.
+        let bound = amp * w * w * dt * dt / 8.0 + 1e-15;
+        for (t, dn) in out {
+            let exact = if t < tau { x(t) - x(0.0) } else { x(t) - x(t - tau) };
+            assert!((dn - exact).abs() <= bound, "t {t}: {dn} vs {exact}");
+        }
+        // A motion linear in each step (piecewise constant speeds) is reproduced to rounding,
+        // whatever the delay falls on.
+        let speeds = |k: usize| 0.01 + 0.004 * ((k * 7919) % 13) as f64 / 13.0;
+        let dt = 1.0 / 1234.0;
+        let mut xs = vec![0.0];
+        for k in 0..4000 {
+            xs.push(xs[k] + dt * speeds(k));
+        }
+        let xp = |t: f64| {
+            let k = ((t / dt).floor() as usize).min(3999);
+            xs[k] + (t - k as f64 * dt) * speeds(k)
+        };
+        let mut cs = CutSurface::steady(n, SurfaceRule::Deepest, 0.0, 0.0, 0.0);
+        for (k, &x) in xs.iter().enumerate().skip(1) {
+            let t = k as f64 * dt;
+            let dn = cs.depth_per_blade(omega * t, x);
+            let exact = if t < tau { x } else { x - xp(t - tau) };
+            assert!((dn - exact).abs() < 1e-15, "step {k}: {dn} vs {exact}");
+            cs.record(omega * t, x);
+        }
+    }
+
+    #[test]
+    fn stick_holds_the_angle_and_the_depth_grows_with_the_advance() {
+        let (n, omega, v) = (4u32, PI, 0.01);
+        let mut cs = CutSurface::steady(n, SurfaceRule::Deepest, 0.0, 0.0, 4.0 * v * 0.5);
+        let dt = 1e-3;
+        run(&mut cs, dt, 1000, |t| (omega * t, v * t));
+        // Stuck at angle pi for 300 steps while the string pushes the bit 1 mm further down.
+        let t = 1000.0 * dt;
+        let (phi, x0) = (omega * t, v * t);
+        let before = cs.depth_per_blade(phi, x0);
+        assert!((before - v * 0.5).abs() < 1e-15);
+        for k in 1..=300 {
+            let x = x0 + 1e-3 * k as f64 / 300.0;
+            let dn = cs.depth_per_blade(phi, x);
+            assert!((dn - (before + (x - x0))).abs() < 1e-15);
+            cs.record(phi, x);
+        }
+        let len = cs.len();
+        // The angle did not advance: one record, merged.
+        assert_eq!(cs.max_angle(), phi);
+        // Rotation resumes: the previous blade's surface one blade angle back, continuous.
+        let x1 = x0 + 1e-3;
+        let dn = cs.depth_per_blade(phi + 1e-6, x1);
+        assert!((dn - (x1 - (phi + 1e-6 - PI / 2.0) / omega * v)).abs() < 1e-12);
+        assert_eq!(cs.len(), len);
+    }
+
+    #[test]
+    fn lift_off_keeps_the_deepest_surface_and_the_pure_delay_does_not() {
+        let (n, omega) = (1u32, TAU); // one blade, one revolution per second
+        let dt = 1e-3;
+        // Down at 1 cm/s for 1 s, up 8 mm at 2 cm/s, then down at 1 cm/s: the pure delay goes
+        // negative from t = 4/3 s to t = 2.0667 s (the bit in the air).
+        let x = |t: f64| {
+            if t <= 1.0 {
+                0.01 * t
+            } else if t <= 1.4 {
+                0.01 - 0.02 * (t - 1.0)
+            } else {
+                0.002 + 0.01 * (t - 1.4)
+            }
+        };
+        // Before t = 0 the steady helix of 1 cm per revolution.
+        let x_ext = |t: f64| if t < 0.0 { 0.01 * t } else { x(t) };
+        let mut deep = CutSurface::steady(n, SurfaceRule::Deepest, 0.0, 0.0, 0.01);
+        let mut pure = CutSurface::steady(n, SurfaceRule::PreviousPass, 0.0, 0.0, 0.01);
+        let d = run(&mut deep, dt, 3000, |t| (omega * t, x(t)));
+        let p = run(&mut pure, dt, 3000, |t| (omega * t, x(t)));
+        for ((t, dd), (_, dp)) in d.iter().zip(&p) {
+            let t = *t;
+            // Pure delay: x(t) - x(t - 1).
+            let exact = x(t) - x_ext(t - 1.0);
+            assert!((dp - exact).abs() < 1e-13, "t {t}: {dp} vs {exact}");
+            // Deepest: the deepest of all earlier passes, max_k x(t - k), k >= 1.
+            let mut s = f64::NEG_INFINITY;
+            let mut k = 1.0;
+            loop {
+                s = s.max(x_ext(t - k));
+                if t - k < 0.0 {
+                    break;
+                }
+                k += 1.0;
+            }
+            assert!((dd - (x(t) - s)).abs() < 1e-13, "t {t}: {dd} vs {}", x(t) - s);
+        }
+        let at = |v: &[(f64, f64)], t: f64| v[(t / dt).round() as usize - 1].1;
+        // Cutting while rising (t = 1.2): both 10 - 6 + ... = x(1.2) - x(0.2) = 4 mm.
+        assert!((at(&d, 1.2) - 0.004).abs() < 1e-12 && (at(&p, 1.2) - 0.004).abs() < 1e-12);
+        // In the air (t = 1.6): both x(1.6) - x(0.6) = -2 mm.
+        assert!((at(&d, 1.6) + 0.002).abs() < 1e-12 && (at(&p, 1.6) + 0.002).abs() < 1e-12);
+        // t = 2.4: the pass at 1.4 was in the air (2 mm), the rock is at x(0.4) = 4 mm: the
+        // deepest surface gives 12 - 4 = 8 mm, the pure delay 12 - 2 = 10 mm.
+        assert!((at(&d, 2.4) - 0.008).abs() < 1e-12);
+        assert!((at(&p, 2.4) - 0.010).abs() < 1e-12);
+    }
+
+    #[test]
+    fn reverse_rotation_measures_against_the_own_groove() {
+        let (n, omega, v) = (2u32, PI, 0.01);
+        let dt = 1e-3;
+        let mut cs = CutSurface::steady(n, SurfaceRule::Deepest, 0.0, 0.0, 2.0 * v * 1.0);
+        run(&mut cs, dt, 2000, |t| (omega * t, v * t));
+        let t = 2000.0 * dt;
+        let (top, x0) = (omega * t, v * t);
+        // Turn back 0.1 rad at the same depth: the blade is over its own groove, cut when the
+        // bit was at x = v (top - 0.1) / omega, 0.1 v / omega above its present depth.
+        let back = top - 0.1;
+        let dn = cs.depth_per_blade(back, x0);
+        assert!((dn - 0.1 * v / omega).abs() < 1e-12, "{dn}");
+        // Lifted by 1 mm first: above the groove.
+        assert!(cs.depth_per_blade(back, x0 - 1e-3) < 0.0);
+        // Nothing recorded while behind.
+        let len = cs.len();
+        cs.record(back, x0 - 1e-3);
+        assert_eq!((cs.len(), cs.max_angle()), (len, top));
+        // Turned back more than a blade angle (pi + 0.1): the place under the blade was last cut
+        // by the other blade, at the angle top - 0.1 as well.
+        let dn2 = cs.depth_per_blade(top - PI - 0.1, x0);
+        assert!((dn2 - dn).abs() < 1e-12);
+        // Back at the front: the previous blade's surface again, as before the reversal.
+        let front = cs.depth_per_blade(top, x0);
+        assert!((front - v * 1.0).abs() < 1e-12);
+        // PreviousPass treats the reversal as stick: the depth at the front.
+        let mut pp = CutSurface::steady(n, SurfaceRule::PreviousPass, 0.0, 0.0, 2.0 * v * 1.0);
+        run(&mut pp, dt, 2000, |t| (omega * t, v * t));
+        assert!((pp.depth_per_blade(back, x0) - v * 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn more_than_a_blade_angle_in_one_step_interpolates_to_the_present() {
+        // 8 blades, a step of 1 rad (> pi/4): the surface pi/4 back lies inside this step.
+        let mut cs = CutSurface::steady(8, SurfaceRule::Deepest, 0.0, 0.0, 0.0);
+        let dn = cs.depth_per_blade(1.0, 0.01);
+        // Linear from (0, 0) to (1, 0.01): the surface at 1 - pi/4 is 0.01 (1 - pi/4).
+        assert!((dn - 0.01 * PI / 4.0).abs() < 1e-15);
+        cs.record(1.0, 0.01);
+        assert_eq!(cs.len(), 2);
+    }
+}

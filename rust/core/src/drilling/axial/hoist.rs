@@ -1,0 +1,425 @@
+//! The hoist at the top of the axial field: an imposed block velocity, a hook load, or an
+//! autodriller (PI on weight on bit or on rate of penetration) giving the block velocity.
+//!
+//! The setpoint of every mode approaches its target (the mode's value, then `[time, value]`
+//! steps) as a first-order lag of time constant `ramp_time`, exactly over each step, the rule of
+//! the top drive's speed setpoint (`drilling/solver.rs`, `Simulation::step`). The autodriller is
+//! the PI of the top drive's `pi` controller on another measurement: `u = u_ff + kp e + ki int e`
+//! clamped to `[min_speed, max_speed]`, with conditional integration as anti-windup (no
+//! integration while the output is saturated in the error's direction; Åström & Hägglund,
+//! *Advanced PID Control*, ISA 2006, on integrator windup), `e` the setpoint less the measured weight on
+//! bit or rate of penetration and `u_ff` the ROP setpoint itself in `rop` mode (0 in
+//! `weight_on_bit` mode): in steady drilling the block moves at the rate of penetration.
+//! Speeds are down positive (m/s), forces in N.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Num, Result};
+
+/// What the hoist imposes at the top of the string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HoistMode {
+    /// The block velocity `speed`, m/s.
+    Velocity,
+    /// The hook load `hook_load`, N (the force holding the string up).
+    HookLoad,
+    /// The autodriller's block velocity.
+    Autodriller,
+}
+
+/// The autodriller's controlled quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AutodrillerTarget {
+    /// Weight on bit, N.
+    WeightOnBit,
+    /// Rate of penetration, m/s.
+    Rop,
+}
+
+/// The autodriller's PI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Autodriller {
+    pub target: AutodrillerTarget,
+    /// The setpoint, N (`weight_on_bit`) or m/s (`rop`).
+    pub setpoint: f64,
+    /// Proportional gain, (m/s)/N or dimensionless (`rop`).
+    pub kp: f64,
+    /// Integral gain, (m/s)/(N s) or 1/s (`rop`).
+    pub ki: f64,
+    /// The least block speed, m/s (negative: the block may pull up).
+    pub min_speed: f64,
+    /// The largest block speed, m/s.
+    pub max_speed: f64,
+}
+
+impl Default for Autodriller {
+    /// Weight on bit 80 kN, limits 0 to 100 m/h; gains set by the user for the string.
+    fn default() -> Self {
+        Autodriller {
+            target: AutodrillerTarget::WeightOnBit,
+            setpoint: 80e3,
+            kp: 0.0,
+            ki: 0.0,
+            min_speed: 0.0,
+            max_speed: 100.0 / 3600.0,
+        }
+    }
+}
+
+/// The hoist's parameters (SI).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HoistParams {
+    pub mode: HoistMode,
+    /// Block velocity of `velocity` mode, m/s, down positive.
+    pub speed: f64,
+    /// Hook load of `hook_load` mode, N.
+    pub hook_load: f64,
+    /// Time constant of the setpoint's approach to its target, s (0: steps).
+    pub ramp_time: f64,
+    /// `[time s, value]` changes of the mode's target (m/s, N, or the autodriller's setpoint).
+    pub steps: Vec<[f64; 2]>,
+    pub autodriller: Autodriller,
+}
+
+impl Default for HoistParams {
+    fn default() -> Self {
+        HoistParams {
+            mode: HoistMode::Velocity,
+            speed: 30.0 / 3600.0,
+            hook_load: 0.0,
+            ramp_time: 1.0,
+            steps: Vec::new(),
+            autodriller: Autodriller::default(),
+        }
+    }
+}
+
+impl HoistParams {
+    /// Refuses non-finite values, a negative ramp time or gain, limits out of order, or steps
+    /// out of time order, naming `<prefix>.<field>`.
+    pub fn validate(&self, prefix: &str) -> Result<()> {
+        let finite = [
+            ("speed", self.speed),
+            ("hook_load", self.hook_load),
+            ("autodriller.setpoint", self.autodriller.setpoint),
+            ("autodriller.min_speed", self.autodriller.min_speed),
+            ("autodriller.max_speed", self.autodriller.max_speed),
+        ];
+        for (name, value) in finite {
+            if !value.is_finite() {
+                return Err(Error::invalid(format!("{prefix}.{name}"), Num(value), "a finite number"));
+            }
+        }
+        let non_negative = [
+            ("ramp_time", self.ramp_time),
+            ("autodriller.kp", self.autodriller.kp),
+            ("autodriller.ki", self.autodriller.ki),
+        ];
+        for (name, value) in non_negative {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err(Error::invalid(format!("{prefix}.{name}"), Num(value), "a finite number >= 0"));
+            }
+        }
+        let a = &self.autodriller;
+        if a.max_speed < a.min_speed {
+            return Err(Error::invalid(
+                format!("{prefix}.autodriller.max_speed"),
+                Num(a.max_speed),
+                format!("a number >= autodriller.min_speed ({})", Num(a.min_speed)),
+            ));
+        }
+        let mut last = f64::NEG_INFINITY;
+        for (i, s) in self.steps.iter().enumerate() {
+            if !(s[0].is_finite() && s[1].is_finite() && s[0] >= last) {
+                return Err(Error::invalid(
+                    format!("{prefix}.steps[{i}]"),
+                    format!("[{}, {}]", Num(s[0]), Num(s[1])),
+                    "[time, value], finite, in increasing time",
+                ));
+            }
+            last = s[0];
+        }
+        Ok(())
+    }
+
+    /// The mode's target before any step: `speed`, `hook_load` or the autodriller's setpoint.
+    fn base(&self) -> f64 {
+        match self.mode {
+            HoistMode::Velocity => self.speed,
+            HoistMode::HookLoad => self.hook_load,
+            HoistMode::Autodriller => self.autodriller.setpoint,
+        }
+    }
+
+    /// The target at time `t`: the last step at or before `t`, else the mode's value.
+    pub fn target(&self, t: f64) -> f64 {
+        self.steps.iter().rev().find(|s| s[0] <= t).map_or(self.base(), |s| s[1])
+    }
+}
+
+/// The setpoint after a step `dt` from `value` towards `target`: the first-order lag of time
+/// constant `ramp_time`, exact over the step, `target + (value - target) exp(-dt / ramp_time)`
+/// (`target` at once for `ramp_time = 0`).
+#[inline]
+pub fn ramp(value: f64, target: f64, dt: f64, ramp_time: f64) -> f64 {
+    if ramp_time > 0.0 {
+        value + (target - value) * (1.0 - (-dt / ramp_time).exp())
+    } else {
+        target
+    }
+}
+
+/// What the hoist imposes on the top of the axial field for the next step.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HoistCommand {
+    /// The block (top) speed, m/s, down positive.
+    Speed(f64),
+    /// The hook load, N, holding the string up.
+    HookLoad(f64),
+}
+
+impl HoistCommand {
+    /// The invariant entering the string's first cell, `alpha_0 = v + F / Z` (`F` the compression
+    /// carried down, [`super::section`]), from the invariant `beta_1 = v - F / Z` leaving it and
+    /// the top section's impedance `Z` (N s/m): an imposed speed gives `alpha_0 = 2 v - beta_1`,
+    /// a hook load `H` (the top's tension, `F = -H`) gives `v = beta_1 - H / Z` and
+    /// `alpha_0 = beta_1 - 2 H / Z` (the boundary rule of Aarsnes & van de Wouw's
+    /// `waveStep_transportBRI.m`, `Aalpha0 = -Abeta(1) + 2 V0` in their variables).
+    pub fn incoming(&self, beta_1: f64, impedance: f64) -> f64 {
+        match *self {
+            HoistCommand::Speed(v) => 2.0 * v - beta_1,
+            HoistCommand::HookLoad(h) => beta_1 - 2.0 * h / impedance,
+        }
+    }
+}
+
+/// What the autodriller measures (SI).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HoistMeasurement {
+    /// Weight on bit, N.
+    pub weight_on_bit: f64,
+    /// Rate of penetration, m/s.
+    pub rop: f64,
+}
+
+/// The hoist's state: time, the ramped setpoint and the autodriller's integral.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hoist {
+    pub params: HoistParams,
+    /// Time of the state, s.
+    pub time: f64,
+    /// The ramped setpoint (mode's unit).
+    pub setpoint: f64,
+    /// `int e dt` of the autodriller.
+    pub integral: f64,
+}
+
+impl Hoist {
+    /// A hoist at time 0 whose setpoint starts at `initial` (the mode's unit: a block at rest
+    /// starts at 0 m/s, a hook at its static load).
+    pub fn new(params: HoistParams, initial: f64) -> Self {
+        Hoist { params, time: 0.0, setpoint: initial, integral: 0.0 }
+    }
+
+    /// Advances by `dt` (s): the setpoint towards the target at the step's end, then the command
+    /// for the step (the autodriller's from `measured`).
+    pub fn step(&mut self, dt: f64, measured: HoistMeasurement) -> HoistCommand {
+        let t1 = self.time + dt;
+        let p = &self.params;
+        self.setpoint = ramp(self.setpoint, p.target(t1), dt, p.ramp_time);
+        self.time = t1;
+        match p.mode {
+            HoistMode::Velocity => HoistCommand::Speed(self.setpoint),
+            HoistMode::HookLoad => HoistCommand::HookLoad(self.setpoint),
+            HoistMode::Autodriller => {
+                let a = &p.autodriller;
+                let (e, ff) = match a.target {
+                    AutodrillerTarget::WeightOnBit => (self.setpoint - measured.weight_on_bit, 0.0),
+                    AutodrillerTarget::Rop => (self.setpoint - measured.rop, self.setpoint),
+                };
+                let raw = ff + a.kp * e + a.ki * self.integral;
+                let out = raw.clamp(a.min_speed, a.max_speed);
+                if !((raw > a.max_speed && e > 0.0) || (raw < a.min_speed && e < 0.0)) {
+                    self.integral += e * dt;
+                }
+                HoistCommand::Speed(out)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn speed(c: HoistCommand) -> f64 {
+        match c {
+            HoistCommand::Speed(v) => v,
+            HoistCommand::HookLoad(_) => panic!("a speed expected"),
+        }
+    }
+
+    #[test]
+    fn velocity_ramps_and_steps_as_a_first_order_lag() {
+        let params = HoistParams {
+            mode: HoistMode::Velocity,
+            speed: 0.01,
+            ramp_time: 2.0,
+            steps: vec![[10.0, 0.02]],
+            ..HoistParams::default()
+        };
+        let mut h = Hoist::new(params, 0.0);
+        let dt = 1.0 / 128.0;
+        // The step ending at 10 s already heads for the new target (as the top drive's).
+        let ts = 10.0 - dt;
+        for k in 1..=2000 {
+            let t = k as f64 * dt;
+            let v = speed(h.step(dt, HoistMeasurement::default()));
+            // 0.01 (1 - exp(-t/2)), then from its value at ts towards 0.02.
+            let exact = if t <= ts {
+                0.01 * (1.0 - (-t / 2.0).exp())
+            } else {
+                0.02 + (0.01 * (1.0 - (-ts / 2.0).exp()) - 0.02) * (-(t - ts) / 2.0).exp()
+            };
+            assert!((v - exact).abs() < 1e-14, "t {t}: {v} vs {exact}");
+        }
+        // Without a ramp the steps are taken at once.
+        let mut h =
+            Hoist::new(HoistParams { ramp_time: 0.0, steps: vec![[0.5, -0.003]], ..HoistParams::default() }, 0.0);
+        assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), 30.0 / 3600.0);
+        assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), -0.003);
+    }
+
+    #[test]
+    fn commands_give_the_incoming_invariant() {
+        // alpha = v + F / Z, beta = v - F / Z, F the compression: a string hanging still from
+        // the hook load H has v = 0, F = -H at the top.
+        let (z, h) = (1.4e5, 9e5);
+        let beta = h / z;
+        let alpha = HoistCommand::HookLoad(h).incoming(beta, z);
+        assert!(((alpha + beta) / 2.0).abs() < 1e-12 && ((alpha - beta) / 2.0 * z + h).abs() < 1e-6);
+        // The same top lowered at 0.01 m/s under this load.
+        let beta = 0.01 + h / z;
+        let alpha = HoistCommand::Speed(0.01).incoming(beta, z);
+        assert!(((alpha + beta) / 2.0 - 0.01).abs() < 1e-15 && ((alpha - beta) / 2.0 * z + h).abs() < 1e-6);
+        let alpha = HoistCommand::HookLoad(h).incoming(beta, z);
+        assert!(((alpha + beta) / 2.0 - 0.01).abs() < 1e-15);
+    }
+
+    #[test]
+    fn hook_load_mode_commands_the_load() {
+        let params =
+            HoistParams { mode: HoistMode::HookLoad, hook_load: 900e3, ramp_time: 0.0, ..HoistParams::default() };
+        let mut h = Hoist::new(params, 950e3);
+        assert_eq!(h.step(0.1, HoistMeasurement::default()), HoistCommand::HookLoad(900e3));
+    }
+
+    /// The plant of a drilling string in a few lines (see [`drill_from`]), from no weight.
+    fn drill(h: &mut Hoist, k: f64, r: f64, seconds: f64) -> ((f64, f64, f64), (f64, f64)) {
+        drill_from(h, k, r, 0.0, seconds)
+    }
+
+    #[test]
+    fn autodriller_reaches_its_weight_and_rop_setpoints() {
+        // k = 2e5 N/m (a 3000 m string: E A / L), r = 80e3 N / (20 m/h).
+        let (k, r) = (2e5, 80e3 / (20.0 / 3600.0));
+        let ad = Autodriller {
+            target: AutodrillerTarget::WeightOnBit,
+            setpoint: 60e3,
+            kp: 2e-7,
+            ki: 2e-8,
+            min_speed: 0.0,
+            max_speed: 0.05,
+        };
+        let params =
+            HoistParams { mode: HoistMode::Autodriller, ramp_time: 5.0, autodriller: ad, ..HoistParams::default() };
+        let mut h = Hoist::new(params, 0.0);
+        let ((w, rop, v), _) = drill(&mut h, k, r, 600.0);
+        // Steady state: W = 60 kN, ROP = W / r = 15 m/h, block speed = ROP.
+        assert!((w - 60e3).abs() < 1e-3 * 60e3, "{w}");
+        assert!((rop - 60e3 / r).abs() < 1e-3 * rop);
+        assert!((v - rop).abs() < 1e-3 * rop);
+        // On ROP: 10 m/h.
+        let ad = Autodriller { target: AutodrillerTarget::Rop, setpoint: 10.0 / 3600.0, kp: 5.0, ki: 0.5, ..ad };
+        let params =
+            HoistParams { mode: HoistMode::Autodriller, ramp_time: 0.0, autodriller: ad, ..HoistParams::default() };
+        let mut h = Hoist::new(params, 0.0);
+        let ((w, rop, _), _) = drill(&mut h, k, r, 600.0);
+        assert!((rop - 10.0 / 3600.0).abs() < 1e-3 * rop, "{}", rop * 3600.0);
+        assert!((w - r * 10.0 / 3600.0).abs() < 1e-3 * w);
+    }
+
+    #[test]
+    fn autodriller_limits_hold_and_do_not_wind_up() {
+        let (k, r) = (2e5, 80e3 / (20.0 / 3600.0));
+        // 200 kN would need 50 m/h: out of reach at 25 m/h.
+        let max_speed = 25.0 / 3600.0;
+        let ad = Autodriller {
+            target: AutodrillerTarget::WeightOnBit,
+            setpoint: 200e3,
+            kp: 2e-7,
+            ki: 2e-8,
+            min_speed: 0.0,
+            max_speed,
+        };
+        let params = HoistParams {
+            mode: HoistMode::Autodriller,
+            ramp_time: 0.0,
+            steps: vec![[1000.0, 60e3]],
+            autodriller: ad,
+            ..HoistParams::default()
+        };
+        let mut h = Hoist::new(params, 0.0);
+        let ((w, _, v), range) = drill(&mut h, k, r, 1000.0);
+        assert!(range.0 >= 0.0 && range.1 <= max_speed);
+        assert_eq!(v, max_speed);
+        // At the limit the weight settles where ROP = max speed: W = r max_speed = 100 kN.
+        assert!((w - r * max_speed).abs() < 1e-3 * w, "{w}");
+        // Saturated from the first step in the error's direction (kp e >= kp 100 kN > the limit):
+        // the integral never grew (without the anti-windup it would hold ~1e8 N s, 2 m/s).
+        assert_eq!(h.integral, 0.0);
+        // Then 60 kN: the controller leaves the limit and settles within a few hundred seconds.
+        let ((w, _, _), range) = drill_from(&mut h, k, r, w, 600.0);
+        assert!(range.0 >= 0.0 && range.1 <= max_speed);
+        assert!((w - 60e3).abs() < 1e-3 * 60e3, "{w}");
+    }
+
+    /// The plant of a drilling string in a few lines: the string a spring of stiffness `k`
+    /// between block and bit, `W' = k (v_block - ROP)`, and the rock `ROP = W / r` (steady
+    /// drilling, linear in the weight on bit at a fixed rotary speed), from the weight `w0`.
+    /// Returns the last `(weight, rop, block speed)` and the range of the block speed.
+    fn drill_from(h: &mut Hoist, k: f64, r: f64, w0: f64, seconds: f64) -> ((f64, f64, f64), (f64, f64)) {
+        let dt = 1e-3;
+        let mut w: f64 = w0;
+        let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut last = (0.0, 0.0, 0.0);
+        for _ in 0..(seconds / dt) as usize {
+            let rop = w / r;
+            let v = speed(h.step(dt, HoistMeasurement { weight_on_bit: w, rop }));
+            range = (range.0.min(v), range.1.max(v));
+            w = (w + dt * k * (v - rop)).max(0.0);
+            last = (w, rop, v);
+        }
+        (last, range)
+    }
+
+    #[test]
+    fn validation_names_the_field() {
+        assert!(HoistParams::default().validate("hoist").is_ok());
+        let mut p = HoistParams::default();
+        p.autodriller.max_speed = -1.0;
+        assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.autodriller.max_speed");
+        let p = HoistParams { ramp_time: -1.0, ..HoistParams::default() };
+        assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.ramp_time");
+        let p = HoistParams { steps: vec![[2.0, 0.0], [1.0, 0.0]], ..HoistParams::default() };
+        assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.steps[1]");
+        let p: HoistParams =
+            serde_json::from_str(r#"{"mode": "autodriller", "autodriller": {"target": "rop"}}"#).unwrap();
+        assert_eq!((p.mode, p.autodriller.target), (HoistMode::Autodriller, AutodrillerTarget::Rop));
+    }
+}
