@@ -34,6 +34,11 @@ FAKE_SCHEMA = {
                           "description": "measured length"},
     "sections[].shear_modulus": {"type": "float", "unit": "Pa", "label": "shear modulus", "default": 79e9,
                                  "description": "G"},
+    "top_drive.torque_limit": {"type": "number", "unit": "N*m", "label": "torque limit", "default": 1e5,
+                               "description": "motor torque limit"},
+    "top_drive.inertia": {"type": "number", "unit": "kg*m^2", "label": "top-drive inertia", "default": 2900.0,
+                          "description": "inertia"},
+    "numerics.cells": {"type": "integer", "unit": None, "label": "cells", "default": 400, "description": "cells"},
 }
 
 
@@ -65,8 +70,12 @@ def test_axis_labels_have_quantity_and_unit_in_readable_magnitudes(schema: dict[
     assert axis_label("friction.static", [0.1, 0.5]) == ("wall friction factor", 1.0)
     assert axis_label("sections[1].length", [100.0, 3000.0]) == ("section length, section 2 [m]", 1.0)
     assert axis_label("sections[0].shear_modulus", [79e9]) == ("shear modulus, section 1 [GPa]", 1e-9)
-    # a key the schema does not know: its last name, no unit
+    # pint's products written with spaces and powers as superscripts; prefixes on newton metres
+    assert axis_label("top_drive.torque_limit", [20e3, 60e3]) == ("torque limit [kN m]", 1e-3)
+    assert axis_label("top_drive.inertia", [2900.0]) == ("top-drive inertia [kg m²]", 1.0)
+    # no unit (None), and a key the schema does not know: its last name, no unit
     assert axis_label("numerics.cells", [10, 20]) == ("cells", 1.0)
+    assert axis_label("numerics.duration", [10, 20]) == ("duration", 1.0)
 
 
 @pytest.mark.skipif(not hasattr(_core, "drill_config_schema"), reason="a core without the configuration schema")

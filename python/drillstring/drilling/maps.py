@@ -36,6 +36,7 @@ import json
 import math
 import numbers
 import os
+import re
 import warnings
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
@@ -519,10 +520,19 @@ def numeric_axes(frame: pd.DataFrame) -> list[str]:
 #: Most panels a map figure draws (one per combination of the values of the axes it does not plot).
 MAX_PANELS = 48
 
-#: Units a figure writes with an SI prefix that keeps the numbers readable (``N`` -> ``kN``).
-_PREFIXED_UNITS = ("N", "N m", "N m/m", "N/m", "N m/rad", "N m s/rad", "Pa", "J", "W")
+#: Units (the schema's, as pint writes them) a figure writes with the SI prefix that keeps the
+#: numbers readable (``N`` -> ``kN``, ``N*m`` -> ``kN m``, ``Pa`` -> ``GPa``): those that start
+#: with newtons, pascals, joules or watts.
+_PREFIXED = r"(N|Pa|J|W)(?=$|[*/ ])"
 _PREFIXES = ((1e9, "G"), (1e6, "M"), (1e3, "k"))
-_NO_UNIT = ("", "1", "-")
+_NO_UNIT = ("", "1", "-", "dimensionless")
+_SUPERSCRIPTS = str.maketrans({"2": "²", "3": "³", "4": "⁴"})
+
+
+def _readable_unit(unit: str) -> str:
+    """A pint unit as a figure writes it: ``N*m`` -> ``N m``, ``kg*m^2`` -> ``kg m²``."""
+    unit = unit.replace("**", "^").replace("*", " ")
+    return re.sub(r"\^([234])(?!\d)", lambda m: m.group(1).translate(_SUPERSCRIPTS), unit)
 
 
 def _schema() -> Mapping[str, Mapping[str, Any]]:
@@ -540,8 +550,6 @@ def axis_label(key: str, values: Any = ()) -> tuple[str, float]:
     that keeps the largest value below 1000 (``bit.weight_on_bit`` up to 200000 N:
     ``"weight on bit [kN]"``, factor 1e-3). A section's key names its section
     (``sections[1].length``: ``"length, section 2 [m]"``)."""
-    import re
-
     match = re.fullmatch(r"sections\[(\d+)\]\.(.+)", key)
     generic = f"sections[].{match.group(2)}" if match else key
     entry = _schema().get(generic) or {}
@@ -552,13 +560,13 @@ def axis_label(key: str, values: Any = ()) -> tuple[str, float]:
     factor = 1.0
     finite = np.asarray([v for v in values if isinstance(v, numbers.Real) and not isinstance(v, bool)], dtype=float)
     finite = finite[np.isfinite(finite)]
-    if unit in _PREFIXED_UNITS and finite.size:
+    if re.match(_PREFIXED, unit) and finite.size:
         biggest = float(np.abs(finite).max())
         for size, prefix in _PREFIXES:
             if biggest >= size:
                 factor, unit = 1.0 / size, prefix + unit
                 break
-    return (label if unit in _NO_UNIT else f"{label} [{unit}]"), factor
+    return (label if unit in _NO_UNIT else f"{label} [{_readable_unit(unit)}]"), factor
 
 
 def _value_text(key: str, value: Any, values: Any) -> str:
