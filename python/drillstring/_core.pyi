@@ -645,6 +645,26 @@ def drill_config_override(
         listed), a wrong type, a value out of range (with ``validate``).
     """
 
+class ConfigKeyDoc(TypedDict):
+    #: "number", "integer", "string", "boolean", "array" or "table".
+    type: str
+    #: The SI unit as pint parses it ("m", "N*m", "kg/m^3", "deg/(30 m)", "" dimensionless; a list
+    #: of numbers: its entries' unit); None for what is not a number.
+    unit: Optional[str]
+    #: A short name of the quantity, for axes ("weight on bit").
+    label: str
+    #: The default as a JSON value; None when required, computed (see the description) or a table.
+    default: Any
+    #: What the key means, its allowed range in words, what null means.
+    description: str
+
+def drill_config_schema() -> dict[str, ConfigKeyDoc]:
+    """The reference of the drilling configuration: every key by dotted path
+    (``sections[].outer_diameter``, ``top_drive.controller.kp``; ``[]`` any index of a list,
+    ``top_drive.steps[][0]`` an entry of each pair), sorted, each with exactly ``type``, ``unit``,
+    ``label``, ``default`` and ``description`` (derived from the configuration structs, their doc
+    comments and unit attributes)."""
+
 def parameters_defaults() -> dict[str, Any]:
     """The paper model's default parameters as JSON (Table 1 of the paper, aluminium reference,
     ``initial_velocities`` ``[0.1, 0.05, 0.02]``): the fields of :class:`drillstring.Parameters`."""

@@ -72,6 +72,7 @@ __all__ = [
     "TopDrive",
     "TorqueDragConfig",
     "Well",
+    "config_schema",
     "defaults",
     "load_drill_config",
 ]
@@ -85,6 +86,31 @@ _DEFAULTS: dict[str, Any] = _core.drill_defaults()
 def defaults() -> dict[str, Any]:
     """The core's default configuration as a plain dict (a fresh copy): what every unset field takes."""
     return _core.drill_defaults()
+
+
+def config_schema() -> dict[str, _core.ConfigKeyDoc]:
+    """The reference of the configuration: every key by dotted path (``sections[].outer_diameter``,
+    ``top_drive.controller.kp``, ``bit.weight_on_bit``; ``[]`` stands for any index of a list,
+    ``top_drive.steps[][0]`` for the first entry of each pair), sorted by path. Each entry is a
+    dict with exactly:
+
+    ``type``
+        ``"number"``, ``"integer"``, ``"string"``, ``"boolean"``, ``"array"`` or ``"table"``;
+    ``unit``
+        the SI unit of a number (or of each number of a list) as pint parses it (``"m"``,
+        ``"N*m"``, ``"kg/m^3"``, ``"deg/(30 m)"``; ``""`` dimensionless), None otherwise;
+    ``label``
+        a short name of the quantity for axes (``"weight on bit"``);
+    ``default``
+        the default as a JSON value, None when the key is required, computed (the description
+        says how) or a table;
+    ``description``
+        what the key means, its allowed range in words and what null means.
+
+    The core derives it from its configuration structs (``_core.drill_config_schema()``): the
+    keys, types and defaults from the structs, the descriptions from their doc comments.
+    """
+    return _core.drill_config_schema()
 
 
 def _frozen(value: Any) -> Any:
@@ -282,6 +308,9 @@ class Bit:
     """Speed below which the bit sticks, rad/s."""
     bha_inertia: float = _default("bit", "bha_inertia", unit="kg m^2", kind="float")
     """Extra lumped inertia at the bit, kg m^2."""
+    diameter: Optional[float] = _default("bit", "diameter", unit="m", kind="float?")
+    """Bit diameter, m, in place of ``radius`` (giving both is refused). The configuration is
+    normalised to the radius: after construction this is None and ``radius`` half the diameter."""
 
 
 @dataclass(frozen=True)

@@ -4,6 +4,7 @@
 //! dotted field.
 
 use drillstring_core::drilling::config::{override_json, override_value};
+use drillstring_core::drilling::schema_doc::config_schema;
 use drillstring_core::model::Parameters;
 use pyo3::prelude::*;
 
@@ -29,6 +30,15 @@ pub(crate) fn drill_config_override<'py>(
         return to_json_object(py, &override_value(config_json, overrides_json, field).map_err(err)?);
     }
     to_json_object(py, &override_json(config_json, overrides_json, field, validate).map_err(err)?)
+}
+
+/// The reference of the drilling configuration: a dict keyed by dotted path
+/// (`sections[].outer_diameter`, `top_drive.controller.kp`), each entry a dict with exactly
+/// `type`, `unit` (SI, as pint parses it; None for what is not a number), `label`, `default` and
+/// `description` (`drillstring_core::drilling::schema_doc`).
+#[pyfunction]
+pub(crate) fn drill_config_schema(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_json_object(py, &config_schema())
 }
 
 /// The paper model's default parameters as a dict (Table 1 of the paper, aluminium reference).

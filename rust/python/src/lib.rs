@@ -80,6 +80,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
     m.add_function(wrap_pyfunction!(config::drill_config_override, m)?)?;
+    m.add_function(wrap_pyfunction!(config::drill_config_schema, m)?)?;
     m.add_function(wrap_pyfunction!(config::parameters_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(config::parameters_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drill_map::drill_map, m)?)?;

@@ -7,6 +7,7 @@
 //! Units: SI, except angles in degrees (`inclination_deg`) and speeds in rpm (`rpm`, `steps`);
 //! stick speeds are rad/s.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
@@ -40,32 +41,45 @@ pub const MAX_SECTION_LENGTH: f64 = 100_000.0;
 pub(crate) const SERIES: usize = 5;
 
 /// One section of the string, from the top.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Section {
+    /// A label for tables and plots.
+    #[schemars(extend("label" = "section name"))]
     pub name: String,
-    /// m (required in JSON).
+    /// Measured length of the section, > 0 and at most 100 km (required).
+    #[schemars(extend("unit" = "m", "label" = "section length"))]
     pub length: f64,
-    /// m (required in JSON).
+    /// Outer diameter of the pipe body, > 0 and at most 10 m (required).
+    #[schemars(extend("unit" = "m", "label" = "outer diameter"))]
     pub outer_diameter: f64,
-    /// m (required in JSON).
+    /// Inner diameter, from 0 to below the outer diameter (required).
+    #[schemars(extend("unit" = "m", "label" = "inner diameter"))]
     pub inner_diameter: f64,
-    /// Pa.
+    /// Shear modulus `G` of the material, > 0.
+    #[schemars(extend("unit" = "Pa", "label" = "shear modulus"))]
     pub shear_modulus: f64,
-    /// kg/m^3.
+    /// Density of the material, > 0 (and above the mud density).
+    #[schemars(extend("unit" = "kg/m^3", "label" = "density"))]
     pub density: f64,
-    /// m; the friction lever arm is half of it. None: `outer_diameter`.
+    /// Diameter at which the wall's friction acts, > 0; the friction lever arm is half of it.
+    /// Null: the outer diameter.
+    #[schemars(extend("unit" = "m", "label" = "contact diameter"))]
     pub contact_diameter: Option<f64>,
-    /// m^4; None: `pi/32 (OD^4 - ID^4)`.
+    /// Polar moment of area `J`, > 0. Null: `pi/32 (OD^4 - ID^4)` of the diameters.
+    #[schemars(extend("unit" = "m^4", "label" = "polar moment"))]
     pub polar_moment: Option<f64>,
-    /// m^2; None: `pi/4 (OD^2 - ID^2)`.
+    /// Cross-section area `A`, > 0. Null: `pi/4 (OD^2 - ID^2)` of the diameters.
+    #[schemars(extend("unit" = "m^2", "label" = "cross-section area"))]
     pub area: Option<f64>,
-    /// `J4 = int r^4 dA`, m^6, of the `consistent` nonlinearity's `k5 = M J4 / 2` (unused by
-    /// `linear`); None: `pi/192 (OD^6 - ID^6)`, the annulus of the diameters. A section whose
+    /// `J4 = int r^4 dA`, > 0, of the `consistent` nonlinearity's `k5 = M J4 / 2` (unused by
+    /// `linear`). Null: `pi/192 (OD^6 - ID^6)`, the annulus of the diameters. A section whose
     /// `polar_moment` is overridden (an equivalent section) needs it too for the consistent law.
+    #[schemars(extend("unit" = "m^6", "label" = "quartic moment"))]
     pub quartic_moment: Option<f64>,
     /// Poisson's ratio, `0 < nu < 0.5`: with `shear_modulus` it gives the P-wave modulus
     /// `M = 2 G (1 - nu) / (1 - 2 nu)` of the `consistent` nonlinearity (unused by `linear`).
+    #[schemars(extend("unit" = "", "label" = "Poisson's ratio"))]
     pub poisson_ratio: f64,
 }
 
@@ -90,7 +104,7 @@ impl Default for Section {
 }
 
 /// The torque-twist law of the string.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Nonlinearity {
     /// `tau = G J eps` (`eps` the twist per length): the linear wave equation.
@@ -105,7 +119,7 @@ impl Nonlinearity {
 }
 
 /// The inclination: one constant angle, or a table at the measured depths `well.md`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(untagged)]
 pub enum Inclination {
     Constant(f64),
@@ -113,31 +127,42 @@ pub enum Inclination {
 }
 
 /// The well: survey (linear interpolation in measured depth, constant beyond the ends), mud.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Well {
-    /// Measured depths of the survey stations, m (strictly increasing); None with a constant
-    /// inclination.
+    /// Measured depths of the survey stations, strictly increasing. Null with a constant
+    /// inclination (one number in `inclination_deg`).
+    #[schemars(extend("unit" = "m", "label" = "measured depth"))]
     pub md: Option<Vec<f64>>,
-    /// Degrees.
+    /// Inclination at each `md` station, 0 to 180 degrees (0: vertical); one number without `md` is
+    /// a constant inclination.
+    #[schemars(extend("unit" = "deg", "label" = "inclination"))]
     pub inclination_deg: Inclination,
-    /// kg/m^3 (buoyancy of the string: weight `(rho - mud_density) g A` per metre).
+    /// Density of the mud, for the buoyancy of the string (weight `(rho - mud_density) g A` per
+    /// metre): from 0 (no buoyancy) to below every section's density.
+    #[schemars(extend("unit" = "kg/m^3", "label" = "mud density"))]
     pub mud_density: f64,
-    /// m/s^2.
+    /// Acceleration of gravity, >= 0.
+    #[schemars(extend("unit" = "m/s^2", "label" = "gravity"))]
     pub gravity: f64,
-    /// Degrees clockwise from north: one constant angle, or a table at the stations `well.md`.
+    /// Azimuth in degrees clockwise from north, 0 to 360: one constant angle, or one per `md`
+    /// station (with a plan: the constant azimuth it starts from).
+    #[schemars(extend("unit" = "deg", "label" = "azimuth"))]
     pub azimuth_deg: Inclination,
     /// A survey file (CSV: columns md, inc, azi; units in the header as `md_m` / `md_ft`,
     /// `inc_deg` / `inc_rad`, ...; default m and degrees), in place of `md`,
     /// `inclination_deg` and `azimuth_deg`. A relative path is relative to the working
     /// directory here; the TOML loader makes it relative to the configuration file.
+    #[schemars(extend("label" = "survey file"))]
     pub survey: Option<String>,
     /// A plan in place of the stations: segments `{hold = m}`, `{build = deg/30 m,
     /// inclination = deg}`, `{drop = ..., inclination = ...}`, `{turn = deg/30 m, azimuth =
     /// deg}` from the surface, vertical at azimuth `azimuth_deg` (a constant).
+    #[schemars(extend("label" = "well plan"))]
     pub plan: Option<Vec<SegmentSpec>>,
     /// A survey (stations, file or plan) shorter than the string is refused, unless `extend`
     /// is true: then the hole goes straight on in the last station's direction.
+    #[schemars(extend("label" = "extend the survey"))]
     pub extend: bool,
     /// The stations read from `survey` when the configuration was parsed (md m, inclination
     /// and azimuth degrees).
@@ -162,7 +187,7 @@ impl Default for Well {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FrictionModel {
     /// Set-valued Coulomb friction with a true stick phase (Aarsnes & Shor).
@@ -172,34 +197,42 @@ pub enum FrictionModel {
 }
 
 /// Along-string Coulomb friction (soft-string contact).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Friction {
-    /// Static friction coefficient.
+    /// Static friction factor between string and wall, >= 0 (where no interval applies).
     #[serde(rename = "static")]
+    #[schemars(extend("unit" = "", "label" = "static friction factor"))]
     pub static_coefficient: f64,
-    /// Kinetic / static.
+    /// Kinetic over static friction factor, in [0, 1].
+    #[schemars(extend("unit" = "", "label" = "kinetic/static friction ratio"))]
     pub kinetic_ratio: f64,
-    /// rad/s: a cell slower than this sticks if the torque needed to stop it is within the
-    /// static limit (Aarsnes-Shor `o_thres`).
+    /// A cell slower than this sticks if the torque needed to stop it is within the static
+    /// limit, >= 0 (Aarsnes-Shor `o_thres`).
+    #[schemars(extend("unit" = "rad/s", "label" = "stick speed"))]
     pub stick_speed: f64,
+    /// The wall friction law: `set_valued` (a true stick phase) or `regularised` (smooth).
+    #[schemars(extend("label" = "friction model"))]
     pub model: FrictionModel,
-    /// rad/s, for `regularised`.
+    /// The speed scale of `regularised` friction, > 0.
+    #[schemars(extend("unit" = "rad/s", "label" = "regularisation speed"))]
     pub regularisation_speed: f64,
     /// The normal force the wall's friction limit is made of: `soft_string` (default), the
     /// normal force of the static soft-string torque-and-drag solution (buoyed weight and
     /// tension times curvature, rotating off bottom, or on bottom with the bit's weight), or
     /// `weight`, the buoyed weight times the sine of the inclination alone (Aarsnes & Shor 2018,
     /// eq. 6, to reproduce their model).
+    #[schemars(extend("label" = "contact force"))]
     pub contact: Contact,
     /// Static friction factors over depth intervals (cased and open hole differ); `static`
     /// applies where no interval does. The kinetic factor is `kinetic_ratio` times the static
     /// one everywhere.
+    #[schemars(extend("label" = "friction intervals"))]
     pub intervals: Vec<FrictionInterval>,
 }
 
 /// The normal force of the wall's friction limit ([`Friction::contact`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Contact {
     /// `g sin(inc) (rho - rho_mud) A` per metre (Aarsnes & Shor 2018).
@@ -213,12 +246,18 @@ impl Contact {
 }
 
 /// A static friction factor over `[top_md, bottom_md)`, m.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionInterval {
+    /// Measured depth of the interval's top, >= 0.
+    #[schemars(extend("unit" = "m", "label" = "interval top"))]
     pub top_md: f64,
+    /// Measured depth of the interval's bottom, below its top.
+    #[schemars(extend("unit" = "m", "label" = "interval bottom"))]
     pub bottom_md: f64,
+    /// Static friction factor in the interval, >= 0.
     #[serde(rename = "static")]
+    #[schemars(extend("unit" = "", "label" = "static friction factor"))]
     pub static_coefficient: f64,
 }
 
@@ -237,7 +276,7 @@ impl Default for Friction {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ControllerKind {
     /// Ideal speed control: the top speed is the setpoint (motor torque inferred).
@@ -255,29 +294,38 @@ impl ControllerKind {
 }
 
 /// The top-drive controller.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Controller {
+    /// The controller of the top drive (`speed`: an ideal speed source).
     #[serde(rename = "type")]
+    #[schemars(extend("label" = "controller"))]
     pub kind: ControllerKind,
-    /// `pi`: N m s/rad.
+    /// `pi`: proportional gain, >= 0.
+    #[schemars(extend("unit" = "N*m*s/rad", "label" = "proportional gain"))]
     pub kp: f64,
-    /// `pi`: N m/rad.
+    /// `pi`: integral gain, >= 0.
+    #[schemars(extend("unit" = "N*m/rad", "label" = "integral gain"))]
     pub ki: f64,
-    /// `soft_torque`: Hz; None: the string's first natural frequency (fixed top, bit free or
-    /// with the BHA inertia).
+    /// `soft_torque`: the tuning frequency, > 0. Null: the string's first natural frequency (fixed
+    /// top, bit free or with the BHA inertia).
+    #[schemars(extend("unit" = "Hz", "label" = "tuning frequency"))]
     pub tuning_frequency: Option<f64>,
     /// `soft_torque`, `z_torque`: the damping the top drive presents, in units of the top
-    /// section's impedance `Z = J sqrt(G rho)`. Default 4, the published defaults of
-    /// Simulator4nDOF (NORCE): its SoftTorque proportional gain `4 Z` and its ZTorque factor
+    /// section's impedance `Z = J sqrt(G rho)`, > 0.
+    ///
+    /// Default 4, the published defaults of Simulator4nDOF (NORCE): its SoftTorque proportional gain `4 Z` and its ZTorque factor
     /// `0.25 / Z` on the high-passed torque (`1 / (z_factor Z)` here). On
     /// `examples/on-bottom-3000m.toml` at 40 rpm (300 cells) both then remove the stick-slip the
     /// PI controller leaves (SSI 0.21 and 0.03 against 1.12); at 1 `soft_torque` made it worse
     /// (1.47).
+    #[schemars(extend("unit" = "", "label" = "impedance factor"))]
     pub z_factor: f64,
     /// `z_torque`: time constant of the low-pass that takes the mean string torque out of the
-    /// impedance feedback (so that only the torque waves reduce the speed), s. Default
-    /// `20 / (2 pi)` s: the torque high-pass of the ZTorque controller of Simulator4nDOF.
+    /// impedance feedback (so that only the torque waves reduce the speed), > 0.
+    ///
+    /// Default `20 / (2 pi)` s: the torque high-pass of the ZTorque controller of Simulator4nDOF.
+    #[schemars(extend("unit" = "s", "label" = "torque high-pass time"))]
     pub torque_highpass_time: f64,
 }
 
@@ -296,32 +344,46 @@ impl Default for Controller {
 }
 
 /// The top drive: inertia, setpoint and controller.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct TopDrive {
-    /// kg m^2.
+    /// Rotor inertia of the top drive, > 0.
+    #[schemars(extend("unit" = "kg*m^2", "label" = "top-drive inertia"))]
     pub inertia: f64,
-    /// N m: the motor torque is clipped to `[-limit, limit]` (anti-windup), for every
-    /// controller. Default 60 kN m: the continuous rating of a large top drive, as Simulator4nDOF
-    /// (NORCE) sets its maximum top-drive torque; a run whose static torque exceeds it is warned
-    /// that the string may never break free. A very large value (1e12) for no limit.
+    /// The motor torque is clipped to `[-limit, limit]` (anti-windup), for every controller; > 0,
+    /// a very large value (1e12) for no limit.
+    ///
+    /// Default 60 kN m: the continuous rating of a large top drive, as Simulator4nDOF (NORCE) sets
+    /// its maximum top-drive torque; a run whose static torque exceeds it is warned that the
+    /// string may never break free.
+    #[schemars(extend("unit" = "N*m", "label" = "motor torque limit"))]
     pub torque_limit: f64,
-    /// Setpoint, rpm.
+    /// The top drive's speed setpoint (finite; negative turns the other way).
+    #[schemars(extend("unit" = "rpm", "label" = "top-drive speed setpoint"))]
     pub rpm: f64,
-    /// Time constant of the first-order approach of the setpoint from 0, s (0: a step).
+    /// Time constant of the first-order approach of the setpoint from 0, >= 0 (0: a step).
+    #[schemars(extend("unit" = "s", "label" = "ramp time"))]
     pub ramp_time: f64,
-    /// `[time s, rpm]` changes of the setpoint target (approached with `ramp_time` too).
+    /// `[time, rpm]` changes of the setpoint target at increasing times (approached with
+    /// `ramp_time` too).
+    #[schemars(extend("label" = "setpoint steps", "item_units" = ["s", "rpm"], "item_labels" = ["step time", "top-drive speed setpoint"]))]
     pub steps: Vec<[f64; 2]>,
+    /// The speed controller.
+    #[schemars(extend("label" = "controller"))]
     pub controller: Controller,
-    /// Period of the zero-order hold of `pi` and `soft_torque`, s.
+    /// Period of the zero-order hold of `pi` and `soft_torque`, > 0.
+    #[schemars(extend("unit" = "s", "label" = "control interval"))]
     pub control_interval: f64,
-    /// `speed`, `z_torque`: the bandwidth of the motor's speed loop, Hz. The top speed follows
+    /// `speed`, `z_torque`: the bandwidth of the motor's speed loop, > 0.
+    ///
+    /// The top speed follows
     /// the speed these controllers ask for as a first-order lag of time constant
     /// `1 / (2 pi motor_bandwidth)` (exact over each step), so that the motor torque is the
     /// torque of a real drive and converges as the grid is refined (an ideal speed source asks
     /// the top-drive inertia times the jump of the speed over one step, a torque that grows as
     /// `1 / dt`). Default 10 Hz, the order of a variable-frequency drive's speed loop, well above
     /// a string's torsional modes (0.1-2 Hz).
+    #[schemars(extend("unit" = "Hz", "label" = "motor bandwidth"))]
     pub motor_bandwidth: f64,
 }
 
@@ -343,21 +405,35 @@ impl Default for TopDrive {
 }
 
 /// The bit: off bottom (free end or a lumped BHA inertia) or on bottom (Navarro-Lopez torque).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Bit {
+    /// Whether the bit cuts (on bottom, the bit-rock torque) or hangs free.
+    #[schemars(extend("label" = "bit on bottom"))]
     pub on_bottom: bool,
-    /// N.
+    /// Weight on bit `W`, >= 0.
+    #[schemars(extend("unit" = "N", "label" = "weight on bit"))]
     pub weight_on_bit: f64,
-    /// m.
+    /// Bit radius `r`, > 0 (or give `diameter`, not both).
+    #[schemars(extend("unit" = "m", "label" = "bit radius"))]
     pub radius: f64,
+    /// Bit diameter, > 0, in place of `radius` (not both). Null: `radius` gives the bit.
+    #[schemars(extend("unit" = "m", "label" = "bit diameter"))]
+    pub diameter: Option<f64>,
+    /// Static bit-rock friction coefficient `mu_s`, >= 0.
+    #[schemars(extend("unit" = "", "label" = "static bit friction"))]
     pub mu_static: f64,
+    /// Kinetic bit-rock friction coefficient `mu_k`, from 0 to `mu_static`.
+    #[schemars(extend("unit" = "", "label" = "kinetic bit friction"))]
     pub mu_kinetic: f64,
-    /// 1/(rad/s): `T = W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)`.
+    /// Velocity-weakening rate of `T = W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)`, >= 0.
+    #[schemars(extend("unit" = "s/rad", "label" = "velocity-weakening rate"))]
     pub decay: f64,
-    /// rad/s: below it the bit sticks while the holding torque is within `W r mu_s`.
+    /// Below this speed the bit sticks while the holding torque is within `W r mu_s`; >= 0.
+    #[schemars(extend("unit" = "rad/s", "label" = "bit stick speed"))]
     pub stick_speed: f64,
-    /// Lumped inertia at the bit, kg m^2 (0: none).
+    /// Lumped inertia at the bit, >= 0 (0: none).
+    #[schemars(extend("unit" = "kg*m^2", "label" = "BHA inertia"))]
     pub bha_inertia: f64,
 }
 
@@ -367,6 +443,7 @@ impl Default for Bit {
             on_bottom: false,
             weight_on_bit: 0.0,
             radius: 0.1,
+            diameter: None,
             mu_static: 0.8,
             mu_kinetic: 0.5,
             decay: 1.0,
@@ -377,23 +454,30 @@ impl Default for Bit {
 }
 
 /// Discretisation and outputs.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Numerics {
     /// Target number of cells: `dt = min(sum(L_i / c_i) / cells, min_i L_i / c_i)`, section `i`
     /// gets `floor(L_i / (c_i dt)) >= 1` cells (Courant number `<= 1`, `= 1` when uniform); a
     /// section shorter than a cell of the others raises the count.
+    #[schemars(extend("unit" = "", "label" = "cells"))]
     pub cells: usize,
-    /// Simulated time, s.
+    /// Simulated time, > 0 and at most one day.
+    #[schemars(extend("unit" = "s", "label" = "duration"))]
     pub duration: f64,
-    /// Sampling of the series, s.
+    /// Sampling interval of the time series, > 0 and at most `duration`.
+    #[schemars(extend("unit" = "s", "label" = "output interval"))]
     pub output_interval: f64,
-    /// Sampling of the space-time snapshots, s (0: none).
+    /// Sampling interval of the space-time snapshots, >= 0 (0: none).
+    #[schemars(extend("unit" = "s", "label" = "snapshot interval"))]
     pub field_interval: f64,
-    /// A ceiling on `cells` (at most [`MAX_CELLS`]).
+    /// A ceiling on `cells`, from 1 to 10 million (a guard against typos).
+    #[schemars(extend("unit" = "", "label" = "maximum cells"))]
     pub max_cells: usize,
     /// `consistent` only: the largest shear strain at the outer surface, `gamma = (OD / 2) eps`,
-    /// the time step is made for. The step respects the tangent wave speed
+    /// the time step is made for, in (0, 1].
+    ///
+    /// The step respects the tangent wave speed
     /// `sqrt((k2 + 3 k5 eps^2) / (rho J))` at this strain in every section (Courant number
     /// `<= 1`; every section's speed is raised by the largest of these hardening factors); a run
     /// whose strains exceed it reports a tangent Courant number above 1
@@ -401,11 +485,14 @@ pub struct Numerics {
     /// of high-strength drill-pipe steel (S-135: `931 MPa / sqrt(3) / G ~ 0.0068`), where the
     /// elastic law ends. A larger bound lowers the Courant numbers of the small strains below 1,
     /// where the first-order transport dissipates.
+    #[schemars(extend("unit" = "", "label" = "maximum shear strain"))]
     pub max_shear_strain: f64,
     /// The Courant number `c dt / h` the step is made for, in `(0, 1]`: the step is this
-    /// fraction of the Courant-1 step of the grid (the cells unchanged). Default 1: the exact
-    /// shift, no numerical diffusion; below 1 the first-order upwind transport diffuses
-    /// (`upwind_loss`), as the scheme of Aarsnes & Shor's code does at its 0.929.
+    /// fraction of the Courant-1 step of the grid (the cells unchanged).
+    ///
+    /// Default 1: the exact shift, no numerical diffusion; below 1 the first-order upwind
+    /// transport diffuses (`upwind_loss`), as the scheme of Aarsnes & Shor's code does at its 0.929.
+    #[schemars(extend("unit" = "", "label" = "Courant number"))]
     pub courant: f64,
 }
 
@@ -425,12 +512,15 @@ impl Default for Numerics {
 }
 
 /// The metrics window.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MetricsConfig {
-    /// `[t_start, t_end]`, s; None: the last half of the run.
+    /// `[t_start, t_end]` of the metrics window, `t_start < t_end`, holding at least two samples.
+    /// Null: the last half of the run.
+    #[schemars(extend("unit" = "s", "label" = "metrics window"))]
     pub window: Option<[f64; 2]>,
-    /// rad/s: the bit counts as stuck at or below it.
+    /// The bit counts as stuck at or below this speed, >= 0.
+    #[schemars(extend("unit" = "rad/s", "label" = "stick speed"))]
     pub stick_speed: f64,
 }
 
@@ -441,18 +531,23 @@ impl Default for MetricsConfig {
 }
 
 /// The static torque-and-drag analysis (`drillstring torque-drag`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct TorqueDragConfig {
-    /// The torque on bit when drilling (rotating on bottom), N m.
+    /// The torque on bit when drilling (rotating on bottom), >= 0.
+    #[schemars(extend("unit" = "N*m", "label" = "torque on bit"))]
     pub bit_torque: f64,
-    /// The travelling block's weight (with hook and top drive), added to hook loads, N.
+    /// The travelling block's weight (with hook and top drive), added to hook loads, >= 0.
+    #[schemars(extend("unit" = "N", "label" = "block weight"))]
     pub block_weight: f64,
-    /// The longest element of the stepped solution, m.
+    /// The longest element of the stepped solution, > 0.
+    #[schemars(extend("unit" = "m", "label" = "element length"))]
     pub step: f64,
-    /// The friction factors of the broomstick plot (uniform along the hole).
+    /// The friction factors of the broomstick plot (uniform along the hole), each in [0, 10].
+    #[schemars(extend("unit" = "", "label" = "friction factor"))]
     pub friction_factors: Vec<f64>,
-    /// Bit depths of the broomstick plot, evenly spaced to the string's length.
+    /// Bit depths of the broomstick plot, evenly spaced to the string's length, 2 to 100000.
+    #[schemars(extend("unit" = "", "label" = "broomstick points"))]
     pub broomstick_points: usize,
 }
 
@@ -469,21 +564,31 @@ impl Default for TorqueDragConfig {
 }
 
 /// A drilling-system run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DrillConfig {
-    /// From the top; at least one (required in JSON).
+    /// The string's sections from the top, 1 to 1000 (required).
+    #[schemars(extend("label" = "sections"))]
     pub sections: Vec<Section>,
+    #[schemars(extend("label" = "well"))]
     pub well: Well,
+    #[schemars(extend("label" = "wall friction"))]
     pub friction: Friction,
-    /// 1/s: viscous force `-rho J c omega` per unit length.
+    /// Viscous damping rate `c`, >= 0: the force `-rho J c omega` per unit length.
+    #[schemars(extend("unit" = "1/s", "label" = "damping rate"))]
     pub damping_rate: f64,
     /// The torque-twist law: `linear` (default) or `consistent` (finite strain).
+    #[schemars(extend("label" = "torque-twist law"))]
     pub nonlinearity: Nonlinearity,
+    #[schemars(extend("label" = "top drive"))]
     pub top_drive: TopDrive,
+    #[schemars(extend("label" = "bit"))]
     pub bit: Bit,
+    #[schemars(extend("label" = "numerics"))]
     pub numerics: Numerics,
+    #[schemars(extend("label" = "metrics"))]
     pub metrics: MetricsConfig,
+    #[schemars(extend("label" = "torque and drag"))]
     pub torque_drag: TorqueDragConfig,
 }
 
@@ -506,8 +611,8 @@ impl Default for DrillConfig {
 }
 
 /// Keys that must be present in a configuration's JSON.
-const REQUIRED_TOP: [&str; 1] = ["sections"];
-const REQUIRED_SECTION: [&str; 3] = ["length", "outer_diameter", "inner_diameter"];
+pub(crate) const REQUIRED_TOP: [&str; 1] = ["sections"];
+pub(crate) const REQUIRED_SECTION: [&str; 3] = ["length", "outer_diameter", "inner_diameter"];
 
 /// A drilling configuration's error of the schema parse, in its own words: a top-drive step
 /// names the step (`top_drive.steps[1]`, `[time s, rpm]`), the inclination its two forms.
@@ -530,6 +635,34 @@ fn refine(user: &Value, error: Error) -> Error {
 fn constant_inclination(well: &mut Map<String, Value>, md_given: bool) {
     if !md_given && well.get("inclination_deg").is_some_and(Value::is_number) {
         well.insert("md".into(), Value::Null);
+    }
+}
+
+/// The error of a bit given by both its radius and its diameter.
+fn bit_size_conflict() -> Error {
+    Error::invalid(
+        "bit.diameter",
+        "both bit.radius and bit.diameter",
+        "one of bit.radius or bit.diameter (the diameter is twice the radius)",
+    )
+}
+
+/// After overrides: a bit radius set by an override replaces the configuration's diameter and a
+/// diameter its radius (a table `bit` counts by its keys); both set is refused by the parse.
+fn bit_size_override(config: &mut Value, overrides: &[Override]) {
+    let sets = |key: &str| {
+        overrides.iter().any(|(p, v): &Override| {
+            (p == "bit" && v.get(key).is_some_and(|x| !x.is_null()))
+                || (p.strip_prefix("bit.") == Some(key) && !v.is_null())
+        })
+    };
+    let (radius, diameter) = (sets("radius"), sets("diameter"));
+    if let Some(Value::Object(bit)) = config.get_mut("bit") {
+        if diameter && !radius {
+            bit.remove("radius");
+        } else if radius && !diameter {
+            bit.remove("diameter");
+        }
     }
 }
 
@@ -592,7 +725,18 @@ impl DrillConfig {
                 well.insert("inclination_deg".into(), Value::from(0.0));
             }
         }
-        let mut cfg = schema::parse(&user).map_err(|e| refine(&user, e))?;
+        if let Some(Value::Object(bit)) = map.get("bit") {
+            let given = |key: &str| bit.get(key).is_some_and(|v| !v.is_null());
+            if given("radius") && given("diameter") {
+                return Err(bit_size_conflict());
+            }
+        }
+        let mut cfg: DrillConfig = schema::parse(&user).map_err(|e| refine(&user, e))?;
+        if let Some(d) = cfg.bit.diameter.take() {
+            // the normalised configuration gives the bit by its radius
+            pos("bit.diameter", d, "m, or null to give bit.radius")?;
+            cfg.bit.radius = d / 2.0;
+        }
         super::well::load_survey(&mut cfg)?;
         Ok(cfg)
     }
@@ -786,6 +930,12 @@ impl DrillConfig {
         let b = &self.bit;
         nonneg("bit.weight_on_bit", b.weight_on_bit, "N")?;
         pos("bit.radius", b.radius, "m")?;
+        if let Some(d) = b.diameter {
+            pos("bit.diameter", d, "m, or null to give bit.radius")?;
+            if b.radius != d / 2.0 {
+                return Err(bit_size_conflict());
+            }
+        }
         nonneg("bit.mu_static", b.mu_static, "-")?;
         within("bit.mu_kinetic", b.mu_kinetic, 0.0, b.mu_static, "-, at most bit.mu_static")?;
         nonneg("bit.decay", b.decay, "s/rad")?;
@@ -1043,11 +1193,13 @@ pub fn set_path(config: &mut Value, path: &str, value: &Value, field: &str) -> R
 
 /// Sets `overrides` in order in the JSON configuration `config` ([`set_path`]); one number for
 /// `well.inclination_deg` without a `well.md` override drops the survey depths (the
-/// constant-inclination rule of [`DrillConfig::from_json`]). `field` names a malformed path.
+/// constant-inclination rule of [`DrillConfig::from_json`]); a `bit.radius` override replaces a
+/// `bit.diameter` and the reverse. `field` names a malformed path.
 pub fn apply_overrides(config: &mut Value, overrides: &[Override], field: &str) -> Result<()> {
     for (path, v) in overrides {
         set_path(config, path, v, field)?;
     }
+    bit_size_override(config, overrides);
     if overrides.iter().any(|(p, _)| p == "well.inclination_deg") {
         let md_given = overrides.iter().any(|(p, _)| p == "well.md");
         if let Some(Value::Object(well)) = config.get_mut("well") {

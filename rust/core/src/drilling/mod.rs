@@ -32,6 +32,7 @@ pub mod config;
 pub mod grid;
 pub mod lumped;
 pub mod map;
+pub mod schema_doc;
 pub mod solver;
 pub mod well;
 

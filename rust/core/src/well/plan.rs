@@ -16,6 +16,7 @@
 //! assert_eq!(inc, vec![0.0, 0.0, 60.0, 60.0]);
 //! ```
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Num, Result};
@@ -39,20 +40,32 @@ pub enum Segment {
 
 /// A segment as written in a configuration (`{hold = 500}`, `{build = 3, inclination = 60}`,
 /// `{drop = 2, inclination = 0}`, `{turn = -2, azimuth = 270}`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SegmentSpec {
+    /// A straight hold of this length, > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("unit" = "m", "label" = "hold length"))]
     pub hold: Option<f64>,
+    /// Build at this rate, > 0, to the target `inclination`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("unit" = "deg/(30 m)", "label" = "build rate"))]
     pub build: Option<f64>,
+    /// Drop at this rate, > 0, to the target `inclination`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("unit" = "deg/(30 m)", "label" = "drop rate"))]
     pub drop: Option<f64>,
+    /// Turn at this rate, nonzero, positive clockwise, to the target `azimuth`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("unit" = "deg/(30 m)", "label" = "turn rate"))]
     pub turn: Option<f64>,
+    /// The target inclination of a build or drop, 0 to 180 degrees.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("unit" = "deg", "label" = "target inclination"))]
     pub inclination: Option<f64>,
+    /// The target azimuth of a turn, 0 to 360 degrees.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schemars(extend("unit" = "deg", "label" = "target azimuth"))]
     pub azimuth: Option<f64>,
 }
 
