@@ -22,23 +22,21 @@ ROOT = Path(__file__).resolve().parents[1]
 ON_BOTTOM = ROOT / "examples" / "on-bottom-3000m.toml"
 WELL_B = ROOT / "examples" / "aarsnes-shor-well-b-corrected.toml"
 
+def _key(unit: Any, label: str) -> dict[str, Any]:
+    """An entry of ``_core.drill_config_schema()``."""
+    return {"type": "number", "unit": unit, "label": label, "default": None, "description": label}
+
+
 #: A schema in the format of ``_core.drill_config_schema()`` (dotted key -> its description).
 FAKE_SCHEMA = {
-    "bit.weight_on_bit": {"type": "float", "unit": "N", "label": "weight on bit", "default": 0.0,
-                          "description": "axial force on the bit"},
-    "top_drive.rpm": {"type": "float", "unit": "rpm", "label": "top-drive speed", "default": 60.0,
-                      "description": "set speed"},
-    "friction.static": {"type": "float", "unit": "", "label": "wall friction factor", "default": 0.3,
-                        "description": "static friction factor"},
-    "sections[].length": {"type": "float", "unit": "m", "label": "section length", "default": None,
-                          "description": "measured length"},
-    "sections[].shear_modulus": {"type": "float", "unit": "Pa", "label": "shear modulus", "default": 79e9,
-                                 "description": "G"},
-    "top_drive.torque_limit": {"type": "number", "unit": "N*m", "label": "torque limit", "default": 1e5,
-                               "description": "motor torque limit"},
-    "top_drive.inertia": {"type": "number", "unit": "kg*m^2", "label": "top-drive inertia", "default": 2900.0,
-                          "description": "inertia"},
-    "numerics.cells": {"type": "integer", "unit": None, "label": "cells", "default": 400, "description": "cells"},
+    "bit.weight_on_bit": _key("N", "weight on bit"),
+    "top_drive.rpm": _key("rpm", "top-drive speed"),
+    "friction.static": _key("", "wall friction factor"),
+    "sections[].length": _key("m", "section length"),
+    "sections[].shear_modulus": _key("Pa", "shear modulus"),
+    "top_drive.torque_limit": _key("N*m", "torque limit"),
+    "top_drive.inertia": _key("kg*m^2", "top-drive inertia"),
+    "numerics.cells": _key(None, "cells"),
 }
 
 
