@@ -13,7 +13,7 @@ import pytest
 import drillstring as ds
 from drillstring.cli import main
 from drillstring.drilling import DrillConfig, drill, drill_map, load_drill_config
-from drillstring.drilling.maps import METRIC_COLUMNS, controller_maps, map_figures, ssi_lines, ssi_map
+from drillstring.drilling.maps import METRIC_COLUMNS, axis_label, controller_maps, map_figures, ssi_lines, ssi_map
 from drillstring.errors import ValidationError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -28,8 +28,9 @@ def _small() -> DrillConfig:
     })
 
 
-def _same(a: float, b: float) -> bool:
-    return (math.isnan(a) and math.isnan(b)) or a == b
+def _same(a: object, b: object) -> bool:
+    both_nan = isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b)
+    return both_nan or a == b
 
 
 def test_rows_equal_single_runs() -> None:
@@ -118,21 +119,27 @@ def test_figures() -> None:
     figs = map_figures(frame)
     assert set(figs) == {"ssi_map.png", "controllers.png"}
     assert len(controller_maps(frame, "top_drive.rpm", "friction.static").axes) == 3  # 2 panels + colour bar
-    # the map's cells and the lines are the runs' SSI averaged over the other axes
+    # the map's cells and the lines are the runs' own SSI: one panel / line per controller
     rpm, static, kind = (frame[k].to_numpy() for k in ("top_drive.rpm", "friction.static",
                                                         "top_drive.controller.type"))
     ssi = frame["ssi"].to_numpy(dtype=float)
-    cells = ssi_map(frame, "top_drive.rpm", "friction.static").axes[0].collections[0].get_array()
-    expected = [[ssi[(rpm == r) & (static == s)].mean() for r in (10.0, 60.0, 120.0)] for s in (0.1, 0.5)]
-    np.testing.assert_allclose(np.ma.filled(cells, np.nan).reshape(2, 3), expected, rtol=1e-15)
-    lines = ssi_lines(frame, "top_drive.rpm", "top_drive.controller.type").axes[0].get_lines()
     kinds = ("pi", "soft_torque")
-    assert [line.get_label() for line in lines[:2]] == [f"top_drive.controller.type = {k}" for k in kinds]
-    for line, k in zip(lines, kinds):
+    panels = ssi_map(frame, "top_drive.rpm", "friction.static").axes[:2]
+    for ax, k in zip(panels, kinds):
+        assert ax.get_title() == f"{k} controller"
+        cells = ax.collections[0].get_array()
+        expected = [[ssi[(rpm == r) & (static == s) & (kind == k)][0] for r in (10.0, 60.0, 120.0)]
+                    for s in (0.1, 0.5)]
+        np.testing.assert_array_equal(np.ma.filled(cells, np.nan).reshape(2, 3), expected)
+    lines = ssi_lines(frame, "top_drive.rpm", "top_drive.controller.type").axes[0].get_lines()
+    pairs = [(k, s) for k in kinds for s in (0.1, 0.5)]
+    friction = axis_label("friction.static", [0.1, 0.5])[0]  # dimensionless: no unit
+    assert [line.get_label() for line in lines[:4]] == [f"{k} controller, {friction} = {s:g}" for k, s in pairs]
+    for line, (k, s) in zip(lines, pairs):
         np.testing.assert_array_equal(line.get_xdata(), [10.0, 60.0, 120.0])
-        means = [ssi[(rpm == r) & (kind == k)].mean() for r in (10.0, 60.0, 120.0)]
-        np.testing.assert_allclose(line.get_ydata(), means, rtol=1e-15)
-    assert np.ptp(ssi) > 0.1  # the runs differ: the averages above are not one number
+        own = [ssi[(rpm == r) & (kind == k) & (static == s)][0] for r in (10.0, 60.0, 120.0)]
+        np.testing.assert_array_equal(line.get_ydata(), own)
+    assert np.ptp(ssi) > 0.1  # the runs differ
     with pytest.raises(ValidationError, match="numeric axis"):
         ssi_map(frame, "top_drive.controller.type", "friction.static")
 

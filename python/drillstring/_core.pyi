@@ -478,6 +478,9 @@ def modal_energies(
 STICK_SPEED: float
 """Default stick threshold speed of :func:`stick_slip_metrics`, rad/s."""
 
+STICK_SLIP_CRITERION: str
+"""The criterion of the three-way stick-slip verdict (``verdict``: yes, no, undetermined)."""
+
 class StickSlipDict(TypedDict):
     t_start: float
     t_end: float
@@ -495,6 +498,9 @@ class StickSlipDict(TypedDict):
     slip_onsets: int
     stick_slip: bool
     settled: bool
+    #: "yes", "no" or "undetermined" (STICK_SLIP_CRITERION) and why, in a few words.
+    verdict: str
+    verdict_reason: str
     warnings: list[str]
 
 def stick_slip_metrics(
@@ -722,6 +728,12 @@ class DrillProfile(TypedDict):
     cumulative: NDArray[np.float64]
     #: Integral of the limit over the string (refined quadrature), N m.
     breakoff_torque: float
+    #: The bit's static torque W r mu_s on bottom (0 off bottom), N m.
+    bit_static_torque: float
+    #: breakoff_torque + bit_static_torque: the torque the motor must exceed to break free, N m.
+    static_torque: float
+    #: cumulative + bit_static_torque: the static torque the string holds at each cell centre, N m.
+    holding: NDArray[np.float64]
     #: The well at the cell centres: inclination, azimuth (degrees), TVD (m), dogleg severity
     #: (degrees per 30 m), and the static friction factor there.
     inclination_deg: NDArray[np.float64]
@@ -829,8 +841,9 @@ class DrillMapOutput(TypedDict):
 
     status: list[str]
     message: list[str]
-    metrics: dict[str, NDArray[np.float64]]
-    """The names of ``drill_solve``'s metrics (``severity``, ``stuck_fraction``, ...), NaN unless successful."""
+    metrics: dict[str, Any]
+    """The names of ``drill_solve``'s metrics (``severity``, ``stuck_fraction``, ...: float arrays), NaN
+    unless successful; ``verdict`` a list of str (``undetermined`` unless successful)."""
     stats: dict[str, NDArray[np.generic]]
     """``cells``, ``steps`` (uint64), ``dt``, ``balance_error``, ``courant_peak`` (the largest
     Courant number a run reached: above 1 only with ``nonlinearity = "consistent"`` past

@@ -610,6 +610,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     with output_folder(args.out, plots=plots, field="--out") as directory:
         start = time.perf_counter()
         result = drill(config, progress=_show_progress(args), check_grid=args.check_grid)
+        result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
         seconds = time.perf_counter() - start
         m = result.metrics
         _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
@@ -623,8 +624,12 @@ def _cmd_drill(args: argparse.Namespace) -> int:
              f"(mean {m.bit_rpm_mean:.4g}), motor torque {m.motor_torque_min_Nm / 1e3:.4g}.."
              f"{m.motor_torque_max_Nm / 1e3:.4g} kN m, break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m (implied "
              f"cycle minimum {m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
-        _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
+        _say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
              f"{'settled' if m.settled else 'not settled'}")
+        if result.profile.bit_static_torque > 0:
+            p = result.profile
+            _say(f"static torque to break free {p.static_torque / 1e3:.4g} kN m (wall {p.breakoff_torque / 1e3:.4g} "
+                 f"+ bit {p.bit_static_torque / 1e3:.4g})")
         if result.grid_check is not None:
             g = result.grid_check
             moves = ", ".join(f"{r.metric} {_change(r.kind, r.change)}" for r in g.rows if r.kind != "equal")
@@ -733,7 +738,7 @@ def _cmd_lumped(args: argparse.Namespace) -> int:
          f"SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.period_s:.4g} s, "
          f"bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), energy balance "
          f"{res.energy['balance_error']:.2g}")
-    _say(f"stick-slip: {'yes' if m.stick_slip else 'no'} (the bit stops during part of the window); "
+    _say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
          f"{'settled' if m.settled else 'not settled'}")
     for warning in m.warnings:
         _say(f"warning: {warning}")
@@ -869,7 +874,8 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     try:
         frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
-                          chunk_size=args.chunk_size, client=client)
+                          chunk_size=args.chunk_size, client=client,
+                          name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0])
     except KeyboardInterrupt:
         print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
               file=sys.stderr)
@@ -884,9 +890,10 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     _say(f"drill-map: {len(frame)} runs ({', '.join(f'{n} {s}' for s, n in counts.items())}) in {seconds:.3g} s "
          f"({len(frame) / seconds:.3g} runs/s){f', {redone} stored chunk(s) recomputed' if redone else ''}")
     if len(ok):
-        _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip (the bit stops during part of the "
-             f"window) in {int((ok['stick_slip'] == 1).sum())} runs, settled in {int((ok['settled'] == 1).sum())} of "
-             f"{len(ok)}")
+        verdicts = ok["stick_slip_verdict"].value_counts()
+        _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip: yes in {int(verdicts.get('yes', 0))} "
+             f"runs (the bit stops during part of the window), no in {int(verdicts.get('no', 0))}, undetermined in "
+             f"{int(verdicts.get('undetermined', 0))}; settled in {int((ok['settled'] == 1).sum())} of {len(ok)}")
     from .io.output import write_text
 
     written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),

@@ -36,6 +36,7 @@ import json
 import math
 import numbers
 import os
+import re
 import warnings
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
@@ -47,14 +48,15 @@ from ..errors import ValidationError
 from ..limits import INT64_MAX, as_int, check_run_count, memory_budget
 from .config import DrillConfig, _load_document, _plain
 from .metrics import core_value
-from .result import METRICS
+from .result import METRICS, TEXT_METRICS
 from .solve import ConfigLike, _config
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     from matplotlib.figure import Figure
 
-__all__ = ["CONTROLLER_AXIS", "METRIC_COLUMNS", "controller_maps", "drill_map", "ssi_lines", "ssi_map"]
+__all__ = ["CONTROLLER_AXIS", "METRIC_COLUMNS", "axis_label", "boundary_note", "controller_maps", "drill_map",
+           "ssi_lines", "ssi_map"]
 
 #: The axis of the controller type (one panel per controller in :func:`controller_maps`).
 CONTROLLER_AXIS = "top_drive.controller.type"
@@ -199,6 +201,7 @@ def drill_map(
     out: Optional[Union[str, os.PathLike[str]]] = None,
     chunk_size: Optional[int] = None,
     client: Any = None,
+    name: Optional[str] = None,
 ) -> pd.DataFrame:
     """Solves ``config`` at every combination of the ``axes`` values; one row per run.
 
@@ -229,6 +232,9 @@ def drill_map(
         to connect to); each worker solves its chunk on ``threads`` threads (default: all its
         cores). With ``out``, each chunk is stored as it comes back. The table equals the local
         one. Needs ``dask.distributed`` (``pip install '.[dask]'`` in the drillstring checkout).
+    name : str, optional
+        The well's name in the figures' titles (``frame.attrs["name"]``); default: the stem of
+        ``config``'s file name when it is a path, else none.
 
     Returns
     -------
@@ -237,8 +243,9 @@ def drill_map(
         configuration the core refuses, ``"non_finite"``, ``"interrupted"``, ``"error"``),
         ``message``, the metrics of ``metrics.json`` (:data:`METRIC_COLUMNS`: ``ssi``,
         ``stuck_fraction``, ``period_s``, ``bit_rpm_min`` ... ``breakoff_torque_Nm``; NaN unless
-        the run succeeded) and :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes`` and the base
-        ``config`` (:meth:`DrillConfig.to_dict`).
+        the run succeeded; ``stick_slip_verdict`` ``"yes"``, ``"no"`` or ``"undetermined"``) and
+        :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes``, the base ``config``
+        (:meth:`DrillConfig.to_dict`) and the well's ``name`` (or None).
 
     Raises
     ------
@@ -266,6 +273,8 @@ def drill_map(
     from ..io.cluster import check_client
 
     check_client(client)
+    if name is None and isinstance(config, (str, os.PathLike)):
+        name = os.path.splitext(os.path.basename(os.fsdecode(os.fspath(config))))[0]
     report, close = _progress_hook(progress, runs)
     combos = list(itertools.product(*named.values()))
     count = None if threads is None else int(threads)
@@ -275,6 +284,7 @@ def drill_map(
         frame, interrupt = _solve(cfg, named, combos, count, report, 0)
     else:
         frame, interrupt = _chunked(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE), client)
+    frame.attrs["name"] = None if name is None else str(name)
     try:
         close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
     except BaseException as exc:  # the last report's exception: the map is complete, keep it
@@ -482,7 +492,10 @@ def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: M
     metrics = raw["metrics"]
     for name in METRIC_COLUMNS:
         value = core_value(metrics, name)
-        columns[name] = np.asarray([] if value is None else value, dtype=float)
+        if name in TEXT_METRICS:
+            columns[name] = np.asarray(list(value or ()), dtype=object)
+        else:
+            columns[name] = np.asarray([] if value is None else value, dtype=float)
     for name in STAT_COLUMNS:
         columns[name] = np.asarray(raw["stats"].get(name, []))
     frame = pd.DataFrame(columns)
@@ -491,7 +504,6 @@ def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: M
 
 
 # --------------------------------------------------------------------------- figures
-
 
 def _numeric(frame: pd.DataFrame, key: str) -> bool:
     import pandas as pd
@@ -505,22 +517,166 @@ def numeric_axes(frame: pd.DataFrame) -> list[str]:
     return [k for k in frame.attrs.get("axes", {}) if _numeric(frame, k)]
 
 
+#: Most panels a map figure draws (one per combination of the values of the axes it does not plot).
+MAX_PANELS = 48
+
+#: Units (the schema's, as pint writes them) a figure writes with the SI prefix that keeps the
+#: numbers readable (``N`` -> ``kN``, ``N*m`` -> ``kN m``, ``Pa`` -> ``GPa``): those that start
+#: with newtons, pascals, joules or watts.
+_PREFIXED = r"(N|Pa|J|W)(?=$|[*/ ])"
+_PREFIXES = ((1e9, "G"), (1e6, "M"), (1e3, "k"))
+_NO_UNIT = ("", "1", "-", "dimensionless")
+_SUPERSCRIPTS = str.maketrans({"2": "²", "3": "³", "4": "⁴"})
+
+
+def _readable_unit(unit: str) -> str:
+    """A pint unit as a figure writes it: ``N*m`` -> ``N m``, ``kg*m^2`` -> ``kg m²``."""
+    unit = unit.replace("**", "^").replace("*", " ")
+    return re.sub(r"\^([234])(?!\d)", lambda m: m.group(1).translate(_SUPERSCRIPTS), unit)
+
+
+def _schema() -> Mapping[str, Mapping[str, Any]]:
+    """The core's configuration schema (``_core.drill_config_schema()``: dotted key, ``sections[]``
+    for a section's keys, -> ``type``, ``unit``, ``label``, ``default``, ``description``); empty
+    with a core that has none."""
+    get = getattr(_core, "drill_config_schema", None)
+    return get() if callable(get) else {}
+
+
+def axis_label(key: str, values: Any = ()) -> tuple[str, float]:
+    """The label ``"quantity [unit]"`` of the configuration key ``key`` (its label and unit from
+    the core's schema, :func:`_schema`; without one, the key's last name) and the factor its
+    ``values`` are drawn at: forces, torques, pressures, energies and powers get the SI prefix
+    that keeps the largest value below 1000 (``bit.weight_on_bit`` up to 200000 N:
+    ``"weight on bit [kN]"``, factor 1e-3). A section's key names its section
+    (``sections[1].length``: ``"length, section 2 [m]"``)."""
+    match = re.fullmatch(r"sections\[(\d+)\]\.(.+)", key)
+    generic = f"sections[].{match.group(2)}" if match else key
+    entry = _schema().get(generic) or {}
+    label = str(entry.get("label") or generic.rsplit(".", 1)[-1].replace("_", " "))
+    if match:
+        label = f"{label}, section {int(match.group(1)) + 1}"
+    unit = str(entry.get("unit") or "")
+    factor = 1.0
+    finite = np.asarray([v for v in values if isinstance(v, numbers.Real) and not isinstance(v, bool)], dtype=float)
+    finite = finite[np.isfinite(finite)]
+    if re.match(_PREFIXED, unit) and finite.size:
+        biggest = float(np.abs(finite).max())
+        for size, prefix in _PREFIXES:
+            if biggest >= size:
+                factor, unit = 1.0 / size, prefix + unit
+                break
+    return (label if unit in _NO_UNIT else f"{label} [{_readable_unit(unit)}]"), factor
+
+
+def _value_text(key: str, value: Any, values: Any) -> str:
+    """``"label = value unit"`` of one value of an axis (the controller: ``"pi controller"``)."""
+    if key == CONTROLLER_AXIS:
+        return f"{value} controller"
+    label, factor = axis_label(key, values)
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        name, _, unit = label.partition(" [")
+        return f"{name} = {float(value) * factor:.4g}" + (f" {unit[:-1]}" if unit else "")
+    return f"{label} = {value}"
+
+
+def _well_name(frame: pd.DataFrame) -> str:
+    """The map's well: its name (``frame.attrs["name"]``: the configuration file's stem or the
+    ``name`` given to :func:`drill_map`), else the string's length."""
+    name = frame.attrs.get("name")
+    if name:
+        return str(name)
+    sections = (frame.attrs.get("config") or {}).get("sections") or ()
+    length = sum(float(s.get("length", 0.0)) for s in sections if isinstance(s, Mapping))
+    return f"{length:.0f} m string" if length > 0 else "drilling system"
+
+
+def _controller(frame: pd.DataFrame) -> Optional[str]:
+    """The base configuration's controller type (None when it is an axis of the map)."""
+    if CONTROLLER_AXIS in frame.attrs.get("axes", {}):
+        return None
+    kind = (((frame.attrs.get("config") or {}).get("top_drive") or {}).get("controller") or {}).get("type")
+    return None if kind is None else str(kind)
+
+
+def _map_title(frame: pd.DataFrame, what: str) -> str:
+    controller = _controller(frame)
+    return f"{_well_name(frame)}: {what}" + (f", {controller} controller" if controller else "")
+
+
+def _split(frame: pd.DataFrame, plotted: Sequence[str], first: Optional[str] = None
+           ) -> list[tuple[str, pd.DataFrame]]:
+    """The frame cut by the values of every axis of the map not in ``plotted`` that takes more
+    than one value (``first`` leading), as ``(panel title, rows)``; one ``("", frame)`` without
+    such an axis. Runs of different configurations are never averaged into one cell or point."""
+    keys = [k for k in frame.attrs.get("axes", {}) if k not in plotted and k in frame.columns]
+    if first is not None and first in keys:
+        keys = [first] + [k for k in keys if k != first]
+    keys = [k for k in keys if frame[k].astype(str).nunique() > 1]
+    if not keys:
+        return [("", frame)]
+    axes = frame.attrs.get("axes", {})
+
+    def position(key: str, value: Any) -> int:
+        listed = list(axes.get(key) or ())
+        return next((i for i, v in enumerate(listed) if v == value), len(listed))
+
+    groups = []
+    for values, part in frame.groupby(keys, sort=False, dropna=False):
+        values = values if isinstance(values, tuple) else (values,)
+        groups.append((tuple(position(k, v) for k, v in zip(keys, values)), values, part))
+    groups.sort(key=lambda g: g[0])  # in the order of the axes' values
+    parts = [(", ".join(_value_text(k, v, frame[k].tolist()) for k, v in zip(keys, values)), part)
+             for _, values, part in groups]
+    if len(parts) > MAX_PANELS:
+        raise ValidationError("axes", ", ".join(keys), f"at most {MAX_PANELS} panels (values of the axes not "
+                              f"plotted), not {len(parts)}: select rows of the map first")
+    return parts
+
+
 def _grid(frame: pd.DataFrame, x: str, y: str, value: str) -> tuple[Any, Any, Any]:
+    # one run per cell (the frame is split by every other axis first, _split): a repeated value of
+    # an axis repeats the same run
     table = frame.pivot_table(index=y, columns=x, values=value, aggfunc="mean", dropna=False)
     return (table.columns.to_numpy(dtype=float), table.index.to_numpy(dtype=float),
             np.ma.masked_invalid(table.to_numpy(dtype=float)))
 
 
-def _panel(ax: Any, frame: pd.DataFrame, x: str, y: str, value: str, vmax: float) -> Any:
+def boundary_note(ssi: Any) -> Optional[str]:
+    """What a panel says when it has no SSI = 1 boundary: ``"SSI > 1 everywhere in this range"``,
+    ``"SSI < 1 everywhere in this range"`` or ``"no successful run"``; None when the finite values
+    lie on both sides of 1 (or touch it)."""
+    finite = np.asarray(ssi, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    if finite.size == 0:
+        return "no successful run"
+    if finite.min() > 1.0:
+        return "SSI > 1 everywhere in this range"
+    if finite.max() < 1.0:
+        return "SSI < 1 everywhere in this range"
+    return None
+
+
+def _note(ax: Any, text: str) -> None:
+    ax.text(0.5, 0.03, text, transform=ax.transAxes, ha="center", va="bottom", fontsize=9,
+            bbox={"boxstyle": "round", "facecolor": "white", "alpha": 0.85, "edgecolor": "0.6"})
+
+
+def _panel(ax: Any, frame: pd.DataFrame, x: str, y: str, value: str, vmax: float,
+           scales: tuple[float, float]) -> Any:
     xs, ys, z = _grid(frame, x, y, value)
+    xs, ys = xs * scales[0], ys * scales[1]
     mesh = ax.pcolormesh(xs, ys, z, shading="nearest", cmap="magma_r", vmin=0.0, vmax=vmax)
-    finite = z.compressed()
-    if value == "ssi" and xs.size > 1 and ys.size > 1 and finite.size and finite.min() < 1.0 < finite.max():
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            ax.contour(xs, ys, z, levels=[1.0], colors="tab:cyan", linewidths=2.0)
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
+    if value == "ssi":
+        note = boundary_note(z.compressed())
+        if note is None and (xs.size < 2 or ys.size < 2):
+            note = "SSI = 1 in this range (one value of an axis: no contour)"
+        if note is None:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                ax.contour(xs, ys, z, levels=[1.0], colors="tab:cyan", linewidths=2.0)
+        else:
+            _note(ax, note)
     return mesh
 
 
@@ -536,79 +692,122 @@ def _vmax(values: Any) -> float:
     return float(max(1.5, finite.max())) if finite.size else 1.5
 
 
-def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None) -> Figure:
-    """The stick-slip severity over the axes ``x`` and ``y`` of a map (a cell per run; runs
-    with other axes' values are averaged), with the stick-slip boundary SSI = 1 (cyan).
-    Failed runs are blank."""
+def _ssi_panels(frame: pd.DataFrame, x: str, y: str, first: Optional[str], title: Optional[str]) -> Figure:
     from .plots import _figure
 
     _check_axes(frame, (x, y))
-    fig = _figure(6.4, 4.8)
-    ax = fig.add_subplot()
-    mesh = _panel(ax, frame, x, y, "ssi", _vmax(frame["ssi"]))
-    fig.colorbar(mesh, ax=ax, label="stick-slip severity SSI (cyan: SSI = 1)")
-    ax.set_title(title or "stick-slip map")
+    parts = _split(frame, (x, y), first)
+    cols = min(len(parts), 4)
+    rows = -(-len(parts) // cols)
+    fig = _figure(4.2 * cols + 1.4, 3.9 * rows + 0.6)
+    axs = fig.subplots(rows, cols, sharex=True, sharey=True, squeeze=False).ravel()
+    vmax = _vmax(frame["ssi"])
+    (xlabel, xscale), (ylabel, yscale) = axis_label(x, frame[x].tolist()), axis_label(y, frame[y].tolist())
+    mesh = None
+    for ax, (name, part) in zip(axs, parts):
+        mesh = _panel(ax, part, x, y, "ssi", vmax, (xscale, yscale))
+        if name:
+            ax.set_title(name, fontsize=10)
+    for ax in axs[len(parts):]:
+        ax.set_visible(False)
+    for ax in axs[:len(parts)]:
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+    assert mesh is not None  # at least one panel
+    fig.colorbar(mesh, ax=list(axs[:len(parts)]), label="stick-slip severity SSI (cyan: SSI = 1)")
+    fig.suptitle(title or _map_title(frame, "stick-slip severity SSI"))
     return fig
+
+
+def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None) -> Figure:
+    """The stick-slip severity over the numeric axes ``x`` and ``y`` of a map (a cell per run),
+    with the stick-slip boundary SSI = 1 (cyan).
+
+    One panel per combination of the values of the map's other axes (the controller's first), so
+    that no cell averages runs of different configurations; a panel without an SSI = 1 boundary
+    in its range says so (``"SSI > 1 everywhere in this range"`` or ``"< 1"``). The axes are
+    labelled by quantity and unit in readable magnitudes (:func:`axis_label`); the title names
+    the well (``frame.attrs["name"]``) and the controller. Failed runs are blank.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A map (:func:`drill_map`).
+    x, y : str
+        Two numeric axes of the map (dotted keys).
+    title : str, optional
+        The figure's title instead of the default.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> frame = drill_map("examples/on-bottom-3000m.toml",  # doctest: +SKIP
+    ...                   {"top_drive.rpm": [40, 80, 120], "bit.weight_on_bit": [50e3, 100e3]})
+    >>> ssi_map(frame, "top_drive.rpm", "bit.weight_on_bit").savefig("ssi_map.png")  # doctest: +SKIP
+    """
+    return _ssi_panels(frame, x, y, CONTROLLER_AXIS, title)
 
 
 def controller_maps(frame: pd.DataFrame, x: str, y: str, *, controller: str = CONTROLLER_AXIS,
                     title: Optional[str] = None) -> Figure:
-    """:func:`ssi_map` panels side by side, one per value of the ``controller`` axis, on one
-    colour scale, each with its SSI = 1 boundary."""
-    from .plots import _figure
-
+    """:func:`ssi_map` panels, one per value of the ``controller`` axis (and of any other axis
+    not plotted), on one colour scale, each with its SSI = 1 boundary or a note that it has none."""
     _check_axes(frame, (x, y))
     if controller not in frame.columns:
         raise ValidationError("controller", controller, "an axis of the map")
-    kinds = list(dict.fromkeys(frame[controller]))
-    fig = _figure(4.2 * len(kinds) + 1.2, 4.2)
-    axs = fig.subplots(1, len(kinds), sharex=True, sharey=True, squeeze=False)[0]
-    vmax = _vmax(frame["ssi"])
-    meshes = []
-    for ax, kind in zip(axs, kinds):
-        meshes.append(_panel(ax, frame[frame[controller] == kind], x, y, "ssi", vmax))
-        ax.set_title(str(kind))
-    fig.colorbar(meshes[0], ax=list(axs), label="SSI (cyan: SSI = 1)")
-    fig.suptitle(title or "stick-slip severity by controller")
-    return fig
+    return _ssi_panels(frame, x, y, controller, title or f"{_well_name(frame)}: stick-slip severity SSI by controller")
 
 
 def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: Optional[str] = None) -> Figure:
-    """SSI (and the stuck fraction) against the axis ``x``, one line per value of the axis ``by``."""
+    """SSI (and the stuck fraction) against the numeric axis ``x``: one line per combination of
+    the values of the map's other axes (``by`` first; no line averages runs of different
+    configurations), with SSI = 1 dashed."""
     from .plots import _figure
 
     _check_axes(frame, (x,))
     fig = _figure(6.4, 4.8)
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    groups = [(None, frame)] if by is None else list(frame.groupby(by, sort=False))
-    for key, part in groups:
-        part = part.groupby(x, sort=True)[["ssi", "stuck_fraction"]].mean()
-        label = None if key is None else f"{by} = {key!s}"
-        ax1.plot(part.index, part["ssi"], marker="o", label=label)
-        ax2.plot(part.index, part["stuck_fraction"], marker="o", label=label)
+    xlabel, scale = axis_label(x, frame[x].tolist())
+    parts = _split(frame, (x,), by or CONTROLLER_AXIS)
+    for name, part in parts:
+        part = part.groupby(x, sort=True)[["ssi", "stuck_fraction"]].mean()  # repeated values: the same run
+        label = name or None
+        ax1.plot(part.index.to_numpy(dtype=float) * scale, part["ssi"], marker="o", label=label)
+        ax2.plot(part.index.to_numpy(dtype=float) * scale, part["stuck_fraction"], marker="o", label=label)
     ax1.axhline(1.0, color="0.5", ls="--", lw=1)
+    note = boundary_note(frame["ssi"])
+    if note is not None:
+        _note(ax1, note)
     ax1.set_ylabel("SSI")
     ax2.set_ylabel("stuck fraction")
-    ax2.set_xlabel(x)
-    if by is not None:
+    ax2.set_xlabel(xlabel)
+    if len(parts) > 1:
         ax1.legend(fontsize="small")
-    ax1.set_title(title or "stick-slip severity")
+    ax1.set_title(title or _map_title(frame, "stick-slip severity"))
     return fig
 
 
 def map_figures(frame: pd.DataFrame) -> dict[str, Figure]:
     """The figures a map gets (file name -> figure): with two numeric axes ``ssi_map.png`` and,
     when ``top_drive.controller.type`` is an axis too, ``controllers.png``; with one numeric
-    axis ``ssi_lines.png`` (a line per value of another axis, if any). None otherwise."""
+    axis ``ssi_lines.png`` (a line per combination of the other axes' values, if any). None
+    otherwise. Every figure has one panel (or line) per value of the axes it does not plot; a map
+    needing more than :data:`MAX_PANELS` panels gets no figure (a warning says so)."""
     axes = list(frame.attrs.get("axes", {}))
     numeric = numeric_axes(frame)
     out: dict[str, Figure] = {}
-    if len(numeric) >= 2:
-        x, y = numeric[0], numeric[1]
-        out["ssi_map.png"] = ssi_map(frame, x, y)
-        if CONTROLLER_AXIS in axes:
-            out["controllers.png"] = controller_maps(frame, x, y)
-    elif len(numeric) == 1:
-        others = [k for k in axes if k != numeric[0]]
-        out["ssi_lines.png"] = ssi_lines(frame, numeric[0], others[0] if others else None)
+    try:
+        if len(numeric) >= 2:
+            x, y = numeric[0], numeric[1]
+            out["ssi_map.png"] = ssi_map(frame, x, y)
+            if CONTROLLER_AXIS in axes:
+                out["controllers.png"] = controller_maps(frame, x, y)
+        elif len(numeric) == 1:
+            others = [k for k in axes if k != numeric[0]]
+            out["ssi_lines.png"] = ssi_lines(frame, numeric[0], others[0] if others else None)
+    except ValidationError as exc:
+        warnings.warn(f"no map figure: {exc}", stacklevel=2)
     return out

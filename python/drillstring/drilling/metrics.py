@@ -19,7 +19,8 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
 
-__all__ = ["STICK_SPEED", "CORE_NAMES", "StickSlipMetrics", "stick_slip_metrics", "break_off_torque"]
+__all__ = ["STICK_SPEED", "STICK_SLIP_CRITERION", "CORE_NAMES", "StickSlipMetrics", "stick_slip_metrics",
+           "break_off_torque"]
 
 
 #: Default stick threshold speed of :func:`stick_slip_metrics`, rad/s (about 0.1 rpm).
@@ -43,11 +44,18 @@ CORE_NAMES: dict[str, str] = {
     "slip_period_s": "slip_period",
     "breakoff_torque_Nm": "breakoff_torque",
     "min_cycle_torque_Nm": "min_cycle_torque",
+    "stick_slip_verdict": "verdict",
+    "stick_slip_reason": "verdict_reason",
 }
+
+#: The criterion of the three-way verdict ``stick_slip_verdict`` (the core's
+#: ``metrics::stickslip::verdict``), as ``metrics.json`` and ``report.md`` state it.
+STICK_SLIP_CRITERION: str = _core.STICK_SLIP_CRITERION
 
 #: The metrics that are verdicts (booleans; 1 / 0 in a map's table) and counts.
 VERDICTS = ("stick_slip", "settled")
 _COUNTS = ("slip_onsets",)
+_TEXTS = ("stick_slip_verdict", "stick_slip_reason")
 
 
 def core_value(d: Mapping[str, Any], name: str) -> Any:
@@ -122,6 +130,12 @@ class StickSlipMetrics:
     means: not a transient."""
     warnings: tuple[str, ...] = ()
     """What in these metrics cannot be trusted as it stands (empty when all can)."""
+    stick_slip_verdict: str = "undetermined"
+    """The three-way verdict, ``"yes"``, ``"no"`` or ``"undetermined"`` (:data:`STICK_SLIP_CRITERION`):
+    ``"yes"`` exactly when :attr:`stick_slip`; ``"no"`` only for a bit that never stops in a settled
+    window with ``ssi < 1``."""
+    stick_slip_reason: str = ""
+    """Why the verdict is what it is, in a few words (the core's)."""
 
     @classmethod
     def from_core(cls: type[_M], d: Mapping[str, Any]) -> _M:
@@ -136,6 +150,8 @@ class StickSlipMetrics:
                 values[f.name] = bool(value)
             elif f.name in _COUNTS:
                 values[f.name] = int(value)
+            elif f.name in _TEXTS:
+                values[f.name] = f.default if value is None else str(value)
             else:
                 values[f.name] = math.nan if value is None else float(value)
         return cls(**values)

@@ -38,6 +38,7 @@ from ..io.output import (
     write_bytes,
     write_text,
 )
+from .metrics import STICK_SLIP_CRITERION
 
 if TYPE_CHECKING:  # pragma: no cover
     from .result import DrillResult
@@ -238,8 +239,10 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         "",
         f"## Stick-slip (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)",
         "",
-        f"**Stick-slip: {'yes' if m.stick_slip else 'no'}** (the bit stops during part of the window: "
-        f"0 < stuck fraction < 1); the window is {'settled' if m.settled else '**not settled** (a transient)'}.",
+        f"**Stick-slip: {m.stick_slip_verdict}** ({_md(m.stick_slip_reason)}); the window is "
+        f"{'settled' if m.settled else '**not settled** (a transient)'}.",
+        "",
+        f"Criterion: {_md(STICK_SLIP_CRITERION)}.",
         "",
         *[f"- warning: {_md(w)}" for w in result.warnings],
         *([""] if result.warnings else []),
@@ -251,7 +254,9 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         f"| period from the bit's slip onsets, s | {_fmt(m.slip_period_s)} |",
         f"| bit speed min / mean / max, rpm | {_fmt(m.bit_rpm_min)} / {_fmt(m.bit_rpm_mean)} / {_fmt(m.bit_rpm_max)} |",
         f"| motor torque min / max, kN m | {_fmt(m.motor_torque_min_Nm / 1e3)} / {_fmt(m.motor_torque_max_Nm / 1e3)} |",
-        f"| break-off torque, kN m | {_fmt(m.breakoff_torque_Nm / 1e3)} |",
+        f"| break-off torque (wall friction), kN m | {_fmt(m.breakoff_torque_Nm / 1e3)} |",
+        *([f"| static torque to break free (wall + bit {_fmt(result.profile.bit_static_torque / 1e3)}), kN m | "
+           f"{_fmt(result.profile.static_torque / 1e3)} |"] if result.profile.bit_static_torque > 0 else []),
         f"| minimum cycle torque implied by break-off, kN m | {_fmt(m.min_cycle_torque_Nm / 1e3)} |",
     ]
     if result.energy:

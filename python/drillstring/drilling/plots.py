@@ -4,27 +4,39 @@
   metrics window shaded;
 * :func:`space_time_maps`: speed and torque along the string against time (depth downward);
 * :func:`torque_depth`: torque along the string against depth (the envelope over the snapshots
-  and the last one) with the break-off envelope, the static friction torque from the bit up that
-  the core returns (:attr:`DrillResult.profile`), and the friction limit per metre.
+  and the last one) with the break-off envelope, the static torque the string holds at break-off
+  that the core returns (:attr:`DrillResult.profile`: the wall's friction from the bit up plus,
+  on bottom, the bit's static torque), and the friction limit per metre.
+
+:meth:`DrillResult.plot` draws any of them by name (:data:`KINDS`). Each function takes an optional
+``fig`` (a :class:`~matplotlib.figure.Figure` or a ``SubFigure``) to draw into, for a figure of
+several runs; without it a new figure is made.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING, Any, Callable, Optional, TypeVar
 
 import numpy as np
 
 if TYPE_CHECKING:  # pragma: no cover
-    from matplotlib.figure import Figure
+    from typing import Union
+
+    from matplotlib.figure import Figure, SubFigure
 
     from .result import DrillResult
 
-__all__ = ["space_time_maps", "time_histories", "torque_depth"]
+    FigureLike = Union[Figure, SubFigure]
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+__all__ = ["KINDS", "space_time_maps", "time_histories", "torque_depth"]
 
 _KN = 1e-3
 
 
 def _figure(width: float, height: float) -> Figure:
+    """A new constrained-layout figure of that size."""
     from matplotlib.figure import Figure
 
     return Figure(figsize=(width, height), layout="constrained")
@@ -33,8 +45,15 @@ def _figure(width: float, height: float) -> Figure:
 def _title(result: DrillResult) -> str:
     cfg = result.config
     where = "on bottom" if cfg.bit.on_bottom else "off bottom"
-    return (f"{cfg.length:.0f} m string ({len(cfg.sections)} sections), {cfg.top_drive.rpm:g} rpm, "
-            f"{cfg.top_drive.controller.type} control, bit {where}")
+    name = getattr(result, "name", None)
+    return ((f"{name}: " if name else "") + f"{cfg.length:.0f} m string ({len(cfg.sections)} sections), "
+            f"{cfg.top_drive.rpm:g} rpm, {cfg.top_drive.controller.type} controller, bit {where}")
+
+
+def _breakoff_label(result: DrillResult) -> str:
+    if result.profile.bit_static_torque > 0:
+        return "break-off torque (wall friction + bit static torque)"
+    return "break-off torque (wall friction)"
 
 
 def _shade_window(ax: object, result: DrillResult) -> None:
@@ -43,11 +62,53 @@ def _shade_window(ax: object, result: DrillResult) -> None:
         ax.axvspan(start, end, color="0.92", zorder=0, lw=0)  # type: ignore[attr-defined]
 
 
-def time_histories(result: DrillResult, title: Optional[str] = None) -> Figure:
-    """Surface and bit rpm (top), motor and bit torque in kN m (bottom) against time; the
-    metrics window is shaded, the break-off torque drawn as a dotted line and the minimum cycle
-    torque it implies as a dash-dotted one."""
-    fig = _figure(11, 6.4)
+_SHARED_DOC = """
+
+    Parameters
+    ----------
+    result : DrillResult
+        A run (:func:`drillstring.drill`).
+    title : str, optional
+        The figure's title instead of the default.
+    fig : Figure or SubFigure, optional
+        Draw into this (empty) figure instead of a new one.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (``fig``'s figure when given); save it with ``savefig``.
+
+    Examples
+    --------
+    >>> import drillstring as ds
+    >>> result = ds.drill("examples/on-bottom-3000m.toml")  # doctest: +SKIP
+    >>> {name}(result).savefig("{file}")  # doctest: +SKIP
+    """
+
+
+def _documented(file: str) -> Callable[[_F], _F]:
+    """Appends the parameters, returns and an example (saving ``file``) shared by the figures of
+    a run to the function's docstring."""
+
+    def add(function: _F) -> _F:
+        function.__doc__ = (function.__doc__ or "").rstrip() + _SHARED_DOC.format(name=function.__name__, file=file)
+        return function
+
+    return add
+
+
+@_documented("time_histories.png")
+def time_histories(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None) -> Figure:
+    """Speeds and torques of a run against time.
+
+    Top: surface (top-drive) and bit speed, rpm. Bottom: motor and bit torque, kN m, with the
+    break-off torque dotted (the static torque the motor must exceed to break the string free:
+    the wall's friction and, with the bit on bottom, the bit's static torque;
+    :attr:`DrillProfile.static_torque`) and the minimum cycle torque it implies dash-dotted. The
+    metrics window is shaded; the title gives the string, the controller and the stick-slip
+    verdict with SSI, stuck fraction and period.
+    """
+    fig = _figure(11, 6.4) if fig is None else fig
     ax_rpm, ax_torque = fig.subplots(2, 1, sharex=True)
     for ax in (ax_rpm, ax_torque):
         _shade_window(ax, result)
@@ -58,9 +119,9 @@ def time_histories(result: DrillResult, title: Optional[str] = None) -> Figure:
     ax_rpm.legend(loc="upper right", fontsize=9)
     ax_torque.plot(result.t, result.motor_torque * _KN, lw=1.0, color="tab:blue", label="motor")
     ax_torque.plot(result.t, result.bit_torque * _KN, lw=1.0, color="tab:orange", ls="--", label="bit")
-    breakoff = result.profile.breakoff_torque
+    breakoff = result.profile.static_torque
     if np.isfinite(breakoff) and breakoff > 0:
-        ax_torque.axhline(breakoff * _KN, color="k", lw=0.8, ls=":", label="break-off torque (wall friction)")
+        ax_torque.axhline(breakoff * _KN, color="k", lw=0.8, ls=":", label=_breakoff_label(result))
     low = result.metrics.min_cycle_torque_Nm
     if np.isfinite(low):
         ax_torque.axhline(low * _KN, color="0.4", lw=0.8, ls="-.", label="minimum cycle torque implied by break-off")
@@ -68,21 +129,36 @@ def time_histories(result: DrillResult, title: Optional[str] = None) -> Figure:
     ax_torque.set_xlabel("t, s")
     ax_torque.legend(loc="upper right", fontsize=9)
     m = result.metrics
-    fig.suptitle(title or f"{_title(result)}\nSSI {m.ssi:.3g}, stuck {m.stuck_fraction:.3g}, "
-                 f"period {m.period_s:.3g} s (shaded: metrics window)", fontsize=11)
+    fig.suptitle(title or f"{_title(result)}\nstick-slip: {m.stick_slip_verdict}; SSI {m.ssi:.3g}, "
+                 f"stuck {m.stuck_fraction:.3g}, period {m.period_s:.3g} s (shaded: metrics window)", fontsize=11)
+    return _root(fig)
+
+
+def _root(fig: FigureLike) -> Figure:
+    """The figure ``fig`` belongs to (itself for a Figure)."""
+    from matplotlib.figure import Figure
+
+    while not isinstance(fig, Figure):
+        fig = fig.figure
     return fig
 
 
-def space_time_maps(result: DrillResult, title: Optional[str] = None) -> Figure:
-    """Speed (rpm) and torque (kN m) along the string against time, from the snapshots
-    (``numerics.field_interval``); depth grows downward."""
-    fig = _figure(11, 7.0)
+@_documented("space_time.png")
+def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None
+                    ) -> Figure:
+    """Speed and torque along the string against time.
+
+    Top: speed, rpm; bottom: torque, kN m (a diverging scale around 0); measured depth grows
+    downward. Drawn from the snapshots of ``numerics.field_interval``; without snapshots each
+    panel says so.
+    """
+    fig = _figure(11, 7.0) if fig is None else fig
     axes = fig.subplots(2, 1, sharex=True)
     if result.field_t.size == 0:
         for ax in axes:
             ax.text(0.5, 0.5, "no snapshots (numerics.field_interval = 0)", ha="center", va="center",
                     transform=ax.transAxes)
-        return fig
+        return _root(fig)
     t = result.field_t
     z_stride = max(1, result.z.size // 600)  # at most ~600 rows drawn; data untouched
     t_stride = max(1, t.size // 1500)
@@ -102,20 +178,27 @@ def space_time_maps(result: DrillResult, title: Optional[str] = None) -> Figure:
         ax.invert_yaxis()
     axes[1].set_xlabel("t, s")
     fig.suptitle(title or f"{_title(result)}: along the string", fontsize=11)
-    return fig
+    return _root(fig)
 
 
-def torque_depth(result: DrillResult, title: Optional[str] = None) -> Figure:
-    """Left: torque against depth (min-max envelope over the snapshots, the last snapshot) with
-    the break-off envelope +-(static friction torque from the bit up). Right: the static friction
-    limit per metre against depth."""
-    fig = _figure(11, 6.0)
+@_documented("torque_depth.png")
+def torque_depth(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None) -> Figure:
+    """Torque along the string against depth, inside its break-off envelope.
+
+    Left: the torque's range over the snapshots and the last snapshot, kN m, within the
+    break-off envelope ``+-`` the static torque the string holds at break-off
+    (:attr:`DrillProfile.holding`: the wall's static friction from the bit up plus, with the bit
+    on bottom, the bit's static torque). Right: the static friction limit per metre, N m/m.
+    """
+    fig = _figure(11, 6.0) if fig is None else fig
     ax, ax_limit = fig.subplots(1, 2, sharey=True, width_ratios=[2.2, 1])
     profile = result.profile
-    ax.fill_betweenx(profile.z, -profile.cumulative * _KN, profile.cumulative * _KN, color="0.9",
-                     label="break-off envelope (static friction from the bit up)")
-    ax.plot(profile.cumulative * _KN, profile.z, color="k", lw=0.9, ls=":")
-    ax.plot(-profile.cumulative * _KN, profile.z, color="k", lw=0.9, ls=":")
+    envelope = profile.holding if profile.holding.size == profile.z.size else profile.cumulative
+    what = ("wall friction from the bit up + bit static torque" if profile.bit_static_torque > 0
+            else "static friction from the bit up")
+    ax.fill_betweenx(profile.z, -envelope * _KN, envelope * _KN, color="0.9", label=f"break-off envelope ({what})")
+    ax.plot(envelope * _KN, profile.z, color="k", lw=0.9, ls=":")
+    ax.plot(-envelope * _KN, profile.z, color="k", lw=0.9, ls=":")
     if result.field_t.size:
         low = result.torque_field.min(axis=0) * _KN
         high = result.torque_field.max(axis=0) * _KN
@@ -133,6 +216,11 @@ def torque_depth(result: DrillResult, title: Optional[str] = None) -> Figure:
     ax_limit.set_xlabel("static friction limit, N m/m")
     ax_limit.grid(alpha=0.3)
     ax_limit.set_xlim(left=0.0)
-    fig.suptitle(title or f"{_title(result)}\nbreak-off torque {profile.breakoff_torque * _KN:.4g} kN m",
-                 fontsize=11)
-    return fig
+    fig.suptitle(title or f"{_title(result)}\nbreak-off torque {profile.static_torque * _KN:.4g} kN m"
+                 + (f" (wall {profile.breakoff_torque * _KN:.4g} + bit {profile.bit_static_torque * _KN:.4g})"
+                    if profile.bit_static_torque > 0 else ""), fontsize=11)
+    return _root(fig)
+
+
+#: The figures of a run by name (:meth:`DrillResult.plot`'s ``kind``).
+KINDS = {"time": time_histories, "space_time": space_time_maps, "torque_depth": torque_depth}

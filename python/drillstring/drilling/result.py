@@ -14,10 +14,11 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 import numpy as np
 
 from .config import DrillConfig
-from .metrics import StickSlipMetrics
+from .metrics import STICK_SLIP_CRITERION, StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
+    from matplotlib.figure import Figure
     from numpy.typing import NDArray
 
 __all__ = ["SERIES", "UNITS", "METRICS", "DrillMetrics", "DrillProfile", "DrillResult"]
@@ -43,9 +44,9 @@ UNITS: dict[str, str] = {
 }
 
 
-#: The criterion of the ``stick_slip`` verdict, as ``metrics.json`` states it.
-STICK_SLIP_CRITERION = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
-                        "0 < stuck_fraction < 1")
+#: The criterion of the boolean ``stick_slip`` (``stick_slip_verdict == "yes"``).
+STICK_SLIP_STOPS = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
+                    "0 < stuck_fraction < 1")
 
 #: What each entry of ``metrics.json`` is (written beside the numbers).
 METRIC_DEFINITIONS: dict[str, str] = {
@@ -68,11 +69,15 @@ METRIC_DEFINITIONS: dict[str, str] = {
     "periodicity": "similarity of the motor torque with itself one period later (1: exactly periodic)",
     "slip_period_s": "mean interval between the bit's slip onsets (slips that carry it above its mean speed), s "
                      "(cross-check of period_s)",
-    "stick_slip": "the verdict: " + STICK_SLIP_CRITERION,
+    "stick_slip": "the verdict as true/false: " + STICK_SLIP_STOPS + " (stick_slip_verdict is yes)",
     "settled": "the first and the last whole periods of the window (as many as half of it holds) agree in "
                "means and ranges to 5 %: not a transient",
     "min_cycle_torque_Nm": "minimum motor torque of a stick-slip cycle that break-off implies, N m",
+    "stick_slip_verdict": "the verdict yes / no / undetermined (stick_slip_criterion; stick_slip_reason says why)",
 }
+
+#: The metrics of :data:`METRICS` that are text (the others are numbers and verdicts as true/false).
+TEXT_METRICS: tuple[str, ...] = ("stick_slip_verdict",)
 
 
 #: The metrics of ``metrics.json`` and a map's columns, in order (the keys of :data:`METRIC_DEFINITIONS`).
@@ -97,9 +102,13 @@ class DrillMetrics(StickSlipMetrics):
     torque): ``breakoff (1 - 2 (1 - kinetic_ratio))`` off bottom, as ``tauMin`` of Aarsnes & Shor's
     code (``drillstring_core::drilling::grid::min_cycle_torque``), N m."""
 
-    def to_dict(self) -> dict[str, Optional[float]]:
-        """``{name: value}`` of :data:`METRICS` with NaN as ``None`` (JSON-ready)."""
-        return {name: (None if math.isnan(v := getattr(self, name)) else v) for name in METRICS}
+    def to_dict(self) -> dict[str, Any]:
+        """``{name: value}`` of :data:`METRICS` with NaN as ``None`` (JSON-ready; the verdict a string)."""
+        out: dict[str, Any] = {}
+        for name in METRICS:
+            value = getattr(self, name)
+            out[name] = None if name not in TEXT_METRICS and math.isnan(value) else value
+        return out
 
 
 #: How far each metric may move between a run and the same run on twice the cells before a grid
@@ -214,7 +223,15 @@ class DrillProfile:
     """Static friction torque from the bit up to ``z`` (the torque the string must carry at ``z``
     to turn everything below it from rest), N m."""
     breakoff_torque: float
-    """Its value at the surface: the break-off torque, N m."""
+    """Its value at the surface: the wall's break-off torque, N m."""
+    bit_static_torque: float = 0.0
+    """The bit's static torque ``W r mu_s`` with the bit on bottom (0 off bottom), N m."""
+    static_torque: float = math.nan
+    """The static torque the motor must exceed to break the string free: :attr:`breakoff_torque` plus
+    :attr:`bit_static_torque`, N m."""
+    holding: NDArray[np.float64] = field(default_factory=_no_cells)
+    """The static torque the string holds at ``z`` at break-off: :attr:`cumulative` plus
+    :attr:`bit_static_torque` (the bit's torque is carried along the whole string), N m."""
     inclination_deg: NDArray[np.float64] = field(default_factory=_no_cells)
     """The well at the cell centres (minimum curvature): inclination, degrees."""
     azimuth_deg: NDArray[np.float64] = field(default_factory=_no_cells)
@@ -229,9 +246,10 @@ class DrillProfile:
     @classmethod
     def from_core(cls, raw: Mapping[str, Any]) -> DrillProfile:
         arrays = {k: np.asarray(raw[k], dtype=np.float64) for k in (
-            "z", "limit_per_m", "cumulative", "inclination_deg", "azimuth_deg", "tvd", "dls_deg_per_30m",
+            "z", "limit_per_m", "cumulative", "holding", "inclination_deg", "azimuth_deg", "tvd", "dls_deg_per_30m",
             "friction_factor")}
-        return cls(breakoff_torque=float(raw["breakoff_torque"]), **arrays)
+        return cls(breakoff_torque=float(raw["breakoff_torque"]), bit_static_torque=float(raw["bit_static_torque"]),
+                   static_torque=float(raw["static_torque"]), **arrays)
 
 
 class DrillResult:
@@ -300,6 +318,8 @@ class DrillResult:
         self.grid_check: Optional[GridCheck] = None
         self.status: str = str(raw["status"])
         self.message: str = str(raw["message"])
+        self.name: Optional[str] = None
+        """The well's name in figure titles (the configuration file's stem when :func:`drill` read one)."""
 
     @property
     def success(self) -> bool:
@@ -333,6 +353,7 @@ class DrillResult:
         energy balance and the solver counters (NaN as ``None``)."""
         out: dict[str, Any] = {"status": self.status, "message": self.message}
         out.update(self.metrics.to_dict())
+        out["stick_slip_reason"] = self.metrics.stick_slip_reason
         out["stick_slip_criterion"] = STICK_SLIP_CRITERION
         out["warnings"] = list(self.warnings)
         if self.grid_check is not None:
@@ -342,6 +363,60 @@ class DrillResult:
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}
         out["stats"] = self.stats
         return out
+
+    def plot(self, kind: str = "time", *, fig: Any = None, path: Any = None, title: Optional[str] = None) -> Figure:
+        """A figure of the run.
+
+        Parameters
+        ----------
+        kind : {"time", "space_time", "torque_depth"}
+            ``"time"``: surface and bit speed, motor and bit torque against time with the
+            break-off torque and the metrics window
+            (:func:`~drillstring.drilling.plots.time_histories`); ``"space_time"``: speed and
+            torque along the string against time
+            (:func:`~drillstring.drilling.plots.space_time_maps`); ``"torque_depth"``: torque
+            against depth inside the break-off envelope
+            (:func:`~drillstring.drilling.plots.torque_depth`).
+        fig : Figure or SubFigure, optional
+            Draw into this (empty) figure instead of a new one.
+        path : str or path-like, optional
+            Also save the figure there (:func:`drillstring.io.figures.save`: the format from the
+            extension, atomic replacement).
+        title : str, optional
+            The figure's title instead of the default.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+
+        Raises
+        ------
+        ValidationError
+            An unknown ``kind`` (naming the allowed ones), or a ``path`` whose extension is no
+            image format.
+
+        Examples
+        --------
+        >>> import drillstring as ds
+        >>> result = ds.drill("examples/on-bottom-3000m.toml")  # doctest: +SKIP
+        >>> fig = result.plot("torque_depth", path="torque_depth.png")  # doctest: +SKIP
+        """
+        from ..errors import ValidationError
+        from .plots import KINDS
+
+        make = KINDS.get(kind) if isinstance(kind, str) else None
+        if make is None:
+            raise ValidationError("kind", kind, "one of " + ", ".join(KINDS))
+        if path is not None:
+            from ..io.figures import plot_path
+
+            plot_path(path, "path")  # an unknown extension is refused before drawing
+        figure = make(self, title, fig=fig)
+        if path is not None:
+            from ..io.figures import save
+
+            save(figure, path)
+        return figure
 
     def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
         """Writes the run into the folder ``out_dir`` (created if needed) and returns the paths

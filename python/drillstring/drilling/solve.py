@@ -88,6 +88,8 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
         result.grid_check = GridCheck.compare(result.metrics, refined.metrics, cfg.numerics.cells,
                                               refined_cfg.numerics.cells)
         result.warnings = (*result.warnings, *result.grid_check.warnings())
+    if isinstance(config, (str, os.PathLike)):
+        result.name = os.path.splitext(os.path.basename(os.fsdecode(os.fspath(config))))[0]
     return result
 
 

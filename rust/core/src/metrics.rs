@@ -37,7 +37,7 @@ use crate::system::{potential_history, Energy};
 
 pub mod signal;
 pub mod stickslip;
-pub use stickslip::{break_off_torque, stick_slip, StickSlip, STICK_SPEED};
+pub use stickslip::{break_off_torque, stick_slip, verdict, StickSlip, Verdict, STICK_SLIP_CRITERION, STICK_SPEED};
 
 /// Default zero-padding factor of the FFT (the bin spacing is `1 / (pad * duration)`).
 pub const PAD: usize = 8;

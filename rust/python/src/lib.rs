@@ -72,6 +72,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(metrics::stick_slip_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::break_off_torque, m)?)?;
     m.add("STICK_SPEED", drillstring_core::metrics::STICK_SPEED)?;
+    m.add("STICK_SLIP_CRITERION", drillstring_core::metrics::STICK_SLIP_CRITERION)?;
     m.add("SPECTRAL_PAD", drillstring_core::metrics::PAD)?;
     m.add("PEAK_THRESHOLD", drillstring_core::metrics::PEAK_THRESHOLD)?;
     m.add_function(wrap_pyfunction!(drilling::drill_defaults, m)?)?;

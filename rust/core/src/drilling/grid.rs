@@ -352,12 +352,21 @@ pub fn min_cycle_torque_from(wall_breakoff: f64, kinetic_ratio: f64, bit_static:
     2.0 * kinetic_torque - static_torque
 }
 
+/// The bit's static torque, N m: `W r mu_s` with the bit on bottom, 0 off bottom.
+pub fn bit_static_torque(cfg: &DrillConfig) -> f64 {
+    let b = &cfg.bit;
+    if b.on_bottom && b.weight_on_bit > 0.0 {
+        b.weight_on_bit * b.radius * b.mu_static
+    } else {
+        0.0
+    }
+}
+
 /// The static torque the motor must exceed to break the string free, N m: the wall's
 /// break-off torque `breakoff` ([`breakoff_torque`]) and, with the bit on bottom, its static
-/// torque `W r mu_s`.
+/// torque ([`bit_static_torque`]).
 pub fn static_torque(cfg: &DrillConfig, breakoff: f64) -> f64 {
-    let b = &cfg.bit;
-    breakoff + if b.on_bottom && b.weight_on_bit > 0.0 { b.weight_on_bit * b.radius * b.mu_static } else { 0.0 }
+    breakoff + bit_static_torque(cfg)
 }
 
 /// [`min_cycle_torque_from`] of a configuration whose wall break-off torque is `breakoff`

@@ -51,7 +51,8 @@ pub struct MapRow {
 
 /// The rows of a map as the columns of its table: one entry per run. A run without metrics
 /// (refused, failed, interrupted) has NaN in every metric column; the verdicts `stick_slip` and
-/// `settled` are 1 or 0 (NaN without metrics), so that every metric column is a float column.
+/// `settled` are 1 or 0 (NaN without metrics), so that every metric column but the three-way
+/// `verdict` (its name) is a float column.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct MapColumns {
     /// The run's status name (`success`, `invalid`, ...).
@@ -81,6 +82,8 @@ pub struct MetricColumns {
     pub slip_period: Vec<f64>,
     pub stick_slip: Vec<f64>,
     pub settled: Vec<f64>,
+    /// The three-way verdict's name (`yes`, `no`, `undetermined`; `undetermined` without metrics).
+    pub verdict: Vec<&'static str>,
     pub breakoff_torque: Vec<f64>,
     pub min_cycle_torque: Vec<f64>,
 }
@@ -122,6 +125,10 @@ impl MapColumns {
                 slip_period: metric(|s| s.slip_period),
                 stick_slip: metric(|s| f64::from(u8::from(s.stick_slip))),
                 settled: metric(|s| f64::from(u8::from(s.settled))),
+                verdict: rows
+                    .iter()
+                    .map(|r| r.metrics.as_ref().map_or(StickSlip::UNDEFINED.verdict, |s| s.verdict).name())
+                    .collect(),
                 breakoff_torque: row(|r| r.breakoff_torque),
                 min_cycle_torque: row(|r| r.min_cycle_torque),
             },

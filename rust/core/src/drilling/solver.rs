@@ -222,6 +222,14 @@ pub struct Profile {
     pub cumulative: Vec<f64>,
     /// The integral of the limit over the string, N m.
     pub breakoff_torque: f64,
+    /// The bit's static torque (on bottom; 0 off bottom), N m ([`super::grid::bit_static_torque`]).
+    pub bit_static_torque: f64,
+    /// The static torque the motor must exceed to break the string free: `breakoff_torque` plus
+    /// `bit_static_torque`, N m ([`static_torque`]).
+    pub static_torque: f64,
+    /// The static torque the string holds at each cell centre at break-off: `cumulative` plus
+    /// `bit_static_torque` (the bit's torque is carried along the whole string), N m.
+    pub holding: Vec<f64>,
     /// The well at the cell centres (minimum curvature): inclination and azimuth, degrees,
     /// true vertical depth, m, and the curvature as a dogleg severity, degrees per 30 m.
     pub inclination_deg: Vec<f64>,
@@ -246,6 +254,8 @@ pub fn friction_profile(cfg: &DrillConfig) -> Result<Profile> {
     }
     let traj = super::well::trajectory(cfg)?;
     let points: Vec<_> = grid.z.iter().map(|&z| traj.at(z)).collect();
+    let breakoff = breakoff_torque(cfg)?;
+    let bit = super::grid::bit_static_torque(cfg);
     Ok(Profile {
         inclination_deg: points.iter().map(|p| p.inc.to_degrees()).collect(),
         azimuth_deg: points.iter().map(|p| p.azi.to_degrees()).collect(),
@@ -254,8 +264,11 @@ pub fn friction_profile(cfg: &DrillConfig) -> Result<Profile> {
         friction_factor: grid.z.iter().map(|&z| super::well::friction_factor(cfg, z)).collect(),
         z: grid.z,
         limit_per_m: grid.limit,
+        holding: cumulative.iter().map(|c| c + bit).collect(),
         cumulative,
-        breakoff_torque: breakoff_torque(cfg)?,
+        breakoff_torque: breakoff,
+        bit_static_torque: bit,
+        static_torque: static_torque(cfg, breakoff),
     })
 }
 

@@ -23,6 +23,10 @@
 //!     three;
 //!   - the verdict `stick_slip`: the bit stops (`|omega_bit| <= stick_speed`) during part of
 //!     the window, neither never nor always (stuck fraction strictly between 0 and 1);
+//!   - the three-way verdict [`Verdict`] with its reason ([`verdict`], the criterion stated by
+//!     [`STICK_SLIP_CRITERION`]): `yes` exactly when `stick_slip`, `no` only for a bit that
+//!     never stops with SSI below 1 in a settled window (or one whose oscillation decays),
+//!     `undetermined` otherwise;
 //!   - `settled`: the window holds a steady regime: the first and the last whole periods of the
 //!     window (as many as half the window holds; its two halves without a period) have the
 //!     same bit-speed and motor-torque
@@ -39,6 +43,66 @@ use crate::error::{Error, Num, Result};
 /// Default stick threshold speed, rad/s (about 0.1 rpm): the bit counts as stuck while
 /// `|omega_bit|` is at most this.
 pub const STICK_SPEED: f64 = 1e-2;
+
+/// The criterion of [`verdict`], as a report states it.
+pub const STICK_SLIP_CRITERION: &str = "yes: the bit stops (|bit speed| <= stick_speed) during part of the \
+     metrics window (0 < stuck_fraction < 1); no: the bit never stops (stuck_fraction = 0), the severity SSI is \
+     below 1 and the window is settled (its first and last cycles agree) or its bit-speed oscillation decays; \
+     undetermined: anything else (no metrics, an undefined SSI, the bit stuck throughout the window, SSI >= 1 \
+     without the bit stopping, or a bit-speed oscillation growing through the window by more than 5 %: \
+     lengthen the run)";
+
+/// The stick-slip verdict of a window ([`verdict`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    Yes,
+    No,
+    Undetermined,
+}
+
+impl Verdict {
+    /// `"yes"`, `"no"` or `"undetermined"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Yes => "yes",
+            Verdict::No => "no",
+            Verdict::Undetermined => "undetermined",
+        }
+    }
+}
+
+/// The stick-slip verdict of a window from its stuck fraction, severity (SSI), whether it is
+/// settled and whether the bit speed's oscillation grows through it (its range over the last
+/// compared part more than 5 % above the first's), with the reason in a few words
+/// ([`STICK_SLIP_CRITERION`]):
+/// * `yes` when the bit stops during part of the window (`0 < stuck_fraction < 1`), settled
+///   or not (it stopped; the `settled` warning says whether the cycle is steady);
+/// * `no` when it never stops (`stuck_fraction = 0`), `SSI < 1` and the window is settled or
+///   its oscillation decays (a transient dying out below SSI 1 does not stick later);
+/// * `undetermined` otherwise: a metric not finite (no window, a mean speed of 0), the bit
+///   stuck throughout (it never turns: no stick-slip cycle), `SSI >= 1` without a stop (a
+///   severe oscillation the stick threshold does not catch), or an oscillation still growing
+///   in the window (it may yet stick: lengthen the run).
+pub fn verdict(stuck_fraction: f64, severity: f64, settled: bool, growing: bool) -> (Verdict, &'static str) {
+    if !stuck_fraction.is_finite() {
+        (Verdict::Undetermined, "no metrics in the window")
+    } else if stuck_fraction >= 1.0 {
+        (Verdict::Undetermined, "the bit is stuck throughout the window (it never turns)")
+    } else if stuck_fraction > 0.0 {
+        (Verdict::Yes, "the bit stops during part of the window")
+    } else if !severity.is_finite() {
+        (Verdict::Undetermined, "the SSI is undefined (mean bit speed 0)")
+    } else if severity >= 1.0 {
+        (Verdict::Undetermined, "SSI >= 1 but the bit never stops")
+    } else if !settled && growing {
+        (Verdict::Undetermined, "the bit never stops but its oscillation grows through the window")
+    } else if !settled {
+        (Verdict::No, "the bit never stops, SSI < 1, the oscillation decays")
+    } else {
+        (Verdict::No, "the bit never stops, SSI < 1, settled")
+    }
+}
 
 /// Radians per second to revolutions per minute.
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * std::f64::consts::PI);
@@ -75,6 +139,9 @@ pub struct StickSlip {
     pub stick_slip: bool,
     /// The window holds a steady regime (see the module).
     pub settled: bool,
+    /// The three-way verdict ([`verdict`]) and its reason.
+    pub verdict: Verdict,
+    pub verdict_reason: &'static str,
 }
 
 /// Most samples the period estimator uses: a longer window is resampled to this many (the
@@ -106,6 +173,8 @@ impl StickSlip {
         slip_onsets: 0,
         stick_slip: false,
         settled: false,
+        verdict: Verdict::Undetermined,
+        verdict_reason: "no metrics in the window",
     };
 
     /// Short sentences on what in these metrics cannot be trusted as they stand (empty when
@@ -357,11 +426,11 @@ fn segment(t: &[f64], x: &[f64], a: f64, b: f64) -> (f64, f64, f64) {
     (min, max, area / (b - a))
 }
 
-/// Whether the window holds a steady regime (see the module): the first and the last
-/// `period` (the two halves when NaN) agree in mean and range, for every series.
-fn settled(t: &[f64], series: &[(&[f64], f64)], period: f64) -> bool {
+/// The first and the last part of the window that [`settled`] compares: as many whole periods
+/// as each half holds (the two halves when `period` is NaN).
+fn compared_parts(t: &[f64], period: f64) -> ((f64, f64), (f64, f64)) {
     let (t0, t1) = (t[0], t[t.len() - 1]);
-    let (first, last) = if period.is_finite() && period < t1 - t0 {
+    if period.is_finite() && period < t1 - t0 {
         // as many whole periods as each half holds (a motion that repeats every second cycle
         // compares alike)
         let k = (0.5 * (t1 - t0) / period).floor().max(1.0);
@@ -369,7 +438,23 @@ fn settled(t: &[f64], series: &[(&[f64], f64)], period: f64) -> bool {
     } else {
         let mid = 0.5 * (t0 + t1);
         ((t0, mid), (mid, t1))
-    };
+    }
+}
+
+/// Whether the bit speed `w` oscillates more at the end of the window than at its start: the
+/// range of the last part of [`compared_parts`] exceeds the first's by more than 5 % of it
+/// plus `floor`.
+fn growing(t: &[f64], w: &[f64], period: f64, floor: f64) -> bool {
+    let (first, last) = compared_parts(t, period);
+    let (min1, max1, _) = segment(t, w, first.0, first.1);
+    let (min2, max2, _) = segment(t, w, last.0, last.1);
+    (max2 - min2) > 1.05 * (max1 - min1) + floor
+}
+
+/// Whether the window holds a steady regime (see the module): the first and the last
+/// `period` (the two halves when NaN) agree in mean and range, for every series.
+fn settled(t: &[f64], series: &[(&[f64], f64)], period: f64) -> bool {
+    let (first, last) = compared_parts(t, period);
     series.iter().all(|&(x, floor)| {
         let (min1, max1, mean1) = segment(t, x, first.0, first.1);
         let (min2, max2, mean2) = segment(t, x, last.0, last.1);
@@ -449,6 +534,9 @@ pub fn stick_slip(
     if let Some(m) = motor_torque {
         series.push((&m[lo..hi], 0.0));
     }
+    let settled = settled(tw, &series, cycle_period);
+    let growing = !settled && growing(tw, w, cycle_period, stick_speed);
+    let (verdict, verdict_reason) = verdict(stuck_fraction, severity, settled, growing);
     Ok(StickSlip {
         t_start: tw[0],
         t_end: tw[tw.len() - 1],
@@ -465,7 +553,9 @@ pub fn stick_slip(
         slip_period,
         slip_onsets,
         stick_slip: stuck_fraction > 0.0 && stuck_fraction < 1.0,
-        settled: settled(tw, &series, cycle_period),
+        settled,
+        verdict,
+        verdict_reason,
     })
 }
 
@@ -535,6 +625,44 @@ mod tests {
         assert!((m.cycle_period - 1.0 / f).abs() < 1e-7, "{}", m.cycle_period);
         assert!(m.settled && !m.stick_slip && m.slip_onsets == 0 && m.slip_period.is_nan(), "{m:?}");
         assert!(stick_slip(&t, &w, None, None, STICK_SPEED).unwrap().cycle_period.is_nan());
+    }
+
+    /// The three-way verdict on series whose stuck fraction, SSI and settling are known by
+    /// construction.
+    #[test]
+    fn the_verdict_follows_its_criterion() {
+        let t = grid(20001, 10.0);
+        let verdict_of = |w: &[f64]| stick_slip(&t, w, Some(w), None, STICK_SPEED).unwrap();
+        // clipped sine (stuck a third of each cycle): yes, and the boolean agrees
+        let clipped: Vec<f64> = t.iter().map(|t| (10.0 * (1.0 + 2.0 * (2.0 * PI * t).sin())).max(0.0)).collect();
+        let m = verdict_of(&clipped);
+        assert!(m.stick_slip && m.verdict == Verdict::Yes, "{m:?}");
+        // steady sine with SSI 0.6, never stuck, settled: no
+        let soft: Vec<f64> = t.iter().map(|t| 10.0 * (1.0 + 0.6 * (2.0 * PI * t).sin())).collect();
+        let m = verdict_of(&soft);
+        assert!(m.severity < 1.0 && m.stuck_fraction == 0.0 && m.settled, "{m:?}");
+        assert_eq!((m.verdict, m.verdict.name()), (Verdict::No, "no"));
+        // an amplitude growing through the window: not settled, undetermined; decaying: no
+        let growing: Vec<f64> = t.iter().map(|t| 10.0 * (1.0 + 0.06 * t * (2.0 * PI * t).sin())).collect();
+        let m = verdict_of(&growing);
+        assert!(!m.settled && m.stuck_fraction == 0.0 && m.verdict == Verdict::Undetermined, "{m:?}");
+        let decaying: Vec<f64> = t.iter().map(|t| 10.0 * (1.0 + 0.06 * (10.0 - t) * (2.0 * PI * t).sin())).collect();
+        let m = verdict_of(&decaying);
+        assert!(!m.settled && m.severity < 1.0 && m.verdict == Verdict::No, "{m:?}");
+        // SSI above 1 without a stop (tall narrow spikes on a slow turn)
+        let spiky: Vec<f64> = t.iter().map(|t| 1.0 + 30.0 * (2.0 * PI * t).sin().max(0.0).powi(8)).collect();
+        let m = verdict_of(&spiky);
+        assert!(m.severity > 1.0 && m.stuck_fraction == 0.0 && m.verdict == Verdict::Undetermined, "{m:?}");
+        // stuck throughout, and a window with a zero mean speed
+        assert_eq!(verdict_of(&vec![0.0; t.len()]).verdict, Verdict::Undetermined);
+        assert_eq!(StickSlip::UNDEFINED.verdict, Verdict::Undetermined);
+        assert_eq!(verdict(f64::NAN, 0.5, true, false).0, Verdict::Undetermined);
+        assert_eq!(verdict(0.0, f64::NAN, true, false).0, Verdict::Undetermined);
+        assert_eq!(verdict(0.2, f64::NAN, false, true).0, Verdict::Yes);
+        assert_eq!(verdict(0.0, 1.0, true, false).0, Verdict::Undetermined);
+        assert_eq!(verdict(0.0, 0.999, true, false).0, Verdict::No);
+        assert_eq!(verdict(0.0, 0.5, false, true).0, Verdict::Undetermined);
+        assert_eq!(verdict(0.0, 0.5, false, false).0, Verdict::No);
     }
 
     #[test]
