@@ -218,3 +218,13 @@ def test_convert_leaves_nan_and_same_units() -> None:
 def test_the_reference_lists_the_units_key() -> None:
     entry = config_schema()["units"]
     assert entry["type"] == "string" and entry["default"] == "si" and entry["unit"] is None
+
+
+def test_map_axes_take_quantities(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from drillstring.drilling.maps import check_axis
+
+    assert check_axis("bit.weight_on_bit", ["80 kN", 40e3], "--axis") == [80e3, 40e3]
+    assert check_axis("sections[0].outer_diameter", ["5 in", "6.5 in"], "--axis") == [0.127, 0.1651]
+    with pytest.raises(ValidationError, match="a value of bit.weight_on_bit: a quantity of force") as info:
+        check_axis("bit.weight_on_bit", ["80 kN", "3 m"], "--axis")
+    assert info.value.field == "--axis"
