@@ -208,6 +208,12 @@ def test_metrics_in_field_units_are_a_copy_beside_the_si_ones(tmp_path: Path,
         assert copy["metrics"][name] == si[name], name
 
 
+def test_a_non_finite_field_number_is_left_to_the_core() -> None:
+    assert math.isnan(quantity("sections[0].length", math.nan, "field"))
+    with pytest.raises(ValidationError, match=r"sections\[0\]\.length"):
+        DrillConfig.from_dict({"units": "field", "sections": [{**PIPE, "length": math.inf}]})
+
+
 def test_convert_leaves_nan_and_same_units() -> None:
     assert convert(3.0, "rpm", "field") == (3.0, "rpm")
     value, unit = convert(math.nan, "N*m", "field")

@@ -190,7 +190,7 @@ def quantity(path: str, value: Any, system: str = "si") -> Any:
                 return _magnitude(parsed, unit)
             except Exception:  # pint's DimensionalityError
                 raise ValidationError(path, value, _expected(key, unit, f"a quantity of {_dimension(unit)}")) from None
-    if system == "field" and isinstance(value, (int, float)):
+    if system == "field" and isinstance(value, (int, float)) and math.isfinite(value):
         source = field_unit(key)
         if source is not None:
             return _magnitude(_in(value, source), unit)
