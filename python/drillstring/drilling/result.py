@@ -269,6 +269,10 @@ class DrillResult:
         ``first_mode_hz``.
     status, message : str
         How the solve ended (``"success"`` or a failure status, see :class:`~drillstring.errors.SolveError`).
+    metrics_finite : bool
+        False when a headline metric (``ssi``, ``stuck_fraction``, the bit speed's and motor
+        torque's extremes and mean) is not finite: not a result even with ``status`` success
+        (``warnings`` says which; ``drillstring drill`` says so on its first line).
     grid_check : GridCheck or None
         With ``drill(..., check_grid=True)``: every metric against the same run on twice the
         cells (its moves beyond :data:`GRID_TOLERANCES` are in ``warnings``).
@@ -300,6 +304,7 @@ class DrillResult:
         self.grid_check: Optional[GridCheck] = None
         self.status: str = str(raw["status"])
         self.message: str = str(raw["message"])
+        self.metrics_finite: bool = bool(raw.get("metrics_finite", True))
 
     @property
     def success(self) -> bool:
@@ -331,7 +336,7 @@ class DrillResult:
     def summary(self) -> dict[str, Any]:
         """What ``metrics.json`` holds: the metrics, the window, the status and message, the
         energy balance and the solver counters (NaN as ``None``)."""
-        out: dict[str, Any] = {"status": self.status, "message": self.message}
+        out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite}
         out.update(self.metrics.to_dict())
         out["stick_slip_criterion"] = STICK_SLIP_CRITERION
         out["warnings"] = list(self.warnings)
