@@ -278,8 +278,9 @@ class DrillResult:
         cells (its moves beyond :data:`GRID_TOLERANCES` are in ``warnings``).
     warnings : tuple of str
         What makes the run or its metrics doubtful: a torque limit below the string's static
-        torque, a window that is not settled, an undefined severity or period, a period its
-        cross-check disagrees with; empty when nothing does.
+        torque, a value that is likely a unit mistake, a transient still decaying in the metrics
+        window, a headline metric that is not finite, a window that is not settled, an undefined
+        severity or period, a period its cross-check disagrees with; empty when nothing does.
     """
 
     def __init__(self, config: DrillConfig, raw: Mapping[str, Any], profile: DrillProfile) -> None:

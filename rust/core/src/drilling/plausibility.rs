@@ -26,7 +26,7 @@ pub fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
 pub fn torque_limit_warning(cfg: &DrillConfig, breakoff: f64) -> Option<String> {
     let needed = static_torque(cfg, breakoff);
     let limit = cfg.top_drive.torque_limit;
-    if !(limit < needed) {
+    if limit.partial_cmp(&needed) != Some(std::cmp::Ordering::Less) {
         return None;
     }
     let likely = if limit < 0.01 * needed && 1e3 * limit >= needed {

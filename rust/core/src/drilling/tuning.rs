@@ -142,27 +142,20 @@ pub fn apply_preset(cfg: &mut DrillConfig, given: &[String]) {
     let Some(preset) = cfg.top_drive.controller.preset else {
         return;
     };
-    let tuned = preset_controller(preset, &string_numbers(cfg), &cfg.top_drive.controller);
-    let c = &mut cfg.top_drive.controller;
-    let keep = |k: &str| given.iter().any(|g| g == k);
-    if !keep("type") {
-        c.kind = tuned.kind;
+    let given_values = cfg.top_drive.controller.clone();
+    let mut c = preset_controller(preset, &string_numbers(cfg), &given_values);
+    for key in given {
+        match key.as_str() {
+            "type" => c.kind = given_values.kind,
+            "kp" => c.kp = given_values.kp,
+            "ki" => c.ki = given_values.ki,
+            "tuning_frequency" => c.tuning_frequency = given_values.tuning_frequency,
+            "z_factor" => c.z_factor = given_values.z_factor,
+            "torque_highpass_time" => c.torque_highpass_time = given_values.torque_highpass_time,
+            _ => {}
+        }
     }
-    if !keep("kp") {
-        c.kp = tuned.kp;
-    }
-    if !keep("ki") {
-        c.ki = tuned.ki;
-    }
-    if !keep("tuning_frequency") {
-        c.tuning_frequency = tuned.tuning_frequency;
-    }
-    if !keep("z_factor") {
-        c.z_factor = tuned.z_factor;
-    }
-    if !keep("torque_highpass_time") {
-        c.torque_highpass_time = tuned.torque_highpass_time;
-    }
+    cfg.top_drive.controller = c;
 }
 
 /// One preset's recommended settings and what they give.
