@@ -259,9 +259,13 @@ class Controller:
     type: str = _default("top_drive.controller", "type", unit="", kind="str")
     """``"pi"``, ``"soft_torque"``, ``"z_torque"`` or ``"speed"`` (ideal speed source)."""
     kp: float = _default("top_drive.controller", "kp", unit="N m s/rad", kind="float")
-    """Proportional gain, N m s/rad."""
+    """``pi``: proportional gain, N m s/rad: motor torque per rad/s of speed error, the damping the
+    top drive presents to the string (``kp >> Z``, the pipe's impedance: a stiff top that reflects
+    torque waves; ``kp = Z``: a matched one that absorbs them). ``soft_torque``: ``z_factor Z``."""
     ki: float = _default("top_drive.controller", "ki", unit="N m/rad", kind="float")
-    """Integral gain, N m/rad."""
+    """``pi``: integral gain, N m/rad: motor torque per radian of accumulated speed error (a spring
+    to the setpoint's angle). ``soft_torque``: ``(2 pi f)^2 I_TD``, cancelling the top-drive inertia
+    at the tuning frequency ``f``."""
     tuning_frequency: Optional[float] = _default("top_drive.controller", "tuning_frequency", unit="Hz",
                                                  kind="float?")
     """Soft-torque tuning frequency, Hz (None: the string's first mode)."""
@@ -271,6 +275,10 @@ class Controller:
     torque_highpass_time: float = _default("top_drive.controller", "torque_highpass_time", unit="s", kind="float")
     """Z-torque: time constant of the low-pass that takes the mean string torque out of the
     impedance feedback, s."""
+    preset: Optional[str] = _default("top_drive.controller", "preset", unit="", kind="str?")
+    """A named tuning, ``"stiff"``, ``"soft_torque"`` or ``"z_torque"``: fills in ``type`` and the
+    gains from the string when the configuration is read (:func:`~drillstring.recommend_controllers`
+    shows them); keys given beside it keep their values. None: the keys as given."""
 
 
 @dataclass(frozen=True)

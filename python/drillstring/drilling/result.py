@@ -297,13 +297,18 @@ class DrillResult:
         ``first_mode_hz``.
     status, message : str
         How the solve ended (``"success"`` or a failure status, see :class:`~drillstring.errors.SolveError`).
+    metrics_finite : bool
+        False when a headline metric (``ssi``, ``stuck_fraction``, the bit speed's and motor
+        torque's extremes and mean) is not finite: not a result even with ``status`` success
+        (``warnings`` says which; ``drillstring drill`` says so on its first line).
     grid_check : GridCheck or None
         With ``drill(..., check_grid=True)``: every metric against the same run on twice the
         cells (its moves beyond :data:`GRID_TOLERANCES` are in ``warnings``).
     warnings : tuple of str
         What makes the run or its metrics doubtful: a torque limit below the string's static
-        torque, a window that is not settled, an undefined severity or period, a period its
-        cross-check disagrees with; empty when nothing does.
+        torque, a value that is likely a unit mistake, a transient still decaying in the metrics
+        window, a headline metric that is not finite, a window that is not settled, an undefined
+        severity or period, a period its cross-check disagrees with; empty when nothing does.
     """
 
     def __init__(self, config: DrillConfig, raw: Mapping[str, Any], profile: DrillProfile) -> None:
@@ -330,6 +335,7 @@ class DrillResult:
         self.message: str = str(raw["message"])
         self.name: Optional[str] = None
         """The well's name in figure titles (the configuration file's stem when :func:`drill` read one)."""
+        self.metrics_finite: bool = bool(raw.get("metrics_finite", True))
 
     @property
     def success(self) -> bool:
@@ -367,7 +373,7 @@ class DrillResult:
         from .units import convert, system_of
 
         system = system_of(output_units, "output_units")
-        out: dict[str, Any] = {"status": self.status, "message": self.message}
+        out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite}
         out.update(self.metrics.to_dict())
         out["stick_slip_reason"] = self.metrics.stick_slip_reason
         out["stick_slip_criterion"] = STICK_SLIP_CRITERION

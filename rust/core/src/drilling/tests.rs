@@ -1148,12 +1148,20 @@ fn absurd_sizes_are_refused_naming_the_field() {
 fn a_torque_limit_below_the_static_torque_warns() {
     let mut cfg = DrillConfig::default();
     cfg.numerics.duration = 1.0;
+    let limit_warnings = |run: &DrillRun| -> Vec<String> {
+        run.warnings.iter().filter(|w| w.contains("top_drive.torque_limit")).cloned().collect()
+    };
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
-    assert!(run.warnings.is_empty(), "{:?}", run.warnings);
+    assert!(limit_warnings(&run).is_empty(), "{:?}", run.warnings);
     cfg.top_drive.torque_limit = 0.5 * run.breakoff_torque;
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
-    assert_eq!(run.warnings.len(), 1);
-    assert!(run.warnings[0].contains("top_drive.torque_limit") && run.warnings[0].contains("never break"));
+    let w = limit_warnings(&run);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("never break") && w[0].contains("a motor too small"), "{w:?}");
+    // a limit given in kN m: a thousand times it would do
+    cfg.top_drive.torque_limit = 1e-3 * run.breakoff_torque;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert!(limit_warnings(&run)[0].contains("a limit in kN m?"), "{:?}", run.warnings);
 }
 
 /// A section boundary within rounding of a survey station is solved (before: `drill` refused
@@ -1198,13 +1206,13 @@ fn a_metrics_window_outside_the_run_is_refused() {
 #[test]
 fn values_outside_drilling_practice_warn_naming_the_field() {
     let mut cfg = DrillConfig::default();
-    assert!(super::solver::plausibility_warnings(&cfg).is_empty());
+    assert!(super::plausibility::plausibility_warnings(&cfg).is_empty());
     cfg.sections[0].outer_diameter = 171.0;
     cfg.sections[0].inner_diameter = 100.0;
     cfg.bit.radius = 8.5;
     cfg.top_drive.rpm = -1e300;
     cfg.sections[0].length = 30_000.0;
-    let w = super::solver::plausibility_warnings(&cfg);
+    let w = super::plausibility::plausibility_warnings(&cfg);
     assert_eq!(w.len(), 4, "{w:?}");
     assert!(w[0].starts_with("sections[0].outer_diameter = 171 m"));
     assert!(w[1].starts_with("bit.radius = 8.5 m"));
