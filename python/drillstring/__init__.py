@@ -54,6 +54,7 @@ from .drilling import (
     drill,
     drill_map,
     load_drill_config,
+    recommend_controllers,
     torque_drag,
 )
 from .errors import DrillstringError, SolveError, ValidationError
@@ -188,6 +189,7 @@ __all__ = [
     "DrillResult",
     "DrillMetrics",
     "load_drill_config",
+    "recommend_controllers",
     # the paper
     "table2",
     "Table2Row",

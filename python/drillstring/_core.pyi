@@ -751,6 +751,48 @@ def drill_profile(config_json: str) -> DrillProfile:
         as :func:`drill_validate`.
     """
 
+class StringNumbersDict(TypedDict):
+    #: Characteristic impedance of the top section J sqrt(G rho), N m s.
+    impedance: float
+    #: First natural frequency of the string (top fixed, bit free or with the BHA), Hz.
+    first_mode_hz: float
+    #: Top-drive inertia, kg m^2.
+    top_drive_inertia: float
+    #: Static torsional stiffness of the string 1 / sum L / (G J), N m/rad.
+    stiffness: float
+
+class PresetRecommendationDict(TypedDict):
+    #: "stiff", "soft_torque" or "z_torque".
+    preset: str
+    #: The controller table the preset sets (type, preset, kp, ki, tuning_frequency, z_factor,
+    #: torque_highpass_time).
+    controller: dict[str, Any]
+    #: The damping the top drive presents to torque waves, N m s.
+    damping: float
+    #: The reflection coefficient of a torque wave at the top, (c - Z) / (c + Z).
+    reflection: float
+    #: stiff, soft_torque: kp / (2 pi I_TD), Hz (NaN for z_torque).
+    speed_bandwidth_hz: float
+    #: z_torque: the fraction of the setpoint the top turns at while the string winds up (NaN
+    #: otherwise).
+    windup_speed_ratio: float
+    #: The rule with its numbers.
+    rule: str
+
+class ControllerRecommendationsDict(TypedDict):
+    string: StringNumbersDict
+    presets: list[PresetRecommendationDict]
+
+def recommend_controllers(config_json: str) -> ControllerRecommendationsDict:
+    """The recommended settings of every controller preset for the configuration's string and
+    the numbers they were computed from (``drilling::tuning::recommend``).
+
+    Raises
+    ------
+    ValidationError
+        as :func:`drill_validate`.
+    """
+
 class DrillMetrics(StickSlipDict):
     #: The metrics of :class:`StickSlipDict` (``t_start``, ``t_end``: first and last sample of
     #: the window, s, NaN when it holds fewer than 2 samples), and
@@ -817,8 +859,12 @@ class DrillOutput(TypedDict):
     #: "success", "interrupted", "non_finite" or "out_of_memory".
     status: str
     message: str
-    #: What the configuration makes doubtful (a torque limit below the static torque).
+    #: What the configuration makes doubtful (a torque limit below the static torque, a value
+    #: likely a unit mistake, a transient still decaying in the window, metrics not finite).
     warnings: list[str]
+    #: False when a headline metric (ssi, stuck fraction, bit speed, motor torque) is not
+    #: finite or the window has none: not a result, whatever ``status`` says.
+    metrics_finite: bool
     metrics: DrillMetrics
     energy: DrillEnergy
     stats: DrillStats

@@ -4,11 +4,14 @@
     drillstring table2 [--json]
     drillstring drill CONFIG.toml --out DIR [--set key=value ...] [--no-plots]
     drillstring drill-map CONFIG.toml --axis key=start:stop:count --axis key=v1,v2 --out DIR [--set ...]
+    drillstring tune CONFIG.toml [--set key=value ...]
 
 Errors are reported as one line on stderr with exit status 2 (no traceback); an error in a
-TOML file names the file, the line and the key. Ctrl-C stops a run within a fraction of a second
-with "drillstring: interrupted" and exit status 130; output files are written atomically, so an
-interrupted run leaves none half-written.
+TOML file names the file, the line and the key. A ``drillstring drill`` run that reached its end
+with a headline metric that is not finite says so on its first line and in a warning, and writes
+``"metrics_finite": false`` to metrics.json (not a result).
+Ctrl-C stops a run within a fraction of a second with "drillstring: interrupted" and exit status
+130; output files are written atomically, so an interrupted run leaves none half-written.
 
 Every output destination is checked before any work is done (:func:`_check_outputs`,
 :func:`drillstring.io.output.check_destination`); a command never writes over its own input file;
@@ -585,6 +588,10 @@ def _add_drill(sub: Any) -> None:
     p.add_argument("--check-grid", action="store_true",
                    help="also solve on twice the cells and report how much every metric moves (about four "
                    "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning")
+    p.add_argument("--units", choices=("si", "field"), default="si",
+                   help="the unit system of the console lines (field: ft, ft-lbf) and of a converted copy of the "
+                   "metrics in metrics.json (output_units); the files keep their SI values (default si; the "
+                   "configuration's own units key sets how it is read)")
     _add_progress(p)
     p.set_defaults(func=_cmd_drill)
 
@@ -601,6 +608,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
 
     from .drilling import drill, load_drill_config
     from .drilling.output import _write_files, output_folder
+    from .drilling.units import convert, shown
 
     config = load_drill_config(args.config)
     if args.overrides:
@@ -613,23 +621,29 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
         seconds = time.perf_counter() - start
         m = result.metrics
-        _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
-             f"simulated in {seconds:.2g} s ({result.status})")
+        system = args.units
+        status = result.status if result.metrics_finite else f"{result.status}, but metrics not finite: not a result"
+
+        def torque(x: float) -> str:  # kN m, or kft-lbf in field units
+            return shown(x, "N*m", system, kilo=True)
+
+        low = (convert(m.motor_torque_min_Nm, "N*m", system)[0] or 0.0) / 1e3
+        _say(f"drill: {shown(config.length, 'm', system, digits=6)} string, {config.numerics.cells} cells, "
+             f"{config.numerics.duration:g} s simulated in {seconds:.2g} s ({status})")
         _say(f"wall contact: {config.friction.contact} ("
              + ("soft-string normal force: buoyed weight and tension times curvature"
                 if config.friction.contact == "soft_string" else "buoyed weight times sin(inclination)")
-             + f"), break-off torque {result.metrics.breakoff_torque_Nm / 1e3:.4g} kN m")
+             + f"), break-off torque {torque(result.metrics.breakoff_torque_Nm)}")
         _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
              f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
-             f"(mean {m.bit_rpm_mean:.4g}), motor torque {m.motor_torque_min_Nm / 1e3:.4g}.."
-             f"{m.motor_torque_max_Nm / 1e3:.4g} kN m, break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m (implied "
-             f"cycle minimum {m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
+             f"(mean {m.bit_rpm_mean:.4g}), motor torque {low:.4g}..{torque(m.motor_torque_max_Nm)}, "
+             f"break-off {torque(m.breakoff_torque_Nm)} (implied cycle minimum {torque(m.min_cycle_torque_Nm)})")
         _say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
              f"{'settled' if m.settled else 'not settled'}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
-            _say(f"static torque to break free {p.static_torque / 1e3:.4g} kN m (wall {p.breakoff_torque / 1e3:.4g} "
-                 f"+ bit {p.bit_static_torque / 1e3:.4g})")
+            _say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "
+                 f"+ bit {torque(p.bit_static_torque)})")
         if result.grid_check is not None:
             g = result.grid_check
             moves = ", ".join(f"{r.metric} {_change(r.kind, r.change)}" for r in g.rows if r.kind != "equal")
@@ -637,8 +651,35 @@ def _cmd_drill(args: argparse.Namespace) -> int:
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = _write_files(result, directory, plots)
+        written = _write_files(result, directory, plots, args.units)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
+    return 0
+
+
+def _add_tune(sub: Any) -> None:
+    p = sub.add_parser(
+        "tune",
+        help="the recommended top-drive controller settings of each preset for a string",
+        description="Print the settings of each controller preset (stiff, soft_torque, z_torque) for the string of "
+        "CONFIG.toml: one line per preset with the gains and their units, the rule and the numbers it was computed "
+        "from (the top pipe's impedance Z, the string's first natural frequency f1, the top-drive inertia). Use one "
+        "with top_drive.controller.preset = NAME (or --set top_drive.controller.preset=NAME).",
+        epilog="example: drillstring tune examples/on-bottom-3000m.toml",
+    )
+    p.add_argument("config", metavar="CONFIG.toml", help="drilling configuration (examples/*.toml)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                   help="change a field first, e.g. sections[0].length=4000 (repeatable)")
+    p.set_defaults(func=_cmd_tune)
+
+
+def _cmd_tune(args: argparse.Namespace) -> int:
+    from .drilling import load_drill_config, recommend_controllers
+
+    config = load_drill_config(args.config)
+    if args.overrides:
+        config = config.with_overrides(args.overrides)
+    for line in recommend_controllers(config).lines():
+        print(line)
     return 0
 
 
@@ -933,6 +974,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_torque_drag(sub)
     _add_drill_map(sub)
     _add_lumped(sub)
+    _add_tune(sub)
     return parser
 
 

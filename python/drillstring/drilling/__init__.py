@@ -50,6 +50,7 @@ from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
 from .solve import drill, friction_profile
 from .torque_drag import TorqueDragResult, torque_drag, write_torque_drag
+from .tuning import ControllerRecommendations, PresetRecommendation, StringNumbers, recommend_controllers
 
 __all__ = [
     "FILES",
@@ -77,6 +78,10 @@ __all__ = [
     "ssi_lines",
     "ssi_map",
     "friction_profile",
+    "recommend_controllers",
+    "ControllerRecommendations",
+    "PresetRecommendation",
+    "StringNumbers",
     "Bit",
     "Controller",
     "DrillConfig",

@@ -23,6 +23,7 @@ mod pde;
 mod signal;
 mod stability;
 mod sweep;
+mod tuning;
 mod well;
 
 /// The vector instruction path of the core's hot loops on this machine: `"avx512+fma"`,
@@ -71,6 +72,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(metrics::modal_energies, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::stick_slip_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::break_off_torque, m)?)?;
+    m.add_function(wrap_pyfunction!(tuning::recommend_controllers, m)?)?;
     m.add("STICK_SPEED", drillstring_core::metrics::STICK_SPEED)?;
     m.add("STICK_SLIP_CRITERION", drillstring_core::metrics::STICK_SLIP_CRITERION)?;
     m.add("SPECTRAL_PAD", drillstring_core::metrics::PAD)?;

@@ -293,22 +293,75 @@ impl ControllerKind {
     pub const NAMES: [&'static str; 4] = ["speed", "pi", "soft_torque", "z_torque"];
 }
 
-/// The top-drive controller.
+/// A named controller tuning (`top_drive.controller.preset`): it fills in the controller's
+/// `type` and gains from the string ([`super::tuning::preset_controller`]; the rules and their
+/// sources are in [`super::tuning`]); keys given beside it keep their values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ControllerPreset {
+    /// A high-gain speed PI (`type = "pi"`): `kp = 50 Z`, `ki = 5 1/s^2 I_TD`.
+    Stiff,
+    /// SoftTorque / SoftSpeed (`type = "soft_torque"`): `kp = 4 Z`, `ki = (2 pi f1)^2 I_TD`.
+    SoftTorque,
+    /// ZTorque impedance matching (`type = "z_torque"`): `z_factor = 4`, the torque high-pass
+    /// an octave below the first mode, `torque_highpass_time = 1 / (pi f1)`.
+    ZTorque,
+}
+
+impl ControllerPreset {
+    pub const NAMES: [&'static str; 3] = ["stiff", "soft_torque", "z_torque"];
+    pub const ALL: [ControllerPreset; 3] =
+        [ControllerPreset::Stiff, ControllerPreset::SoftTorque, ControllerPreset::ZTorque];
+
+    /// The preset's name in the configuration.
+    pub fn name(self) -> &'static str {
+        match self {
+            ControllerPreset::Stiff => "stiff",
+            ControllerPreset::SoftTorque => "soft_torque",
+            ControllerPreset::ZTorque => "z_torque",
+        }
+    }
+}
+
+/// The top-drive controller. `Z = J sqrt(G rho)` below is the characteristic impedance of the
+/// top section (N m s = N m per rad/s: the torque a wave of 1 rad/s carries), `f1` the string's
+/// first natural frequency (top fixed, bit free or with the BHA inertia), `I_TD` the top-drive
+/// inertia. `drillstring tune CONFIG.toml` prints the gains of each preset for a string.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Controller {
-    /// The controller of the top drive (`speed`: an ideal speed source).
+    /// `speed` (ideal speed source), `pi` (a speed PI; a stiff one reflects the torsional waves
+    /// back down the string), `soft_torque` (a PI tuned to absorb them at `tuning_frequency`),
+    /// `z_torque` (the top drive lowers its speed by the high-passed string torque over
+    /// `z_factor Z`, a damper to the waves).
     #[serde(rename = "type")]
     #[schemars(extend("label" = "controller"))]
     pub kind: ControllerKind,
-    /// `pi`: proportional gain, >= 0.
+    /// A named tuning, `stiff`, `soft_torque` or `z_torque`, that fills in `type` and the gains
+    /// from the string; keys given beside it keep their values. Null: the keys as given.
+    ///
+    /// The rules and their sources: [`ControllerPreset`], [`super::tuning`].
+    #[schemars(extend("label" = "controller preset"))]
+    pub preset: Option<ControllerPreset>,
+    /// `pi`: the proportional gain, >= 0: the motor torque per rad/s of speed error, i.e. the
+    /// damping the top drive presents to the string.
+    ///
+    /// Compare it with `Z` (`kp >> Z`: a stiff top that reflects torque waves, `kp = Z`: a
+    /// matched top that absorbs them). The Aarsnes & Shor default 38e3 is about 130 `Z` of a
+    /// 5-in pipe. `soft_torque` computes it: `z_factor Z`.
     #[schemars(extend("unit" = "N*m*s/rad", "label" = "proportional gain"))]
     pub kp: f64,
-    /// `pi`: integral gain, >= 0.
+    /// `pi`: the integral gain, >= 0: the motor torque per radian of accumulated speed error (a
+    /// torsional spring to the setpoint's angle).
+    ///
+    /// `ki / kp` (1/s) is the corner below which the loop removes a steady speed error.
+    /// `soft_torque` computes it: `(2 pi f)^2 I_TD`, so that at `f` this spring cancels the top
+    /// drive's inertia.
     #[schemars(extend("unit" = "N*m/rad", "label" = "integral gain"))]
     pub ki: f64,
-    /// `soft_torque`: the tuning frequency, > 0. Null: the string's first natural frequency (fixed
-    /// top, bit free or with the BHA inertia).
+    /// `soft_torque`: the frequency at which the top drive's inertia is cancelled and it presents
+    /// the pure damping `kp` (the stick-slip frequency), > 0. Null: the string's first natural
+    /// frequency (fixed top, bit free or with the BHA inertia).
     #[schemars(extend("unit" = "Hz", "label" = "tuning frequency"))]
     pub tuning_frequency: Option<f64>,
     /// `soft_torque`, `z_torque`: the damping the top drive presents, in units of the top
@@ -318,13 +371,19 @@ pub struct Controller {
     /// `0.25 / Z` on the high-passed torque (`1 / (z_factor Z)` here). On
     /// `examples/on-bottom-3000m.toml` at 40 rpm (300 cells) both then remove the stick-slip the
     /// PI controller leaves (SSI 0.21 and 0.03 against 1.12); at 1 `soft_torque` made it worse
-    /// (1.47).
+    /// (1.47). Dimensionless; 1 matches the pipe (a torque wave is absorbed completely), larger
+    /// is stiffer.
     #[schemars(extend("unit" = "", "label" = "impedance factor"))]
     pub z_factor: f64,
     /// `z_torque`: time constant of the low-pass that takes the mean string torque out of the
     /// impedance feedback (so that only the torque waves reduce the speed), > 0.
     ///
     /// Default `20 / (2 pi)` s: the torque high-pass of the ZTorque controller of Simulator4nDOF.
+    /// While the string winds up before break-off its torque rises at `k Omega` (`k` the
+    /// string's torsional stiffness), which the high-pass passes as `T k Omega`: the top drive
+    /// turns at about `setpoint / (1 + T k / (z_factor Z))` until the mean torque has caught up
+    /// (33 of 60 rpm for 15 s on `examples/on-bottom-3000m.toml` with the default; 14 rpm for
+    /// 25 s at `z_factor = 1`). The `z_torque` preset ties `T` to the string, `1 / (pi f1)`.
     #[schemars(extend("unit" = "s", "label" = "torque high-pass time"))]
     pub torque_highpass_time: f64,
 }
@@ -334,6 +393,7 @@ impl Default for Controller {
     fn default() -> Self {
         Controller {
             kind: ControllerKind::Pi,
+            preset: None,
             kp: 38e3,
             ki: 100e3,
             tuning_frequency: None,
@@ -738,6 +798,11 @@ impl DrillConfig {
             cfg.bit.radius = d / 2.0;
         }
         super::well::load_survey(&mut cfg)?;
+        let given: Vec<String> = user
+            .pointer("/top_drive/controller")
+            .and_then(Value::as_object)
+            .map_or_else(Vec::new, |c| c.keys().cloned().collect());
+        super::tuning::apply_preset(&mut cfg, &given);
         Ok(cfg)
     }
 
@@ -1159,6 +1224,12 @@ pub fn set_path(config: &mut Value, path: &str, value: &Value, field: &str) -> R
                         }
                         _ => {
                             map.insert((*name).to_string(), value.clone());
+                        }
+                    }
+                    if path == "top_drive.controller.preset" && !value.is_null() {
+                        // a preset set now replaces the controller's keys (set again after it to override)
+                        for k in super::tuning::PRESET_KEYS {
+                            map.remove(k);
                         }
                     }
                     return Ok(());

@@ -24,6 +24,11 @@
 //!   ([`solve`], [`friction_profile`]);
 //! * [`map`]: stick-slip maps, many runs of one base configuration with per-run overrides
 //!   solved in parallel, one row of metrics each ([`map::solve_map`]);
+//! * [`tuning`]: the controller presets' rules (gains from the string's impedance, first mode
+//!   and the top-drive inertia) and the recommendation of `drillstring tune`;
+//! * [`plausibility`]: warnings (not errors) for values that are likely mistakes, a torque
+//!   limit below the break-off torque, a transient still decaying in the metrics window and
+//!   metrics that are not finite;
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
 //!   with a true stick phase, its steady rotations and their stability.
 //! * [`axial`]: the bit on bottom as parts (axial section properties and statics, the Detournay
@@ -37,7 +42,9 @@ pub mod grid;
 pub mod lumped;
 pub mod map;
 pub mod schema_doc;
+pub mod plausibility;
 pub mod solver;
+pub mod tuning;
 pub mod well;
 
 #[cfg(test)]

@@ -113,7 +113,8 @@ use crate::solution::{serialize_list, Status};
 
 use super::bit::slip_torque;
 use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity};
-use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, static_torque, Grid, SectionProps};
+use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid, SectionProps};
+use super::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
 
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
 
@@ -208,6 +209,9 @@ pub struct DrillRun {
     /// exceeds); the metrics' own are [`StickSlip::warnings`].
     #[serde(serialize_with = "serialize_list")]
     pub warnings: Vec<String>,
+    /// False when a headline metric is not finite or the window has none
+    /// ([`super::plausibility::non_finite_metrics`]): not a result, whatever `status` says.
+    pub metrics_finite: bool,
     pub stats: DrillStats,
 }
 
@@ -405,10 +409,8 @@ impl<'c> Simulation<'c> {
         let c = &td.controller;
         let (kp, ki) = match c.kind {
             ControllerKind::SoftTorque => {
-                // Simulator4nDOF TopdriveController.cs (type 2, no inertia compensation):
-                // kp = factor * Z_pipe, ki = (2 pi f_tune)^2 * I_TD.
                 let w = c.tuning_frequency.map_or(first_mode, |f| 2.0 * PI * f);
-                (c.z_factor * grid.props[0].impedance, w * w * td.inertia)
+                super::tuning::soft_torque_gains(c.z_factor, grid.props[0].impedance, w, td.inertia)
             }
             _ => (c.kp, c.ki),
         };
@@ -827,6 +829,7 @@ impl<'c> Simulation<'c> {
             status: Status::Success,
             message: String::new(),
             warnings: run_warnings(cfg, breakoff),
+            metrics_finite: true,
             stats: DrillStats {
                 cells: nz,
                 steps: 0,
@@ -1005,6 +1008,9 @@ impl<'c> Simulation<'c> {
         if let Some(note) = note {
             run.message = if run.message.is_empty() { note } else { format!("{}; {note}", run.message) };
         }
+        run.metrics_finite = run.metrics.as_ref().is_some_and(|m| non_finite_metrics_warning(m).is_none());
+        run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));
+        run.warnings.extend(transient_warning(&run.t, &run.surface_rpm, &run.motor_torque, run.window));
         progress(1.0);
         run
     }
@@ -1028,73 +1034,6 @@ impl<'c> Simulation<'c> {
         }
         finite
     }
-}
-
-/// The warnings of a configuration with the wall break-off torque `breakoff` (see
-/// [`DrillRun::warnings`]).
-fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
-    let mut out = Vec::new();
-    let needed = static_torque(cfg, breakoff);
-    let limit = cfg.top_drive.torque_limit;
-    if limit < needed {
-        out.push(format!(
-            "top_drive.torque_limit = {} N m is below the static torque of the string, {} N m (the wall's \
-             break-off torque{}): the motor may never break it free",
-            Num(limit),
-            Num(needed),
-            if needed > breakoff { " and the bit's" } else { "" }
-        ));
-    }
-    out.extend(plausibility_warnings(cfg));
-    out
-}
-
-/// Drilling practice's ranges, beyond which a value is more likely a mistake (a unit, a digit)
-/// than a well: the bound, the field and the likely mistake.
-pub const PLAUSIBLE_OUTER_DIAMETER: f64 = 1.0;
-pub const PLAUSIBLE_BIT_RADIUS: f64 = 0.25;
-pub const PLAUSIBLE_STRING_LENGTH: f64 = 15_000.0;
-pub const PLAUSIBLE_RPM: f64 = 400.0;
-
-/// Warnings (not errors) for values far outside drilling practice: a pipe over
-/// [`PLAUSIBLE_OUTER_DIAMETER`] m across, a bit over 2 [`PLAUSIBLE_BIT_RADIUS`] m, a string
-/// longer than [`PLAUSIBLE_STRING_LENGTH`] m, a top-drive speed over [`PLAUSIBLE_RPM`] rpm.
-pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
-    let mut out = Vec::new();
-    for (i, s) in cfg.sections.iter().enumerate() {
-        if s.outer_diameter > PLAUSIBLE_OUTER_DIAMETER {
-            out.push(format!(
-                "sections[{i}].outer_diameter = {} m is over {} m: a diameter in mm or inches? (the configuration is in m)",
-                Num(s.outer_diameter),
-                Num(PLAUSIBLE_OUTER_DIAMETER)
-            ));
-        }
-    }
-    if cfg.bit.radius > PLAUSIBLE_BIT_RADIUS {
-        out.push(format!(
-            "bit.radius = {} m is a bit over {} m across: a diameter or inches? (bit.radius is half the diameter, in m)",
-            Num(cfg.bit.radius),
-            Num(2.0 * PLAUSIBLE_BIT_RADIUS)
-        ));
-    }
-    let length: f64 = cfg.sections.iter().map(|s| s.length).sum();
-    if length > PLAUSIBLE_STRING_LENGTH {
-        out.push(format!(
-            "the string is {} m long, over the {} m of the deepest wells: a length in feet? (the configuration is in m)",
-            Num(length),
-            Num(PLAUSIBLE_STRING_LENGTH)
-        ));
-    }
-    let rpm = std::iter::once(cfg.top_drive.rpm).chain(cfg.top_drive.steps.iter().map(|s| s[1]));
-    if let Some(fast) = rpm.map(f64::abs).filter(|r| *r > PLAUSIBLE_RPM).reduce(f64::max) {
-        out.push(format!(
-            "a top-drive speed of {} rpm is over the {} rpm of top drives: rad/s or a digit too many? \
-             (top_drive.rpm and top_drive.steps are in rpm)",
-            Num(fast),
-            Num(PLAUSIBLE_RPM)
-        ));
-    }
-    out
 }
 
 /// Refuses a proportional gain that the sampled controller loop cannot hold on this grid.

@@ -447,6 +447,31 @@ fn bad_configurations_name_the_field() {
 }
 
 #[test]
+fn the_bit_is_given_by_its_radius_or_its_diameter_not_both() {
+    let pipe = r#"{"length": 1000, "outer_diameter": 0.127, "inner_diameter": 0.1}"#;
+    let parse = |bit: &str| DrillConfig::from_json(&format!(r#"{{"sections": [{pipe}], "bit": {bit}}}"#));
+    let cfg = parse(r#"{"diameter": 0.2159}"#).unwrap();
+    assert_eq!((cfg.bit.radius, cfg.bit.diameter), (0.10795, None));
+    cfg.validate().unwrap();
+    let e = parse(r#"{"radius": 0.1, "diameter": 0.2}"#).unwrap_err();
+    assert_eq!(e.field(), "bit.diameter");
+    assert!(e.to_string().contains("both bit.radius and bit.diameter"), "{e}");
+    assert_eq!(parse(r#"{"diameter": -0.2}"#).unwrap_err().field(), "bit.diameter");
+    assert_eq!(parse(r#"{"radius": 0.1, "diameter": null}"#).unwrap().bit.radius, 0.1);
+    // an override of one replaces the other; both at once are refused
+    let base = cfg.to_json();
+    let set = |pairs: &str| override_json(&base, pairs, "--set", true).map(|c| c.bit.radius);
+    assert_eq!(set(r#"[["bit.diameter", 0.3]]"#).unwrap(), 0.15);
+    assert_eq!(set(r#"[["bit", {"diameter": 0.25}]]"#).unwrap(), 0.125);
+    assert_eq!(set(r#"[["bit.radius", 0.2]]"#).unwrap(), 0.2);
+    assert_eq!(set(r#"[["bit.radius", 0.2], ["bit.diameter", 0.3]]"#).unwrap_err().field(), "bit.diameter");
+    // a configuration built in Rust with both, disagreeing
+    let mut both = DrillConfig::default();
+    both.bit.diameter = Some(0.3);
+    assert_eq!(both.validate().unwrap_err().field(), "bit.diameter");
+}
+
+#[test]
 fn defaults_round_trip_and_well_b_example_parses() {
     let cfg = DrillConfig::default();
     let back = DrillConfig::from_json(&cfg.to_json()).unwrap();
@@ -1123,12 +1148,20 @@ fn absurd_sizes_are_refused_naming_the_field() {
 fn a_torque_limit_below_the_static_torque_warns() {
     let mut cfg = DrillConfig::default();
     cfg.numerics.duration = 1.0;
+    let limit_warnings = |run: &DrillRun| -> Vec<String> {
+        run.warnings.iter().filter(|w| w.contains("top_drive.torque_limit")).cloned().collect()
+    };
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
-    assert!(run.warnings.is_empty(), "{:?}", run.warnings);
+    assert!(limit_warnings(&run).is_empty(), "{:?}", run.warnings);
     cfg.top_drive.torque_limit = 0.5 * run.breakoff_torque;
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
-    assert_eq!(run.warnings.len(), 1);
-    assert!(run.warnings[0].contains("top_drive.torque_limit") && run.warnings[0].contains("never break"));
+    let w = limit_warnings(&run);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].contains("never break") && w[0].contains("a motor too small"), "{w:?}");
+    // a limit given in kN m: a thousand times it would do
+    cfg.top_drive.torque_limit = 1e-3 * run.breakoff_torque;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert!(limit_warnings(&run)[0].contains("a limit in kN m?"), "{:?}", run.warnings);
 }
 
 /// A section boundary within rounding of a survey station is solved (before: `drill` refused
@@ -1173,13 +1206,13 @@ fn a_metrics_window_outside_the_run_is_refused() {
 #[test]
 fn values_outside_drilling_practice_warn_naming_the_field() {
     let mut cfg = DrillConfig::default();
-    assert!(super::solver::plausibility_warnings(&cfg).is_empty());
+    assert!(super::plausibility::plausibility_warnings(&cfg).is_empty());
     cfg.sections[0].outer_diameter = 171.0;
     cfg.sections[0].inner_diameter = 100.0;
     cfg.bit.radius = 8.5;
     cfg.top_drive.rpm = -1e300;
     cfg.sections[0].length = 30_000.0;
-    let w = super::solver::plausibility_warnings(&cfg);
+    let w = super::plausibility::plausibility_warnings(&cfg);
     assert_eq!(w.len(), 4, "{w:?}");
     assert!(w[0].starts_with("sections[0].outer_diameter = 171 m"));
     assert!(w[1].starts_with("bit.radius = 8.5 m"));

@@ -1,0 +1,270 @@
+//! Warnings (not errors) for what makes a run doubtful: values far outside drilling practice
+//! (more likely a unit or a digit than a well), a top-drive torque limit below the torque that
+//! breaks the string free, a transient still decaying inside the metrics window, and metrics
+//! that are not finite. Each names the value and the likely mistake.
+
+use crate::error::Num;
+use crate::metrics::StickSlip;
+
+use super::config::DrillConfig;
+use super::grid::static_torque;
+
+/// The warnings of a configuration with the wall break-off torque `breakoff` (see
+/// [`super::DrillRun::warnings`]): [`torque_limit_warning`] and [`plausibility_warnings`].
+pub fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
+    let mut out: Vec<String> = torque_limit_warning(cfg, breakoff).into_iter().collect();
+    out.extend(plausibility_warnings(cfg));
+    out
+}
+
+/// A top-drive torque limit below the break-off torque of the string,
+/// [`static_torque`]`(cfg, breakoff)`: the wall's static friction torque `breakoff`
+/// ([`super::grid::breakoff_torque`]) plus, with the bit on bottom, its static torque
+/// `W r mu_s`. The likely mistake: a limit in kN m where N m are asked (a limit below 1 % of
+/// the static torque that a thousand times would cover), else a motor too small for the
+/// string or friction factors too high.
+pub fn torque_limit_warning(cfg: &DrillConfig, breakoff: f64) -> Option<String> {
+    let needed = static_torque(cfg, breakoff);
+    let limit = cfg.top_drive.torque_limit;
+    if limit.partial_cmp(&needed) != Some(std::cmp::Ordering::Less) {
+        return None;
+    }
+    let likely = if limit < 0.01 * needed && 1e3 * limit >= needed {
+        "a limit in kN m? (top_drive.torque_limit is in N m)"
+    } else {
+        "a motor too small for this string, or friction.static / bit.mu_static too high?"
+    };
+    Some(format!(
+        "top_drive.torque_limit = {} N m is below the static torque of the string, {} N m (the wall's \
+         break-off torque{}): the motor may never break it free; {likely}",
+        Num(limit),
+        Num(needed),
+        if needed > breakoff { " and the bit's" } else { "" }
+    ))
+}
+
+/// Drilling practice's ranges, beyond which a value is more likely a mistake (a unit, a digit)
+/// than a well: the bound, the field and the likely mistake.
+pub const PLAUSIBLE_OUTER_DIAMETER: f64 = 1.0;
+pub const PLAUSIBLE_BIT_RADIUS: f64 = 0.25;
+pub const PLAUSIBLE_STRING_LENGTH: f64 = 15_000.0;
+pub const PLAUSIBLE_RPM: f64 = 400.0;
+
+/// Warnings (not errors) for values far outside drilling practice: a pipe over
+/// [`PLAUSIBLE_OUTER_DIAMETER`] m across, a bit over 2 [`PLAUSIBLE_BIT_RADIUS`] m, a string
+/// longer than [`PLAUSIBLE_STRING_LENGTH`] m, a top-drive speed over [`PLAUSIBLE_RPM`] rpm.
+pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, s) in cfg.sections.iter().enumerate() {
+        if s.outer_diameter > PLAUSIBLE_OUTER_DIAMETER {
+            out.push(format!(
+                "sections[{i}].outer_diameter = {} m is over {} m: a diameter in mm or inches? (the configuration is in m)",
+                Num(s.outer_diameter),
+                Num(PLAUSIBLE_OUTER_DIAMETER)
+            ));
+        }
+    }
+    if cfg.bit.radius > PLAUSIBLE_BIT_RADIUS {
+        out.push(format!(
+            "bit.radius = {} m is a bit over {} m across: a diameter or inches? (bit.radius is half the diameter, in m)",
+            Num(cfg.bit.radius),
+            Num(2.0 * PLAUSIBLE_BIT_RADIUS)
+        ));
+    }
+    let length: f64 = cfg.sections.iter().map(|s| s.length).sum();
+    if length > PLAUSIBLE_STRING_LENGTH {
+        out.push(format!(
+            "the string is {} m long, over the {} m of the deepest wells: a length in feet? (the configuration is in m)",
+            Num(length),
+            Num(PLAUSIBLE_STRING_LENGTH)
+        ));
+    }
+    let rpm = std::iter::once(cfg.top_drive.rpm).chain(cfg.top_drive.steps.iter().map(|s| s[1]));
+    if let Some(fast) = rpm.map(f64::abs).filter(|r| *r > PLAUSIBLE_RPM).reduce(f64::max) {
+        out.push(format!(
+            "a top-drive speed of {} rpm is over the {} rpm of top drives: rad/s or a digit too many? \
+             (top_drive.rpm and top_drive.steps are in rpm)",
+            Num(fast),
+            Num(PLAUSIBLE_RPM)
+        ));
+    }
+    out
+}
+
+/// [`transient_warning`]: the relative change of an oscillation's peak-to-peak amplitude
+/// between the two halves of the metrics window above which it is still growing or decaying.
+pub const TRANSIENT_AMPLITUDE_CHANGE: f64 = 0.25;
+/// [`transient_warning`]: the relative change of the mean motor torque between the halves
+/// above which the mean is still drifting.
+pub const TRANSIENT_MEAN_CHANGE: f64 = 0.1;
+/// [`transient_warning`]: oscillations with a peak-to-peak amplitude below this fraction of the
+/// series' mean magnitude are not judged (a ripple, or no oscillation).
+pub const TRANSIENT_MIN_AMPLITUDE: f64 = 0.05;
+
+/// Mean, min and max of `x` over the samples of `t` in `[a, b)` (`[a, b]` when `closed`), with
+/// their count.
+fn half(t: &[f64], x: &[f64], a: f64, b: f64, closed: bool) -> (usize, f64, f64, f64) {
+    let (mut n, mut sum, mut lo, mut hi) = (0usize, 0.0, f64::INFINITY, f64::NEG_INFINITY);
+    for (&ti, &xi) in t.iter().zip(x) {
+        if ti >= a && (ti < b || (closed && ti <= b)) {
+            n += 1;
+            sum += xi;
+            lo = lo.min(xi);
+            hi = hi.max(xi);
+        }
+    }
+    (n, sum / n as f64, lo, hi)
+}
+
+/// A transient still decaying (or growing) inside the metrics window `[a, b]`, judged on the
+/// two halves `[a, m)` and `[m, b]`, `m = (a + b) / 2`, of the surface speed and the motor
+/// torque sampled at `t`:
+///
+/// * an oscillation whose peak-to-peak amplitude (max - min over a half) changes by more than
+///   [`TRANSIENT_AMPLITUDE_CHANGE`] of the larger of the two, when that one exceeds
+///   [`TRANSIENT_MIN_AMPLITUDE`] of the series' mean magnitude over the window (a steady cycle
+///   shorter than a half has the same amplitude in both);
+/// * a mean motor torque that moves by more than [`TRANSIENT_MEAN_CHANGE`] of the larger mean
+///   magnitude and by more than half the torque's peak-to-peak amplitude in either half (a
+///   steady cycle moves the mean of a half by less: a part of one cycle over at least one).
+///
+/// None with fewer than 2 samples in a half or non-finite values. The likely mistake: a run too
+/// short, or a window that starts too early.
+pub fn transient_warning(t: &[f64], surface_rpm: &[f64], motor_torque: &[f64], window: [f64; 2]) -> Option<String> {
+    let [a, b] = window;
+    let m = 0.5 * (a + b);
+    let mut found = Vec::new();
+    for (name, unit, x) in [("surface speed", "rpm", surface_rpm), ("motor torque", "N m", motor_torque)] {
+        let (n1, mean1, lo1, hi1) = half(t, x, a, m, false);
+        let (n2, mean2, lo2, hi2) = half(t, x, m, b, true);
+        if n1 < 2 || n2 < 2 || ![mean1, mean2, lo1, lo2, hi1, hi2].iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let (p1, p2) = (hi1 - lo1, hi2 - lo2);
+        let level = 0.5 * (mean1.abs() + mean2.abs());
+        let big = p1.max(p2);
+        if big > TRANSIENT_MIN_AMPLITUDE * level && (p2 - p1).abs() > TRANSIENT_AMPLITUDE_CHANGE * big {
+            found.push(format!(
+                "the {name}'s peak-to-peak amplitude went from {} to {} {unit} ({:+.0} %)",
+                Num(p1),
+                Num(p2),
+                100.0 * (p2 - p1) / p1.max(f64::MIN_POSITIVE)
+            ));
+        }
+        if name == "motor torque" {
+            let moved = (mean2 - mean1).abs();
+            if moved > TRANSIENT_MEAN_CHANGE * mean1.abs().max(mean2.abs()) && moved > 0.5 * big {
+                found.push(format!("the mean motor torque went from {} to {} N m", Num(mean1), Num(mean2)));
+            }
+        }
+    }
+    (!found.is_empty()).then(|| {
+        format!(
+            "a transient is still decaying in the metrics window [{}, {}] s: between its halves {}; the metrics \
+             describe the approach, not the steady state: a run too short or a window that starts too early? \
+             (lengthen numerics.duration or move metrics.window later)",
+            Num(a),
+            Num(b),
+            found.join(" and ")
+        )
+    })
+}
+
+/// The headline metrics a run reports as its result (the drilling names) with their values:
+/// the severity (`ssi`), the stuck fraction, the bit speed's min, max and mean and the motor
+/// torque's min and max; each is finite in a run that has metrics. (The period and what depends
+/// on it are NaN by definition without a periodic motion.)
+fn headline(m: &StickSlip) -> [(&'static str, f64); 7] {
+    [
+        ("ssi", m.severity),
+        ("stuck_fraction", m.stuck_fraction),
+        ("bit_rpm_min", m.rpm_min),
+        ("bit_rpm_max", m.rpm_max),
+        ("bit_rpm_mean", m.rpm_mean),
+        ("motor_torque_min_Nm", m.torque_min),
+        ("motor_torque_max_Nm", m.torque_max),
+    ]
+}
+
+/// The names of the headline metrics ([`headline`]) that are not finite.
+pub fn non_finite_metrics(m: &StickSlip) -> Vec<&'static str> {
+    headline(m).into_iter().filter(|(_, v)| !v.is_finite()).map(|(name, _)| name).collect()
+}
+
+/// The warning of [`non_finite_metrics`] (None when all are finite): the run is not a success
+/// ([`super::DrillRun::metrics_finite`] false).
+pub fn non_finite_metrics_warning(m: &StickSlip) -> Option<String> {
+    let bad: Vec<String> =
+        headline(m).into_iter().filter(|(_, v)| !v.is_finite()).map(|(n, v)| format!("{n} = {}", Num(v))).collect();
+    (!bad.is_empty()).then(|| {
+        format!(
+            "not a result: {} {} not finite; the run reached its end but these metrics are undefined (a bit that \
+             never turns: a torque limit too low or a setpoint of 0 rpm?)",
+            bad.join(", "),
+            if bad.len() == 1 { "is" } else { "are" },
+        )
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+    use crate::interrupt::Never;
+
+    fn series(f: impl Fn(f64) -> f64) -> (Vec<f64>, Vec<f64>) {
+        let t: Vec<f64> = (0..=6000).map(|k| k as f64 * 0.01).collect();
+        let x = t.iter().map(|&t| f(t)).collect();
+        (t, x)
+    }
+
+    #[test]
+    fn a_steady_cycle_is_no_transient_a_decaying_or_drifting_one_is() {
+        let w = [30.0, 60.0];
+        // a steady cycle of period 7 s (4.3 cycles per half): the halves' means differ by the
+        // partial cycle, amplitudes are equal
+        let (t, speed) = series(|t| 40.0 + 20.0 * (2.0 * PI * t / 7.0).sin());
+        let (_, torque) = series(|t| 10e3 + 5e3 * (2.0 * PI * t / 7.0).cos());
+        assert_eq!(transient_warning(&t, &speed, &torque, w), None);
+        // a decaying oscillation: amplitude exp(-t / 20) over 15 s between the halves' starts
+        let (_, decaying) = series(|t| 40.0 + 20.0 * (-t / 20.0).exp() * (2.0 * PI * t / 7.0).sin());
+        let msg = transient_warning(&t, &decaying, &torque, w).expect("decaying");
+        assert!(msg.contains("surface speed's peak-to-peak") && msg.contains("[30, 60]"), "{msg}");
+        // a ripple of 1 % of the mean speed decaying is not judged
+        let (_, ripple) = series(|t| 40.0 + 0.2 * (-t / 20.0).exp() * (2.0 * PI * t / 7.0).sin());
+        assert_eq!(transient_warning(&t, &ripple, &torque, w), None);
+        // a mean torque still drifting, 200 N m/s with a small ripple: the halves' means differ
+        // by 200 * 15 = 3 kN m, over 10 % of 20.5 kN m and over half the halves' 3.1 kN m ranges
+        let (_, drifting) = series(|t| 10e3 + 200.0 * t + 50.0 * (2.0 * PI * t / 7.0).sin());
+        let (_, steady) = series(|_| 40.0);
+        let msg = transient_warning(&t, &steady, &drifting, w).expect("drifting");
+        assert!(msg.contains("mean motor torque went from"), "{msg}");
+        // 100 N m/s: 1.5 kN m between the halves, under 10 % of 15.25 kN m
+        let (_, slow) = series(|t| 10e3 + 100.0 * t + 50.0 * (2.0 * PI * t / 7.0).sin());
+        assert_eq!(transient_warning(&t, &steady, &slow, w), None);
+        // a window with fewer than 2 samples in a half: nothing to judge
+        assert_eq!(transient_warning(&t, &decaying, &torque, [59.995, 60.0]), None);
+    }
+
+    #[test]
+    fn non_finite_metrics_are_not_a_result() {
+        let mut cfg = DrillConfig::default();
+        cfg.numerics.duration = 4.0;
+        cfg.numerics.cells = 100;
+        let run = super::super::solve(&cfg, &Never, &mut |_| {}).unwrap();
+        assert!(run.metrics_finite, "{:?}", run.warnings);
+        cfg.top_drive.rpm = 0.0;
+        let run = super::super::solve(&cfg, &Never, &mut |_| {}).unwrap();
+        assert_eq!(run.status, crate::solution::Status::Success);
+        let m = run.metrics.as_ref().unwrap();
+        assert!(m.severity.is_nan());
+        assert_eq!(non_finite_metrics(m), vec!["ssi"]);
+        assert!(!run.metrics_finite);
+        assert!(
+            run.warnings.iter().any(|w| w.starts_with("not a result: ssi = nan is not finite")),
+            "{:?}",
+            run.warnings
+        );
+    }
+}
