@@ -108,7 +108,7 @@ def initial_state(p: dict) -> tuple[np.ndarray, ...]:
     return h0, v0, f0, o0, l0
 
 
-class _Delay:
+class CutDelay:
     """The exact delay: records (angle, axial position) of the bit face, one per sub-step, the surface under
     a blade interpolated linearly in the angle one blade angle back (the previous pass, cut or not)."""
 
@@ -136,6 +136,37 @@ class _Delay:
     def push(self, phi: float, x: float) -> None:
         self.phi[self.n], self.x[self.n] = phi, x
         self.n += 1
+
+
+def upwind_cut_surface(l: np.ndarray, dt: float, dxl: float, omega: float, v: float, blades: float) -> np.ndarray:
+    """One step of ``waveStep_transportBRI.m:93-94``: ``l_pad = [0; l];``
+    ``l = l - dt/dxl *max(ob,0)*p.N/(2*pi) *diff(l_pad) + dt*vb;`` (their order of operations)."""
+    return l - dt / dxl * max(omega, 0.0) * blades / (2 * math.pi) * np.diff(np.concatenate((_ZERO, l))) + dt * v
+
+
+_ZERO = np.zeros(1)
+
+
+def set_valued_bit(p: dict, hold_w: float, hold_t: float, d: float) -> tuple[float, float, float, float, bool]:
+    """The bit law as a set-valued boundary, no thresholds: ``(W, T, W_f, g_tt, stuck)`` for the depth of cut
+    per revolution ``d`` and the loads ``hold_w = Z_a alpha_P``, ``hold_t = Z_t alpha_P^t`` that would hold the
+    bit face at rest (the face speeds are then ``alpha_P - W / Z_a``, ``alpha_P^t - T / Z_t``).
+
+    * lift-off, ``d <= 0``: ``W = T = 0``;
+    * cutting, ``hold_t > T_c + T_f``: ``W = W_c + W_f``, ``T = T_c + T_f``,
+      ``W_f = clip(hold_w - W_c, 0, a l sigma)`` (full while the face advances, the force that holds it
+      otherwise, none while it rises), ``T_f = gamma mu a W_f`` (their convention, no 1/2);
+    * stick, otherwise: ``T = hold_t`` (face not turning), ``W = max(hold_w, 0)`` (face held axially
+      unless the string pulls it up); ``g_tt = hold_t - T_c - T_f`` as their stick torque.
+    """
+    if d <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0, False
+    wc, tc = d * p["K_a"], d * p["K_t"]
+    wf = min(max(hold_w - wc, 0.0), p["Wf"])
+    tf = p["Tf"] * wf
+    if hold_t > tc + tf:
+        return wc + wf, tc + tf, wf, 0.0, False
+    return max(hold_w, 0.0), hold_t, 0.0, hold_t - tc - tf, True
 
 
 def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Scheme = PUBLISHED,
@@ -180,12 +211,11 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
             dxl = 1 / pl
     else:
         raise ValueError(f"cut_surface: one of upwind, delay, not {scheme.cut_surface!r}")
-    lzero = np.zeros(1)
     dt_l = dt / sub
 
     nt = math.floor(t1 / p["dt"] + 1e-9) + 1  # numel(T0:p.dt:T1)
     if delay is None and scheme.cut_surface == "delay":
-        delay = _Delay(p, nt * n)
+        delay = CutDelay(p, nt * n)
     out = {k: np.empty(nt) for k in ("t_end_s", "bit_cell_speed_end_m_s", "bit_cell_speed_end_rad_s",
                                      *_MEANS, *_LAST)}
     acc = np.zeros(len(_MEANS))
@@ -225,20 +255,8 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
                 wb = wc + wf + g_wt + 0.0
                 stuck = g_tt != 0.0
             elif scheme.regime == "set_valued":
-                hold_w, hold_t = Za * aP, Zt * tP
-                if d <= 0.0:  # lift-off
-                    wb = tb = wf = tf = g_tt = 0.0
-                    ga, stuck = 0.0, False
-                else:
-                    wf = min(max(hold_w - wc, 0.0), Wf)
-                    tf = Tf * wf
-                    ga = wf / Wf
-                    if hold_t > tc + tf:  # cutting
-                        wb, tb, g_tt, stuck = wc + wf, tc + tf, 0.0, False
-                    else:  # stick: the face held in rotation, and axially unless pulled up
-                        wb, tb, stuck = max(hold_w, 0.0), hold_t, True
-                        g_tt = hold_t - tc - tf
-                        wf = 0.0
+                wb, tb, wf, g_tt, stuck = set_valued_bit(p, Za * aP, Zt * tP, d)
+                ga = wf / Wf
             else:
                 raise ValueError(f"regime: one of threshold, set_valued, not {scheme.regime!r}")
             AbetaPp1 = aP - 2 * wb * c_a / (Ap * E)
@@ -267,7 +285,7 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
                 sv, so = v_face, o_face
             if delay is None:
                 for _c in range(sub):
-                    lcut = lcut - dt_l / dxl * max(so, 0.0) * Nb / (2 * pi) * np.diff(np.concatenate((lzero, lcut))) + dt_l * sv
+                    lcut = upwind_cut_surface(lcut, dt_l, dxl, so, sv, Nb)
             else:
                 x_bit += dt * sv
                 phi_bit += dt * max(so, 0.0)
