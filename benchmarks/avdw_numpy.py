@@ -310,9 +310,9 @@ RPM = 60.0 / (2.0 * math.pi)
 
 
 def metrics(res: dict[str, np.ndarray], rpm: float, rop: float, window: tuple[float, float]) -> dict:
-    """The metrics of ``make_reference.py`` over the steps starting at ``window[0]`` or later."""
-    t_end = res["t_end_s"]
-    sel = t_end - 0.003 >= window[0] - 1e-9
+    """The metrics of ``make_reference.py`` over the steps starting in ``[window[0], window[1]]``."""
+    t_start = res["t_end_s"] - 0.003
+    sel = (t_start >= window[0] - 1e-9) & (t_start <= window[1] + 1e-9)
     vb = res["bit_cell_speed_end_m_s"][sel]
     ob = res["bit_cell_speed_end_rad_s"][sel]
     wob, tob = res["wob_N"][sel], res["tob_Nm"][sel]
