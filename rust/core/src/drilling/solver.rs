@@ -113,7 +113,7 @@ use crate::solution::{serialize_list, Status};
 
 use super::bit::slip_torque;
 use super::config::{ControllerKind, DrillConfig, FrictionModel, Nonlinearity};
-use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid, SectionProps};
+use super::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, static_torque, Grid, SectionProps};
 use super::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
 
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
