@@ -56,6 +56,7 @@ from .drilling import (
     load_drill_config,
     torque_drag,
 )
+from .calibration.fit import FitResult, fit
 from .errors import DrillstringError, SolveError, ValidationError
 from .model.coefficients import PDECoefficients
 from .model.galerkin import ModalCoefficients, project
@@ -188,6 +189,9 @@ __all__ = [
     "DrillResult",
     "DrillMetrics",
     "load_drill_config",
+    # calibration from measured data
+    "fit",
+    "FitResult",
     # the paper
     "table2",
     "Table2Row",
