@@ -14,7 +14,7 @@ of different units combine). The misfit is the sum of their squares (``ssr``).
 
 Stages:
 
-1. **global**: a scrambled Sobol sample of the parameter box (``samples`` points, default 16 per
+1. **global**: a scrambled Sobol sample of the parameter box (``samples`` points, default 32 per
    parameter rounded up to a power of two) solved as one batch on ``threads`` threads;
 2. **refinement**: :func:`scipy.optimize.least_squares` (trust-region reflective, in the box
    scaled to ``[0, 1]``) from the best sample, its forward-difference Jacobian solved as one
@@ -62,6 +62,9 @@ __all__ = ["CONDITION_LIMIT", "Event", "FitResult", "Landscape", "ParameterEstim
 CONDITION_LIMIT = 1e3
 #: The residual of a run that failed (normalised units), so that the optimiser moves away from it.
 FAILED_RESIDUAL = 1e2
+#: Starts of the refinement are the best points of the global stage at least this far apart
+#: (largest coordinate difference in the box scaled to [0, 1]).
+START_SEPARATION = 0.2
 #: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
 PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
@@ -449,7 +452,7 @@ def fit(
     threads: Optional[int] = None,
     seed: int = 0,
     level: float = 0.95,
-    starts: int = 2,
+    starts: int = 3,
     max_iterations: int = 50,
     diff_step: float = 1e-2,
     profile: Union[bool, str] = "auto",
@@ -480,7 +483,7 @@ def fit(
     per_event : keys
         Parameters with one value per event (the others are shared).
     samples : int, optional
-        Points of the global stage (a power of two; default 16 per parameter rounded up).
+        Points of the global stage (a power of two; default 32 per parameter, at least 64, rounded up).
     threads : int, optional
         Runs solved at once (default: every core).
     profile : ``"auto"``, True or False
@@ -550,7 +553,7 @@ def fit(
     # 1. the global stage
     from scipy.stats import qmc
 
-    n = samples if samples is not None else 16 * p
+    n = samples if samples is not None else max(32 * p, 64)
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise ValidationError("samples", samples, "an integer >= 1")
     m = max(int(math.ceil(math.log2(n))), 1)
@@ -564,7 +567,10 @@ def fit(
                     "failed": int(np.sum(global_ssr >= FAILED_RESIDUAL ** 2))}
 
     # 2. the refinement, from the best few points of the global stage
-    order = np.argsort(global_ssr)[:starts]
+    order: list[int] = []
+    for k in np.argsort(global_ssr):
+        if len(order) < starts and all(np.max(np.abs(sobol[k] - sobol[j])) >= START_SEPARATION for j in order):
+            order.append(int(k))
     say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr[best]:.4g})")
     runs = [_refine(problem, sobol[k].copy(), list(range(p)), diff_step, max_iterations) for k in order]
     u_opt, ssr, refinement = min(runs, key=lambda run: run[1])
