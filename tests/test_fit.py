@@ -117,6 +117,31 @@ def test_the_ridge_of_static_friction_and_kinetic_ratio(short_config, synthetic)
     assert fitted == pytest.approx(0.195, rel=0.01)
 
 
+def test_two_start_ups_with_a_shared_and_a_per_event_parameter(short_config):
+    """Two start-ups (40 and 60 rpm) of one well: the static friction shared, the kinetic ratio
+    one per event (0.65 and 0.55: e.g. a mud change between them)."""
+    configs = [short_config.with_overrides({"numerics.duration": 6.0}),
+               short_config.with_overrides({"numerics.duration": 6.0, "top_drive.rpm": 60.0})]
+    ratios = (0.65, 0.55)
+    data = []
+    for e, (cfg, ratio) in enumerate(zip(configs, ratios)):
+        run = ds.drill(cfg.with_overrides({"friction.kinetic_ratio": ratio}))
+        noise = np.random.default_rng(10 + e).normal(0.0, 500.0, run.t[::5].size)
+        data.append(MeasuredData(run.t[::5], {"motor_torque": run.motor_torque[::5] + noise}, source=f"event {e}"))
+    res = ds.fit(configs, data, BOUNDS, per_event=["friction.kinetic_ratio"], landscape=False, threads=2)
+    assert list(res.parameters) == ["friction.static", "events[0].friction.kinetic_ratio",
+                                    "events[1].friction.kinetic_ratio"]
+    truth = {"friction.static": 0.3, "events[0].friction.kinetic_ratio": 0.65,
+             "events[1].friction.kinetic_ratio": 0.55}
+    for key, true in truth.items():
+        p = res.parameters[key]
+        assert p.ci_low <= true <= p.ci_high, (key, p)
+        assert p.ci_high - p.ci_low < 0.1 * true, (key, p)
+    assert [c.friction.kinetic_ratio for c in res.configs] == pytest.approx(
+        [res.parameters[f"events[{e}].friction.kinetic_ratio"].value for e in range(2)])
+    assert [c.top_drive.rpm for c in res.configs] == [40.0, 60.0]
+
+
 # --------------------------------------------------------------------------- data
 
 

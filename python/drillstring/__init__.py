@@ -46,6 +46,7 @@ from . import plots as plots
 from . import solvers as solvers
 from . import studies as studies
 from ._core import __version__, simd_path
+from .calibration.fit import FitResult, fit
 from .drilling import (
     DrillConfig,
     DrillMetrics,
@@ -56,7 +57,6 @@ from .drilling import (
     load_drill_config,
     torque_drag,
 )
-from .calibration.fit import FitResult, fit
 from .errors import DrillstringError, SolveError, ValidationError
 from .model.coefficients import PDECoefficients
 from .model.galerkin import ModalCoefficients, project

@@ -933,7 +933,7 @@ def _add_fit(sub: Any) -> None:
     p.add_argument("--start", type=_finite_float, default=0.0, metavar="S",
                    help="the data's time of the start-up (the model's t = 0), s (default 0)")
     p.add_argument("--samples", type=_int_in(1, 1 << 20), default=None,
-                   help="points of the global stage (default 32 per parameter, at least 64)")
+                   help="points of the global stage (default 64 per parameter, at least 128)")
     p.add_argument("--threads", type=_int_in(1, _core.MAX_THREADS), default=None,
                    help=f"threads, 1..{_core.MAX_THREADS} (default: every core)")
     p.add_argument("--landscape-points", type=_int_in(2, 101), default=9,

@@ -14,11 +14,13 @@ of different units combine). The misfit is the sum of their squares (``ssr``).
 
 Stages:
 
-1. **global**: a scrambled Sobol sample of the parameter box (``samples`` points, default 32 per
-   parameter rounded up to a power of two) solved as one batch on ``threads`` threads;
+1. **global**: a scrambled Sobol sample of the parameter box (``samples`` points, default 64 per
+   parameter, at least 128, rounded up to a power of two) solved as one batch on ``threads``
+   threads, over the first ``horizon`` seconds (or more) of the windows;
 2. **refinement**: :func:`scipy.optimize.least_squares` (trust-region reflective, in the box
-   scaled to ``[0, 1]``) from the best sample, its forward-difference Jacobian solved as one
-   batch of runs per iteration;
+   scaled to ``[0, 1]``) from the ``starts`` best distinct samples, over that horizon and its
+   doubles up to the whole windows in turn, its forward-difference Jacobian solved as one batch of runs
+   per iteration;
 3. **uncertainty**: the covariance ``s^2 (J^T J)^-1`` at the optimum (``s^2 = ssr / (n - p)``,
    inflated by ``(1 + rho) / (1 - rho)`` for a lag-one autocorrelation ``rho > 0`` of the
    residuals: correlated residuals carry less information than their count), Student-t
@@ -202,7 +204,7 @@ class _Problem:
     """The residuals of the events as a function of the parameter vector scaled to ``[0, 1]``."""
 
     def __init__(self, events: list[Event], columns: list[_Column], targets: dict[str, float],
-                 threads: int) -> None:
+                 threads: int, fraction: float = 1.0) -> None:
         self.events = events
         self.columns = columns
         self.targets = targets
@@ -218,7 +220,9 @@ class _Problem:
         self.scale: list[dict[str, float]] = []
         for ev in events:
             dt = ev.config.numerics.output_interval
-            end = max(b for _, b in ev.windows)
+            first = min(a for a, _ in ev.windows)
+            end = first + fraction * (max(b for _, b in ev.windows) - first)
+            ev = Event(ev.config, ev.data, tuple((a, min(b, end)) for a, b in ev.windows if a < end or a == first))
             # the output times nearest the measured samples (every output time when the data are finer)
             k = np.unique(np.rint(ev.data.t[(ev.data.t >= 0) & (ev.data.t <= end + 1e-9)] / dt).astype(np.int64))
             k = k[k * dt <= end + 1e-9]
@@ -229,7 +233,7 @@ class _Problem:
             idx = k[inside]
             if idx.size == 0:
                 raise ValidationError("windows", ev.windows, f"windows holding model output times (every {dt:g} s)")
-            times = idx * dt
+            times = (idx * dt).astype(np.float64)
             meas = {s: ev.data.resample(s, times) for s in targets}
             scales = {}
             for s, v in meas.items():
@@ -259,9 +263,10 @@ class _Problem:
         out = _core.drill_solve(json.dumps(cfg))
         if out["status"] != "success":
             return f"{out['status']}: {out['message']}"
+        series: dict[str, Any] = dict(out)
         if whole:
-            return {name: np.asarray(out[name]) for name in ("t", *MODEL_SERIES)}
-        return {s: np.asarray(out[s])[self.index[e]] for s in self.targets}
+            return {name: np.asarray(series[name]) for name in ("t", *MODEL_SERIES)}
+        return {s: np.asarray(series[s])[self.index[e]] for s in self.targets}
 
     def run(self, points: Sequence[NDArray[np.float64]], whole: bool = False) -> list[list[Any]]:
         """Solves every event at every point (one batch on the threads): per point, per event,
@@ -452,7 +457,8 @@ def fit(
     threads: Optional[int] = None,
     seed: int = 0,
     level: float = 0.95,
-    starts: int = 3,
+    starts: int = 4,
+    horizon: float = 5.0,
     max_iterations: int = 50,
     diff_step: float = 1e-2,
     profile: Union[bool, str] = "auto",
@@ -483,7 +489,16 @@ def fit(
     per_event : keys
         Parameters with one value per event (the others are shared).
     samples : int, optional
-        Points of the global stage (a power of two; default 32 per parameter, at least 64, rounded up).
+        Points of the global stage (a power of two; default 64 per parameter, at least 128, rounded up).
+    starts : int
+        Refinements, from the best points of the global stage at least
+        :data:`START_SEPARATION` apart.
+    horizon : float
+        The global stage compares the first ``horizon`` seconds or more of the windows (the
+        span halved until it is shorter than twice ``horizon``) and each start is refined over
+        that, twice that, ... and the whole span in turn: the later cycles of a stick-slip
+        record shift in phase with the parameters and make the whole record's misfit
+        many-valleyed. Choose it to hold the break-off and the first slip.
     threads : int, optional
         Runs solved at once (default: every core).
     profile : ``"auto"``, True or False
@@ -545,24 +560,33 @@ def fit(
         else:
             columns.append(_Column(key, key, None, lo, hi))
     p = len(columns)
-    problem = _Problem(events, columns, target_map, threads)
-    if problem.points <= p:
+    if isinstance(horizon, bool) or not isinstance(horizon, (int, float)) or not horizon > 0:
+        raise ValidationError("horizon", horizon, "a time > 0, s")
+    longest = max(max(b for _, b in e.windows) - min(a for a, _ in e.windows) for e in events)
+    fractions = [1.0]
+    while fractions[0] * longest / 2 >= horizon * (1 - 1e-9):
+        fractions.insert(0, fractions[0] / 2)
+    problems = [_Problem(events, columns, target_map, threads, f) for f in fractions]
+    problem = problems[-1]
+    if min(q.points for q in problems) <= p:
         raise ValidationError("windows", [e.windows for e in events],
-                              f"more compared samples ({problem.points}) than parameters ({p})")
+                              f"more compared samples ({min(q.points for q in problems)}, in the shortest horizon) "
+                              f"than parameters ({p})")
 
     # 1. the global stage
     from scipy.stats import qmc
 
-    n = samples if samples is not None else max(32 * p, 64)
+    n = samples if samples is not None else max(64 * p, 128)
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise ValidationError("samples", samples, "an integer >= 1")
     m = max(int(math.ceil(math.log2(n))), 1)
     sobol = qmc.Sobol(d=p, scramble=True, seed=seed).random_base2(m)
-    say(f"global stage: {sobol.shape[0]} points x {len(events)} event(s) on {threads} thread(s)")
-    global_ssr = np.array([float(r @ r) for r in problem.residuals(list(sobol))])
+    say(f"global stage: {sobol.shape[0]} points x {len(events)} event(s) on {threads} thread(s), over "
+        f"{fractions[0]:.3g} of the windows' span")
+    global_ssr = np.array([float(r @ r) for r in problems[0].residuals(list(sobol))])
     best = int(np.argmin(global_ssr))
     u0 = sobol[best].copy()
-    global_stage = {"points": int(sobol.shape[0]), "best_ssr": float(global_ssr[best]),
+    global_stage = {"points": int(sobol.shape[0]), "best_ssr": float(global_ssr[best]), "horizon": fractions[0],
                     "best": {c.name: float(v) for c, v in zip(columns, problem.values(u0))},
                     "failed": int(np.sum(global_ssr >= FAILED_RESIDUAL ** 2))}
 
@@ -572,9 +596,15 @@ def fit(
         if len(order) < starts and all(np.max(np.abs(sobol[k] - sobol[j])) >= START_SEPARATION for j in order):
             order.append(int(k))
     say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr[best]:.4g})")
-    runs = [_refine(problem, sobol[k].copy(), list(range(p)), diff_step, max_iterations) for k in order]
+    runs = []
+    for k in order:  # each start through the horizons, the shortest first
+        u = sobol[k].copy()
+        for q in problems:
+            u, ssr_k, info = _refine(q, u, list(range(p)), diff_step, max_iterations)
+        runs.append((u, ssr_k, info))
     u_opt, ssr, refinement = min(runs, key=lambda run: run[1])
-    refinement = {**refinement, "starts": len(order), "ssr": ssr, "ssr_of_starts": [run[1] for run in runs]}
+    refinement = {**refinement, "starts": len(order), "ssr": ssr, "ssr_of_starts": [run[1] for run in runs],
+                  "horizons": fractions}
     r = problem.residuals([u_opt])[0]
     x_opt = problem.values(u_opt)
 
@@ -594,7 +624,6 @@ def fit(
     condition = float(sing[0] / sing[-1]) if sing[-1] > 0 else math.inf
     cov_u = s2 * np.linalg.pinv(J.T @ J)
     se = np.sqrt(np.maximum(np.diag(cov_u), 0.0)) * span
-    tq = float(stats.t.ppf(0.5 + level / 2, max(dof / inflation, 1.0)))
     estimates: dict[str, ParameterEstimate] = {}
     need_profile = []
     threshold = s2 * float(stats.chi2.ppf(level, 1))
@@ -607,13 +636,13 @@ def fit(
         for sign in (1.0, -1.0):
             path_points += [np.clip(u_opt + sign * m * direction, 0.0, 1.0) for m in PATH_MULTIPLES]
     path_ssr = np.array([float(v @ v) for v in problem.residuals(path_points)]) - ssr
-    per = len(PATH_MULTIPLES)
+    count = len(PATH_MULTIPLES)
     for i, c in enumerate(columns):
         ends = []
         for side in range(2):
-            block = slice((2 * i + side) * per, (2 * i + side + 1) * per)
-            xs = np.array([problem.values(w)[i] for w in path_points[block]])
-            inside = path_ssr[block] <= threshold
+            part = slice((2 * i + side) * count, (2 * i + side + 1) * count)
+            xs = np.array([problem.values(w)[i] for w in path_points[part]])
+            inside = path_ssr[part] <= threshold
             if not inside[0] or not math.isfinite(se[i]):
                 ends.append(x_opt[i] + (1 if side == 0 else -1) * PATH_MULTIPLES[0] * math.sqrt(
                     threshold / s2) * se[i])
@@ -705,7 +734,7 @@ def fit(
             warnings_.append(f"the fitted configuration's run failed: {w}")
     return FitResult(
         parameters=estimates, configs=fitted_configs, events=events, targets=target_map, ssr=ssr, points=npts,
-        level=level, evaluations=problem.evaluations, seconds=time.perf_counter() - start_time,
+        level=level, evaluations=sum(q.evaluations for q in problems), seconds=time.perf_counter() - start_time,
         condition=condition, residual_autocorrelation=rho, global_stage=global_stage, refinement=refinement,
         rms=rms, fitted=fitted, landscapes=landscapes, profiles=profiles, warnings=warnings_,
     )

@@ -139,7 +139,8 @@ def landscape_figure(result: FitResult) -> Figure:
 
     names = list(result.parameters)
     p = len(names)
-    fig, axes = plt.subplots(p - 1, p - 1, figsize=(3.6 * (p - 1) + 1, 3.2 * (p - 1)), squeeze=False)
+    fig, axes = plt.subplots(p - 1, p - 1, figsize=(3.6 * (p - 1) + 1.2, 3.2 * (p - 1) + 0.4), squeeze=False,
+                             constrained_layout=True)
     for ax in axes.flat:
         ax.set_visible(False)
     floor = max(result.ssr, 1e-300)
@@ -203,7 +204,8 @@ def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
     lines = [
         "# Calibration from measured data",
         "",
-        f"{len(result.events)} event(s), targets {', '.join(f'{k} (weight {v:g})' for k, v in result.targets.items())}; "
+        f"{len(result.events)} event(s), targets "
+        f"{', '.join(f'{k} (weight {v:g})' for k, v in result.targets.items())}; "
         f"{result.points} compared samples; {result.evaluations} model runs in {result.seconds:.3g} s.",
         "",
         f"## Parameters ({result.level:.0%} intervals)",
