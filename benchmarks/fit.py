@@ -5,9 +5,9 @@ The data are the example's own surface torque at 20 Hz with 500 N m of sensor no
 the fit estimates ``friction.static``, ``friction.kinetic_ratio``, ``friction.stick_speed`` and
 ``damping_rate`` in wide bounds by :func:`drillstring.fit` (global Sobol stage of 256 points
 over the first 7.5 s, least-squares refinement from 4 starts over 7.5, 15 and 30 s, intervals;
-``--landscape`` adds the six pair landscapes). Reports the wall time, the model runs, the CPU seconds the machine used meanwhile
-(the machine may be shared), the recovered values against the truth and whether each interval
-holds it.
+``--landscape`` adds the six pair landscapes). Reports the wall time, the model runs, the CPU
+seconds the machine used meanwhile (the machine may be shared), the recovered values against the
+truth and whether each interval holds it.
 
     python benchmarks/fit.py [--duration 30] [--cells 1000] [--threads 2] [--landscape] [--samples N]
                              [--starts 4] [--horizon 5]
