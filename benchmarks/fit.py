@@ -21,6 +21,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from drill_map import machine_cpu  # benchmarks/drill_map.py: CPU seconds of the whole machine
 
 import drillstring as ds
 from drillstring.calibration.data import MeasuredData
@@ -30,17 +31,6 @@ TRUTH = {"friction.static": 0.3, "friction.kinetic_ratio": 0.65, "friction.stick
          "damping_rate": 0.08333333333333333}
 BOUNDS = {"friction.static": (0.1, 0.6), "friction.kinetic_ratio": (0.3, 0.95), "friction.stick_speed": (0.5, 3.0),
           "damping_rate": (0.0, 0.3)}
-
-
-def machine_cpu() -> float:
-    """CPU seconds used by every process so far, from /proc/stat (0 where it does not exist)."""
-    try:
-        with open("/proc/stat") as handle:
-            fields = [int(v) for v in handle.readline().split()[1:9]]
-    except OSError:
-        return 0.0
-    user, nice, system, _idle, _iowait, irq, softirq, _steal = fields
-    return (user + nice + system + irq + softirq) / os.sysconf("SC_CLK_TCK")
 
 
 def main() -> None:
