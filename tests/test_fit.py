@@ -227,3 +227,15 @@ def test_fit_command_end_to_end(tmp_path, synthetic, short_config, capsys):
     ds.drill(short_config.with_overrides({"numerics.duration": 0.5})).save(run, plots=False)
     assert main([*argv[:-1], str(run)]) == 2
     assert "holds the output of drillstring drill" in capsys.readouterr().err
+
+
+def test_profile_interval_of_a_quadratic_profile_and_a_flat_one():
+    from drillstring.calibration.fit import _profile_interval
+
+    values = np.linspace(0.1, 0.6, 9)
+    excess = ((values - 0.3) / 0.01) ** 2  # a quadratic profile: the interval is 0.3 -+ 0.01 sqrt(3.84)
+    low, high, flat = _profile_interval(values, excess, 3.84, 0.3)
+    assert (low, high) == pytest.approx((0.3 - 0.01 * np.sqrt(3.84), 0.3 + 0.01 * np.sqrt(3.84)), rel=1e-12)
+    assert not flat
+    low, high, flat = _profile_interval(values, np.full(9, 0.1), 3.84, 0.3)
+    assert (low, high, flat) == (0.1, 0.6, True)

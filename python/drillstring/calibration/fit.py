@@ -743,24 +743,26 @@ def fit(
 def _profile_interval(values: NDArray[np.float64], excess: NDArray[np.float64], threshold: float,
                       best: float) -> tuple[float, float, bool]:
     """The interval where the profile's excess misfit stays below ``threshold`` around ``best``
-    (linear interpolation of the crossings; a side that never crosses ends at the bound) and
-    whether the profile is flat (below the threshold everywhere)."""
+    and whether the profile is flat (below the threshold everywhere). On each side, the first
+    grid value beyond the threshold ``v`` (excess ``e``) ends it at ``best + (v - best)
+    sqrt(threshold / e)`` (a quadratic profile from the optimum), never nearer than the grid
+    values inside before it; a side that never crosses ends at the bound."""
     flat = bool(np.all(excess <= threshold))
-    k = int(np.clip(np.searchsorted(values, best), 0, values.size - 1))
-    lo = float(values[0])
-    for i in range(min(k, values.size - 1), 0, -1):
-        if values[i - 1] < best and excess[i - 1] > threshold:
-            a, b = excess[i - 1], min(excess[i], threshold)
-            f = (a - threshold) / (a - b) if a != b else 0.0
-            lo = float(values[i - 1] + f * (values[i] - values[i - 1]))
-            lo = min(lo, best)
-            break
-    hi = float(values[-1])
-    for i in range(max(k - 1, 0), values.size - 1):
-        if values[i + 1] > best and excess[i + 1] > threshold:
-            a, b = excess[i + 1], min(excess[i], threshold)
-            f = (a - threshold) / (a - b) if a != b else 0.0
-            hi = float(values[i + 1] - f * (values[i + 1] - values[i]))
-            hi = max(hi, best)
-            break
-    return lo, hi, flat
+    ends = []
+    for side in (-1.0, 1.0):
+        order = np.argsort(side * (values - best))
+        end = best
+        reached = False
+        for k in order:
+            d = side * (values[k] - best)
+            if d <= 0:
+                continue
+            if excess[k] > threshold:
+                end = side * max(side * end, side * (best + (values[k] - best) * math.sqrt(threshold / excess[k])))
+                reached = True
+                break
+            end = float(values[k])
+        if not reached:
+            end = float(values[-1] if side > 0 else values[0])
+        ends.append(float(end))
+    return ends[0], ends[1], flat
