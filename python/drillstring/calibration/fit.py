@@ -7,10 +7,11 @@ top boundary is the configuration's: the top drive with its controller, setpoint
 (``top_drive.*``); the measured surface speed is compared, not imposed (the core has no
 boundary that follows a measured speed series).
 
-Residuals: for each event, each target series ``s`` and each model output time ``t_k`` inside a
-window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the measured series linearly
-interpolated at ``t_k`` and ``scale_s`` its standard deviation over the windows (so that series
-of different units combine). The misfit is the sum of their squares (``ssr``).
+Residuals: for each event, each target series ``s`` and each model output time ``t_k`` nearest
+a measured sample inside a window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the
+measured series linearly interpolated at ``t_k`` and ``scale_s`` its standard deviation over the
+windows (so that series of different units combine). The misfit is the sum of their squares
+(``ssr``). A run that fails or is refused gets residuals :data:`FAILED_RESIDUAL`.
 
 Stages:
 
@@ -19,17 +20,22 @@ Stages:
    threads, over the first ``horizon`` seconds (or more) of the windows;
 2. **refinement**: :func:`scipy.optimize.least_squares` (trust-region reflective, in the box
    scaled to ``[0, 1]``) from the ``starts`` best distinct samples, over that horizon and its
-   doubles up to the whole windows in turn, its forward-difference Jacobian solved as one batch of runs
-   per iteration;
-3. **uncertainty**: the covariance ``s^2 (J^T J)^-1`` at the optimum (``s^2 = ssr / (n - p)``,
-   inflated by ``(1 + rho) / (1 - rho)`` for a lag-one autocorrelation ``rho > 0`` of the
-   residuals: correlated residuals carry less information than their count), Student-t
-   intervals at ``level``; where the Jacobian is ill-conditioned (condition number of the
-   box-scaled Jacobian above :data:`CONDITION_LIMIT`) or an interval leaves the box, the
-   parameter's **profile likelihood** (the misfit minimised over the others at each of
-   ``profile_points`` values) gives the interval ``ssr - ssr_min <= s^2 chi2_1(level)``; a
-   parameter whose profile stays below that over its whole box, or whose Jacobian interval is
-   wider than its box, is reported not identifiable (a warning);
+   doubles up to the whole windows in turn, its forward-difference Jacobian (step ``diff_step``
+   of the box) solved as one batch of runs per iteration;
+3. **uncertainty**: the covariance ``s^2 (J^T J)^-1`` at the optimum (``J`` by central
+   differences of ``diff_step``; ``s^2 = ssr / (n - p)``, inflated by ``(1 + rho) / (1 - rho)``
+   for a lag-one autocorrelation ``rho > 0`` of the residuals: correlated residuals carry less
+   information than their count) gives, per parameter, the point of the confidence ellipsoid
+   that reaches furthest in it; the misfit is solved along that path (multiples
+   :data:`PATH_MULTIPLES`), and the interval is the furthest point whose excess misfit stays
+   within ``s^2 chi2_1(level)``, widened to every point solved during the fit within that
+   threshold (the set-valued friction makes the misfit jump at small scales, where the
+   quadratic model alone is too optimistic). Where the Jacobian is near-singular (condition
+   number of the box-scaled Jacobian above :data:`CONDITION_LIMIT`; ``profile="auto"``) or with
+   ``profile=True``, the parameter's **profile likelihood** (the misfit minimised over the others
+   at each of ``profile_points`` values) gives the interval instead. A parameter whose interval
+   spans its whole box is reported not identifiable (a warning), and a near-singular Jacobian
+   names the parameters of its weakest direction (a ridge);
 4. **landscape**: the misfit over a ``landscape_points`` x ``landscape_points`` grid of each pair
    of parameters, the others at the optimum (a ridge of equally good fits shows there).
 
