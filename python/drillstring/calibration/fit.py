@@ -20,7 +20,8 @@ Stages:
    threads, over the first ``horizon`` seconds (or more) of the windows;
 2. **refinement**: :func:`scipy.optimize.least_squares` (trust-region reflective, in the box
    scaled to ``[0, 1]``) from the ``starts`` best distinct samples, over that horizon and its
-   doubles up to the whole windows in turn, its forward-difference Jacobian (step ``diff_step``
+   doubles up to the whole windows in turn (before each longer horizon, the best of a small
+   Sobol sample within :data:`ZOOM` of the point), its forward-difference Jacobian (step ``diff_step``
    of the box) solved as one batch of runs per iteration;
 3. **uncertainty**: the covariance ``s^2 (J^T J)^-1`` at the optimum (``J`` by central
    differences of ``diff_step``; ``s^2 = ssr / (n - p)``, inflated by ``(1 + rho) / (1 - rho)``
@@ -73,6 +74,10 @@ FAILED_RESIDUAL = 1e2
 #: Starts of the refinement are the best points of the global stage at least this far apart
 #: (largest coordinate difference in the box scaled to [0, 1]).
 START_SEPARATION = 0.2
+#: Before the refinement over a longer horizon: the best of 2**ZOOM_LOG2 points within ZOOM (of
+#: the box) of the point, since the later cycles move the misfit's valleys.
+ZOOM = 0.1
+ZOOM_LOG2 = 5
 #: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
 PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
@@ -605,7 +610,13 @@ def fit(
     runs = []
     for k in order:  # each start through the horizons, the shortest first
         u = sobol[k].copy()
-        for q in problems:
+        for stage, q in enumerate(problems):
+            if stage:  # a longer horizon: the best of a small sample around the point first
+                near = np.clip(u + (qmc.Sobol(d=p, scramble=True, seed=seed + stage).random_base2(ZOOM_LOG2)
+                                    - 0.5) * 2 * ZOOM, 0.0, 1.0)
+                candidates = [u, *near]
+                misfits = [float(r @ r) for r in q.residuals(candidates)]
+                u = candidates[int(np.argmin(misfits))].copy()
             u, ssr_k, info = _refine(q, u, list(range(p)), diff_step, max_iterations)
         runs.append((u, ssr_k, info))
     u_opt, ssr, refinement = min(runs, key=lambda run: run[1])
