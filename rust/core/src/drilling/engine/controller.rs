@@ -124,6 +124,9 @@ impl Controller {
 pub struct Setpoint {
     /// rad/s.
     pub value: f64,
+    /// `1 - exp(-dt / ramp_time)`, the fraction of the way to the target made in a step
+    /// (`None` without a ramp).
+    approach: Option<f64>,
 }
 
 impl Setpoint {
@@ -133,12 +136,20 @@ impl Setpoint {
         rpm / RPM_PER_RAD_S
     }
 
-    /// Advances to the end `t1` of a step of `dt`; returns the new value.
-    #[inline]
-    pub fn advance(&mut self, td: &TopDrive, t1: f64, dt: f64) -> f64 {
+    /// At rest, for steps of `dt`.
+    pub fn new(td: &TopDrive, dt: f64) -> Self {
         let ramp = td.ramp_time;
+        Setpoint { value: 0.0, approach: (ramp > 0.0).then(|| 1.0 - (-dt / ramp).exp()) }
+    }
+
+    /// Advances to the end `t1` of a step; returns the new value.
+    #[inline]
+    pub fn advance(&mut self, td: &TopDrive, t1: f64) -> f64 {
         let target = Self::target(td, t1);
-        self.value = if ramp > 0.0 { self.value + (target - self.value) * (1.0 - (-dt / ramp).exp()) } else { target };
+        self.value = match self.approach {
+            Some(f) => self.value + (target - self.value) * f,
+            None => target,
+        };
         self.value
     }
 

@@ -89,63 +89,88 @@ impl crate::simd::Kernel for Transport<'_> {
 /// [`WIDTH`] accumulators (cell `i` into lane `i % WIDTH`), the lanes summed at the end.
 const WIDTH: usize = 16;
 
-/// `&x[i..i + WIDTH]` as an array (one bounds check per chunk).
-#[inline(always)]
-fn chunk(x: &[f64], i: usize) -> &[f64; WIDTH] {
-    x[i..i + WIDTH].try_into().expect("a whole chunk")
+/// The energy terms of a step, lane by lane.
+#[derive(Default)]
+struct Lanes {
+    jump: [f64; WIDTH],
+    fric: [f64; WIDTH],
+    damp: [f64; WIDTH],
 }
 
-#[inline(always)]
-fn chunk_mut(x: &mut [f64], i: usize) -> &mut [f64; WIDTH] {
-    (&mut x[i..i + WIDTH]).try_into().expect("a whole chunk")
-}
+/// A chunk of [`WIDTH`] cells.
+type Chunk = [f64; WIDTH];
 
 impl Transport<'_> {
     /// The update loop over chunks of [`WIDTH`] cells read and written in place, the energy
-    /// terms in a fixed order (so every instruction set gives the same bits).
+    /// terms added lane by lane in a fixed order (so every instruction set gives the same
+    /// bits), the accumulators in registers. The last `n % WIDTH` cells go through the same
+    /// chunk code, padded with cells at rest without friction, whose terms are zeros (adding
+    /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
     #[inline(always)]
     fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(self) -> Sums {
         let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src } = self;
         let n = a.len();
         let k = Consts::new(c, src);
-        let mut jump = [0.0; WIDTH];
-        let mut fric = [0.0; WIDTH];
-        let mut damp = [0.0; WIDTH];
-        let whole = n - n % WIDTH;
+        let mut lanes = Lanes::default();
+        // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds.
+        let (a_prev, a, b, b_next, stop, slip) = (&a_prev[..n], &a[..n], &b[..n], &b_next[..n], &stop[..n], &slip[..n]);
+        let (an, bn) = (&mut an[..n], &mut bn[..n]);
+        macro_rules! at {
+            ($x:expr, $i:expr) => {
+                <&Chunk>::try_from(&$x[$i..$i + WIDTH]).expect("a whole chunk")
+            };
+        }
         let mut i = 0;
-        while i < whole {
-            let (ap, aa, bb, bx, st, sl) =
-                (chunk(a_prev, i), chunk(a, i), chunk(b, i), chunk(b_next, i), chunk(stop, i), chunk(slip, i));
-            let (na, nb) = (chunk_mut(an, i), chunk_mut(bn, i));
-            for l in 0..WIDTH {
-                let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], &k);
-                na[l] = cell.an;
-                nb[l] = cell.bn;
-                if UPWIND {
-                    jump[l] += cell.jump;
-                }
-                fric[l] += cell.friction;
-                if DAMPED {
-                    damp[l] += cell.damping;
-                }
-            }
+        while i + WIDTH <= n {
+            let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
+            let na = <&mut Chunk>::try_from(&mut an[i..i + WIDTH]).expect("a whole chunk");
+            let nb = <&mut Chunk>::try_from(&mut bn[i..i + WIDTH]).expect("a whole chunk");
+            chunk::<REGULARISED, UPWIND, DAMPED>(inputs, na, nb, &k, &mut lanes);
             i += WIDTH;
         }
-        for i in whole..n {
-            let l = i - whole;
-            let cell = update::<REGULARISED, UPWIND>(a_prev[i], a[i], b[i], b_next[i], stop[i], slip[i], &k);
-            an[i] = cell.an;
-            bn[i] = cell.bn;
-            if UPWIND {
-                jump[l] += cell.jump;
-            }
-            fric[l] += cell.friction;
-            if DAMPED {
-                damp[l] += cell.damping;
+        if i < n {
+            let m = n - i;
+            let pad = |x: &[f64]| {
+                let mut p = [0.0; WIDTH];
+                for (p, &v) in p.iter_mut().zip(&x[i..]) {
+                    *p = v;
+                }
+                p
+            };
+            let (ap, aa, bb, bx, st, sl) = (pad(a_prev), pad(a), pad(b), pad(b_next), pad(stop), pad(slip));
+            let (mut na, mut nb) = ([0.0; WIDTH], [0.0; WIDTH]);
+            chunk::<REGULARISED, UPWIND, DAMPED>([&ap, &aa, &bb, &bx, &st, &sl], &mut na, &mut nb, &k, &mut lanes);
+            for j in 0..m {
+                an[i + j] = na[j];
+                bn[i + j] = nb[j];
             }
         }
-        let total = |x: &[f64; WIDTH]| x.iter().sum::<f64>();
-        Sums { jumps: total(&jump), friction: total(&fric), damping: total(&damp), peak: 0.0 }
+        let total = |x: &Chunk| x.iter().sum::<f64>();
+        Sums { jumps: total(&lanes.jump), friction: total(&lanes.fric), damping: total(&lanes.damp), peak: 0.0 }
+    }
+}
+
+/// One chunk: `[a_prev, a, b, b_next, stop, slip]` in, the new invariants out, the energy
+/// terms added to `lanes` (cell `l` of the chunk into lane `l`).
+#[inline(always)]
+fn chunk<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(
+    [ap, aa, bb, bx, st, sl]: [&Chunk; 6],
+    na: &mut Chunk,
+    nb: &mut Chunk,
+    k: &Consts,
+    lanes: &mut Lanes,
+) {
+    for l in 0..WIDTH {
+        let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], k);
+        na[l] = cell.an;
+        nb[l] = cell.bn;
+        if UPWIND {
+            lanes.jump[l] += cell.jump;
+        }
+        lanes.fric[l] += cell.friction;
+        if DAMPED {
+            lanes.damp[l] += cell.damping;
+        }
     }
 }
 
@@ -324,5 +349,114 @@ impl Godunov<'_> {
             start += m;
         }
         sums
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The chunked kernel, with the last cells padded to a chunk, against the update cell by
+    /// cell with the energy terms in lane `j % 16`: the same bits, on every path and for
+    /// counts below, at and above a chunk, stuck, slow and sliding cells, both friction laws.
+    #[test]
+    fn chunks_and_padding_give_the_bits_of_the_cell_by_cell_update() {
+        for n in [1, 5, 16, 17, 31, 40, 91] {
+            let len = n + 2;
+            let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.77).sin() * 2.0).collect();
+            let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.31).cos() * 2.0 - 0.5).collect();
+            let stop: Vec<f64> =
+                (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.3 + 0.1 * (i % 3) as f64 }).collect();
+            let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
+            for (c, regularised) in [(0.93, None), (1.0, None), (0.93, Some(0.1)), (1.0, Some(0.1))] {
+                let src = Sources { damping: 1e-3, stick_speed: 1.5, kinetic_ratio: 0.65, regularised };
+                let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
+                let fast = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
+                let (mut an0, mut bn0) = (vec![0.0; len], vec![0.0; len]);
+                let slow = crate::simd::baseline(Transport {
+                    a_prev: &a[..n],
+                    a: &a[1..=n],
+                    b: &b[1..=n],
+                    b_next: &b[2..],
+                    stop: &stop[1..=n],
+                    slip: &slip[1..=n],
+                    an: &mut an0[1..=n],
+                    bn: &mut bn0[1..=n],
+                    c,
+                    src: &src,
+                });
+                // The reference: cell by cell.
+                let k = Consts::new(c, &src);
+                let mut lanes = Lanes::default();
+                let mut stuck = 0;
+                for j in 0..n {
+                    let i = j + 1;
+                    let cell = if regularised.is_some() {
+                        if c < 1.0 {
+                            update::<true, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                        } else {
+                            update::<true, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                        }
+                    } else if c < 1.0 {
+                        update::<false, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                    } else {
+                        update::<false, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                    };
+                    assert_eq!(
+                        (an[i].to_bits(), bn[i].to_bits()),
+                        (cell.an.to_bits(), cell.bn.to_bits()),
+                        "n {n} c {c} cell {j}"
+                    );
+                    assert_eq!((an0[i].to_bits(), bn0[i].to_bits()), (cell.an.to_bits(), cell.bn.to_bits()));
+                    stuck += usize::from(cell.an + cell.bn == 0.0);
+                    if c < 1.0 {
+                        lanes.jump[j % WIDTH] += cell.jump;
+                    }
+                    lanes.fric[j % WIDTH] += cell.friction;
+                    lanes.damp[j % WIDTH] += cell.damping;
+                }
+                let total = |x: &Chunk| x.iter().sum::<f64>();
+                for sums in [&fast, &slow] {
+                    assert_eq!(sums.jumps.to_bits(), total(&lanes.jump).to_bits(), "n {n} c {c}");
+                    assert_eq!(sums.friction.to_bits(), total(&lanes.fric).to_bits(), "n {n} c {c}");
+                    assert_eq!(sums.damping.to_bits(), total(&lanes.damp).to_bits(), "n {n} c {c}");
+                }
+                if n >= 16 && regularised.is_none() {
+                    assert!(stuck > 0 && stuck < n, "n {n}: {stuck} stuck cells (the case must hold both)");
+                }
+            }
+        }
+    }
+
+    /// The time per cell update of [`transport`] on 1000 cells (Courant number 0.998,
+    /// damping, set-valued friction, a third of the cells slow): the best of many short
+    /// windows. `cargo test --release kernel_time -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn kernel_time() {
+        let n = 1000;
+        let len = n + 2;
+        let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.37).sin() * 3.0).collect();
+        let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.11).cos() * 3.0).collect();
+        let stop: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.02 }).collect();
+        let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
+        let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
+        for (name, c, damping) in
+            [("upwind, damped", 0.998, 1e-4), ("Courant 1, damped", 1.0, 1e-4), ("Courant 1", 1.0, 0.0)]
+        {
+            let src = Sources { damping, stick_speed: 1.5, kinetic_ratio: 0.65, regularised: None };
+            let mut best = f64::INFINITY;
+            let mut sink = 0.0;
+            for _ in 0..400 {
+                let start = std::time::Instant::now();
+                for _ in 0..50 {
+                    let s = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
+                    sink += s.friction + an[n / 2];
+                }
+                best = best.min(start.elapsed().as_secs_f64() / (50 * n) as f64);
+            }
+            println!("transport, {name}: {:.3} ns per cell update ({})", best * 1e9, crate::simd::path());
+            assert!(sink.is_finite());
+        }
     }
 }

@@ -126,7 +126,7 @@ impl<'c> Simulation<'c> {
             grid,
             field,
             wall,
-            setpoint: Setpoint::default(),
+            setpoint: Setpoint::new(&cfg.top_drive, dt),
             control,
             ledger: Ledger::default(),
             first_mode,
@@ -226,7 +226,7 @@ impl<'c> Simulation<'c> {
     fn step(&mut self, t: f64) -> (f64, f64) {
         let dt = self.grid.dt;
         let td = &self.cfg.top_drive;
-        let setpoint = self.setpoint.advance(td, t + dt, dt);
+        let setpoint = self.setpoint.advance(td, t + dt);
 
         // Top drive.
         let arriving = self.field.arriving_top();
