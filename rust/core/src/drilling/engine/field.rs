@@ -114,7 +114,7 @@ impl Field {
     }
 
     /// Padded length.
-    pub fn len(&self) -> usize {
+    pub fn padded_len(&self) -> usize {
         self.alpha.len()
     }
 

@@ -25,7 +25,7 @@ impl WallFriction {
     /// The torsional wall friction of a grid: the limit per metre of [`Grid::limit`] over `rho J`.
     pub fn torsional(cfg: &DrillConfig, grid: &Grid, field: &Field) -> Self {
         let dt = grid.dt;
-        let mut stop = Vec::with_capacity(field.len());
+        let mut stop = Vec::with_capacity(field.padded_len());
         let mut cell = 0;
         for (s, p) in grid.props.iter().enumerate() {
             stop.push(0.0);
