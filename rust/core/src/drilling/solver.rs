@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use crate::error::{Num, Result};
+use crate::error::Result;
 use crate::interrupt::Interrupt;
 
 use super::config::DrillConfig;
