@@ -46,6 +46,7 @@ from . import plots as plots
 from . import solvers as solvers
 from . import studies as studies
 from ._core import __version__, simd_path
+from .calibration.fit import FitResult, fit
 from .drilling import (
     DrillConfig,
     DrillMetrics,
@@ -190,6 +191,9 @@ __all__ = [
     "DrillMetrics",
     "load_drill_config",
     "recommend_controllers",
+    # calibration from measured data
+    "fit",
+    "FitResult",
     # the paper
     "table2",
     "Table2Row",

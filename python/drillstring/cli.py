@@ -949,6 +949,112 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_fit(sub: Any) -> None:
+    p = sub.add_parser(
+        "fit",
+        help="calibrate configuration values (friction, damping, ...) from measured surface data",
+        description="Fit configuration values (dotted keys, --param KEY=LOW:HIGH) to a measured time series "
+        "(CSV or Parquet with the column names of drill's series.csv: t, surface_rpm, motor_torque, bit_rpm, "
+        "bit_torque; SI units unless a units row, a header suffix 'name [unit]' or --unit says otherwise): a global "
+        "quasi-random stage solved in parallel, a least-squares refinement, intervals from the Jacobian or the "
+        "profile likelihood, the misfit landscape over each pair; write the fitted config.toml, fit.json, "
+        "fit_series.csv, figures and report.md into DIR and print the next command (the stick-slip map of the "
+        "calibrated well and the controllers).",
+        epilog="example: drillstring fit well.toml --data startup.csv --param friction.static=0.1:0.6 "
+        "--param friction.kinetic_ratio=0.3:0.95 --out well-fit",
+    )
+    _add_drilling_config_arguments(p)
+    p.add_argument("--data", action="append", required=True, metavar="FILE",
+                   help="measured data, CSV or Parquet (repeat for several events fitted jointly)")
+    p.add_argument("--param", action="append", required=True, metavar="KEY=LOW:HIGH", dest="params",
+                   help="a configuration value to fit and its bounds, e.g. friction.static=0.1:0.6 (repeatable)")
+    p.add_argument("--per-event", action="append", default=[], metavar="KEY",
+                   help="a --param key with one value per event (the others are shared) (repeatable)")
+    p.add_argument("--target", action="append", default=[], metavar="NAME[=WEIGHT]", dest="targets",
+                   help="a series compared, with its weight (default motor_torque) (repeatable)")
+    p.add_argument("--window", action="append", default=[], metavar="START:END", dest="windows",
+                   help="times compared, s from the start-up (default: the whole data) (repeatable)")
+    p.add_argument("--column", action="append", default=[], metavar="NAME=COLUMN", dest="columns",
+                   help="the data file's column of a model name, e.g. motor_torque=TQ (repeatable)")
+    p.add_argument("--unit", action="append", default=[], metavar="NAME=UNIT", dest="units",
+                   help="the unit of a column, e.g. 'motor_torque=kN m', surface_rpm=rad/s (repeatable)")
+    p.add_argument("--start", type=_finite_float, default=0.0, metavar="S",
+                   help="the data's time of the start-up (the model's t = 0), s (default 0)")
+    p.add_argument("--samples", type=_int_in(1, 1 << 20), default=None,
+                   help="points of the global stage (default 64 per parameter, at least 128)")
+    p.add_argument("--threads", type=_int_in(1, _core.MAX_THREADS), default=None,
+                   help=f"threads, 1..{_core.MAX_THREADS} (default: every core)")
+    p.add_argument("--landscape-points", type=_int_in(2, 101), default=9,
+                   help="grid points per parameter of the landscapes (default 9)")
+    p.add_argument("--no-landscape", action="store_true", help="skip the misfit landscapes")
+    p.add_argument("--seed", type=_int_in(0, INT64_MAX), default=0, help="seed of the global stage (default 0)")
+    p.set_defaults(func=_cmd_fit)
+
+
+def _pairs(texts: Sequence[str], field: str, form: str) -> list[tuple[str, str]]:
+    out = []
+    for text in texts:
+        key, sep, value = text.partition("=")
+        if not sep or not key.strip() or not value.strip():
+            raise ValidationError(field, text, form)
+        out.append((key.strip(), value.strip()))
+    return out
+
+
+def _cmd_fit(args: argparse.Namespace) -> int:
+    from .calibration.data import read_measured
+    from .calibration.fit import fit
+    from .calibration.output import next_commands, write_files
+    from .drilling import load_drill_config
+    from .drilling.output import output_folder
+
+    config = load_drill_config(args.config)
+    if args.overrides:
+        config = config.with_overrides(args.overrides)
+    params: dict[str, tuple[float, float]] = {}
+    for key, value in _pairs(args.params, "--param", "KEY=LOW:HIGH (e.g. friction.static=0.1:0.6)"):
+        try:
+            low, high = (float(v) for v in value.split(":"))
+        except ValueError:
+            raise ValidationError("--param", f"{key}={value}", "KEY=LOW:HIGH with two numbers") from None
+        params[key] = (low, high)
+    targets: dict[str, float] = {}
+    for text in args.targets or ["motor_torque"]:
+        name, _, weight = text.partition("=")
+        try:
+            targets[name.strip()] = float(weight) if weight.strip() else 1.0
+        except ValueError:
+            raise ValidationError("--target", text, "NAME or NAME=WEIGHT with a number") from None
+    windows = []
+    for text in args.windows:
+        try:
+            a, b = (float(v) for v in text.split(":"))
+        except ValueError:
+            raise ValidationError("--window", text, "START:END in s (e.g. 0:30)") from None
+        windows.append((a, b))
+    columns = dict(_pairs(args.columns, "--column", "NAME=COLUMN (e.g. motor_torque=TQ)"))
+    units = dict(_pairs(args.units, "--unit", "NAME=UNIT (e.g. 'motor_torque=kN m')"))
+    data = [read_measured(path, columns=columns, units=units, start=args.start) for path in args.data]
+    plots = not args.no_plots
+    with output_folder(args.out, plots=plots, field="--out", command="fit") as directory:
+        result = fit(config, data, params, targets=targets, windows=windows or None, per_event=args.per_event,
+                     samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
+                     landscape_points=args.landscape_points, progress=lambda msg: _say(f"fit: {msg}"))
+        for key, p in result.parameters.items():
+            _say(f"{key} = {p.value:.6g} ({result.level:.0%}: {p.ci_low:.6g} .. {p.ci_high:.6g}, {p.method})"
+                 + ("" if p.identifiable else " NOT identifiable"))
+        _say(f"misfit {result.ssr:.5g} over {result.points} samples; {result.evaluations} runs in "
+             f"{result.seconds:.3g} s")
+        for warning in result.warnings:
+            _say(f"warning: {warning}")
+        written = write_files(result, directory, plots)
+    _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
+    _say("next, the stick-slip map of the calibrated well and the controller recommendation:")
+    for command in next_commands(os.fspath(args.out), result):
+        _say(f"  {command}")
+    return 0
+
+
 class _Parser(argparse.ArgumentParser):
     """Usage errors as one line (``prog: error: ...``) with exit status 2."""
 
@@ -975,6 +1081,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_drill_map(sub)
     _add_lumped(sub)
     _add_tune(sub)
+    _add_fit(sub)
     return parser
 
 

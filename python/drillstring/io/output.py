@@ -464,6 +464,7 @@ FOLDER_SIGNS: dict[str, tuple[str, ...]] = {
     "drill-map": ("map.parquet", "map.csv"),
     "sweep": ("results.parquet", "results.csv"),
     "torque-drag": ("torque_drag.json", "broomstick.csv"),
+    "fit": ("fit.json",),
 }
 
 

@@ -264,6 +264,10 @@ mod tests {
         assert_eq!(schema["bit.diameter"].default, Value::Null);
         assert_eq!(schema["top_drive"].default, Value::Null);
         let kp = &schema["top_drive.controller.kp"].description;
-        assert_eq!(kp, "`pi`: proportional gain, >= 0.");
+        assert_eq!(
+            kp,
+            "`pi`: the proportional gain, >= 0: the motor torque per rad/s of speed error, i.e. the \
+             damping the top drive presents to the string."
+        );
     }
 }

@@ -1,0 +1,73 @@
+"""Calibration speed: a four-parameter fit of one 30 s start-up of the Aarsnes-Shor Well B
+example (``examples/aarsnes-shor-well-b.toml``: 2500 m, 1000 cells, PI control to 40 rpm).
+
+The data are the example's own surface torque at 20 Hz with 500 N m of sensor noise (seed 0);
+the fit estimates ``friction.static``, ``friction.kinetic_ratio``, ``friction.stick_speed`` and
+``damping_rate`` in wide bounds by :func:`drillstring.fit` (global Sobol stage of 256 points
+over the first 7.5 s, least-squares refinement from 4 starts over 7.5, 15 and 30 s, intervals;
+``--landscape`` adds the six pair landscapes). Reports the wall time, the model runs, the CPU
+seconds the machine used meanwhile (the machine may be shared), the recovered values against the
+truth and whether each interval holds it.
+
+    python benchmarks/fit.py [--duration 30] [--cells 1000] [--threads 2] [--landscape] [--samples N]
+                             [--starts 4] [--horizon 5]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+from drill_map import machine_cpu  # benchmarks/drill_map.py: CPU seconds of the whole machine
+
+import drillstring as ds
+from drillstring.calibration.data import MeasuredData
+
+ROOT = Path(__file__).resolve().parents[1]
+TRUTH = {"friction.static": 0.3, "friction.kinetic_ratio": 0.65, "friction.stick_speed": 1.5,
+         "damping_rate": 0.08333333333333333}
+BOUNDS = {"friction.static": (0.1, 0.6), "friction.kinetic_ratio": (0.3, 0.95), "friction.stick_speed": (0.5, 3.0),
+          "damping_rate": (0.0, 0.3)}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--duration", type=float, default=30.0)
+    parser.add_argument("--cells", type=int, default=1000)
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--landscape", action="store_true")
+    parser.add_argument("--samples", type=int, default=None, help="points of the global stage (default: fit's)")
+    parser.add_argument("--starts", type=int, default=4)
+    parser.add_argument("--horizon", type=float, default=5.0)
+    args = parser.parse_args()
+    cfg = ds.load_drill_config(ROOT / "examples" / "aarsnes-shor-well-b.toml").with_overrides(
+        {"numerics.cells": args.cells, "numerics.duration": args.duration, "numerics.field_interval": 0.0})
+    truth = ds.drill(cfg)
+    rng = np.random.default_rng(0)
+    data = MeasuredData(truth.t[::5], {"motor_torque": truth.motor_torque[::5]
+                                       + rng.normal(0.0, 500.0, truth.t[::5].size)})
+    cpu, start = machine_cpu(), time.perf_counter()
+    res = ds.fit(cfg, data, BOUNDS, threads=args.threads, landscape=args.landscape, samples=args.samples,
+                 starts=args.starts, horizon=args.horizon)
+    wall, used = time.perf_counter() - start, machine_cpu() - cpu
+    print(f"fit of a {args.duration:g} s start-up, {args.cells} cells, 4 parameters, {args.threads} threads: "
+          f"{wall:.1f} s wall, {res.evaluations} runs ({res.evaluations / wall:.1f} runs/s), machine CPU "
+          f"{used:.1f} s on {os.cpu_count()} cores; landscape {'on' if args.landscape else 'off'}")
+    for key, true in TRUTH.items():
+        p = res.parameters[key]
+        print(f"  {key:24s} {p.value:.5g}  ({p.ci_low:.5g} .. {p.ci_high:.5g}, {p.method})  truth {true:.5g}  "
+              f"{'inside' if p.ci_low <= true <= p.ci_high else 'OUTSIDE'}")
+    print(f"  misfit {res.ssr:.4g} over {res.points} samples, RMS {res.rms[0]['motor_torque']:.0f} N m; "
+          f"condition {res.condition:.3g}")
+    print(f"  global stage: {res.global_stage['points']} points, best misfit {res.global_stage['best_ssr']:.4g}; "
+          f"refinement: misfit of each start {[round(v, 4) for v in res.refinement['ssr_of_starts']]} "
+          f"({res.refinement['message']})")
+    for warning in res.warnings:
+        print(f"  warning: {warning}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,785 @@
+"""``fit``: configuration values estimated from measured data by weighted least squares.
+
+The model of each event (a start-up) is its configuration with the parameters set by dotted
+path (the core's overrides, as ``DrillConfig.with_overrides`` and the axes of a map), solved by
+the core (``_core.drill_solve``, which runs without the GIL) over the span of the windows. The
+top boundary is the configuration's: the top drive with its controller, setpoint and ramp
+(``top_drive.*``); the measured surface speed is compared, not imposed (the core has no
+boundary that follows a measured speed series).
+
+Residuals: for each event, each target series ``s`` and each model output time ``t_k`` nearest
+a measured sample inside a window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the
+measured series linearly interpolated at ``t_k`` and ``scale_s`` its standard deviation over the
+windows (so that series of different units combine). The misfit is the sum of their squares
+(``ssr``). A run that fails or is refused gets residuals :data:`FAILED_RESIDUAL`.
+
+Stages:
+
+1. **global**: a scrambled Sobol sample of the parameter box (``samples`` points, default 64 per
+   parameter, at least 128, rounded up to a power of two) solved as one batch on ``threads``
+   threads, over the first ``horizon`` seconds (or more) of the windows;
+2. **refinement**: :func:`scipy.optimize.least_squares` (trust-region reflective, in the box
+   scaled to ``[0, 1]``) from the ``starts`` best distinct samples, over that horizon and its
+   doubles up to the whole windows in turn (before each longer horizon, the best of a small
+   Sobol sample within :data:`ZOOM` of the point), its forward-difference Jacobian (step ``diff_step``
+   of the box) solved as one batch of runs per iteration;
+3. **uncertainty**: the covariance ``s^2 (J^T J)^-1`` at the optimum (``J`` by central
+   differences of ``diff_step``; ``s^2 = ssr / (n - p)``, inflated by ``(1 + rho) / (1 - rho)``
+   for a lag-one autocorrelation ``rho > 0`` of the residuals: correlated residuals carry less
+   information than their count) gives, per parameter, the point of the confidence ellipsoid
+   that reaches furthest in it; the misfit is solved along that path (multiples
+   :data:`PATH_MULTIPLES`), and the interval is the furthest point whose excess misfit stays
+   within ``s^2 chi2_1(level)``, widened to every point solved during the fit within that
+   threshold (the set-valued friction makes the misfit jump at small scales, where the
+   quadratic model alone is too optimistic). Where the Jacobian is near-singular (condition
+   number of the box-scaled Jacobian above :data:`CONDITION_LIMIT`; ``profile="auto"``) or with
+   ``profile=True``, the parameter's **profile likelihood** (the misfit minimised over the others
+   at each of ``profile_points`` values) gives the interval instead. A parameter whose interval
+   spans its whole box is reported not identifiable (a warning), and a near-singular Jacobian
+   names the parameters of its weakest direction (a ridge);
+4. **landscape**: the misfit over a ``landscape_points`` x ``landscape_points`` grid of each pair
+   of parameters, the others at the optimum (a ridge of equally good fits shows there).
+
+Several events (start-ups, each its data and optionally its own configuration) are fitted
+jointly: the parameters are shared, except those in ``per_event``, which get one value per
+event (named ``events[i].key``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from collections.abc import Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from typing import Any, Callable, Optional, Union
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .. import _core
+from ..drilling.config import DrillConfig
+from ..drilling.solve import ConfigLike, _config
+from ..errors import ValidationError
+from .data import MODEL_SERIES, MeasuredData, read_measured
+
+__all__ = ["CONDITION_LIMIT", "Event", "FitResult", "Landscape", "ParameterEstimate", "Profile", "fit"]
+
+#: Condition number of the box-scaled Jacobian above which the intervals come from profiles.
+CONDITION_LIMIT = 1e3
+#: The residual of a run that failed (normalised units), so that the optimiser moves away from it.
+FAILED_RESIDUAL = 1e2
+#: Starts of the refinement are the best points of the global stage at least this far apart
+#: (largest coordinate difference in the box scaled to [0, 1]).
+START_SEPARATION = 0.2
+#: Before the refinement over a longer horizon: the best of 2**ZOOM_LOG2 points within ZOOM (of
+#: the box) of the point, since the later cycles move the misfit's valleys.
+ZOOM = 0.1
+ZOOM_LOG2 = 5
+#: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
+PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
+
+DataLike = Union[MeasuredData, str, "os.PathLike[str]", Any]
+
+
+@dataclass(frozen=True)
+class Event:
+    """One start-up to fit: its configuration, its data and its windows (model times, s)."""
+
+    config: DrillConfig
+    data: MeasuredData
+    windows: tuple[tuple[float, float], ...]
+
+
+@dataclass(frozen=True)
+class ParameterEstimate:
+    """A fitted value with its interval at the fit's level."""
+
+    key: str
+    value: float
+    ci_low: float
+    ci_high: float
+    lower: float
+    upper: float
+    std_error: float
+    #: ``"jacobian"`` or ``"profile"``: where the interval comes from.
+    method: str
+    identifiable: bool
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"value": self.value, "ci_low": self.ci_low, "ci_high": self.ci_high, "lower": self.lower,
+                "upper": self.upper, "std_error": self.std_error, "ci_method": self.method,
+                "identifiable": self.identifiable}
+
+
+@dataclass(frozen=True)
+class Landscape:
+    """The misfit (``ssr``, shape ``(len(y), len(x))``) over a grid of two parameters, the others
+    at the optimum."""
+
+    x_key: str
+    y_key: str
+    x: NDArray[np.float64]
+    y: NDArray[np.float64]
+    ssr: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Profile:
+    """The profile likelihood of one parameter: the misfit minimised over the others at each value."""
+
+    key: str
+    values: NDArray[np.float64]
+    ssr: NDArray[np.float64]
+    threshold: float
+
+
+@dataclass
+class FitResult:
+    """What :func:`fit` returns."""
+
+    parameters: dict[str, ParameterEstimate]
+    #: The fitted configuration of each event (the first is :attr:`config`).
+    configs: list[DrillConfig]
+    events: list[Event]
+    targets: dict[str, float]
+    ssr: float
+    #: Residual points (n) and parameters (p).
+    points: int
+    level: float
+    evaluations: int
+    seconds: float
+    condition: float
+    residual_autocorrelation: float
+    global_stage: dict[str, Any]
+    refinement: dict[str, Any]
+    #: Per event and target: the RMS error in the series' unit over the windows.
+    rms: list[dict[str, float]]
+    #: Per event: the fitted run's ``t`` and series (whole span) for figures.
+    fitted: list[dict[str, NDArray[np.float64]]]
+    landscapes: list[Landscape] = field(default_factory=list)
+    profiles: dict[str, Profile] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def config(self) -> DrillConfig:
+        """The fitted configuration (of the first event)."""
+        return self.configs[0]
+
+    @property
+    def misfit(self) -> float:
+        """The mean square of the normalised residuals, ``ssr / n``."""
+        return self.ssr / self.points
+
+    def to_dict(self) -> dict[str, Any]:
+        """The content of ``fit.json``."""
+        return {
+            "parameters": {k: p.to_dict() for k, p in self.parameters.items()},
+            "misfit": {"ssr": self.ssr, "mean_square": self.misfit, "points": self.points,
+                       "rms": self.rms, "targets": self.targets},
+            "evaluations": self.evaluations,
+            "time_s": self.seconds,
+            "level": self.level,
+            "jacobian_condition": self.condition,
+            "residual_autocorrelation": self.residual_autocorrelation,
+            "global": self.global_stage,
+            "refinement": self.refinement,
+            "events": [{"source": e.data.source, "windows": [list(w) for w in e.windows]} for e in self.events],
+            "warnings": list(self.warnings),
+        }
+
+    def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Any]:
+        """Writes the fit's folder (see :mod:`drillstring.calibration.output`)."""
+        from .output import write_fit
+
+        return write_fit(self, out_dir, plots=plots)
+
+
+# --------------------------------------------------------------------------- the problem
+
+
+@dataclass(frozen=True)
+class _Column:
+    """One coordinate of the parameter vector."""
+
+    name: str
+    key: str
+    event: Optional[int]  # None: shared by every event
+    lower: float
+    upper: float
+
+
+class _Problem:
+    """The residuals of the events as a function of the parameter vector scaled to ``[0, 1]``."""
+
+    def __init__(self, events: list[Event], columns: list[_Column], targets: dict[str, float],
+                 threads: int, fraction: float = 1.0) -> None:
+        self.events = events
+        self.columns = columns
+        self.targets = targets
+        self.threads = threads
+        self.evaluations = 0
+        #: Every point solved (scaled) with its misfit: the likelihood-ratio set of the intervals.
+        self.history: list[tuple[NDArray[np.float64], float]] = []
+        self.lower = np.array([c.lower for c in columns])
+        self.upper = np.array([c.upper for c in columns])
+        self.bases: list[str] = []
+        self.index: list[NDArray[np.int64]] = []
+        self.measured: list[dict[str, NDArray[np.float64]]] = []
+        self.scale: list[dict[str, float]] = []
+        for ev in events:
+            dt = ev.config.numerics.output_interval
+            first = min(a for a, _ in ev.windows)
+            end = first + fraction * (max(b for _, b in ev.windows) - first)
+            ev = Event(ev.config, ev.data, tuple((a, min(b, end)) for a, b in ev.windows if a < end or a == first))
+            # the output times nearest the measured samples (every output time when the data are finer)
+            k = np.unique(np.rint(ev.data.t[(ev.data.t >= 0) & (ev.data.t <= end + 1e-9)] / dt).astype(np.int64))
+            k = k[k * dt <= end + 1e-9]
+            t = k * dt
+            inside = np.zeros(t.size, dtype=bool)
+            for a, b in ev.windows:
+                inside |= (t >= a - 1e-9) & (t <= b + 1e-9)
+            idx = k[inside]
+            if idx.size == 0:
+                raise ValidationError("windows", ev.windows, f"windows holding model output times (every {dt:g} s)")
+            times = (idx * dt).astype(np.float64)
+            meas = {s: ev.data.resample(s, times) for s in targets}
+            scales = {}
+            for s, v in meas.items():
+                sd = float(np.std(v))
+                scales[s] = sd if sd > 0 else (float(np.mean(np.abs(v))) or 1.0)
+            cfg = ev.config.with_overrides({"numerics.duration": float(idx[-1] * dt + dt),
+                                            "numerics.field_interval": 0.0})
+            self.bases.append(cfg.to_json())
+            self.index.append(idx)
+            self.measured.append(meas)
+            self.scale.append(scales)
+        self.points = sum(i.size * len(targets) for i in self.index)
+
+    def values(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
+        return self.lower + np.clip(u, 0.0, 1.0) * (self.upper - self.lower)
+
+    def pairs(self, u: NDArray[np.float64], event: int) -> list[list[Any]]:
+        x = self.values(u)
+        return [[c.key, float(v)] for c, v in zip(self.columns, x) if c.event is None or c.event == event]
+
+    def _solve(self, job: tuple[NDArray[np.float64], int, bool]) -> Any:
+        u, e, whole = job
+        try:
+            cfg = _core.drill_config_override(self.bases[e], json.dumps(self.pairs(u, e)), "parameters")
+        except ValidationError as exc:
+            return f"refused: {exc}"
+        out = _core.drill_solve(json.dumps(cfg))
+        if out["status"] != "success":
+            return f"{out['status']}: {out['message']}"
+        series: dict[str, Any] = dict(out)
+        if whole:
+            return {name: np.asarray(series[name]) for name in ("t", *MODEL_SERIES)}
+        return {s: np.asarray(series[s])[self.index[e]] for s in self.targets}
+
+    def run(self, points: Sequence[NDArray[np.float64]], whole: bool = False) -> list[list[Any]]:
+        """Solves every event at every point (one batch on the threads): per point, per event,
+        the series at the windows' times (``whole``: the whole run) or the failure message."""
+        jobs = [(np.asarray(u, dtype=np.float64), e, whole) for u in points for e in range(len(self.events))]
+        self.evaluations += len(jobs)
+        if self.threads == 1 or len(jobs) == 1:
+            flat = [self._solve(j) for j in jobs]
+        else:
+            with ThreadPoolExecutor(max_workers=min(self.threads, len(jobs))) as pool:
+                flat = list(pool.map(self._solve, jobs))
+        n = len(self.events)
+        return [flat[i * n:(i + 1) * n] for i in range(len(points))]
+
+    def residual_of(self, runs: list[Any]) -> NDArray[np.float64]:
+        parts = []
+        for e, run in enumerate(runs):
+            for s, w in self.targets.items():
+                if isinstance(run, str):
+                    parts.append(np.full(self.index[e].size, FAILED_RESIDUAL))
+                else:
+                    parts.append(math.sqrt(w) * (run[s] - self.measured[e][s]) / self.scale[e][s])
+        return np.concatenate(parts)
+
+    def residuals(self, points: Sequence[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
+        out = [self.residual_of(r) for r in self.run(points)]
+        self.history += [(np.asarray(u, dtype=np.float64), float(r @ r)) for u, r in zip(points, out)]
+        return out
+
+
+class _Cached:
+    """The residual function and its batched forward-difference Jacobian for least_squares, over
+    the coordinates ``free`` of the scaled vector (the others fixed at ``fixed``)."""
+
+    def __init__(self, problem: _Problem, fixed: NDArray[np.float64], free: list[int], step: float) -> None:
+        self.problem = problem
+        self.fixed = fixed
+        self.free = free
+        self.step = step
+        self.cache: dict[bytes, NDArray[np.float64]] = {}
+
+    def full(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
+        u = self.fixed.copy()
+        u[self.free] = v
+        return u
+
+    def fun(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
+        key = np.asarray(v, dtype=np.float64).tobytes()
+        if key not in self.cache:
+            self.cache[key] = self.problem.residuals([self.full(v)])[0]
+        return self.cache[key]
+
+    def jac(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
+        v = np.asarray(v, dtype=np.float64)
+        r0 = self.fun(v)
+        steps = []
+        points = []
+        for i in range(v.size):
+            h = self.step if v[i] + self.step <= 1.0 else -self.step
+            w = v.copy()
+            w[i] += h
+            steps.append(h)
+            points.append(self.full(w))
+        cols = self.problem.residuals(points)
+        return np.column_stack([(c - r0) / h for c, h in zip(cols, steps)])
+
+
+def _refine(problem: _Problem, u0: NDArray[np.float64], free: list[int], step: float,
+            max_iterations: int) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
+    """:func:`scipy.optimize.least_squares` from ``u0`` over the coordinates ``free`` (forward
+    differences of ``step`` in the scaled box, as one batch per Jacobian: larger than the scale at
+    which the set-valued friction makes the misfit jump); never worse than ``u0``."""
+    from scipy.optimize import least_squares
+
+    cached = _Cached(problem, u0.copy(), free, step)
+    r0 = cached.fun(u0[free])
+    res = least_squares(cached.fun, u0[free], jac=cached.jac, bounds=(0.0, 1.0), method="trf",
+                        max_nfev=max_iterations, x_scale=1.0)
+    u, ssr = (cached.full(res.x), float(res.fun @ res.fun)) if res.fun @ res.fun < r0 @ r0 else (u0, float(r0 @ r0))
+    return u, ssr, {"status": int(res.status), "message": str(res.message), "evaluations": int(res.nfev)}
+
+
+def _jacobian(problem: _Problem, u: NDArray[np.float64], step: float) -> NDArray[np.float64]:
+    """Central differences of the residuals at ``u`` (one-sided at a bound), step ``step`` in the
+    scaled box, as one batch."""
+    points = []
+    spans = []
+    for i in range(u.size):
+        hi, lo = min(u[i] + step, 1.0), max(u[i] - step, 0.0)
+        for v in (hi, lo):
+            w = u.copy()
+            w[i] = v
+            points.append(w)
+        spans.append(hi - lo)
+    res = problem.residuals(points)
+    return np.column_stack([(res[2 * i] - res[2 * i + 1]) / spans[i] for i in range(u.size)])
+
+
+# --------------------------------------------------------------------------- inputs
+
+
+def _targets(targets: Union[str, Sequence[str], Mapping[str, float]]) -> dict[str, float]:
+    if isinstance(targets, str):
+        targets = [targets]
+    items = dict(targets) if isinstance(targets, Mapping) else {t: 1.0 for t in targets}
+    if not items:
+        raise ValidationError("targets", targets, f"at least one series of {', '.join(MODEL_SERIES)}")
+    out = {}
+    for name, weight in items.items():
+        if name not in MODEL_SERIES:
+            raise ValidationError("targets", name, f"series the model computes: {', '.join(MODEL_SERIES)}")
+        w = float(weight)
+        if not (math.isfinite(w) and w > 0):
+            raise ValidationError(f"targets[{name}]", weight, "a finite weight > 0")
+        out[name] = w
+    return out
+
+
+def _number_at(config: DrillConfig, key: str) -> Any:
+    """The value at dotted path ``key`` of the configuration's dict (``None`` if absent)."""
+    node: Any = config.to_dict()
+    for part in key.replace("]", "").split("."):
+        name, _, index = part.partition("[")
+        if not isinstance(node, Mapping) or name not in node:
+            return None
+        node = node[name]
+        if index:
+            if not isinstance(node, list) or not index.isdigit() or int(index) >= len(node):
+                return None
+            node = node[int(index)]
+    return node
+
+
+def _bounds(parameters: Mapping[str, Any], config: DrillConfig) -> dict[str, tuple[float, float]]:
+    if not isinstance(parameters, Mapping) or not parameters:
+        raise ValidationError("parameters", parameters, "a mapping of dotted keys to (low, high) bounds")
+    out = {}
+    for key, bounds in parameters.items():
+        try:
+            lo, hi = (float(b) for b in bounds)
+        except (TypeError, ValueError):
+            raise ValidationError(f"parameters[{key}]", bounds, "(low, high): two numbers") from None
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            raise ValidationError(f"parameters[{key}]", bounds, "finite bounds low < high")
+        for value in (lo, hi):  # the key exists, takes numbers and the core accepts both bounds
+            config.with_overrides({key: value})
+        current = _number_at(config, key)
+        if isinstance(current, bool) or not isinstance(current, float):
+            raise ValidationError(f"parameters[{key}]", current, "a key of a real number (not an integer, a flag, "
+                                  "a string or a list)")
+        out[str(key)] = (lo, hi)
+    return out
+
+
+def _windows(windows: Any, data: MeasuredData, config: DrillConfig) -> tuple[tuple[float, float], ...]:
+    if windows is None:
+        return ((0.0, min(data.span[1], config.numerics.duration)),)
+    out = []
+    for w in windows:
+        try:
+            a, b = (float(x) for x in w)
+        except (TypeError, ValueError):
+            raise ValidationError("windows", w, "(start, end) pairs of times, s") from None
+        if not (math.isfinite(a) and math.isfinite(b) and 0 <= a < b):
+            raise ValidationError("windows", w, "0 <= start < end, finite, s from the start-up")
+        out.append((a, b))
+    if not out:
+        raise ValidationError("windows", windows, "at least one (start, end) window")
+    return tuple(out)
+
+
+def _as_list(value: Any) -> list[Any]:
+    return list(value) if isinstance(value, (list, tuple)) else [value]
+
+
+# --------------------------------------------------------------------------- the fit
+
+
+def fit(
+    config: Union[ConfigLike, Sequence[ConfigLike]],
+    data: Union[DataLike, Sequence[DataLike]],
+    parameters: Mapping[str, tuple[float, float]],
+    *,
+    targets: Union[str, Sequence[str], Mapping[str, float]] = ("motor_torque",),
+    windows: Optional[Sequence[tuple[float, float]]] = None,
+    per_event: Sequence[str] = (),
+    samples: Optional[int] = None,
+    threads: Optional[int] = None,
+    seed: int = 0,
+    level: float = 0.95,
+    starts: int = 4,
+    horizon: float = 5.0,
+    max_iterations: int = 50,
+    diff_step: float = 1e-2,
+    profile: Union[bool, str] = "auto",
+    profile_points: int = 9,
+    landscape: bool = True,
+    landscape_points: int = 9,
+    max_gap: Optional[float] = None,
+    progress: Optional[Callable[[str], Any]] = None,
+) -> FitResult:
+    """Fits configuration values to measured data (see the module docstring).
+
+    Parameters
+    ----------
+    config : DrillConfig, mapping or TOML path, or one per event
+        The model; one configuration serves every event unless a list (one per event) is given.
+    data : MeasuredData, path, DataFrame, or a list of them (one per event)
+        The measurements (:func:`~drillstring.calibration.data.read_measured` reads paths and
+        frames with the column names of ``drill``'s ``series.csv``), times from the start-up.
+    parameters : mapping
+        Dotted key -> ``(low, high)``: any real configuration value (``friction.static``,
+        ``friction.kinetic_ratio``, ``friction.stick_speed``, ``damping_rate``,
+        ``sections[1].density``, ...).
+    targets : name, names or mapping name -> weight
+        The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``).
+    windows : list of (start, end), optional
+        Model times compared, s (default: from 0 to the end of the data or of the configuration's
+        duration); the same for every event.
+    per_event : keys
+        Parameters with one value per event (the others are shared).
+    samples : int, optional
+        Points of the global stage (a power of two; default 64 per parameter, at least 128, rounded up).
+    starts : int
+        Refinements, from the best points of the global stage at least
+        :data:`START_SEPARATION` apart.
+    horizon : float
+        The global stage compares the first ``horizon`` seconds or more of the windows (the
+        span halved until it is shorter than twice ``horizon``) and each start is refined over
+        that, twice that, ... and the whole span in turn: the later cycles of a stick-slip
+        record shift in phase with the parameters and make the whole record's misfit
+        many-valleyed. Choose it to hold the break-off and the first slip.
+    threads : int, optional
+        Runs solved at once (default: every core).
+    profile : ``"auto"``, True or False
+        Profile likelihood for the intervals: where the Jacobian is ill-conditioned or an
+        interval leaves the box (``"auto"``), for every parameter, or never.
+    landscape, landscape_points
+        The misfit over a grid of each pair of parameters.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    ValidationError
+        Bad data (naming the column and the time), a key that is not a real configuration value,
+        bounds the core refuses, windows outside the data.
+    """
+    start_time = time.perf_counter()
+    say = progress or (lambda _msg: None)
+    configs = [_config(c) for c in _as_list(config)] if isinstance(config, (list, tuple)) else [_config(config)]
+    datasets = [d if isinstance(d, MeasuredData) else read_measured(d) for d in _as_list(data)] \
+        if isinstance(data, (list, tuple)) else [data if isinstance(data, MeasuredData) else read_measured(data)]
+    if len(configs) == 1 and len(datasets) > 1:
+        configs = configs * len(datasets)
+    if len(configs) != len(datasets):
+        raise ValidationError("config", f"{len(configs)} configurations",
+                              f"one configuration, or one per event ({len(datasets)} data sets)")
+    target_map = _targets(targets)
+    bounds = _bounds(parameters, configs[0])
+    per = [str(k) for k in per_event]
+    for key in per:
+        if key not in bounds:
+            raise ValidationError("per_event", key, f"a key of parameters: {', '.join(bounds)}")
+    for name, value, low in (("level", level, 0.0), ("diff_step", diff_step, 0.0)):
+        if not (isinstance(value, (int, float)) and low < value < 1):
+            raise ValidationError(name, value, "a number in (0, 1)")
+    for name, count, least in (("profile_points", profile_points, 3), ("landscape_points", landscape_points, 2),
+                               ("max_iterations", max_iterations, 1), ("starts", starts, 1)):
+        if isinstance(count, bool) or not isinstance(count, int) or count < least:
+            raise ValidationError(name, count, f"an integer >= {least}")
+    if profile not in ("auto", True, False):
+        raise ValidationError("profile", profile, "'auto', True or False")
+    if threads is None:
+        threads = os.cpu_count() or 1
+    if isinstance(threads, bool) or not isinstance(threads, int) or not 1 <= threads <= _core.MAX_THREADS:
+        raise ValidationError("threads", threads, f"an integer 1..{_core.MAX_THREADS}")
+
+    events = []
+    for cfg, ds_ in zip(configs, datasets):
+        ds_.require(list(target_map))
+        wins = _windows(windows, ds_, cfg)
+        ds_.check_windows(wins, list(target_map), max_gap)
+        events.append(Event(cfg, ds_, wins))
+    columns = []
+    for key, (lo, hi) in bounds.items():
+        if key in per and len(events) > 1:
+            columns += [_Column(f"events[{e}].{key}", key, e, lo, hi) for e in range(len(events))]
+        else:
+            columns.append(_Column(key, key, None, lo, hi))
+    p = len(columns)
+    if isinstance(horizon, bool) or not isinstance(horizon, (int, float)) or not horizon > 0:
+        raise ValidationError("horizon", horizon, "a time > 0, s")
+    longest = max(max(b for _, b in e.windows) - min(a for a, _ in e.windows) for e in events)
+    fractions = [1.0]
+    while fractions[0] * longest / 2 >= horizon * (1 - 1e-9):
+        fractions.insert(0, fractions[0] / 2)
+    problems = [_Problem(events, columns, target_map, threads, f) for f in fractions]
+    problem = problems[-1]
+    if min(q.points for q in problems) <= p:
+        raise ValidationError("windows", [e.windows for e in events],
+                              f"more compared samples ({min(q.points for q in problems)}, in the shortest horizon) "
+                              f"than parameters ({p})")
+
+    # 1. the global stage
+    from scipy.stats import qmc
+
+    n = samples if samples is not None else max(64 * p, 128)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise ValidationError("samples", samples, "an integer >= 1")
+    m = max(int(math.ceil(math.log2(n))), 1)
+    sobol = qmc.Sobol(d=p, scramble=True, seed=seed).random_base2(m)
+    say(f"global stage: {sobol.shape[0]} points x {len(events)} event(s) on {threads} thread(s), over "
+        f"{fractions[0]:.3g} of the windows' span")
+    global_ssr = np.array([float(r @ r) for r in problems[0].residuals(list(sobol))])
+    best = int(np.argmin(global_ssr))
+    u0 = sobol[best].copy()
+    global_stage = {"points": int(sobol.shape[0]), "best_ssr": float(global_ssr[best]), "horizon": fractions[0],
+                    "best": {c.name: float(v) for c, v in zip(columns, problem.values(u0))},
+                    "failed": int(np.sum(global_ssr >= FAILED_RESIDUAL ** 2))}
+
+    # 2. the refinement, from the best few points of the global stage
+    order: list[int] = []
+    for k in np.argsort(global_ssr):
+        if len(order) < starts and all(np.max(np.abs(sobol[k] - sobol[j])) >= START_SEPARATION for j in order):
+            order.append(int(k))
+    say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr[best]:.4g})")
+    runs = []
+    for k in order:  # each start through the horizons, the shortest first
+        u = sobol[k].copy()
+        for stage, q in enumerate(problems):
+            if stage:  # a longer horizon: the best of a small sample around the point first
+                near = np.clip(u + (qmc.Sobol(d=p, scramble=True, seed=seed + stage).random_base2(ZOOM_LOG2)
+                                    - 0.5) * 2 * ZOOM, 0.0, 1.0)
+                candidates = [u, *near]
+                misfits = [float(r @ r) for r in q.residuals(candidates)]
+                u = candidates[int(np.argmin(misfits))].copy()
+            u, ssr_k, info = _refine(q, u, list(range(p)), diff_step, max_iterations)
+        runs.append((u, ssr_k, info))
+    u_opt, ssr, refinement = min(runs, key=lambda run: run[1])
+    refinement = {**refinement, "starts": len(order), "ssr": ssr, "ssr_of_starts": [run[1] for run in runs],
+                  "horizons": fractions}
+    r = problem.residuals([u_opt])[0]
+    x_opt = problem.values(u_opt)
+
+    # 3. uncertainty
+    from scipy import stats
+
+    warnings_: list[str] = []
+    npts = r.size
+    dof = max(npts - p, 1)
+    rho = float(np.corrcoef(r[:-1], r[1:])[0, 1]) if npts > 3 and np.std(r) > 0 else 0.0
+    rho = rho if math.isfinite(rho) else 0.0
+    inflation = (1 + rho) / (1 - rho) if 0 < rho < 0.999 else (1e3 if rho >= 0.999 else 1.0)
+    s2 = ssr / dof * inflation
+    J = _jacobian(problem, u_opt, diff_step)
+    span = problem.upper - problem.lower
+    sing = np.linalg.svd(J, compute_uv=False)
+    condition = float(sing[0] / sing[-1]) if sing[-1] > 0 else math.inf
+    cov_u = s2 * np.linalg.pinv(J.T @ J)
+    se = np.sqrt(np.maximum(np.diag(cov_u), 0.0)) * span
+    estimates: dict[str, ParameterEstimate] = {}
+    need_profile = []
+    threshold = s2 * float(stats.chi2.ppf(level, 1))
+    # the Jacobian's interval checked along its own path: the points of the confidence ellipsoid
+    # that reach furthest in each parameter, and multiples of them, solved as one batch
+    path_points = []
+    for i in range(p):
+        direction = cov_u[:, i] / math.sqrt(cov_u[i, i]) * math.sqrt(threshold / s2) if cov_u[i, i] > 0 \
+            else np.eye(p)[i] * 0.0
+        for sign in (1.0, -1.0):
+            path_points += [np.clip(u_opt + sign * m * direction, 0.0, 1.0) for m in PATH_MULTIPLES]
+    path_ssr = np.array([float(v @ v) for v in problem.residuals(path_points)]) - ssr
+    count = len(PATH_MULTIPLES)
+    for i, c in enumerate(columns):
+        ends = []
+        for side in range(2):
+            part = slice((2 * i + side) * count, (2 * i + side + 1) * count)
+            xs = np.array([problem.values(w)[i] for w in path_points[part]])
+            inside = path_ssr[part] <= threshold
+            if not inside[0] or not math.isfinite(se[i]):
+                ends.append(x_opt[i] + (1 if side == 0 else -1) * PATH_MULTIPLES[0] * math.sqrt(
+                    threshold / s2) * se[i])
+            else:
+                ends.append(float(xs[np.flatnonzero(inside)[-1]]))  # the furthest point inside
+        hi_ci, lo_ci = max(ends[0], x_opt[i]), min(ends[1], x_opt[i])
+        # every point solved so far whose misfit is within the threshold belongs to the set too
+        # (the set-valued friction makes the misfit jump at the scale of the intervals)
+        near = [problem.values(u)[i] for u, v in problem.history if v - ssr <= threshold]
+        if near:
+            lo_ci, hi_ci = min(lo_ci, min(near)), max(hi_ci, max(near))
+        at_bounds = lo_ci <= c.lower + 1e-12 * span[i] and hi_ci >= c.upper - 1e-12 * span[i]
+        wide = not math.isfinite(se[i]) or at_bounds
+        if profile is True or (profile == "auto" and condition > CONDITION_LIMIT):
+            need_profile.append(i)
+        estimates[c.name] = ParameterEstimate(c.name, float(x_opt[i]), float(lo_ci), float(hi_ci), c.lower, c.upper,
+                                              float(se[i]), "jacobian", not wide)
+    if condition > CONDITION_LIMIT:
+        _, _, vt = np.linalg.svd(J)
+        weak = [columns[i].name for i in np.argsort(-np.abs(vt[-1])) if abs(vt[-1][i]) > 0.3]
+        warnings_.append(f"near-singular Jacobian (condition number {condition:.3g}): the data fix a combination of "
+                         f"{', '.join(weak)} better than each (a ridge of equally good fits; see the landscape)")
+    profiles: dict[str, Profile] = {}
+    for i in need_profile:
+        c = columns[i]
+        say(f"profile likelihood of {c.name}")
+        grid = np.linspace(0.0, 1.0, profile_points)
+        prof = np.empty(grid.size)
+        others = [j for j in range(p) if j != i]
+        if not others:
+            points = []
+            for g in grid:
+                u = u_opt.copy()
+                u[i] = g
+                points.append(u)
+            prof = np.array([float(v @ v) for v in problem.residuals(points)])
+        else:
+            for k, g in enumerate(grid):
+                u = u_opt.copy()
+                u[i] = g
+                prof[k] = _refine(problem, u, others, diff_step, max(max_iterations // 2, 5))[1]
+        values = c.lower + grid * (c.upper - c.lower)
+        profiles[c.name] = Profile(c.name, values, prof, threshold)
+        lo_ci, hi_ci, flat = _profile_interval(values, prof - ssr, threshold, float(x_opt[i]))
+        estimates[c.name] = ParameterEstimate(c.name, float(x_opt[i]), lo_ci, hi_ci, c.lower, c.upper,
+                                              estimates[c.name].std_error, "profile", not flat)
+    for est in estimates.values():
+        if not est.identifiable:
+            warnings_.append(f"{est.key} is not identifiable from these data: its {level:.0%} interval "
+                             f"({est.ci_low:.4g}..{est.ci_high:.4g}) spans its bounds {est.lower:g}..{est.upper:g} "
+                             "(flat misfit); fix it, narrow its bounds or add data that excite it")
+
+    # 4. the landscape
+    landscapes: list[Landscape] = []
+    if landscape and p >= 2:
+        grid = np.linspace(0.0, 1.0, landscape_points)
+        pairs = [(i, j) for i in range(p) for j in range(i + 1, p)]
+        say(f"landscape: {len(pairs)} pair(s) x {grid.size ** 2} points")
+        points = []
+        for i, j in pairs:
+            for gy in grid:
+                for gx in grid:
+                    u = u_opt.copy()
+                    u[i], u[j] = gx, gy
+                    points.append(u)
+        flat_ssr = np.array([float(v @ v) for v in problem.residuals(points)])
+        size = grid.size ** 2
+        for n_pair, (i, j) in enumerate(pairs):
+            block = flat_ssr[n_pair * size:(n_pair + 1) * size].reshape(grid.size, grid.size)
+            landscapes.append(Landscape(columns[i].name, columns[j].name,
+                                        columns[i].lower + grid * span[i], columns[j].lower + grid * span[j], block))
+
+    # the fitted runs, whole
+    fitted_configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e))) for e in range(len(events))]
+    whole = problem.run([u_opt], whole=True)[0]
+    fitted = [w if isinstance(w, dict) else {} for w in whole]
+    rms = []
+    offset = 0
+    for e in range(len(events)):
+        row = {}
+        for s in target_map:
+            size_e = problem.index[e].size
+            seg = r[offset:offset + size_e] * problem.scale[e][s] / math.sqrt(target_map[s])
+            row[s] = float(np.sqrt(np.mean(seg ** 2)))
+            offset += size_e
+        rms.append(row)
+    for w in whole:
+        if isinstance(w, str):
+            warnings_.append(f"the fitted configuration's run failed: {w}")
+    return FitResult(
+        parameters=estimates, configs=fitted_configs, events=events, targets=target_map, ssr=ssr, points=npts,
+        level=level, evaluations=sum(q.evaluations for q in problems), seconds=time.perf_counter() - start_time,
+        condition=condition, residual_autocorrelation=rho, global_stage=global_stage, refinement=refinement,
+        rms=rms, fitted=fitted, landscapes=landscapes, profiles=profiles, warnings=warnings_,
+    )
+
+
+def _profile_interval(values: NDArray[np.float64], excess: NDArray[np.float64], threshold: float,
+                      best: float) -> tuple[float, float, bool]:
+    """The interval where the profile's excess misfit stays below ``threshold`` around ``best``
+    and whether the profile is flat (below the threshold everywhere). On each side, the first
+    grid value beyond the threshold ``v`` (excess ``e``) ends it at ``best + (v - best)
+    sqrt(threshold / e)`` (a quadratic profile from the optimum), never nearer than the grid
+    values inside before it; a side that never crosses ends at the bound."""
+    flat = bool(np.all(excess <= threshold))
+    ends = []
+    for side in (-1.0, 1.0):
+        order = np.argsort(side * (values - best))
+        end = best
+        reached = False
+        for k in order:
+            d = side * (values[k] - best)
+            if d <= 0:
+                continue
+            if excess[k] > threshold:
+                end = side * max(side * end, side * (best + (values[k] - best) * math.sqrt(threshold / excess[k])))
+                reached = True
+                break
+            end = float(values[k])
+        if not reached:
+            end = float(values[-1] if side > 0 else values[0])
+        ends.append(float(end))
+    return ends[0], ends[1], flat
