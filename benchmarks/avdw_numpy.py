@@ -91,7 +91,7 @@ CONVERGED = Scheme(cut_surface="delay", damping=1.0, regime="set_valued", speeds
 
 # per-step series (sub-step means, as the Octave recording; "last_" the last sub-step)
 _MEANS = ("top_force_N", "top_torque_Nm", "wob_N", "tob_Nm", "depth_of_cut_m", "bit_face_speed_m_s",
-          "bit_face_speed_rad_s")
+          "bit_face_speed_rad_s", "top_power_W", "bit_power_W", "damping_power_W")
 _LAST = ("last_wob_N", "last_tob_Nm", "last_d_m", "last_ga", "last_g_tt_Nm", "last_wf_N", "last_stuck")
 
 
@@ -169,6 +169,13 @@ def set_valued_bit(p: dict, hold_w: float, hold_t: float, d: float) -> tuple[flo
     return max(hold_w, 0.0), hold_t, 0.0, hold_t - tc - tf, True
 
 
+def _energy(p: dict, h: np.ndarray, v: np.ndarray, f: np.ndarray, o: np.ndarray) -> float:
+    """Strain and kinetic energy of the string, J (cell sums times dx)."""
+    dx = p["L"] / p["P"]
+    return float(dx / 2 * (p["Ap"] * p["E"] * np.dot(h, h) + p["rho"] * p["Ap"] * np.dot(v, v)
+                           + p["Jp"] * p["G"] * np.dot(f, f) + p["rho"] * p["Jp"] * np.dot(o, o)))
+
+
 def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Scheme = PUBLISHED,
              cells: int = 1000, keep_cut_surface: bool = False) -> dict[str, np.ndarray]:
     """Run ``MAIN.m`` (``t = 0:p.dt:T1``, one ``waveStep_transportBRI`` per entry) with ``scheme``.
@@ -176,8 +183,10 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
     Returns per 0.003 s step: ``t_end_s``, the last cell's speeds after the step
     (``bit_cell_speed_end_m_s``, ``_rad_s``), the sub-step means of the top force and torque, WOB, TOB,
     depth of cut per revolution and bit face speeds, and the last sub-step's bit law (``last_*``;
-    ``last_stuck`` 1 where the torsional stick branch acts); ``final_state`` (h, v, f, o, l of the
-    published state vector; l is empty with the exact delay)."""
+    ``last_stuck`` 1 where the torsional stick branch acts); the energy ledger (sub-step means of the
+    power in at the top ``top_power_W``, into the rock ``bit_power_W``, of the damping at its applied rate
+    ``damping_power_W``; the string's energy ``energy_end_J`` after each step, ``energy_start_J``);
+    ``final_state`` (h, v, f, o, l of the published state vector; l is empty with the exact delay)."""
     p = parameters(rpm, rop, cells)
     pi = math.pi
     h, v, f, o, lcut = initial_state(p)
@@ -219,6 +228,12 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
     out = {k: np.empty(nt) for k in ("t_end_s", "bit_cell_speed_end_m_s", "bit_cell_speed_end_rad_s",
                                      *_MEANS, *_LAST)}
     acc = np.zeros(len(_MEANS))
+    # the energy ledger: applied damping rates (each invariant loses dk (alpha + beta) = 2 dk v per sub-step)
+    rate_a, rate_t = 2 * dka / dt, 2 * dkt / dt
+    damp_a, damp_t = rate_a * p["rho"] * Ap * dx / 4, rate_t * p["rho"] * Jp * dx / 4
+    out["energy_end_J"] = np.empty(nt)
+    energy = _energy(p, h, v, f, o)
+    out["energy_start_J"] = np.array(energy)
     x_bit = phi_bit = 0.0
     pad_a = np.empty(P + 1)
     pad_b = np.empty(P + 1)
@@ -263,8 +278,13 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
             TbetaPp1 = tP - 2 * tb * c_t / (Jp * G)
             v_face = (aP + AbetaPp1) / 2
             o_face = (tP + TbetaPp1) / 2
-            acc += (Ap * E * (Aalpha0 - Abeta[0]) / (2 * c_a), Jp * G * (Talpha0 - Tbeta[0]) / (2 * c_t),
-                    wb, tb, d, v_face, o_face)
+            top_f = Ap * E * (Aalpha0 - Abeta[0]) / (2 * c_a)
+            top_t = Jp * G * (Talpha0 - Tbeta[0]) / (2 * c_t)
+            sa = Abeta + Aalpha
+            st = Tbeta + Talpha
+            acc += (top_f, top_t, wb, tb, d, v_face, o_face,
+                    top_f * (Aalpha0 + Abeta[0]) / 2 + top_t * (Talpha0 + Tbeta[0]) / 2,
+                    wb * v_face + tb * o_face, damp_a * np.dot(sa, sa) + damp_t * np.dot(st, st))
 
             pad_a[0] = Aalpha0
             pad_a[1:] = Aalpha
@@ -274,9 +294,9 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
             pad_ta[1:] = Talpha
             pad_tb[:P] = Tbeta
             pad_tb[P] = TbetaPp1
-            Aalpha = Aalpha - ca_dx * np.diff(pad_a) - dka * (Abeta + Aalpha)
+            Aalpha = Aalpha - ca_dx * np.diff(pad_a) - dka * sa
             Abeta = Abeta + ca_dx * np.diff(pad_b) - dka * (Abeta + Aalpha)
-            Talpha = Talpha - ct_dx * np.diff(pad_ta) - dkt * (Tbeta + Talpha)
+            Talpha = Talpha - ct_dx * np.diff(pad_ta) - dkt * st
             Tbeta = Tbeta + ct_dx * np.diff(pad_tb) - dkt * (Tbeta + Talpha)
 
             if scheme.speeds == "cell":
@@ -295,6 +315,7 @@ def simulate(rpm: float = 30.0, rop: float = 30.0, t1: float = 25.0, scheme: Sch
         o = 1 / 2 * (Tbeta + Talpha)
         f = 1 / (2 * c_t) * (Talpha - Tbeta)
         out["t_end_s"][k] = (k + 1) * p["dt"]
+        out["energy_end_J"][k] = _energy(p, h, v, f, o)
         out["bit_cell_speed_end_m_s"][k] = v[P - 1]
         out["bit_cell_speed_end_rad_s"][k] = o[P - 1]
         for name, val in zip(_MEANS, acc / n):
