@@ -8,9 +8,9 @@ forces), the steady drilling state in closed form (depth of cut per revolution =
 and their transfer functions recomputed with numpy. These verify both the data and the reading of
 their conventions written down in the README and parameters.json.
 
-Not checkable here (stated, not tested): the paper's own figures (no digitised data), whether the cut
-surface converges (their scheme fixes the cell count; the converged twin is future work), and the
-time series of the torsional stick branch against an independent solver (none exists yet).
+Not checkable here (stated, not tested): the paper's own figures (no digitised data). Whether the cut
+surface converges, and the time series against an independent solver: tests/test_avdw_oracle.py (the
+numpy port of benchmarks/avdw_numpy.py).
 """
 
 from __future__ import annotations
