@@ -588,12 +588,17 @@ def _add_drill(sub: Any) -> None:
     p.add_argument("--check-grid", action="store_true",
                    help="also solve on twice the cells and report how much every metric moves (about four "
                    "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning")
-    p.add_argument("--units", choices=("si", "field"), default="si",
-                   help="the unit system of the console lines (field: ft, ft-lbf) and of a converted copy of the "
-                   "metrics in metrics.json (output_units); the files keep their SI values (default si; the "
-                   "configuration's own units key sets how it is read)")
+    _add_units(p)
     _add_progress(p)
     p.set_defaults(func=_cmd_drill)
+
+
+def _add_units(p: argparse.ArgumentParser) -> None:
+    """``--units si|field``, the unit system of a command's console lines and figures."""
+    p.add_argument("--units", choices=("si", "field"), default="si",
+                   help="the unit system of the console lines and the figures (field: ft, klbf, kft-lbf, ...) and, "
+                   "for drill, of a converted copy of the metrics in metrics.json (output_units); the data files "
+                   "keep their SI values (default si; the configuration's own units key sets how it is read)")
 
 
 def _change(kind: str, change: Optional[float]) -> str:
@@ -694,6 +699,7 @@ def _add_torque_drag(sub: Any) -> None:
         epilog="example: drillstring torque-drag examples/s-well-3d.toml --out s-well-td",
     )
     _add_drilling_config_arguments(p)
+    _add_units(p)
     p.set_defaults(func=_cmd_torque_drag)
 
 
@@ -702,6 +708,7 @@ def _cmd_torque_drag(args: argparse.Namespace) -> int:
 
     from .drilling import load_drill_config
     from .drilling.torque_drag import torque_drag, write_torque_drag
+    from .drilling.units import axis_unit
 
     config = load_drill_config(args.config)
     if args.overrides:
@@ -710,15 +717,21 @@ def _cmd_torque_drag(args: argparse.Namespace) -> int:
     result = torque_drag(config)
     seconds = time.perf_counter() - start
     s = result.summary
-    _say(f"torque-drag: {config.length:.6g} m string, solved in {seconds:.2g} s (with the broomstick sweep)")
-    _say(f"hook load: pick-up {s['hook_load_pickup_N'] / 1e3:.1f} kN, slack-off {s['hook_load_slackoff_N'] / 1e3:.1f}"
-         f" kN, rotating {s['hook_load_rotating_N'] / 1e3:.1f} kN, rotating on bottom "
-         f"{s['hook_load_rotating_on_bottom_N'] / 1e3:.1f} kN (with the block weight; effective tension)")
-    _say(f"surface torque: off bottom {s['surface_torque_off_bottom_Nm'] / 1e3:.2f} kN m, on bottom "
-         f"{s['surface_torque_on_bottom_Nm'] / 1e3:.2f} kN m; largest normal force "
-         f"{s['max_normal_force_N_per_m']:.0f} N/m at {s['max_normal_force_md']:.0f} m "
-         f"({s['max_normal_force_operation']})")
-    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out")
+    force, force_unit = axis_unit("N", args.units, kilo=True)  # kN or klbf
+    torque, torque_unit = axis_unit("N*m", args.units, kilo=True)
+    normal, normal_unit = axis_unit("N/m", args.units)
+    depth, depth_unit = axis_unit("m", args.units)
+    _say(f"torque-drag: {config.length * depth:.6g} {depth_unit} string, solved in {seconds:.2g} s (with the "
+         "broomstick sweep)")
+    _say(f"hook load: pick-up {s['hook_load_pickup_N'] * force:.1f} {force_unit}, slack-off "
+         f"{s['hook_load_slackoff_N'] * force:.1f} {force_unit}, rotating {s['hook_load_rotating_N'] * force:.1f} "
+         f"{force_unit}, rotating on bottom {s['hook_load_rotating_on_bottom_N'] * force:.1f} {force_unit} (with the "
+         "block weight; effective tension)")
+    _say(f"surface torque: off bottom {s['surface_torque_off_bottom_Nm'] * torque:.2f} {torque_unit}, on bottom "
+         f"{s['surface_torque_on_bottom_Nm'] * torque:.2f} {torque_unit}; largest normal force "
+         f"{s['max_normal_force_N_per_m'] * normal:.0f} {normal_unit} at {s['max_normal_force_md'] * depth:.0f} "
+         f"{depth_unit} ({s['max_normal_force_operation']})")
+    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=args.units)
     _say(f"wrote {len(written)} files to {args.out}")
     return 0
 
@@ -859,6 +872,7 @@ def _add_drill_map(sub: Any) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="solve the chunks on this Dask distributed scheduler, e.g. tcp://head-node:8786")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
+    _add_units(p)
     _add_progress(p)
     p.set_defaults(func=_cmd_drill_map)
 
@@ -943,7 +957,7 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         from .drilling.maps import map_figures
         from .io.figures import save
 
-        for name, fig in map_figures(frame).items():
+        for name, fig in map_figures(frame, args.units).items():
             written.append(save(fig, os.path.join(args.out, name)))
     _say(f"wrote {len(written)} files to {args.out} (and the resumable store: manifest.json, chunks/)")
     return 0

@@ -24,7 +24,9 @@ held in memory only.
 Figures: :func:`ssi_map` (the stick-slip severity over two axes with the stick-slip boundary,
 the contour SSI = 1: the bit-speed oscillation as large as its mean, where the bit starts to
 stop), :func:`controller_maps` (one such panel per controller, side by side, on one colour
-scale), :func:`ssi_lines` (SSI against one axis, one line per value of another).
+scale), :func:`ssi_lines` (SSI against one axis, one line per value of another). Each takes
+``units="si"`` (the default) or ``"field"``: the axes and the values in the panels' titles in the
+field unit of their key (:func:`axis_label`); the table stays SI.
 """
 
 from __future__ import annotations
@@ -50,7 +52,7 @@ from .config import DrillConfig, _load_document, _plain
 from .metrics import core_value
 from .result import METRICS, TEXT_METRICS
 from .solve import ConfigLike, _config
-from .units import override_to_si
+from .units import axis_unit, convert, override_to_si, system_of
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -532,16 +534,18 @@ MAX_PANELS = 48
 
 #: Units (the schema's, as pint writes them) a figure writes with the SI prefix that keeps the
 #: numbers readable (``N`` -> ``kN``, ``N*m`` -> ``kN m``, ``Pa`` -> ``GPa``): those that start
-#: with newtons, pascals, joules or watts.
-_PREFIXED = r"(N|Pa|J|W)(?=$|[*/ ])"
+#: with newtons, pascals, joules or watts; in field units, with foot-pounds force, pounds force
+#: or psi (``ft*lbf`` -> ``kft-lbf``, ``psi`` -> ``Mpsi``).
+_PREFIXED = r"(N|Pa|J|W|ft\*lbf|lbf|psi)(?=$|[*/ ])"
 _PREFIXES = ((1e9, "G"), (1e6, "M"), (1e3, "k"))
 _NO_UNIT = ("", "1", "-", "dimensionless")
 _SUPERSCRIPTS = str.maketrans({"2": "²", "3": "³", "4": "⁴"})
 
 
 def _readable_unit(unit: str) -> str:
-    """A pint unit as a figure writes it: ``N*m`` -> ``N m``, ``kg*m^2`` -> ``kg m²``."""
-    unit = unit.replace("**", "^").replace("*", " ")
+    """A pint unit as a figure writes it: ``N*m`` -> ``N m``, ``kg*m^2`` -> ``kg m²``,
+    ``ft*lbf`` -> ``ft-lbf``."""
+    unit = unit.replace("**", "^").replace("ft*lbf", "ft-lbf").replace("*", " ")
     return re.sub(r"\^([234])(?!\d)", lambda m: m.group(1).translate(_SUPERSCRIPTS), unit)
 
 
@@ -553,13 +557,17 @@ def _schema() -> Mapping[str, Mapping[str, Any]]:
     return get() if callable(get) else {}
 
 
-def axis_label(key: str, values: Any = ()) -> tuple[str, float]:
+def axis_label(key: str, values: Any = (), units: str = "si") -> tuple[str, float]:
     """The label ``"quantity [unit]"`` of the configuration key ``key`` (its label and unit from
     the core's schema, :func:`_schema`; without one, the key's last name) and the factor its
-    ``values`` are drawn at: forces, torques, pressures, energies and powers get the SI prefix
+    SI ``values`` are drawn at: forces, torques, pressures, energies and powers get the SI prefix
     that keeps the largest value below 1000 (``bit.weight_on_bit`` up to 200000 N:
     ``"weight on bit [kN]"``, factor 1e-3). A section's key names its section
-    (``sections[1].length``: ``"length, section 2 [m]"``)."""
+    (``sections[1].length``: ``"length, section 2 [m]"``). With ``units="field"`` the quantity
+    is in the field unit of its key (:func:`drillstring.drilling.units.field_unit`: lengths in
+    ft, diameters in in, weight on bit in klbf, torques in ft-lbf or kft-lbf, psi or Mpsi), the
+    factor the conversion's (:func:`drillstring.drilling.units.convert`) times the prefix's."""
+    system = system_of(units, "units")
     match = re.fullmatch(r"sections\[(\d+)\]\.(.+)", key)
     generic = f"sections[].{match.group(2)}" if match else key
     entry = _schema().get(generic) or {}
@@ -568,37 +576,41 @@ def axis_label(key: str, values: Any = ()) -> tuple[str, float]:
         label = f"{label}, section {int(match.group(1)) + 1}"
     unit = str(entry.get("unit") or "")
     factor = 1.0
+    if system != "si" and unit and entry.get("type") in ("number", "array"):
+        converted, unit = convert(1.0, unit, system, key=generic)
+        factor = float(converted if converted is not None else 1.0)
     finite = np.asarray([v for v in values if isinstance(v, numbers.Real) and not isinstance(v, bool)], dtype=float)
     finite = finite[np.isfinite(finite)]
     if re.match(_PREFIXED, unit) and finite.size:
-        biggest = float(np.abs(finite).max())
+        biggest = float(np.abs(finite).max()) * factor
         for size, prefix in _PREFIXES:
             if biggest >= size:
-                factor, unit = 1.0 / size, prefix + unit
+                factor, unit = factor / size, prefix + unit
                 break
     return (label if unit in _NO_UNIT else f"{label} [{_readable_unit(unit)}]"), factor
 
 
-def _value_text(key: str, value: Any, values: Any) -> str:
+def _value_text(key: str, value: Any, values: Any, units: str = "si") -> str:
     """``"label = value unit"`` of one value of an axis (the controller: ``"pi controller"``)."""
     if key == CONTROLLER_AXIS:
         return f"{value} controller"
-    label, factor = axis_label(key, values)
+    label, factor = axis_label(key, values, units)
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         name, _, unit = label.partition(" [")
         return f"{name} = {float(value) * factor:.4g}" + (f" {unit[:-1]}" if unit else "")
     return f"{label} = {value}"
 
 
-def _well_name(frame: pd.DataFrame) -> str:
+def _well_name(frame: pd.DataFrame, units: str = "si") -> str:
     """The map's well: its name (``frame.attrs["name"]``: the configuration file's stem or the
-    ``name`` given to :func:`drill_map`), else the string's length."""
+    ``name`` given to :func:`drill_map`), else the string's length (in ``units``)."""
     name = frame.attrs.get("name")
     if name:
         return str(name)
     sections = (frame.attrs.get("config") or {}).get("sections") or ()
     length = sum(float(s.get("length", 0.0)) for s in sections if isinstance(s, Mapping))
-    return f"{length:.0f} m string" if length > 0 else "drilling system"
+    scale, unit = axis_unit("m", units)
+    return f"{length * scale:.0f} {unit} string" if length > 0 else "drilling system"
 
 
 def _controller(frame: pd.DataFrame) -> Optional[str]:
@@ -609,12 +621,12 @@ def _controller(frame: pd.DataFrame) -> Optional[str]:
     return None if kind is None else str(kind)
 
 
-def _map_title(frame: pd.DataFrame, what: str) -> str:
+def _map_title(frame: pd.DataFrame, what: str, units: str = "si") -> str:
     controller = _controller(frame)
-    return f"{_well_name(frame)}: {what}" + (f", {controller} controller" if controller else "")
+    return f"{_well_name(frame, units)}: {what}" + (f", {controller} controller" if controller else "")
 
 
-def _split(frame: pd.DataFrame, plotted: Sequence[str], first: Optional[str] = None
+def _split(frame: pd.DataFrame, plotted: Sequence[str], first: Optional[str] = None, units: str = "si"
            ) -> list[tuple[str, pd.DataFrame]]:
     """The frame cut by the values of every axis of the map not in ``plotted`` that takes more
     than one value (``first`` leading), as ``(panel title, rows)``; one ``("", frame)`` without
@@ -636,7 +648,7 @@ def _split(frame: pd.DataFrame, plotted: Sequence[str], first: Optional[str] = N
         values = values if isinstance(values, tuple) else (values,)
         groups.append((tuple(position(k, v) for k, v in zip(keys, values)), values, part))
     groups.sort(key=lambda g: g[0])  # in the order of the axes' values
-    parts = [(", ".join(_value_text(k, v, frame[k].tolist()) for k, v in zip(keys, values)), part)
+    parts = [(", ".join(_value_text(k, v, frame[k].tolist(), units) for k, v in zip(keys, values)), part)
              for _, values, part in groups]
     if len(parts) > MAX_PANELS:
         raise ValidationError("axes", ", ".join(keys), f"at most {MAX_PANELS} panels (values of the axes not "
@@ -702,17 +714,19 @@ def _vmax(values: Any) -> float:
     return float(max(1.5, finite.max())) if finite.size else 1.5
 
 
-def _ssi_panels(frame: pd.DataFrame, x: str, y: str, first: Optional[str], title: Optional[str]) -> Figure:
+def _ssi_panels(frame: pd.DataFrame, x: str, y: str, first: Optional[str], title: Optional[str],
+                units: str = "si") -> Figure:
     from .plots import _figure
 
     _check_axes(frame, (x, y))
-    parts = _split(frame, (x, y), first)
+    parts = _split(frame, (x, y), first, units)
     cols = min(len(parts), 4)
     rows = -(-len(parts) // cols)
     fig = _figure(4.2 * cols + 1.4, 3.9 * rows + 0.6)
     axs = fig.subplots(rows, cols, sharex=True, sharey=True, squeeze=False).ravel()
     vmax = _vmax(frame["ssi"])
-    (xlabel, xscale), (ylabel, yscale) = axis_label(x, frame[x].tolist()), axis_label(y, frame[y].tolist())
+    (xlabel, xscale), (ylabel, yscale) = (axis_label(x, frame[x].tolist(), units),
+                                          axis_label(y, frame[y].tolist(), units))
     mesh = None
     for ax, (name, part) in zip(axs, parts):
         mesh = _panel(ax, part, x, y, "ssi", vmax, (xscale, yscale))
@@ -725,11 +739,11 @@ def _ssi_panels(frame: pd.DataFrame, x: str, y: str, first: Optional[str], title
         ax.set_ylabel(ylabel)
     assert mesh is not None  # at least one panel
     fig.colorbar(mesh, ax=list(axs[:len(parts)]), label="stick-slip severity SSI (cyan: SSI = 1)")
-    fig.suptitle(title or _map_title(frame, "stick-slip severity SSI"))
+    fig.suptitle(title or _map_title(frame, "stick-slip severity SSI", units))
     return fig
 
 
-def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None) -> Figure:
+def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None, units: str = "si") -> Figure:
     """The stick-slip severity over the numeric axes ``x`` and ``y`` of a map (a cell per run),
     with the stick-slip boundary SSI = 1 (cyan).
 
@@ -747,6 +761,9 @@ def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None)
         Two numeric axes of the map (dotted keys).
     title : str, optional
         The figure's title instead of the default.
+    units : {"si", "field"}, optional
+        The unit system of the axes and the panels' titles (default ``"si"``; ``"field"``: the
+        field unit of each key, :func:`axis_label`).
 
     Returns
     -------
@@ -757,31 +774,35 @@ def ssi_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None)
     >>> frame = drill_map("examples/on-bottom-3000m.toml",  # doctest: +SKIP
     ...                   {"top_drive.rpm": [40, 80, 120], "bit.weight_on_bit": [50e3, 100e3]})
     >>> ssi_map(frame, "top_drive.rpm", "bit.weight_on_bit").savefig("ssi_map.png")  # doctest: +SKIP
+    >>> ssi_map(frame, "top_drive.rpm", "bit.weight_on_bit", units="field")  # doctest: +SKIP
     """
-    return _ssi_panels(frame, x, y, CONTROLLER_AXIS, title)
+    return _ssi_panels(frame, x, y, CONTROLLER_AXIS, title, units)
 
 
 def controller_maps(frame: pd.DataFrame, x: str, y: str, *, controller: str = CONTROLLER_AXIS,
-                    title: Optional[str] = None) -> Figure:
+                    title: Optional[str] = None, units: str = "si") -> Figure:
     """:func:`ssi_map` panels, one per value of the ``controller`` axis (and of any other axis
-    not plotted), on one colour scale, each with its SSI = 1 boundary or a note that it has none."""
+    not plotted), on one colour scale, each with its SSI = 1 boundary or a note that it has none;
+    ``units`` as :func:`ssi_map`'s."""
     _check_axes(frame, (x, y))
     if controller not in frame.columns:
         raise ValidationError("controller", controller, "an axis of the map")
-    return _ssi_panels(frame, x, y, controller, title or f"{_well_name(frame)}: stick-slip severity SSI by controller")
+    return _ssi_panels(frame, x, y, controller,
+                       title or f"{_well_name(frame, units)}: stick-slip severity SSI by controller", units)
 
 
-def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: Optional[str] = None) -> Figure:
+def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: Optional[str] = None,
+              units: str = "si") -> Figure:
     """SSI (and the stuck fraction) against the numeric axis ``x``: one line per combination of
     the values of the map's other axes (``by`` first; no line averages runs of different
-    configurations), with SSI = 1 dashed."""
+    configurations), with SSI = 1 dashed; ``units`` as :func:`ssi_map`'s."""
     from .plots import _figure
 
     _check_axes(frame, (x,))
+    xlabel, scale = axis_label(x, frame[x].tolist(), units)
     fig = _figure(6.4, 4.8)
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
-    xlabel, scale = axis_label(x, frame[x].tolist())
-    parts = _split(frame, (x,), by or CONTROLLER_AXIS)
+    parts = _split(frame, (x,), by or CONTROLLER_AXIS, units)
     for name, part in parts:
         part = part.groupby(x, sort=True)[["ssi", "stuck_fraction"]].mean()  # repeated values: the same run
         label = name or None
@@ -796,28 +817,30 @@ def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: O
     ax2.set_xlabel(xlabel)
     if len(parts) > 1:
         ax1.legend(fontsize="small")
-    ax1.set_title(title or _map_title(frame, "stick-slip severity"))
+    ax1.set_title(title or _map_title(frame, "stick-slip severity", units))
     return fig
 
 
-def map_figures(frame: pd.DataFrame) -> dict[str, Figure]:
+def map_figures(frame: pd.DataFrame, units: str = "si") -> dict[str, Figure]:
     """The figures a map gets (file name -> figure): with two numeric axes ``ssi_map.png`` and,
     when ``top_drive.controller.type`` is an axis too, ``controllers.png``; with one numeric
     axis ``ssi_lines.png`` (a line per combination of the other axes' values, if any). None
     otherwise. Every figure has one panel (or line) per value of the axes it does not plot; a map
-    needing more than :data:`MAX_PANELS` panels gets no figure (a warning says so)."""
+    needing more than :data:`MAX_PANELS` panels gets no figure (a warning says so). ``units`` is
+    the unit system of the figures (:func:`ssi_map`)."""
+    units = system_of(units, "units")
     axes = list(frame.attrs.get("axes", {}))
     numeric = numeric_axes(frame)
     out: dict[str, Figure] = {}
     try:
         if len(numeric) >= 2:
             x, y = numeric[0], numeric[1]
-            out["ssi_map.png"] = ssi_map(frame, x, y)
+            out["ssi_map.png"] = ssi_map(frame, x, y, units=units)
             if CONTROLLER_AXIS in axes:
-                out["controllers.png"] = controller_maps(frame, x, y)
+                out["controllers.png"] = controller_maps(frame, x, y, units=units)
         elif len(numeric) == 1:
             others = [k for k in axes if k != numeric[0]]
-            out["ssi_lines.png"] = ssi_lines(frame, numeric[0], others[0] if others else None)
+            out["ssi_lines.png"] = ssi_lines(frame, numeric[0], others[0] if others else None, units=units)
     except ValidationError as exc:
         warnings.warn(f"no map figure: {exc}", stacklevel=2)
     return out

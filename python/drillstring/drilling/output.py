@@ -119,7 +119,11 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
     The folder is held (:func:`output_folder`) while it is written: :data:`MARKER` first, the
     stale files of :data:`FILES` this run does not write removed, the files, then the marker
     removed. ``output_units`` adds a converted copy of the metrics to ``metrics.json``
-    (:meth:`DrillResult.summary`)."""
+    (:meth:`DrillResult.summary`) and is the unit system of the figures (their ``units``); the
+    data files stay SI."""
+    from .units import system_of
+
+    output_units = system_of(output_units, "output_units")  # refused before anything is written
     with output_folder(out_dir, plots=plots, field=field) as directory:
         return _write_files(result, directory, plots, output_units)
 
@@ -164,7 +168,7 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
         from .plots import space_time_maps, time_histories, torque_depth
 
         for name, make in zip(PLOT_FILES, (time_histories, space_time_maps, torque_depth)):
-            written.append(Path(os.fsdecode(os.fspath(save(make(result), path(name))))))
+            written.append(Path(os.fsdecode(os.fspath(save(make(result, units=output_units), path(name))))))
     written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots).encode("utf-8")))
     os.unlink(marker)
     return written

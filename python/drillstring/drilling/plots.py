@@ -10,7 +10,9 @@
 
 :meth:`DrillResult.plot` draws any of them by name (:data:`KINDS`). Each function takes an optional
 ``fig`` (a :class:`~matplotlib.figure.Figure` or a ``SubFigure``) to draw into, for a figure of
-several runs; without it a new figure is made.
+several runs; without it a new figure is made; and ``units``, the unit system of its axes and
+titles: ``"si"`` (the default: m, kN m) or ``"field"`` (ft, kft-lbf; speeds in rpm and times in
+s either way), converted by :func:`drillstring.drilling.units.axis_unit`. The data are SI.
 """
 
 from __future__ import annotations
@@ -18,6 +20,8 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Callable, Optional, TypeVar
 
 import numpy as np
+
+from .units import axis_unit
 
 if TYPE_CHECKING:  # pragma: no cover
     from typing import Union
@@ -32,7 +36,6 @@ _F = TypeVar("_F", bound=Callable[..., Any])
 
 __all__ = ["KINDS", "space_time_maps", "time_histories", "torque_depth"]
 
-_KN = 1e-3
 
 
 def _figure(width: float, height: float) -> Figure:
@@ -42,11 +45,12 @@ def _figure(width: float, height: float) -> Figure:
     return Figure(figsize=(width, height), layout="constrained")
 
 
-def _title(result: DrillResult) -> str:
+def _title(result: DrillResult, units: str = "si") -> str:
     cfg = result.config
     where = "on bottom" if cfg.bit.on_bottom else "off bottom"
     name = getattr(result, "name", None)
-    return ((f"{name}: " if name else "") + f"{cfg.length:.0f} m string ({len(cfg.sections)} sections), "
+    depth, unit = axis_unit("m", units)
+    return ((f"{name}: " if name else "") + f"{cfg.length * depth:.0f} {unit} string ({len(cfg.sections)} sections), "
             f"{cfg.top_drive.rpm:g} rpm, {cfg.top_drive.controller.type} controller, bit {where}")
 
 
@@ -72,6 +76,9 @@ _SHARED_DOC = """
         The figure's title instead of the default.
     fig : Figure or SubFigure, optional
         Draw into this (empty) figure instead of a new one.
+    units : {{"si", "field"}}, optional
+        The unit system of the axes and the title (default ``"si"``; ``"field"``: depths in ft,
+        torques in kft-lbf).
 
     Returns
     -------
@@ -83,6 +90,7 @@ _SHARED_DOC = """
     >>> import drillstring as ds
     >>> result = ds.drill("examples/on-bottom-3000m.toml")  # doctest: +SKIP
     >>> {name}(result).savefig("{file}")  # doctest: +SKIP
+    >>> {name}(result, units="field").savefig("{file}")  # doctest: +SKIP
     """
 
 
@@ -98,16 +106,18 @@ def _documented(file: str) -> Callable[[_F], _F]:
 
 
 @_documented("time_histories.png")
-def time_histories(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None) -> Figure:
+def time_histories(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None,
+                   units: str = "si") -> Figure:
     """Speeds and torques of a run against time.
 
-    Top: surface (top-drive) and bit speed, rpm. Bottom: motor and bit torque, kN m, with the
+    Top: surface (top-drive) and bit speed, rpm. Bottom: motor and bit torque, kN m (kft-lbf), with the
     break-off torque dotted (the static torque the motor must exceed to break the string free:
     the wall's friction and, with the bit on bottom, the bit's static torque;
     :attr:`DrillProfile.static_torque`) and the minimum cycle torque it implies dash-dotted. The
     metrics window is shaded; the title gives the string, the controller and the stick-slip
     verdict with SSI, stuck fraction and period.
     """
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
     fig = _figure(11, 6.4) if fig is None else fig
     ax_rpm, ax_torque = fig.subplots(2, 1, sharex=True)
     for ax in (ax_rpm, ax_torque):
@@ -117,19 +127,19 @@ def time_histories(result: DrillResult, title: Optional[str] = None, *, fig: Opt
     ax_rpm.plot(result.t, result.bit_rpm, lw=1.0, color="tab:orange", ls="--", label="bit")
     ax_rpm.set_ylabel("speed, rpm")
     ax_rpm.legend(loc="upper right", fontsize=9)
-    ax_torque.plot(result.t, result.motor_torque * _KN, lw=1.0, color="tab:blue", label="motor")
-    ax_torque.plot(result.t, result.bit_torque * _KN, lw=1.0, color="tab:orange", ls="--", label="bit")
+    ax_torque.plot(result.t, result.motor_torque * torque, lw=1.0, color="tab:blue", label="motor")
+    ax_torque.plot(result.t, result.bit_torque * torque, lw=1.0, color="tab:orange", ls="--", label="bit")
     breakoff = result.profile.static_torque
     if np.isfinite(breakoff) and breakoff > 0:
-        ax_torque.axhline(breakoff * _KN, color="k", lw=0.8, ls=":", label=_breakoff_label(result))
+        ax_torque.axhline(breakoff * torque, color="k", lw=0.8, ls=":", label=_breakoff_label(result))
     low = result.metrics.min_cycle_torque_Nm
     if np.isfinite(low):
-        ax_torque.axhline(low * _KN, color="0.4", lw=0.8, ls="-.", label="minimum cycle torque implied by break-off")
-    ax_torque.set_ylabel("torque, kN m")
+        ax_torque.axhline(low * torque, color="0.4", lw=0.8, ls="-.", label="minimum cycle torque implied by break-off")
+    ax_torque.set_ylabel(f"torque, {torque_unit}")
     ax_torque.set_xlabel("t, s")
     ax_torque.legend(loc="upper right", fontsize=9)
     m = result.metrics
-    fig.suptitle(title or f"{_title(result)}\nstick-slip: {m.stick_slip_verdict}; SSI {m.ssi:.3g}, "
+    fig.suptitle(title or f"{_title(result, units)}\nstick-slip: {m.stick_slip_verdict}; SSI {m.ssi:.3g}, "
                  f"stuck {m.stuck_fraction:.3g}, period {m.period_s:.3g} s (shaded: metrics window)", fontsize=11)
     return _root(fig)
 
@@ -144,14 +154,16 @@ def _root(fig: FigureLike) -> Figure:
 
 
 @_documented("space_time.png")
-def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None
-                    ) -> Figure:
+def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None,
+                    units: str = "si") -> Figure:
     """Speed and torque along the string against time.
 
-    Top: speed, rpm; bottom: torque, kN m (a diverging scale around 0); measured depth grows
-    downward. Drawn from the snapshots of ``numerics.field_interval``; without snapshots each
+    Top: speed, rpm; bottom: torque, kN m (kft-lbf; a diverging scale around 0); measured depth,
+    m (ft), grows downward. Drawn from the snapshots of ``numerics.field_interval``; without snapshots each
     panel says so.
     """
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
+    depth, depth_unit = axis_unit("m", units)
     fig = _figure(11, 7.0) if fig is None else fig
     axes = fig.subplots(2, 1, sharex=True)
     if result.field_t.size == 0:
@@ -162,9 +174,9 @@ def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Op
     t = result.field_t
     z_stride = max(1, result.z.size // 600)  # at most ~600 rows drawn; data untouched
     t_stride = max(1, t.size // 1500)
-    z = result.z[::z_stride]
+    z = result.z[::z_stride] * depth
     maps = ((axes[0], result.omega_field, 1.0, "speed, rpm", "viridis"),
-            (axes[1], result.torque_field, _KN, "torque, kN m", "RdBu_r"))
+            (axes[1], result.torque_field, torque, f"torque, {torque_unit}", "RdBu_r"))
     for ax, data, scale, label, cmap in maps:
         values = data[::t_stride, ::z_stride].T * scale
         if cmap == "RdBu_r":
@@ -174,50 +186,59 @@ def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Op
             limits = {}
         mesh = ax.pcolormesh(t[::t_stride], z, values, cmap=cmap, shading="nearest", rasterized=True, **limits)
         fig.colorbar(mesh, ax=ax, pad=0.01).set_label(label)
-        ax.set_ylabel("measured depth, m")
+        ax.set_ylabel(f"measured depth, {depth_unit}")
         ax.invert_yaxis()
     axes[1].set_xlabel("t, s")
-    fig.suptitle(title or f"{_title(result)}: along the string", fontsize=11)
+    fig.suptitle(title or f"{_title(result, units)}: along the string", fontsize=11)
     return _root(fig)
 
 
 @_documented("torque_depth.png")
-def torque_depth(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None) -> Figure:
+def torque_depth(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None,
+                 units: str = "si") -> Figure:
     """Torque along the string against depth, inside its break-off envelope.
 
-    Left: the torque's range over the snapshots and the last snapshot, kN m, within the
+    Left: the torque's range over the snapshots and the last snapshot, kN m (kft-lbf), within the
     break-off envelope ``+-`` the static torque the string holds at break-off
     (:attr:`DrillProfile.holding`: the wall's static friction from the bit up plus, with the bit
-    on bottom, the bit's static torque). Right: the static friction limit per metre, N m/m.
+    on bottom, the bit's static torque). Right: the static friction limit per metre, N m/m
+    (ft-lbf/ft). Measured depth, m (ft), grows downward.
     """
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
+    depth, depth_unit = axis_unit("m", units)
+    limit, limit_unit = axis_unit("N*m/m", units)
     fig = _figure(11, 6.0) if fig is None else fig
     ax, ax_limit = fig.subplots(1, 2, sharey=True, width_ratios=[2.2, 1])
     profile = result.profile
     envelope = profile.holding if profile.holding.size == profile.z.size else profile.cumulative
     what = ("wall friction from the bit up + bit static torque" if profile.bit_static_torque > 0
             else "static friction from the bit up")
-    ax.fill_betweenx(profile.z, -envelope * _KN, envelope * _KN, color="0.9", label=f"break-off envelope ({what})")
-    ax.plot(envelope * _KN, profile.z, color="k", lw=0.9, ls=":")
-    ax.plot(-envelope * _KN, profile.z, color="k", lw=0.9, ls=":")
+    profile_z = profile.z * depth
+    ax.fill_betweenx(profile_z, -envelope * torque, envelope * torque, color="0.9",
+                     label=f"break-off envelope ({what})")
+    ax.plot(envelope * torque, profile_z, color="k", lw=0.9, ls=":")
+    ax.plot(-envelope * torque, profile_z, color="k", lw=0.9, ls=":")
     if result.field_t.size:
-        low = result.torque_field.min(axis=0) * _KN
-        high = result.torque_field.max(axis=0) * _KN
-        ax.fill_betweenx(result.z, low, high, color="tab:blue", alpha=0.25, lw=0,
+        z = result.z * depth
+        low = result.torque_field.min(axis=0) * torque
+        high = result.torque_field.max(axis=0) * torque
+        ax.fill_betweenx(z, low, high, color="tab:blue", alpha=0.25, lw=0,
                          label=f"range over {result.field_t.size} snapshots")
-        ax.plot(result.torque_field[-1] * _KN, result.z, color="tab:blue", lw=1.2,
+        ax.plot(result.torque_field[-1] * torque, z, color="tab:blue", lw=1.2,
                 label=f"t = {result.field_t[-1]:.4g} s")
     ax.axvline(0.0, color="0.5", lw=0.6)
-    ax.set_xlabel("torque, kN m")
-    ax.set_ylabel("measured depth, m")
+    ax.set_xlabel(f"torque, {torque_unit}")
+    ax.set_ylabel(f"measured depth, {depth_unit}")
     ax.grid(alpha=0.3)
     ax.legend(loc="lower left", fontsize=8)
     ax.invert_yaxis()
-    ax_limit.plot(profile.limit_per_m, profile.z, color="tab:red", lw=1.0)
-    ax_limit.set_xlabel("static friction limit, N m/m")
+    ax_limit.plot(profile.limit_per_m * limit, profile_z, color="tab:red", lw=1.0)
+    ax_limit.set_xlabel(f"static friction limit, {limit_unit}")
     ax_limit.grid(alpha=0.3)
     ax_limit.set_xlim(left=0.0)
-    fig.suptitle(title or f"{_title(result)}\nbreak-off torque {profile.static_torque * _KN:.4g} kN m"
-                 + (f" (wall {profile.breakoff_torque * _KN:.4g} + bit {profile.bit_static_torque * _KN:.4g})"
+    fig.suptitle(title or f"{_title(result, units)}\nbreak-off torque {profile.static_torque * torque:.4g} "
+                 f"{torque_unit}"
+                 + (f" (wall {profile.breakoff_torque * torque:.4g} + bit {profile.bit_static_torque * torque:.4g})"
                     if profile.bit_static_torque > 0 else ""), fontsize=11)
     return _root(fig)
 

@@ -390,7 +390,8 @@ class DrillResult:
                                    "metrics": {k: v for k, (v, _) in converted.items()}}
         return out
 
-    def plot(self, kind: str = "time", *, fig: Any = None, path: Any = None, title: Optional[str] = None) -> Figure:
+    def plot(self, kind: str = "time", *, fig: Any = None, path: Any = None, title: Optional[str] = None,
+             units: str = "si") -> Figure:
         """A figure of the run.
 
         Parameters
@@ -410,6 +411,10 @@ class DrillResult:
             extension, atomic replacement).
         title : str, optional
             The figure's title instead of the default.
+        units : {"si", "field"}, optional
+            The unit system of the axes and the title: ``"si"`` (the default) or ``"field"``
+            (depths in ft, torques in kft-lbf; :mod:`drillstring.drilling.units`). The data
+            stay SI.
 
         Returns
         -------
@@ -418,26 +423,29 @@ class DrillResult:
         Raises
         ------
         ValidationError
-            An unknown ``kind`` (naming the allowed ones), or a ``path`` whose extension is no
-            image format.
+            An unknown ``kind`` (naming the allowed ones), an unknown ``units`` (naming the
+            systems), or a ``path`` whose extension is no image format.
 
         Examples
         --------
         >>> import drillstring as ds
         >>> result = ds.drill("examples/on-bottom-3000m.toml")  # doctest: +SKIP
         >>> fig = result.plot("torque_depth", path="torque_depth.png")  # doctest: +SKIP
+        >>> fig = result.plot("time", units="field")  # doctest: +SKIP
         """
         from ..errors import ValidationError
         from .plots import KINDS
+        from .units import system_of
 
         make = KINDS.get(kind) if isinstance(kind, str) else None
         if make is None:
             raise ValidationError("kind", kind, "one of " + ", ".join(KINDS))
+        units = system_of(units, "units")
         if path is not None:
             from ..io.figures import plot_path
 
             plot_path(path, "path")  # an unknown extension is refused before drawing
-        figure = make(self, title, fig=fig)
+        figure = make(self, title, fig=fig, units=units)
         if path is not None:
             from ..io.figures import save
 
@@ -451,7 +459,8 @@ class DrillResult:
         ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
         ``report.md``. The destinations are checked before anything is written; every file is
         written atomically (see :mod:`drillstring.io.output`). ``output_units="field"`` adds the
-        metrics in field units to ``metrics.json`` (:meth:`summary`)."""
+        metrics in field units to ``metrics.json`` (:meth:`summary`) and draws the figures in
+        field units (:meth:`plot`'s ``units``); the data files stay SI."""
         from .output import write_outputs
 
         return write_outputs(self, out_dir, plots=plots, output_units=output_units)

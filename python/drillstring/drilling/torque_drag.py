@@ -33,6 +33,7 @@ from .. import _core
 from ..io.output import atomic_write, write_text
 from .output import MARKER as _MARKER
 from .output import output_folder
+from .units import axis_unit, system_of
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -167,12 +168,14 @@ def _csv(frame: pd.DataFrame, tmp: str) -> None:
 
 
 def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
-                      field: str = "out_dir") -> list[Path]:
+                      field: str = "out_dir", units: str = "si") -> list[Path]:
     """Writes ``torque_drag.json``, ``profiles.csv``, ``broomstick.csv``, ``survey.csv``,
     ``config.toml`` and (with ``plots``) ``torque_drag.png``, ``broomstick.png`` and
     ``well_path.png`` into ``out_dir``, with the folder rules of ``drillstring drill`` (checked
     first, locked while written, a marker file until complete, stale figures removed, another
-    command's folder refused). Returns the paths written."""
+    command's folder refused). ``units`` is the unit system of the figures (``"si"`` or
+    ``"field"``); the data files are SI either way. Returns the paths written."""
+    units = system_of(units, "units")
     names = TD_FILES if plots else TD_DATA_FILES
     with output_folder(out_dir, field=field, command="torque-drag", names=names) as directory:
         def path(name: str) -> str:
@@ -193,7 +196,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
             from ..io.figures import save
 
             for name, make in zip(TD_PLOT_FILES, (profiles_figure, broomstick_figure, well_path_figure)):
-                written.append(Path(os.fsdecode(os.fspath(save(make(result), path(name))))))
+                written.append(Path(os.fsdecode(os.fspath(save(make(result, units=units), path(name))))))
         os.unlink(marker)
     return written
 
@@ -212,50 +215,59 @@ def _figure(width: float, height: float) -> Figure:
     return Figure(figsize=(width, height), layout="constrained")
 
 
-def profiles_figure(result: TorqueDragResult) -> Figure:
-    """Effective tension (kN), torque (kN m) and normal force per metre (N/m) against measured
-    depth (down) for the four operations."""
+def profiles_figure(result: TorqueDragResult, *, units: str = "si") -> Figure:
+    """Effective tension (kN; klbf with ``units="field"``), torque (kN m; kft-lbf) and normal
+    force per metre (N/m; lbf/ft) against measured depth (m; ft; down) for the four operations."""
+    force, force_unit = axis_unit("N", units, kilo=True)
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
+    normal, normal_unit = axis_unit("N/m", units)
+    depth, depth_unit = axis_unit("m", units)
     fig = _figure(12, 6.5)
     axes = fig.subplots(1, 3, sharey=True)
     for op in OPERATIONS:
         p = result.profiles[op]
-        md = np.asarray(p["md"])
+        md = np.asarray(p["md"]) * depth
         kw = {"color": _COLOURS[op], "lw": 1.2, "label": _LABELS[op]}
-        axes[0].plot(np.asarray(p["tension_N"]) / 1e3, md, **kw)
+        axes[0].plot(np.asarray(p["tension_N"]) * force, md, **kw)
         if op in ("rotating", "rotating_on_bottom"):
-            axes[1].plot(np.asarray(p["torque_Nm"]) / 1e3, md, **kw)
-        axes[2].plot(p["normal_force_N_per_m"], md, **kw)
+            axes[1].plot(np.asarray(p["torque_Nm"]) * torque, md, **kw)
+        axes[2].plot(np.asarray(p["normal_force_N_per_m"]) * normal, md, **kw)
     axes[0].axvline(0.0, color="0.5", lw=0.8)
-    for ax, label in zip(axes, ("effective tension, kN", "torque, kN m", "normal force, N/m")):
+    for ax, label in zip(axes, (f"effective tension, {force_unit}", f"torque, {torque_unit}",
+                                f"normal force, {normal_unit}")):
         ax.set_xlabel(label)
         ax.grid(alpha=0.3)
-    axes[0].set_ylabel("measured depth, m")
+    axes[0].set_ylabel(f"measured depth, {depth_unit}")
     axes[0].invert_yaxis()
     axes[0].legend(fontsize=8, loc="lower left")
     s = result.summary
-    fig.suptitle(f"soft-string torque and drag: hook load pick-up {s['hook_load_pickup_N'] / 1e3:.0f} kN, "
-                 f"slack-off {s['hook_load_slackoff_N'] / 1e3:.0f} kN, rotating {s['hook_load_rotating_N'] / 1e3:.0f}"
-                 f" kN; surface torque {s['surface_torque_off_bottom_Nm'] / 1e3:.1f} (off) / "
-                 f"{s['surface_torque_on_bottom_Nm'] / 1e3:.1f} (on bottom) kN m", fontsize=10)
+    fig.suptitle(f"soft-string torque and drag: hook load pick-up {s['hook_load_pickup_N'] * force:.0f} "
+                 f"{force_unit}, slack-off {s['hook_load_slackoff_N'] * force:.0f} {force_unit}, rotating "
+                 f"{s['hook_load_rotating_N'] * force:.0f} {force_unit}; surface torque "
+                 f"{s['surface_torque_off_bottom_Nm'] * torque:.1f} (off) / "
+                 f"{s['surface_torque_on_bottom_Nm'] * torque:.1f} (on bottom) {torque_unit}", fontsize=10)
     return fig
 
 
-def broomstick_figure(result: TorqueDragResult) -> Figure:
-    """The broomstick plot: hook load (kN) against bit depth (m, down) while tripping out
-    (pick-up), in (slack-off) and rotating, one line per friction factor."""
+def broomstick_figure(result: TorqueDragResult, *, units: str = "si") -> Figure:
+    """The broomstick plot: hook load (kN; klbf with ``units="field"``) against bit depth (m;
+    ft; down) while tripping out (pick-up), in (slack-off) and rotating, one line per friction
+    factor."""
+    force, force_unit = axis_unit("N", units, kilo=True)
+    scale, depth_unit = axis_unit("m", units)
     fig = _figure(7.5, 7.0)
     ax = fig.subplots()
     b = result.broomstick
-    depth = np.asarray(b["depth_m"])
-    ax.plot(np.asarray(b["rotating"][0]) / 1e3, depth, color="k", lw=1.4, label="rotating")
+    depth = np.asarray(b["depth_m"]) * scale
+    ax.plot(np.asarray(b["rotating"][0]) * force, depth, color="k", lw=1.4, label="rotating")
     for k, mu in enumerate(np.asarray(b["friction_factors"])):
         alpha = 0.35 + 0.65 * (k + 1) / max(1, len(b["friction_factors"]))
-        ax.plot(np.asarray(b["pickup"][k]) / 1e3, depth, color="tab:red", alpha=alpha, lw=1.1,
+        ax.plot(np.asarray(b["pickup"][k]) * force, depth, color="tab:red", alpha=alpha, lw=1.1,
                 label=f"pick-up, mu {mu:g}")
-        ax.plot(np.asarray(b["slackoff"][k]) / 1e3, depth, color="tab:blue", alpha=alpha, lw=1.1, ls="--",
+        ax.plot(np.asarray(b["slackoff"][k]) * force, depth, color="tab:blue", alpha=alpha, lw=1.1, ls="--",
                 label=f"slack-off, mu {mu:g}")
-    ax.set_xlabel("hook load, kN (with the block weight)")
-    ax.set_ylabel("bit depth, m (measured)")
+    ax.set_xlabel(f"hook load, {force_unit} (with the block weight)")
+    ax.set_ylabel(f"bit depth, {depth_unit} (measured)")
     ax.invert_yaxis()
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, ncol=2, loc="lower left")
@@ -263,26 +275,29 @@ def broomstick_figure(result: TorqueDragResult) -> Figure:
     return fig
 
 
-def well_path_figure(result: TorqueDragResult) -> Figure:
+def well_path_figure(result: TorqueDragResult, *, units: str = "si") -> Figure:
     """The well path: plan view (east, north) and vertical section (horizontal departure,
-    TVD), with the dogleg severity along measured depth."""
+    TVD), with the dogleg severity along measured depth (m and deg/30 m; ft and deg/100 ft with
+    ``units="field"``)."""
+    scale, length_unit = axis_unit("m", units)
+    dls, dls_unit = axis_unit("deg/(30 m)", units)
     fig = _figure(12, 4.8)
     ax_plan, ax_section, ax_dls = fig.subplots(1, 3)
     t = result.trajectory
-    north, east, tvd = (np.asarray(t[k]) for k in ("north", "east", "tvd"))
+    north, east, tvd = (np.asarray(t[k]) * scale for k in ("north", "east", "tvd"))
     ax_plan.plot(east, north, color="tab:blue")
-    ax_plan.set_xlabel("east, m")
-    ax_plan.set_ylabel("north, m")
+    ax_plan.set_xlabel(f"east, {length_unit}")
+    ax_plan.set_ylabel(f"north, {length_unit}")
     ax_plan.set_aspect("equal", adjustable="datalim")
     ax_plan.set_title("plan view")
     ax_section.plot(np.hypot(north, east), tvd, color="tab:blue")
     ax_section.invert_yaxis()
-    ax_section.set_xlabel("horizontal departure, m")
-    ax_section.set_ylabel("TVD, m")
+    ax_section.set_xlabel(f"horizontal departure, {length_unit}")
+    ax_section.set_ylabel(f"TVD, {length_unit}")
     ax_section.set_title("vertical section")
-    ax_dls.step(np.asarray(t["md"]), np.asarray(t["dls_deg_per_30m"]), where="pre", color="tab:orange")
-    ax_dls.set_xlabel("measured depth, m")
-    ax_dls.set_ylabel("dogleg severity, deg/30 m")
+    ax_dls.step(np.asarray(t["md"]) * scale, np.asarray(t["dls_deg_per_30m"]) * dls, where="pre", color="tab:orange")
+    ax_dls.set_xlabel(f"measured depth, {length_unit}")
+    ax_dls.set_ylabel(f"dogleg severity, {dls_unit}")
     ax_dls.set_title("dogleg severity")
     for ax in (ax_plan, ax_section, ax_dls):
         ax.grid(alpha=0.3)

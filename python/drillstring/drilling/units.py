@@ -11,7 +11,9 @@ top-level ``units = "field"`` makes plain numbers mean the field unit of their k
 A plain number in SI is passed on untouched (bit for bit).
 
 Outputs stay SI; :func:`convert` and :func:`shown` give a value in another unit system for the
-console and ``metrics.json``'s converted copy (``drillstring drill --units field``).
+console and ``metrics.json``'s converted copy (``drillstring drill --units field``), and
+:func:`axis_unit` the factor and unit text of a figure's axis (the figures of a run, of a map and
+of torque and drag take ``units="field"``).
 """
 
 from __future__ import annotations
@@ -27,16 +29,17 @@ from .. import _core
 from ..errors import ValidationError
 
 __all__ = [
-    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "convert", "field_unit", "override_to_si", "quantity", "shown",
-    "shown_unit", "system_of", "to_si",
+    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "axis_unit", "convert", "field_unit", "override_to_si",
+    "quantity", "shown", "shown_unit", "system_of", "to_si",
 ]
 
 #: The unit systems: ``si`` (the core's units; plain numbers pass untouched) and ``field``.
 SYSTEMS: tuple[str, ...] = ("si", "field")
 
-#: The field unit of each SI unit of the reference (units as pint parses them; ``ppg`` is pounds
-#: per US gallon). SI units not listed (rpm, s, Hz, deg, rad/s, 1/s, dimensionless) are the same
-#: in both systems.
+#: The field unit of each SI unit of the reference and of the outputs (units as pint parses them;
+#: ``ppg`` is pounds per US gallon; ``N/m`` and ``N*m/m``, the normal force and the friction limit
+#: per length, only in outputs). SI units not listed (rpm, s, Hz, deg, rad/s, 1/s, dimensionless)
+#: are the same in both systems.
 FIELD_UNITS: dict[str, str] = {
     "m": "ft",
     "m^2": "in^2",
@@ -51,6 +54,8 @@ FIELD_UNITS: dict[str, str] = {
     "N*m*s/rad": "ft*lbf*s/rad",
     "N*m/rad": "ft*lbf/rad",
     "deg/(30 m)": "deg/(100 ft)",
+    "N/m": "lbf/ft",
+    "N*m/m": "ft*lbf/ft",
 }
 
 #: Keys whose field unit is not their SI unit's in :data:`FIELD_UNITS`: diameters and the bit's
@@ -243,18 +248,24 @@ def override_to_si(key: str, value: Any) -> Any:
     return _convert(key, value, "si")
 
 
-def convert(value: Optional[float], unit: str, system: str) -> tuple[Optional[float], str]:
+def convert(value: Optional[float], unit: str, system: str, *, key: Optional[str] = None
+            ) -> tuple[Optional[float], str]:
     """An SI ``value`` in ``unit`` (pint's form, ``"N*m"``) as ``system`` shows it:
-    ``(value, unit)``, the value unchanged in SI or where the field unit is the same."""
+    ``(value, unit)``, the value unchanged in SI or where the field unit is the same. With the
+    reference ``key`` of the value (``sections[].outer_diameter``), the key's own field unit if it
+    has one (:data:`FIELD_UNITS_BY_KEY`: diameters in inches)."""
     system = system_of(system, "output_units")
-    target = FIELD_UNITS.get(unit) if system == "field" else None
+    target = None
+    if system == "field":
+        target = FIELD_UNITS_BY_KEY.get(key or "") or FIELD_UNITS.get(unit)
     if target is None or value is None or (isinstance(value, float) and math.isnan(value)):
         return value, unit
     return _magnitude(_in(value, unit), target), target
 
 
 #: How units are written on the console.
-_SHOWN = {"N*m": "N m", "ft*lbf": "ft-lbf", "kg*m^2": "kg m^2", "lb*ft^2": "lb ft^2"}
+_SHOWN = {"N*m": "N m", "ft*lbf": "ft-lbf", "kg*m^2": "kg m^2", "lb*ft^2": "lb ft^2", "N*m/m": "N m/m",
+          "ft*lbf/ft": "ft-lbf/ft", "deg/(30 m)": "deg/30 m", "deg/(100 ft)": "deg/100 ft"}
 
 
 def shown_unit(unit: str, system: str, *, kilo: bool = False) -> str:
@@ -271,3 +282,24 @@ def shown(value: float, unit: str, system: str, *, kilo: bool = False, digits: i
     number = convert(value, unit, system)[0]
     number = number / 1e3 if kilo and number is not None else number
     return f"{number:.{digits}g} {shown_unit(unit, system, kilo=kilo)}"
+
+
+def axis_unit(unit: str, system: str, *, kilo: bool = False) -> tuple[float, str]:
+    """The factor a figure multiplies an SI quantity in ``unit`` by to draw it in ``system``, and
+    the unit its axis writes: the value of one ``unit`` in the system's unit (:func:`convert`:
+    the correctly rounded float of the exact factor, ``1 / 0.3048`` for ``m`` in field units),
+    a thousandth of it with ``kilo`` (``"N*m"``: ``(1e-3, "kN m")`` in SI,
+    ``(1e-3 / (0.3048 * 4.4482216152605), "kft-lbf")`` in field units) unless the system's unit
+    is a thousand of one already (``"N"`` with ``kilo``: ``"kN"`` in SI, ``"klbf"`` in field
+    units). A unit the same in both systems has the factor 1 (``"rpm"``: ``(1.0, "rpm")``).
+
+    Raises
+    ------
+    ValidationError
+        An unknown ``system``, naming ``units`` and the systems.
+    """
+    system = system_of(system, "units")
+    factor, target = convert(1.0, unit, system)
+    assert factor is not None  # a number converts to a number
+    kilo = kilo and not target.startswith("k")
+    return (factor / 1e3 if kilo else factor), shown_unit(unit, system, kilo=kilo)
