@@ -146,8 +146,9 @@ def test_every_drillstring_command_of_the_documentation_is_one_the_cli_accepts()
     assert {"paper", "simulate", "pde", "sweep", "drill", "drill-map", "torque-drag"} <= set(parsed), parsed
 
 
-#: Examples that other tests run and check (tests/test_api.py, test_lumped.py, test_stickslip_metrics.py).
-RUN_ELSEWHERE = ("res.to_xarray()", "ds.sweep(", "lumped_equilibria", "stick_slip_metrics")
+#: Examples that other tests run and check (tests/test_api.py, test_lumped.py, test_stickslip_metrics.py,
+#: test_docs_claims.py).
+RUN_ELSEWHERE = ("res.to_xarray()", "ds.sweep(", "lumped_equilibria", "stick_slip_metrics", "ds.fit(")
 
 
 def test_every_python_example_of_the_documentation_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

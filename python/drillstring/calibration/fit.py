@@ -95,18 +95,26 @@ class Event:
 
 @dataclass(frozen=True)
 class ParameterEstimate:
-    """A fitted value with its interval at the fit's level."""
+    """A fitted value with its interval at the fit's level (``fit.json``'s entry of the key)."""
 
     key: str
+    """The dotted configuration key (``events[i].key`` for a per-event parameter)."""
     value: float
+    """The fitted value, in the key's SI unit."""
     ci_low: float
+    """Lower end of the interval at the fit's level (95 % by default)."""
     ci_high: float
+    """Upper end of the interval."""
     lower: float
+    """Lower bound of the search."""
     upper: float
+    """Upper bound of the search."""
     std_error: float
+    """Standard error from the Jacobian at the optimum."""
     #: ``"jacobian"`` or ``"profile"``: where the interval comes from.
     method: str
     identifiable: bool
+    """False when the interval spans the bounds (a flat misfit: the data do not fix the value)."""
 
     def to_dict(self) -> dict[str, Any]:
         return {"value": self.value, "ci_low": self.ci_low, "ci_high": self.ci_high, "lower": self.lower,
@@ -492,8 +500,9 @@ def fit(
         Dotted key -> ``(low, high)``: any real configuration value (``friction.static``,
         ``friction.kinetic_ratio``, ``friction.stick_speed``, ``damping_rate``,
         ``sections[1].density``, ...).
-    targets : name, names or mapping name -> weight
-        The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``).
+    targets : str, sequence of str, or mapping of str to float
+        The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``),
+        with their weights when a mapping (default weight 1).
     windows : list of (start, end), optional
         Model times compared, s (default: from 0 to the end of the data or of the configuration's
         duration); the same for every event.
