@@ -115,6 +115,11 @@ def test_the_ridge_of_static_friction_and_kinetic_ratio(short_config, synthetic)
                for w in res.warnings)
     fitted = res.parameters["friction.static"].value * res.parameters["friction.kinetic_ratio"].value
     assert fitted == pytest.approx(0.195, rel=0.01)
+    # on the ridge the Jacobian's intervals reach past the box: reported up to its bounds, and
+    # each parameter flagged as not identifiable alone
+    for est in res.parameters.values():
+        assert est.lower <= est.ci_low <= est.value <= est.ci_high <= est.upper, est
+    assert not any(est.identifiable for est in res.parameters.values())
 
 
 def test_two_start_ups_with_a_shared_and_a_per_event_parameter(short_config):

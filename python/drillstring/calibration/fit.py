@@ -682,6 +682,8 @@ def fit(
             lo_ci, hi_ci = min(lo_ci, min(near)), max(hi_ci, max(near))
         at_bounds = lo_ci <= c.lower + 1e-12 * span[i] and hi_ci >= c.upper - 1e-12 * span[i]
         wide = not math.isfinite(se[i]) or at_bounds
+        # the fit searches the box only: an interval reaching past a bound is reported up to it
+        lo_ci, hi_ci = max(lo_ci, c.lower), min(hi_ci, c.upper)
         if profile is True or (profile == "auto" and condition > CONDITION_LIMIT):
             need_profile.append(i)
         estimates[c.name] = ParameterEstimate(c.name, float(x_opt[i]), float(lo_ci), float(hi_ci), c.lower, c.upper,
