@@ -20,8 +20,10 @@
 //!   first natural frequency, the break-off torque and the minimum cycle torque it implies;
 //! * [`bit`]: the bit-rock torque law (Navarro-Lopez & Cortes 2007), shared by the string's bit
 //!   and the lumped model;
-//! * [`solver`]: the time stepping, controllers, outputs, energy balance and metrics
-//!   ([`solve`], [`friction_profile`]);
+//! * [`engine`]: the time stepping as composable parts: the field, the transport kernel, the
+//!   boundaries (top drive, bit), the sources, the controllers, the output sampler, the energy
+//!   ledger and the run loop;
+//! * [`solver`]: the entry points [`solve`] and [`friction_profile`], the run's warnings;
 //! * [`map`]: stick-slip maps, many runs of one base configuration with per-run overrides
 //!   solved in parallel, one row of metrics each ([`map::solve_map`]);
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
@@ -33,6 +35,7 @@
 pub mod axial;
 pub mod bit;
 pub mod config;
+pub mod engine;
 pub mod grid;
 pub mod lumped;
 pub mod map;

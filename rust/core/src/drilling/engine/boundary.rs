@@ -1,0 +1,198 @@
+//! The ends of the string. A boundary meets the characteristic arriving at its end
+//! ([`Arriving`]: the invariant and the impedance it travels with) and sets the end's speed
+//! for the step; the string then carries the load `Z (Omega' - beta_1)` at the top and
+//! `Z (alpha_n - w')` at the bottom. With a lumped inertia `I` at the end (implicit Euler),
+//! the end's momentum balance with the characteristic folded in is the line [`EndLine`],
+//! `(I / dt + Z) w' = I w / dt + Z value - load`, and a law at the end is a (set-valued)
+//! relation between `w'` and `load` that meets it.
+//!
+//! * top: [`TopDrive`], an inertia driven by the motor, which carries out a controller's
+//!   [`Command`] within its torque limit and speed-loop lag;
+//! * bottom: [`Bit`], the BHA inertia with a [`BitLaw`]: a free end, or the velocity-weakening
+//!   bit torque of [`crate::drilling::bit`] with its stick phase.
+//!
+//! A law coupling two fields at the bit meets two lines at once (see [`super`], "A coupled bit
+//! law").
+
+use super::controller::Command;
+use super::energy::Ledger;
+use crate::drilling::bit::slip_torque;
+use crate::drilling::config::DrillConfig;
+
+/// The characteristic arriving at an end and the impedance it travels with.
+#[derive(Debug, Clone, Copy)]
+pub struct Arriving {
+    pub value: f64,
+    pub impedance: f64,
+}
+
+/// An end's momentum balance over a step: `denom w' = drive - load`, with `drive = I w / dt +
+/// Z value` and `denom = I / dt + Z` (the end's inertia `I`, speed `w` at the step start).
+#[derive(Debug, Clone, Copy)]
+pub struct EndLine {
+    pub drive: f64,
+    pub denom: f64,
+}
+
+impl EndLine {
+    /// The line of an end of inertia `inertia` at speed `speed` meeting `arriving`.
+    #[inline]
+    pub fn new(inertia: f64, speed: f64, dt: f64, arriving: Arriving) -> Self {
+        EndLine {
+            drive: inertia * speed / dt + arriving.impedance * arriving.value,
+            denom: inertia / dt + arriving.impedance,
+        }
+    }
+
+    /// The end's speed under `load`.
+    #[inline]
+    pub fn speed(&self, load: f64) -> f64 {
+        (self.drive - load) / self.denom
+    }
+}
+
+/// The top drive: its inertia and speed, the motor's torque limit and speed-loop lag.
+#[derive(Debug, Clone, Copy)]
+pub struct TopDrive {
+    /// rad/s.
+    pub omega: f64,
+    pub inertia: f64,
+    limit: f64,
+    /// `1 - exp(-2 pi motor_bandwidth dt)`, the fraction of the speed asked for the top
+    /// reaches in a step.
+    motor_lag: f64,
+}
+
+impl TopDrive {
+    pub fn new(cfg: &DrillConfig, dt: f64) -> Self {
+        let td = &cfg.top_drive;
+        TopDrive {
+            omega: 0.0,
+            inertia: td.inertia,
+            limit: td.torque_limit,
+            motor_lag: 1.0 - (-2.0 * std::f64::consts::PI * td.motor_bandwidth * dt).exp(),
+        }
+    }
+
+    /// Carries out `command` over a step: returns the new top speed, the motor torque and the
+    /// string torque at the top, and books the motor's work and the inertia's dissipation.
+    #[inline]
+    pub fn step(&mut self, command: Command, arriving: Arriving, dt: f64, ledger: &mut Ledger) -> (f64, f64, f64) {
+        let (beta1, z0) = (arriving.value, arriving.impedance);
+        let inertia = self.inertia;
+        let omega = self.omega;
+        let implicit = |tm: f64| (inertia * omega / dt + tm + z0 * beta1) / (inertia / dt + z0);
+        let (omega1, motor) = match command {
+            Command::Torque(tm) => (implicit(tm), tm),
+            Command::Speed(wanted) => {
+                // The motor's speed loop: a first-order lag towards the speed asked for.
+                let wanted = omega + (wanted - omega) * self.motor_lag;
+                let tm = inertia * (wanted - omega) / dt + z0 * (wanted - beta1);
+                if tm.abs() <= self.limit {
+                    (wanted, tm)
+                } else {
+                    let tm = tm.clamp(-self.limit, self.limit);
+                    (implicit(tm), tm)
+                }
+            }
+        };
+        ledger.motor += dt * motor * omega1;
+        ledger.inertia += 0.5 * inertia * (omega1 - omega) * (omega1 - omega);
+        self.omega = omega1;
+        (omega1, motor, z0 * (omega1 - beta1))
+    }
+}
+
+/// The law at the bit of the torsional field.
+#[derive(Debug, Clone, Copy)]
+pub enum BitLaw {
+    /// No torque (off bottom, or no weight on bit).
+    Free,
+    /// The Navarro-Lopez velocity-weakening torque `W r mu(|w|) sign(w)` ([`slip_torque`])
+    /// with a stick phase: below `stick_speed`, or when the slip torque would reverse the bit,
+    /// the torque that stops it in this step if within `W r mu_s`, else `W r mu_s`.
+    VelocityWeakening { weight_radius: f64, mu_static: f64, mu_kinetic: f64, decay: f64, stick_speed: f64 },
+}
+
+impl BitLaw {
+    /// The law of a configuration's bit.
+    pub fn new(cfg: &DrillConfig) -> Self {
+        let b = &cfg.bit;
+        if b.on_bottom && b.weight_on_bit > 0.0 {
+            BitLaw::VelocityWeakening {
+                weight_radius: b.weight_on_bit * b.radius,
+                mu_static: b.mu_static,
+                mu_kinetic: b.mu_kinetic,
+                decay: b.decay,
+                stick_speed: b.stick_speed,
+            }
+        } else {
+            BitLaw::Free
+        }
+    }
+
+    /// The bit's new speed and torque on the line `line`, from the speed `w` at the step start.
+    #[inline]
+    pub fn resolve(&self, line: EndLine, w: f64) -> (f64, f64) {
+        match *self {
+            BitLaw::Free => (line.drive / line.denom, 0.0),
+            BitLaw::VelocityWeakening { weight_radius: wr, mu_static, mu_kinetic, decay, stick_speed } => {
+                // Stick: the torque that stops the bit in this step, if within the static limit.
+                let stick = || {
+                    let hold = wr * mu_static;
+                    if line.drive.abs() <= hold {
+                        (0.0, line.drive)
+                    } else {
+                        let tb = hold.copysign(line.drive);
+                        (line.speed(tb), tb)
+                    }
+                };
+                if w.abs() < stick_speed {
+                    stick()
+                } else {
+                    let tb = slip_torque(wr, mu_static, mu_kinetic, decay, w);
+                    let w1 = line.speed(tb);
+                    // A slip torque that would reverse the bit stops it instead (set-valued at 0).
+                    if w1 * w < 0.0 {
+                        stick()
+                    } else {
+                        (w1, tb)
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The bit: the BHA inertia and its law.
+#[derive(Debug, Clone, Copy)]
+pub struct Bit {
+    /// rad/s.
+    pub omega: f64,
+    pub inertia: f64,
+    pub law: BitLaw,
+}
+
+impl Bit {
+    pub fn new(cfg: &DrillConfig) -> Self {
+        Bit { omega: 0.0, inertia: cfg.bit.bha_inertia, law: BitLaw::new(cfg) }
+    }
+
+    /// One step against `arriving`: returns the new bit speed and the bit torque, and books
+    /// the bit's work and the BHA inertia's dissipation (in a step where the bit sticks the
+    /// BHA's kinetic energy is taken by the bit torque).
+    #[inline]
+    pub fn step(&mut self, arriving: Arriving, dt: f64, ledger: &mut Ledger) -> (f64, f64) {
+        let (ib, wb) = (self.inertia, self.omega);
+        let (wb1, tbit) = self.law.resolve(EndLine::new(ib, wb, dt, arriving), wb);
+        ledger.bit += dt * tbit * wb1;
+        let stop = 0.5 * ib * (wb1 - wb) * (wb1 - wb);
+        if wb1 == 0.0 && tbit != 0.0 {
+            ledger.bit += stop;
+        } else {
+            ledger.inertia += stop;
+        }
+        self.omega = wb1;
+        (wb1, tbit)
+    }
+}

@@ -1,0 +1,209 @@
+//! The top drive's controllers and setpoint (see [`super`], "Controllers"): a controller reads
+//! the top speed and the characteristic arriving at the top and asks the motor for a torque
+//! ([`Command::Torque`]: `pi`, `soft_torque`) or a speed ([`Command::Speed`]: `speed`,
+//! `z_torque`); the top drive ([`super::boundary::TopDrive`]) carries it out.
+
+use std::f64::consts::PI;
+
+use super::boundary::Arriving;
+use crate::drilling::config::{ControllerKind, DrillConfig, TopDrive};
+use crate::drilling::grid::Grid;
+use crate::error::{Error, Num, Result};
+
+/// rpm per rad/s.
+pub const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * PI);
+
+/// What a controller asks of the motor for a step.
+#[derive(Debug, Clone, Copy)]
+pub enum Command {
+    /// A motor torque, N m (within the torque limit).
+    Torque(f64),
+    /// A top speed, rad/s, which the motor's speed loop follows.
+    Speed(f64),
+}
+
+/// The state of the controller.
+#[derive(Debug, Clone, Copy)]
+pub struct Controller {
+    pub kind: ControllerKind,
+    pub kp: f64,
+    pub ki: f64,
+    limit: f64,
+    integral: f64,
+    torque: f64,
+    next: f64,
+    z_factor: f64,
+    /// `z_torque`: low-passed string torque at the top.
+    slow_torque: f64,
+    slow_factor: f64,
+}
+
+impl Controller {
+    /// The controller of a configuration (gains tuned for `soft_torque` with the string's
+    /// first natural frequency `first_mode`, rad/s), refused when the sampled loop is unstable
+    /// on this grid ([`check_control_loop`]).
+    pub fn new(cfg: &DrillConfig, grid: &Grid, first_mode: f64) -> Result<Self> {
+        let td = &cfg.top_drive;
+        let c = &td.controller;
+        let (kp, ki) = match c.kind {
+            ControllerKind::SoftTorque => {
+                // Simulator4nDOF TopdriveController.cs (type 2, no inertia compensation):
+                // kp = factor * Z_pipe, ki = (2 pi f_tune)^2 * I_TD.
+                let w = c.tuning_frequency.map_or(first_mode, |f| 2.0 * PI * f);
+                (c.z_factor * grid.props[0].impedance, w * w * td.inertia)
+            }
+            _ => (c.kp, c.ki),
+        };
+        check_control_loop(cfg, grid, kp)?;
+        Ok(Controller {
+            kind: c.kind,
+            kp,
+            ki,
+            limit: td.torque_limit,
+            integral: 0.0,
+            torque: 0.0,
+            next: 0.0,
+            z_factor: c.z_factor,
+            slow_torque: 0.0,
+            slow_factor: 1.0 - (-grid.dt / c.torque_highpass_time).exp(),
+        })
+    }
+
+    /// The command for the step from `t` (length `dt`), with the top speed `omega` at its
+    /// start and the characteristic arriving at the top.
+    #[inline]
+    pub fn command(
+        &mut self,
+        td: &TopDrive,
+        t: f64,
+        dt: f64,
+        setpoint: f64,
+        omega: f64,
+        arriving: Arriving,
+    ) -> Command {
+        match self.kind {
+            ControllerKind::Pi | ControllerKind::SoftTorque => {
+                if t + 0.5 * dt >= self.next {
+                    let mut holds = 0.0;
+                    while self.next <= t + 0.5 * dt {
+                        self.next += td.control_interval;
+                        holds += 1.0;
+                    }
+                    let e = setpoint - omega;
+                    let raw = self.kp * e + self.ki * self.integral;
+                    self.torque = raw.clamp(-self.limit, self.limit);
+                    // Anti-windup: no integration while saturated in the error's direction.
+                    if !((raw > self.limit && e > 0.0) || (raw < -self.limit && e < 0.0)) {
+                        self.integral += holds * td.control_interval * e;
+                    }
+                }
+                Command::Torque(self.torque)
+            }
+            ControllerKind::Speed => Command::Speed(setpoint),
+            ControllerKind::ZTorque => {
+                // The top presents the damper z Z to torque waves: Omega = w_ref - (tau - tau_slow) / (z Z)
+                // with tau = Z (Omega - beta_1).
+                let z = self.z_factor;
+                Command::Speed((z * setpoint + arriving.value + self.slow_torque / arriving.impedance) / (z + 1.0))
+            }
+        }
+    }
+
+    /// Takes the string torque at the top after the step (`z_torque`'s low-pass).
+    #[inline]
+    pub fn observe(&mut self, tau_top: f64) {
+        if self.kind == ControllerKind::ZTorque {
+            self.slow_torque += (tau_top - self.slow_torque) * self.slow_factor;
+        }
+    }
+}
+
+/// The speed setpoint: a first-order approach (time constant `ramp_time`, exact over each
+/// step) of the target, `rpm` then `steps`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Setpoint {
+    /// rad/s.
+    pub value: f64,
+    /// `1 - exp(-dt / ramp_time)`, the fraction of the way to the target made in a step
+    /// (`None` without a ramp).
+    approach: Option<f64>,
+}
+
+impl Setpoint {
+    /// The target at time `t`, rad/s.
+    pub fn target(td: &TopDrive, t: f64) -> f64 {
+        let rpm = td.steps.iter().rev().find(|s| s[0] <= t).map_or(td.rpm, |s| s[1]);
+        rpm / RPM_PER_RAD_S
+    }
+
+    /// At rest, for steps of `dt`.
+    pub fn new(td: &TopDrive, dt: f64) -> Self {
+        let ramp = td.ramp_time;
+        Setpoint { value: 0.0, approach: (ramp > 0.0).then(|| 1.0 - (-dt / ramp).exp()) }
+    }
+
+    /// Advances to the end `t1` of a step; returns the new value.
+    #[inline]
+    pub fn advance(&mut self, td: &TopDrive, t1: f64) -> f64 {
+        let target = Self::target(td, t1);
+        self.value = match self.approach {
+            Some(f) => self.value + (target - self.value) * f,
+            None => target,
+        };
+        self.value
+    }
+
+    /// The largest speed the setpoint takes, rad/s.
+    pub fn fastest(td: &TopDrive) -> f64 {
+        td.steps.iter().map(|s| s[1].abs()).fold(td.rpm.abs(), f64::max) / RPM_PER_RAD_S
+    }
+}
+
+/// Refuses a proportional gain that the sampled controller loop cannot hold on this grid.
+///
+/// The `pi` and `soft_torque` torque is computed from the top speed at a sample and held for
+/// `h = max(dt, control_interval)`; the top drive then answers implicitly,
+/// `(I / h + Z) Omega' = I / h Omega + kp (setpoint - Omega) + ...`, so the speed error is
+/// multiplied by `(I / h - kp) / (I / h + Z)` per sample: the loop oscillates with a growing
+/// amplitude (speeds of 1e52 rpm on 1 to 4 cells) unless `kp < 2 I / h + Z`. The error names
+/// `numerics.cells` (with the count that holds) when the step is the longer, else the gain.
+pub fn check_control_loop(cfg: &DrillConfig, grid: &Grid, kp: f64) -> Result<()> {
+    let td = &cfg.top_drive;
+    let c = &td.controller;
+    if !matches!(c.kind, ControllerKind::Pi | ControllerKind::SoftTorque) {
+        return Ok(());
+    }
+    let z = grid.props[0].impedance;
+    let h = grid.dt.max(td.control_interval);
+    let bound = 2.0 * td.inertia / h + z;
+    if kp < bound {
+        return Ok(());
+    }
+    let gain = if c.kind == ControllerKind::Pi { "top_drive.controller.kp" } else { "top_drive.controller.z_factor" };
+    if grid.dt > td.control_interval && kp > z {
+        // the step that holds: dt < 2 I / (kp - Z), on the same travel time
+        let needed = (grid.cells() as f64 * grid.dt * (kp - z) / (2.0 * td.inertia)).floor() + 1.0;
+        return Err(Error::invalid(
+            "numerics.cells",
+            cfg.numerics.cells,
+            format!(
+                "at least {} cells: with a step of {} s the controller's gain {gain} = {} N m s/rad is at \
+                 least 2 I / dt + Z = {} N m s/rad, and the sampled top-drive loop is unstable",
+                Num(needed),
+                Num(grid.dt),
+                Num(kp),
+                Num(bound)
+            ),
+        ));
+    }
+    Err(Error::invalid(
+        gain,
+        Num(if c.kind == ControllerKind::Pi { kp } else { c.z_factor }),
+        format!(
+            "a gain below 2 I / control_interval + Z = {} N m s/rad (kp here {} N m s/rad): above it the sampled \
+             top-drive loop is unstable; lower the gain or top_drive.control_interval",
+            Num(bound),
+            Num(kp)
+        ),
+    ))
+}

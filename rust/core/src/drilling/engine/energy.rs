@@ -1,0 +1,109 @@
+//! The energy ledger of a run: the work of every boundary and source as it is done, the
+//! stored energies at the start and the end, and the balance that closes to rounding (see
+//! [`super`], "Energy").
+
+use serde::Serialize;
+
+/// The energy balance of a run, J (from the start to the end reached).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct EnergyBalance {
+    /// `sum dt tau_m Omega'`.
+    pub motor_work: f64,
+    /// Total energy at the start (string, top drive, BHA).
+    pub initial: f64,
+    /// At the end: string kinetic and elastic, top-drive and BHA kinetic.
+    pub kinetic: f64,
+    pub elastic: f64,
+    pub top_drive: f64,
+    pub bha: f64,
+    pub friction_loss: f64,
+    pub damping_loss: f64,
+    pub bit_loss: f64,
+    /// `upwind_loss + inertia_loss`.
+    pub numerical_loss: f64,
+    /// Dissipation of the first-order upwind transport: `linear`, `e C (1 - C) (d alpha^2 +
+    /// d beta^2)` per cell and step (0 at Courant number 1); `consistent`, the energy the
+    /// Godunov fluxes bring into a cell less its energy change in the transport.
+    pub upwind_loss: f64,
+    /// Dissipation of the implicit Euler steps of the top-drive and BHA inertias,
+    /// `I (Omega' - Omega)^2 / 2` per step (first order in `dt`).
+    pub inertia_loss: f64,
+    /// `(motor_work - (final - initial) - losses) / scale`, `scale` the largest of
+    /// `|motor_work|`, the energies and the losses.
+    pub balance_error: f64,
+}
+
+/// The work done so far, J: by the motor (in), and lost to each sink.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Ledger {
+    pub motor: f64,
+    pub friction: f64,
+    pub damping: f64,
+    pub bit: f64,
+    pub upwind: f64,
+    pub inertia: f64,
+}
+
+/// The energies stored in the system, J.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Stored {
+    /// The string's (the fields').
+    pub kinetic: f64,
+    pub elastic: f64,
+    /// The lumped inertias at the ends.
+    pub top_drive: f64,
+    pub bha: f64,
+}
+
+impl Stored {
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.elastic + self.top_drive + self.bha
+    }
+}
+
+impl Ledger {
+    /// The work of the linear transport's energy terms on a section with cell energy factor
+    /// `e` and Courant number `c` ([`super::kernel::Sums`]).
+    #[inline]
+    pub fn transport(&mut self, e: f64, c: f64, sums: &super::kernel::Sums) {
+        self.upwind += e * c * (1.0 - c) * sums.jumps;
+        self.friction -= 4.0 * e * sums.friction;
+        self.damping -= 4.0 * e * sums.damping;
+    }
+
+    /// The same for the `consistent` scheme, whose sums are in J.
+    #[inline]
+    pub fn godunov(&mut self, sums: &super::kernel::Sums) {
+        self.upwind += sums.jumps;
+        self.friction -= sums.friction;
+        self.damping -= sums.damping;
+    }
+
+    /// The balance from the stored energy `initial` at the start to `end`, and whether it is
+    /// finite (its residual and scale).
+    pub fn balance(&self, initial: f64, end: Stored) -> (EnergyBalance, bool) {
+        let l = self;
+        let change = end.total() - initial;
+        let numerical = l.upwind + l.inertia;
+        let residual = l.motor - change - l.friction - l.damping - l.bit - numerical;
+        let scale = [l.motor, initial, end.total(), l.friction, l.damping, l.bit, numerical]
+            .iter()
+            .fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
+        let balance = EnergyBalance {
+            motor_work: l.motor,
+            initial,
+            kinetic: end.kinetic,
+            elastic: end.elastic,
+            top_drive: end.top_drive,
+            bha: end.bha,
+            friction_loss: l.friction,
+            damping_loss: l.damping,
+            bit_loss: l.bit,
+            numerical_loss: numerical,
+            upwind_loss: l.upwind,
+            inertia_loss: l.inertia,
+            balance_error: residual / scale,
+        };
+        (balance, residual.is_finite() && scale.is_finite())
+    }
+}

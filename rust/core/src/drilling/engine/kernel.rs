@@ -1,0 +1,462 @@
+//! The transport kernels: one step of a field's cells, the boundaries' and junctions' ghosts
+//! set. [`transport`] is first-order upwind transport of the Riemann invariants (the exact
+//! shift at Courant number 1) with the sources of [`super::sources`]; [`godunov`] the
+//! first-order Godunov update of the `consistent` torsional law. Both run through
+//! [`crate::simd::dispatch`] (AVX-512 or AVX2 when available; no fused multiply-adds, so every
+//! path gives the same bits) and return the step's energy terms ([`Sums`]) for the ledger.
+
+use super::field::{Nonlinear, Section};
+use super::sources::{source, Consts, Sources};
+use crate::drilling::grid::SectionProps;
+
+/// Sums over a section's cells in one step.
+#[derive(Default)]
+pub struct Sums {
+    /// `sum (d alpha^2 + d beta^2)` of the upwind differences (`consistent`: the transport's
+    /// dissipation, J).
+    pub jumps: f64,
+    /// `sum delta_f (omega* + delta / 2)` and the same for the damping (`consistent`: their
+    /// work, J, negative).
+    pub friction: f64,
+    pub damping: f64,
+    /// Largest `|eps|` (`consistent`).
+    pub peak: f64,
+}
+
+/// Upwind transport and sources of one section: `a`, `b`, `stop`, `slip` padded (`[ghost,
+/// cells, ghost]`), the new invariants written to the cells of `an`, `bn`.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn transport(
+    a: &[f64],
+    b: &[f64],
+    stop: &[f64],
+    slip: &[f64],
+    an: &mut [f64],
+    bn: &mut [f64],
+    c: f64,
+    src: &Sources,
+) -> Sums {
+    let n = a.len() - 2;
+    let kernel = Transport {
+        a_prev: &a[..n],
+        a: &a[1..=n],
+        b: &b[1..=n],
+        b_next: &b[2..n + 2],
+        stop: &stop[1..=n],
+        slip: &slip[1..=n],
+        an: &mut an[1..=n],
+        bn: &mut bn[1..=n],
+        c,
+        src,
+    };
+    crate::simd::dispatch(kernel)
+}
+
+struct Transport<'a> {
+    a_prev: &'a [f64],
+    a: &'a [f64],
+    b: &'a [f64],
+    b_next: &'a [f64],
+    stop: &'a [f64],
+    slip: &'a [f64],
+    an: &'a mut [f64],
+    bn: &'a mut [f64],
+    c: f64,
+    src: &'a Sources,
+}
+
+impl crate::simd::Kernel for Transport<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        // Specialised on the model and on which energy terms are non-zero (fewer stores).
+        match (self.src.regularised.is_some(), self.c < 1.0, self.src.damping > 0.0) {
+            (false, false, false) => self.cells::<false, false, false>(),
+            (false, false, true) => self.cells::<false, false, true>(),
+            (false, true, false) => self.cells::<false, true, false>(),
+            (false, true, true) => self.cells::<false, true, true>(),
+            (true, false, false) => self.cells::<true, false, false>(),
+            (true, false, true) => self.cells::<true, false, true>(),
+            (true, true, false) => self.cells::<true, true, false>(),
+            (true, true, true) => self.cells::<true, true, true>(),
+        }
+    }
+}
+
+/// Cells side by side in [`Transport::cells`]: the energy terms are added lane by lane into
+/// [`WIDTH`] accumulators (cell `i` into lane `i % WIDTH`), the lanes summed at the end.
+const WIDTH: usize = 16;
+
+/// The energy terms of a step, lane by lane.
+#[derive(Default)]
+struct Lanes {
+    jump: [f64; WIDTH],
+    fric: [f64; WIDTH],
+    damp: [f64; WIDTH],
+}
+
+/// A chunk of [`WIDTH`] cells.
+type Chunk = [f64; WIDTH];
+
+impl Transport<'_> {
+    /// The update loop over chunks of [`WIDTH`] cells read and written in place, the energy
+    /// terms added lane by lane in a fixed order (so every instruction set gives the same
+    /// bits), the accumulators in registers. The last `n % WIDTH` cells go through the same
+    /// chunk code, padded with cells at rest without friction, whose terms are zeros (adding
+    /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
+    #[inline(always)]
+    fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(self) -> Sums {
+        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src } = self;
+        let n = a.len();
+        let k = Consts::new(c, src);
+        let mut lanes = Lanes::default();
+        // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds.
+        let (a_prev, a, b, b_next, stop, slip) = (&a_prev[..n], &a[..n], &b[..n], &b_next[..n], &stop[..n], &slip[..n]);
+        let (an, bn) = (&mut an[..n], &mut bn[..n]);
+        macro_rules! at {
+            ($x:expr, $i:expr) => {
+                <&Chunk>::try_from(&$x[$i..$i + WIDTH]).expect("a whole chunk")
+            };
+        }
+        let mut i = 0;
+        while i + WIDTH <= n {
+            let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
+            let na = <&mut Chunk>::try_from(&mut an[i..i + WIDTH]).expect("a whole chunk");
+            let nb = <&mut Chunk>::try_from(&mut bn[i..i + WIDTH]).expect("a whole chunk");
+            chunk::<REGULARISED, UPWIND, DAMPED>(inputs, na, nb, &k, &mut lanes);
+            i += WIDTH;
+        }
+        if i < n {
+            let m = n - i;
+            let pad = |x: &[f64]| {
+                let mut p = [0.0; WIDTH];
+                for (p, &v) in p.iter_mut().zip(&x[i..]) {
+                    *p = v;
+                }
+                p
+            };
+            let (ap, aa, bb, bx, st, sl) = (pad(a_prev), pad(a), pad(b), pad(b_next), pad(stop), pad(slip));
+            let (mut na, mut nb) = ([0.0; WIDTH], [0.0; WIDTH]);
+            chunk::<REGULARISED, UPWIND, DAMPED>([&ap, &aa, &bb, &bx, &st, &sl], &mut na, &mut nb, &k, &mut lanes);
+            for j in 0..m {
+                an[i + j] = na[j];
+                bn[i + j] = nb[j];
+            }
+        }
+        let total = |x: &Chunk| x.iter().sum::<f64>();
+        Sums { jumps: total(&lanes.jump), friction: total(&lanes.fric), damping: total(&lanes.damp), peak: 0.0 }
+    }
+}
+
+/// One chunk: `[a_prev, a, b, b_next, stop, slip]` in, the new invariants out, the energy
+/// terms added to `lanes` (cell `l` of the chunk into lane `l`).
+#[inline(always)]
+fn chunk<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool>(
+    [ap, aa, bb, bx, st, sl]: [&Chunk; 6],
+    na: &mut Chunk,
+    nb: &mut Chunk,
+    k: &Consts,
+    lanes: &mut Lanes,
+) {
+    for l in 0..WIDTH {
+        let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], k);
+        na[l] = cell.an;
+        nb[l] = cell.bn;
+        if UPWIND {
+            lanes.jump[l] += cell.jump;
+        }
+        lanes.fric[l] += cell.friction;
+        if DAMPED {
+            lanes.damp[l] += cell.damping;
+        }
+    }
+}
+
+/// What one cell's update adds and writes.
+struct Cell {
+    an: f64,
+    bn: f64,
+    jump: f64,
+    friction: f64,
+    damping: f64,
+}
+
+/// One cell: upwind transport of the invariants from `(a_prev, a)` and `(b, b_next)` (at
+/// Courant number 1, `!UPWIND`, the exact shift `a_prev`, `b_next`), then the damping and
+/// friction sources; branch-free (selects) so that blocks vectorise.
+#[inline(always)]
+fn update<const REGULARISED: bool, const UPWIND: bool>(
+    a_prev: f64,
+    a: f64,
+    b: f64,
+    b_next: f64,
+    lim: f64,
+    slip: f64,
+    k: &Consts,
+) -> Cell {
+    let (da, db) = (a - a_prev, b - b_next);
+    let (a1, b1) = if UPWIND { (a - k.c * da, b - k.c * db) } else { (a_prev, b_next) };
+    let w1 = 0.5 * (a1 + b1);
+    let (dd, df, stuck) = source::<REGULARISED>(w1, lim, slip, k);
+    let d = dd + df;
+    let wbar = w1 + 0.5 * d;
+    // Stuck: stopped exactly (omega = 0), the torque kept.
+    let s1 = 0.5 * (a1 - b1);
+    Cell {
+        an: if stuck { s1 } else { a1 + d },
+        bn: if stuck { -s1 } else { b1 + d },
+        jump: da * da + db * db,
+        friction: df * wbar,
+        damping: dd * wbar,
+    }
+}
+
+/// One step of the `consistent` scheme on section `sp` (law `law`; faces at the boundaries
+/// and junctions set): the faces inside it by the acoustic (two-wave) Riemann solver with the
+/// larger tangent impedance of the two cells, `omega* = (w_l + w_r) / 2 + (tau_l - tau_r) / (2 Z)`,
+/// `tau* = (tau_l + tau_r) / 2 + Z (w_l - w_r) / 2`, then the finite-volume update
+/// `omega += dt (tau*_top - tau*_bottom) / (rho J h)`, `eps += dt (omega*_top - omega*_bottom) / h`
+/// and the sources. Returns the sums, with `jumps` the transport's dissipation
+/// `dt (tau*_top omega*_top - tau*_bottom omega*_bottom) - dE` (J) and `friction`, `damping`
+/// the work of the sources (J, negative).
+pub fn godunov(
+    nl: &mut Nonlinear,
+    sp: &Section,
+    law: SectionProps,
+    (stop, slip): (&[f64], &[f64]),
+    dt: f64,
+    src: &Sources,
+) -> Sums {
+    crate::simd::dispatch(Godunov { nl, sp, law, stop, slip, dt, src })
+}
+
+/// [`godunov`] as a [`crate::simd::Kernel`] (AVX2 code when available; no fused multiply-adds).
+struct Godunov<'a> {
+    nl: &'a mut Nonlinear,
+    sp: &'a Section,
+    law: SectionProps,
+    stop: &'a [f64],
+    slip: &'a [f64],
+    dt: f64,
+    src: &'a Sources,
+}
+
+impl crate::simd::Kernel for Godunov<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        if self.src.regularised.is_some() {
+            self.cells::<true>()
+        } else {
+            self.cells::<false>()
+        }
+    }
+}
+
+/// Cells per block of [`godunov`].
+const BLOCK: usize = 128;
+
+/// Lanes of the summation (independent accumulators, vectorisable).
+const LANES: usize = 4;
+
+/// `sum x` with [`LANES`] accumulators.
+#[inline(always)]
+fn lane_sum(x: &[f64]) -> f64 {
+    let mut acc = [0.0; LANES];
+    let blocks = x.chunks_exact(LANES);
+    let rest = blocks.remainder();
+    for blk in blocks {
+        for l in 0..LANES {
+            acc[l] += blk[l];
+        }
+    }
+    acc.iter().sum::<f64>() + rest.iter().sum::<f64>()
+}
+
+impl Godunov<'_> {
+    #[inline(always)]
+    fn cells<const REGULARISED: bool>(self) -> Sums {
+        let Godunov { nl, sp, law, stop, slip, dt, src } = self;
+        let p = &law;
+        let r = sp.offset + 1..=sp.offset + sp.cells;
+        let Nonlinear {
+            omega,
+            strain,
+            omega_next,
+            strain_next,
+            face_omega,
+            face_torque,
+            cell_impedance,
+            cell_torque,
+            ..
+        } = nl;
+        // Tangent impedance and torque of every cell, then the faces inside the section.
+        for ((z, t), &eps) in
+            cell_impedance[r.clone()].iter_mut().zip(&mut cell_torque[r.clone()]).zip(&strain[r.clone()])
+        {
+            *z = p.tangent_impedance(eps);
+            *t = p.torque(eps);
+        }
+        let inner = sp.offset + 1..sp.offset + sp.cells;
+        let (zc, tc, wc) = (&cell_impedance[r.clone()], &cell_torque[r.clone()], &omega[r.clone()]);
+        for (k, (fw, ft)) in face_omega[inner.clone()].iter_mut().zip(&mut face_torque[inner]).enumerate() {
+            let (wl, wr) = (wc[k], wc[k + 1]);
+            let z = zc[k].max(zc[k + 1]);
+            let (tl, tr) = (tc[k], tc[k + 1]);
+            *fw = 0.5 * (wl + wr) + 0.5 * (tl - tr) / z;
+            *ft = 0.5 * (tl + tr) + 0.5 * z * (wl - wr);
+        }
+        let k = Consts::new(0.0, src);
+        let (k1, k2, k5, h) = (p.inertia_per_length, p.stiffness, p.quartic, sp.h);
+        let (rw, rs) = (dt / (k1 * h), dt / h);
+        let mut sums = Sums::default();
+        let faces = sp.offset..=sp.offset + sp.cells;
+        let (fw, ft) = (&face_omega[faces.clone()], &face_torque[faces]);
+        let (w0, s0, lim, slip) = (&omega[r.clone()], &strain[r.clone()], &stop[r.clone()], &slip[r.clone()]);
+        let (wn, sn) = (&mut omega_next[r.clone()], &mut strain_next[r]);
+        // Blocks of BLOCK cells whose per-cell terms stay on the stack, each then summed in
+        // lanes, so that the update loop vectorises.
+        let (mut jump, mut fric, mut damp, mut peak) = ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
+        let mut start = 0;
+        while start < sp.cells {
+            let m = BLOCK.min(sp.cells - start);
+            for j in 0..m {
+                let c = start + j;
+                let (wt, tt, wb, tb) = (fw[c], ft[c], fw[c + 1], ft[c + 1]);
+                let (w, s) = (w0[c], s0[c]);
+                let w1 = w + rw * (tt - tb);
+                let s1 = s + rs * (wt - wb);
+                let de = h
+                    * (0.5 * k1 * (w1 - w) * (w1 + w)
+                        + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
+                jump[j] = dt * (tt * wt - tb * wb) - de;
+                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], slip[c], &k);
+                let d = dd + df;
+                let wbar = w1 + 0.5 * d;
+                wn[c] = if stuck { 0.0 } else { w1 + d };
+                sn[c] = s1;
+                fric[j] = df * wbar;
+                damp[j] = dd * wbar;
+                peak[j] = s1.abs();
+            }
+            sums.jumps += lane_sum(&jump[..m]);
+            sums.friction += k1 * h * lane_sum(&fric[..m]);
+            sums.damping += k1 * h * lane_sum(&damp[..m]);
+            sums.peak = peak[..m].iter().fold(sums.peak, |a, &b| if b > a { b } else { a });
+            start += m;
+        }
+        sums
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The chunked kernel, with the last cells padded to a chunk, against the update cell by
+    /// cell with the energy terms in lane `j % 16`: the same bits, on every path and for
+    /// counts below, at and above a chunk, stuck, slow and sliding cells, both friction laws.
+    #[test]
+    fn chunks_and_padding_give_the_bits_of_the_cell_by_cell_update() {
+        for n in [1, 5, 16, 17, 31, 40, 91] {
+            let len = n + 2;
+            let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.77).sin() * 2.0).collect();
+            let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.31).cos() * 2.0 - 0.5).collect();
+            let stop: Vec<f64> =
+                (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.3 + 0.1 * (i % 3) as f64 }).collect();
+            let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
+            for (c, regularised) in [(0.93, None), (1.0, None), (0.93, Some(0.1)), (1.0, Some(0.1))] {
+                let src = Sources { damping: 1e-3, stick_speed: 1.5, kinetic_ratio: 0.65, regularised };
+                let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
+                let fast = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
+                let (mut an0, mut bn0) = (vec![0.0; len], vec![0.0; len]);
+                let slow = crate::simd::baseline(Transport {
+                    a_prev: &a[..n],
+                    a: &a[1..=n],
+                    b: &b[1..=n],
+                    b_next: &b[2..],
+                    stop: &stop[1..=n],
+                    slip: &slip[1..=n],
+                    an: &mut an0[1..=n],
+                    bn: &mut bn0[1..=n],
+                    c,
+                    src: &src,
+                });
+                // The reference: cell by cell.
+                let k = Consts::new(c, &src);
+                let mut lanes = Lanes::default();
+                let mut stuck = 0;
+                for j in 0..n {
+                    let i = j + 1;
+                    let cell = if regularised.is_some() {
+                        if c < 1.0 {
+                            update::<true, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                        } else {
+                            update::<true, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                        }
+                    } else if c < 1.0 {
+                        update::<false, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                    } else {
+                        update::<false, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                    };
+                    assert_eq!(
+                        (an[i].to_bits(), bn[i].to_bits()),
+                        (cell.an.to_bits(), cell.bn.to_bits()),
+                        "n {n} c {c} cell {j}"
+                    );
+                    assert_eq!((an0[i].to_bits(), bn0[i].to_bits()), (cell.an.to_bits(), cell.bn.to_bits()));
+                    stuck += usize::from(cell.an + cell.bn == 0.0);
+                    if c < 1.0 {
+                        lanes.jump[j % WIDTH] += cell.jump;
+                    }
+                    lanes.fric[j % WIDTH] += cell.friction;
+                    lanes.damp[j % WIDTH] += cell.damping;
+                }
+                let total = |x: &Chunk| x.iter().sum::<f64>();
+                for sums in [&fast, &slow] {
+                    assert_eq!(sums.jumps.to_bits(), total(&lanes.jump).to_bits(), "n {n} c {c}");
+                    assert_eq!(sums.friction.to_bits(), total(&lanes.fric).to_bits(), "n {n} c {c}");
+                    assert_eq!(sums.damping.to_bits(), total(&lanes.damp).to_bits(), "n {n} c {c}");
+                }
+                if n >= 16 && regularised.is_none() {
+                    assert!(stuck > 0 && stuck < n, "n {n}: {stuck} stuck cells (the case must hold both)");
+                }
+            }
+        }
+    }
+
+    /// The time per cell update of [`transport`] on 1000 cells (Courant number 0.998,
+    /// damping, set-valued friction, a third of the cells slow): the best of many short
+    /// windows. `cargo test --release kernel_time -- --ignored --nocapture`.
+    #[test]
+    #[ignore]
+    fn kernel_time() {
+        let n = 1000;
+        let len = n + 2;
+        let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.37).sin() * 3.0).collect();
+        let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.11).cos() * 3.0).collect();
+        let stop: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.02 }).collect();
+        let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
+        let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
+        for (name, c, damping) in
+            [("upwind, damped", 0.998, 1e-4), ("Courant 1, damped", 1.0, 1e-4), ("Courant 1", 1.0, 0.0)]
+        {
+            let src = Sources { damping, stick_speed: 1.5, kinetic_ratio: 0.65, regularised: None };
+            let mut best = f64::INFINITY;
+            let mut sink = 0.0;
+            for _ in 0..400 {
+                let start = std::time::Instant::now();
+                for _ in 0..50 {
+                    let s = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
+                    sink += s.friction + an[n / 2];
+                }
+                best = best.min(start.elapsed().as_secs_f64() / (50 * n) as f64);
+            }
+            println!("transport, {name}: {:.3} ns per cell update ({})", best * 1e9, crate::simd::path());
+            assert!(sink.is_finite());
+        }
+    }
+}

@@ -1,0 +1,166 @@
+//! The drilling engine: the string's dynamics as composable parts, each in one module.
+//!
+//! * [`field`]: a field on the string ([`field::Field`]): per section the Courant number (wave
+//!   speed), impedance and inertia per length, the two Riemann invariants per cell, padded per
+//!   section with ghosts; the junctions between sections; its energies. The torsional field is
+//!   `(omega, tau)` with `rho J` and `J sqrt(G rho)`; an axial field is the same type with
+//!   `(v, N)`, `rho A` and `A sqrt(E rho)` (wave speed `sqrt(E / rho)`);
+//! * [`kernel`]: the one transport kernel in Riemann invariants (first-order upwind, the exact
+//!   shift at Courant number 1) with the sources, and the `consistent` Godunov update;
+//! * [`sources`]: wall friction with its stick phase and viscous damping, per cell, one place
+//!   each;
+//! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
+//!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDrive`]) carrying out a
+//!   controller's command, the bit ([`boundary::Bit`]) with its law ([`boundary::BitLaw`]:
+//!   free end or the velocity-weakening torque with a stick phase);
+//! * [`controller`]: the controllers and the setpoint;
+//! * [`sampler`]: the output series and field snapshots;
+//! * [`energy`]: the energy ledger and the balance;
+//! * [`run`]: the [`run::Simulation`], its step and run loop (step limit, interrupt, runaway
+//!   guard, status), the result [`run::DrillRun`].
+//!
+//! A step: the setpoint, the top drive against the characteristic arriving at the top, the bit
+//! against the one arriving at the bottom, the junctions (each sets the ghost invariant of its
+//! neighbouring cells), then the kernel over every section's cells, whose energy terms go to
+//! the ledger.
+//!
+//! # A coupled bit law (the interface to come)
+//!
+//! Every end is a (set-valued) law between the end's speed `w'` and the load it takes,
+//! meeting the end's momentum balance with the arriving characteristic folded in,
+//! [`boundary::EndLine`]: `(I / dt + Z) w' = I w / dt + Z value - load`. A bit-rock law that
+//! couples the axial and the torsional field (depth of cut: weight and torque on bit from both
+//! fields) meets two such lines at once:
+//!
+//! ```text
+//! trait CoupledBitLaw {
+//!     /// The bit's axial speed v' and weight on bit W, its angular speed w' and torque T for
+//!     /// the step, from the axial line (I_a / dt + Z_a) v' = drive_a - W and the torsional
+//!     /// line (I_t / dt + Z_t) w' = drive_t - T, at the state at the step start.
+//!     fn resolve(&mut self, axial: EndLine, torsional: EndLine, state: &BitState) -> [End; 2];
+//!     /// After the step: the law's own state (the cut surface or the delayed bit position,
+//!     /// the depth of cut), advanced with the resolved speeds.
+//!     fn advance(&mut self, ends: &[End; 2], dt: f64);
+//! }
+//! ```
+//!
+//! with `End { speed, load }`. The phases are set-valued as in [`boundary::BitLaw`]: contact
+//! (cutting plus frictional contact), torsional stick (`w' = 0`, `T` the torque that holds it
+//! within the static limit) and lift-off (`W = 0`, `T = 0`, the bit free on both lines). The
+//! run resolves it where it now calls [`boundary::Bit::step`], sets each field's bottom ghost
+//! from its `End` ([`field::Field::set_bottom`]) and books `dt (W v' + T w')` as bit work. A
+//! second field is a second [`field::Field`] advanced by the same [`kernel`] and its own
+//! sources; a coupled wall friction a source over both fields' transported speeds.
+//!
+//! # The scheme
+//!
+//! With `tau` the torque carried down the string (`tau = -G J theta_z`) and `Z = J sqrt(G rho)`
+//! the impedance, the invariants `alpha = omega + tau / Z` (travelling down at `c`) and
+//! `beta = omega - tau / Z` (travelling up) obey
+//! `alpha_t + c alpha_z = beta_t - c beta_z = -(f / (rho J) + d omega)` with `f` the friction
+//! torque per metre and `d` the damping rate (Aarsnes & Shor 2018, eqs. 5-8 and
+//! torsionalWaveStep.m). Each step (`dt`, common to all sections):
+//!
+//! 1. boundaries from the state at `t_n`: the top speed `Omega'` (top-drive inertia, implicit
+//!    in the string torque `Z (Omega' - beta_1)`, or imposed by an ideal controller), the
+//!    bit speed (BHA inertia, implicit likewise; on bottom the Navarro-Lopez torque
+//!    `W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)` at the speed of the step start, with a
+//!    stick phase: below `bit.stick_speed`, or when the slip torque would reverse the bit, the
+//!    torque that stops it in this step if within `W r mu_s`, else `W r mu_s`), the junctions
+//!    (continuity of speed and torque: `omega = (Z_a alpha_a + Z_b beta_b) / (Z_a + Z_b)`);
+//!    each gives the ghost invariant entering its neighbouring cell (`alpha = 2 omega - beta`);
+//! 2. first-order upwind transport, `alpha_j <- alpha_j - C (alpha_j - alpha_{j-1})` (exact
+//!    shift at Courant number `C = 1`);
+//! 3. the sources, added to both invariants, evaluated at the transported speed
+//!    `omega*_j = (alpha*_j + beta*_j) / 2` (the material now in the cell): damping
+//!    `-dt d omega*_j`, and friction: when `|omega*_j| < stick_speed` the torque that stops the
+//!    cell in this step, clipped to the static limit (a stopped cell gets `omega = 0` exactly,
+//!    its torque kept), else the kinetic limit against `omega*_j` (the set-valued resolution
+//!    of torsionalWaveStep.m, which evaluates the threshold and direction at the speed before
+//!    transport; with the speed after it, friction cannot pump energy into the grid-scale
+//!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
+//!    the kinetic limit (regularised).
+//!
+//! A stopped cell's new torque comes from its neighbours' invariants: at `C = 1` it is
+//! `(tau_{j-1} + tau_{j+1}) / 2 + Z (omega_{j-1} - omega_{j+1}) / 2`, so inside a stuck region
+//! the torque relaxes towards a linear profile (over `n` stuck cells in ~`n^2` steps) instead of
+//! staying frozen as in the continuum; the scheme of torsionalWaveStep.m does the same.
+//!
+//! # The `consistent` nonlinearity
+//!
+//! With `nonlinearity = "consistent"` the torque is the finite-strain law of
+//! [`crate::model::Model::Consistent`], `tau(eps) = k2 eps + k5 eps^3` (`eps = -theta_z` the
+//! twist per length, `k2 = G J`, `k5 = M J4 / 2`), and the string is the p-system
+//! `rho J omega_t = -tau(eps)_z - f - rho J d omega`, `eps_t = -omega_z`, whose local wave speed is
+//! the tangent speed `sqrt((k2 + 3 k5 eps^2) / (rho J))` (hardening). The cells hold
+//! `(omega, eps)` and the scheme is the first-order Godunov finite-volume scheme with the
+//! acoustic (two-wave, Suliciu relaxation) Riemann solver: at a face between states `l` and
+//! `r` the outgoing characteristics `omega_l + tau_l / Z_l` and `omega_r - tau_r / Z_r` meet,
+//! `omega* = (Z_l (omega_l + tau_l / Z_l) + Z_r (omega_r - tau_r / Z_r)) / (Z_l + Z_r)`,
+//! `tau* = Z_l (omega_l + tau_l / Z_l - omega*)`, with `Z_l = Z_r` the larger tangent impedance
+//! `sqrt(rho J (k2 + 3 k5 eps^2))` of the two cells inside a section, each side's own at a
+//! junction (continuity of speed and torque), and the cell's at the top drive and the bit,
+//! which are solved exactly as above with `beta_1 = omega_1 - tau_1 / Z_1` and
+//! `alpha_n = omega_n + tau_n / Z_n`. Then
+//! `omega_j += dt (tau*_{j-1/2} - tau*_{j+1/2}) / (rho J h)`,
+//! `eps_j += dt (omega*_{j-1/2} - omega*_{j+1/2}) / h`, and the same sources (damping, friction
+//! with its stick phase: a stuck cell keeps its twist) at the transported speed. With `k5 = 0`
+//! the face values are those of the invariants and the update is the upwind scheme above
+//! (to rounding). The time step is made for the tangent speed at `numerics.max_shear_strain`
+//! (Courant number `<= 1` at that strain; every section's wave speed is raised by the largest
+//! hardening factor of the sections, so that sections of equal wave speeds keep whole numbers
+//! of steps per travel time, [`crate::drilling::grid::Grid::speed`]); the run reports the largest tangent Courant number
+//! met ([`run::DrillStats::courant_peak`]). The elastic energy is `sum h (k2 eps^2 / 2 + k5 eps^4 / 4)`
+//! and the transport's dissipation (`upwind_loss`) is measured per cell as the energy the face
+//! fluxes bring in (`dt tau* omega*`) less the cell's energy change, so the balance closes to
+//! rounding and the scheme's first-order dissipation is reported (positive; it vanishes at
+//! first order with `h` on smooth solutions).
+//!
+//! # Controllers
+//!
+//! * `pi`: `tau_m = kp e + ki int e`, `e = setpoint - Omega`, sampled in a zero-order hold at
+//!   `control_interval`, as MAIN.m of Aarsnes & Shor (their `38e3`, `100e3`);
+//! * `soft_torque`: the same PI with `kp = z_factor Z_top` and `ki = (2 pi f)^2 I_TD`, so that
+//!   at the tuning frequency `f` the top drive's inertia and the integral cancel and it presents
+//!   the damping `kp` to the string (Kyllingstad & Nessjøen, SPE/IADC 119660, 2009); the gains
+//!   as in Open-Source-Drilling-Community/Simulator4nDOF, `Simulator/TopdriveController.cs`
+//!   (commit b14d6c2, controller type 2, without its inertia compensation), `f` by default the
+//!   string's first natural frequency;
+//! * `z_torque`: impedance matching (ZTorque, Dwars, SPE/IADC 173037, 2015; Simulator4nDOF
+//!   controller type 3, whose speed setpoint is lowered by the high-passed string torque over
+//!   `Z`): here the ideal form, the top speed `Omega = w_ref - (tau_top - tau_slow) / (z Z_top)`
+//!   every step (`tau_slow` the string torque low-passed with `torque_highpass_time`), which
+//!   absorbs an incident torque wave completely at `z_factor = 1`;
+//! * `speed`: the top speed is the setpoint.
+//!
+//! `speed` and `z_torque` ask for a top speed, which the motor's speed loop follows as a
+//! first-order lag of time constant `1 / (2 pi top_drive.motor_bandwidth)` (exact over the
+//! step), and infer the motor torque (`I_TD dOmega/dt + tau_top`, bounded as the grid is
+//! refined); with `top_drive.torque_limit` exceeded they fall back to the clipped torque. The
+//! `pi` and `soft_torque` gains are checked against the sampled loop's stability bound
+//! `kp < 2 I_TD / max(dt, control_interval) + Z` before a run. The setpoint approaches its target (`rpm`, then `steps`) as a first-order lag of time
+//! constant `ramp_time`, exactly over each step.
+//!
+//! # Energy
+//!
+//! With `e = rho J h / 4` per cell the discrete energy is `sum e (alpha^2 + beta^2)` (kinetic
+//! `e (alpha + beta)^2 / 2`, elastic `e (alpha - beta)^2 / 2`) plus the top-drive and BHA
+//! kinetic energies. Every step satisfies exactly (up to rounding)
+//! `dt tau_m Omega' = dE + dt T_bit omega_bit' + friction + damping + numerical`, where the
+//! friction and damping terms are the work of their sources (`4 e delta (omega* + delta / 2)`
+//! per cell), and `numerical` the upwind dissipation `e C (1 - C) (d alpha^2 + d beta^2)` (0 at
+//! `C = 1`) plus the implicit-Euler dissipation `I (Omega' - Omega)^2 / 2` of the top drive and
+//! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
+//! it). The motor work is `sum dt tau_m Omega'`.
+
+pub mod boundary;
+pub mod controller;
+pub mod energy;
+pub mod field;
+pub mod kernel;
+pub mod run;
+pub mod sampler;
+pub mod sources;
+
+pub use energy::EnergyBalance;
+pub use run::{DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};

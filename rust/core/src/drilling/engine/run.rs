@@ -1,0 +1,425 @@
+//! The run: a [`Simulation`] set up from a configuration (field, sources, ends, controller),
+//! its step (ends, junctions, cells) and its loop (step limit, interrupt polling, runaway
+//! guard, sampling, status), the energy balance and the metrics at the end.
+
+use std::f64::consts::PI;
+
+use serde::Serialize;
+
+use super::boundary::{Bit, TopDrive};
+use super::controller::{Controller, Setpoint, RPM_PER_RAD_S};
+use super::energy::{EnergyBalance, Ledger, Stored};
+use super::field::Field;
+use super::kernel::{godunov, transport};
+use super::sampler::Sampler;
+use super::sources::{Sources, WallFriction};
+use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity};
+use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
+use crate::drilling::solver::run_warnings;
+use crate::error::{Error, Num, Result};
+use crate::interrupt::{Interrupt, Poller};
+use crate::metrics::{stick_slip, StickSlip};
+use crate::solution::{serialize_list, Status};
+
+/// A run whose top-drive or bit speed exceeds this many times the largest setpoint (or 1 rad/s)
+/// has diverged: it ends with the status `non_finite` and a message saying so.
+pub const RUNAWAY_FACTOR: f64 = 1000.0;
+
+/// Counters and discretisation of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct DrillStats {
+    pub cells: usize,
+    /// Time steps taken.
+    pub steps: u64,
+    pub dt: f64,
+    /// Smallest and largest Courant number of the sections at the speed the step is made for
+    /// (`linear`: `sqrt(G / rho)`; `consistent`: the tangent speed at `numerics.max_shear_strain`).
+    pub courant_min: f64,
+    pub courant_max: f64,
+    /// The largest Courant number of the local wave speed met in the run: `courant_max` for
+    /// `linear`; for `consistent` the tangent speed at the largest twist each section reached
+    /// (above 1 when the strains exceeded `numerics.max_shear_strain`; the message says so).
+    pub courant_peak: f64,
+    /// The controller gains used (for `soft_torque`, the tuned ones), N m s/rad and N m/rad.
+    pub kp: f64,
+    pub ki: f64,
+    /// First natural frequency of the string (fixed top, bit free or with the BHA), Hz.
+    pub first_mode_hz: f64,
+}
+
+/// The result of a run (serialised without the metrics and what goes with them: `metrics`,
+/// `window`, `breakoff_torque`, `min_cycle_torque`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DrillRun {
+    /// Series at `k output_interval`: time s, top-drive and bit speed rpm, motor and bit torque N m.
+    pub t: Vec<f64>,
+    pub surface_rpm: Vec<f64>,
+    pub bit_rpm: Vec<f64>,
+    pub motor_torque: Vec<f64>,
+    pub bit_torque: Vec<f64>,
+    /// Snapshot times (the step nearest to `k field_interval`), s.
+    pub field_t: Vec<f64>,
+    /// Cell centres, m.
+    pub z: Vec<f64>,
+    /// `field_t.len() x z.len()`, row-major: speed rpm, torque N m.
+    pub omega_field: Vec<f64>,
+    pub torque_field: Vec<f64>,
+    pub energy: EnergyBalance,
+    /// Stick-slip metrics over the window (None when the window holds fewer than 2 samples).
+    #[serde(skip)]
+    pub metrics: Option<StickSlip>,
+    /// The window `[t_start, t_end]` asked for.
+    #[serde(skip)]
+    pub window: [f64; 2],
+    #[serde(skip)]
+    pub breakoff_torque: f64,
+    /// The minimum motor torque of a stick-slip cycle implied by break-off
+    /// ([`crate::drilling::grid::min_cycle_torque`]), N m.
+    #[serde(skip)]
+    pub min_cycle_torque: f64,
+    pub status: Status,
+    pub message: String,
+    /// What the configuration makes doubtful (a torque limit the string's static torque
+    /// exceeds); the metrics' own are [`StickSlip::warnings`].
+    #[serde(serialize_with = "serialize_list")]
+    pub warnings: Vec<String>,
+    pub stats: DrillStats,
+}
+
+/// A drilling-system run being set up (initial state) and run.
+pub struct Simulation<'c> {
+    cfg: &'c DrillConfig,
+    grid: Grid,
+    field: Field,
+    wall: WallFriction,
+    sources: Sources,
+    top: TopDrive,
+    bit: Bit,
+    setpoint: Setpoint,
+    control: Controller,
+    ledger: Ledger,
+    first_mode: f64,
+}
+
+impl<'c> Simulation<'c> {
+    /// Validates `cfg` and sets the system at rest.
+    pub fn new(cfg: &'c DrillConfig) -> Result<Self> {
+        cfg.validate()?;
+        let grid = Grid::new(cfg)?;
+        let dt = grid.dt;
+        if cfg.damping_rate * dt > 1.0 {
+            return Err(Error::invalid(
+                "damping_rate",
+                Num(cfg.damping_rate),
+                format!("at most 1 / dt = {} 1/s for this time step (more cells allow more)", Num(1.0 / dt)),
+            ));
+        }
+        let field = Field::torsional(&grid, cfg.nonlinearity == Nonlinearity::Consistent);
+        let wall = WallFriction::torsional(cfg, &grid, &field);
+        let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
+        let control = Controller::new(cfg, &grid, first_mode)?;
+        Ok(Simulation {
+            cfg,
+            sources: Sources::new(cfg, dt),
+            top: TopDrive::new(cfg, dt),
+            bit: Bit::new(cfg),
+            grid,
+            field,
+            wall,
+            setpoint: Setpoint::new(&cfg.top_drive, dt),
+            control,
+            ledger: Ledger::default(),
+            first_mode,
+        })
+    }
+
+    /// Sets `k5 = 0` in every section (the `consistent` scheme with the linear law), for tests
+    /// of its linear limit.
+    #[cfg(test)]
+    pub(crate) fn zero_quartic(&mut self) {
+        if let Some(nl) = &mut self.field.nl {
+            for law in &mut nl.laws {
+                law.quartic = 0.0;
+            }
+        }
+    }
+
+    /// The discretisation.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// Sets the initial state: the speed (rad/s) and torque (N m) of every cell (top to
+    /// bottom, `grid().cells()` each), the top-drive and the bit speed (rad/s). With the
+    /// `consistent` law a cell's twist is the one carrying its torque
+    /// ([`crate::drilling::grid::SectionProps::strain`]).
+    pub fn set_state(&mut self, omega: &[f64], torque: &[f64], omega_top: f64, omega_bit: f64) -> Result<()> {
+        let n = self.grid.cells();
+        for (name, x) in [("omega", omega), ("torque", torque)] {
+            if x.len() != n {
+                return Err(Error::invalid(name, format!("length {}", x.len()), format!("length {n} (the cells)")));
+            }
+            if let Some(v) = x.iter().find(|v| !v.is_finite()) {
+                return Err(Error::invalid(name, Num(*v), "finite values"));
+            }
+        }
+        if !(omega_top.is_finite() && omega_bit.is_finite()) {
+            return Err(Error::invalid("omega_top", Num(omega_top + omega_bit), "finite speeds"));
+        }
+        let mut k = 0;
+        for s in 0..self.field.sections.len() {
+            for j in 1..=self.field.sections[s].cells {
+                self.field.set_cell(s, j, omega[k], torque[k]);
+                k += 1;
+            }
+        }
+        self.top.omega = omega_top;
+        self.bit.omega = omega_bit;
+        Ok(())
+    }
+
+    /// Speeds (rad/s) and torques (N m) of the cells.
+    pub fn fields(&self) -> (Vec<f64>, Vec<f64>) {
+        let mut w = Vec::with_capacity(self.grid.cells());
+        let mut t = Vec::with_capacity(self.grid.cells());
+        self.field.each_cell(|wj, tj| {
+            w.push(wj);
+            t.push(tj);
+        });
+        (w, t)
+    }
+
+    /// The bit speed reported, rad/s: the speed of the string's end, except that an end slower
+    /// than `friction.stick_speed` below a stuck last cell (speed exactly 0) is at rest.
+    ///
+    /// Below a stuck cell the end's speed is `omega_n + tau_n / Z` of the cell's invariant (the
+    /// boundary's Riemann solution), which creeps at the stuck cell's torque over the
+    /// impedance: a speed proportional to the cell size (the torque of a stuck string falls
+    /// linearly to 0 at a free end, so the last cell's is about `h / 2` times its gradient).
+    /// In the continuum the string is at rest down to its end. The creep moves no state (the
+    /// scheme keeps no angle), so reporting 0 changes nothing else; the published code of
+    /// Aarsnes & Shor reports the last cell's speed for the same reason.
+    fn bit_speed(&self) -> f64 {
+        let s = self.field.sections.len() - 1;
+        let (w, _) = self.field.cell(s, self.field.sections[s].cells);
+        let fr = &self.cfg.friction;
+        let stuck = fr.model == FrictionModel::SetValued && w == 0.0;
+        if stuck && self.bit.omega.abs() < fr.stick_speed.max(self.cfg.metrics.stick_speed) {
+            0.0
+        } else {
+            self.bit.omega
+        }
+    }
+
+    /// The energies stored, J.
+    fn stored(&self) -> Stored {
+        let (kinetic, elastic) = self.field.energies();
+        Stored {
+            kinetic,
+            elastic,
+            top_drive: 0.5 * self.top.inertia * self.top.omega * self.top.omega,
+            bha: 0.5 * self.bit.inertia * self.bit.omega * self.bit.omega,
+        }
+    }
+
+    /// One step from `t` (start of the step); returns `(motor torque, bit torque)` applied.
+    fn step(&mut self, t: f64) -> (f64, f64) {
+        let dt = self.grid.dt;
+        let td = &self.cfg.top_drive;
+        let setpoint = self.setpoint.advance(td, t + dt);
+
+        // Top drive.
+        let arriving = self.field.arriving_top();
+        let command = self.control.command(td, t, dt, setpoint, self.top.omega, arriving);
+        let (omega1, motor, tau_top) = self.top.step(command, arriving, dt, &mut self.ledger);
+        self.control.observe(tau_top);
+        self.field.set_top(arriving, omega1, tau_top);
+
+        // Bit.
+        let arriving = self.field.arriving_bottom();
+        let (wb1, tbit) = self.bit.step(arriving, dt, &mut self.ledger);
+        self.field.set_bottom(arriving, wb1);
+
+        self.field.junctions();
+        self.cells(dt);
+        (motor, tbit)
+    }
+
+    /// The cells of every section over a step, the sources' and transport's work booked.
+    fn cells(&mut self, dt: f64) {
+        let Field { sections, alpha, beta, alpha_next, beta_next, nl } = &mut self.field;
+        let (stop, slip) = (&self.wall.stop[..], &self.wall.slip[..]);
+        if let Some(nl) = nl {
+            for (s, sp) in sections.iter().enumerate() {
+                let law = nl.laws[s];
+                let sums = godunov(nl, sp, law, (stop, slip), dt, &self.sources);
+                self.ledger.godunov(&sums);
+                nl.peak_strain[s] = nl.peak_strain[s].max(sums.peak);
+            }
+        } else {
+            for sp in sections.iter() {
+                let r = sp.padded();
+                let sums = transport(
+                    &alpha[r.clone()],
+                    &beta[r.clone()],
+                    &stop[r.clone()],
+                    &slip[r.clone()],
+                    &mut alpha_next[r.clone()],
+                    &mut beta_next[r],
+                    sp.courant,
+                    &self.sources,
+                );
+                self.ledger.transport(sp.e, sp.courant, &sums);
+            }
+        }
+        self.field.swap();
+    }
+
+    /// Runs to `numerics.duration` (or until `interrupt` asks to stop, or a non-finite value),
+    /// calling `progress` with the fraction done (every ~0.1 %).
+    pub fn run(mut self, interrupt: &dyn Interrupt, progress: &mut dyn FnMut(f64)) -> DrillRun {
+        let cfg = self.cfg;
+        let dt = self.grid.dt;
+        let duration = cfg.numerics.duration;
+        let steps = ((duration / dt) * (1.0 - 1e-12)).ceil().max(1.0) as u64;
+        let nz = self.grid.cells();
+        let initial = self.stored().total();
+
+        let breakoff = breakoff_torque(cfg).unwrap_or(f64::NAN);
+        let mut run = DrillRun {
+            t: Vec::new(),
+            surface_rpm: Vec::new(),
+            bit_rpm: Vec::new(),
+            motor_torque: Vec::new(),
+            bit_torque: Vec::new(),
+            field_t: Vec::new(),
+            z: self.grid.z.clone(),
+            omega_field: Vec::new(),
+            torque_field: Vec::new(),
+            energy: EnergyBalance::default(),
+            metrics: None,
+            window: cfg.metrics.window.unwrap_or([0.5 * duration, duration]),
+            breakoff_torque: breakoff,
+            min_cycle_torque: min_cycle_torque(cfg, breakoff),
+            status: Status::Success,
+            message: String::new(),
+            warnings: run_warnings(cfg, breakoff),
+            stats: DrillStats {
+                cells: nz,
+                steps: 0,
+                dt,
+                courant_min: self.grid.courant.iter().copied().fold(f64::INFINITY, f64::min),
+                courant_max: self.grid.courant.iter().copied().fold(0.0, f64::max),
+                courant_peak: self.grid.courant.iter().copied().fold(0.0, f64::max),
+                kp: self.control.kp,
+                ki: self.control.ki,
+                first_mode_hz: self.first_mode / (2.0 * PI),
+            },
+        };
+        let mut sampler = Sampler::new(cfg);
+        if let Err(oom) = sampler.reserve(&mut run, nz) {
+            run.status = Status::OutOfMemory;
+            run.message = oom.outputs_message();
+            return run;
+        }
+        if !sampler.start(&self.field, &mut run, self.top.omega, self.bit_speed()) {
+            run.status = Status::NonFinite;
+            run.message = "the initial state is not finite".into();
+            return run;
+        }
+        let mut poller = Poller::new(interrupt);
+        let runaway = RUNAWAY_FACTOR * Setpoint::fastest(&cfg.top_drive).max(1.0);
+        let stride = (steps / 1000).max(1);
+        let mut t = 0.0;
+        for n in 0..steps {
+            if poller.poll(t) {
+                run.status = Status::Interrupted;
+                run.message = format!("interrupted at t = {} s", Num(t));
+                break;
+            }
+            let (motor, bit) = self.step(t);
+            t = (n + 1) as f64 * dt;
+            let (top, end) = (self.top.omega, self.bit.omega);
+            if top.abs().max(end.abs()) > runaway {
+                run.status = Status::NonFinite;
+                run.message = format!(
+                    "the solution diverged: the {} speed reached {} rpm, more than {} times the largest setpoint, \
+                     at t = {} s (a grid too coarse for the controller or the bit law: raise numerics.cells)",
+                    if top.abs() > runaway { "top-drive" } else { "bit" },
+                    Num(top.abs().max(end.abs()) * RPM_PER_RAD_S),
+                    RUNAWAY_FACTOR,
+                    Num(t)
+                );
+                break;
+            }
+            run.stats.steps = n + 1;
+            if !sampler.record(n, [t, top, self.bit_speed(), motor, bit], &self.field, &mut run, dt) {
+                run.status = Status::NonFinite;
+                run.message = format!("the state became non-finite before t = {} s", Num(t));
+                break;
+            }
+            if (n + 1) % stride == 0 {
+                progress((n + 1) as f64 / steps as f64);
+            }
+        }
+        self.courant_peak(&mut run);
+        let (energy, finite) = self.ledger.balance(initial, self.stored());
+        run.energy = energy;
+        if run.status == Status::Success && !finite {
+            run.status = Status::NonFinite;
+            run.message = format!("the energy became non-finite by t = {} s", Num(t));
+        }
+        metrics(cfg, &mut run);
+        progress(1.0);
+        run
+    }
+
+    /// `consistent`: the largest tangent Courant number met, with a note when above 1.
+    fn courant_peak(&self, run: &mut DrillRun) {
+        let Some(nl) = &self.field.nl else { return };
+        let dt = self.grid.dt;
+        let peak = (self.field.sections.iter().zip(&nl.laws).zip(&nl.peak_strain))
+            .map(|((sp, law), &eps)| law.tangent_speed(eps) * dt / sp.h)
+            .fold(0.0, f64::max);
+        run.stats.courant_peak = peak;
+        if peak > 1.0 + 1e-12 {
+            let bound = self.cfg.numerics.max_shear_strain;
+            let strain = (nl.peak_strain.iter().zip(&self.grid.strain_bound))
+                .map(|(&eps, &b)| bound * eps / b)
+                .fold(0.0, f64::max);
+            let note = format!(
+                "the shear strain reached {} > numerics.max_shear_strain = {}: the tangent Courant number \
+                 reached {} > 1 (raise numerics.max_shear_strain)",
+                Num(strain),
+                Num(bound),
+                Num(peak)
+            );
+            run.message = if run.message.is_empty() { note } else { format!("{}; {note}", run.message) };
+        }
+    }
+}
+
+/// The stick-slip metrics of a run's series over its window, or a note why there are none.
+fn metrics(cfg: &DrillConfig, run: &mut DrillRun) {
+    let [a, b] = run.window;
+    let stuck = cfg.metrics.stick_speed;
+    let mut omega_bit = Vec::new();
+    let note = if omega_bit.try_reserve_exact(run.bit_rpm.len()).is_err() {
+        Some("no metrics: their memory could not be allocated".to_string())
+    } else {
+        omega_bit.extend(run.bit_rpm.iter().map(|r| r / RPM_PER_RAD_S));
+        run.metrics = stick_slip(&run.t, &omega_bit, Some(&run.motor_torque), Some((a, b)), stuck).ok();
+        run.metrics.is_none().then(|| {
+            format!(
+                "no metrics: the window metrics.window = [{}, {}] s holds fewer than 2 samples of the series \
+                 (0 to {} s)",
+                Num(a),
+                Num(b),
+                Num(run.t.last().copied().unwrap_or(0.0))
+            )
+        })
+    };
+    if let Some(note) = note {
+        run.message = if run.message.is_empty() { note } else { format!("{}; {note}", run.message) };
+    }
+}

@@ -1,0 +1,114 @@
+//! The output sampler of a run: the series at `k output_interval`, linear between the step
+//! ends around each sample time, and the field snapshots at the step nearest to
+//! `k field_interval`; storage reserved up front ([`crate::solution::reserve_outputs`]).
+
+use super::controller::RPM_PER_RAD_S;
+use super::field::Field;
+use super::run::DrillRun;
+use crate::drilling::config::DrillConfig;
+use crate::solution::OutOfMemory;
+
+/// The series' values at a step end: `[t, omega_top, omega_bit, motor, bit]` (rad/s, N m).
+pub type Point = [f64; 5];
+
+/// Where the sampling stands.
+pub struct Sampler {
+    n_series: usize,
+    n_fields: usize,
+    out_dt: f64,
+    field_dt: f64,
+    next_series: usize,
+    next_field: usize,
+    /// The previous step end.
+    prev: Point,
+}
+
+impl Sampler {
+    pub fn new(cfg: &DrillConfig) -> Self {
+        Sampler {
+            n_series: cfg.series_samples(),
+            n_fields: cfg.field_samples(),
+            out_dt: cfg.numerics.output_interval,
+            field_dt: cfg.numerics.field_interval,
+            next_series: 0,
+            next_field: 1,
+            prev: [0.0; 5],
+        }
+    }
+
+    /// Reserves the run's sample storage for `cells` cells.
+    pub fn reserve(&self, run: &mut DrillRun, cells: usize) -> Result<(), OutOfMemory> {
+        let (n_series, n_fields) = (self.n_series, self.n_fields);
+        crate::solution::reserve_outputs(&mut [
+            (&mut run.t, n_series),
+            (&mut run.surface_rpm, n_series),
+            (&mut run.bit_rpm, n_series),
+            (&mut run.motor_torque, n_series),
+            (&mut run.bit_torque, n_series),
+            (&mut run.field_t, n_fields),
+            (&mut run.omega_field, n_fields * cells),
+            (&mut run.torque_field, n_fields * cells),
+        ])
+    }
+
+    /// The initial snapshot (if any are asked for) and state; `false` when not finite.
+    pub fn start(&mut self, field: &Field, run: &mut DrillRun, omega_top: f64, omega_bit: f64) -> bool {
+        self.prev = [0.0, omega_top, omega_bit, f64::NAN, f64::NAN];
+        self.n_fields == 0 || snapshot(field, run, 0.0)
+    }
+
+    /// Samples after step `n` (0-based) ending at `cur`: the series up to `cur[0]`, then a
+    /// snapshot of `field` if one is due (`dt` the step). `false` (the sample not stored) when
+    /// a value is not finite.
+    pub fn record(&mut self, n: u64, cur: Point, field: &Field, run: &mut DrillRun, dt: f64) -> bool {
+        let t = cur[0];
+        let prev = &mut self.prev;
+        if n == 0 {
+            prev[3] = cur[3];
+            prev[4] = cur[4];
+        }
+        while self.next_series < self.n_series {
+            let ts = self.next_series as f64 * self.out_dt;
+            if ts > t * (1.0 + 1e-12) {
+                break;
+            }
+            let w = if cur[0] > prev[0] { ((ts - prev[0]) / (cur[0] - prev[0])).clamp(0.0, 1.0) } else { 1.0 };
+            let at = |k: usize| prev[k] + w * (cur[k] - prev[k]);
+            let sample = [ts, at(1) * RPM_PER_RAD_S, at(2) * RPM_PER_RAD_S, at(3), at(4)];
+            if sample.iter().any(|v| !v.is_finite()) {
+                return false;
+            }
+            run.t.push(sample[0]);
+            run.surface_rpm.push(sample[1]);
+            run.bit_rpm.push(sample[2]);
+            run.motor_torque.push(sample[3]);
+            run.bit_torque.push(sample[4]);
+            self.next_series += 1;
+        }
+        if self.next_field < self.n_fields && t >= self.next_field as f64 * self.field_dt - 0.5 * dt {
+            if !snapshot(field, run, t) {
+                return false;
+            }
+            self.next_field += 1;
+        }
+        *prev = cur;
+        true
+    }
+}
+
+/// Appends the fields at `t`; `false` (nothing appended) when a value is not finite.
+fn snapshot(field: &Field, run: &mut DrillRun, t: f64) -> bool {
+    let start = run.omega_field.len();
+    field.each_cell(|w, tau| {
+        run.omega_field.push(w * RPM_PER_RAD_S);
+        run.torque_field.push(tau);
+    });
+    let finite = run.omega_field[start..].iter().chain(&run.torque_field[start..]).all(|v| v.is_finite());
+    if finite {
+        run.field_t.push(t);
+    } else {
+        run.omega_field.truncate(start);
+        run.torque_field.truncate(start);
+    }
+    finite
+}
