@@ -585,6 +585,10 @@ def _add_drill(sub: Any) -> None:
     p.add_argument("--check-grid", action="store_true",
                    help="also solve on twice the cells and report how much every metric moves (about four "
                    "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning")
+    p.add_argument("--units", choices=("si", "field"), default="si",
+                   help="the unit system of the console lines (field: ft, ft-lbf) and of a converted copy of the "
+                   "metrics in metrics.json (output_units); the files keep their SI values (default si; the "
+                   "configuration's own units key sets how it is read)")
     _add_progress(p)
     p.set_defaults(func=_cmd_drill)
 
@@ -601,6 +605,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
 
     from .drilling import drill, load_drill_config
     from .drilling.output import _write_files, output_folder
+    from .drilling.units import convert, shown
 
     config = load_drill_config(args.config)
     if args.overrides:
@@ -613,23 +618,28 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
         seconds = time.perf_counter() - start
         m = result.metrics
-        _say(f"drill: {config.length:.6g} m string, {config.numerics.cells} cells, {config.numerics.duration:g} s "
-             f"simulated in {seconds:.2g} s ({result.status})")
+        system = args.units
+
+        def torque(x: float) -> str:  # kN m, or kft-lbf in field units
+            return shown(x, "N*m", system, kilo=True)
+
+        low = (convert(m.motor_torque_min_Nm, "N*m", system)[0] or 0.0) / 1e3
+        _say(f"drill: {shown(config.length, 'm', system, digits=6)} string, {config.numerics.cells} cells, "
+             f"{config.numerics.duration:g} s simulated in {seconds:.2g} s ({result.status})")
         _say(f"wall contact: {config.friction.contact} ("
              + ("soft-string normal force: buoyed weight and tension times curvature"
                 if config.friction.contact == "soft_string" else "buoyed weight times sin(inclination)")
-             + f"), break-off torque {result.metrics.breakoff_torque_Nm / 1e3:.4g} kN m")
+             + f"), break-off torque {torque(result.metrics.breakoff_torque_Nm)}")
         _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
              f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
-             f"(mean {m.bit_rpm_mean:.4g}), motor torque {m.motor_torque_min_Nm / 1e3:.4g}.."
-             f"{m.motor_torque_max_Nm / 1e3:.4g} kN m, break-off {m.breakoff_torque_Nm / 1e3:.4g} kN m (implied "
-             f"cycle minimum {m.min_cycle_torque_Nm / 1e3:.4g} kN m)")
+             f"(mean {m.bit_rpm_mean:.4g}), motor torque {low:.4g}..{torque(m.motor_torque_max_Nm)}, "
+             f"break-off {torque(m.breakoff_torque_Nm)} (implied cycle minimum {torque(m.min_cycle_torque_Nm)})")
         _say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
              f"{'settled' if m.settled else 'not settled'}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
-            _say(f"static torque to break free {p.static_torque / 1e3:.4g} kN m (wall {p.breakoff_torque / 1e3:.4g} "
-                 f"+ bit {p.bit_static_torque / 1e3:.4g})")
+            _say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "
+                 f"+ bit {torque(p.bit_static_torque)})")
         if result.grid_check is not None:
             g = result.grid_check
             moves = ", ".join(f"{r.metric} {_change(r.kind, r.change)}" for r in g.rows if r.kind != "equal")
@@ -637,7 +647,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = _write_files(result, directory, plots)
+        written = _write_files(result, directory, plots, args.units)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0
 

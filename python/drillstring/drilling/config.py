@@ -4,7 +4,10 @@ A :class:`DrillConfig` mirrors the configuration of the Rust core (``drillstring
 the string as :class:`StringSection` s from the top, the :class:`Well` survey, the side-wall
 :class:`Friction`, the :class:`TopDrive` and its :class:`Controller`, the :class:`Bit`, the
 :class:`Numerics` and where the stick-slip metrics are measured (:class:`MetricsConfig`). SI units;
-angles in degrees and speeds in rpm where the field name says so.
+angles in degrees and speeds in rpm where the field name says so. Any number may be given as a
+string with a unit (``"5 in"``, ``"18 klbf"``), and ``units = "field"`` in a document makes plain
+numbers field units (:mod:`drillstring.drilling.units`, ``docs/units.md``); they are converted to
+SI before the core sees them. :func:`config_schema` is the reference of every key.
 
 Every default and every allowed range lives once, in Rust: the dataclass defaults are read from
 ``_core.drill_defaults()``, and constructing a :class:`DrillConfig` sends it to
@@ -55,6 +58,7 @@ from .. import _core
 from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import json_ready
+from . import units as _units
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -108,9 +112,18 @@ def config_schema() -> dict[str, _core.ConfigKeyDoc]:
         what the key means, its allowed range in words and what null means.
 
     The core derives it from its configuration structs (``_core.drill_config_schema()``): the
-    keys, types and defaults from the structs, the descriptions from their doc comments.
+    keys, types and defaults from the structs, the descriptions from their doc comments. The one
+    key read here and not by the core, ``units`` (the unit system of plain numbers,
+    :mod:`drillstring.drilling.units`), is added.
     """
-    return _core.drill_config_schema()
+    schema = _core.drill_config_schema()
+    schema["units"] = {
+        "type": "string", "unit": None, "label": "unit system", "default": "si",
+        "description": "The unit of plain numbers: si (SI, angles in degrees, speeds in rpm) or field (ft, in for "
+                       "diameters, klbf, ft-lbf, ppg, psi, deg/100ft; see docs/units.md); a string with a unit "
+                       "(\"5 in\") is read in its own unit either way. One of: si, field.",
+    }
+    return dict(sorted(schema.items()))
 
 
 def _frozen(value: Any) -> Any:
@@ -398,7 +411,7 @@ class DrillConfig:
 
     def __post_init__(self) -> None:
         plain = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
-        normal = _core.drill_validate(_core_json(plain))
+        normal = _core.drill_validate(_core_json(_units.to_si(plain)))
         for name, value in _from_core(type(self), normal).items():
             object.__setattr__(self, name, value)
 
@@ -426,7 +439,9 @@ class DrillConfig:
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any], source: Optional[str] = None) -> DrillConfig:
-        """Builds a config from nested mappings (a parsed TOML or JSON document).
+        """Builds a config from nested mappings (a parsed TOML or JSON document). A top-level
+        ``units`` (``"si"``, the default, or ``"field"``) sets the unit of plain numbers; strings
+        with units are converted (:func:`drillstring.drilling.units.to_si`).
 
         Unknown keys raise :class:`~drillstring.errors.ValidationError` naming the key and listing
         the allowed ones; so do values of the wrong type and values the core refuses. ``source``
@@ -435,7 +450,7 @@ class DrillConfig:
         try:
             if not isinstance(data, Mapping):
                 raise ValidationError("config", data, "a table/mapping of the configuration")
-            return cls._from_core(_core.drill_validate(_core_json(_plain(data))))
+            return cls._from_core(_core.drill_validate(_core_json(_units.to_si(_plain(data)))))
         except ValidationError as exc:
             if source is None or exc.source is not None:
                 raise
@@ -475,8 +490,10 @@ class DrillConfig:
         ``assignments`` is a list of ``"key=value"`` strings, as ``drillstring drill --set``
         takes them (the value is TOML: ``60``, ``3.5e4``, ``true``, ``"pi"``, ``[0, 30]``, and a
         bare word such as ``soft_torque`` is a string, ``null`` unsets an optional field such as
-        ``top_drive.controller.tuning_frequency``), or a mapping of dotted keys to values; a
+        ``top_drive.controller.tuning_frequency``, and a number with a unit such as ``5 in`` or
+        ``"18 klbf"`` is converted to the key's SI unit), or a mapping of dotted keys to values; a
         table given for a table (``{"top_drive.controller": {"kp": 1.0}}``) is merged into it.
+        Plain numbers are SI. Setting ``bit.radius`` replaces a ``bit.diameter`` and the reverse.
         The core sets them (``_core.drill_config_override``, as a stick-slip map its axes). Setting
         ``well.inclination_deg`` to one number (a constant inclination) without ``well.md``
         drops the survey stations::
@@ -497,7 +514,7 @@ class DrillConfig:
         for key, value in items:
             if not isinstance(key, str):
                 raise ValidationError("--set", key, _SET_FORM)
-            pairs.append([key.strip(), json_ready(_plain(value))])
+            pairs.append([key.strip(), json_ready(_units.override_to_si(key.strip(), _plain(value)))])
         return type(self)._from_core(_core.drill_config_override(self.to_json(), json.dumps(pairs), "--set"))
 
 
@@ -682,6 +699,7 @@ def _toml_line(path: PathLike, dotted: str) -> Optional[int]:
 # --------------------------------------------------------------------------- overrides
 
 _BARE_WORD = re.compile(r"^[A-Za-z_][A-Za-z0-9_-]*$")
+_QUANTITY = re.compile(r"^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*[A-Za-z%(][^=]*$")
 _SET_FORM = "key=value with a dotted key (top_drive.rpm, sections[0].length) and a TOML value"
 
 
@@ -707,7 +725,9 @@ def _parse_value(raw: str, field: str, text: str) -> Any:
     (a string) or ``null`` (``None``); ``ValidationError`` naming ``field`` with ``text``."""
     try:
         return tomllib.loads(f"value = {raw}")["value"]
-    except (ValueError, RecursionError):  # tomllib.TOMLDecodeError: maybe a bare word
+    except (ValueError, RecursionError):  # tomllib.TOMLDecodeError: maybe a bare word or a quantity
+        if _QUANTITY.match(raw):
+            return raw  # a number with a unit (5 in, 18 klbf): converted with the key's unit
         if not _BARE_WORD.match(raw):
             raise ValidationError(field, text, _SET_FORM + " (number, true/false, \"string\", [list])") from None
         return None if raw == "null" else raw  # null: unset an optional field (TOML has no null)

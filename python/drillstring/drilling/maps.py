@@ -50,6 +50,7 @@ from .config import DrillConfig, _load_document, _plain
 from .metrics import core_value
 from .result import METRICS, TEXT_METRICS
 from .solve import ConfigLike, _config
+from .units import override_to_si
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -109,9 +110,10 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     row), so that a key not in the configuration, an index out of range or a value of the wrong
     type (``top_drive.rpm`` takes numbers, ``bit.on_bottom`` true/false, ...) is refused before
     anything is solved; and all of one kind (numbers, strings, true/false or lists, and ``None``:
-    one column of the table). Raises :class:`~drillstring.errors.ValidationError` naming ``field``
-    (the dotted path for a path error)."""
-    plain = [_plain_value(v, field) for v in values]
+    one column of the table). A number with a unit (``"5 in"``) is converted to the key's SI unit
+    (:mod:`drillstring.drilling.units`). Raises :class:`~drillstring.errors.ValidationError`
+    naming ``field`` (the dotted path for a path error)."""
+    plain = [_si_value(key, _plain_value(v, field), field) for v in values]
     base = config.to_json() if config is not None else json.dumps(_core.drill_defaults())
     # the path (malformed, an index out of range, a key through a value): the core's message as it is
     _core.drill_config_override(base, json.dumps([[key, plain[0] if plain else None]]), field, parse=False)
@@ -127,6 +129,14 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
         raise ValidationError(field, f"{key}={', '.join(json.dumps(v) for v in plain)}",
                               f"values of one kind for {key} (one column of the map), not {' and '.join(kinds)}")
     return plain
+
+
+def _si_value(key: str, value: Any, field: str) -> Any:
+    """An axis value with its quantities in SI; a bad unit named as the axis's."""
+    try:
+        return override_to_si(key, value)
+    except ValidationError as exc:
+        raise ValidationError(field, value, f"a value of {key}: {exc.allowed}") from None
 
 
 def _axes(cfg: DrillConfig, axes: Any) -> dict[str, list[Any]]:

@@ -111,19 +111,20 @@ def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
 
 
 def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
-                  field: str = "out_dir") -> list[Path]:
+                  field: str = "out_dir", output_units: str = "si") -> list[Path]:
     """Writes the run's files into ``out_dir`` (created if needed; see :data:`FILES`) and
     returns their paths. The folder and every file destination in it are checked first
     (:func:`~drillstring.io.output.check_destination`): a refused one raises
     :class:`~drillstring.errors.ValidationError` naming ``field`` before anything is written.
     The folder is held (:func:`output_folder`) while it is written: :data:`MARKER` first, the
     stale files of :data:`FILES` this run does not write removed, the files, then the marker
-    removed."""
+    removed. ``output_units`` adds a converted copy of the metrics to ``metrics.json``
+    (:meth:`DrillResult.summary`)."""
     with output_folder(out_dir, plots=plots, field=field) as directory:
-        return _write_files(result, directory, plots)
+        return _write_files(result, directory, plots, output_units)
 
 
-def _write_files(result: DrillResult, directory: Path, plots: bool) -> list[Path]:
+def _write_files(result: DrillResult, directory: Path, plots: bool, output_units: str = "si") -> list[Path]:
     """The files of :func:`write_outputs` into ``directory``, held by :func:`output_folder`."""
     written: list[Path] = []
 
@@ -142,7 +143,7 @@ def _write_files(result: DrillResult, directory: Path, plots: bool) -> list[Path
     written.append(atomic_write(path("series.parquet"), lambda tmp: frame.to_parquet(tmp), suffix=".parquet"))
     written.append(atomic_write(path("series.csv"), lambda tmp: frame.to_csv(tmp, float_format="%.10g"),
                                 suffix=".csv"))
-    text = json.dumps(_json_ready(result.summary()), indent=2, allow_nan=False) + "\n"
+    text = json.dumps(_json_ready(result.summary(output_units)), indent=2, allow_nan=False) + "\n"
     written.append(write_text(path("metrics.json"), text))
     profile = result.profile
 

@@ -80,6 +80,16 @@ METRIC_DEFINITIONS: dict[str, str] = {
 TEXT_METRICS: tuple[str, ...] = ("stick_slip_verdict",)
 
 
+#: The SI unit of each numeric metric as pint parses it (``""`` dimensionless); a unit system's
+#: copy in ``metrics.json`` (``output_units``) converts by it (:mod:`drillstring.drilling.units`).
+METRIC_UNITS: dict[str, str] = {
+    "window_start": "s", "window_end": "s", "ssi": "", "stuck_fraction": "", "period_s": "s", "bit_rpm_min": "rpm",
+    "bit_rpm_max": "rpm", "bit_rpm_mean": "rpm", "motor_torque_min_Nm": "N*m", "motor_torque_max_Nm": "N*m",
+    "breakoff_torque_Nm": "N*m", "period_cycles": "", "periodicity": "", "slip_period_s": "s",
+    "min_cycle_torque_Nm": "N*m",
+}
+
+
 #: The metrics of ``metrics.json`` and a map's columns, in order (the keys of :data:`METRIC_DEFINITIONS`).
 METRICS: tuple[str, ...] = tuple(METRIC_DEFINITIONS)
 
@@ -348,9 +358,15 @@ class DrillResult:
         )
         return frame
 
-    def summary(self) -> dict[str, Any]:
+    def summary(self, output_units: str = "si") -> dict[str, Any]:
         """What ``metrics.json`` holds: the metrics, the window, the status and message, the
-        energy balance and the solver counters (NaN as ``None``)."""
+        energy balance and the solver counters (NaN as ``None``). Every number is SI; with
+        ``output_units="field"`` the summary also holds ``output_units``: ``{"system": "field",
+        "units": {metric: unit}, "metrics": {metric: value}}``, the numeric metrics converted
+        (torques to ft-lbf; rpm, s and ratios stay; :mod:`drillstring.drilling.units`)."""
+        from .units import convert, system_of
+
+        system = system_of(output_units, "output_units")
         out: dict[str, Any] = {"status": self.status, "message": self.message}
         out.update(self.metrics.to_dict())
         out["stick_slip_reason"] = self.metrics.stick_slip_reason
@@ -362,6 +378,10 @@ class DrillResult:
         out["window"] = [self.metrics.window_start, self.metrics.window_end]
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}
         out["stats"] = self.stats
+        if system != "si":
+            converted = {name: convert(out[name], unit, system) for name, unit in METRIC_UNITS.items()}
+            out["output_units"] = {"system": system, "units": {k: u for k, (_, u) in converted.items()},
+                                   "metrics": {k: v for k, (v, _) in converted.items()}}
         return out
 
     def plot(self, kind: str = "time", *, fig: Any = None, path: Any = None, title: Optional[str] = None) -> Figure:
@@ -418,12 +438,14 @@ class DrillResult:
             save(figure, path)
         return figure
 
-    def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Path]:
+    def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
+             output_units: str = "si") -> list[Path]:
         """Writes the run into the folder ``out_dir`` (created if needed) and returns the paths
         written: ``series.parquet``, ``series.csv``, ``metrics.json``, ``fields.npz``,
         ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
         ``report.md``. The destinations are checked before anything is written; every file is
-        written atomically (see :mod:`drillstring.io.output`)."""
+        written atomically (see :mod:`drillstring.io.output`). ``output_units="field"`` adds the
+        metrics in field units to ``metrics.json`` (:meth:`summary`)."""
         from .output import write_outputs
 
-        return write_outputs(self, out_dir, plots=plots)
+        return write_outputs(self, out_dir, plots=plots, output_units=output_units)

@@ -57,8 +57,8 @@ fn resolve(node: &Value, defs: &Map<String, Value>) -> Map<String, Value> {
         out = resolve(def, defs);
     }
     if node.get("type").is_none() {
-        let any = node.get("anyOf").and_then(Value::as_array).into_iter().flatten();
-        if let Some(first) = any.filter(|a| a.get("type") != Some(&Value::from("null"))).next() {
+        let mut any = node.get("anyOf").and_then(Value::as_array).into_iter().flatten();
+        if let Some(first) = any.find(|a| a.get("type") != Some(&Value::from("null"))) {
             out.extend(resolve(first, defs));
         }
     }

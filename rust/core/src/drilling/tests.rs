@@ -447,6 +447,31 @@ fn bad_configurations_name_the_field() {
 }
 
 #[test]
+fn the_bit_is_given_by_its_radius_or_its_diameter_not_both() {
+    let pipe = r#"{"length": 1000, "outer_diameter": 0.127, "inner_diameter": 0.1}"#;
+    let parse = |bit: &str| DrillConfig::from_json(&format!(r#"{{"sections": [{pipe}], "bit": {bit}}}"#));
+    let cfg = parse(r#"{"diameter": 0.2159}"#).unwrap();
+    assert_eq!((cfg.bit.radius, cfg.bit.diameter), (0.10795, None));
+    cfg.validate().unwrap();
+    let e = parse(r#"{"radius": 0.1, "diameter": 0.2}"#).unwrap_err();
+    assert_eq!(e.field(), "bit.diameter");
+    assert!(e.to_string().contains("both bit.radius and bit.diameter"), "{e}");
+    assert_eq!(parse(r#"{"diameter": -0.2}"#).unwrap_err().field(), "bit.diameter");
+    assert_eq!(parse(r#"{"radius": 0.1, "diameter": null}"#).unwrap().bit.radius, 0.1);
+    // an override of one replaces the other; both at once are refused
+    let base = cfg.to_json();
+    let set = |pairs: &str| override_json(&base, pairs, "--set", true).map(|c| c.bit.radius);
+    assert_eq!(set(r#"[["bit.diameter", 0.3]]"#).unwrap(), 0.15);
+    assert_eq!(set(r#"[["bit", {"diameter": 0.25}]]"#).unwrap(), 0.125);
+    assert_eq!(set(r#"[["bit.radius", 0.2]]"#).unwrap(), 0.2);
+    assert_eq!(set(r#"[["bit.radius", 0.2], ["bit.diameter", 0.3]]"#).unwrap_err().field(), "bit.diameter");
+    // a configuration built in Rust with both, disagreeing
+    let mut both = DrillConfig::default();
+    both.bit.diameter = Some(0.3);
+    assert_eq!(both.validate().unwrap_err().field(), "bit.diameter");
+}
+
+#[test]
 fn defaults_round_trip_and_well_b_example_parses() {
     let cfg = DrillConfig::default();
     let back = DrillConfig::from_json(&cfg.to_json()).unwrap();

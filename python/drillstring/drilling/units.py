@@ -1,0 +1,273 @@
+"""Units at the edge: quantities with units in a configuration, the field unit system, outputs
+converted for display.
+
+The core works in SI only (angles in degrees, speeds in rpm, as the keys say). Here, before a
+configuration reaches the core, every number may be written as a string with a unit
+(``length = "9842.5 ft"``, ``outer_diameter = "5 in"``, ``weight_on_bit = "18 klbf"``,
+``mud_density = "10.8 ppg"``, ``build = "3 deg/100ft"``), converted with pint to the SI unit the
+core's reference gives for the key (:func:`~drillstring.drilling.config.config_schema`); and a
+top-level ``units = "field"`` makes plain numbers mean the field unit of their key
+(:data:`FIELD_UNITS`, :data:`FIELD_UNITS_BY_KEY`) instead of SI (``units = "si"``, the default).
+A plain number in SI is passed on untouched (bit for bit).
+
+Outputs stay SI; :func:`convert` and :func:`shown` give a value in another unit system for the
+console and ``metrics.json``'s converted copy (``drillstring drill --units field``).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import re
+from collections.abc import Mapping
+from decimal import Decimal
+from typing import Any, Optional
+
+from .. import _core
+from ..errors import ValidationError
+
+__all__ = [
+    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "convert", "field_unit", "override_to_si", "quantity", "shown",
+    "shown_unit", "system_of", "to_si",
+]
+
+#: The unit systems: ``si`` (the core's units; plain numbers pass untouched) and ``field``.
+SYSTEMS: tuple[str, ...] = ("si", "field")
+
+#: The field unit of each SI unit of the reference (units as pint parses them; ``ppg`` is pounds
+#: per US gallon). SI units not listed (rpm, s, Hz, deg, rad/s, 1/s, dimensionless) are the same
+#: in both systems.
+FIELD_UNITS: dict[str, str] = {
+    "m": "ft",
+    "m^2": "in^2",
+    "m^4": "in^4",
+    "m^6": "in^6",
+    "Pa": "psi",
+    "kg/m^3": "ppg",
+    "m/s^2": "ft/s^2",
+    "N": "klbf",
+    "N*m": "ft*lbf",
+    "kg*m^2": "lb*ft^2",
+    "N*m*s/rad": "ft*lbf*s/rad",
+    "N*m/rad": "ft*lbf/rad",
+    "deg/(30 m)": "deg/(100 ft)",
+}
+
+#: Keys whose field unit is not their SI unit's in :data:`FIELD_UNITS`: diameters and the bit's
+#: size in inches.
+FIELD_UNITS_BY_KEY: dict[str, str] = {
+    "sections[].outer_diameter": "in",
+    "sections[].inner_diameter": "in",
+    "sections[].contact_diameter": "in",
+    "bit.radius": "in",
+    "bit.diameter": "in",
+}
+
+#: How unit systems are named in messages.
+_SYSTEM_FORM = "one of si (the default: SI, angles in degrees, speeds in rpm), field (ft, in, klbf, ppg, psi, ...)"
+
+_INDEX = re.compile(r"\[\d+\]")
+# "deg/100ft", "deg/100 ft": a number in a denominator belongs to the unit after it
+_PER_NUMBER = re.compile(r"/\s*(\d+(?:\.\d*)?)\s*([A-Za-z_]\w*)")
+# a string read as a quantity: a number first ("5 in", "1e3 ft", "0.3")
+_QUANTITY = re.compile(r"^\s*[-+]?(\d|\.\d)")
+# "ft-lbf", "lbf-ft": a hyphen between two unit names is a product
+_HYPHEN = re.compile(r"(?<=[A-Za-z])-(?=[A-Za-z])")
+
+
+@functools.lru_cache(maxsize=1)
+def _registry() -> Any:
+    """The pint unit registry (imported on first use), with ``ppg`` (pound per US gallon). Its
+    numbers are decimals: the conversion factors are exact (``ft`` is ``0.3048 m``), so that a
+    converted value is the correctly rounded float of the exact product (``"5 in"`` is
+    ``0.127``, ``1000 ft`` is ``304.8``)."""
+    import pint
+
+    registry: Any = pint.UnitRegistry(non_int_type=Decimal)
+    registry.define("ppg = pound / gallon")
+    return registry
+
+
+@functools.lru_cache(maxsize=1)
+def _schema() -> dict[str, Any]:
+    return _core.drill_config_schema()
+
+
+def _expression(text: str) -> Any:
+    """``text`` parsed by pint after the two spellings it reads otherwise (``deg/100ft``,
+    ``ft-lbf``) are rewritten."""
+    text = _HYPHEN.sub("*", _PER_NUMBER.sub(r"/(\1 \2)", text.strip()))
+    return _registry().parse_expression(text)
+
+
+def _magnitude(value: Any, unit: str) -> float:
+    """The pint quantity ``value`` as a number in ``unit`` (a pint expression, which may hold a
+    factor: ``deg/(30 m)``), rounded to a float once."""
+    ratio = value / _expression(unit or "1")
+    return float(ratio.to("dimensionless").magnitude if hasattr(ratio, "to") else ratio)
+
+
+def _in(number: float, unit: str) -> Any:
+    """The float ``number`` (its exact binary value) as a quantity in ``unit``."""
+    return Decimal(number) * _expression(unit)
+
+
+def field_unit(key: str) -> Optional[str]:
+    """The field unit of the reference key ``key`` (``sections[].outer_diameter``), or None when
+    the key is no number or its field unit is its SI unit."""
+    if key in FIELD_UNITS_BY_KEY:
+        return FIELD_UNITS_BY_KEY[key]
+    unit = _unit_of(key)
+    return FIELD_UNITS.get(unit) if unit is not None else None
+
+
+def _key(path: str) -> str:
+    """The reference key of the field ``path``: indices as ``[]``, but the last index of a pair
+    of a list of pairs (``top_drive.steps[2][1]``: ``top_drive.steps[][1]``)."""
+    key = _INDEX.sub("[]", path)
+    last = _INDEX.findall(path)
+    if key.endswith("[][]") and last and f"{key[:-2]}{last[-1]}" in _schema():
+        return f"{key[:-2]}{last[-1]}"
+    return key
+
+
+def _unit_of(key: str) -> Optional[str]:
+    """The SI unit of the reference key ``key`` (a list's entries take the list's unit)."""
+    schema = _schema()
+    entry = schema.get(key)
+    if entry is None and key.endswith("[]"):
+        entry = schema.get(key[:-2])
+    if entry is None or entry["type"] not in ("number", "array"):
+        return None  # integers are counts: no units
+    unit = entry["unit"]
+    return unit if isinstance(unit, str) else None
+
+
+#: The quantity an SI unit of the reference measures, for messages.
+_DIMENSIONS = {
+    "": "dimensionless", "m": "length", "m^2": "area", "m^4": "length^4", "m^6": "length^6", "Pa": "pressure",
+    "kg/m^3": "density", "m/s^2": "acceleration", "deg": "angle", "deg/(30 m)": "angle per length",
+    "rad/s": "angular speed", "rpm": "angular speed", "s/rad": "time per angle", "s": "time", "1/s": "rate",
+    "Hz": "frequency", "N": "force", "N*m": "torque", "kg*m^2": "moment of inertia",
+    "N*m*s/rad": "torque per angular speed", "N*m/rad": "torque per angle",
+}
+
+
+def _dimension(unit: str) -> str:
+    return _DIMENSIONS.get(unit) or str(_expression(unit or "1").dimensionality)
+
+
+def quantity(path: str, value: Any, system: str = "si") -> Any:
+    """The value of the configuration field ``path`` (``sections[1].outer_diameter``) in the
+    core's SI unit: a string with a unit (``"5 in"``) converted, a plain number (or a string
+    without a unit) in ``system``'s unit of the key; anything else (a name, a boolean, a key
+    that takes no number, a string that does not start with a number) unchanged: the core
+    refuses what is wrong there.
+
+    Raises
+    ------
+    ValidationError
+        A string starting with a number that pint cannot read, or of another dimension than the
+        key's, naming the field, the value and the dimension expected.
+    """
+    key = _key(path)
+    unit = _unit_of(key)
+    if unit is None or isinstance(value, bool):
+        return value
+    if isinstance(value, str):
+        if not _QUANTITY.match(value):
+            return value  # no number first ("fast"): the core says what the key takes
+        try:
+            parsed = _expression(value)
+        except Exception:  # pint's parse errors (undefined unit, syntax) have no common base
+            parsed = None
+        if parsed is None or not _is_number(parsed):
+            raise ValidationError(path, value, _expected(key, unit, "a quantity pint reads")) from None
+        if str(getattr(parsed, "units", "dimensionless")) == "dimensionless":
+            value = float(getattr(parsed, "magnitude", parsed))  # a number written as a string: a plain number
+        else:
+            try:
+                return _magnitude(parsed, unit)
+            except Exception:  # pint's DimensionalityError
+                raise ValidationError(path, value, _expected(key, unit, f"a quantity of {_dimension(unit)}")) from None
+    if system == "field" and isinstance(value, (int, float)) and math.isfinite(value):
+        source = field_unit(key)
+        if source is not None:
+            return _magnitude(_in(value, source), unit)
+    return value
+
+
+def _is_number(parsed: Any) -> bool:
+    magnitude = getattr(parsed, "magnitude", parsed)
+    return isinstance(magnitude, (int, float, Decimal)) and not isinstance(magnitude, bool) and math.isfinite(magnitude)
+
+
+def _expected(key: str, unit: str, what: str) -> str:
+    """What a numeric field takes, for messages."""
+    if not unit:
+        return f"{what}: a dimensionless number (a string such as \"30 %\" is read too)"
+    field = field_unit(key)
+    return f"{what}: a number (in {unit}) or a string with a unit of {_dimension(unit)}, e.g. \"1.5 {field or unit}\""
+
+
+def _convert(path: str, value: Any, system: str) -> Any:
+    """``value`` at ``path`` with every quantity in SI (tables and lists entry by entry)."""
+    if isinstance(value, Mapping):
+        return {k: _convert(f"{path}.{k}" if path else str(k), v, system) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_convert(f"{path}[{i}]", v, system) for i, v in enumerate(value)]
+    if value is None:
+        return value
+    return quantity(path, value, system)
+
+
+def system_of(value: Any, field: str = "units") -> str:
+    """A unit system's name checked (``si`` or ``field``); errors name ``field``."""
+    if value not in SYSTEMS:
+        raise ValidationError(field, value, _SYSTEM_FORM)
+    return str(value)
+
+
+def to_si(config: Mapping[str, Any]) -> dict[str, Any]:
+    """The plain configuration ``config`` (nested dicts and lists, as TOML gives it) with every
+    quantity in the core's SI units: strings with units converted, plain numbers read in the
+    system of its top-level ``units`` key (``si`` when absent; the key is removed)."""
+    data = dict(config)
+    system = system_of(data.pop("units", "si"))
+    return _convert("", data, system)
+
+
+def override_to_si(key: str, value: Any) -> Any:
+    """The value of an override of the dotted key ``key`` (``sections[1].outer_diameter``, a
+    table such as ``bit``) with its quantities in SI (plain numbers are SI)."""
+    return _convert(key, value, "si")
+
+
+def convert(value: Optional[float], unit: str, system: str) -> tuple[Optional[float], str]:
+    """An SI ``value`` in ``unit`` (pint's form, ``"N*m"``) as ``system`` shows it:
+    ``(value, unit)``, the value unchanged in SI or where the field unit is the same."""
+    system = system_of(system, "output_units")
+    target = FIELD_UNITS.get(unit) if system == "field" else None
+    if target is None or value is None or (isinstance(value, float) and math.isnan(value)):
+        return value, unit
+    return _magnitude(_in(value, unit), target), target
+
+
+#: How units are written on the console.
+_SHOWN = {"N*m": "N m", "ft*lbf": "ft-lbf", "kg*m^2": "kg m^2", "lb*ft^2": "lb ft^2"}
+
+
+def shown_unit(unit: str, system: str, *, kilo: bool = False) -> str:
+    """How the console writes the SI ``unit`` in ``system`` (``"kN m"``, ``"kft-lbf"`` with
+    ``kilo``)."""
+    target = convert(1.0, unit, system)[1]
+    text = _SHOWN.get(target, target)
+    return f"k{text}" if kilo else text
+
+
+def shown(value: float, unit: str, system: str, *, kilo: bool = False, digits: int = 4) -> str:
+    """An SI ``value`` in ``unit`` as text in ``system`` (``"24.1 kN m"``, ``"17.8 kft-lbf"``
+    with ``kilo``)."""
+    number = convert(value, unit, system)[0]
+    number = number / 1e3 if kilo and number is not None else number
+    return f"{number:.{digits}g} {shown_unit(unit, system, kilo=kilo)}"
