@@ -156,7 +156,9 @@
 //! per cell), and `numerical` the upwind dissipation `e C (1 - C) (d alpha^2 + d beta^2)` (0 at
 //! `C = 1`) plus the implicit-Euler dissipation `I (Omega' - Omega)^2 / 2` of the top drive and
 //! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
-//! it). The motor work is `sum dt tau_m Omega'`.
+//! it). The motor work is `sum dt tau_m Omega'`. A coupled run ([`axial`]) adds the axial field's
+//! energies (`e (alpha^2 + beta^2)` with `e = rho A h / 4`), the hoist's work `dt F v` at the top
+//! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss.
 
 pub mod axial;
 pub mod boundary;
