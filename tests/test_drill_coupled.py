@@ -51,13 +51,14 @@ def test_the_coupled_run_settles_to_the_bit_law_steady_state() -> None:
     assert result.axial["hook_load"][0] == pytest.approx(mass * 9.81, rel=1e-12)
     assert mass * 9.81 - w - 1.001 * mass * 10.0 * 30 / 3600 < result.axial["hook_load"][-1] < mass * 9.81 - w
     assert abs(result.energy["balance_error"]) < 1e-12
+    assert result.summary()["coupled"] == m
 
 
 def test_without_a_hoist_a_run_is_torsion_only() -> None:
     cfg = DrillConfig.from_dict({"sections": [PIPE], "numerics": {"cells": 50, "duration": 1.0}})
     result = drill(cfg)
     assert cfg.hoist is None and cfg.bit.law == "velocity_weakening"
-    assert result.axial == {} and result.coupled_metrics is None
+    assert result.axial == {} and result.coupled_metrics is None and "coupled" not in result.summary()
 
 
 def test_the_coupled_keys_are_checked_by_the_core() -> None:

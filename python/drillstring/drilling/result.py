@@ -373,7 +373,8 @@ class DrillResult:
 
     def summary(self, output_units: str = "si") -> dict[str, Any]:
         """What ``metrics.json`` holds: the metrics, the window, the status and message, the
-        energy balance and the solver counters (NaN as ``None``). Every number is SI; with
+        energy balance and the solver counters (NaN as ``None``), and for a coupled run its
+        metrics under ``coupled`` (:attr:`coupled_metrics`). Every number is SI; with
         ``output_units="field"`` the summary also holds ``output_units``: ``{"system": "field",
         "units": {metric: unit}, "metrics": {metric: value}}``, the numeric metrics converted
         (torques to ft-lbf; rpm, s and ratios stay; :mod:`drillstring.drilling.units`)."""
@@ -391,6 +392,8 @@ class DrillResult:
         out["window"] = [self.metrics.window_start, self.metrics.window_end]
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}
         out["stats"] = self.stats
+        if self.coupled_metrics is not None:
+            out["coupled"] = dict(self.coupled_metrics)
         if system != "si":
             converted = {name: convert(out[name], unit, system) for name, unit in METRIC_UNITS.items()}
             out["output_units"] = {"system": system, "units": {k: u for k, (_, u) in converted.items()},
