@@ -823,6 +823,12 @@ class DrillEnergy(TypedDict):
     upwind_loss: float
     #: Dissipation of the implicit Euler steps of the top-drive and BHA inertias.
     inertia_loss: float
+    #: A coupled run ([hoist]): the hoist's and the buoyed weight's work on the axial field
+    #: (inputs of the balance) and the axial field's energies at the end, J (0 without a hoist).
+    hoist_work: float
+    gravity_work: float
+    axial_kinetic: float
+    axial_elastic: float
     #: Relative residual of the balance.
     balance_error: float
 

@@ -68,8 +68,10 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
 __all__ = [
     "Bit",
     "Controller",
+    "Detournay",
     "DrillConfig",
     "Friction",
+    "Hoist",
     "MetricsConfig",
     "Numerics",
     "StringSection",
@@ -148,7 +150,10 @@ def _default(table: Optional[str], key: str, *, unit: str, kind: str, doc: str =
     else:
         source = _DEFAULTS
         for part in table.split("."):
-            source = source.get(part, {})
+            source = source.get(part) or {}
+        if not source:  # an optional table unset by default (``hoist``): its keys' defaults
+            source = {k[len(table) + 1:]: v["default"] for k, v in _core.drill_config_schema().items()
+                      if k.startswith(table + ".") and "." not in k[len(table) + 1:]}
     metadata = {"kind": kind, "unit": unit, "doc": doc}
     if key not in source:
         return field(metadata=metadata)
@@ -332,6 +337,55 @@ class Bit:
     diameter: Optional[float] = _default("bit", "diameter", unit="m", kind="float?")
     """Bit diameter, m, in place of ``radius`` (giving both is refused). The configuration is
     normalised to the radius: after construction this is None and ``radius`` half the diameter."""
+    law: str = _default("bit", "law", unit="", kind="str")
+    """The bit-rock law: ``"velocity_weakening"`` (the default, the torque above at
+    ``weight_on_bit``, torsion only), ``"detournay"`` (the Detournay law of ``detournay`` with the
+    depth of cut per revolution ``2 pi v / omega`` of the bit's speeds) or ``"rgd"`` (the same law
+    with the regenerative depth of cut, one blade pass back). ``detournay`` and ``rgd`` need a
+    :class:`Hoist` (the coupled axial-torsional run) and the reverse."""
+    detournay: Detournay = field(default_factory=lambda: Detournay(),
+                                 metadata={"kind": "table", "unit": "", "doc": ""})
+    """The Detournay law's rock and bit parameters (the radius is ``radius``)."""
+
+
+@dataclass(frozen=True)
+class Detournay:
+    """The Detournay cutting + frictional-contact law (Richard, Germay & Detournay 2007):
+    cutting ``W_c = a zeta eps d``, ``T_c = a^2 eps d / 2``, contact ``W_f <= a l sigma``,
+    ``T_f = gamma mu a W_f / 2`` (``a`` the bit radius, ``d`` the depth of cut per revolution).
+    Defaults: Aarsnes & van de Wouw (2019)."""
+
+    blades: int = _default("bit.detournay", "blades", unit="", kind="int")
+    """Number of blades n."""
+    intrinsic_specific_energy: float = _default("bit.detournay", "intrinsic_specific_energy", unit="Pa", kind="float")
+    """Intrinsic specific energy of the rock eps, Pa."""
+    cutting_ratio: float = _default("bit.detournay", "cutting_ratio", unit="", kind="float")
+    """Ratio zeta of the vertical to the horizontal cutting force."""
+    contact_strength: float = _default("bit.detournay", "contact_strength", unit="Pa", kind="float")
+    """Contact strength sigma under the wear flats, Pa."""
+    wear_flat_length: float = _default("bit.detournay", "wear_flat_length", unit="m", kind="float")
+    """Total wear-flat length l, m."""
+    friction: float = _default("bit.detournay", "friction", unit="", kind="float")
+    """Wear-flat/rock friction coefficient mu."""
+    geometry: float = _default("bit.detournay", "geometry", unit="", kind="float")
+    """Bit geometry factor gamma (1: flat profile)."""
+
+
+@dataclass(frozen=True)
+class Hoist:
+    """The hoist at the top of the string; with one, a run is coupled axial-torsional with the
+    bit on bottom (``bit.law`` ``"detournay"`` or ``"rgd"``)."""
+
+    mode: str = _default("hoist", "mode", unit="", kind="str")
+    """``"velocity"`` (the block velocity ``speed``) or ``"hook_load"`` (the force ``hook_load``
+    holding the string up)."""
+    speed: float = _default("hoist", "speed", unit="m/s", kind="float")
+    """Block velocity, m/s, down positive."""
+    hook_load: float = _default("hoist", "hook_load", unit="N", kind="float")
+    """Hook load of ``hook_load`` mode, N."""
+    ramp_time: float = _default("hoist", "ramp_time", unit="s", kind="float")
+    """Time constant of the setpoint's approach (the block velocity from 0, the hook load from the
+    static hook load), s (0: a step)."""
 
 
 @dataclass(frozen=True)
@@ -416,6 +470,8 @@ class DrillConfig:
     numerics: Numerics = _table(Numerics)
     metrics: MetricsConfig = _table(MetricsConfig)
     torque_drag: TorqueDragConfig = _table(TorqueDragConfig)
+    hoist: Optional[Hoist] = field(default=None, metadata={"kind": "table?", "unit": "", "doc": ""})
+    """The hoist: None (the default) for a torsion-only run, else the coupled axial-torsional run."""
 
     def __post_init__(self) -> None:
         plain = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
@@ -540,7 +596,9 @@ def _from_core(cls: type, data: Mapping[str, Any]) -> dict[str, Any]:
         value = data[f.name]
         if f.name == "sections":
             out[f.name] = tuple(StringSection(**_from_core(StringSection, s)) for s in value)
-        elif f.metadata.get("kind") == "table":
+        elif f.metadata.get("kind") == "table?" and value is None:
+            out[f.name] = None
+        elif f.metadata.get("kind") in ("table", "table?"):
             table = _TABLES[f.name]
             out[f.name] = table(**_from_core(table, value))
         else:
@@ -574,6 +632,7 @@ def _plain(value: Any) -> Any:
     return value
 
 
+_TABLES.update(detournay=Detournay, hoist=Hoist)
 _TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Controller, bit=Bit, numerics=Numerics,
                metrics=MetricsConfig, torque_drag=TorqueDragConfig)
 

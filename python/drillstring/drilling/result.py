@@ -25,6 +25,8 @@ __all__ = ["SERIES", "UNITS", "METRICS", "DrillMetrics", "DrillProfile", "DrillR
 
 #: The time series of a run, in the order of the tables (``t`` is the index).
 SERIES: tuple[str, ...] = ("surface_rpm", "bit_rpm", "motor_torque", "bit_torque")
+#: A coupled run's series (``DrillResult.axial``), by the core's names.
+AXIAL_SERIES: tuple[str, ...] = ("bit_axial_speed", "rop", "weight_on_bit", "hook_load", "bit_depth", "depth_of_cut")
 
 #: Units of the series, fields, profile and metrics.
 UNITS: dict[str, str] = {
@@ -330,6 +332,17 @@ class DrillResult:
             str(w) for w in (*raw.get("warnings", ()), *raw["metrics"].get("warnings", ())))
         self.energy: dict[str, float] = {str(k): float(v) for k, v in dict(raw.get("energy") or {}).items()}
         self.stats: dict[str, Any] = dict(raw.get("stats") or {})
+        self.axial: dict[str, NDArray[np.float64]] = {
+            k: np.asarray(raw[k], dtype=np.float64) for k in AXIAL_SERIES if k in raw}
+        """A coupled run's series at the times ``t`` (empty without a hoist): ``bit_axial_speed`` m/s
+        (down positive), ``rop`` m/h (the rate the deepest bit position advances), ``weight_on_bit``
+        N, ``hook_load`` N, ``bit_depth`` m (below the start), ``depth_of_cut`` m per revolution
+        (0 while the rate form's bit does not turn); the torque on bit is ``bit_torque``."""
+        self.coupled_metrics: Optional[dict[str, float]] = (
+            {str(k): float(v) for k, v in raw["coupled"].items()} if raw.get("coupled") else None)
+        """A coupled run's metrics over the window (None without a hoist): ``rop_mean_m_per_h``,
+        ``wob_mean_N``, ``tob_mean_Nm``, ``bounce_fraction`` (share of samples with no weight on
+        bit) and ``mse_mean_Pa`` (Teale's mechanical specific energy of the means)."""
         self.grid_check: Optional[GridCheck] = None
         self.status: str = str(raw["status"])
         self.message: str = str(raw["message"])
@@ -366,7 +379,8 @@ class DrillResult:
 
     def summary(self, output_units: str = "si") -> dict[str, Any]:
         """What ``metrics.json`` holds: the metrics, the window, the status and message, the
-        energy balance and the solver counters (NaN as ``None``). Every number is SI; with
+        energy balance and the solver counters (NaN as ``None``), and for a coupled run its
+        metrics under ``coupled`` (:attr:`coupled_metrics`). Every number is SI; with
         ``output_units="field"`` the summary also holds ``output_units``: ``{"system": "field",
         "units": {metric: unit}, "metrics": {metric: value}}``, the numeric metrics converted
         (torques to ft-lbf; rpm, s and ratios stay; :mod:`drillstring.drilling.units`)."""
@@ -384,6 +398,8 @@ class DrillResult:
         out["window"] = [self.metrics.window_start, self.metrics.window_end]
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}
         out["stats"] = self.stats
+        if self.coupled_metrics is not None:
+            out["coupled"] = dict(self.coupled_metrics)
         if system != "si":
             converted = {name: convert(out[name], unit, system) for name, unit in METRIC_UNITS.items()}
             out["output_units"] = {"system": system, "units": {k: u for k, (_, u) in converted.items()},

@@ -15,6 +15,8 @@ use crate::error::{Error, Num, Result};
 use crate::metrics::STICK_SPEED;
 use crate::schema::{self, join, kind, shown};
 
+use super::axial::bitrock::DetournayBit;
+use super::axial::hoist::{HoistMode, HoistParams};
 use super::grid::Grid;
 use crate::well::plan::SegmentSpec;
 
@@ -495,6 +497,143 @@ pub struct Bit {
     /// Lumped inertia at the bit, >= 0 (0: none).
     #[schemars(extend("unit" = "kg*m^2", "label" = "BHA inertia"))]
     pub bha_inertia: f64,
+    /// The bit-rock law: `velocity_weakening` (default: the torque `W r mu(|w|)` with the weight
+    /// on bit `weight_on_bit`, torsion only), `detournay` (the Detournay cutting + contact law of
+    /// `bit.detournay` with the depth of cut per revolution `2 pi v / omega` of the bit's speeds)
+    /// or `rgd` (the same law with the regenerative depth of cut, the bit's position one blade
+    /// pass back). `detournay` and `rgd` need a `[hoist]` table and the reverse.
+    #[schemars(extend("label" = "bit-rock law"))]
+    pub law: BitRockLaw,
+    #[schemars(extend("label" = "Detournay bit law"))]
+    pub detournay: Detournay,
+}
+
+/// The bit-rock law of the bit (`bit.law`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BitRockLaw {
+    /// The Navarro-Lopez velocity-weakening torque at the weight on bit `bit.weight_on_bit`.
+    VelocityWeakening,
+    /// The Detournay law with the depth of cut from the bit's axial and angular speed.
+    Detournay,
+    /// The Detournay law with the regenerative depth of cut (Richard, Germay & Detournay 2007).
+    Rgd,
+}
+
+/// The Detournay cutting + frictional-contact law (`bit.law` `detournay` or `rgd`; Richard,
+/// Germay & Detournay 2007) with the bit radius `bit.radius`: cutting `W_c = a zeta eps d`,
+/// `T_c = a^2 eps d / 2`, contact `W_f <= a l sigma`, `T_f = gamma mu a W_f / 2` (`d` the depth
+/// of cut per revolution). Defaults: Aarsnes & van de Wouw (2019).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Detournay {
+    /// Number of blades `n`, >= 1.
+    #[schemars(extend("unit" = "", "label" = "blades"))]
+    pub blades: u32,
+    /// Intrinsic specific energy of the rock `eps`, > 0: the cutting energy per volume.
+    #[schemars(extend("unit" = "Pa", "label" = "intrinsic specific energy"))]
+    pub intrinsic_specific_energy: f64,
+    /// Ratio `zeta` of the vertical to the horizontal cutting force, >= 0.
+    #[schemars(extend("unit" = "", "label" = "cutting force ratio"))]
+    pub cutting_ratio: f64,
+    /// Contact strength `sigma` under the wear flats, >= 0.
+    #[schemars(extend("unit" = "Pa", "label" = "contact strength"))]
+    pub contact_strength: f64,
+    /// Total wear-flat length `l` (sum over the blades), >= 0.
+    #[schemars(extend("unit" = "m", "label" = "wear-flat length"))]
+    pub wear_flat_length: f64,
+    /// Friction coefficient `mu` at the wear-flat/rock contact, >= 0.
+    #[schemars(extend("unit" = "", "label" = "wear-flat friction"))]
+    pub friction: f64,
+    /// Bit geometry factor `gamma` (1 for a flat bit profile), >= 0.
+    #[schemars(extend("unit" = "", "label" = "bit geometry factor"))]
+    pub geometry: f64,
+}
+
+impl Default for Detournay {
+    /// The published case, [`DetournayBit::PUBLISHED`].
+    fn default() -> Self {
+        let p = DetournayBit::PUBLISHED;
+        Detournay {
+            blades: p.blades,
+            intrinsic_specific_energy: p.intrinsic_specific_energy,
+            cutting_ratio: p.cutting_ratio,
+            contact_strength: p.contact_strength,
+            wear_flat_length: p.wear_flat_length,
+            friction: p.friction,
+            geometry: p.geometry,
+        }
+    }
+}
+
+impl Detournay {
+    /// The law with the bit radius `radius`.
+    pub fn law(&self, radius: f64) -> DetournayBit {
+        DetournayBit {
+            radius,
+            blades: self.blades,
+            intrinsic_specific_energy: self.intrinsic_specific_energy,
+            cutting_ratio: self.cutting_ratio,
+            contact_strength: self.contact_strength,
+            wear_flat_length: self.wear_flat_length,
+            friction: self.friction,
+            geometry: self.geometry,
+        }
+    }
+}
+
+/// What the hoist imposes at the top of the axial field (`hoist.mode`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum HoistKind {
+    /// The block velocity `hoist.speed`.
+    Velocity,
+    /// The hook load `hoist.hook_load`.
+    HookLoad,
+}
+
+/// The hoist at the top of the string. With a `[hoist]` table the run is coupled axial-torsional
+/// with the bit on bottom (`bit.law` `detournay` or `rgd`); without it, torsion only.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct Hoist {
+    /// What the hoist imposes: `velocity` (the block velocity `speed`, default) or `hook_load`
+    /// (the force `hook_load` holding the string up).
+    #[schemars(extend("label" = "hoist mode"))]
+    pub mode: HoistKind,
+    /// Block velocity of `velocity` mode, down positive (default 30 m/h).
+    #[schemars(extend("unit" = "m/s", "label" = "block velocity"))]
+    pub speed: f64,
+    /// Hook load of `hook_load` mode, >= 0.
+    #[schemars(extend("unit" = "N", "label" = "hook load"))]
+    pub hook_load: f64,
+    /// Time constant of the hoist setpoint's approach to its target, >= 0 (0: a step). The
+    /// block velocity starts at 0, the hook load at the static hook load of the hanging string.
+    #[schemars(extend("unit" = "s", "label" = "hoist ramp time"))]
+    pub ramp_time: f64,
+}
+
+impl Default for Hoist {
+    fn default() -> Self {
+        let p = HoistParams::default();
+        Hoist { mode: HoistKind::Velocity, speed: p.speed, hook_load: p.hook_load, ramp_time: p.ramp_time }
+    }
+}
+
+impl Hoist {
+    /// The hoist part's parameters.
+    pub fn params(&self) -> HoistParams {
+        HoistParams {
+            mode: match self.mode {
+                HoistKind::Velocity => HoistMode::Velocity,
+                HoistKind::HookLoad => HoistMode::HookLoad,
+            },
+            speed: self.speed,
+            hook_load: self.hook_load,
+            ramp_time: self.ramp_time,
+            ..HoistParams::default()
+        }
+    }
 }
 
 impl Default for Bit {
@@ -509,6 +648,8 @@ impl Default for Bit {
             decay: 1.0,
             stick_speed: STICK_SPEED,
             bha_inertia: 0.0,
+            law: BitRockLaw::VelocityWeakening,
+            detournay: Detournay::default(),
         }
     }
 }
@@ -650,6 +791,9 @@ pub struct DrillConfig {
     pub metrics: MetricsConfig,
     #[schemars(extend("label" = "torque and drag"))]
     pub torque_drag: TorqueDragConfig,
+    /// The hoist: null (default) for a torsion-only run.
+    #[schemars(extend("label" = "hoist"))]
+    pub hoist: Option<Hoist>,
 }
 
 impl Default for DrillConfig {
@@ -666,6 +810,7 @@ impl Default for DrillConfig {
             numerics: Numerics::default(),
             metrics: MetricsConfig::default(),
             torque_drag: TorqueDragConfig::default(),
+            hoist: None,
         }
     }
 }
@@ -821,6 +966,36 @@ impl DrillConfig {
         self.check_outputs(&grid)
     }
 
+    /// The coupled run's keys: `bit.law` `detournay` or `rgd` with a `[hoist]` table and the
+    /// reverse, the Detournay law's and the hoist's ranges.
+    fn validate_coupled(&self) -> Result<()> {
+        let coupled = self.bit.law != BitRockLaw::VelocityWeakening;
+        match (&self.hoist, coupled) {
+            (None, true) => {
+                return Err(Error::invalid(
+                    "bit.law",
+                    if self.bit.law == BitRockLaw::Rgd { "rgd" } else { "detournay" },
+                    "velocity_weakening without a [hoist] table (detournay and rgd need the hoist's axial field)",
+                ))
+            }
+            (Some(_), false) => {
+                return Err(Error::invalid(
+                    "hoist",
+                    "a [hoist] table with bit.law = velocity_weakening",
+                    "bit.law = detournay or rgd with a [hoist] table (the coupled run), or no [hoist] table",
+                ))
+            }
+            _ => {}
+        }
+        if let Some(h) = &self.hoist {
+            finite("hoist.speed", h.speed, "m/s")?;
+            nonneg("hoist.hook_load", h.hook_load, "N")?;
+            nonneg("hoist.ramp_time", h.ramp_time, "s")?;
+            self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
+        }
+        Ok(())
+    }
+
     fn validate_values(&self) -> Result<()> {
         let n = self.sections.len();
         if !(1..=MAX_SECTIONS).contains(&n) {
@@ -964,6 +1139,7 @@ impl DrillConfig {
         nonneg("friction.stick_speed", fr.stick_speed, "rad/s")?;
         pos("friction.regularisation_speed", fr.regularisation_speed, "rad/s")?;
         nonneg("damping_rate", self.damping_rate, "1/s")?;
+        self.validate_coupled()?;
         let td = &self.top_drive;
         pos("top_drive.inertia", td.inertia, "kg m^2")?;
         pos("top_drive.motor_bandwidth", td.motor_bandwidth, "Hz")?;

@@ -198,6 +198,7 @@ mod tests {
         cfg.well.survey = Some("survey.csv".into());
         cfg.friction.intervals = vec![FrictionInterval { top_md: 0.0, bottom_md: 1.0, static_coefficient: 0.2 }];
         cfg.top_drive.steps = vec![[10.0, 60.0]];
+        cfg.hoist = Some(super::super::config::Hoist::default());
         serde_json::to_value(&cfg).unwrap()
     }
 
@@ -217,7 +218,7 @@ mod tests {
     fn every_entry_has_its_type_unit_label_and_description() {
         // the units a pint registry parses, as the Python edge converts to them
         let si: Vec<&str> =
-            "|m|m^2|m^4|m^6|Pa|kg/m^3|m/s^2|deg|deg/(30 m)|rad/s|s/rad|rpm|s|1/s|Hz|N|N*m|kg*m^2|N*m*s/rad|N*m/rad"
+            "|m|m^2|m^4|m^6|Pa|kg/m^3|m/s|m/s^2|deg|deg/(30 m)|rad/s|s/rad|rpm|s|1/s|Hz|N|N*m|kg*m^2|N*m*s/rad|N*m/rad"
                 .split('|')
                 .collect();
         let schema = config_schema();

@@ -28,7 +28,14 @@ pub struct EnergyBalance {
     /// Dissipation of the implicit Euler steps of the top-drive and BHA inertias,
     /// `I (Omega' - Omega)^2 / 2` per step (first order in `dt`).
     pub inertia_loss: f64,
-    /// `(motor_work - (final - initial) - losses) / scale`, `scale` the largest of
+    /// The coupled run's work of the hoist on the string (`dt F v` at the top, `F` the
+    /// compression) and of the buoyed weight, J (0 without a hoist).
+    pub hoist_work: f64,
+    pub gravity_work: f64,
+    /// At the end: the axial field's kinetic and elastic energies, J (0 without a hoist).
+    pub axial_kinetic: f64,
+    pub axial_elastic: f64,
+    /// `(motor_work + hoist_work + gravity_work - (final - initial) - losses) / scale`, `scale` the largest of
     /// `|motor_work|`, the energies and the losses.
     pub balance_error: f64,
 }
@@ -42,6 +49,9 @@ pub struct Ledger {
     pub bit: f64,
     pub upwind: f64,
     pub inertia: f64,
+    /// The hoist's and the buoyed weight's work on the axial field (coupled runs).
+    pub hoist: f64,
+    pub gravity: f64,
 }
 
 /// The energies stored in the system, J.
@@ -53,11 +63,14 @@ pub struct Stored {
     /// The lumped inertias at the ends.
     pub top_drive: f64,
     pub bha: f64,
+    /// The axial field's (coupled runs).
+    pub axial_kinetic: f64,
+    pub axial_elastic: f64,
 }
 
 impl Stored {
     pub fn total(&self) -> f64 {
-        self.kinetic + self.elastic + self.top_drive + self.bha
+        self.kinetic + self.elastic + self.top_drive + self.bha + self.axial_kinetic + self.axial_elastic
     }
 }
 
@@ -85,8 +98,8 @@ impl Ledger {
         let l = self;
         let change = end.total() - initial;
         let numerical = l.upwind + l.inertia;
-        let residual = l.motor - change - l.friction - l.damping - l.bit - numerical;
-        let scale = [l.motor, initial, end.total(), l.friction, l.damping, l.bit, numerical]
+        let residual = l.motor + l.hoist + l.gravity - change - l.friction - l.damping - l.bit - numerical;
+        let scale = [l.motor, initial, end.total(), l.friction, l.damping, l.bit, numerical, l.hoist, l.gravity]
             .iter()
             .fold(f64::MIN_POSITIVE, |m, v| m.max(v.abs()));
         let balance = EnergyBalance {
@@ -102,6 +115,10 @@ impl Ledger {
             numerical_loss: numerical,
             upwind_loss: l.upwind,
             inertia_loss: l.inertia,
+            hoist_work: l.hoist,
+            gravity_work: l.gravity,
+            axial_kinetic: end.axial_kinetic,
+            axial_elastic: end.axial_elastic,
             balance_error: residual / scale,
         };
         (balance, residual.is_finite() && scale.is_finite())

@@ -13,6 +13,11 @@
 //!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDrive`]) carrying out a
 //!   controller's command, the bit ([`boundary::Bit`]) with its law ([`boundary::BitLaw`]:
 //!   free end or the velocity-weakening torque with a stick phase);
+//! * [`axial`]: a coupled run's axial field (`[hoist]` with `bit.law` `detournay` or `rgd`): the
+//!   same [`field::Field`] and [`kernel`] with the axial sections' speeds and impedances, the
+//!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
+//!   the bit on bottom as the set-valued boundary of both fields
+//!   ([`crate::drilling::axial::bit_boundary::solve_bit`]) in place of [`boundary::Bit`];
 //! * [`controller`]: the controllers and the setpoint;
 //! * [`sampler`]: the output series and field snapshots;
 //! * [`energy`]: the energy ledger and the balance;
@@ -151,8 +156,11 @@
 //! per cell), and `numerical` the upwind dissipation `e C (1 - C) (d alpha^2 + d beta^2)` (0 at
 //! `C = 1`) plus the implicit-Euler dissipation `I (Omega' - Omega)^2 / 2` of the top drive and
 //! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
-//! it). The motor work is `sum dt tau_m Omega'`.
+//! it). The motor work is `sum dt tau_m Omega'`. A coupled run ([`axial`]) adds the axial field's
+//! energies (`e (alpha^2 + beta^2)` with `e = rho A h / 4`), the hoist's work `dt F v` at the top
+//! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss.
 
+pub mod axial;
 pub mod boundary;
 pub mod controller;
 pub mod energy;
@@ -163,4 +171,4 @@ pub mod sampler;
 pub mod sources;
 
 pub use energy::EnergyBalance;
-pub use run::{DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};
+pub use run::{CoupledMetrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};

@@ -6,6 +6,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
+use super::axial::Axial;
 use super::boundary::{Bit, TopDrive};
 use super::controller::{Controller, Setpoint, RPM_PER_RAD_S};
 use super::energy::{EnergyBalance, Ledger, Stored};
@@ -13,6 +14,7 @@ use super::field::Field;
 use super::kernel::{godunov, transport};
 use super::sampler::Sampler;
 use super::sources::{Sources, WallFriction};
+use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
@@ -64,6 +66,26 @@ pub struct DrillRun {
     /// `field_t.len() x z.len()`, row-major: speed rpm, torque N m.
     pub omega_field: Vec<f64>,
     pub torque_field: Vec<f64>,
+    /// A coupled run's series at the same times (empty without a hoist): the bit's axial speed
+    /// m/s (down positive), the rate of penetration m/h (the rate the deepest bit position
+    /// advances), weight on bit N, hook load N, the bit's depth below its start m, and the depth
+    /// of cut per revolution m used by the bit law (0 while the rate form's bit does not turn).
+    /// The torque on bit is `bit_torque`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub bit_axial_speed: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rop: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub weight_on_bit: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub hook_load: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub bit_depth: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub depth_of_cut: Vec<f64>,
+    /// A coupled run's metrics over the window (None without a hoist or a window).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coupled: Option<CoupledMetrics>,
     pub energy: EnergyBalance,
     /// Stick-slip metrics over the window (None when the window holds fewer than 2 samples).
     #[serde(skip)]
@@ -102,6 +124,8 @@ pub struct Simulation<'c> {
     control: Controller,
     ledger: Ledger,
     first_mode: f64,
+    /// The axial field of a coupled run (`[hoist]`).
+    axial: Option<Axial>,
 }
 
 impl<'c> Simulation<'c> {
@@ -121,7 +145,12 @@ impl<'c> Simulation<'c> {
         let wall = WallFriction::torsional(cfg, &grid, &field);
         let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
         let control = Controller::new(cfg, &grid, first_mode)?;
+        let axial = match &cfg.hoist {
+            Some(h) => Some(Axial::new(cfg, &grid, h)?),
+            None => None,
+        };
         Ok(Simulation {
+            axial,
             cfg,
             sources: Sources::new(cfg, dt),
             top: TopDrive::new(cfg, dt),
@@ -217,12 +246,18 @@ impl<'c> Simulation<'c> {
     /// The energies stored, J.
     fn stored(&self) -> Stored {
         let (kinetic, elastic) = self.field.energies();
-        Stored {
+        let mut s = Stored {
             kinetic,
             elastic,
             top_drive: 0.5 * self.top.inertia * self.top.omega * self.top.omega,
             bha: 0.5 * self.bit.inertia * self.bit.omega * self.bit.omega,
+            axial_kinetic: 0.0,
+            axial_elastic: 0.0,
+        };
+        if let Some(ax) = &self.axial {
+            (s.axial_kinetic, s.axial_elastic) = ax.field.energies();
         }
+        s
     }
 
     /// One step from `t` (start of the step); returns `(motor torque, bit torque)` applied.
@@ -240,7 +275,17 @@ impl<'c> Simulation<'c> {
 
         // Bit.
         let arriving = self.field.arriving_bottom();
-        let (wb1, tbit) = self.bit.step(arriving, dt, &mut self.ledger);
+        let (wb1, tbit) = match &mut self.axial {
+            Some(ax) => {
+                ax.top(dt, &mut self.ledger);
+                let (wb1, tbit) = ax.bit(arriving, self.bit.inertia, self.bit.omega, dt, &mut self.ledger);
+                self.bit.omega = wb1;
+                ax.field.junctions();
+                ax.cells(&mut self.ledger);
+                (wb1, tbit)
+            }
+            None => self.bit.step(arriving, dt, &mut self.ledger),
+        };
         self.field.set_bottom(arriving, wb1);
 
         self.field.junctions();
@@ -299,6 +344,13 @@ impl<'c> Simulation<'c> {
             z: self.grid.z.clone(),
             omega_field: Vec::new(),
             torque_field: Vec::new(),
+            bit_axial_speed: Vec::new(),
+            rop: Vec::new(),
+            weight_on_bit: Vec::new(),
+            hook_load: Vec::new(),
+            bit_depth: Vec::new(),
+            depth_of_cut: Vec::new(),
+            coupled: None,
             energy: EnergyBalance::default(),
             metrics: None,
             window: cfg.metrics.window.unwrap_or([0.5 * duration, duration]),
@@ -326,7 +378,7 @@ impl<'c> Simulation<'c> {
             run.message = oom.outputs_message();
             return run;
         }
-        if !sampler.start(&self.field, &mut run, self.top.omega, self.bit_speed()) {
+        if !sampler.start(&self.field, &mut run, self.top.omega, self.bit_speed(), self.axial_point()) {
             run.status = Status::NonFinite;
             run.message = "the initial state is not finite".into();
             return run;
@@ -357,7 +409,9 @@ impl<'c> Simulation<'c> {
                 break;
             }
             run.stats.steps = n + 1;
-            if !sampler.record(n, [t, top, self.bit_speed(), motor, bit], &self.field, &mut run, dt) {
+            let [a0, a1, a2, a3, a4, a5] = self.axial_point();
+            let point = [t, top, self.bit_speed(), motor, bit, a0, a1, a2, a3, a4, a5];
+            if !sampler.record(n, point, &self.field, &mut run, dt) {
                 run.status = Status::NonFinite;
                 run.message = format!("the state became non-finite before t = {} s", Num(t));
                 break;
@@ -374,11 +428,23 @@ impl<'c> Simulation<'c> {
             run.message = format!("the energy became non-finite by t = {} s", Num(t));
         }
         metrics(cfg, &mut run);
+        if let Some(ax) = &self.axial {
+            run.coupled = coupled_metrics(&run, ax.law().radius);
+        }
         run.metrics_finite = run.metrics.as_ref().is_some_and(|m| non_finite_metrics_warning(m).is_none());
         run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));
         run.warnings.extend(transient_warning(&run.t, &run.surface_rpm, &run.motor_torque, run.window));
         progress(1.0);
         run
+    }
+
+    /// The axial series' values after a step (zeros without a hoist): bit axial speed m/s, ROP
+    /// m/h, WOB N, hook load N, bit depth m, depth of cut m (0 when infinite).
+    fn axial_point(&self) -> [f64; 6] {
+        let Some(ax) = &self.axial else { return [0.0; 6] };
+        let s = &ax.state;
+        let depth = if s.depth.is_finite() { s.depth } else { 0.0 };
+        [s.contact.axial_speed, s.rop * 3600.0, s.contact.weight_on_bit, s.hook_load, s.position, depth]
     }
 
     /// `consistent`: the largest tangent Courant number met, with a note when above 1.
@@ -404,6 +470,46 @@ impl<'c> Simulation<'c> {
             run.message = if run.message.is_empty() { note } else { format!("{}; {note}", run.message) };
         }
     }
+}
+
+/// A coupled run's metrics over the window `metrics.window` (the series' samples in it).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct CoupledMetrics {
+    /// Mean rate of penetration, m/h.
+    pub rop_mean_m_per_h: f64,
+    /// Mean weight on bit, N.
+    #[serde(rename = "wob_mean_N")]
+    pub wob_mean_n: f64,
+    /// Mean torque on bit, N m.
+    #[serde(rename = "tob_mean_Nm")]
+    pub tob_mean_nm: f64,
+    /// Fraction of the samples with no weight on bit (bit bounce).
+    pub bounce_fraction: f64,
+    /// Teale's mechanical specific energy of the means (WOB, TOB, bit speed, ROP), Pa
+    /// ([`mechanical_specific_energy`]; `inf` when nothing was drilled while the bit turned).
+    #[serde(rename = "mse_mean_Pa")]
+    pub mse_mean_pa: f64,
+}
+
+/// The coupled metrics of `run`'s series over its window (None when it holds no sample).
+pub fn coupled_metrics(run: &DrillRun, radius: f64) -> Option<CoupledMetrics> {
+    let [a, b] = run.window;
+    let idx: Vec<usize> = (0..run.t.len().min(run.rop.len())).filter(|&k| run.t[k] >= a && run.t[k] <= b).collect();
+    if idx.is_empty() {
+        return None;
+    }
+    let n = idx.len() as f64;
+    let mean = |x: &[f64]| idx.iter().map(|&k| x[k]).sum::<f64>() / n;
+    let (rop, wob, tob, rpm) = (mean(&run.rop), mean(&run.weight_on_bit), mean(&run.bit_torque), mean(&run.bit_rpm));
+    let bounce = idx.iter().filter(|&&k| run.weight_on_bit[k] == 0.0).count() as f64 / n;
+    let mse = mechanical_specific_energy(wob, tob, rpm / RPM_PER_RAD_S, rop / 3600.0, bit_area(radius));
+    Some(CoupledMetrics {
+        rop_mean_m_per_h: rop,
+        wob_mean_n: wob,
+        tob_mean_nm: tob,
+        bounce_fraction: bounce,
+        mse_mean_pa: mse,
+    })
 }
 
 /// The stick-slip metrics of a run's series over its window, or a note why there are none.

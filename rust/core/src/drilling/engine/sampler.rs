@@ -8,8 +8,10 @@ use super::run::DrillRun;
 use crate::drilling::config::DrillConfig;
 use crate::solution::OutOfMemory;
 
-/// The series' values at a step end: `[t, omega_top, omega_bit, motor, bit]` (rad/s, N m).
-pub type Point = [f64; 5];
+/// The series' values at a step end: `[t, omega_top, omega_bit, motor, bit]` (rad/s, N m) and
+/// a coupled run's `[v_bit m/s, rop m/h, WOB N, hook load N, bit depth m, depth of cut m]`
+/// (0 without a hoist).
+pub type Point = [f64; 11];
 
 /// Where the sampling stands.
 pub struct Sampler {
@@ -19,6 +21,8 @@ pub struct Sampler {
     field_dt: f64,
     next_series: usize,
     next_field: usize,
+    /// Whether the run is coupled (the axial series are recorded).
+    coupled: bool,
     /// The previous step end.
     prev: Point,
 }
@@ -32,14 +36,22 @@ impl Sampler {
             field_dt: cfg.numerics.field_interval,
             next_series: 0,
             next_field: 1,
-            prev: [0.0; 5],
+            coupled: cfg.hoist.is_some(),
+            prev: [0.0; 11],
         }
     }
 
     /// Reserves the run's sample storage for `cells` cells.
     pub fn reserve(&self, run: &mut DrillRun, cells: usize) -> Result<(), OutOfMemory> {
         let (n_series, n_fields) = (self.n_series, self.n_fields);
+        let n_axial = if self.coupled { n_series } else { 0 };
         crate::solution::reserve_outputs(&mut [
+            (&mut run.bit_axial_speed, n_axial),
+            (&mut run.rop, n_axial),
+            (&mut run.weight_on_bit, n_axial),
+            (&mut run.hook_load, n_axial),
+            (&mut run.bit_depth, n_axial),
+            (&mut run.depth_of_cut, n_axial),
             (&mut run.t, n_series),
             (&mut run.surface_rpm, n_series),
             (&mut run.bit_rpm, n_series),
@@ -52,8 +64,16 @@ impl Sampler {
     }
 
     /// The initial snapshot (if any are asked for) and state; `false` when not finite.
-    pub fn start(&mut self, field: &Field, run: &mut DrillRun, omega_top: f64, omega_bit: f64) -> bool {
-        self.prev = [0.0, omega_top, omega_bit, f64::NAN, f64::NAN];
+    pub fn start(
+        &mut self,
+        field: &Field,
+        run: &mut DrillRun,
+        omega_top: f64,
+        omega_bit: f64,
+        axial: [f64; 6],
+    ) -> bool {
+        self.prev = [0.0, omega_top, omega_bit, f64::NAN, f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        self.prev[5..].copy_from_slice(&axial);
         self.n_fields == 0 || snapshot(field, run, 0.0)
     }
 
@@ -66,6 +86,8 @@ impl Sampler {
         if n == 0 {
             prev[3] = cur[3];
             prev[4] = cur[4];
+            prev[7] = cur[7];
+            prev[10] = cur[10];
         }
         while self.next_series < self.n_series {
             let ts = self.next_series as f64 * self.out_dt;
@@ -75,8 +97,17 @@ impl Sampler {
             let w = if cur[0] > prev[0] { ((ts - prev[0]) / (cur[0] - prev[0])).clamp(0.0, 1.0) } else { 1.0 };
             let at = |k: usize| prev[k] + w * (cur[k] - prev[k]);
             let sample = [ts, at(1) * RPM_PER_RAD_S, at(2) * RPM_PER_RAD_S, at(3), at(4)];
-            if sample.iter().any(|v| !v.is_finite()) {
+            let axial = [at(5), at(6), at(7), at(8), at(9), at(10)];
+            if sample.iter().chain(&axial).any(|v| !v.is_finite()) {
                 return false;
+            }
+            if self.coupled {
+                run.bit_axial_speed.push(axial[0]);
+                run.rop.push(axial[1]);
+                run.weight_on_bit.push(axial[2]);
+                run.hook_load.push(axial[3]);
+                run.bit_depth.push(axial[4]);
+                run.depth_of_cut.push(axial[5]);
             }
             run.t.push(sample[0]);
             run.surface_rpm.push(sample[1]);

@@ -1,0 +1,308 @@
+//! The coupled run's axial field and its ends: the string's axial waves `(v, F)` (speed down
+//! positive, `F` the compression carried down) on the same [`Field`] type and [`transport`]
+//! kernel as the torsion, the hoist at the top ([`Hoist`], [`HoistCommand::incoming`]) and the
+//! bit on bottom as the set-valued boundary of both fields ([`solve_bit`]) with the Detournay law.
+//!
+//! * Cells: each section gets `floor(L / (c_a dt)) >= 1` cells of the torsional step `dt`
+//!   (`c_a = sqrt(E / rho)`, Courant number `c_a dt / h <= 1`; below 1 the upwind transport
+//!   dissipates, booked as `upwind_loss`); a section shorter than `c_a dt` is refused.
+//! * Sources: the viscous damping `damping_rate` (the torsion's, on the axial speed) through the
+//!   kernel (no wall friction on the axial field: it is not yet coupled), and the buoyed weight
+//!   `(1 - rho_mud / rho) g cos(inc)` per cell ([`AxialSection::buoyed_gravity`], `inc` at the
+//!   cell centre), added to both invariants after the transport; its work
+//!   `m h g dt (v* + g dt / 2)` is booked as `gravity_work`.
+//! * Initial state: at rest under the static tension of the hanging string with no weight on
+//!   bit ([`static_tension`] at the cell centres), the bit just touching flat rock.
+//! * Top: the hoist's command for the step gives the ghost `alpha_0`; the top speed
+//!   `(alpha_0 + beta_1) / 2` and the compression `Z (v - beta_1)` (the hook load is its
+//!   negative); the hoist's work `dt F v` is booked as `hoist_work`.
+//! * Bit: the depth of cut per revolution `d` of the step, from the state at its start: `detournay`
+//!   `2 pi v' / omega` with the step's axial speed `v'` (implicit) and the angular speed at the
+//!   step start ([`rate_depth`]), `rgd` `n` times the
+//!   cut surface's depth of cut of a blade ([`CutSurface`], the exact delay, the deepest-surface
+//!   rule); then [`solve_bit`] with the axial end of the string (no lumped axial mass) and the
+//!   torsional end with the BHA inertia `bit.bha_inertia`; the bit's work `dt (W v' + T w')` is
+//!   booked as `bit_loss`, the BHA's implicit-Euler term as in the torsional bit.
+
+use std::f64::consts::TAU;
+
+use super::boundary::Arriving;
+use super::energy::Ledger;
+use super::field::{Field, Section};
+use super::kernel::transport;
+use super::sources::Sources;
+use crate::drilling::axial::bit_boundary::{solve_bit, BitContact, BitPhase, Port};
+use crate::drilling::axial::bitrock::DetournayBit;
+use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule};
+use crate::drilling::axial::hoist::{Hoist, HoistMeasurement, HoistMode};
+use crate::drilling::axial::section::{static_tension, AxialSection};
+use crate::drilling::config::{BitRockLaw, DrillConfig};
+use crate::drilling::grid::{inclination, Grid};
+use crate::error::{Error, Num, Result};
+
+/// How the depth of cut of a step is found.
+enum DepthOfCut {
+    /// `2 pi v / omega` of the bit's speeds at the step start.
+    Rate,
+    /// The regenerative delay.
+    Regenerative(CutSurface),
+}
+
+/// The values of the bit and the hoist after a step (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxialState {
+    pub contact: BitContact,
+    /// Depth of cut per revolution used in the step, m (`+-inf` for the rate form without rotation).
+    pub depth: f64,
+    /// Hook load (the tension at the top), N.
+    pub hook_load: f64,
+    /// The bit's axial position from its start, m, down positive.
+    pub position: f64,
+    /// The deepest position reached (the hole's depth below the start), m.
+    pub hole: f64,
+    /// The rate the hole deepened over the step, m/s.
+    pub rop: f64,
+}
+
+/// The axial field, its sources and ends.
+pub struct Axial {
+    pub field: Field,
+    zeros: Vec<f64>,
+    sources: Sources,
+    /// `g dt` per padded index (0 at ghosts).
+    gravity: Vec<f64>,
+    hoist: Hoist,
+    law: DetournayBit,
+    rule: DepthOfCut,
+    angle: f64,
+    /// The rate form's depth of cut in the last step that began with the bit turning (0 at the
+    /// start: flat rock just touched).
+    turning_depth: f64,
+    pub state: AxialState,
+    /// Courant numbers of the sections.
+    pub courant: Vec<f64>,
+}
+
+impl Axial {
+    /// The axial field of a coupled run (`cfg.hoist` given) on the torsional grid's step.
+    pub fn new(cfg: &DrillConfig, grid: &Grid, hoist: &crate::drilling::config::Hoist) -> Result<Self> {
+        let dt = grid.dt;
+        let (mud, g) = (cfg.well.mud_density, cfg.well.gravity);
+        let parts: Vec<AxialSection> = cfg.sections.iter().map(AxialSection::from_section).collect();
+        let mut sections = Vec::with_capacity(parts.len());
+        let mut gravity = Vec::new();
+        let mut centres = Vec::new();
+        let (mut offset, mut top) = (0, 0.0);
+        let mut courant = Vec::with_capacity(parts.len());
+        for (i, p) in parts.iter().enumerate() {
+            let c = p.wave_speed();
+            let cells = (p.length / (c * dt) * (1.0 + 1e-12)).floor();
+            if cells < 1.0 {
+                return Err(Error::invalid(
+                    format!("sections[{i}].length"),
+                    Num(p.length),
+                    format!(
+                        "at least one axial cell, c_a dt = {} m at this time step (more numerics.cells)",
+                        Num(c * dt)
+                    ),
+                ));
+            }
+            let n = cells as usize;
+            let h = p.length / cells;
+            courant.push((c * dt / h).min(1.0));
+            sections.push(Section::new(offset, n, courant[i], h, p.mass_per_length(), p.impedance()));
+            gravity.push(0.0);
+            for j in 0..n {
+                let z = top + (j as f64 + 0.5) * h;
+                centres.push(z);
+                gravity.push(dt * p.buoyed_gravity(mud, g, inclination(cfg, z)));
+            }
+            gravity.push(0.0);
+            offset += n + 2;
+            top += p.length;
+        }
+        let len = offset;
+        let mut field = Field {
+            sections,
+            alpha: vec![0.0; len],
+            beta: vec![0.0; len],
+            alpha_next: vec![0.0; len],
+            beta_next: vec![0.0; len],
+            nl: None,
+        };
+        let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &centres);
+        let mut k = 0;
+        for s in 0..field.sections.len() {
+            for j in 1..=field.sections[s].cells {
+                field.set_cell(s, j, 0.0, -tension[k]);
+                k += 1;
+            }
+        }
+        let params = hoist.params();
+        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &[0.0])[0];
+        let initial = if params.mode == HoistMode::HookLoad { hanging } else { 0.0 };
+        let law = cfg.bit.detournay.law(cfg.bit.radius);
+        let rule = match cfg.bit.law {
+            BitRockLaw::Rgd => {
+                DepthOfCut::Regenerative(CutSurface::steady(law.blades, SurfaceRule::Deepest, 0.0, 0.0, 0.0))
+            }
+            _ => DepthOfCut::Rate,
+        };
+        let src = Sources::new(cfg, dt);
+        Ok(Axial {
+            zeros: vec![0.0; len],
+            sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
+            gravity,
+            hoist: Hoist::new(params, initial),
+            law,
+            rule,
+            angle: 0.0,
+            turning_depth: 0.0,
+            state: AxialState {
+                contact: BitContact {
+                    axial_speed: 0.0,
+                    angular_speed: 0.0,
+                    weight_on_bit: 0.0,
+                    torque_on_bit: 0.0,
+                    contact_weight: 0.0,
+                    contact_torque: 0.0,
+                    phase: BitPhase::LiftOff,
+                },
+                depth: 0.0,
+                hook_load: hanging,
+                position: 0.0,
+                hole: 0.0,
+                rop: 0.0,
+            },
+            courant,
+            field,
+        })
+    }
+
+    /// The Detournay law of the run.
+    pub fn law(&self) -> &DetournayBit {
+        &self.law
+    }
+
+    /// The hoist's end for a step of `dt`: sets the top ghost, books the hoist's work.
+    pub fn top(&mut self, dt: f64, ledger: &mut Ledger) {
+        let arriving = self.field.arriving_top();
+        let measured = HoistMeasurement { weight_on_bit: self.state.contact.weight_on_bit, rop: self.state.rop };
+        let alpha0 = self.hoist.step(dt, measured).incoming(arriving.value, arriving.impedance);
+        let v = 0.5 * (alpha0 + arriving.value);
+        let force = arriving.impedance * (v - arriving.value);
+        ledger.hoist += dt * force * v;
+        self.state.hook_load = -force;
+        self.field.set_top(arriving, v, force);
+    }
+
+    /// The bit for a step of `dt` against the torsional field's arriving characteristic
+    /// `torsion`, the BHA inertia `inertia` turning at `omega` at the step start: sets the axial
+    /// bottom ghost, books the bit's work; returns the new bit speed and the torque on bit (the
+    /// torsional field's bottom is set by the caller).
+    pub fn bit(&mut self, torsion: Arriving, inertia: f64, omega: f64, dt: f64, ledger: &mut Ledger) -> (f64, f64) {
+        let arriving = self.field.arriving_bottom();
+        let axial = Port::string(arriving.value, arriving.impedance);
+        let turning = Port::lumped(torsion.value, torsion.impedance, inertia, omega, dt, 0.0);
+        let depth = match &self.rule {
+            DepthOfCut::Rate => rate_depth(&self.law, axial, turning, omega, self.turning_depth),
+            DepthOfCut::Regenerative(s) => {
+                f64::from(self.law.blades) * s.depth_per_blade(self.angle, self.state.position)
+            }
+        };
+        let c = solve_bit(&self.law, axial, turning, depth);
+        ledger.bit += dt * c.power();
+        let w1 = c.angular_speed;
+        let stop = 0.5 * inertia * (w1 - omega) * (w1 - omega);
+        if w1 == 0.0 && c.torque_on_bit != 0.0 {
+            ledger.bit += stop;
+        } else {
+            ledger.inertia += stop;
+        }
+        self.field.set_bottom(arriving, c.axial_speed);
+        self.angle += w1 * dt;
+        let s = &mut self.state;
+        s.position += c.axial_speed * dt;
+        if let DepthOfCut::Regenerative(surface) = &mut self.rule {
+            surface.record(self.angle, s.position);
+        }
+        let hole = s.hole.max(s.position);
+        s.rop = (hole - s.hole) / dt;
+        s.hole = hole;
+        s.contact = c;
+        s.depth = depth;
+        if omega > 0.0 {
+            self.turning_depth = depth;
+        }
+        (w1, c.torque_on_bit)
+    }
+
+    /// The cells over a step: the transport with damping, then the buoyed weight.
+    pub fn cells(&mut self, ledger: &mut Ledger) {
+        let Field { sections, alpha, beta, alpha_next, beta_next, .. } = &mut self.field;
+        let z = &self.zeros[..];
+        for sp in sections.iter() {
+            let r = sp.padded();
+            let sums = transport(
+                &alpha[r.clone()],
+                &beta[r.clone()],
+                &z[r.clone()],
+                &z[r.clone()],
+                &mut alpha_next[r.clone()],
+                &mut beta_next[r.clone()],
+                sp.courant,
+                &self.sources,
+            );
+            ledger.transport(sp.e, sp.courant, &sums);
+            let mut work = 0.0;
+            for k in r.start + 1..r.end - 1 {
+                let dv = self.gravity[k];
+                let v = 0.5 * (alpha_next[k] + beta_next[k]);
+                work += dv * (v + 0.5 * dv);
+                alpha_next[k] += dv;
+                beta_next[k] += dv;
+            }
+            ledger.gravity += 4.0 * sp.e * work;
+        }
+        self.field.swap();
+    }
+}
+
+/// The depth of cut per revolution of the rate form, m: for a bit turning at `omega > 0` at the
+/// step start, the root of `d = 2 pi v'(d) / omega` with `v'(d)` the axial speed [`solve_bit`]
+/// gives at `d` (implicit in the axial speed: the law's `dW/dv = 2 pi a zeta eps / omega` is far
+/// stiffer than the string's impedance, and an explicit `v` diverges), found by bisection
+/// between `0+` and `2 pi v_free / omega` (`v'` falls as `d` grows); a bit pressed but held at
+/// `v' = 0` by the contact gets the least positive depth (contact, no cutting). A bit rising
+/// unloaded (`v_free < 0`) is off the rock (`-inf`). A bit not turning: the depth of the last
+/// step it turned in, `last` (at least `0+`: the torque that breaks it free is the law's there).
+pub fn rate_depth(law: &DetournayBit, axial: Port, torsion: Port, omega: f64, last: f64) -> f64 {
+    if axial.free_speed < 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let least = f64::MIN_POSITIVE;
+    if omega <= 0.0 {
+        return last.max(least);
+    }
+    let speed = |d: f64| solve_bit(law, axial, torsion, d).axial_speed;
+    let (mut lo, mut hi) = (least, TAU * axial.free_speed / omega);
+    if hi <= lo || TAU * speed(lo) / omega <= lo {
+        return least;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if TAU * speed(mid) / omega > mid {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[cfg(test)]
+#[path = "axial_tests.rs"]
+mod tests;
