@@ -52,3 +52,21 @@ def test_the_exact_delay_cycles_about_the_same_steady_state() -> None:
     wob = result.axial["weight_on_bit"][result.t >= 180.0]
     assert wob.max() - wob.min() > 0.05 * ref["wob_N"]["mean"]  # not settled: the limit cycle
     assert abs(result.energy["balance_error"]) < 1e-12
+
+
+def test_the_console_names_the_on_bottom_numbers(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """`drillstring drill` of a coupled run prints ROP, WOB, TOB, bounce and MSE, the numbers of
+    metrics.json's `coupled` (SI: m/h, kN, kN m, MPa)."""
+    import json
+
+    from drillstring.cli import main
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "aarsnes-van-de-wouw-2019.toml"
+    assert main(["drill", str(example), "--out", str(tmp_path / "run"), "--no-plots",
+                 "--set", "numerics.duration=20", "--set", "numerics.cells=200",
+                 "--set", "metrics.window=[10.0, 20.0]"]) == 0
+    line = [x for x in capsys.readouterr().out.splitlines() if x.startswith("on bottom:")]
+    c = json.loads((tmp_path / "run" / "metrics.json").read_text())["coupled"]
+    assert line == [f"on bottom: ROP {c['rop_mean_m_per_h']:.4g} m/h, weight on bit {c['wob_mean_N'] / 1e3:.4g} kN, "
+                    f"torque on bit {c['tob_mean_Nm'] / 1e3:.4g} kN m, bit bounce {c['bounce_fraction']:.3g} of the "
+                    f"window, MSE {c['mse_mean_Pa'] / 1e6:.4g} MPa"]

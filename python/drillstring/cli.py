@@ -645,6 +645,13 @@ def _cmd_drill(args: argparse.Namespace) -> int:
              f"break-off {torque(m.breakoff_torque_Nm)} (implied cycle minimum {torque(m.min_cycle_torque_Nm)})")
         _say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
              f"{'settled' if m.settled else 'not settled'}")
+        if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
+            c = result.coupled_metrics
+            mse = f"{c['mse_mean_Pa'] / 1e6:.4g} MPa" if system == "si" else shown(c["mse_mean_Pa"], "Pa", system)
+            wob = shown(c["wob_mean_N"], "N", system, kilo=system == "si")
+            _say(f"on bottom: ROP {c['rop_mean_m_per_h']:.4g} m/h, weight on bit {wob}, "
+                 f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
+                 f"MSE {mse}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
             _say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "
