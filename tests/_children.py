@@ -86,6 +86,24 @@ class Child:
             return ""
         return self.proc.stderr.read().decode(errors="replace")
 
+    def cpu_seconds(self) -> float:
+        """CPU time (user + system, all threads) the child has used so far, from ``/proc``."""
+        fields = Path(f"/proc/{self.pid}/stat").read_text().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+    def wait_cpu(self, seconds: float, timeout: float = START_TIMEOUT) -> None:
+        """Waits until the child has used ``seconds`` more CPU time than when called: work under
+        way, however loaded the machine (a wall-clock sleep can end before the work starts).
+        Falls back to a plain sleep where ``/proc`` does not exist."""
+        if not Path(f"/proc/{self.pid}/stat").exists():  # pragma: no cover - not Linux
+            time.sleep(seconds)
+            return
+        start, deadline = self.cpu_seconds(), time.monotonic() + timeout
+        while self.cpu_seconds() - start < seconds:
+            assert self.proc.poll() is None, "the child ended before using the CPU time waited for"
+            assert time.monotonic() < deadline, f"the child did not use {seconds:g} s of CPU within {timeout:g} s"
+            time.sleep(0.02)
+
     def interrupt(self) -> float:
         """Ctrl-C: SIGINT to the child's process group, as a terminal sends it. Returns the
         ``time.monotonic()`` just before sending."""

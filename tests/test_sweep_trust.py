@@ -26,8 +26,9 @@ EXIT_TIMEOUT = 120.0
 # ------------------------------------------------------------------ Ctrl-C inside a chunk
 
 #: One chunk of 60 runs with 12 modes and the rigid mode over 8 s (~0.1 s each on one core, with
-#: the pseudo-spectral right-hand side): a Ctrl-C 1.5 s into it finds some runs finished and
-#: others under way or not started.
+#: the pseudo-spectral right-hand side): a Ctrl-C after the child has used 1.5 s of CPU (its
+#: chunk under way, however loaded the machine) finds some runs finished and others under way
+#: or not started.
 HEAVY = {"modes": 12, "rigid_mode": True, "t_end": 8.0, "chunk_size": 60, "threads": 2}
 HEAVY_GRID = {"length": {"linspace": [100.0, 300.0, 60]}}
 
@@ -47,7 +48,7 @@ def test_ctrl_c_inside_a_heavy_chunk_stops_and_keeps_its_finished_runs(tmp_path:
             print("interrupted", time.monotonic(), flush=True)
         """
     with python_child(script, tmp_path) as child:
-        time.sleep(1.5)
+        child.wait_cpu(1.5)
         sent = child.interrupt()
         out, err = child.communicate(timeout=EXIT_TIMEOUT)
     word, when = out.split()[:2]
