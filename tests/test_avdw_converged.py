@@ -127,3 +127,25 @@ def test_the_converged_twin_against_the_numpy_oracle(an, rop: float) -> None:  #
         assert 0.05 < ours["stuck"] < 0.2 and 0.05 < ref["stuck_fraction"] < 0.2
     else:
         assert ours["stuck"] < 0.02 and ref["stuck_fraction"] == 0.0
+
+
+def test_at_60_m_per_h_the_twins_disagree_on_stick_slip() -> None:
+    """30 rpm / 60 m/h: the published twin settles (as their code's 120 s run: no stick, 200.87 kN),
+    the converged one stick-slips (the bit at rest 8 % of the window, up to 4.3 times the set-point)."""
+    pub = drill(load_drill_config(PUBLISHED).with_overrides({"hoist.speed": 60 / 3600}))
+    late = pub.t >= 180.0
+    assert pub.metrics.stuck_fraction == 0.0 and np.ptp(pub.bit_rpm[late]) < 0.01 * 30.0
+    assert pub.coupled_metrics is not None
+    assert pub.coupled_metrics["wob_mean_N"] == pytest.approx(200.87e3, rel=5e-3)
+    conv = _run(None, 60.0)
+    assert 0.05 < conv["stuck"] < 0.15 and conv["rpm_max"] > 3.0 * 30.0
+
+
+def test_the_cut_surface_keys_are_checked() -> None:
+    from drillstring.errors import ValidationError
+
+    cfg = load_drill_config(PUBLISHED)
+    with pytest.raises(ValidationError, match="bit.detournay.cut_surface_cells"):
+        cfg.with_overrides({"bit.detournay.cut_surface_cells": 0})
+    with pytest.raises(ValidationError, match="bit.detournay.cut_surface"):
+        cfg.with_overrides({"bit.detournay.cut_surface": "lagrangian"})

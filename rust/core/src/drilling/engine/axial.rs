@@ -150,11 +150,9 @@ impl Axial {
             (BitRockLaw::Rgd, CutSurfaceScheme::ExactDelay) => {
                 DepthOfCut::Regenerative(CutSurface::steady(law.blades, SurfaceRule::Deepest, 0.0, 0.0, 0.0))
             }
-            (BitRockLaw::Rgd, CutSurfaceScheme::Upwind) => DepthOfCut::Upwind(UpwindCutSurface::new(
-                law.blades,
-                cfg.bit.detournay.cut_surface_cells as usize,
-                0.0,
-            )),
+            (BitRockLaw::Rgd, CutSurfaceScheme::Upwind) => {
+                DepthOfCut::Upwind(UpwindCutSurface::new(law.blades, cfg.bit.detournay.cut_surface_cells as usize, 0.0))
+            }
             _ => DepthOfCut::Rate,
         };
         let src = Sources::new(cfg, dt);
