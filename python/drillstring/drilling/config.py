@@ -369,6 +369,12 @@ class Detournay:
     """Wear-flat/rock friction coefficient mu."""
     geometry: float = _default("bit.detournay", "geometry", unit="", kind="float")
     """Bit geometry factor gamma (1: flat profile)."""
+    cut_surface: str = _default("bit.detournay", "cut_surface", unit="", kind="str")
+    """The regenerative depth of cut of ``law = "rgd"``: ``"exact_delay"`` (the bit's position one
+    blade angle back) or ``"upwind"`` (Aarsnes & van de Wouw's first-order upwind cut surface on
+    ``cut_surface_cells`` cells)."""
+    cut_surface_cells: int = _default("bit.detournay", "cut_surface_cells", unit="", kind="int")
+    """Cells of the ``upwind`` cut surface over one blade angle."""
 
 
 @dataclass(frozen=True)

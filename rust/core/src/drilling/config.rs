@@ -548,7 +548,32 @@ pub struct Detournay {
     /// Bit geometry factor `gamma` (1 for a flat bit profile), >= 0.
     #[schemars(extend("unit" = "", "label" = "bit geometry factor"))]
     pub geometry: f64,
+    /// The regenerative depth of cut of `bit.law = "rgd"`: `exact_delay` (default: the bit's
+    /// position one blade angle back, interpolated exactly) or `upwind` (Aarsnes & van de Wouw's
+    /// cut surface, first-order upwind on `cut_surface_cells` cells; diffusive).
+    ///
+    /// The upwind surface converges to the exact delay at first order in the cells; on their 169
+    /// cells at 30 rpm its diffusion damps the regenerative instability (see the drilling guide).
+    #[schemars(extend("label" = "cut surface"))]
+    pub cut_surface: CutSurfaceScheme,
+    /// Cells of the `upwind` cut surface over one blade angle, 1 to 1000000 (their code: 169, 84,
+    /// 42 at 30, 60, 120 rpm); unused with `exact_delay`.
+    #[schemars(extend("unit" = "", "label" = "cut-surface cells"))]
+    pub cut_surface_cells: u32,
 }
+
+/// The regenerative depth of cut's numerics (`bit.detournay.cut_surface`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CutSurfaceScheme {
+    /// The exact delay: the recorded bit position one blade angle back, interpolated.
+    ExactDelay,
+    /// First-order upwind transport of the depth of cut on `cut_surface_cells` cells.
+    Upwind,
+}
+
+/// The most cells of an upwind cut surface (`bit.detournay.cut_surface_cells`).
+pub const MAX_CUT_SURFACE_CELLS: u32 = 1_000_000;
 
 impl Default for Detournay {
     /// The published case, [`DetournayBit::PUBLISHED`].
@@ -562,6 +587,8 @@ impl Default for Detournay {
             wear_flat_length: p.wear_flat_length,
             friction: p.friction,
             geometry: p.geometry,
+            cut_surface: CutSurfaceScheme::ExactDelay,
+            cut_surface_cells: 169,
         }
     }
 }
@@ -992,6 +1019,14 @@ impl DrillConfig {
             nonneg("hoist.hook_load", h.hook_load, "N")?;
             nonneg("hoist.ramp_time", h.ramp_time, "s")?;
             self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
+            let cells = self.bit.detournay.cut_surface_cells;
+            if !(1..=MAX_CUT_SURFACE_CELLS).contains(&cells) {
+                return Err(Error::invalid(
+                    "bit.detournay.cut_surface_cells",
+                    cells,
+                    format!("an integer in 1..={MAX_CUT_SURFACE_CELLS}"),
+                ));
+            }
         }
         Ok(())
     }

@@ -20,9 +20,11 @@
 //!   `2 pi v' / omega` with the step's axial speed `v'` (implicit) and the angular speed at the
 //!   step start ([`rate_depth`]), `rgd` `n` times the
 //!   cut surface's depth of cut of a blade ([`CutSurface`], the exact delay, the deepest-surface
-//!   rule); then [`solve_bit`] with the axial end of the string (no lumped axial mass) and the
-//!   torsional end with the BHA inertia `bit.bha_inertia`; the bit's work `dt (W v' + T w')` is
-//!   booked as `bit_loss`, the BHA's implicit-Euler term as in the torsional bit.
+//!   rule; or with `bit.detournay.cut_surface = "upwind"` the last cell of their upwind chain,
+//!   [`UpwindCutSurface`], advanced after the step with the bit's new speeds); then [`solve_bit`]
+//!   with the axial end of the string (no lumped axial mass) and the torsional end with the BHA
+//!   inertia `bit.bha_inertia`; the bit's work `dt (W v' + T w')` is booked as `bit_loss`, the
+//!   BHA's implicit-Euler term as in the torsional bit.
 
 use std::f64::consts::TAU;
 
@@ -33,10 +35,10 @@ use super::kernel::transport;
 use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{solve_bit, BitContact, BitPhase, Port};
 use crate::drilling::axial::bitrock::DetournayBit;
-use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule};
+use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
 use crate::drilling::axial::hoist::{Hoist, HoistMeasurement, HoistMode};
 use crate::drilling::axial::section::{static_tension, AxialSection};
-use crate::drilling::config::{BitRockLaw, DrillConfig};
+use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
 use crate::drilling::grid::{inclination, Grid};
 use crate::error::{Error, Num, Result};
 
@@ -46,6 +48,8 @@ enum DepthOfCut {
     Rate,
     /// The regenerative delay.
     Regenerative(CutSurface),
+    /// Aarsnes & van de Wouw's upwind cut surface.
+    Upwind(UpwindCutSurface),
 }
 
 /// The values of the bit and the hoist after a step (SI).
@@ -142,9 +146,12 @@ impl Axial {
         let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &[0.0])[0];
         let initial = if params.mode == HoistMode::HookLoad { hanging } else { 0.0 };
         let law = cfg.bit.detournay.law(cfg.bit.radius);
-        let rule = match cfg.bit.law {
-            BitRockLaw::Rgd => {
+        let rule = match (cfg.bit.law, cfg.bit.detournay.cut_surface) {
+            (BitRockLaw::Rgd, CutSurfaceScheme::ExactDelay) => {
                 DepthOfCut::Regenerative(CutSurface::steady(law.blades, SurfaceRule::Deepest, 0.0, 0.0, 0.0))
+            }
+            (BitRockLaw::Rgd, CutSurfaceScheme::Upwind) => {
+                DepthOfCut::Upwind(UpwindCutSurface::new(law.blades, cfg.bit.detournay.cut_surface_cells as usize, 0.0))
             }
             _ => DepthOfCut::Rate,
         };
@@ -209,6 +216,7 @@ impl Axial {
             DepthOfCut::Regenerative(s) => {
                 f64::from(self.law.blades) * s.depth_per_blade(self.angle, self.state.position)
             }
+            DepthOfCut::Upwind(s) => f64::from(self.law.blades) * s.depth_per_blade(),
         };
         let c = solve_bit(&self.law, axial, turning, depth);
         ledger.bit += dt * c.power();
@@ -223,8 +231,10 @@ impl Axial {
         self.angle += w1 * dt;
         let s = &mut self.state;
         s.position += c.axial_speed * dt;
-        if let DepthOfCut::Regenerative(surface) = &mut self.rule {
-            surface.record(self.angle, s.position);
+        match &mut self.rule {
+            DepthOfCut::Regenerative(surface) => surface.record(self.angle, s.position),
+            DepthOfCut::Upwind(surface) => surface.advance(dt, w1, c.axial_speed),
+            DepthOfCut::Rate => {}
         }
         let hole = s.hole.max(s.position);
         s.rop = (hole - s.hole) / dt;

@@ -91,6 +91,52 @@ fn the_regenerative_law_drills_at_the_hoist_speed_around_the_steady_state() {
 }
 
 #[test]
+fn the_upwind_cut_surface_settles_at_the_steady_state_where_the_exact_delay_cycles() {
+    // Their upwind cut surface on 20 cells (Courant number 0.13 at 120 rpm on this string's step):
+    // its diffusion damps the limit cycle of the exact delay; its discrete steady state is the
+    // delay's, `d = 2 pi V / Omega` (the chain's cells at `(j + 1) V t_n / cells`), so the run
+    // settles at the law's steady state of the rate form's test. 2000 cells give the exact
+    // delay's cycle (its WOB range within 2 %; measured 0.4 %).
+    let mut cfg = settling("rgd");
+    cfg.bit.detournay.cut_surface = crate::drilling::config::CutSurfaceScheme::Upwind;
+    cfg.bit.detournay.cut_surface_cells = 20;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, crate::solution::Status::Success, "{}", run.message);
+    let d = 2.0 * PI * (30.0 / 3600.0) / (4.0 * PI);
+    let (w, t) = (87_480.0, 3767.472);
+    for (name, x, want) in [("depth of cut", &run.depth_of_cut, d), ("weight on bit", &run.weight_on_bit, w)] {
+        for v in window(&run, x) {
+            assert!((v - want).abs() <= 1e-6 * want, "{name}: {v} vs {want}");
+        }
+    }
+    for v in window(&run, &run.bit_torque) {
+        assert!((v - t).abs() <= 1e-6 * t, "torque on bit: {v} vs {t}");
+    }
+    assert!(run.energy.balance_error.abs() < 1e-12, "{:?}", run.energy);
+    let range = |r: &crate::drilling::engine::DrillRun| {
+        let x = window(r, &r.weight_on_bit);
+        x.iter().cloned().fold(f64::NEG_INFINITY, f64::max) - x.iter().cloned().fold(f64::INFINITY, f64::min)
+    };
+    assert!(range(&run) < 1e-6 * w);
+    let exact = solve(&settling("rgd"), &Never, &mut |_| {}).unwrap();
+    let fine = {
+        cfg.bit.detournay.cut_surface_cells = 2000;
+        solve(&cfg, &Never, &mut |_| {}).unwrap()
+    };
+    assert!(range(&exact) > 1e-3 * w, "the exact delay cycles: {}", range(&exact));
+    assert!((range(&fine) / range(&exact) - 1.0).abs() < 0.02, "{} vs {}", range(&fine), range(&exact));
+}
+
+#[test]
+fn the_upwind_cut_surface_cells_are_checked() {
+    for cells in [0, 1_000_001] {
+        let mut cfg = coupled("rgd", "");
+        cfg.bit.detournay.cut_surface_cells = cells;
+        assert!(cfg.validate().unwrap_err().to_string().contains("bit.detournay.cut_surface_cells"));
+    }
+}
+
+#[test]
 fn a_velocity_step_into_a_string_on_a_stuck_bit_is_the_wave_staircase() {
     // No gravity, damping or rotation: the block starts at V, a compression wave Z V runs down
     // at c = sqrt(E / rho) and doubles at the stuck bit (a fixed end), so the weight on bit is
