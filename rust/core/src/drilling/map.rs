@@ -22,9 +22,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde_json::Value;
 
+use super::axial::regime::Regime;
 pub use super::config::{apply_overrides, set_path, Override};
 use super::config::{override_pairs, DrillConfig, SERIES};
-use super::axial::regime::Regime;
 use super::engine::CoupledMetrics;
 use super::solver::{solve, DrillStats};
 use crate::error::{Error, Result};
