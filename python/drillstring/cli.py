@@ -859,7 +859,9 @@ def _add_drill_map(sub: Any) -> None:
         "key) in parallel and write one row of stick-slip metrics per run (map.parquet, map.csv), the base "
         "configuration (config.toml) and the figures: with two numeric axes the SSI heat map with the stick-slip "
         "boundary SSI = 1 (ssi_map.png) and, with a top_drive.controller.type axis, one panel per controller "
-        "(controllers.png); with one numeric axis SSI against it (ssi_lines.png). A run whose values the core "
+        "(controllers.png), and for a coupled configuration ([hoist]) the regimes (smooth drilling, stick-slip, bit "
+        "bounce), ROP and MSE (regime_map.png); with one numeric axis SSI against it (ssi_lines.png). A run whose "
+        "values the core "
         "refuses is a row with status 'invalid'. DIR also holds the map's chunked, verified store (manifest.json, "
         "chunks/): the same command again resumes an interrupted map, solving only what is missing.",
         epilog="example: drillstring drill-map examples/on-bottom-3000m.toml --axis top_drive.rpm=40:160:13 "

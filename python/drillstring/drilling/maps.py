@@ -27,6 +27,11 @@ stop), :func:`controller_maps` (one such panel per controller, side by side, on 
 scale), :func:`ssi_lines` (SSI against one axis, one line per value of another). Each takes
 ``units="si"`` (the default) or ``"field"``: the axes and the values in the panels' titles in the
 field unit of their key (:func:`axis_label`); the table stays SI.
+
+A map of a coupled configuration (a ``[hoist]``: axes such as ``top_drive.rpm`` and
+``hoist.weight_on_bit`` with ``hoist.mode = "weight_on_bit"``) also holds the coupled metrics and
+the ``regime`` of each run (:data:`COUPLED_COLUMNS`), and :func:`regime_map` draws the regimes,
+ROP and MSE over two axes.
 """
 
 from __future__ import annotations
@@ -260,8 +265,9 @@ def drill_map(
         configuration the core refuses, ``"non_finite"``, ``"interrupted"``, ``"error"``),
         ``message``, the metrics of ``metrics.json`` (:data:`METRIC_COLUMNS`: ``ssi``,
         ``stuck_fraction``, ``period_s``, ``bit_rpm_min`` ... ``breakoff_torque_Nm``; NaN unless
-        the run succeeded; ``stick_slip_verdict`` ``"yes"``, ``"no"`` or ``"undetermined"``) and
-        :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes``, the base ``config``
+        the run succeeded; ``stick_slip_verdict`` ``"yes"``, ``"no"`` or ``"undetermined"``), for a
+        coupled base configuration :data:`COUPLED_COLUMNS` (``rop_mean_m_per_h`` ... ``mse_mean_Pa``
+        and ``regime``), and :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes``, the base ``config``
         (:meth:`DrillConfig.to_dict`) and the well's ``name`` (or None).
 
     Raises
