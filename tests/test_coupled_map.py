@@ -23,9 +23,10 @@ pytest.importorskip("pyarrow")
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "coupled-rpm-wob-map.toml"
 
-#: 6 runs (about 1 s on 2 threads): smooth drilling at 120 kN, bit bounce at 400 rpm and 170 kN,
-#: stick-slip at 280 kN (regimes found on the 12 x 12 map of docs/guide/maps.md).
-AXES = {"top_drive.rpm": [200.0, 400.0], "hoist.weight_on_bit": [120e3, 170e3, 280e3]}
+#: 6 runs (about 1 s on 2 threads): smooth drilling at 120 kN, bit bounce at 400 rpm and 200 kN,
+#: stick-slip at 280 kN (regimes found on the 12 x 12 map of docs/guide/maps.md; these six keep
+#: their regimes on 400 cells, and 400 rpm and 200 kN bounces on 200 to 1600 cells).
+AXES = {"top_drive.rpm": [200.0, 400.0], "hoist.weight_on_bit": [120e3, 200e3, 280e3]}
 
 
 @pytest.fixture(scope="module")
@@ -41,8 +42,8 @@ def _cfg(rpm: float, wob: float) -> DrillConfig:
 def test_the_map_shows_smooth_drilling_stick_slip_and_bit_bounce(frame: pd.DataFrame) -> None:
     assert (frame["status"] == "success").all()
     regime = {(r, w): g for r, w, g in zip(frame["top_drive.rpm"], frame["hoist.weight_on_bit"], frame["regime"])}
-    assert regime[(200.0, 120e3)] == regime[(400.0, 120e3)] == regime[(200.0, 170e3)] == "smooth drilling"
-    assert regime[(400.0, 170e3)] == "bit bounce"
+    assert regime[(200.0, 120e3)] == regime[(400.0, 120e3)] == regime[(200.0, 200e3)] == "smooth drilling"
+    assert regime[(400.0, 200e3)] == "bit bounce"
     assert regime[(200.0, 280e3)] == regime[(400.0, 280e3)] == "stick-slip"
     # the regime follows the criterion from the verdict and the bounce fraction
     for _, row in frame.iterrows():
@@ -51,9 +52,9 @@ def test_the_map_shows_smooth_drilling_stick_slip_and_bit_bounce(frame: pd.DataF
         assert (row["regime"] == "smooth drilling") == (bounce == 0.0 and verdict == "no")
         assert (row["regime"] == "bit bounce") == (0.0 < bounce < 1.0 and verdict != "yes")
         assert (row["regime"] == "stick-slip") == (bounce == 0.0 and verdict == "yes")
-    # the stick-slip runs stop, the bouncing run leaves the rock for a third of the window
+    # the stick-slip runs stop, the bouncing run leaves the rock for about a quarter of the window
     assert frame.loc[frame["regime"] == "stick-slip", "stuck_fraction"].min() > 0.1
-    assert 0.2 < frame.loc[frame["regime"] == "bit bounce", "bounce_fraction"].iloc[0] < 0.6
+    assert 0.1 < frame.loc[frame["regime"] == "bit bounce", "bounce_fraction"].iloc[0] < 0.6
     assert list(frame.columns[-len(COUPLED_COLUMNS) - 5:-5]) == list(COUPLED_COLUMNS)
 
 
@@ -70,11 +71,11 @@ def test_smooth_cells_drill_at_the_imposed_weight(frame: pd.DataFrame) -> None:
         assert row["wob_mean_N"] == pytest.approx(want, rel=3e-3), (row["wob_mean_N"], want)
     at = frame.set_index(["top_drive.rpm", "hoist.weight_on_bit"])
     assert at.loc[(400.0, 120e3), "rop_mean_m_per_h"] > at.loc[(200.0, 120e3), "rop_mean_m_per_h"]
-    assert at.loc[(200.0, 170e3), "rop_mean_m_per_h"] > at.loc[(200.0, 120e3), "rop_mean_m_per_h"]
-    assert at.loc[(200.0, 170e3), "mse_mean_Pa"] < at.loc[(200.0, 120e3), "mse_mean_Pa"]
+    assert at.loc[(200.0, 200e3), "rop_mean_m_per_h"] > at.loc[(200.0, 120e3), "rop_mean_m_per_h"]
+    assert at.loc[(200.0, 200e3), "mse_mean_Pa"] < at.loc[(200.0, 120e3), "mse_mean_Pa"]
 
 
-@pytest.mark.parametrize("rpm, wob", [(200.0, 120e3), (400.0, 170e3), (200.0, 280e3)])
+@pytest.mark.parametrize("rpm, wob", [(200.0, 120e3), (400.0, 200e3), (200.0, 280e3)])
 def test_cells_equal_single_runs(frame: pd.DataFrame, rpm: float, wob: float) -> None:
     result = drill(_cfg(rpm, wob))
     row = frame[(frame["top_drive.rpm"] == rpm) & (frame["hoist.weight_on_bit"] == wob)].iloc[0]
@@ -129,13 +130,13 @@ def test_the_weight_on_bit_mode_is_checked() -> None:
 def test_the_cli_writes_the_regime(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     from drillstring.cli import main
 
-    args = ["drill-map", str(EXAMPLE), "--axis", "top_drive.rpm=400", "--axis", "hoist.weight_on_bit=120e3,170e3",
+    args = ["drill-map", str(EXAMPLE), "--axis", "top_drive.rpm=400", "--axis", "hoist.weight_on_bit=120e3,200e3",
             "--out", str(tmp_path / "m")]
     assert main(args) == 0
     out = capsys.readouterr().out
     assert "regimes: smooth drilling in 1 runs, bit bounce in 1 runs" in out
     assert (tmp_path / "m" / "regime_map.png").stat().st_size > 0
-    assert main(["drill", str(EXAMPLE), "--set", "top_drive.rpm=400", "--set", "hoist.weight_on_bit=170e3",
+    assert main(["drill", str(EXAMPLE), "--set", "top_drive.rpm=400", "--set", "hoist.weight_on_bit=200e3",
                  "--out", str(tmp_path / "run"), "--no-plots"]) == 0
     out = capsys.readouterr().out
     assert "; regime: bit bounce" in out
