@@ -94,8 +94,8 @@ fn the_regenerative_law_drills_at_the_hoist_speed_around_the_steady_state() {
 fn the_weight_on_bit_mode_drills_at_the_imposed_weight() {
     // The hook held at the hanging string's static load (its weight in air here: no mud, a
     // vertical frictionless hole) less 60 kN: the rate law settles at W = 60 kN, at the depth of
-    // cut d = (W - a l sigma) / (a zeta eps) and ROP = d Omega / (2 pi), a blade pass apart
-    // from the string's velocity damping, which takes rho A L k_d ROP (~0.1 % here) off the weight.
+    // cut d = (W - a l sigma) / (a zeta eps) and ROP = d Omega / (2 pi), apart from the
+    // string's velocity damping, which takes rho A L k_d ROP (~0.1 % here) off the weight.
     let mut cfg = settling("detournay");
     let h = cfg.hoist.as_mut().unwrap();
     h.mode = crate::drilling::config::HoistKind::WeightOnBit;
@@ -105,9 +105,14 @@ fn the_weight_on_bit_mode_drills_at_the_imposed_weight() {
     let m = run.coupled.unwrap();
     let w = 80e3;
     let d = (w - 0.108 * 0.011 * 60e6) / (0.108 * 0.6 * 60e6);
-    let rop = d * 2.0 * 3600.0; // 120 rpm: 2 rev/s
-    assert!((m.wob_mean_n - w).abs() < 0.01 * w, "{m:?}");
-    assert!((m.rop_mean_m_per_h - rop).abs() < 0.02 * rop, "{} vs {rop} m/h", m.rop_mean_m_per_h);
+    // 120 rpm: 2 rev/s.
+    let rop = d * 2.0 * 3600.0;
+    // Measured: W 0.09 % below, ROP 0.8 % below (the damping's 72 N less weight, 1.85e-5 m less
+    // depth of cut); the ROP of the law at the mean weight within 0.05 %.
+    assert!((m.wob_mean_n - w).abs() < 0.002 * w, "{m:?}");
+    assert!((m.rop_mean_m_per_h - rop).abs() < 0.01 * rop, "{} vs {rop} m/h", m.rop_mean_m_per_h);
+    let at_mean = (m.wob_mean_n - 0.108 * 0.011 * 60e6) / (0.108 * 0.6 * 60e6) * 2.0 * 3600.0;
+    assert!((m.rop_mean_m_per_h - at_mean).abs() < 5e-4 * at_mean, "{} vs {at_mean} m/h", m.rop_mean_m_per_h);
     // The hook load: the weight in air of the 200 m pipe less the weight on bit.
     let area = PI / 4.0 * (0.127f64.powi(2) - 0.108f64.powi(2));
     let hanging = 8000.0 * area * 200.0 * cfg.well.gravity;
