@@ -74,7 +74,10 @@ pub const REGIME_CRITERION: &str = "off bottom: no weight on bit throughout the 
 /// hoist speed too small or a string still hanging), whatever the rotation does; one sample
 /// off the rock makes a bounce. The verdict `undetermined` (the bit stuck throughout, an
 /// oscillation still growing, SSI >= 1 without a stop) does not make a smooth run: with bit
-/// bounce the regime is `bit bounce`, else `undetermined`.
+/// bounce the regime is `bit bounce`, else `undetermined`. The rule does not look at the rate
+/// of penetration: a bit resting on the rock with a weight below its wear flats' contact force
+/// `a l sigma` (it hardly cuts: `hoist.weight_on_bit = 0` drills at ~0.1 m/h) is `smooth
+/// drilling` as long as it keeps contact and turns.
 pub fn regime(verdict: Option<Verdict>, bounce_fraction: f64) -> Regime {
     let Some(verdict) = verdict else { return Regime::Undetermined };
     if !bounce_fraction.is_finite() {
