@@ -9,6 +9,7 @@ import pytest
 
 from drillstring.drilling import DrillConfig, drill
 from drillstring.drilling.config import Hoist
+from drillstring.drilling.result import COUPLED_REGIME_CRITERION
 from drillstring.errors import ValidationError
 
 PIPE = {"length": 200.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
@@ -51,7 +52,9 @@ def test_the_coupled_run_settles_to_the_bit_law_steady_state() -> None:
     assert result.axial["hook_load"][0] == pytest.approx(mass * 9.81, rel=1e-12)
     assert mass * 9.81 - w - 1.001 * mass * 10.0 * 30 / 3600 < result.axial["hook_load"][-1] < mass * 9.81 - w
     assert abs(result.energy["balance_error"]) < 1e-12
-    assert result.summary()["coupled"] == m
+    assert result.coupled_regime == "smooth drilling"
+    assert result.summary()["coupled"] == {**m, "regime": "smooth drilling",
+                                           "regime_criterion": COUPLED_REGIME_CRITERION}
 
 
 def test_without_a_hoist_a_run_is_torsion_only() -> None:

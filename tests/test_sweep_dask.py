@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 pd = pytest.importorskip("pandas")
@@ -9,6 +11,8 @@ pytest.importorskip("pyarrow")
 distributed = pytest.importorskip("distributed")
 
 import drillstring as ds  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
 
 GRID = {"length": ds.linspace(100.0, 200.0, 4), "omega": [0.0, 50.0, 100.0], "inner_diameter": [0.12, 0.25]}
 OPTIONS = {"modes": 2, "t_end": 0.2, "samples": 256, "chunk_size": 5}  # 24 runs, 12 invalid, 5 chunks
@@ -90,3 +94,14 @@ def test_drill_map_cli_scheduler(client, tmp_path):
     assert main([*args[:-3], "--out", str(tmp_path / "local"), "--no-plots"]) == 0
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "m" / "map.parquet"),
                                   pd.read_parquet(tmp_path / "local" / "map.parquet"))
+
+
+def test_a_coupled_drill_map_on_dask_equals_local(client):
+    from drillstring.drilling import drill_map
+
+    example = ROOT / "examples" / "coupled-rpm-wob-map.toml"
+    axes = {"top_drive.rpm": [200.0, 400.0], "hoist.weight_on_bit": [200e3]}
+    local = drill_map(example, axes, threads=1)
+    remote = drill_map(example, axes, client=client, chunk_size=1)
+    pd.testing.assert_frame_equal(remote, local)
+    assert list(remote["regime"]) == ["smooth drilling", "bit bounce"]

@@ -481,6 +481,13 @@ STICK_SPEED: float
 STICK_SLIP_CRITERION: str
 """The criterion of the three-way stick-slip verdict (``verdict``: yes, no, undetermined)."""
 
+COUPLED_REGIME_CRITERION: str
+"""The criterion of a coupled run's regime (``drilling::axial::regime``)."""
+
+COUPLED_REGIMES: list[str]
+"""The coupled regimes' names: smooth drilling, stick-slip, bit bounce, stick-slip and bit bounce,
+off bottom, undetermined."""
+
 class StickSlipDict(TypedDict):
     t_start: float
     t_end: float
@@ -900,6 +907,10 @@ class DrillMapOutput(TypedDict):
     """``cells``, ``steps`` (uint64), ``dt``, ``balance_error``, ``courant_peak`` (the largest
     Courant number a run reached: above 1 only with ``nonlinearity = "consistent"`` past
     ``numerics.max_shear_strain``)."""
+    coupled: dict[str, Any]
+    """A coupled run's metrics (``rop_mean_m_per_h``, ``wob_mean_N``, ``tob_mean_Nm``,
+    ``bounce_fraction``, ``mse_mean_Pa``: float arrays, NaN without them) and ``regime`` (a list of
+    str, ``undetermined`` without them)."""
     interrupt: Optional[BaseException]
     """The exception that stopped the map (Ctrl-C or raised by ``progress``), or None."""
 

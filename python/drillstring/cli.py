@@ -651,7 +651,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
             wob = shown(c["wob_mean_N"], "N", system, kilo=system == "si")
             _say(f"on bottom: ROP {c['rop_mean_m_per_h']:.4g} m/h, weight on bit {wob}, "
                  f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
-                 f"MSE {mse}")
+                 f"MSE {mse}; regime: {result.coupled_regime}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
             _say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "
@@ -859,7 +859,9 @@ def _add_drill_map(sub: Any) -> None:
         "key) in parallel and write one row of stick-slip metrics per run (map.parquet, map.csv), the base "
         "configuration (config.toml) and the figures: with two numeric axes the SSI heat map with the stick-slip "
         "boundary SSI = 1 (ssi_map.png) and, with a top_drive.controller.type axis, one panel per controller "
-        "(controllers.png); with one numeric axis SSI against it (ssi_lines.png). A run whose values the core "
+        "(controllers.png), and for a coupled configuration ([hoist]) the regimes (smooth drilling, stick-slip, bit "
+        "bounce), ROP and MSE (regime_map.png); with one numeric axis SSI against it (ssi_lines.png). A run whose "
+        "values the core "
         "refuses is a row with status 'invalid'. DIR also holds the map's chunked, verified store (manifest.json, "
         "chunks/): the same command again resumes an interrupted map, solving only what is missing.",
         epilog="example: drillstring drill-map examples/on-bottom-3000m.toml --axis top_drive.rpm=40:160:13 "
@@ -886,7 +888,7 @@ def _add_drill_map(sub: Any) -> None:
 
 #: The files ``drill-map --out DIR`` may write.
 DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "controllers.png", "ssi_lines.png",
-                   "manifest.json")
+                   "manifest.json", "regime_map.png")
 
 
 def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
@@ -956,6 +958,11 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip: yes in {int(verdicts.get('yes', 0))} "
              f"runs (the bit stops during part of the window), no in {int(verdicts.get('no', 0))}, undetermined in "
              f"{int(verdicts.get('undetermined', 0))}; settled in {int((ok['settled'] == 1).sum())} of {len(ok)}")
+        if "regime" in ok.columns:  # a coupled map ([hoist])
+            regimes = ok["regime"].value_counts()
+            _say("regimes: " + ", ".join(f"{r} in {n} runs" for r, n in regimes.items())
+                 + f"; ROP {ok['rop_mean_m_per_h'].min():.3g}..{ok['rop_mean_m_per_h'].max():.3g} m/h, "
+                 f"MSE {ok['mse_mean_Pa'].min() / 1e6:.3g}..{ok['mse_mean_Pa'].max() / 1e6:.3g} MPa")
     from .io.output import write_text
 
     written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),

@@ -45,7 +45,7 @@ from .lumped import (
     lumped_sweep,
     lumped_sweep_figure,
 )
-from .maps import controller_maps, drill_map, ssi_lines, ssi_map
+from .maps import controller_maps, drill_map, regime_map, ssi_lines, ssi_map
 from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
 from .solve import drill, friction_profile
@@ -77,6 +77,7 @@ __all__ = [
     "controller_maps",
     "ssi_lines",
     "ssi_map",
+    "regime_map",
     "friction_profile",
     "recommend_controllers",
     "ControllerRecommendations",

@@ -384,14 +384,17 @@ class Hoist:
 
     mode: str = _default("hoist", "mode", unit="", kind="str")
     """``"velocity"`` (the block velocity ``speed``) or ``"hook_load"`` (the force ``hook_load``
-    holding the string up)."""
+    holding the string up), or ``"weight_on_bit"`` (the hook load held at the static hook load of
+    the string hanging off bottom less ``weight_on_bit``, as a rig's weight indicator reads it)."""
     speed: float = _default("hoist", "speed", unit="m/s", kind="float")
     """Block velocity, m/s, down positive."""
     hook_load: float = _default("hoist", "hook_load", unit="N", kind="float")
     """Hook load of ``hook_load`` mode, N."""
+    weight_on_bit: float = _default("hoist", "weight_on_bit", unit="N", kind="float")
+    """Weight on bit of ``weight_on_bit`` mode, N (ramped from 0 with ``ramp_time``)."""
     ramp_time: float = _default("hoist", "ramp_time", unit="s", kind="float")
     """Time constant of the setpoint's approach (the block velocity from 0, the hook load from the
-    static hook load), s (0: a step)."""
+    static hook load, the weight on bit from 0), s (0: a step)."""
 
 
 @dataclass(frozen=True)

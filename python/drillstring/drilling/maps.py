@@ -27,6 +27,11 @@ stop), :func:`controller_maps` (one such panel per controller, side by side, on 
 scale), :func:`ssi_lines` (SSI against one axis, one line per value of another). Each takes
 ``units="si"`` (the default) or ``"field"``: the axes and the values in the panels' titles in the
 field unit of their key (:func:`axis_label`); the table stays SI.
+
+A map of a coupled configuration (a ``[hoist]``: axes such as ``top_drive.rpm`` and
+``hoist.weight_on_bit`` with ``hoist.mode = "weight_on_bit"``) also holds the coupled metrics and
+the ``regime`` of each run (:data:`COUPLED_COLUMNS`), and :func:`regime_map` draws the regimes,
+ROP and MSE over two axes.
 """
 
 from __future__ import annotations
@@ -50,7 +55,7 @@ from ..errors import ValidationError
 from ..limits import INT64_MAX, as_int, check_run_count, memory_budget
 from .config import DrillConfig, _load_document, _plain
 from .metrics import core_value
-from .result import METRICS, TEXT_METRICS
+from .result import COUPLED_METRICS, COUPLED_REGIMES, METRICS, TEXT_METRICS
 from .solve import ConfigLike, _config
 from .units import axis_unit, convert, override_to_si, system_of
 
@@ -58,14 +63,19 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     from matplotlib.figure import Figure
 
-__all__ = ["CONTROLLER_AXIS", "METRIC_COLUMNS", "axis_label", "boundary_note", "controller_maps", "drill_map",
-           "ssi_lines", "ssi_map"]
+__all__ = ["CONTROLLER_AXIS", "COUPLED_COLUMNS", "METRIC_COLUMNS", "axis_label", "boundary_note", "controller_maps",
+           "drill_map", "regime_map", "ssi_lines", "ssi_map"]
 
 #: The axis of the controller type (one panel per controller in :func:`controller_maps`).
 CONTROLLER_AXIS = "top_drive.controller.type"
 
 #: The metric columns of a map, in order (those of ``metrics.json``, :data:`~drillstring.drilling.result.METRICS`).
 METRIC_COLUMNS: tuple[str, ...] = METRICS
+
+#: The columns a coupled map (a base configuration with a ``[hoist]``) adds after the metrics: the
+#: coupled metrics of ``metrics.json`` (:data:`~drillstring.drilling.result.COUPLED_METRICS`; NaN
+#: unless the run succeeded) and the ``regime`` (``"undetermined"`` unless it succeeded).
+COUPLED_COLUMNS: tuple[str, ...] = COUPLED_METRICS
 
 #: Runs per stored chunk of a map with ``out`` (default).
 CHUNK_SIZE = 100
@@ -255,8 +265,9 @@ def drill_map(
         configuration the core refuses, ``"non_finite"``, ``"interrupted"``, ``"error"``),
         ``message``, the metrics of ``metrics.json`` (:data:`METRIC_COLUMNS`: ``ssi``,
         ``stuck_fraction``, ``period_s``, ``bit_rpm_min`` ... ``breakoff_torque_Nm``; NaN unless
-        the run succeeded; ``stick_slip_verdict`` ``"yes"``, ``"no"`` or ``"undetermined"``) and
-        :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes``, the base ``config``
+        the run succeeded; ``stick_slip_verdict`` ``"yes"``, ``"no"`` or ``"undetermined"``), for a
+        coupled base configuration :data:`COUPLED_COLUMNS` (``rop_mean_m_per_h`` ... ``mse_mean_Pa``
+        and ``regime``), and :data:`STAT_COLUMNS`. ``frame.attrs`` holds ``axes``, the base ``config``
         (:meth:`DrillConfig.to_dict`) and the well's ``name`` (or None).
 
     Raises
@@ -387,7 +398,7 @@ def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tupl
     fingerprint = _digest({**identity, "config": cfg.to_dict(), "axes": named})
     chunks = range(0, len(combos), size)
     manifest = {**identity, "fingerprint": fingerprint, "chunks": len(chunks), "axes": list(named)}
-    columns = [*named, "status", "message", *METRIC_COLUMNS, *STAT_COLUMNS]
+    columns = [*named, "status", "message", *METRIC_COLUMNS, *_coupled_columns(cfg), *STAT_COLUMNS]
     frames: dict[int, pd.DataFrame] = {}
     interrupt: Optional[BaseException] = None
     recomputed: dict[int, str] = {}
@@ -475,7 +486,13 @@ def _on_dask(client: Any, cfg: DrillConfig, named: Mapping[str, list[Any]], jobs
             own.close()
 
 
-_EMPTY: dict[str, Any] = {"status": [], "message": [], "metrics": {}, "stats": {}}
+_EMPTY: dict[str, Any] = {"status": [], "message": [], "metrics": {}, "stats": {}, "coupled": {}}
+
+
+def _coupled_columns(cfg: DrillConfig) -> tuple[str, ...]:
+    """The coupled columns of a map of ``cfg``: :data:`COUPLED_COLUMNS` for a coupled base
+    configuration (a ``[hoist]``), none for a torsion-only one (its table as before)."""
+    return COUPLED_COLUMNS if cfg.hoist is not None else ()
 
 
 def _axis_columns(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]]) -> dict[str, Any]:
@@ -508,6 +525,10 @@ def _frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw: M
             columns[name] = np.asarray(list(value or ()), dtype=object)
         else:
             columns[name] = np.asarray([] if value is None else value, dtype=float)
+    coupled = raw.get("coupled") or {}
+    for name in _coupled_columns(cfg):
+        value = coupled.get(name, ())
+        columns[name] = np.asarray(list(value), dtype=object) if name == "regime" else np.asarray(value, dtype=float)
     for name in STAT_COLUMNS:
         columns[name] = np.asarray(raw["stats"].get(name, []))
     frame = pd.DataFrame(columns)
@@ -821,8 +842,82 @@ def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: O
     return fig
 
 
+#: The colours of the coupled regimes in :func:`regime_map` (:data:`COUPLED_REGIMES` order).
+REGIME_COLOURS: dict[str, str] = {
+    "smooth drilling": "#4daf4a", "stick-slip": "#e41a1c", "bit bounce": "#377eb8",
+    "stick-slip and bit bounce": "#984ea3", "off bottom": "#bdbdbd", "undetermined": "#ffff99",
+}
+
+
+def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = None, units: str = "si") -> Figure:
+    """The regimes of a coupled map over the numeric axes ``x`` and ``y`` (a cell per run, one
+    colour per regime: smooth drilling, stick-slip, bit bounce, both, off bottom, undetermined;
+    the core's criterion, :data:`~drillstring.drilling.result.COUPLED_REGIME_CRITERION`) beside
+    the mean rate of penetration (m/h) and the mechanical specific energy (MPa) over the same
+    axes; the stick-slip boundary SSI = 1 (cyan) on the ROP panel. One row of three panels per
+    combination of the values of the map's other axes; failed runs are blank. ``units`` as
+    :func:`ssi_map`'s.
+
+    Examples
+    --------
+    >>> frame = drill_map("examples/coupled-rpm-wob-map.toml",  # doctest: +SKIP
+    ...                   {"top_drive.rpm": [30, 60, 90], "hoist.weight_on_bit": [40e3, 80e3]})
+    >>> regime_map(frame, "top_drive.rpm", "hoist.weight_on_bit").savefig("regime_map.png")  # doctest: +SKIP
+    """
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    from .plots import _figure
+
+    _check_axes(frame, (x, y))
+    if "regime" not in frame.columns:
+        raise ValidationError("frame", "a map without a regime column", "a map of a coupled configuration ([hoist])")
+    parts = _split(frame, (x, y), CONTROLLER_AXIS, units)
+    fig = _figure(14.0, 3.9 * len(parts) + 0.9)
+    axs = fig.subplots(len(parts), 3, sharex=True, sharey=True, squeeze=False)
+    (xlabel, xscale), (ylabel, yscale) = (axis_label(x, frame[x].tolist(), units),
+                                          axis_label(y, frame[y].tolist(), units))
+    cmap = ListedColormap([REGIME_COLOURS[r] for r in COUPLED_REGIMES])
+    norm = BoundaryNorm(np.arange(len(COUPLED_REGIMES) + 1) - 0.5, cmap.N)
+    seen: set[str] = set()
+    meshes: list[Any] = [None, None]
+    rop_max = float(np.nanmax(frame["rop_mean_m_per_h"].to_numpy(dtype=float), initial=0.0))
+    mse = frame["mse_mean_Pa"].to_numpy(dtype=float) / 1e6
+    mse = mse[np.isfinite(mse)]
+    mse_range = (float(mse.min()), float(mse.max())) if mse.size else (0.0, 1.0)
+    for row, (name, part) in zip(axs, parts):
+        ok = part["status"] == "success"
+        codes = part["regime"].map({r: i for i, r in enumerate(COUPLED_REGIMES)}).astype(float).where(ok)
+        seen.update(part["regime"][ok])
+        xs, ys, z = _grid(part.assign(_regime=codes), x, y, "_regime")
+        row[0].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap=cmap, norm=norm)
+        xs, ys, z = _grid(part.assign(_rop=part["rop_mean_m_per_h"].where(ok)), x, y, "_rop")
+        meshes[0] = row[1].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap="viridis", vmin=0.0,
+                                      vmax=max(rop_max, 1e-9))
+        _, _, ssi = _grid(part.assign(_ssi=part["ssi"].where(ok)), x, y, "_ssi")
+        if boundary_note(ssi.compressed()) is None and xs.size > 1 and ys.size > 1:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                row[1].contour(xs * xscale, ys * yscale, ssi, levels=[1.0], colors="tab:cyan", linewidths=2.0)
+        xs, ys, z = _grid(part.assign(_mse=(part["mse_mean_Pa"] / 1e6).where(ok)), x, y, "_mse")
+        meshes[1] = row[2].pcolormesh(xs * xscale, ys * yscale, np.ma.masked_invalid(z), shading="nearest",
+                                      cmap="magma_r", vmin=mse_range[0], vmax=max(mse_range[1], mse_range[0] + 1e-9))
+        for ax, what in zip(row, ("regime", "mean ROP", "mechanical specific energy")):
+            ax.set_title(f"{what}{', ' + name if name else ''}", fontsize=10)
+            ax.set_xlabel(xlabel)
+            ax.set_ylabel(ylabel)
+    fig.colorbar(meshes[0], ax=list(axs[:, 1]), label="mean rate of penetration [m/h] (cyan: SSI = 1)")
+    fig.colorbar(meshes[1], ax=list(axs[:, 2]), label="MSE of the means [MPa]")
+    handles = [Patch(facecolor=REGIME_COLOURS[r], edgecolor="0.5", label=r) for r in COUPLED_REGIMES if r in seen]
+    if handles:
+        axs[0, 0].legend(handles=handles, fontsize="small", loc="upper left", framealpha=0.85)
+    fig.suptitle(title or _map_title(frame, "coupled regime, ROP and MSE", units))
+    return fig
+
+
 def map_figures(frame: pd.DataFrame, units: str = "si") -> dict[str, Figure]:
-    """The figures a map gets (file name -> figure): with two numeric axes ``ssi_map.png`` and,
+    """The figures a map gets (file name -> figure): with two numeric axes ``ssi_map.png``, for a
+    coupled map ``regime_map.png`` (:func:`regime_map`) and,
     when ``top_drive.controller.type`` is an axis too, ``controllers.png``; with one numeric
     axis ``ssi_lines.png`` (a line per combination of the other axes' values, if any). None
     otherwise. Every figure has one panel (or line) per value of the axes it does not plot; a map
@@ -836,6 +931,8 @@ def map_figures(frame: pd.DataFrame, units: str = "si") -> dict[str, Figure]:
         if len(numeric) >= 2:
             x, y = numeric[0], numeric[1]
             out["ssi_map.png"] = ssi_map(frame, x, y, units=units)
+            if "regime" in frame.columns:
+                out["regime_map.png"] = regime_map(frame, x, y, units=units)
             if CONTROLLER_AXIS in axes:
                 out["controllers.png"] = controller_maps(frame, x, y, units=units)
         elif len(numeric) == 1:

@@ -264,6 +264,19 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
            f"{_fmt(result.profile.static_torque / 1e3)} |"] if result.profile.bit_static_torque > 0 else []),
         f"| minimum cycle torque implied by break-off, kN m | {_fmt(m.min_cycle_torque_Nm / 1e3)} |",
     ]
+    if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
+        from .result import COUPLED_REGIME_CRITERION
+
+        c = result.coupled_metrics
+        lines += ["", f"## Coupled axial-torsional run (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)", "",
+                  f"**Regime: {result.coupled_regime}**.", "",
+                  f"Criterion: {_md(COUPLED_REGIME_CRITERION)}.", "",
+                  "| metric | value |", "|---|---:|",
+                  f"| mean rate of penetration, m/h | {_fmt(c['rop_mean_m_per_h'])} |",
+                  f"| mean weight on bit, kN | {_fmt(c['wob_mean_N'] / 1e3)} |",
+                  f"| mean torque on bit, kN m | {_fmt(c['tob_mean_Nm'] / 1e3)} |",
+                  f"| bit bounce (share of the window with no weight on bit) | {_fmt(c['bounce_fraction'], 3)} |",
+                  f"| mechanical specific energy of the means, MPa | {_fmt(c['mse_mean_Pa'] / 1e6)} |"]
     if result.energy:
         lines += ["", "## Energy balance, J", "",
                   "Motor work and losses from the start; kinetic, elastic, top-drive and BHA energies at the end.",

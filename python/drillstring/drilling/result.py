@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
+from .. import _core
 from .config import DrillConfig
 from .metrics import STICK_SLIP_CRITERION, StickSlipMetrics
 
@@ -45,6 +46,18 @@ UNITS: dict[str, str] = {
     "min_cycle_torque": "N m",
 }
 
+
+#: The criterion of a coupled run's regime (:attr:`DrillResult.coupled_regime`; the core's
+#: ``drilling::axial::regime::regime``), as ``metrics.json`` and ``report.md`` state it.
+COUPLED_REGIME_CRITERION: str = _core.COUPLED_REGIME_CRITERION
+
+#: The coupled regimes' names, in a map legend's order.
+COUPLED_REGIMES: tuple[str, ...] = tuple(_core.COUPLED_REGIMES)
+
+#: The coupled metrics of ``metrics.json``'s ``coupled`` block and a coupled map's columns, in order
+#: (``regime`` the text one).
+COUPLED_METRICS: tuple[str, ...] = ("rop_mean_m_per_h", "wob_mean_N", "tob_mean_Nm", "bounce_fraction",
+                                    "mse_mean_Pa", "regime")
 
 #: The criterion of the boolean ``stick_slip`` (``stick_slip_verdict == "yes"``).
 STICK_SLIP_STOPS = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
@@ -338,11 +351,18 @@ class DrillResult:
         (down positive), ``rop`` m/h (the rate the deepest bit position advances), ``weight_on_bit``
         N, ``hook_load`` N, ``bit_depth`` m (below the start), ``depth_of_cut`` m per revolution
         (0 while the rate form's bit does not turn); the torque on bit is ``bit_torque``."""
+        coupled = dict(raw.get("coupled") or {})
         self.coupled_metrics: Optional[dict[str, float]] = (
-            {str(k): float(v) for k, v in raw["coupled"].items()} if raw.get("coupled") else None)
+            {str(k): float(v) for k, v in coupled.items() if k != "regime"} if coupled else None)
         """A coupled run's metrics over the window (None without a hoist): ``rop_mean_m_per_h``,
         ``wob_mean_N``, ``tob_mean_Nm``, ``bounce_fraction`` (share of samples with no weight on
         bit) and ``mse_mean_Pa`` (Teale's mechanical specific energy of the means)."""
+        self.coupled_regime: Optional[str] = str(coupled["regime"]) if "regime" in coupled else None
+        """A coupled run's regime over the window (None without a hoist): ``"smooth drilling"``,
+        ``"stick-slip"``, ``"bit bounce"``, ``"stick-slip and bit bounce"``, ``"off bottom"`` or
+        ``"undetermined"``, decided in the core (``drilling::axial::regime``) by
+        :data:`~drillstring.drilling.result.COUPLED_REGIME_CRITERION` from the stick-slip verdict
+        and ``bounce_fraction``."""
         self.grid_check: Optional[GridCheck] = None
         self.status: str = str(raw["status"])
         self.message: str = str(raw["message"])
@@ -400,6 +420,9 @@ class DrillResult:
         out["stats"] = self.stats
         if self.coupled_metrics is not None:
             out["coupled"] = dict(self.coupled_metrics)
+            if self.coupled_regime is not None:
+                out["coupled"]["regime"] = self.coupled_regime
+                out["coupled"]["regime_criterion"] = COUPLED_REGIME_CRITERION
         if system != "si":
             converted = {name: convert(out[name], unit, system) for name, unit in METRIC_UNITS.items()}
             out["output_units"] = {"system": system, "units": {k: u for k, (_, u) in converted.items()},

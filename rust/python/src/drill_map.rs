@@ -7,11 +7,22 @@ use pyo3::types::PyDict;
 
 use crate::convert::{no_panic, to_dict, validation_error, SignalCheck};
 
+/// The coupled regime's constants: `COUPLED_REGIME_CRITERION` (how a run's regime is decided)
+/// and `COUPLED_REGIMES` (their names, in a map legend's order).
+pub(crate) fn add_constants(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    use drillstring_core::drilling::axial::regime::{Regime, REGIME_CRITERION};
+    m.add("COUPLED_REGIME_CRITERION", REGIME_CRITERION)?;
+    m.add("COUPLED_REGIMES", Regime::ALL.map(Regime::name).to_vec())?;
+    Ok(())
+}
+
 /// Solves a map: `config_json` (a configuration) with each run's overrides
 /// (`runs_json`: a list of runs, each a list of `[dotted path, value]` pairs; `null` unsets a
 /// field) on `threads` threads. Returns columns (one entry per run, in order): `status`,
 /// `message` (lists of str), `metrics` (dict of arrays under the names of `drill_solve`'s
-/// metrics), `stats` (dict of arrays: cells, steps, dt, balance_error) and `interrupt`: the
+/// metrics), `stats` (dict of arrays: cells, steps, dt, balance_error), `coupled` (dict of
+/// arrays under the names of a coupled run's metrics, NaN without them; `regime` a list of str)
+/// and `interrupt`: the
 /// exception that stopped the map (Ctrl-C, or raised by `progress`), or None; the caller raises
 /// it once it has kept the finished rows. `progress(finished_runs)` is called about every 20 ms.
 #[pyfunction]

@@ -617,6 +617,9 @@ pub enum HoistKind {
     Velocity,
     /// The hook load `hoist.hook_load`.
     HookLoad,
+    /// The weight on bit `hoist.weight_on_bit`: the hook load held at the static hook load of
+    /// the string hanging off bottom less this weight (what a rig's weight indicator shows).
+    WeightOnBit,
 }
 
 /// The hoist at the top of the string. With a `[hoist]` table the run is coupled axial-torsional
@@ -625,7 +628,8 @@ pub enum HoistKind {
 #[serde(deny_unknown_fields, default)]
 pub struct Hoist {
     /// What the hoist imposes: `velocity` (the block velocity `speed`, default) or `hook_load`
-    /// (the force `hook_load` holding the string up).
+    /// (the force `hook_load` holding the string up), or `weight_on_bit` (the hook load held at
+    /// the static hook load of the string hanging off bottom less `weight_on_bit`).
     #[schemars(extend("label" = "hoist mode"))]
     pub mode: HoistKind,
     /// Block velocity of `velocity` mode, down positive (default 30 m/h).
@@ -634,8 +638,13 @@ pub struct Hoist {
     /// Hook load of `hook_load` mode, >= 0.
     #[schemars(extend("unit" = "N", "label" = "hook load"))]
     pub hook_load: f64,
+    /// Weight on bit of `weight_on_bit` mode, >= 0: the static hook load of the hanging string
+    /// less the hook load held (ramped from 0 with `ramp_time`).
+    #[schemars(extend("unit" = "N", "label" = "hoist weight on bit"))]
+    pub weight_on_bit: f64,
     /// Time constant of the hoist setpoint's approach to its target, >= 0 (0: a step). The
-    /// block velocity starts at 0, the hook load at the static hook load of the hanging string.
+    /// block velocity starts at 0, the hook load at the static hook load of the hanging string,
+    /// the weight on bit at 0.
     #[schemars(extend("unit" = "s", "label" = "hoist ramp time"))]
     pub ramp_time: f64,
 }
@@ -643,7 +652,13 @@ pub struct Hoist {
 impl Default for Hoist {
     fn default() -> Self {
         let p = HoistParams::default();
-        Hoist { mode: HoistKind::Velocity, speed: p.speed, hook_load: p.hook_load, ramp_time: p.ramp_time }
+        Hoist {
+            mode: HoistKind::Velocity,
+            speed: p.speed,
+            hook_load: p.hook_load,
+            weight_on_bit: p.weight_on_bit,
+            ramp_time: p.ramp_time,
+        }
     }
 }
 
@@ -654,9 +669,11 @@ impl Hoist {
             mode: match self.mode {
                 HoistKind::Velocity => HoistMode::Velocity,
                 HoistKind::HookLoad => HoistMode::HookLoad,
+                HoistKind::WeightOnBit => HoistMode::WeightOnBit,
             },
             speed: self.speed,
             hook_load: self.hook_load,
+            weight_on_bit: self.weight_on_bit,
             ramp_time: self.ramp_time,
             ..HoistParams::default()
         }
@@ -1017,6 +1034,7 @@ impl DrillConfig {
         if let Some(h) = &self.hoist {
             finite("hoist.speed", h.speed, "m/s")?;
             nonneg("hoist.hook_load", h.hook_load, "N")?;
+            nonneg("hoist.weight_on_bit", h.weight_on_bit, "N")?;
             nonneg("hoist.ramp_time", h.ramp_time, "s")?;
             self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
             let cells = self.bit.detournay.cut_surface_cells;

@@ -6,7 +6,8 @@
 //! for Python's `DrillConfig.with_overrides`), then [`DrillConfig::from_json`] and [`DrillConfig::validate`] as for a single run, and
 //! [`solve`] with the field snapshots switched off (`numerics.field_interval = 0`: they do not
 //! change the dynamics, the series or the metrics). The metrics are the solve's own
-//! ([`crate::metrics::stick_slip`] over its window); the series are dropped when the run ends,
+//! ([`crate::metrics::stick_slip`] over its window; a coupled run's also its
+//! [`CoupledMetrics`] with the regime, [`super::axial::regime`]); the series are dropped when the run ends,
 //! so a row's memory does not depend on the duration (a thread holds the series of the one run
 //! it is solving).
 //!
@@ -21,8 +22,10 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde_json::Value;
 
+use super::axial::regime::Regime;
 pub use super::config::{apply_overrides, set_path, Override};
 use super::config::{override_pairs, DrillConfig, SERIES};
+use super::engine::CoupledMetrics;
 use super::solver::{solve, DrillStats};
 use crate::error::{Error, Result};
 use crate::interrupt::{CancelFlag, Interrupt};
@@ -47,6 +50,8 @@ pub struct MapRow {
     pub stats: DrillStats,
     /// Relative energy balance error of the run (NaN for an invalid run).
     pub balance_error: f64,
+    /// A coupled run's metrics and regime (`None` unless a coupled run succeeded).
+    pub coupled: Option<CoupledMetrics>,
 }
 
 /// The rows of a map as the columns of its table: one entry per run. A run without metrics
@@ -60,6 +65,24 @@ pub struct MapColumns {
     pub message: Vec<String>,
     pub metrics: MetricColumns,
     pub stats: StatColumns,
+    /// A coupled run's metrics (NaN, regime `undetermined`, for a run without them: a
+    /// torsion-only or failed run).
+    pub coupled: CoupledColumns,
+}
+
+/// The coupled columns of [`MapColumns`] (the names of [`CoupledMetrics`] in metrics.json).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CoupledColumns {
+    pub rop_mean_m_per_h: Vec<f64>,
+    #[serde(rename = "wob_mean_N")]
+    pub wob_mean_n: Vec<f64>,
+    #[serde(rename = "tob_mean_Nm")]
+    pub tob_mean_nm: Vec<f64>,
+    pub bounce_fraction: Vec<f64>,
+    #[serde(rename = "mse_mean_Pa")]
+    pub mse_mean_pa: Vec<f64>,
+    /// The regime's name ([`Regime::name`]).
+    pub regime: Vec<&'static str>,
 }
 
 /// The metric columns of [`MapColumns`] (the names of [`StickSlip`]).
@@ -104,6 +127,9 @@ impl MapColumns {
             rows.iter().map(|r| r.metrics.as_ref().map_or(f64::NAN, f)).collect()
         };
         let row = |f: fn(&MapRow) -> f64| -> Vec<f64> { rows.iter().map(f).collect() };
+        let coupled = |f: fn(&CoupledMetrics) -> f64| -> Vec<f64> {
+            rows.iter().map(|r| r.coupled.as_ref().map_or(f64::NAN, f)).collect()
+        };
         MapColumns {
             status: rows.iter().map(|r| r.status.name()).collect(),
             message: rows.iter().map(|r| r.message.clone()).collect(),
@@ -139,6 +165,14 @@ impl MapColumns {
                 balance_error: row(|r| r.balance_error),
                 courant_peak: row(|r| r.stats.courant_peak),
             },
+            coupled: CoupledColumns {
+                rop_mean_m_per_h: coupled(|c| c.rop_mean_m_per_h),
+                wob_mean_n: coupled(|c| c.wob_mean_n),
+                tob_mean_nm: coupled(|c| c.tob_mean_nm),
+                bounce_fraction: coupled(|c| c.bounce_fraction),
+                mse_mean_pa: coupled(|c| c.mse_mean_pa),
+                regime: rows.iter().map(|r| r.coupled.map_or(Regime::Undetermined, |c| c.regime).name()).collect(),
+            },
         }
     }
 }
@@ -154,6 +188,7 @@ impl MapRow {
             min_cycle_torque: f64::NAN,
             stats: DrillStats::default(),
             balance_error: f64::NAN,
+            coupled: None,
         }
     }
 }
@@ -311,6 +346,7 @@ pub fn run_one(cfg: &DrillConfig, cancel: &CancelFlag) -> MapRow {
                 min_cycle_torque: run.min_cycle_torque,
                 stats: run.stats,
                 balance_error: run.energy.balance_error,
+                coupled: if status.is_success() { run.coupled } else { None },
             }
         }
     }
@@ -349,6 +385,37 @@ mod tests {
             assert_eq!(row.breakoff_torque, single.breakoff_torque);
             assert_eq!(row.stats, single.stats);
         }
+    }
+
+    #[test]
+    fn coupled_rows_carry_the_coupled_metrics_of_single_runs() {
+        let base = json!({
+            "sections": [{"length": 200.0, "outer_diameter": 0.127, "inner_diameter": 0.108}],
+            "well": {"inclination_deg": 0.0},
+            "friction": {"static": 0.0},
+            "top_drive": {"rpm": 120.0, "controller": {"type": "speed"}},
+            "bit": {"law": "detournay"},
+            "hoist": {"mode": "weight_on_bit", "weight_on_bit": 80e3},
+            "numerics": {"cells": 50, "duration": 6.0}
+        })
+        .to_string();
+        let runs: Vec<Vec<Override>> =
+            [60e3, 90e3].iter().map(|&w| vec![("hoist.weight_on_bit".to_string(), json!(w))]).collect();
+        let rows = solve_map(&base, &runs, Some(2), None, &Never, &mut |_, _| {}).unwrap();
+        let columns = MapColumns::new(&rows);
+        for (k, (row, w)) in rows.iter().zip([60e3, 90e3]).enumerate() {
+            let mut cfg = DrillConfig::from_json(&base).unwrap();
+            cfg.hoist.as_mut().unwrap().weight_on_bit = w;
+            let single = solve(&cfg, &Never, &mut |_| {}).unwrap();
+            assert!(row.status.is_success(), "{}", row.message);
+            let c = single.coupled.unwrap();
+            assert_eq!(row.coupled, Some(c));
+            assert_eq!((columns.coupled.wob_mean_n[k], columns.coupled.regime[k]), (c.wob_mean_n, c.regime.name()));
+        }
+        // A torsion-only map: NaN and undetermined.
+        let rows = solve_map(&super::tests::base(), &[vec![]], Some(1), None, &Never, &mut |_, _| {}).unwrap();
+        let columns = MapColumns::new(&rows);
+        assert!(columns.coupled.rop_mean_m_per_h[0].is_nan() && columns.coupled.regime[0] == "undetermined");
     }
 
     #[test]

@@ -1,5 +1,7 @@
 //! The hoist at the top of the axial field: an imposed block velocity, a hook load, or an
-//! autodriller (PI on weight on bit or on rate of penetration) giving the block velocity.
+//! autodriller (PI on weight on bit or on rate of penetration) giving the block velocity; or a
+//! weight on bit as a rig's weight indicator reads it (the hook load held at the hanging
+//! string's static hook load less the weight).
 //!
 //! The setpoint of every mode approaches its target (the mode's value, then `[time, value]`
 //! steps) as a first-order lag of time constant `ramp_time`, exactly over each step, the rule of
@@ -26,6 +28,9 @@ pub enum HoistMode {
     HookLoad,
     /// The autodriller's block velocity.
     Autodriller,
+    /// The weight on bit `weight_on_bit`, N, as a rig's weight indicator imposes it: the hook
+    /// load held at the static hook load of the string hanging off bottom less the weight.
+    WeightOnBit,
 }
 
 /// The autodriller's controlled quantity.
@@ -78,6 +83,8 @@ pub struct HoistParams {
     pub speed: f64,
     /// Hook load of `hook_load` mode, N.
     pub hook_load: f64,
+    /// Weight on bit of `weight_on_bit` mode, N.
+    pub weight_on_bit: f64,
     /// Time constant of the setpoint's approach to its target, s (0: steps).
     pub ramp_time: f64,
     /// `[time s, value]` changes of the mode's target (m/s, N, or the autodriller's setpoint).
@@ -91,6 +98,7 @@ impl Default for HoistParams {
             mode: HoistMode::Velocity,
             speed: 30.0 / 3600.0,
             hook_load: 0.0,
+            weight_on_bit: 0.0,
             ramp_time: 1.0,
             steps: Vec::new(),
             autodriller: Autodriller::default(),
@@ -105,6 +113,7 @@ impl HoistParams {
         let finite = [
             ("speed", self.speed),
             ("hook_load", self.hook_load),
+            ("weight_on_bit", self.weight_on_bit),
             ("autodriller.setpoint", self.autodriller.setpoint),
             ("autodriller.min_speed", self.autodriller.min_speed),
             ("autodriller.max_speed", self.autodriller.max_speed),
@@ -146,12 +155,14 @@ impl HoistParams {
         Ok(())
     }
 
-    /// The mode's target before any step: `speed`, `hook_load` or the autodriller's setpoint.
+    /// The mode's target before any step: `speed`, `hook_load`, the autodriller's setpoint or
+    /// `weight_on_bit`.
     fn base(&self) -> f64 {
         match self.mode {
             HoistMode::Velocity => self.speed,
             HoistMode::HookLoad => self.hook_load,
             HoistMode::Autodriller => self.autodriller.setpoint,
+            HoistMode::WeightOnBit => self.weight_on_bit,
         }
     }
 
@@ -217,13 +228,22 @@ pub struct Hoist {
     pub setpoint: f64,
     /// `int e dt` of the autodriller.
     pub integral: f64,
+    /// The static hook load of the string hanging off bottom, N: `weight_on_bit` mode holds the
+    /// hook load at this less its (ramped) weight on bit.
+    pub hanging: f64,
 }
 
 impl Hoist {
     /// A hoist at time 0 whose setpoint starts at `initial` (the mode's unit: a block at rest
-    /// starts at 0 m/s, a hook at its static load).
+    /// starts at 0 m/s, a hook at its static load, a weight on bit at 0 N).
     pub fn new(params: HoistParams, initial: f64) -> Self {
-        Hoist { params, time: 0.0, setpoint: initial, integral: 0.0 }
+        Hoist { params, time: 0.0, setpoint: initial, integral: 0.0, hanging: 0.0 }
+    }
+
+    /// The same hoist with the static hook load `hanging` (N) of the string hanging off bottom
+    /// (`weight_on_bit` mode's reference: `section::static_tension` at the top, no weight on bit).
+    pub fn hanging(self, hanging: f64) -> Self {
+        Hoist { hanging, ..self }
     }
 
     /// Advances by `dt` (s): the setpoint towards the target at the step's end, then the command
@@ -236,6 +256,7 @@ impl Hoist {
         match p.mode {
             HoistMode::Velocity => HoistCommand::Speed(self.setpoint),
             HoistMode::HookLoad => HoistCommand::HookLoad(self.setpoint),
+            HoistMode::WeightOnBit => HoistCommand::HookLoad(self.hanging - self.setpoint),
             HoistMode::Autodriller => {
                 let a = &p.autodriller;
                 let (e, ff) = match a.target {
@@ -317,6 +338,21 @@ mod tests {
             HoistParams { mode: HoistMode::HookLoad, hook_load: 900e3, ramp_time: 0.0, ..HoistParams::default() };
         let mut h = Hoist::new(params, 950e3);
         assert_eq!(h.step(0.1, HoistMeasurement::default()), HoistCommand::HookLoad(900e3));
+    }
+
+    #[test]
+    fn weight_on_bit_mode_commands_the_hanging_load_less_the_weight() {
+        // A string hanging at 900 kN: 60 kN on the bit is a hook load of 840 kN, reached as the
+        // first-order lag of the weight from 0 (the hook from the hanging load).
+        let params =
+            HoistParams { mode: HoistMode::WeightOnBit, weight_on_bit: 60e3, ramp_time: 2.0, ..HoistParams::default() };
+        let mut h = Hoist::new(params, 0.0).hanging(900e3);
+        let HoistCommand::HookLoad(first) = h.step(1.0, HoistMeasurement::default()) else { panic!("a hook load") };
+        assert!((first - (900e3 - 60e3 * (1.0 - (-0.5f64).exp()))).abs() < 1e-6, "{first}");
+        let HoistCommand::HookLoad(last) = h.step(1e3, HoistMeasurement::default()) else { panic!("a hook load") };
+        assert!((last - 840e3).abs() < 1e-6, "{last}");
+        let p = HoistParams { weight_on_bit: f64::NAN, ..HoistParams::default() };
+        assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.weight_on_bit");
     }
 
     /// The plant of a drilling string in a few lines (see [`drill_from`]), from no weight.

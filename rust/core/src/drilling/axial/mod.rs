@@ -12,7 +12,9 @@
 //! * [`bit_boundary`]: the bit as the set-valued bottom boundary of both fields (cutting, stick,
 //!   lift-off) from their incoming Riemann invariants;
 //! * [`hoist`]: the hoist at the top (block velocity, hook load, autodriller PI on weight on bit
-//!   or rate of penetration with limits and anti-windup).
+//!   or rate of penetration with limits and anti-windup, weight on bit as a weight indicator's);
+//! * [`regime`]: the regime of a coupled run's window (smooth drilling, stick-slip, bit bounce,
+//!   both, off bottom) from its torsional verdict and its bounce fraction.
 //!
 //! Units are SI throughout (m, s, N, N m, rad, rad/s, Pa); axial speeds and positions are down
 //! positive.
@@ -21,6 +23,7 @@ pub mod bit_boundary;
 pub mod bitrock;
 pub mod cut_surface;
 pub mod hoist;
+pub mod regime;
 pub mod section;
 
 #[cfg(test)]

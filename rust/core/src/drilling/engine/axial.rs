@@ -160,7 +160,7 @@ impl Axial {
             zeros: vec![0.0; len],
             sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
             gravity,
-            hoist: Hoist::new(params, initial),
+            hoist: Hoist::new(params, initial).hanging(hanging),
             law,
             rule,
             angle: 0.0,

@@ -137,6 +137,38 @@ fn the_upwind_cut_surface_cells_are_checked() {
 }
 
 #[test]
+fn the_weight_on_bit_mode_drills_at_the_imposed_weight() {
+    // The hook held at the hanging string's static load (its weight in air here: no mud, a
+    // vertical frictionless hole) less 80 kN: the rate law settles at W = 80 kN, at the depth of
+    // cut d = (W - a l sigma) / (a zeta eps) and ROP = d Omega / (2 pi), apart from the
+    // string's velocity damping, which takes rho A L k_d ROP (~0.1 % here) off the weight.
+    let mut cfg = settling("detournay");
+    let h = cfg.hoist.as_mut().unwrap();
+    h.mode = crate::drilling::config::HoistKind::WeightOnBit;
+    h.weight_on_bit = 80e3;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, crate::solution::Status::Success, "{}", run.message);
+    let m = run.coupled.unwrap();
+    let w = 80e3;
+    let d = (w - 0.108 * 0.011 * 60e6) / (0.108 * 0.6 * 60e6);
+    // 120 rpm: 2 rev/s.
+    let rop = d * 2.0 * 3600.0;
+    // Measured: W 0.09 % below, ROP 0.8 % below (the damping's 72 N less weight, 1.85e-5 m less
+    // depth of cut); the ROP of the law at the mean weight within 0.05 %.
+    assert!((m.wob_mean_n - w).abs() < 0.002 * w, "{m:?}");
+    assert!((m.rop_mean_m_per_h - rop).abs() < 0.01 * rop, "{} vs {rop} m/h", m.rop_mean_m_per_h);
+    let at_mean = (m.wob_mean_n - 0.108 * 0.011 * 60e6) / (0.108 * 0.6 * 60e6) * 2.0 * 3600.0;
+    assert!((m.rop_mean_m_per_h - at_mean).abs() < 5e-4 * at_mean, "{} vs {at_mean} m/h", m.rop_mean_m_per_h);
+    // The hook load: the weight in air of the 200 m pipe less the weight on bit.
+    let area = PI / 4.0 * (0.127f64.powi(2) - 0.108f64.powi(2));
+    let hanging = 8000.0 * area * 200.0 * cfg.well.gravity;
+    let hook = window(&run, &run.hook_load);
+    let mean = hook.iter().sum::<f64>() / hook.len() as f64;
+    assert!((mean - (hanging - w)).abs() < 1e-6 * hanging, "{mean} vs {}", hanging - w);
+    assert!(run.energy.balance_error.abs() < 1e-12, "{:?}", run.energy);
+}
+
+#[test]
 fn a_velocity_step_into_a_string_on_a_stuck_bit_is_the_wave_staircase() {
     // No gravity, damping or rotation: the block starts at V, a compression wave Z V runs down
     // at c = sqrt(E / rho) and doubles at the stuck bit (a fixed end), so the weight on bit is

@@ -15,6 +15,7 @@ use super::kernel::{godunov, transport};
 use super::sampler::Sampler;
 use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
+use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
@@ -489,9 +490,13 @@ pub struct CoupledMetrics {
     /// ([`mechanical_specific_energy`]; `inf` when nothing was drilled while the bit turned).
     #[serde(rename = "mse_mean_Pa")]
     pub mse_mean_pa: f64,
+    /// The window's regime from the torsional verdict and the bounce fraction
+    /// ([`crate::drilling::axial::regime::regime`]).
+    pub regime: Regime,
 }
 
-/// The coupled metrics of `run`'s series over its window (None when it holds no sample).
+/// The coupled metrics of `run`'s series over its window (None when it holds no sample); the
+/// regime from `run.metrics` (set before).
 pub fn coupled_metrics(run: &DrillRun, radius: f64) -> Option<CoupledMetrics> {
     let [a, b] = run.window;
     let idx: Vec<usize> = (0..run.t.len().min(run.rop.len())).filter(|&k| run.t[k] >= a && run.t[k] <= b).collect();
@@ -509,6 +514,7 @@ pub fn coupled_metrics(run: &DrillRun, radius: f64) -> Option<CoupledMetrics> {
         tob_mean_nm: tob,
         bounce_fraction: bounce,
         mse_mean_pa: mse,
+        regime: regime(run.metrics.as_ref().map(|m| m.verdict), bounce),
     })
 }
 
