@@ -956,6 +956,13 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         _say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip: yes in {int(verdicts.get('yes', 0))} "
              f"runs (the bit stops during part of the window), no in {int(verdicts.get('no', 0))}, undetermined in "
              f"{int(verdicts.get('undetermined', 0))}; settled in {int((ok['settled'] == 1).sum())} of {len(ok)}")
+    from .drilling.maps import controller_recommendation
+
+    ranking = controller_recommendation(frame)
+    if ranking:
+        _say(f"controller recommendation: {ranking[0].controller} (" + "; ".join(s.line() for s in ranking)
+             + f"); set it with --set top_drive.controller.type={ranking[0].controller}; the presets' settings: "
+             f"drillstring tune {os.fsdecode(args.config)}")
     from .io.output import write_text
 
     written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),

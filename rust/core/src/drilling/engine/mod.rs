@@ -7,6 +7,8 @@
 //!   `(v, N)`, `rho A` and `A sqrt(E rho)` (wave speed `sqrt(E / rho)`);
 //! * [`kernel`]: the one transport kernel in Riemann invariants (first-order upwind, the exact
 //!   shift at Courant number 1) with the sources, and the `consistent` Godunov update;
+//! * [`kernel_published`]: the same transport with the sources at the speed before it
+//!   (`numerics.source_speed = "before_transport"`, the scheme of torsionalWaveStep.m);
 //! * [`sources`]: wall friction with its stick phase and viscous damping, per cell, one place
 //!   each;
 //! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
@@ -166,6 +168,7 @@ pub mod controller;
 pub mod energy;
 pub mod field;
 pub mod kernel;
+pub mod kernel_published;
 pub mod run;
 pub mod sampler;
 pub mod sources;
