@@ -86,7 +86,9 @@
 //!    of torsionalWaveStep.m, which evaluates the threshold and direction at the speed before
 //!    transport; with the speed after it, friction cannot pump energy into the grid-scale
 //!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
-//!    the kinetic limit (regularised).
+//!    the kinetic limit (regularised). `numerics.source_speed = "before_transport"` takes the
+//!    threshold, the kinetic direction and the damping at the speed before transport instead,
+//!    as torsionalWaveStep.m ([`kernel_published`]).
 //!
 //! A stopped cell's new torque comes from its neighbours' invariants: at `C = 1` it is
 //! `(tau_{j-1} + tau_{j+1}) / 2 + Z (omega_{j-1} - omega_{j+1}) / 2`, so inside a stuck region
