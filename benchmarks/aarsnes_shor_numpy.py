@@ -133,7 +133,8 @@ def substeps(p: dict, dt: float = 0.01) -> tuple[int, float]:
 
 
 def simulate(md: float = 2500, rpm: float = 40, duration: float = 60, cells: int = 1000, mu: float = 0.3,
-             f_rat: float = 0.65, o_thres: float = 1.5, dt: float = 0.01, keep_state: bool = False) -> dict:
+             f_rat: float = 0.65, o_thres: float = 1.5, dt: float = 0.01, keep_state: bool = False,
+             top_drive: str = "explicit") -> dict:
     """Run MAIN.m for Well B. Returns numpy arrays over ``t = 0:dt:duration`` (Nt samples):
 
     ``t`` (s), ``motor_torque`` (N m, MAIN's ``y(k)``, computed from the state at ``t[k]``),
@@ -141,7 +142,14 @@ def simulate(md: float = 2500, rpm: float = 40, duration: float = 60, cells: int
     ``setpoint`` (rad/s), plus scalars ``tau_max_1``, ``tau_min``, ``phi_max_td``, ``substeps``,
     ``dt_sub`` and the parameter dict ``params``; ``final_state`` (MAIN's ``x(:,end)``, the state
     after the last step) if ``keep_state``.
+
+    ``top_drive="implicit"`` changes one thing: the top drive is implicit Euler in the string
+    torque, ``(I/dt + Z) Otd' = I Otd/dt + tau_m + Z beta_1`` (``Z = Jp Gp / c_t``) before each
+    sub-step, as drillstring's solver does, instead of their explicit update after it.
     """
+    if top_drive not in ("explicit", "implicit"):
+        raise ValueError(f"top_drive: got {top_drive!r}, expected 'explicit' or 'implicit'")
+    implicit = top_drive == "implicit"
     p = parameters_well_b(md, mu, f_rat, o_thres, cells)
     an = analytics(p, f_rat)
     omega_stat = rpm / 60 * 2 * math.pi
@@ -210,6 +218,8 @@ def simulate(md: float = 2500, rpm: float = 40, duration: float = 60, cells: int
         for _ in range(n):
             np.add(beta, alpha, out=s)
             np.multiply(0.5, s, out=op)
+            if implicit:
+                otd = (p["I_TD"] / dts * otd + tau_motor + 2 * tau_coef * beta[0]) / (p["I_TD"] / dts + 2 * tau_coef)
             alpha0 = -beta[0] + 2 * otd
             cbeta_end = alpha[last] - tb_term
             pa_end, cb_first = alpha[pm1], beta[pp]
@@ -255,8 +265,9 @@ def simulate(md: float = 2500, rpm: float = 40, duration: float = 60, cells: int
             np.multiply(dtcdx, d_b, out=s)
             beta += s
             beta -= tmp
-            tau_td = tau_coef * (alpha[0] - beta[0])
-            otd = otd + otd_coef * (tau_motor - tau_td)
+            if not implicit:
+                tau_td = tau_coef * (alpha[0] - beta[0])
+                otd = otd + otd_coef * (tau_motor - tau_td)
         o = 0.5 * (beta + alpha)
         f = inv2c * (alpha - beta)
     out = {"t": t, "motor_torque": y, "top_drive_speed": td, "bit_speed": bit, "setpoint": sp_hist,

@@ -118,7 +118,7 @@ def test_the_calibration_example_recovers_the_truth_and_prints_what_the_page_sho
     for key, true in (("friction.static", truth.static), ("friction.kinetic_ratio", truth.kinetic_ratio)):
         p = res.parameters[key]
         assert p.ci_low <= true <= p.ci_high and p.identifiable, (key, p)
-        assert p.ci_high - p.ci_low < 0.025 * true  # "1-2 % of them wide"
+        assert p.ci_high - p.ci_low < 0.025 * true  # "1-2.5 % of them wide"
     assert res.rms[0]["motor_torque"] == pytest.approx(500.0, rel=0.1)  # the sensor noise
     assert math.isfinite(res.condition) and res.warnings == []
 

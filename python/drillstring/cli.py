@@ -963,6 +963,13 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
             _say("regimes: " + ", ".join(f"{r} in {n} runs" for r, n in regimes.items())
                  + f"; ROP {ok['rop_mean_m_per_h'].min():.3g}..{ok['rop_mean_m_per_h'].max():.3g} m/h, "
                  f"MSE {ok['mse_mean_Pa'].min() / 1e6:.3g}..{ok['mse_mean_Pa'].max() / 1e6:.3g} MPa")
+    from .drilling.maps import controller_recommendation
+
+    ranking = controller_recommendation(frame)
+    if ranking:
+        _say(f"controller recommendation: {ranking[0].controller} (" + "; ".join(s.line() for s in ranking)
+             + f"); set it with --set top_drive.controller.type={ranking[0].controller}; the presets' settings: "
+             f"drillstring tune {os.fsdecode(args.config)}")
     from .io.output import write_text
 
     written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),

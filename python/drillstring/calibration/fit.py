@@ -28,10 +28,11 @@ Stages:
    for a lag-one autocorrelation ``rho > 0`` of the residuals: correlated residuals carry less
    information than their count) gives, per parameter, the point of the confidence ellipsoid
    that reaches furthest in it; the misfit is solved along that path (multiples
-   :data:`PATH_MULTIPLES`), and the interval is the furthest point whose excess misfit stays
-   within ``s^2 chi2_1(level)``, widened to every point solved during the fit within that
-   threshold (the set-valued friction makes the misfit jump at small scales, where the
-   quadratic model alone is too optimistic). Where the Jacobian is near-singular (condition
+   :data:`PATH_MULTIPLES`), and the interval reaches the furthest point whose excess misfit stays
+   within ``s^2 chi2_1(level)``, never less far than the quadratic reach of the covariance (a
+   jump of the misfit inside it is the set-valued friction's roughness at small scales), widened
+   to every point solved during the fit within that threshold (where the misfit is flatter than
+   quadratic, the quadratic model alone is too optimistic). Where the Jacobian is near-singular (condition
    number of the box-scaled Jacobian above :data:`CONDITION_LIMIT`; ``profile="auto"``) or with
    ``profile=True``, the parameter's **profile likelihood** (the misfit minimised over the others
    at each of ``profile_points`` values) gives the interval instead. A parameter whose interval
@@ -669,11 +670,14 @@ def fit(
             part = slice((2 * i + side) * count, (2 * i + side + 1) * count)
             xs = np.array([problem.values(w)[i] for w in path_points[part]])
             inside = path_ssr[part] <= threshold
+            # the Jacobian's (quadratic) reach at least: a jump of the misfit inside it is the
+            # set-valued friction's roughness at small scales, not information
+            reach = x_opt[i] + (1 if side == 0 else -1) * math.sqrt(threshold / s2) * se[i]
             if not inside[0] or not math.isfinite(se[i]):
-                ends.append(x_opt[i] + (1 if side == 0 else -1) * PATH_MULTIPLES[0] * math.sqrt(
-                    threshold / s2) * se[i])
+                ends.append(reach)
             else:
-                ends.append(float(xs[np.flatnonzero(inside)[-1]]))  # the furthest point inside
+                far = float(xs[np.flatnonzero(inside)[-1]])  # the furthest point inside
+                ends.append(max(far, reach) if side == 0 else min(far, reach))
         hi_ci, lo_ci = max(ends[0], x_opt[i]), min(ends[1], x_opt[i])
         # every point solved so far whose misfit is within the threshold belongs to the set too
         # (the set-valued friction makes the misfit jump at the scale of the intervals)

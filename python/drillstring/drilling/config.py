@@ -419,6 +419,11 @@ class Numerics:
     """The Courant number ``c dt / h`` the step is made for, in (0, 1]: the step is this fraction
     of the grid's Courant-1 step, the cells unchanged (1: the exact shift; below 1 the upwind
     transport diffuses, reported as ``upwind_loss``)."""
+    source_speed: str = _default("numerics", "source_speed", unit="", kind="str")
+    """The speed of a cell its sources (friction threshold and direction, damping) are evaluated
+    at: ``"after_transport"`` (default) or ``"before_transport"`` (the speed at the step start,
+    the scheme of Aarsnes & Shor's torsionalWaveStep.m, to reproduce their published runs; both
+    converge with the grid)."""
 
 
 @dataclass(frozen=True)

@@ -63,8 +63,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     from matplotlib.figure import Figure
 
-__all__ = ["CONTROLLER_AXIS", "COUPLED_COLUMNS", "METRIC_COLUMNS", "axis_label", "boundary_note", "controller_maps",
-           "drill_map", "regime_map", "ssi_lines", "ssi_map"]
+__all__ = ["CONTROLLER_AXIS", "COUPLED_COLUMNS", "METRIC_COLUMNS", "ControllerScore", "axis_label", "boundary_note",
+           "controller_maps", "controller_recommendation", "drill_map", "regime_map", "ssi_lines", "ssi_map"]
 
 #: The axis of the controller type (one panel per controller in :func:`controller_maps`).
 CONTROLLER_AXIS = "top_drive.controller.type"
@@ -941,3 +941,46 @@ def map_figures(frame: pd.DataFrame, units: str = "si") -> dict[str, Figure]:
     except ValidationError as exc:
         warnings.warn(f"no map figure: {exc}", stacklevel=2)
     return out
+
+
+@dataclasses.dataclass(frozen=True)
+class ControllerScore:
+    """One controller of a map with a ``top_drive.controller.type`` axis, over all its runs
+    (every combination of the other axes' values): :func:`controller_recommendation`."""
+
+    controller: str
+    runs: int
+    #: Runs that did not give a result (invalid, failed, interrupted).
+    failed: int
+    #: Runs with the stick-slip verdict ``yes`` (the bit stops during part of the window).
+    stick_slip: int
+    #: Largest and mean SSI over the runs that gave a result (NaN without any).
+    worst_ssi: float
+    mean_ssi: float
+
+    def line(self) -> str:
+        ok = self.runs - self.failed
+        failed = f", {self.failed} failed" if self.failed else ""
+        return (f"{self.controller}: stick-slip in {self.stick_slip} of {ok} runs{failed}, "
+                f"SSI up to {self.worst_ssi:.3g} (mean {self.mean_ssi:.3g})")
+
+
+def controller_recommendation(frame: pd.DataFrame) -> list[ControllerScore]:
+    """The controllers of a map with a ``top_drive.controller.type`` axis, best first: fewest runs
+    in stick-slip or without a result, then the lowest mean SSI, then the lowest largest SSI (the
+    verdicts and SSI are the core's metrics of each run, counted here). Empty without that axis."""
+    if CONTROLLER_AXIS not in frame.columns:
+        return []
+    scores = []
+    for name, part in frame.groupby(CONTROLLER_AXIS, sort=False):
+        ok = part[part["status"] == "success"]
+        ssi = ok["ssi"].to_numpy(dtype=float)
+        ssi = ssi[np.isfinite(ssi)]
+        scores.append(ControllerScore(
+            controller=str(name), runs=len(part), failed=len(part) - len(ok),
+            stick_slip=int((ok["stick_slip_verdict"] == "yes").sum()),
+            worst_ssi=float(ssi.max()) if ssi.size else math.nan,
+            mean_ssi=float(ssi.mean()) if ssi.size else math.nan))
+    inf = math.inf
+    return sorted(scores, key=lambda s: (s.stick_slip + s.failed, s.mean_ssi if math.isfinite(s.mean_ssi) else inf,
+                                         s.worst_ssi if math.isfinite(s.worst_ssi) else inf))

@@ -7,6 +7,8 @@
 //!   `(v, N)`, `rho A` and `A sqrt(E rho)` (wave speed `sqrt(E / rho)`);
 //! * [`kernel`]: the one transport kernel in Riemann invariants (first-order upwind, the exact
 //!   shift at Courant number 1) with the sources, and the `consistent` Godunov update;
+//! * [`kernel_published`]: the same transport with the sources at the speed before it
+//!   (`numerics.source_speed = "before_transport"`, the scheme of torsionalWaveStep.m);
 //! * [`sources`]: wall friction with its stick phase and viscous damping, per cell, one place
 //!   each;
 //! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
@@ -84,7 +86,9 @@
 //!    of torsionalWaveStep.m, which evaluates the threshold and direction at the speed before
 //!    transport; with the speed after it, friction cannot pump energy into the grid-scale
 //!    mode that the exact shift at Courant 1 leaves undamped), or `tanh(omega*_j / v_r)` times
-//!    the kinetic limit (regularised).
+//!    the kinetic limit (regularised). `numerics.source_speed = "before_transport"` takes the
+//!    threshold, the kinetic direction and the damping at the speed before transport instead,
+//!    as torsionalWaveStep.m ([`kernel_published`]).
 //!
 //! A stopped cell's new torque comes from its neighbours' invariants: at `C = 1` it is
 //! `(tau_{j-1} + tau_{j+1}) / 2 + Z (omega_{j-1} - omega_{j+1}) / 2`, so inside a stuck region
@@ -166,6 +170,7 @@ pub mod controller;
 pub mod energy;
 pub mod field;
 pub mod kernel;
+pub mod kernel_published;
 pub mod run;
 pub mod sampler;
 pub mod sources;

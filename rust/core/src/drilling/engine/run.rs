@@ -12,11 +12,12 @@ use super::controller::{Controller, Setpoint, RPM_PER_RAD_S};
 use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
 use super::kernel::{godunov, transport};
+use super::kernel_published::transport as published;
 use super::sampler::Sampler;
 use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
-use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity};
+use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
 use crate::error::{Error, Num, Result};
@@ -306,6 +307,8 @@ impl<'c> Simulation<'c> {
                 nl.peak_strain[s] = nl.peak_strain[s].max(sums.peak);
             }
         } else {
+            let transport =
+                if self.cfg.numerics.source_speed == SourceSpeed::BeforeTransport { published } else { transport };
             for sp in sections.iter() {
                 let r = sp.padded();
                 let sums = transport(
