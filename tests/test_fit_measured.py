@@ -12,27 +12,24 @@ form.
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from test_fit import BOUNDS, EXAMPLE, TRUTH
 
 import drillstring as ds
 from drillstring.cli import main
 from drillstring.errors import ValidationError
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "aarsnes-shor-well-b.toml"
-TRUTH = {"friction.static": 0.3, "friction.kinetic_ratio": 0.65}
-BOUNDS = {"friction.static": (0.1, 0.6), "friction.kinetic_ratio": (0.3, 0.95)}
 #: A controller that is not the one that made the data (the rig's is unknown).
 WRONG_CONTROLLER = {"top_drive.controller.type": "z_torque", "top_drive.rpm": 55.0}
 
 
 @pytest.fixture(scope="module")
 def short_config():
-    return ds.load_drill_config(EXAMPLE).with_overrides(
-        {"numerics.cells": 250, "numerics.duration": 12.0, "numerics.field_interval": 0.0})
+    """Well B at 250 cells over 12 s (``tests/test_fit.py``'s set-up)."""
+    return ds.load_drill_config(EXAMPLE).with_overrides({"numerics.cells": 250, "numerics.duration": 12.0})
 
 
 @pytest.fixture(scope="module")

@@ -668,7 +668,8 @@ def fit(
     say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr[best]:.4g})")
     def through(u: NDArray[np.float64], stages: range) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
         """A start through the horizons ``stages``, the shortest first."""
-        ssr_k, info = math.inf, {}
+        ssr_k = math.inf
+        info: dict[str, Any] = {}
         for stage in stages:
             q = problems[stage]
             if stage:  # a longer horizon: the best of a small sample around the point first
