@@ -11,8 +11,13 @@ form.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
+import shutil
+from pathlib import Path
 
+import _docs
 import numpy as np
 import pandas as pd
 import pytest
@@ -130,3 +135,17 @@ def test_cli_fit_top_measured(tmp_path, short_config, synthetic):
     assert doc["top"] == "measured"
     # one parameter, 16 global points: near the truth (the two-parameter test checks the interval)
     assert doc["parameters"]["friction.static"]["value"] == pytest.approx(0.3, abs=0.01)
+
+
+def test_the_guide_example_prints_what_the_page_shows(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The calibration guide's example of the measured top, run as it stands on the page."""
+    root = Path(__file__).resolve().parents[1]
+    page = root / "docs" / "guide" / "calibration.md"
+    (block,) = [b for b in _docs.blocks("python", [page]) if 'top="measured"' in b]
+    shutil.copytree(root / "examples", tmp_path / "examples")
+    monkeypatch.chdir(tmp_path)
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        exec(compile(block, "the measured-top example", "exec"), {"__name__": "__example__"})
+    shown = [line[2:] for line in block.rstrip("\n").splitlines() if line.startswith("# ")]
+    assert printed.getvalue().strip().splitlines() == shown[-3:]

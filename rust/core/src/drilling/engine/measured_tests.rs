@@ -35,7 +35,11 @@ fn imposing_a_controller_runs_speed_reproduces_its_motor_torque() {
     let mut series: Vec<[f64; 2]> = run.t.iter().zip(&run.surface_rpm).map(|(&t, &w)| [t, w]).collect();
     // the last sample is a step before the duration: held to it (the step after it is not sampled)
     series.push([cfg.numerics.duration, *run.surface_rpm.last().unwrap()]);
-    let imposed = solve(&measured(&cfg, series), &Never, &mut |_| {}).unwrap();
+    // the torque limit is not used with an imposed speed (nor warned about)
+    let mut imposed_cfg = measured(&cfg, series);
+    imposed_cfg.top_drive.torque_limit = 1.0;
+    let imposed = solve(&imposed_cfg, &Never, &mut |_| {}).unwrap();
+    assert!(imposed.warnings.iter().all(|w| !w.contains("torque_limit")), "{:?}", imposed.warnings);
     assert_eq!(imposed.status, Status::Success, "{}", imposed.message);
     assert_eq!(imposed.t.len(), run.t.len());
     let peak = run.motor_torque.iter().fold(0.0f64, |m, v| m.max(v.abs()));
