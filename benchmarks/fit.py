@@ -1,8 +1,8 @@
 """Calibration speed: a four-parameter fit of one 30 s start-up of the Aarsnes-Shor Well B
 example (``examples/aarsnes-shor-well-b.toml``: 2500 m, 1000 cells, PI control to 40 rpm).
 
-The data are the example's own surface torque at 20 Hz with 500 N m of sensor noise (seed 0)
-and its surface speed; the fit estimates ``friction.static``, ``friction.kinetic_ratio``,
+The data are the example's own surface torque at 20 Hz (``--rate``) with 500 N m of sensor
+noise (seed 0) and its surface speed; the fit estimates ``friction.static``, ``friction.kinetic_ratio``,
 ``friction.stick_speed`` and ``top_drive.inertia`` (``--fourth damping``: ``damping_rate``) in
 wide bounds by :func:`drillstring.fit`: a global Sobol stage of 128 points over the first 7.5 s,
 least-squares refinement from the 2 best starts over 7.5 s, the better one carried on (early
@@ -15,10 +15,11 @@ whether each interval holds it.
                              [--starts 2] [--horizon 5] [--carry 1] [--top controller|measured]
                              [--fourth inertia|damping]
 
-``--carry 0`` carries every start past the first horizon (no early stopping; the settings
-before 2026-12-03 were ``--samples 256 --starts 4 --carry 0 --fourth damping``); ``--top
-measured`` drives the model by the data's surface speed (the example's own at 20 Hz, without
-noise: an encoder's) instead of the PI controller.
+``--skip S`` starts the windows at S s; ``--rate HZ`` samples the data at HZ; ``--carry 0``
+carries every start past the first horizon (no early stopping; the settings before 2026-12-03
+were ``--samples 256 --starts 4 --carry 0 --fourth damping``); ``--top measured`` drives the
+model by the data's surface speed (the example's own, without noise: an encoder's) instead of
+the PI controller.
 """
 
 from __future__ import annotations
@@ -55,6 +56,8 @@ def main() -> None:
     parser.add_argument("--carry", type=int, default=1, help="starts carried past the first horizon (0: all)")
     parser.add_argument("--top", choices=("controller", "measured"), default="controller")
     parser.add_argument("--diff-step", type=float, default=1e-2, help="fit's diff_step (of the box)")
+    parser.add_argument("--skip", type=float, default=0.0, help="the windows start here, s (default 0)")
+    parser.add_argument("--rate", type=float, default=20.0, help="the data's sampling rate, Hz (100 / k)")
     parser.add_argument("--fourth", choices=("damping", "inertia"), default="inertia",
                         help="the fourth parameter: damping_rate or top_drive.inertia")
     args = parser.parse_args()
@@ -62,9 +65,10 @@ def main() -> None:
         {"numerics.cells": args.cells, "numerics.duration": args.duration, "numerics.field_interval": 0.0})
     truth = ds.drill(cfg)
     rng = np.random.default_rng(0)
-    data = MeasuredData(truth.t[::5], {"motor_torque": truth.motor_torque[::5]
-                                       + rng.normal(0.0, 500.0, truth.t[::5].size),
-                                       "surface_rpm": truth.surface_rpm[::5]})
+    k = max(int(round(1.0 / (args.rate * cfg.numerics.output_interval))), 1)
+    data = MeasuredData(truth.t[::k], {"motor_torque": truth.motor_torque[::k]
+                                       + rng.normal(0.0, 500.0, truth.t[::k].size),
+                                       "surface_rpm": truth.surface_rpm[::k]})
     truths, bounds = dict(TRUTH), dict(BOUNDS)
     if args.fourth == "inertia":
         del truths["damping_rate"], bounds["damping_rate"]
@@ -72,7 +76,7 @@ def main() -> None:
     cpu, start = machine_cpu(), time.perf_counter()
     res = ds.fit(cfg, data, bounds, threads=args.threads, landscape=args.landscape, samples=args.samples,
                  starts=args.starts, horizon=args.horizon, carry=args.carry or None, top=args.top,
-                 diff_step=args.diff_step)
+                 diff_step=args.diff_step, windows=[(args.skip, args.duration)] if args.skip > 0 else None)
     wall, used = time.perf_counter() - start, machine_cpu() - cpu
     print(f"fit of a {args.duration:g} s start-up, {args.cells} cells, 4 parameters ({args.fourth}), {args.threads} "
           f"threads, {args.samples} global points, {args.starts} starts: "
