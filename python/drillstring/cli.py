@@ -1023,6 +1023,9 @@ def _add_fit(sub: Any) -> None:
                    help="grid points per parameter of the landscapes (default 9)")
     p.add_argument("--no-landscape", action="store_true", help="skip the misfit landscapes")
     p.add_argument("--seed", type=_int_in(0, INT64_MAX), default=0, help="seed of the global stage (default 0)")
+    p.add_argument("--top", choices=("controller", "measured"), default="controller",
+                   help="the model's top boundary: the configuration's controller and setpoint (default), or the "
+                   "data's surface_rpm imposed as the top speed (the controller's gains need not be known)")
     p.set_defaults(func=_cmd_fit)
 
 
@@ -1074,7 +1077,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     with output_folder(args.out, plots=plots, field="--out", command="fit") as directory:
         result = fit(config, data, params, targets=targets, windows=windows or None, per_event=args.per_event,
                      samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
-                     landscape_points=args.landscape_points, progress=lambda msg: _say(f"fit: {msg}"))
+                     landscape_points=args.landscape_points, progress=lambda msg: _say(f"fit: {msg}"),
+                     top=args.top)
         for key, p in result.parameters.items():
             _say(f"{key} = {p.value:.6g} ({result.level:.0%}: {p.ci_low:.6g} .. {p.ci_high:.6g}, {p.method})"
                  + ("" if p.identifiable else " NOT identifiable"))

@@ -3,9 +3,12 @@
 The model of each event (a start-up) is its configuration with the parameters set by dotted
 path (the core's overrides, as ``DrillConfig.with_overrides`` and the axes of a map), solved by
 the core (``_core.drill_solve``, which runs without the GIL) over the span of the windows. The
-top boundary is the configuration's: the top drive with its controller, setpoint and ramp
-(``top_drive.*``); the measured surface speed is compared, not imposed (the core has no
-boundary that follows a measured speed series).
+top boundary is, with ``top="controller"`` (default), the configuration's: the top drive with
+its controller, setpoint and ramp (``top_drive.*``), and the measured surface speed may be
+compared; with ``top="measured"`` the data's ``surface_rpm`` is imposed
+(``top_drive.mode = "measured_speed"``, the series as ``top_drive.speed_series``, held after
+its last sample), so that the controller and its gains need not be known, and the model's
+motor torque is the torque that imposes it.
 
 Residuals: for each event, each target series ``s`` and each model output time ``t_k`` nearest
 a measured sample inside a window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the
@@ -171,6 +174,8 @@ class FitResult:
     landscapes: list[Landscape] = field(default_factory=list)
     profiles: dict[str, Profile] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    #: The model's top boundary: ``"controller"`` or ``"measured"`` (the data's surface speed imposed).
+    top: str = "controller"
 
     @property
     def config(self) -> DrillConfig:
@@ -197,6 +202,7 @@ class FitResult:
             "refinement": self.refinement,
             "events": [{"source": e.data.source, "windows": [list(w) for w in e.windows]} for e in self.events],
             "warnings": list(self.warnings),
+            "top": self.top,
         }
 
     def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Any]:
@@ -224,7 +230,7 @@ class _Problem:
     """The residuals of the events as a function of the parameter vector scaled to ``[0, 1]``."""
 
     def __init__(self, events: list[Event], columns: list[_Column], targets: dict[str, float],
-                 threads: int, fraction: float = 1.0) -> None:
+                 threads: int, fraction: float = 1.0, top: str = "controller") -> None:
         self.events = events
         self.columns = columns
         self.targets = targets
@@ -259,8 +265,12 @@ class _Problem:
             for s, v in meas.items():
                 sd = float(np.std(v))
                 scales[s] = sd if sd > 0 else (float(np.mean(np.abs(v))) or 1.0)
-            cfg = ev.config.with_overrides({"numerics.duration": float(idx[-1] * dt + dt),
-                                            "numerics.field_interval": 0.0})
+            duration = float(idx[-1] * dt + dt)
+            overrides: dict[str, Any] = {"numerics.duration": duration, "numerics.field_interval": 0.0}
+            if top == "measured":
+                overrides.update({"top_drive.mode": "measured_speed",
+                                  "top_drive.speed_series": _speed_series(ev.data, duration)})
+            cfg = ev.config.with_overrides(overrides)
             self.bases.append(cfg.to_json())
             self.index.append(idx)
             self.measured.append(meas)
@@ -315,6 +325,28 @@ class _Problem:
         out = [self.residual_of(r) for r in self.run(points)]
         self.history += [(np.asarray(u, dtype=np.float64), float(r @ r)) for u, r in zip(points, out)]
         return out
+
+
+def _speed_series(data: MeasuredData, duration: float) -> list[list[float]]:
+    """``top="measured"``: the data's ``surface_rpm`` as ``top_drive.speed_series`` over ``0 ..
+    duration`` (from the last sample at or before 0 to the first at or after ``duration``, the
+    last value held to ``duration`` when the data end before it), refused naming the column and
+    the time when the data start after 0 or hold a non-finite speed there."""
+    t, rpm = data.t, data.series["surface_rpm"]
+    if t[0] > 0:
+        raise ValidationError(f"{data.source}: column surface_rpm", f"first sample at t = {t[0]:g} s",
+                              "data from the start-up (t <= 0) to drive the model with top='measured'")
+    a = int(np.searchsorted(t, 0.0, side="right")) - 1
+    b = min(int(np.searchsorted(t, duration, side="left")), t.size - 1)
+    t, rpm = t[a:b + 1], rpm[a:b + 1]
+    bad = ~np.isfinite(rpm)
+    if bad.any():
+        raise ValidationError(f"{data.source}: column surface_rpm", f"NaN or infinite at t = {t[np.argmax(bad)]:g} s",
+                              "finite speeds over the run to drive the model with top='measured'")
+    pairs = [[float(x), float(y)] for x, y in zip(t, rpm)]
+    if pairs[-1][0] < duration:
+        pairs.append([duration, pairs[-1][1]])
+    return pairs
 
 
 class _Cached:
@@ -487,6 +519,8 @@ def fit(
     landscape_points: int = 9,
     max_gap: Optional[float] = None,
     progress: Optional[Callable[[str], Any]] = None,
+    top: str = "controller",
+    carry: Optional[int] = None,
 ) -> FitResult:
     """Fits configuration values to measured data (see the module docstring).
 
@@ -527,6 +561,14 @@ def fit(
         interval leaves the box (``"auto"``), for every parameter, or never.
     landscape, landscape_points
         The misfit over a grid of each pair of parameters.
+    top : ``"controller"`` or ``"measured"``
+        The model's top boundary: the configuration's top drive with its controller and setpoint
+        (default), or the data's ``surface_rpm`` imposed as the top speed
+        (``top_drive.mode = "measured_speed"``; the data must start at the start-up, and
+        ``surface_rpm`` cannot then be a target). See the guide's section "The measured top".
+    carry : int, optional
+        Early stopping: the number of starts carried on to the longer horizons, the best after
+        the first horizon's refinement (default: every start).
 
     Returns
     -------
@@ -563,6 +605,14 @@ def fit(
             raise ValidationError(name, count, f"an integer >= {least}")
     if profile not in ("auto", True, False):
         raise ValidationError("profile", profile, "'auto', True or False")
+    if top not in ("controller", "measured"):
+        raise ValidationError("top", top, "'controller' or 'measured'")
+    if top == "measured" and "surface_rpm" in target_map:
+        raise ValidationError("targets", ", ".join(target_map),
+                              "targets other than surface_rpm with top='measured' (the model's top speed is the "
+                              "data's)")
+    if carry is not None and (isinstance(carry, bool) or not isinstance(carry, int) or carry < 1):
+        raise ValidationError("carry", carry, "an integer >= 1, or None for every start")
     if threads is None:
         threads = os.cpu_count() or 1
     if isinstance(threads, bool) or not isinstance(threads, int) or not 1 <= threads <= _core.MAX_THREADS:
@@ -570,7 +620,7 @@ def fit(
 
     events = []
     for cfg, ds_ in zip(configs, datasets):
-        ds_.require(list(target_map))
+        ds_.require(list(target_map) + (["surface_rpm"] if top == "measured" else []))
         wins = _windows(windows, ds_, cfg)
         ds_.check_windows(wins, list(target_map), max_gap)
         events.append(Event(cfg, ds_, wins))
@@ -587,7 +637,7 @@ def fit(
     fractions = [1.0]
     while fractions[0] * longest / 2 >= horizon * (1 - 1e-9):
         fractions.insert(0, fractions[0] / 2)
-    problems = [_Problem(events, columns, target_map, threads, f) for f in fractions]
+    problems = [_Problem(events, columns, target_map, threads, f, top) for f in fractions]
     problem = problems[-1]
     if min(q.points for q in problems) <= p:
         raise ValidationError("windows", [e.windows for e in events],
@@ -617,10 +667,12 @@ def fit(
         if len(order) < starts and all(np.max(np.abs(sobol[k] - sobol[j])) >= START_SEPARATION for j in order):
             order.append(int(k))
     say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr[best]:.4g})")
-    runs = []
-    for k in order:  # each start through the horizons, the shortest first
-        u = sobol[k].copy()
-        for stage, q in enumerate(problems):
+    def through(u: NDArray[np.float64], stages: range) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
+        """A start through the horizons ``stages``, the shortest first."""
+        ssr_k = math.inf
+        info: dict[str, Any] = {}
+        for stage in stages:
+            q = problems[stage]
             if stage:  # a longer horizon: the best of a small sample around the point first
                 near = np.clip(u + (qmc.Sobol(d=p, scramble=True, seed=seed + stage).random_base2(ZOOM_LOG2)
                                     - 0.5) * 2 * ZOOM, 0.0, 1.0)
@@ -628,10 +680,22 @@ def fit(
                 misfits = [float(r @ r) for r in q.residuals(candidates)]
                 u = candidates[int(np.argmin(misfits))].copy()
             u, ssr_k, info = _refine(q, u, list(range(p)), diff_step, max_iterations)
-        runs.append((u, ssr_k, info))
+        return u, ssr_k, info
+
+    if carry is None or carry >= len(order) or len(problems) == 1:
+        runs = [through(sobol[k].copy(), range(len(problems))) for k in order]
+        dropped: list[float] = []
+    else:  # early stopping: every start over the first horizon, the best `carry` on
+        first = sorted((through(sobol[k].copy(), range(1)) for k in order), key=lambda run: run[1])
+        runs = [through(u.copy(), range(1, len(problems))) for u, _, _ in first[:carry]]
+        dropped = [run[1] for run in first[carry:]]
+        say(f"carried the best {carry} of {len(first)} start(s) on (misfits over the first horizon "
+            f"{[round(run[1], 4) for run in first]})")
     u_opt, ssr, refinement = min(runs, key=lambda run: run[1])
     refinement = {**refinement, "starts": len(order), "ssr": ssr, "ssr_of_starts": [run[1] for run in runs],
                   "horizons": fractions}
+    if dropped:
+        refinement["dropped_first_horizon_ssr"] = dropped
     r = problem.residuals([u_opt])[0]
     x_opt = problem.values(u_opt)
 
@@ -768,7 +832,7 @@ def fit(
         parameters=estimates, configs=fitted_configs, events=events, targets=target_map, ssr=ssr, points=npts,
         level=level, evaluations=sum(q.evaluations for q in problems), seconds=time.perf_counter() - start_time,
         condition=condition, residual_autocorrelation=rho, global_stage=global_stage, refinement=refinement,
-        rms=rms, fitted=fitted, landscapes=landscapes, profiles=profiles, warnings=warnings_,
+        rms=rms, fitted=fitted, landscapes=landscapes, profiles=profiles, warnings=warnings_, top=top,
     )
 
 

@@ -311,6 +311,15 @@ class TopDrive:
     the speed these controllers ask for as a first-order lag of time constant
     ``1 / (2 pi motor_bandwidth)``, so that the motor torque is a real drive's and converges as
     the grid is refined."""
+    mode: str = _default("top_drive", "mode", unit="", kind="str")
+    """What drives the top: ``"controller"`` (default; the controller follows the setpoint) or
+    ``"measured_speed"`` (the top speed is ``speed_series``, imposed exactly; the motor torque is
+    the torque that imposes it, the top-drive inertia's acceleration torque plus the string torque
+    at the top; controller, setpoint and torque limit unused)."""
+    speed_series: tuple[tuple[float, float], ...] = _default("top_drive", "speed_series", unit="s, rpm",
+                                                             kind="pairs")
+    """``measured_speed``: the top-drive speed ``(time s, rpm)``, linearly interpolated; times
+    strictly increasing, covering ``0 .. numerics.duration``."""
 
 
 @dataclass(frozen=True)

@@ -121,7 +121,7 @@ mod tests {
         assert_eq!(
             message(&with(r#", "top_drive": {"rmp": 1}"#)),
             "invalid top_drive.rmp: got an unknown field, expected one of inertia, torque_limit, rpm, ramp_time, \
-             steps, controller, control_interval, motor_bandwidth"
+             steps, controller, control_interval, motor_bandwidth, mode, speed_series"
         );
         assert_eq!(
             message(&with(r#", "weather": {"wind": 3}"#)).split(", expected").next(),

@@ -447,6 +447,33 @@ pub struct TopDrive {
     /// a string's torsional modes (0.1-2 Hz).
     #[schemars(extend("unit" = "Hz", "label" = "motor bandwidth"))]
     pub motor_bandwidth: f64,
+    /// What drives the top: `controller` (default: the controller of `controller` follows the
+    /// setpoint `rpm`, `ramp_time`, `steps`) or `measured_speed` (the top speed is the series
+    /// `speed_series`, imposed exactly, and the motor torque is the torque that imposes it:
+    /// [`crate::drilling::engine::boundary::imposing_torque`]; the controller, setpoint and
+    /// torque limit are then not used).
+    #[schemars(extend("label" = "top boundary"))]
+    pub mode: TopMode,
+    /// `measured_speed`: the top-drive speed as `[time, rpm]` pairs, linearly interpolated;
+    /// times finite and strictly increasing, covering the run (the first at or before 0, the
+    /// last at or after `numerics.duration`). Empty with `controller`.
+    #[schemars(extend("label" = "measured surface speed", "item_units" = ["s", "rpm"], "item_labels" = ["time", "top-drive speed"]))]
+    pub speed_series: Vec<[f64; 2]>,
+}
+
+/// What drives the top of the string (`top_drive.mode`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum TopMode {
+    /// The top drive with its controller and setpoint.
+    #[default]
+    Controller,
+    /// The top speed follows `top_drive.speed_series` (a measured surface speed).
+    MeasuredSpeed,
+}
+
+impl TopMode {
+    pub const NAMES: [&'static str; 2] = ["controller", "measured_speed"];
 }
 
 impl Default for TopDrive {
@@ -462,6 +489,8 @@ impl Default for TopDrive {
             controller: Controller::default(),
             control_interval: 0.01,
             motor_bandwidth: 10.0,
+            mode: TopMode::Controller,
+            speed_series: Vec::new(),
         }
     }
 }
@@ -891,10 +920,12 @@ pub(crate) const REQUIRED_SECTION: [&str; 3] = ["length", "outer_diameter", "inn
 /// names the step (`top_drive.steps[1]`, `[time s, rpm]`), the inclination its two forms.
 fn refine(user: &Value, error: Error) -> Error {
     let Error::InvalidInput { field, value, allowed } = error;
-    if let Some(rest) = field.strip_prefix("top_drive.steps[") {
-        let index = rest.split(']').next().unwrap_or("");
-        let step = user.pointer(&format!("/top_drive/steps/{index}")).map_or(value, shown);
-        return Error::invalid(format!("top_drive.steps[{index}]"), step, "[time s, rpm]");
+    for key in ["steps", "speed_series"] {
+        if let Some(rest) = field.strip_prefix(&format!("top_drive.{key}[")) {
+            let index = rest.split(']').next().unwrap_or("");
+            let step = user.pointer(&format!("/top_drive/{key}/{index}")).map_or(value, shown);
+            return Error::invalid(format!("top_drive.{key}[{index}]"), step, "[time s, rpm]");
+        }
     }
     if allowed.contains("untagged enum Inclination") {
         return Error::invalid(field, value, "a number or an array of numbers (degrees)");
@@ -1073,6 +1104,54 @@ impl DrillConfig {
         Ok(())
     }
 
+    /// `top_drive.speed_series`: with `mode = "measured_speed"` at least two `[time s, rpm]`
+    /// pairs, finite, times strictly increasing and covering `[0, numerics.duration]`; with
+    /// `controller` empty (a series that would be ignored is refused).
+    fn validate_speed_series(&self) -> Result<()> {
+        let td = &self.top_drive;
+        let v = &td.speed_series;
+        if td.mode == TopMode::Controller {
+            if !v.is_empty() {
+                return Err(Error::invalid(
+                    "top_drive.speed_series",
+                    format!("{} pairs", v.len()),
+                    "empty with top_drive.mode = \"controller\" (set top_drive.mode = \"measured_speed\" to impose it)",
+                ));
+            }
+            return Ok(());
+        }
+        if v.len() < 2 {
+            return Err(Error::invalid(
+                "top_drive.speed_series",
+                format!("{} pairs", v.len()),
+                "at least 2 [time s, rpm] pairs with top_drive.mode = \"measured_speed\"",
+            ));
+        }
+        for (i, [t, rpm]) in v.iter().enumerate() {
+            finite(format!("top_drive.speed_series[{i}][0]"), *t, "s")?;
+            finite(format!("top_drive.speed_series[{i}][1]"), *rpm, "rpm")?;
+            if i > 0 && *t <= v[i - 1][0] {
+                return Err(Error::invalid(
+                    format!("top_drive.speed_series[{i}][0]"),
+                    Num(*t),
+                    format!("times strictly increasing (after {} s)", Num(v[i - 1][0])),
+                ));
+            }
+        }
+        let (first, last, end) = (v[0][0], v[v.len() - 1][0], self.numerics.duration);
+        if first > 0.0 {
+            return Err(Error::invalid("top_drive.speed_series[0][0]", Num(first), "a time <= 0 s (covering the run)"));
+        }
+        if last < end {
+            return Err(Error::invalid(
+                format!("top_drive.speed_series[{}][0]", v.len() - 1),
+                Num(last),
+                format!("a time >= numerics.duration = {} s (covering the run)", Num(end)),
+            ));
+        }
+        Ok(())
+    }
+
     fn validate_values(&self) -> Result<()> {
         let n = self.sections.len();
         if !(1..=MAX_SECTIONS).contains(&n) {
@@ -1245,6 +1324,7 @@ impl DrillConfig {
         pos("top_drive.controller.z_factor", c.z_factor, "-")?;
         pos("top_drive.controller.torque_highpass_time", c.torque_highpass_time, "s")?;
         pos("top_drive.control_interval", td.control_interval, "s")?;
+        self.validate_speed_series()?;
         let b = &self.bit;
         nonneg("bit.weight_on_bit", b.weight_on_bit, "N")?;
         pos("bit.radius", b.radius, "m")?;

@@ -24,6 +24,9 @@ pub fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
 /// the static torque that a thousand times would cover), else a motor too small for the
 /// string or friction factors too high.
 pub fn torque_limit_warning(cfg: &DrillConfig, breakoff: f64) -> Option<String> {
+    if cfg.top_drive.mode == super::config::TopMode::MeasuredSpeed {
+        return None; // an imposed speed: the limit is not used
+    }
     let needed = static_torque(cfg, breakoff);
     let limit = cfg.top_drive.torque_limit;
     if limit.partial_cmp(&needed) != Some(std::cmp::Ordering::Less) {

@@ -198,6 +198,7 @@ mod tests {
         cfg.well.survey = Some("survey.csv".into());
         cfg.friction.intervals = vec![FrictionInterval { top_md: 0.0, bottom_md: 1.0, static_coefficient: 0.2 }];
         cfg.top_drive.steps = vec![[10.0, 60.0]];
+        cfg.top_drive.speed_series = vec![[0.0, 0.0]];
         cfg.hoist = Some(super::super::config::Hoist::default());
         serde_json::to_value(&cfg).unwrap()
     }

@@ -7,7 +7,9 @@
 //! relation between `w'` and `load` that meets it.
 //!
 //! * top: [`TopDrive`], an inertia driven by the motor, which carries out a controller's
-//!   [`Command`] within its torque limit and speed-loop lag;
+//!   [`Command`] within its torque limit and speed-loop lag, or is given its speed
+//!   ([`Command::Imposed`], a measured surface speed) with the torque that imposes it
+//!   ([`imposing_torque`]);
 //! * bottom: [`Bit`], the BHA inertia with a [`BitLaw`]: a free end, or the velocity-weakening
 //!   bit torque of [`crate::drilling::bit`] with its stick phase.
 //!
@@ -51,6 +53,16 @@ impl EndLine {
     }
 }
 
+/// The motor torque that takes the top drive (inertia `inertia`) from `omega` to `omega1` over a
+/// step of `dt` against the characteristic `arriving` (implicit Euler, as [`EndLine`]):
+/// `I (omega1 - omega) / dt + Z (omega1 - beta_1)`, the inertia's acceleration torque plus the
+/// string torque at the top. It is the torque a drive measures (its motor's), so that a model
+/// driven by a measured speed gives a torque comparable with the measured one.
+#[inline]
+pub fn imposing_torque(inertia: f64, omega: f64, omega1: f64, dt: f64, arriving: Arriving) -> f64 {
+    inertia * (omega1 - omega) / dt + arriving.impedance * (omega1 - arriving.value)
+}
+
 /// The top drive: its inertia and speed, the motor's torque limit and speed-loop lag.
 #[derive(Debug, Clone, Copy)]
 pub struct TopDrive {
@@ -84,10 +96,11 @@ impl TopDrive {
         let implicit = |tm: f64| (inertia * omega / dt + tm + z0 * beta1) / (inertia / dt + z0);
         let (omega1, motor) = match command {
             Command::Torque(tm) => (implicit(tm), tm),
+            Command::Imposed(wanted) => (wanted, imposing_torque(inertia, omega, wanted, dt, arriving)),
             Command::Speed(wanted) => {
                 // The motor's speed loop: a first-order lag towards the speed asked for.
                 let wanted = omega + (wanted - omega) * self.motor_lag;
-                let tm = inertia * (wanted - omega) / dt + z0 * (wanted - beta1);
+                let tm = imposing_torque(inertia, omega, wanted, dt, arriving);
                 if tm.abs() <= self.limit {
                     (wanted, tm)
                 } else {

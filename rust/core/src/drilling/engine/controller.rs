@@ -1,12 +1,14 @@
 //! The top drive's controllers and setpoint (see [`super`], "Controllers"): a controller reads
 //! the top speed and the characteristic arriving at the top and asks the motor for a torque
 //! ([`Command::Torque`]: `pi`, `soft_torque`) or a speed ([`Command::Speed`]: `speed`,
-//! `z_torque`); the top drive ([`super::boundary::TopDrive`]) carries it out.
+//! `z_torque`); the top drive ([`super::boundary::TopDrive`]) carries it out. With
+//! `top_drive.mode = "measured_speed"` the top speed is a given series instead ([`SpeedSeries`],
+//! [`Command::Imposed`]).
 
 use std::f64::consts::PI;
 
 use super::boundary::Arriving;
-use crate::drilling::config::{ControllerKind, DrillConfig, TopDrive};
+use crate::drilling::config::{ControllerKind, DrillConfig, TopDrive, TopMode};
 use crate::drilling::grid::Grid;
 use crate::error::{Error, Num, Result};
 
@@ -20,6 +22,9 @@ pub enum Command {
     Torque(f64),
     /// A top speed, rad/s, which the motor's speed loop follows.
     Speed(f64),
+    /// The top speed at the step's end, rad/s, imposed exactly (no lag, no torque limit): a
+    /// measured surface speed ([`SpeedSeries`]).
+    Imposed(f64),
 }
 
 /// The state of the controller.
@@ -52,7 +57,9 @@ impl Controller {
             }
             _ => (c.kp, c.ki),
         };
-        check_control_loop(cfg, grid, kp)?;
+        if td.mode == TopMode::Controller {
+            check_control_loop(cfg, grid, kp)?;
+        }
         Ok(Controller {
             kind: c.kind,
             kp,
@@ -151,9 +158,57 @@ impl Setpoint {
         self.value
     }
 
-    /// The largest speed the setpoint takes, rad/s.
+    /// The largest speed the setpoint takes (`measured_speed`: the series), rad/s.
     pub fn fastest(td: &TopDrive) -> f64 {
-        td.steps.iter().map(|s| s[1].abs()).fold(td.rpm.abs(), f64::max) / RPM_PER_RAD_S
+        let rpm = match td.mode {
+            TopMode::Controller => td.steps.iter().map(|s| s[1].abs()).fold(td.rpm.abs(), f64::max),
+            TopMode::MeasuredSpeed => td.speed_series.iter().map(|s| s[1].abs()).fold(0.0, f64::max),
+        };
+        rpm / RPM_PER_RAD_S
+    }
+}
+
+/// `top_drive.mode = "measured_speed"`: the top speed, the series `top_drive.speed_series`
+/// interpolated linearly (held at its ends), rad/s.
+#[derive(Debug, Clone, Default)]
+pub struct SpeedSeries {
+    t: Vec<f64>,
+    /// rad/s.
+    omega: Vec<f64>,
+    /// The interval of the last time asked for (times are asked in increasing order).
+    cursor: usize,
+}
+
+impl SpeedSeries {
+    /// The series of a configuration (None with `mode = "controller"`).
+    pub fn new(td: &TopDrive) -> Option<Self> {
+        (td.mode == TopMode::MeasuredSpeed).then(|| SpeedSeries {
+            t: td.speed_series.iter().map(|p| p[0]).collect(),
+            omega: td.speed_series.iter().map(|p| p[1] / RPM_PER_RAD_S).collect(),
+            cursor: 0,
+        })
+    }
+
+    /// The speed at `t`, rad/s.
+    #[inline]
+    pub fn at(&mut self, t: f64) -> f64 {
+        let (ts, ws) = (&self.t, &self.omega);
+        let last = ts.len() - 1;
+        if t <= ts[0] {
+            return ws[0];
+        }
+        if t >= ts[last] {
+            return ws[last];
+        }
+        if ts[self.cursor] > t {
+            self.cursor = 0;
+        }
+        while ts[self.cursor + 1] < t {
+            self.cursor += 1;
+        }
+        let k = self.cursor;
+        let f = (t - ts[k]) / (ts[k + 1] - ts[k]);
+        ws[k] + f * (ws[k + 1] - ws[k])
     }
 }
 
@@ -205,3 +260,7 @@ pub fn check_control_loop(cfg: &DrillConfig, grid: &Grid, kp: f64) -> Result<()>
         ),
     ))
 }
+
+#[cfg(test)]
+#[path = "measured_tests.rs"]
+mod measured_tests;

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::axial::Axial;
 use super::boundary::{Bit, TopDrive};
-use super::controller::{Controller, Setpoint, RPM_PER_RAD_S};
+use super::controller::{Command, Controller, Setpoint, SpeedSeries, RPM_PER_RAD_S};
 use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
 use super::kernel::{godunov, transport};
@@ -124,6 +124,8 @@ pub struct Simulation<'c> {
     bit: Bit,
     setpoint: Setpoint,
     control: Controller,
+    /// `top_drive.mode = "measured_speed"`: the top speed imposed in place of the controller's.
+    measured: Option<SpeedSeries>,
     ledger: Ledger,
     first_mode: f64,
     /// The axial field of a coupled run (`[hoist]`).
@@ -162,6 +164,7 @@ impl<'c> Simulation<'c> {
             wall,
             setpoint: Setpoint::new(&cfg.top_drive, dt),
             control,
+            measured: SpeedSeries::new(&cfg.top_drive),
             ledger: Ledger::default(),
             first_mode,
         })
@@ -270,7 +273,10 @@ impl<'c> Simulation<'c> {
 
         // Top drive.
         let arriving = self.field.arriving_top();
-        let command = self.control.command(td, t, dt, setpoint, self.top.omega, arriving);
+        let command = match &mut self.measured {
+            Some(series) => Command::Imposed(series.at(t + dt)),
+            None => self.control.command(td, t, dt, setpoint, self.top.omega, arriving),
+        };
         let (omega1, motor, tau_top) = self.top.step(command, arriving, dt, &mut self.ledger);
         self.control.observe(tau_top);
         self.field.set_top(arriving, omega1, tau_top);
