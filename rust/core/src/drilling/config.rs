@@ -16,7 +16,7 @@ use crate::metrics::STICK_SPEED;
 use crate::schema::{self, join, kind, shown};
 
 use super::axial::bitrock::DetournayBit;
-use super::axial::hoist::{HoistMode, HoistParams};
+use super::axial::hoist::{Autodriller, HoistMode, HoistParams};
 use super::grid::Grid;
 use crate::well::plan::SegmentSpec;
 
@@ -590,6 +590,9 @@ pub enum HoistKind {
     Velocity,
     /// The hook load `hoist.hook_load`.
     HookLoad,
+    /// The block velocity of the autodriller `[hoist.autodriller]` (a PI on the weight on bit or
+    /// the rate of penetration).
+    Autodriller,
 }
 
 /// The hoist at the top of the string. With a `[hoist]` table the run is coupled axial-torsional
@@ -597,8 +600,9 @@ pub enum HoistKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Hoist {
-    /// What the hoist imposes: `velocity` (the block velocity `speed`, default) or `hook_load`
-    /// (the force `hook_load` holding the string up).
+    /// What the hoist imposes: `velocity` (the block velocity `speed`, default), `hook_load`
+    /// (the force `hook_load` holding the string up) or `autodriller` (the block velocity of the
+    /// PI `[hoist.autodriller]`).
     #[schemars(extend("label" = "hoist mode"))]
     pub mode: HoistKind,
     /// Block velocity of `velocity` mode, down positive (default 30 m/h).
@@ -611,12 +615,27 @@ pub struct Hoist {
     /// block velocity starts at 0, the hook load at the static hook load of the hanging string.
     #[schemars(extend("unit" = "s", "label" = "hoist ramp time"))]
     pub ramp_time: f64,
+    /// `[time, value]` changes of the mode's target at increasing times, approached with
+    /// `ramp_time` as the top drive's `steps`: the block velocity (m/s), the hook load (N) or the
+    /// autodriller's setpoint (N or m/s). Plain numbers are SI in either unit system.
+    #[schemars(extend("label" = "hoist steps", "item_units" = ["s", "m/s or N"], "item_labels" = ["step time", "hoist target"]))]
+    pub steps: Vec<[f64; 2]>,
+    /// The autodriller of `mode = "autodriller"`.
+    #[schemars(extend("label" = "autodriller"))]
+    pub autodriller: Autodriller,
 }
 
 impl Default for Hoist {
     fn default() -> Self {
         let p = HoistParams::default();
-        Hoist { mode: HoistKind::Velocity, speed: p.speed, hook_load: p.hook_load, ramp_time: p.ramp_time }
+        Hoist {
+            mode: HoistKind::Velocity,
+            speed: p.speed,
+            hook_load: p.hook_load,
+            ramp_time: p.ramp_time,
+            steps: p.steps,
+            autodriller: p.autodriller,
+        }
     }
 }
 
@@ -627,11 +646,13 @@ impl Hoist {
             mode: match self.mode {
                 HoistKind::Velocity => HoistMode::Velocity,
                 HoistKind::HookLoad => HoistMode::HookLoad,
+                HoistKind::Autodriller => HoistMode::Autodriller,
             },
             speed: self.speed,
             hook_load: self.hook_load,
             ramp_time: self.ramp_time,
-            ..HoistParams::default()
+            steps: self.steps.clone(),
+            autodriller: self.autodriller,
         }
     }
 }
@@ -991,6 +1012,7 @@ impl DrillConfig {
             finite("hoist.speed", h.speed, "m/s")?;
             nonneg("hoist.hook_load", h.hook_load, "N")?;
             nonneg("hoist.ramp_time", h.ramp_time, "s")?;
+            h.params().validate("hoist")?;
             self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
         }
         Ok(())

@@ -17,7 +17,7 @@ use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
-use crate::drilling::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
+use crate::drilling::plausibility::{non_finite_metrics_warning, off_bottom_warning, run_warnings, transient_warning};
 use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Poller};
 use crate::metrics::{stick_slip, StickSlip};
@@ -430,6 +430,9 @@ impl<'c> Simulation<'c> {
         metrics(cfg, &mut run);
         if let Some(ax) = &self.axial {
             run.coupled = coupled_metrics(&run, ax.law().radius);
+        }
+        if let (Some(c), Some(h)) = (&run.coupled, &cfg.hoist) {
+            run.warnings.extend(off_bottom_warning(c.bounce_fraction, run.window, h.mode));
         }
         run.metrics_finite = run.metrics.as_ref().is_some_and(|m| non_finite_metrics_warning(m).is_none());
         run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));
