@@ -232,3 +232,30 @@ fn a_bit_that_never_touches_bottom_is_warned_about() {
     let run = solve(&settling("detournay"), &Never, &mut |_| {}).unwrap();
     assert!(run.warnings.iter().all(|w| !w.contains("never touched")), "{:?}", run.warnings);
 }
+
+#[test]
+fn the_axial_snapshots_hold_the_steady_drilling_string() {
+    // Steady drilling at 30 m/h: every cell moves down at the rate of penetration, the force at
+    // the bottom cell is the weight on bit (half a cell above it: within 1 %), and the
+    // compression falls from the bit up by the weight per metre rho A g (the viscous drag
+    // damping_rate rho A v, 2.3 N/m, lowers it by less than 1 %).
+    let mut cfg = settling("detournay");
+    cfg.numerics.field_interval = 1.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let (nt, nz) = (run.field_t.len(), run.axial_z.len());
+    assert_eq!((nt, run.axial_speed_field.len(), run.axial_force_field.len()), (61, nt * nz, nt * nz));
+    assert!(nz > 1 && run.axial_z[0] > 0.0 && run.axial_z[nz - 1] < 200.0);
+    let last = (nt - 1) * nz;
+    let v = 30.0 / 3600.0;
+    for k in 0..nz {
+        // within the splitting's O(damping_rate dt) = 0.6 % (dt = 6.45e-4 s; the state after the
+        // gravity kick alone would be g dt / 2 = 3.2 mm/s, 38 %, too fast)
+        assert!((run.axial_speed_field[last + k] - v).abs() < 0.005 * v, "{k}: {}", run.axial_speed_field[last + k]);
+    }
+    let area = PI / 4.0 * (0.127f64.powi(2) - 0.108f64.powi(2));
+    let per_metre = 8000.0 * area * 9.81;
+    let (top, bottom) = (run.axial_force_field[last], run.axial_force_field[last + nz - 1]);
+    assert!((bottom - 87_480.0).abs() < 0.01 * 87_480.0, "{bottom}");
+    let slope = (bottom - top) / (run.axial_z[nz - 1] - run.axial_z[0]);
+    assert!(slope < per_metre && slope > 0.99 * per_metre, "{slope} vs {per_metre}");
+}

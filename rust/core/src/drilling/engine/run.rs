@@ -83,6 +83,15 @@ pub struct DrillRun {
     pub bit_depth: Vec<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub depth_of_cut: Vec<f64>,
+    /// A coupled run's axial cells (empty without a hoist): their centres, m, and at the
+    /// snapshot times `field_t` (`field_t.len() x axial_z.len()`, row-major) the axial speed m/s
+    /// (down positive) and the axial force N (compression positive, tension negative).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axial_z: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axial_speed_field: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axial_force_field: Vec<f64>,
     /// A coupled run's metrics over the window (None without a hoist or a window).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coupled: Option<CoupledMetrics>,
@@ -350,6 +359,9 @@ impl<'c> Simulation<'c> {
             hook_load: Vec::new(),
             bit_depth: Vec::new(),
             depth_of_cut: Vec::new(),
+            axial_z: self.axial.as_ref().map_or_else(Vec::new, |a| a.z.clone()),
+            axial_speed_field: Vec::new(),
+            axial_force_field: Vec::new(),
             coupled: None,
             energy: EnergyBalance::default(),
             metrics: None,
@@ -373,12 +385,13 @@ impl<'c> Simulation<'c> {
             },
         };
         let mut sampler = Sampler::new(cfg);
-        if let Err(oom) = sampler.reserve(&mut run, nz) {
+        let axial_cells = self.axial.as_ref().map_or(0, |a| a.z.len());
+        if let Err(oom) = sampler.reserve(&mut run, nz, axial_cells) {
             run.status = Status::OutOfMemory;
             run.message = oom.outputs_message();
             return run;
         }
-        if !sampler.start(&self.field, &mut run, self.top.omega, self.bit_speed(), self.axial_point()) {
+        if !sampler.start(&self.field, self.axial.as_ref(), &mut run, self.top.omega, self.bit_speed(), self.axial_point()) {
             run.status = Status::NonFinite;
             run.message = "the initial state is not finite".into();
             return run;
@@ -411,7 +424,7 @@ impl<'c> Simulation<'c> {
             run.stats.steps = n + 1;
             let [a0, a1, a2, a3, a4, a5] = self.axial_point();
             let point = [t, top, self.bit_speed(), motor, bit, a0, a1, a2, a3, a4, a5];
-            if !sampler.record(n, point, &self.field, &mut run, dt) {
+            if !sampler.record(n, point, &self.field, self.axial.as_ref(), &mut run, dt) {
                 run.status = Status::NonFinite;
                 run.message = format!("the state became non-finite before t = {} s", Num(t));
                 break;
