@@ -43,8 +43,8 @@ from .metrics import STICK_SLIP_CRITERION
 if TYPE_CHECKING:  # pragma: no cover
     from .result import DrillResult
 
-__all__ = ["COUPLED_PLOT_FILES", "DATA_FILES", "FILES", "MARKER", "PLOT_FILES", "output_folder", "output_names", "report_markdown",
-           "write_outputs"]
+__all__ = ["COUPLED_PLOT_FILES", "DATA_FILES", "FILES", "MARKER", "PLOT_FILES", "output_folder", "output_names",
+           "report_markdown", "write_outputs"]
 
 #: The data files of an output folder, in the order they are written.
 DATA_FILES: tuple[str, ...] = ("series.parquet", "series.csv", "metrics.json", "fields.npz", "config.toml")
@@ -156,6 +156,9 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
     written.append(write_text(path("metrics.json"), text))
     profile = result.profile
 
+    axial: dict[str, Any] = ({"axial_z": result.axial_z, "axial_speed_m_s": result.axial_speed_field,
+                              "axial_force_N": result.axial_force_field} if coupled else {})
+
     def save_fields(tmp: str) -> None:
         with open(tmp, "wb") as handle:
             np.savez_compressed(
@@ -163,9 +166,7 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
                 profile_z=profile.z, limit_per_m=profile.limit_per_m, cumulative_Nm=profile.cumulative,
                 breakoff_torque_Nm=np.float64(profile.breakoff_torque), inclination_deg=profile.inclination_deg,
                 azimuth_deg=profile.azimuth_deg, tvd_m=profile.tvd, dls_deg_per_30m=profile.dls_deg_per_30m,
-                friction_factor=profile.friction_factor,
-                **({"axial_z": result.axial_z, "axial_speed_m_s": result.axial_speed_field,
-                    "axial_force_N": result.axial_force_field} if coupled else {}),
+                friction_factor=profile.friction_factor, **axial,
             )
 
     written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
@@ -174,12 +175,12 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
         from ..io.figures import save
         from .plots import space_time_maps, time_histories, torque_depth
 
-        figures = [(time_histories, space_time_maps, torque_depth)]
+        figures: list[Any] = [time_histories, space_time_maps, torque_depth]
         if coupled:
             from .plots import axial_histories, axial_space_time
 
-            figures.append((axial_histories, axial_space_time))
-        for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), (f for group in figures for f in group)):
+            figures += [axial_histories, axial_space_time]
+        for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), figures):
             written.append(Path(os.fsdecode(os.fspath(save(make(result, units=output_units), path(name))))))
     written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots).encode("utf-8")))
     os.unlink(marker)

@@ -38,8 +38,8 @@ SYSTEMS: tuple[str, ...] = ("si", "field")
 
 #: The field unit of each SI unit of the reference and of the outputs (units as pint parses them;
 #: ``ppg`` is pounds per US gallon; ``N/m`` and ``N*m/m``, the normal force and the friction limit
-#: per length, and ``m/h``, a coupled run's rate of penetration, only in outputs). SI units not listed (rpm, s, Hz, deg, rad/s, 1/s, dimensionless)
-#: are the same in both systems.
+#: per length, and ``m/h``, a coupled run's rate of penetration, only in outputs). SI units not
+#: listed (rpm, s, Hz, deg, rad/s, 1/s, m/s, dimensionless) are the same in both systems.
 FIELD_UNITS: dict[str, str] = {
     "m": "ft",
     "m^2": "in^2",

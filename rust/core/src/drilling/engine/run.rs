@@ -391,7 +391,14 @@ impl<'c> Simulation<'c> {
             run.message = oom.outputs_message();
             return run;
         }
-        if !sampler.start(&self.field, self.axial.as_ref(), &mut run, self.top.omega, self.bit_speed(), self.axial_point()) {
+        if !sampler.start(
+            &self.field,
+            self.axial.as_ref(),
+            &mut run,
+            self.top.omega,
+            self.bit_speed(),
+            self.axial_point(),
+        ) {
             run.status = Status::NonFinite;
             run.message = "the initial state is not finite".into();
             return run;
