@@ -177,25 +177,31 @@ def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Op
                     transform=ax.transAxes)
         return _root(fig)
     t = result.field_t
-    z_stride = max(1, result.z.size // 600)  # at most ~600 rows drawn; data untouched
+    _space_time_panels(fig, t, result.z * depth, depth_unit, (
+        (axes[0], result.omega_field, 1.0, "speed, rpm", "viridis"),
+        (axes[1], result.torque_field, torque, f"torque, {torque_unit}", "RdBu_r")))
+    fig.suptitle(title or f"{_title(result, units)}: along the string", fontsize=11)
+    return _root(fig)
+
+
+def _space_time_panels(fig: FigureLike, t: Any, z: Any, depth_unit: str, maps: Any) -> None:
+    """Draws each ``(ax, data[t, z], scale, label, cmap)`` of ``maps`` against time ``t`` and
+    depth ``z`` (drawn units), depth downward; ``"RdBu_r"`` on a scale symmetric about 0. At most
+    ~600 depths and ~1500 times are drawn (the data untouched)."""
+    z_stride = max(1, z.size // 600)
     t_stride = max(1, t.size // 1500)
-    z = result.z[::z_stride] * depth
-    maps = ((axes[0], result.omega_field, 1.0, "speed, rpm", "viridis"),
-            (axes[1], result.torque_field, torque, f"torque, {torque_unit}", "RdBu_r"))
     for ax, data, scale, label, cmap in maps:
         values = data[::t_stride, ::z_stride].T * scale
+        limits = {}
         if cmap == "RdBu_r":
             limit = float(np.nanmax(np.abs(values))) or 1.0
             limits = {"vmin": -limit, "vmax": limit}
-        else:
-            limits = {}
-        mesh = ax.pcolormesh(t[::t_stride], z, values, cmap=cmap, shading="nearest", rasterized=True, **limits)
+        mesh = ax.pcolormesh(t[::t_stride], z[::z_stride], values, cmap=cmap, shading="nearest", rasterized=True,
+                             **limits)
         fig.colorbar(mesh, ax=ax, pad=0.01).set_label(label)
         ax.set_ylabel(f"measured depth, {depth_unit}")
         ax.invert_yaxis()
-    axes[1].set_xlabel("t, s")
-    fig.suptitle(title or f"{_title(result, units)}: along the string", fontsize=11)
-    return _root(fig)
+    maps[-1][0].set_xlabel("t, s")
 
 
 @_documented("torque_depth.png")
@@ -328,23 +334,9 @@ def axial_space_time(result: DrillResult, title: Optional[str] = None, *, fig: O
         return _no_axial(fig, axes, "no axial field (a torsion-only run: no [hoist] table)")
     if result.field_t.size == 0:
         return _no_axial(fig, axes, "no snapshots (numerics.field_interval = 0)")
-    t = result.field_t
-    z_stride = max(1, result.axial_z.size // 600)
-    t_stride = max(1, t.size // 1500)
-    z = result.axial_z[::z_stride] * depth
-    maps = ((axes[0], result.axial_speed_field, 3600.0 * speed, f"axial speed (down +), {speed_unit}", "viridis"),
-            (axes[1], result.axial_force_field, force, f"axial force (compression +), {force_unit}", "RdBu_r"))
-    for ax, data, scale, label, cmap in maps:
-        values = data[::t_stride, ::z_stride].T * scale
-        limits = {}
-        if cmap == "RdBu_r":
-            limit = float(np.nanmax(np.abs(values))) or 1.0
-            limits = {"vmin": -limit, "vmax": limit}
-        mesh = ax.pcolormesh(t[::t_stride], z, values, cmap=cmap, shading="nearest", rasterized=True, **limits)
-        fig.colorbar(mesh, ax=ax, pad=0.01).set_label(label)
-        ax.set_ylabel(f"measured depth, {depth_unit}")
-        ax.invert_yaxis()
-    axes[1].set_xlabel("t, s")
+    _space_time_panels(fig, result.field_t, result.axial_z * depth, depth_unit, (
+        (axes[0], result.axial_speed_field, 3600.0 * speed, f"axial speed (down +), {speed_unit}", "viridis"),
+        (axes[1], result.axial_force_field, force, f"axial force (compression +), {force_unit}", "RdBu_r")))
     fig.suptitle(title or f"{_title(result, units)}: axial field along the string", fontsize=11)
     return _root(fig)
 
