@@ -40,6 +40,8 @@ def test_every_key_of_the_configuration_has_one_entry_and_no_other() -> None:
     config["top_drive"]["steps"] = [[10.0, 60.0]]
     config["top_drive"]["speed_series"] = [[0.0, 0.0]]
     config["hoist"] = {k: 0.0 for k in ("mode", "speed", "hook_load", "weight_on_bit", "ramp_time")}  # null by default
+    config["hoist"].update(steps=[[10.0, 0.01]], autodriller={k: 0.0 for k in (
+        "target", "setpoint", "kp", "ki", "min_speed", "max_speed")})
     schema = config_schema()
     assert set(schema) == _keys(config) | {"units"}  # units: read by the Python edge
     assert list(schema) == sorted(schema)

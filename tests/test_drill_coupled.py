@@ -72,6 +72,8 @@ def test_the_coupled_keys_are_checked_by_the_core() -> None:
     with pytest.raises(ValidationError, match="hoist.ramp_time"):
         _config(ramp_time=-1.0)
     with pytest.raises(ValidationError, match="hoist.mode"):
+        _config(mode="manual")
+    with pytest.raises(ValidationError, match="hoist.autodriller.kp"):  # an autodriller without gains
         _config(mode="autodriller")
     assert Hoist().mode == "velocity" and Hoist().speed == pytest.approx(30 / 3600)
     assert _config().to_toml().count("[hoist]") == 1

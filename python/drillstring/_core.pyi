@@ -855,7 +855,27 @@ class DrillStats(TypedDict):
     #: First natural frequency (fixed top, bit free or with the BHA), Hz.
     first_mode_hz: float
 
-class DrillOutput(TypedDict):
+class DrillCoupledOutput(TypedDict, total=False):
+    """What a coupled run ([hoist]) adds to its :class:`DrillOutput` (absent without a hoist)."""
+
+    #: Series at the times t: bit axial speed m/s (down positive), ROP m/h, weight on bit N,
+    #: hook load N, bit depth m, depth of cut per revolution m.
+    bit_axial_speed: NDArray[np.float64]
+    rop: NDArray[np.float64]
+    weight_on_bit: NDArray[np.float64]
+    hook_load: NDArray[np.float64]
+    bit_depth: NDArray[np.float64]
+    depth_of_cut: NDArray[np.float64]
+    #: The coupled metrics over the window (rop_mean_m_per_h, wob_mean_N, tob_mean_Nm,
+    #: bounce_fraction, mse_mean_Pa).
+    coupled: dict[str, float]
+    #: Axial cell centres, m; at field_t, (len(field_t), len(axial_z)): axial speed m/s (down
+    #: positive) and axial force N (compression positive); absent without snapshots.
+    axial_z: NDArray[np.float64]
+    axial_speed_field: NDArray[np.float64]
+    axial_force_field: NDArray[np.float64]
+
+class DrillOutput(DrillCoupledOutput):
     #: Series at k * output_interval.
     t: NDArray[np.float64]
     surface_rpm: NDArray[np.float64]

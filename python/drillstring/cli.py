@@ -649,7 +649,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
             c = result.coupled_metrics
             mse = f"{c['mse_mean_Pa'] / 1e6:.4g} MPa" if system == "si" else shown(c["mse_mean_Pa"], "Pa", system)
             wob = shown(c["wob_mean_N"], "N", system, kilo=system == "si")
-            _say(f"on bottom: ROP {c['rop_mean_m_per_h']:.4g} m/h, weight on bit {wob}, "
+            _say(f"on bottom: ROP {shown(c['rop_mean_m_per_h'], 'm/h', system)}, weight on bit {wob}, "
                  f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
                  f"MSE {mse}; regime: {result.coupled_regime}")
         if result.profile.bit_static_torque > 0:

@@ -66,6 +66,7 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
     import tomli as tomllib
 
 __all__ = [
+    "Autodriller",
     "Bit",
     "Controller",
     "Detournay",
@@ -392,9 +393,10 @@ class Hoist:
     bit on bottom (``bit.law`` ``"detournay"`` or ``"rgd"``)."""
 
     mode: str = _default("hoist", "mode", unit="", kind="str")
-    """``"velocity"`` (the block velocity ``speed``) or ``"hook_load"`` (the force ``hook_load``
-    holding the string up), or ``"weight_on_bit"`` (the hook load held at the static hook load of
-    the string hanging off bottom less ``weight_on_bit``, as a rig's weight indicator reads it)."""
+    """``"velocity"`` (the block velocity ``speed``), ``"hook_load"`` (the force ``hook_load``
+    holding the string up), ``"weight_on_bit"`` (the hook load held at the static hook load of
+    the string hanging off bottom less ``weight_on_bit``, as a rig's weight indicator reads it) or
+    ``"autodriller"`` (the block velocity of the PI :class:`Autodriller`)."""
     speed: float = _default("hoist", "speed", unit="m/s", kind="float")
     """Block velocity, m/s, down positive."""
     hook_load: float = _default("hoist", "hook_load", unit="N", kind="float")
@@ -404,6 +406,36 @@ class Hoist:
     ramp_time: float = _default("hoist", "ramp_time", unit="s", kind="float")
     """Time constant of the setpoint's approach (the block velocity from 0, the hook load from the
     static hook load, the weight on bit from 0), s (0: a step)."""
+    steps: tuple[tuple[float, float], ...] = _default("hoist", "steps", unit="s, m/s or N", kind="pairs")
+    """Changes of the mode's target ``(time s, value)`` at increasing times, approached with
+    ``ramp_time`` like the top drive's ``steps``: the block velocity (m/s), the hook load (N) or
+    the autodriller's setpoint (N or m/s); plain numbers are SI in either unit system."""
+    autodriller: Autodriller = field(default_factory=lambda: Autodriller(),
+                                     metadata={"kind": "table", "unit": "", "doc": ""})
+    """The autodriller of ``mode = "autodriller"``."""
+
+
+@dataclass(frozen=True)
+class Autodriller:
+    """The autodriller (``hoist.mode = "autodriller"``): a PI on the weight on bit or the rate of
+    penetration giving the block velocity, ``u = u_ff + kp e + ki int e`` within
+    ``[min_speed, max_speed]`` (no integration while saturated in the error's direction), ``e`` the
+    setpoint less the measured value, ``u_ff`` the setpoint itself with ``target = "rop"``.
+    ``kp`` and ``ki`` are not both 0 (refused: the block would not answer)."""
+
+    target: str = _default("hoist.autodriller", "target", unit="", kind="str")
+    """``"weight_on_bit"`` (default) or ``"rop"``."""
+    setpoint: float = _default("hoist.autodriller", "setpoint", unit="N or m/s", kind="float")
+    """The target's setpoint: N (``weight_on_bit``) or m/s (``rop``); a plain number is SI in
+    either unit system, a string with a unit (``"18 klbf"``, ``"60 ft/h"``) is converted."""
+    kp: float = _default("hoist.autodriller", "kp", unit="m/(N*s) or 1", kind="float")
+    """Proportional gain: (m/s)/N on the weight on bit, dimensionless on ROP."""
+    ki: float = _default("hoist.autodriller", "ki", unit="m/(N*s^2) or 1/s", kind="float")
+    """Integral gain: (m/s)/(N s) on the weight on bit, 1/s on ROP."""
+    min_speed: float = _default("hoist.autodriller", "min_speed", unit="m/s", kind="float")
+    """Least block velocity, m/s, down positive (negative: the block may pull up)."""
+    max_speed: float = _default("hoist.autodriller", "max_speed", unit="m/s", kind="float")
+    """Largest block velocity, m/s (default 100 m/h)."""
 
 
 @dataclass(frozen=True)
@@ -656,6 +688,7 @@ def _plain(value: Any) -> Any:
 
 
 _TABLES.update(detournay=Detournay, hoist=Hoist)
+_TABLES.update(autodriller=Autodriller)
 _TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Controller, bit=Bit, numerics=Numerics,
                metrics=MetricsConfig, torque_drag=TorqueDragConfig)
 

@@ -43,13 +43,16 @@ from .metrics import STICK_SLIP_CRITERION
 if TYPE_CHECKING:  # pragma: no cover
     from .result import DrillResult
 
-__all__ = ["DATA_FILES", "FILES", "MARKER", "PLOT_FILES", "output_folder", "output_names", "report_markdown",
-           "write_outputs"]
+__all__ = ["COUPLED_PLOT_FILES", "DATA_FILES", "FILES", "MARKER", "PLOT_FILES", "output_folder", "output_names",
+           "report_markdown", "write_outputs"]
 
 #: The data files of an output folder, in the order they are written.
 DATA_FILES: tuple[str, ...] = ("series.parquet", "series.csv", "metrics.json", "fields.npz", "config.toml")
 #: The figures (skipped with ``--no-plots``).
 PLOT_FILES: tuple[str, ...] = ("time_histories.png", "space_time.png", "torque_depth.png")
+#: The figures of a coupled run (``[hoist]``) besides :data:`PLOT_FILES` (skipped with
+#: ``--no-plots``; a torsion-only run removes an earlier run's).
+COUPLED_PLOT_FILES: tuple[str, ...] = ("axial_time.png", "axial_space_time.png")
 #: Every file an output folder gets (``report.md`` last).
 FILES: tuple[str, ...] = (*DATA_FILES, *PLOT_FILES, "report.md")
 #: Written first and removed last: a folder that still has it was not written to the end (its
@@ -91,7 +94,7 @@ def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
     display = os.fsdecode(os.fspath(out_dir))
     check_directory_name(display, field)
     key = os.path.realpath(display)
-    files = output_names(plots) if names is None else names
+    files = (*output_names(plots), *COUPLED_PLOT_FILES) if names is None else names
     check_destination(display, field=field, directory=True, files=(*files, MARKER))
     refuse_foreign_folder(display, command, field=field)
     created = not os.path.isdir(key)
@@ -139,8 +142,10 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
     write_text(marker, f"drillstring drill (process {os.getpid()}) is writing this folder. If this file is still "
                "here, that run did not finish: the files beside it may be missing or of an earlier run.\n")
     names = output_names(plots)
-    for name in FILES:
-        if name not in names and os.path.lexists(path(name)) and not os.path.isdir(path(name)):
+    coupled = bool(result.axial)
+    for name in (*FILES, *COUPLED_PLOT_FILES):
+        if (name not in names or (name in COUPLED_PLOT_FILES and not (plots and coupled))) \
+                and os.path.lexists(path(name)) and not os.path.isdir(path(name)):
             os.unlink(path(name))  # a file of an earlier run (a figure, with plots=False now)
     frame = result.to_pandas()
     frame.attrs = {}  # parquet keeps attrs as JSON metadata; the config and metrics have their own files
@@ -151,6 +156,9 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
     written.append(write_text(path("metrics.json"), text))
     profile = result.profile
 
+    axial: dict[str, Any] = ({"axial_z": result.axial_z, "axial_speed_m_s": result.axial_speed_field,
+                              "axial_force_N": result.axial_force_field} if coupled else {})
+
     def save_fields(tmp: str) -> None:
         with open(tmp, "wb") as handle:
             np.savez_compressed(
@@ -158,7 +166,7 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
                 profile_z=profile.z, limit_per_m=profile.limit_per_m, cumulative_Nm=profile.cumulative,
                 breakoff_torque_Nm=np.float64(profile.breakoff_torque), inclination_deg=profile.inclination_deg,
                 azimuth_deg=profile.azimuth_deg, tvd_m=profile.tvd, dls_deg_per_30m=profile.dls_deg_per_30m,
-                friction_factor=profile.friction_factor,
+                friction_factor=profile.friction_factor, **axial,
             )
 
     written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
@@ -167,7 +175,12 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
         from ..io.figures import save
         from .plots import space_time_maps, time_histories, torque_depth
 
-        for name, make in zip(PLOT_FILES, (time_histories, space_time_maps, torque_depth)):
+        figures: list[Any] = [time_histories, space_time_maps, torque_depth]
+        if coupled:
+            from .plots import axial_histories, axial_space_time
+
+            figures += [axial_histories, axial_space_time]
+        for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), figures):
             written.append(Path(os.fsdecode(os.fspath(save(make(result, units=output_units), path(name))))))
     written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots).encode("utf-8")))
     os.unlink(marker)
@@ -283,12 +296,17 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
                   "", "| term | value |", "|---|---:|"]
         lines += [f"| {name.replace('_', ' ')} | {_fmt(value, 6)} |" for name, value in result.energy.items()]
     lines += ["", "## Files", "",
-              "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque",
+              "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque"
+              + (" and the coupled run's bit_axial_speed (m/s), rop (m/h), weight_on_bit, hook_load (N), bit_depth, "
+                 "depth_of_cut (m)" if result.axial else ""),
               "- `metrics.json`: the metrics above, window, status, energy balance",
               "- `fields.npz`: t, z, omega_rpm[t, z], torque_Nm[t, z] and the friction profile (with the well at "
-              "the cells: inclination, azimuth, TVD, dogleg severity, friction factor)",
+              "the cells: inclination, azimuth, TVD, dogleg severity, friction factor)"
+              + (" and the axial field: axial_z, axial_speed_m_s[t, z], axial_force_N[t, z] (compression +)"
+                 if result.axial else ""),
               "- `config.toml`: the configuration solved (normalised: every default filled)"]
     if plots:
         lines += ["", "## Figures", ""]
-        lines += [f"![{name[:-4].replace('_', ' ')}]({name})" for name in PLOT_FILES]
+        lines += [f"![{name[:-4].replace('_', ' ')}]({name})"
+                  for name in (*PLOT_FILES, *(COUPLED_PLOT_FILES if result.axial else ()))]
     return "\n".join(lines) + "\n"

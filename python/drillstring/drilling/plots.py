@@ -6,7 +6,10 @@
 * :func:`torque_depth`: torque along the string against depth (the envelope over the snapshots
   and the last one) with the break-off envelope, the static torque the string holds at break-off
   that the core returns (:attr:`DrillResult.profile`: the wall's friction from the bit up plus,
-  on bottom, the bit's static torque), and the friction limit per metre.
+  on bottom, the bit's static torque), and the friction limit per metre;
+* a coupled run's (``[hoist]``) :func:`axial_histories`: weight on bit and hook load, torque on
+  bit, rate of penetration and bit axial speed, depth of cut against time; and
+  :func:`axial_space_time`: axial speed and force along the string against time.
 
 :meth:`DrillResult.plot` draws any of them by name (:data:`KINDS`). Each function takes an optional
 ``fig`` (a :class:`~matplotlib.figure.Figure` or a ``SubFigure``) to draw into, for a figure of
@@ -34,7 +37,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
-__all__ = ["KINDS", "space_time_maps", "time_histories", "torque_depth"]
+__all__ = ["KINDS", "axial_histories", "axial_space_time", "space_time_maps", "time_histories", "torque_depth"]
 
 
 
@@ -48,6 +51,8 @@ def _figure(width: float, height: float) -> Figure:
 def _title(result: DrillResult, units: str = "si") -> str:
     cfg = result.config
     where = "on bottom" if cfg.bit.on_bottom else "off bottom"
+    if cfg.hoist is not None:  # a coupled run: the bit on the Detournay law, the hoist's mode
+        where = f"{cfg.bit.law}, hoist {cfg.hoist.mode.replace('_', ' ')}"
     name = getattr(result, "name", None)
     depth, unit = axis_unit("m", units)
     return ((f"{name}: " if name else "") + f"{cfg.length * depth:.0f} {unit} string ({len(cfg.sections)} sections), "
@@ -172,25 +177,31 @@ def space_time_maps(result: DrillResult, title: Optional[str] = None, *, fig: Op
                     transform=ax.transAxes)
         return _root(fig)
     t = result.field_t
-    z_stride = max(1, result.z.size // 600)  # at most ~600 rows drawn; data untouched
+    _space_time_panels(fig, t, result.z * depth, depth_unit, (
+        (axes[0], result.omega_field, 1.0, "speed, rpm", "viridis"),
+        (axes[1], result.torque_field, torque, f"torque, {torque_unit}", "RdBu_r")))
+    fig.suptitle(title or f"{_title(result, units)}: along the string", fontsize=11)
+    return _root(fig)
+
+
+def _space_time_panels(fig: FigureLike, t: Any, z: Any, depth_unit: str, maps: Any) -> None:
+    """Draws each ``(ax, data[t, z], scale, label, cmap)`` of ``maps`` against time ``t`` and
+    depth ``z`` (drawn units), depth downward; ``"RdBu_r"`` on a scale symmetric about 0. At most
+    ~600 depths and ~1500 times are drawn (the data untouched)."""
+    z_stride = max(1, z.size // 600)
     t_stride = max(1, t.size // 1500)
-    z = result.z[::z_stride] * depth
-    maps = ((axes[0], result.omega_field, 1.0, "speed, rpm", "viridis"),
-            (axes[1], result.torque_field, torque, f"torque, {torque_unit}", "RdBu_r"))
     for ax, data, scale, label, cmap in maps:
         values = data[::t_stride, ::z_stride].T * scale
+        limits = {}
         if cmap == "RdBu_r":
             limit = float(np.nanmax(np.abs(values))) or 1.0
             limits = {"vmin": -limit, "vmax": limit}
-        else:
-            limits = {}
-        mesh = ax.pcolormesh(t[::t_stride], z, values, cmap=cmap, shading="nearest", rasterized=True, **limits)
+        mesh = ax.pcolormesh(t[::t_stride], z[::z_stride], values, cmap=cmap, shading="nearest", rasterized=True,
+                             **limits)
         fig.colorbar(mesh, ax=ax, pad=0.01).set_label(label)
         ax.set_ylabel(f"measured depth, {depth_unit}")
         ax.invert_yaxis()
-    axes[1].set_xlabel("t, s")
-    fig.suptitle(title or f"{_title(result, units)}: along the string", fontsize=11)
-    return _root(fig)
+    maps[-1][0].set_xlabel("t, s")
 
 
 @_documented("torque_depth.png")
@@ -243,5 +254,93 @@ def torque_depth(result: DrillResult, title: Optional[str] = None, *, fig: Optio
     return _root(fig)
 
 
+def _depth_of_cut_axis(units: str) -> tuple[float, str]:
+    """Depth of cut per revolution in mm (SI) or inches (field, the bit size's unit)."""
+    from .units import convert
+
+    if units == "field":
+        factor, unit = convert(1.0, "m", units, key="bit.radius")
+        assert factor is not None
+        return factor, unit
+    return 1e3, "mm"
+
+
+def _no_axial(fig: FigureLike, axes: Any, what: str) -> Figure:
+    for ax in np.atleast_1d(axes):
+        ax.text(0.5, 0.5, what, ha="center", va="center", transform=ax.transAxes)
+    return _root(fig)
+
+
+@_documented("axial_time.png")
+def axial_histories(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None,
+                    units: str = "si") -> Figure:
+    """A coupled run's bit on bottom against time (:attr:`DrillResult.axial`).
+
+    From the top: weight on bit and hook load, kN (klbf); torque on bit, kN m (kft-lbf); rate of
+    penetration and the bit's axial speed, m/h (ft/h); depth of cut per revolution, mm (in). The
+    metrics window is shaded; the title gives the coupled metrics (mean ROP, weight and torque on
+    bit, bit bounce). A torsion-only run's figure says it has no axial series.
+    """
+    force, force_unit = axis_unit("N", units, kilo=True)
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
+    speed, speed_unit = axis_unit("m/h", units)
+    cut, cut_unit = _depth_of_cut_axis(units)
+    fig = _figure(11, 8.0) if fig is None else fig
+    axes = fig.subplots(4, 1, sharex=True)
+    a = result.axial
+    if not a:
+        return _no_axial(fig, axes, "no axial series (a torsion-only run: no [hoist] table)")
+    for ax in axes:
+        _shade_window(ax, result)
+        ax.grid(alpha=0.3)
+    t = result.t
+    axes[0].plot(t, a["weight_on_bit"] * force, lw=1.0, color="tab:orange", label="weight on bit")
+    axes[0].plot(t, a["hook_load"] * force, lw=1.0, color="tab:blue", label="hook load")
+    axes[0].set_ylabel(f"force, {force_unit}")
+    axes[1].plot(t, result.bit_torque * torque, lw=1.0, color="tab:orange", label="torque on bit")
+    axes[1].set_ylabel(f"torque, {torque_unit}")
+    axes[2].plot(t, a["bit_axial_speed"] * 3600.0 * speed, lw=0.8, color="0.5", label="bit axial speed")
+    axes[2].plot(t, a["rop"] * speed, lw=1.0, color="tab:green", label="rate of penetration")
+    axes[2].set_ylabel(f"speed, {speed_unit}")
+    axes[3].plot(t, a["depth_of_cut"] * cut, lw=1.0, color="tab:red", label="depth of cut per revolution")
+    axes[3].set_ylabel(f"depth of cut, {cut_unit}")
+    axes[3].set_xlabel("t, s")
+    for ax in axes:
+        ax.legend(loc="upper right", fontsize=9)
+    c = result.coupled_metrics or {}
+    summary = (f"ROP {c['rop_mean_m_per_h'] * speed:.4g} {speed_unit}, WOB {c['wob_mean_N'] * force:.4g} {force_unit}, "
+               f"TOB {c['tob_mean_Nm'] * torque:.4g} {torque_unit}, bounce {c['bounce_fraction']:.3g}"
+               if c else "no coupled metrics")
+    fig.suptitle(title or f"{_title(result, units)}\non bottom: {summary} (shaded: metrics window)", fontsize=11)
+    return _root(fig)
+
+
+@_documented("axial_space_time.png")
+def axial_space_time(result: DrillResult, title: Optional[str] = None, *, fig: Optional[FigureLike] = None,
+                     units: str = "si") -> Figure:
+    """A coupled run's axial field along the string against time.
+
+    Top: axial speed, m/h (ft/h), down positive; bottom: axial force, kN (klbf), compression
+    positive (a diverging scale around 0: tension above the neutral point, compression below);
+    measured depth, m (ft), grows downward. Drawn from the snapshots of
+    ``numerics.field_interval``; without snapshots or without a hoist each panel says so.
+    """
+    force, force_unit = axis_unit("N", units, kilo=True)
+    speed, speed_unit = axis_unit("m/h", units)
+    depth, depth_unit = axis_unit("m", units)
+    fig = _figure(11, 7.0) if fig is None else fig
+    axes = fig.subplots(2, 1, sharex=True)
+    if result.axial_z.size == 0:
+        return _no_axial(fig, axes, "no axial field (a torsion-only run: no [hoist] table)")
+    if result.field_t.size == 0:
+        return _no_axial(fig, axes, "no snapshots (numerics.field_interval = 0)")
+    _space_time_panels(fig, result.field_t, result.axial_z * depth, depth_unit, (
+        (axes[0], result.axial_speed_field, 3600.0 * speed, f"axial speed (down +), {speed_unit}", "viridis"),
+        (axes[1], result.axial_force_field, force, f"axial force (compression +), {force_unit}", "RdBu_r")))
+    fig.suptitle(title or f"{_title(result, units)}: axial field along the string", fontsize=11)
+    return _root(fig)
+
+
 #: The figures of a run by name (:meth:`DrillResult.plot`'s ``kind``).
 KINDS = {"time": time_histories, "space_time": space_time_maps, "torque_depth": torque_depth}
+KINDS.update(axial=axial_histories, axial_space_time=axial_space_time)

@@ -44,6 +44,16 @@ UNITS: dict[str, str] = {
     "cumulative": "N m",
     "breakoff_torque": "N m",
     "min_cycle_torque": "N m",
+    # a coupled run's series (DrillResult.axial) and axial fields, as the core gives them
+    "bit_axial_speed": "m/s",
+    "rop": "m/h",
+    "weight_on_bit": "N",
+    "hook_load": "N",
+    "bit_depth": "m",
+    "depth_of_cut": "m",
+    "axial_z": "m",
+    "axial_speed_field": "m/s",
+    "axial_force_field": "N",
 }
 
 
@@ -352,6 +362,18 @@ class DrillResult:
         N, ``hook_load`` N, ``bit_depth`` m (below the start), ``depth_of_cut`` m per revolution
         (0 while the rate form's bit does not turn); the torque on bit is ``bit_torque``."""
         coupled = dict(raw.get("coupled") or {})
+        self.axial_z: NDArray[np.float64] = np.asarray(raw.get("axial_z", ()), dtype=np.float64)
+        """A coupled run's axial cell centres, m (empty without a hoist)."""
+        self.axial_speed_field: NDArray[np.float64] = np.asarray(
+            raw.get("axial_speed_field", ()), dtype=np.float64).reshape(
+            self.field_t.size if self.axial_z.size else 0, self.axial_z.size)
+        """A coupled run's axial speed along the string at ``field_t``, m/s, down positive, shape
+        ``(field_t.size, axial_z.size)`` (the speed at the middle of the step's gravity kick)."""
+        self.axial_force_field: NDArray[np.float64] = np.asarray(
+            raw.get("axial_force_field", ()), dtype=np.float64).reshape(
+            self.field_t.size if self.axial_z.size else 0, self.axial_z.size)
+        """A coupled run's axial force along the string at ``field_t``, N, compression positive
+        (tension negative), shape ``(field_t.size, axial_z.size)``."""
         self.coupled_metrics: Optional[dict[str, float]] = (
             {str(k): float(v) for k, v in coupled.items() if k != "regime"} if coupled else None)
         """A coupled run's metrics over the window (None without a hoist): ``rop_mean_m_per_h``,
@@ -386,13 +408,18 @@ class DrillResult:
 
     def to_pandas(self) -> pd.DataFrame:
         """The time series as a :class:`pandas.DataFrame` indexed by ``t`` (s), with the columns
-        ``surface_rpm``, ``bit_rpm`` (rpm), ``motor_torque``, ``bit_torque`` (N m); ``df.attrs``
-        holds ``units``, ``status``, ``metrics`` and the ``config`` (:meth:`DrillConfig.to_dict`)."""
+        ``surface_rpm``, ``bit_rpm`` (rpm), ``motor_torque``, ``bit_torque`` (N m) and, for a
+        coupled run, the series of :attr:`axial` by the core's names (``bit_axial_speed`` m/s,
+        ``rop`` m/h, ``weight_on_bit`` N, ``hook_load`` N, ``bit_depth`` m, ``depth_of_cut`` m;
+        the torque on bit is ``bit_torque``); ``df.attrs`` holds ``units``, ``status``,
+        ``metrics`` and the ``config`` (:meth:`DrillConfig.to_dict`)."""
         import pandas as pd
 
-        frame = pd.DataFrame({name: getattr(self, name) for name in SERIES}, index=pd.Index(self.t, name="t"))
+        columns = {name: getattr(self, name) for name in SERIES}
+        columns.update(self.axial)
+        frame = pd.DataFrame(columns, index=pd.Index(self.t, name="t"))
         frame.attrs.update(
-            units={key: UNITS[key] for key in ("t", *SERIES)}, status=self.status,
+            units={key: UNITS[key] for key in ("t", *columns)}, status=self.status,
             metrics=self.metrics.to_dict(), config=self.config.to_dict(),
         )
         return frame
@@ -435,14 +462,18 @@ class DrillResult:
 
         Parameters
         ----------
-        kind : {"time", "space_time", "torque_depth"}
+        kind : {"time", "space_time", "torque_depth", "axial", "axial_space_time"}
             ``"time"``: surface and bit speed, motor and bit torque against time with the
             break-off torque and the metrics window
             (:func:`~drillstring.drilling.plots.time_histories`); ``"space_time"``: speed and
             torque along the string against time
             (:func:`~drillstring.drilling.plots.space_time_maps`); ``"torque_depth"``: torque
             against depth inside the break-off envelope
-            (:func:`~drillstring.drilling.plots.torque_depth`).
+            (:func:`~drillstring.drilling.plots.torque_depth`); a coupled run's ``"axial"``:
+            weight and torque on bit, ROP and depth of cut against time
+            (:func:`~drillstring.drilling.plots.axial_histories`) and ``"axial_space_time"``:
+            axial speed and force along the string against time
+            (:func:`~drillstring.drilling.plots.axial_space_time`).
         fig : Figure or SubFigure, optional
             Draw into this (empty) figure instead of a new one.
         path : str or path-like, optional

@@ -38,8 +38,8 @@ SYSTEMS: tuple[str, ...] = ("si", "field")
 
 #: The field unit of each SI unit of the reference and of the outputs (units as pint parses them;
 #: ``ppg`` is pounds per US gallon; ``N/m`` and ``N*m/m``, the normal force and the friction limit
-#: per length, only in outputs). SI units not listed (rpm, s, Hz, deg, rad/s, 1/s, dimensionless)
-#: are the same in both systems.
+#: per length, and ``m/h``, a coupled run's rate of penetration, only in outputs). SI units not
+#: listed (rpm, s, Hz, deg, rad/s, 1/s, m/s, dimensionless) are the same in both systems.
 FIELD_UNITS: dict[str, str] = {
     "m": "ft",
     "m^2": "in^2",
@@ -56,6 +56,7 @@ FIELD_UNITS: dict[str, str] = {
     "deg/(30 m)": "deg/(100 ft)",
     "N/m": "lbf/ft",
     "N*m/m": "ft*lbf/ft",
+    "m/h": "ft/h",
 }
 
 #: Keys whose field unit is not their SI unit's in :data:`FIELD_UNITS`: diameters and the bit's
@@ -154,11 +155,13 @@ _DIMENSIONS = {
     "kg/m^3": "density", "m/s^2": "acceleration", "deg": "angle", "deg/(30 m)": "angle per length",
     "rad/s": "angular speed", "rpm": "angular speed", "s/rad": "time per angle", "s": "time", "1/s": "rate",
     "Hz": "frequency", "N": "force", "N*m": "torque", "kg*m^2": "moment of inertia",
-    "N*m*s/rad": "torque per angular speed", "N*m/rad": "torque per angle",
+    "N*m*s/rad": "torque per angular speed", "N*m/rad": "torque per angle", "m/s": "speed", "1": "dimensionless",
 }
 
 
 def _dimension(unit: str) -> str:
+    if " or " in unit:  # a key whose unit is its target's (hoist.autodriller.setpoint: N or m/s)
+        return " or ".join(_dimension(u) for u in unit.split(" or "))
     return _DIMENSIONS.get(unit) or str(_expression(unit or "1").dimensionality)
 
 
@@ -191,10 +194,12 @@ def quantity(path: str, value: Any, system: str = "si") -> Any:
         if str(getattr(parsed, "units", "dimensionless")) == "dimensionless":
             value = float(getattr(parsed, "magnitude", parsed))  # a number written as a string: a plain number
         else:
-            try:
-                return _magnitude(parsed, unit)
-            except Exception:  # pint's DimensionalityError
-                raise ValidationError(path, value, _expected(key, unit, f"a quantity of {_dimension(unit)}")) from None
+            for choice in unit.split(" or "):  # "N or m/s": the unit of the quantity's dimension
+                try:
+                    return _magnitude(parsed, choice)
+                except Exception:  # pint's DimensionalityError
+                    continue
+            raise ValidationError(path, value, _expected(key, unit, f"a quantity of {_dimension(unit)}"))
     if system == "field" and isinstance(value, (int, float)) and math.isfinite(value):
         source = field_unit(key)
         if source is not None:

@@ -105,5 +105,10 @@ fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
     let shape = [run.field_t.len(), run.z.len()];
     reshape(&d, "omega_field", shape)?;
     reshape(&d, "torque_field", shape)?;
+    if !run.axial_z.is_empty() {
+        let shape = [run.field_t.len(), run.axial_z.len()];
+        reshape(&d, "axial_speed_field", shape)?;
+        reshape(&d, "axial_force_field", shape)?;
+    }
     Ok(d)
 }

@@ -16,7 +16,7 @@ use crate::metrics::STICK_SPEED;
 use crate::schema::{self, join, kind, shown};
 
 use super::axial::bitrock::DetournayBit;
-use super::axial::hoist::{HoistMode, HoistParams};
+use super::axial::hoist::{Autodriller, HoistMode, HoistParams};
 use super::grid::Grid;
 use crate::well::plan::SegmentSpec;
 
@@ -649,6 +649,9 @@ pub enum HoistKind {
     /// The weight on bit `hoist.weight_on_bit`: the hook load held at the static hook load of
     /// the string hanging off bottom less this weight (what a rig's weight indicator shows).
     WeightOnBit,
+    /// The block velocity of the autodriller `[hoist.autodriller]` (a PI on the weight on bit or
+    /// the rate of penetration).
+    Autodriller,
 }
 
 /// The hoist at the top of the string. With a `[hoist]` table the run is coupled axial-torsional
@@ -656,9 +659,10 @@ pub enum HoistKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Hoist {
-    /// What the hoist imposes: `velocity` (the block velocity `speed`, default) or `hook_load`
-    /// (the force `hook_load` holding the string up), or `weight_on_bit` (the hook load held at
-    /// the static hook load of the string hanging off bottom less `weight_on_bit`).
+    /// What the hoist imposes: `velocity` (the block velocity `speed`, default), `hook_load`
+    /// (the force `hook_load` holding the string up), `weight_on_bit` (the hook load held at the
+    /// static hook load of the string hanging off bottom less `weight_on_bit`) or `autodriller`
+    /// (the block velocity of the PI `[hoist.autodriller]`).
     #[schemars(extend("label" = "hoist mode"))]
     pub mode: HoistKind,
     /// Block velocity of `velocity` mode, down positive (default 30 m/h).
@@ -676,6 +680,14 @@ pub struct Hoist {
     /// the weight on bit at 0.
     #[schemars(extend("unit" = "s", "label" = "hoist ramp time"))]
     pub ramp_time: f64,
+    /// `[time, value]` changes of the mode's target at increasing times, approached with
+    /// `ramp_time` as the top drive's `steps`: the block velocity (m/s), the hook load (N) or the
+    /// autodriller's setpoint (N or m/s). Plain numbers are SI in either unit system.
+    #[schemars(extend("label" = "hoist steps", "item_units" = ["s", "m/s or N"], "item_labels" = ["step time", "hoist target"]))]
+    pub steps: Vec<[f64; 2]>,
+    /// The autodriller of `mode = "autodriller"`.
+    #[schemars(extend("label" = "autodriller"))]
+    pub autodriller: Autodriller,
 }
 
 impl Default for Hoist {
@@ -687,6 +699,8 @@ impl Default for Hoist {
             hook_load: p.hook_load,
             weight_on_bit: p.weight_on_bit,
             ramp_time: p.ramp_time,
+            steps: p.steps,
+            autodriller: p.autodriller,
         }
     }
 }
@@ -699,12 +713,14 @@ impl Hoist {
                 HoistKind::Velocity => HoistMode::Velocity,
                 HoistKind::HookLoad => HoistMode::HookLoad,
                 HoistKind::WeightOnBit => HoistMode::WeightOnBit,
+                HoistKind::Autodriller => HoistMode::Autodriller,
             },
             speed: self.speed,
             hook_load: self.hook_load,
             weight_on_bit: self.weight_on_bit,
             ramp_time: self.ramp_time,
-            ..HoistParams::default()
+            steps: self.steps.clone(),
+            autodriller: self.autodriller,
         }
     }
 }
@@ -1091,6 +1107,7 @@ impl DrillConfig {
             nonneg("hoist.hook_load", h.hook_load, "N")?;
             nonneg("hoist.weight_on_bit", h.weight_on_bit, "N")?;
             nonneg("hoist.ramp_time", h.ramp_time, "s")?;
+            h.params().validate("hoist")?;
             self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
             let cells = self.bit.detournay.cut_surface_cells;
             if !(1..=MAX_CUT_SURFACE_CELLS).contains(&cells) {

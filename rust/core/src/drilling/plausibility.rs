@@ -6,7 +6,7 @@
 use crate::error::Num;
 use crate::metrics::StickSlip;
 
-use super::config::DrillConfig;
+use super::config::{DrillConfig, HoistKind};
 use super::grid::static_torque;
 
 /// The warnings of a configuration with the wall break-off torque `breakoff` (see
@@ -207,6 +207,29 @@ pub fn non_finite_metrics_warning(m: &StickSlip) -> Option<String> {
             if bad.len() == 1 { "is" } else { "are" },
         )
     })
+}
+
+/// A coupled run whose bit never touched bottom in the metrics window `[a, b]` s: every sample
+/// there has no weight on bit (`bounce_fraction` 1), so the window's ROP, weight and torque on
+/// bit are 0 and its MSE is undefined. Says what to change for the hoist's mode `mode`: the bit
+/// is lowered by a larger downward block velocity, a smaller hook load, or an autodriller
+/// allowed to move down; or the window comes later in a longer run.
+pub fn off_bottom_warning(bounce_fraction: f64, window: [f64; 2], mode: HoistKind) -> Option<String> {
+    if bounce_fraction < 1.0 {
+        return None;
+    }
+    let change = match mode {
+        HoistKind::Velocity => "a larger downward hoist.speed (down is positive)",
+        HoistKind::HookLoad => "a smaller hoist.hook_load (below the static hook load of the hanging string)",
+        HoistKind::Autodriller => "a positive hoist.autodriller.max_speed and a larger setpoint",
+    };
+    Some(format!(
+        "the bit never touched bottom in the metrics window [{}, {}] s (no weight on bit in any sample): its ROP, \
+         weight and torque on bit are 0 and its MSE undefined; lower the bit with {change}, or use a longer \
+         numerics.duration and a later metrics.window",
+        Num(window[0]),
+        Num(window[1])
+    ))
 }
 
 #[cfg(test)]

@@ -199,7 +199,7 @@ mod tests {
         cfg.friction.intervals = vec![FrictionInterval { top_md: 0.0, bottom_md: 1.0, static_coefficient: 0.2 }];
         cfg.top_drive.steps = vec![[10.0, 60.0]];
         cfg.top_drive.speed_series = vec![[0.0, 0.0]];
-        cfg.hoist = Some(super::super::config::Hoist::default());
+        cfg.hoist = Some(super::super::config::Hoist { steps: vec![[10.0, 0.01]], ..Default::default() });
         serde_json::to_value(&cfg).unwrap()
     }
 
@@ -230,7 +230,13 @@ mod tests {
             match doc.kind {
                 "number" | "integer" => {
                     let unit = doc.unit.as_deref().unwrap_or_else(|| panic!("{key} has no unit"));
-                    assert!(si.contains(&unit), "{key}: {unit}");
+                    // the autodriller's setpoint and gains, the hoist's step values: one unit per
+                    // target, "N or m/s"
+                    let gains = ["m/(N*s)", "m/(N*s^2)", "1"];
+                    assert!(
+                        unit.split(" or ").all(|u| si.contains(&u) || (unit.contains(" or ") && gains.contains(&u))),
+                        "{key}: {unit}"
+                    );
                 }
                 "array" if numeric_list.contains(&key.as_str()) || key == "torque_drag.friction_factors" => {
                     assert!(doc.unit.as_deref().is_some_and(|u| si.contains(&u)), "{key}")

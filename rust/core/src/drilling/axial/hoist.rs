@@ -14,6 +14,7 @@
 //! `weight_on_bit` mode): in steady drilling the block moves at the rate of penetration.
 //! Speeds are down positive (m/s), forces in N.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Num, Result};
@@ -34,7 +35,7 @@ pub enum HoistMode {
 }
 
 /// The autodriller's controlled quantity.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum AutodrillerTarget {
     /// Weight on bit, N.
@@ -43,20 +44,34 @@ pub enum AutodrillerTarget {
     Rop,
 }
 
-/// The autodriller's PI.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// The autodriller (`hoist.mode = "autodriller"`): a PI on the weight on bit or the rate of
+/// penetration giving the block velocity, `u = u_ff + kp e + ki int e` within
+/// `[min_speed, max_speed]` (no integration while saturated in the error's direction), `e` the
+/// setpoint less the measured value, `u_ff` the setpoint itself with `target = "rop"` (0 with
+/// `weight_on_bit`). `kp` and `ki` are not both 0 in autodriller mode.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct Autodriller {
+    /// The controlled quantity: `weight_on_bit` (default) or `rop` (the rate of penetration).
+    #[schemars(extend("label" = "autodriller target"))]
     pub target: AutodrillerTarget,
-    /// The setpoint, N (`weight_on_bit`) or m/s (`rop`).
+    /// The target's setpoint: N with `weight_on_bit`, m/s with `rop` (finite; approached with
+    /// `hoist.ramp_time`, changed by `hoist.steps`). A plain number is SI in either unit system.
+    #[schemars(extend("unit" = "N or m/s", "label" = "autodriller setpoint"))]
     pub setpoint: f64,
-    /// Proportional gain, (m/s)/N or dimensionless (`rop`).
+    /// Proportional gain, >= 0: block velocity per unit of error, (m/s)/N with
+    /// `weight_on_bit`, dimensionless with `rop`.
+    #[schemars(extend("unit" = "m/(N*s) or 1", "label" = "autodriller proportional gain"))]
     pub kp: f64,
-    /// Integral gain, (m/s)/(N s) or 1/s (`rop`).
+    /// Integral gain, >= 0: block velocity per unit of integrated error, (m/s)/(N s) with
+    /// `weight_on_bit`, 1/s with `rop`.
+    #[schemars(extend("unit" = "m/(N*s^2) or 1/s", "label" = "autodriller integral gain"))]
     pub ki: f64,
-    /// The least block speed, m/s (negative: the block may pull up).
+    /// The least block velocity, down positive (negative: the block may pull up).
+    #[schemars(extend("unit" = "m/s", "label" = "autodriller least block velocity"))]
     pub min_speed: f64,
-    /// The largest block speed, m/s.
+    /// The largest block velocity, >= `min_speed` (default 100 m/h).
+    #[schemars(extend("unit" = "m/s", "label" = "autodriller largest block velocity"))]
     pub max_speed: f64,
 }
 
@@ -134,6 +149,14 @@ impl HoistParams {
             }
         }
         let a = &self.autodriller;
+        if self.mode == HoistMode::Autodriller && a.kp == 0.0 && a.ki == 0.0 {
+            return Err(Error::invalid(
+                format!("{prefix}.autodriller.kp"),
+                "kp = ki = 0",
+                "kp > 0 or ki > 0 in autodriller mode (with no gain the block never answers the weight on bit \
+                 or ROP); (m/s)/N and (m/s)/(N s) on weight_on_bit, 1 and 1/s on rop",
+            ));
+        }
         if a.max_speed < a.min_speed {
             return Err(Error::invalid(
                 format!("{prefix}.autodriller.max_speed"),
@@ -388,6 +411,61 @@ mod tests {
         let ((w, rop, _), _) = drill(&mut h, k, r, 600.0);
         assert!((rop - 10.0 / 3600.0).abs() < 1e-3 * rop, "{}", rop * 3600.0);
         assert!((w - r * 10.0 / 3600.0).abs() < 1e-3 * w);
+    }
+
+    #[test]
+    fn autodriller_is_the_discrete_pi_by_hand() {
+        // kp 1e-6 (m/s)/N, ki 1e-7 (m/s)/(N s), 50 kN, no ramp, steps of 0.5 s, block within
+        // [0, 0.06] m/s; the output uses the integral before the step's error is added.
+        let ad = Autodriller {
+            target: AutodrillerTarget::WeightOnBit,
+            setpoint: 50e3,
+            kp: 1e-6,
+            ki: 1e-7,
+            min_speed: 0.0,
+            max_speed: 0.06,
+        };
+        let params =
+            HoistParams { mode: HoistMode::Autodriller, ramp_time: 0.0, autodriller: ad, ..HoistParams::default() };
+        let mut h = Hoist::new(params, 0.0);
+        let w = |weight_on_bit: f64| HoistMeasurement { weight_on_bit, rop: 0.0 };
+        // W 0: e 5e4, u = 0.05 + 0, int 25e3.
+        assert!((speed(h.step(0.5, w(0.0))) - 0.05).abs() < 1e-15);
+        assert!((h.integral - 25e3).abs() < 1e-9);
+        // W 10 kN: e 4e4, u = 0.04 + 1e-7 25e3 = 0.0425, int 45e3.
+        assert!((speed(h.step(0.5, w(10e3))) - 0.0425).abs() < 1e-15);
+        assert!((h.integral - 45e3).abs() < 1e-9);
+        // W 60 kN: e -1e4, u = -0.01 + 0.0045 < 0: held at 0, saturated in the error's
+        // direction: the integral stays.
+        assert_eq!(speed(h.step(0.5, w(60e3))), 0.0);
+        assert!((h.integral - 45e3).abs() < 1e-9);
+        // W 0: u = 0.05 + 0.0045 = 0.0545, int 70e3; again u = 0.05 + 0.007 = 0.057, int 95e3.
+        assert!((speed(h.step(0.5, w(0.0))) - 0.0545).abs() < 1e-15);
+        assert!((speed(h.step(0.5, w(0.0))) - 0.057).abs() < 1e-15);
+        // u = 0.05 + 0.0095 = 0.0595, int 120e3; then over the limit: u = 0.05 + 0.012 > 0.06,
+        // held at 0.06, the integral stays 120e3.
+        assert!((speed(h.step(0.5, w(0.0))) - 0.0595).abs() < 1e-15);
+        assert_eq!(speed(h.step(0.5, w(0.0))), 0.06);
+        assert!((h.integral - 120e3).abs() < 1e-9);
+        // On ROP with a setpoint step at 1 s (no ramp): u = setpoint + kp e + ki int e.
+        let ad = Autodriller { target: AutodrillerTarget::Rop, setpoint: 0.01, kp: 2.0, ki: 0.5, ..ad };
+        let params = HoistParams {
+            mode: HoistMode::Autodriller,
+            ramp_time: 0.0,
+            steps: vec![[1.0, 0.004]],
+            autodriller: ad,
+            ..HoistParams::default()
+        };
+        let mut h = Hoist::new(params, 0.0);
+        let r = |rop: f64| HoistMeasurement { weight_on_bit: 0.0, rop };
+        // ROP 0.008: e 0.002, u = 0.01 + 0.004 = 0.014, int 0.001.
+        assert!((speed(h.step(0.5, r(0.008))) - 0.014).abs() < 1e-15);
+        // The step ending at 1 s takes the new setpoint 0.004: e = -0.004, u = 0.004 - 0.008
+        // + 0.5 0.001 = -0.0035 < 0: held at 0, the integral stays.
+        assert_eq!(speed(h.step(0.5, r(0.008))), 0.0);
+        assert!((h.integral - 0.001).abs() < 1e-15);
+        // ROP 0.003: e 0.001, u = 0.004 + 0.002 + 0.0005 = 0.0065.
+        assert!((speed(h.step(0.5, r(0.003))) - 0.0065).abs() < 1e-15);
     }
 
     #[test]

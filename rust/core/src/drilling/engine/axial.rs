@@ -85,6 +85,8 @@ pub struct Axial {
     pub state: AxialState,
     /// Courant numbers of the sections.
     pub courant: Vec<f64>,
+    /// Measured depths of the cell centres, m.
+    pub z: Vec<f64>,
 }
 
 impl Axial {
@@ -183,7 +185,21 @@ impl Axial {
             },
             courant,
             field,
+            z: centres,
         })
+    }
+
+    /// Calls `f(speed, force)` for every cell from the top down: the speed at the middle of the
+    /// step's gravity kick (the state less half the cell's `g dt`: in steady drilling every cell
+    /// moves at the rate of penetration, where the state after the kick is `g dt / 2` faster)
+    /// and the compression.
+    pub fn each_cell(&self, mut f: impl FnMut(f64, f64)) {
+        for (s, sp) in self.field.sections.iter().enumerate() {
+            for j in 1..=sp.cells {
+                let (v, force) = self.field.cell(s, j);
+                f(v - 0.5 * self.gravity[sp.offset + j], force);
+            }
+        }
     }
 
     /// The Detournay law of the run.

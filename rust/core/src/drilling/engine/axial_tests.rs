@@ -208,3 +208,132 @@ fn a_coupled_law_and_a_hoist_come_together() {
     cfg.bit.detournay.blades = 0;
     assert!(cfg.validate().unwrap_err().to_string().contains("bit.detournay.blades"));
 }
+
+/// The short string of [`settling`] drilled by the autodriller on `target` at `setpoint` with
+/// the gains `kp`, `ki`, the block velocity within `[0, max_speed]` m/s, and the steps `steps`.
+fn autodrilled(target: &str, setpoint: f64, kp: f64, ki: f64, max_speed: f64, steps: &str) -> DrillConfig {
+    let mut cfg = settling("detournay");
+    let json = format!(
+        r#"{{"mode": "autodriller", "ramp_time": 2.0, "steps": {steps},
+            "autodriller": {{"target": "{target}", "setpoint": {setpoint}, "kp": {kp}, "ki": {ki},
+                            "min_speed": 0.0, "max_speed": {max_speed}}}}}"#
+    );
+    cfg.hoist = Some(serde_json::from_str(&json).unwrap());
+    cfg.validate().unwrap();
+    cfg
+}
+
+/// The rate law's steady state at 120 rpm (see [`the_rate_law_settles_to_the_analytic_steady_state`]):
+/// `W = a zeta eps d + a l sigma`, `d = 2 pi V / Omega`, so the ROP of a weight `w` (m/h) and
+/// the weight of a ROP `rop` (m/h).
+fn steady_rop(w: f64) -> f64 {
+    (w - 71_280.0) / (0.108 * 0.6 * 60e6) * 2.0 * 3600.0
+}
+fn steady_wob(rop: f64) -> f64 {
+    71_280.0 + 0.108 * 0.6 * 60e6 * rop / 3600.0 / 2.0
+}
+
+/// The string's spring `k = E A / L` = 3.5e6 N/m and the rock's `dW/dV = 1.944e6` N s/m at
+/// 120 rpm make the loop on the weight `W' = k (kp e + ki int e) - (k / r) W`: with
+/// `kp = 5e-7` (m/s)/N and `ki = 1e-6` (m/s)/(N s) its poles are `-1.78 +- 0.37 i` 1/s; the
+/// high-frequency loop gain `2 Z kp = 0.14 < 1` (a wave doubling on the rock).
+const KP: f64 = 5e-7;
+const KI: f64 = 1e-6;
+
+#[test]
+fn the_autodriller_holds_its_weight_on_bit_and_follows_a_step() {
+    // 90 kN, then 80 kN at 30 s: the bit drills at the rock's ROP of that weight.
+    let cfg = autodrilled("weight_on_bit", 90e3, KP, KI, 100.0 / 3600.0, "[[30.0, 80e3]]");
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, crate::solution::Status::Success, "{}", run.message);
+    let at = |t: f64| (t / 0.01).round() as usize;
+    let (w, rop) = (run.weight_on_bit[at(29.0)], run.rop[at(29.0)]);
+    assert!((w - 90e3).abs() < 1e-4 * 90e3, "{w}");
+    assert!((rop - steady_rop(90e3)).abs() < 1e-3 * rop, "{rop} vs {}", steady_rop(90e3));
+    for w in window(&run, &run.weight_on_bit) {
+        assert!((w - 80e3).abs() < 1e-4 * 80e3, "{w}");
+    }
+    let m = run.coupled.unwrap();
+    assert!((m.rop_mean_m_per_h - steady_rop(80e3)).abs() < 1e-3 * steady_rop(80e3), "{m:?}");
+    assert!(run.energy.balance_error.abs() < 1e-12, "{:?}", run.energy);
+}
+
+#[test]
+fn the_autodriller_holds_its_rop_and_its_speed_limit() {
+    // On ROP: 20 m/h, the weight the rock needs for it.
+    let cfg = autodrilled("rop", 20.0 / 3600.0, 0.5, 2.0, 100.0 / 3600.0, "[]");
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    assert_eq!(run.status, crate::solution::Status::Success, "{}", run.message);
+    let m = run.coupled.unwrap();
+    assert!((m.rop_mean_m_per_h - 20.0).abs() < 1e-3 * 20.0, "{m:?}");
+    assert!((m.wob_mean_n - steady_wob(20.0)).abs() < 1e-3 * steady_wob(20.0), "{m:?}");
+    // 90 kN needs 34.7 m/h: with the block held to 20 m/h the bit drills at 20 m/h under the
+    // weight of that rate, below the setpoint.
+    let cfg = autodrilled("weight_on_bit", 90e3, KP, KI, 20.0 / 3600.0, "[]");
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let m = run.coupled.unwrap();
+    assert!((m.rop_mean_m_per_h - 20.0).abs() < 1e-3 * 20.0, "{m:?}");
+    assert!((m.wob_mean_n - steady_wob(20.0)).abs() < 1e-3 * steady_wob(20.0), "{m:?}");
+    // The bit never outruns the block for long: its depth at the end is at most the block's
+    // travel at the limit plus the string's shortening under the weight, W / k.
+    let end = *run.bit_depth.last().unwrap();
+    assert!(end <= 20.0 / 3600.0 * 60.0 + 90e3 / 3.5e6, "{end}");
+}
+
+#[test]
+fn an_autodriller_without_gains_is_refused() {
+    let mut cfg = autodrilled("weight_on_bit", 90e3, KP, KI, 0.01, "[]");
+    let a = &mut cfg.hoist.as_mut().unwrap().autodriller;
+    (a.kp, a.ki) = (0.0, 0.0);
+    let err = cfg.validate().unwrap_err();
+    assert_eq!(err.field(), "hoist.autodriller.kp");
+    assert!(err.to_string().contains("kp > 0 or ki > 0"), "{err}");
+    cfg.hoist.as_mut().unwrap().autodriller.max_speed = -1.0;
+    cfg.hoist.as_mut().unwrap().autodriller.ki = 1.0;
+    assert_eq!(cfg.validate().unwrap_err().field(), "hoist.autodriller.max_speed");
+}
+
+#[test]
+fn a_bit_that_never_touches_bottom_is_warned_about() {
+    // The block pulled up at 36 m/h: the bit lifts off at once and has no weight in the window.
+    let mut cfg = settling("detournay");
+    cfg.hoist.as_mut().unwrap().speed = -0.01;
+    cfg.numerics.duration = 10.0;
+    cfg.metrics.window = Some([5.0, 10.0]);
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let m = run.coupled.unwrap();
+    assert_eq!((m.bounce_fraction, m.rop_mean_m_per_h, m.wob_mean_n), (1.0, 0.0, 0.0), "{m:?}");
+    let warned: Vec<&String> = run.warnings.iter().filter(|w| w.contains("never touched bottom")).collect();
+    assert_eq!(warned.len(), 1, "{:?}", run.warnings);
+    assert!(warned[0].contains("[5, 10] s") && warned[0].contains("hoist.speed"), "{}", warned[0]);
+    // Drilling: no such warning.
+    let run = solve(&settling("detournay"), &Never, &mut |_| {}).unwrap();
+    assert!(run.warnings.iter().all(|w| !w.contains("never touched")), "{:?}", run.warnings);
+}
+
+#[test]
+fn the_axial_snapshots_hold_the_steady_drilling_string() {
+    // Steady drilling at 30 m/h: every cell moves down at the rate of penetration, the force at
+    // the bottom cell is the weight on bit (half a cell above it: within 1 %), and the
+    // compression falls from the bit up by the weight per metre rho A g (the viscous drag
+    // damping_rate rho A v, 2.3 N/m, lowers it by less than 1 %).
+    let mut cfg = settling("detournay");
+    cfg.numerics.field_interval = 1.0;
+    let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+    let (nt, nz) = (run.field_t.len(), run.axial_z.len());
+    assert_eq!((nt, run.axial_speed_field.len(), run.axial_force_field.len()), (61, nt * nz, nt * nz));
+    assert!(nz > 1 && run.axial_z[0] > 0.0 && run.axial_z[nz - 1] < 200.0);
+    let last = (nt - 1) * nz;
+    let v = 30.0 / 3600.0;
+    for k in 0..nz {
+        // within the splitting's O(damping_rate dt) = 0.6 % (dt = 6.45e-4 s; the state after the
+        // gravity kick alone would be g dt / 2 = 3.2 mm/s, 38 %, too fast)
+        assert!((run.axial_speed_field[last + k] - v).abs() < 0.005 * v, "{k}: {}", run.axial_speed_field[last + k]);
+    }
+    let area = PI / 4.0 * (0.127f64.powi(2) - 0.108f64.powi(2));
+    let per_metre = 8000.0 * area * 9.81;
+    let (top, bottom) = (run.axial_force_field[last], run.axial_force_field[last + nz - 1]);
+    assert!((bottom - 87_480.0).abs() < 0.01 * 87_480.0, "{bottom}");
+    let slope = (bottom - top) / (run.axial_z[nz - 1] - run.axial_z[0]);
+    assert!(slope < per_metre && slope > 0.99 * per_metre, "{slope} vs {per_metre}");
+}

@@ -19,7 +19,7 @@ use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
-use crate::drilling::plausibility::{non_finite_metrics_warning, run_warnings, transient_warning};
+use crate::drilling::plausibility::{non_finite_metrics_warning, off_bottom_warning, run_warnings, transient_warning};
 use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Poller};
 use crate::metrics::{stick_slip, StickSlip};
@@ -85,6 +85,15 @@ pub struct DrillRun {
     pub bit_depth: Vec<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub depth_of_cut: Vec<f64>,
+    /// A coupled run's axial cells (empty without a hoist): their centres, m, and at the
+    /// snapshot times `field_t` (`field_t.len() x axial_z.len()`, row-major) the axial speed m/s
+    /// (down positive) and the axial force N (compression positive, tension negative).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axial_z: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axial_speed_field: Vec<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub axial_force_field: Vec<f64>,
     /// A coupled run's metrics over the window (None without a hoist or a window).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coupled: Option<CoupledMetrics>,
@@ -360,6 +369,9 @@ impl<'c> Simulation<'c> {
             hook_load: Vec::new(),
             bit_depth: Vec::new(),
             depth_of_cut: Vec::new(),
+            axial_z: self.axial.as_ref().map_or_else(Vec::new, |a| a.z.clone()),
+            axial_speed_field: Vec::new(),
+            axial_force_field: Vec::new(),
             coupled: None,
             energy: EnergyBalance::default(),
             metrics: None,
@@ -383,12 +395,20 @@ impl<'c> Simulation<'c> {
             },
         };
         let mut sampler = Sampler::new(cfg);
-        if let Err(oom) = sampler.reserve(&mut run, nz) {
+        let axial_cells = self.axial.as_ref().map_or(0, |a| a.z.len());
+        if let Err(oom) = sampler.reserve(&mut run, nz, axial_cells) {
             run.status = Status::OutOfMemory;
             run.message = oom.outputs_message();
             return run;
         }
-        if !sampler.start(&self.field, &mut run, self.top.omega, self.bit_speed(), self.axial_point()) {
+        if !sampler.start(
+            &self.field,
+            self.axial.as_ref(),
+            &mut run,
+            self.top.omega,
+            self.bit_speed(),
+            self.axial_point(),
+        ) {
             run.status = Status::NonFinite;
             run.message = "the initial state is not finite".into();
             return run;
@@ -421,7 +441,7 @@ impl<'c> Simulation<'c> {
             run.stats.steps = n + 1;
             let [a0, a1, a2, a3, a4, a5] = self.axial_point();
             let point = [t, top, self.bit_speed(), motor, bit, a0, a1, a2, a3, a4, a5];
-            if !sampler.record(n, point, &self.field, &mut run, dt) {
+            if !sampler.record(n, point, &self.field, self.axial.as_ref(), &mut run, dt) {
                 run.status = Status::NonFinite;
                 run.message = format!("the state became non-finite before t = {} s", Num(t));
                 break;
@@ -440,6 +460,9 @@ impl<'c> Simulation<'c> {
         metrics(cfg, &mut run);
         if let Some(ax) = &self.axial {
             run.coupled = coupled_metrics(&run, ax.law().radius);
+        }
+        if let (Some(c), Some(h)) = (&run.coupled, &cfg.hoist) {
+            run.warnings.extend(off_bottom_warning(c.bounce_fraction, run.window, h.mode));
         }
         run.metrics_finite = run.metrics.as_ref().is_some_and(|m| non_finite_metrics_warning(m).is_none());
         run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));

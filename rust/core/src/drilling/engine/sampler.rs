@@ -2,6 +2,7 @@
 //! ends around each sample time, and the field snapshots at the step nearest to
 //! `k field_interval`; storage reserved up front ([`crate::solution::reserve_outputs`]).
 
+use super::axial::Axial;
 use super::controller::RPM_PER_RAD_S;
 use super::field::Field;
 use super::run::DrillRun;
@@ -41,10 +42,11 @@ impl Sampler {
         }
     }
 
-    /// Reserves the run's sample storage for `cells` cells.
-    pub fn reserve(&self, run: &mut DrillRun, cells: usize) -> Result<(), OutOfMemory> {
+    /// Reserves the run's sample storage for `cells` cells (and `axial_cells` of a coupled run).
+    pub fn reserve(&self, run: &mut DrillRun, cells: usize, axial_cells: usize) -> Result<(), OutOfMemory> {
         let (n_series, n_fields) = (self.n_series, self.n_fields);
         let n_axial = if self.coupled { n_series } else { 0 };
+        let axial_cells = if self.coupled { axial_cells } else { 0 };
         crate::solution::reserve_outputs(&mut [
             (&mut run.bit_axial_speed, n_axial),
             (&mut run.rop, n_axial),
@@ -60,6 +62,8 @@ impl Sampler {
             (&mut run.field_t, n_fields),
             (&mut run.omega_field, n_fields * cells),
             (&mut run.torque_field, n_fields * cells),
+            (&mut run.axial_speed_field, n_fields * axial_cells),
+            (&mut run.axial_force_field, n_fields * axial_cells),
         ])
     }
 
@@ -67,20 +71,29 @@ impl Sampler {
     pub fn start(
         &mut self,
         field: &Field,
+        axial: Option<&Axial>,
         run: &mut DrillRun,
         omega_top: f64,
         omega_bit: f64,
-        axial: [f64; 6],
+        point: [f64; 6],
     ) -> bool {
         self.prev = [0.0, omega_top, omega_bit, f64::NAN, f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-        self.prev[5..].copy_from_slice(&axial);
-        self.n_fields == 0 || snapshot(field, run, 0.0)
+        self.prev[5..].copy_from_slice(&point);
+        self.n_fields == 0 || snapshot(field, axial, run, 0.0)
     }
 
     /// Samples after step `n` (0-based) ending at `cur`: the series up to `cur[0]`, then a
-    /// snapshot of `field` if one is due (`dt` the step). `false` (the sample not stored) when
-    /// a value is not finite.
-    pub fn record(&mut self, n: u64, cur: Point, field: &Field, run: &mut DrillRun, dt: f64) -> bool {
+    /// snapshot of `field` (and of a coupled run's `axial_field`) if one is due (`dt` the step).
+    /// `false` (the sample not stored) when a value is not finite.
+    pub fn record(
+        &mut self,
+        n: u64,
+        cur: Point,
+        field: &Field,
+        axial: Option<&Axial>,
+        run: &mut DrillRun,
+        dt: f64,
+    ) -> bool {
         let t = cur[0];
         let prev = &mut self.prev;
         if n == 0 {
@@ -117,7 +130,7 @@ impl Sampler {
             self.next_series += 1;
         }
         if self.next_field < self.n_fields && t >= self.next_field as f64 * self.field_dt - 0.5 * dt {
-            if !snapshot(field, run, t) {
+            if !snapshot(field, axial, run, t) {
                 return false;
             }
             self.next_field += 1;
@@ -127,19 +140,31 @@ impl Sampler {
     }
 }
 
-/// Appends the fields at `t`; `false` (nothing appended) when a value is not finite.
-fn snapshot(field: &Field, run: &mut DrillRun, t: f64) -> bool {
+/// Appends the fields at `t` (a coupled run's axial speed and force too); `false` (nothing
+/// appended) when a value is not finite.
+fn snapshot(field: &Field, axial: Option<&Axial>, run: &mut DrillRun, t: f64) -> bool {
     let start = run.omega_field.len();
+    let axial_start = run.axial_speed_field.len();
     field.each_cell(|w, tau| {
         run.omega_field.push(w * RPM_PER_RAD_S);
         run.torque_field.push(tau);
     });
-    let finite = run.omega_field[start..].iter().chain(&run.torque_field[start..]).all(|v| v.is_finite());
+    if let Some(axial) = axial {
+        axial.each_cell(|v, f| {
+            run.axial_speed_field.push(v);
+            run.axial_force_field.push(f);
+        });
+    }
+    let finite = (run.omega_field[start..].iter().chain(&run.torque_field[start..]))
+        .chain(run.axial_speed_field[axial_start..].iter().chain(&run.axial_force_field[axial_start..]))
+        .all(|v| v.is_finite());
     if finite {
         run.field_t.push(t);
     } else {
         run.omega_field.truncate(start);
         run.torque_field.truncate(start);
+        run.axial_speed_field.truncate(axial_start);
+        run.axial_force_field.truncate(axial_start);
     }
     finite
 }
