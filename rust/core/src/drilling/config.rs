@@ -231,6 +231,29 @@ pub struct Friction {
     /// one everywhere.
     #[schemars(extend("label" = "friction intervals"))]
     pub intervals: Vec<FrictionInterval>,
+    /// What the wall friction of a coupled run (`[hoist]`) acts on: `axial_torsional` (default),
+    /// the Coulomb friction against the contact's sliding velocity (axial speed, contact radius
+    /// times angular speed) on both fields with one stick phase, so that a rotating string
+    /// slides axially with little drag; or `torsion_only`, the torsional field alone (the axial
+    /// field without wall friction, the coupled runs before this key). No effect without a hoist.
+    #[schemars(extend("label" = "wall friction coupling"))]
+    pub coupling: FrictionCoupling,
+}
+
+/// What the wall friction of a coupled run acts on ([`Friction::coupling`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionCoupling {
+    /// Against the sliding velocity `(v, r omega)` on both fields
+    /// ([`super::engine::coupled_friction`]).
+    #[default]
+    AxialTorsional,
+    /// On the torsional field alone.
+    TorsionOnly,
+}
+
+impl FrictionCoupling {
+    pub const NAMES: [&'static str; 2] = ["axial_torsional", "torsion_only"];
 }
 
 /// The normal force of the wall's friction limit ([`Friction::contact`]).
@@ -274,6 +297,7 @@ impl Default for Friction {
             regularisation_speed: 0.1,
             contact: Contact::SoftString,
             intervals: Vec::new(),
+            coupling: FrictionCoupling::AxialTorsional,
         }
     }
 }

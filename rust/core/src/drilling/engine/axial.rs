@@ -7,10 +7,12 @@
 //!   (`c_a = sqrt(E / rho)`, Courant number `c_a dt / h <= 1`; below 1 the upwind transport
 //!   dissipates, booked as `upwind_loss`); a section shorter than `c_a dt` is refused.
 //! * Sources: the viscous damping `damping_rate` (the torsion's, on the axial speed) through the
-//!   kernel (no wall friction on the axial field: it is not yet coupled), and the buoyed weight
+//!   kernel, the buoyed weight
 //!   `(1 - rho_mud / rho) g cos(inc)` per cell ([`AxialSection::buoyed_gravity`], `inc` at the
 //!   cell centre), added to both invariants after the transport; its work
-//!   `m h g dt (v* + g dt / 2)` is booked as `gravity_work`.
+//!   `m h g dt (v* + g dt / 2)` is booked as `gravity_work`; then the wall friction of
+//!   [`super::coupled_friction`] on both fields (`friction.coupling = "axial_torsional"`; with
+//!   `torsion_only` the axial field has none).
 //! * Initial state: at rest under the static tension of the hanging string with no weight on
 //!   bit ([`static_tension`] at the cell centres), the bit just touching flat rock.
 //! * Top: the hoist's command for the step gives the ghost `alpha_0`; the top speed
@@ -81,6 +83,15 @@ pub struct Axial {
     pub state: AxialState,
     /// Courant numbers of the sections.
     pub courant: Vec<f64>,
+    /// With the coupled wall friction, the static limit of the friction on the half of the last
+    /// cell below its centre, N (else 0): a bit off the rock below a stuck last cell (speed
+    /// exactly 0) is at rest (its position kept, its speed reported 0) while the load the free
+    /// end's speed stands for, `Z alpha_n`, is within it. The end's ghost keeps the free end's
+    /// speed `alpha_n`: the creep of the torsional bit below a stuck cell
+    /// ([`super::run`], `bit_speed`), a speed of the order of the stuck cell's load over the
+    /// impedance, proportional to the cell size (inside a stuck region the load relaxes
+    /// towards a linear profile, zero at the free end); its position would integrate it.
+    pub end_hold: f64,
 }
 
 impl Axial {
@@ -176,6 +187,7 @@ impl Axial {
             },
             courant,
             field,
+            end_hold: 0.0,
         })
     }
 
@@ -210,7 +222,7 @@ impl Axial {
                 f64::from(self.law.blades) * s.depth_per_blade(self.angle, self.state.position)
             }
         };
-        let c = solve_bit(&self.law, axial, turning, depth);
+        let mut c = solve_bit(&self.law, axial, turning, depth);
         ledger.bit += dt * c.power();
         let w1 = c.angular_speed;
         let stop = 0.5 * inertia * (w1 - omega) * (w1 - omega);
@@ -220,6 +232,14 @@ impl Axial {
             ledger.inertia += stop;
         }
         self.field.set_bottom(arriving, c.axial_speed);
+        let last = self.field.last();
+        if self.end_hold > 0.0
+            && c.phase == BitPhase::LiftOff
+            && self.field.speed(last.offset + last.cells) == 0.0
+            && (arriving.impedance * arriving.value).abs() <= self.end_hold
+        {
+            c.axial_speed = 0.0;
+        }
         self.angle += w1 * dt;
         let s = &mut self.state;
         s.position += c.axial_speed * dt;

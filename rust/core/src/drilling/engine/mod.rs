@@ -18,6 +18,8 @@
 //!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
 //!   the bit on bottom as the set-valued boundary of both fields
 //!   ([`crate::drilling::axial::bit_boundary::solve_bit`]) in place of [`boundary::Bit`];
+//! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
+//!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
 //! * [`controller`]: the controllers and the setpoint;
 //! * [`sampler`]: the output series and field snapshots;
 //! * [`energy`]: the energy ledger and the balance;
@@ -163,6 +165,7 @@
 pub mod axial;
 pub mod boundary;
 pub mod controller;
+pub mod coupled_friction;
 pub mod energy;
 pub mod field;
 pub mod kernel;
