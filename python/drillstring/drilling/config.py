@@ -351,6 +351,9 @@ class Bit:
     detournay: Detournay = field(default_factory=lambda: Detournay(),
                                  metadata={"kind": "table", "unit": "", "doc": ""})
     """The Detournay law's rock and bit parameters (the radius is ``radius``)."""
+    bha_mass: float = _default("bit", "bha_mass", unit="kg", kind="float")
+    """Lumped mass at the bit on the axial field of a coupled run, kg (0: none): its inertia and
+    its buoyed weight along the hole, carried by the string's initial static tension."""
 
 
 @dataclass(frozen=True)

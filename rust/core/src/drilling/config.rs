@@ -530,6 +530,11 @@ pub struct Bit {
     pub law: BitRockLaw,
     #[schemars(extend("label" = "Detournay bit law"))]
     pub detournay: Detournay,
+    /// Lumped mass at the bit on the axial field of a coupled run (`[hoist]`), >= 0 (0: none,
+    /// the string's end alone): its inertia and its buoyed weight along the hole (the density of
+    /// the last section), which the string carries in the initial static tension.
+    #[schemars(extend("unit" = "kg", "label" = "BHA mass"))]
+    pub bha_mass: f64,
 }
 
 /// The bit-rock law of the bit (`bit.law`).
@@ -674,6 +679,7 @@ impl Default for Bit {
             bha_inertia: 0.0,
             law: BitRockLaw::VelocityWeakening,
             detournay: Detournay::default(),
+            bha_mass: 0.0,
         }
     }
 }
@@ -1206,6 +1212,7 @@ impl DrillConfig {
         nonneg("bit.decay", b.decay, "s/rad")?;
         nonneg("bit.stick_speed", b.stick_speed, "rad/s")?;
         nonneg("bit.bha_inertia", b.bha_inertia, "kg m^2")?;
+        nonneg("bit.bha_mass", b.bha_mass, "kg")?;
         let nu = &self.numerics;
         if !(1..=MAX_CELLS).contains(&nu.max_cells) {
             return Err(Error::invalid("numerics.max_cells", nu.max_cells, format!("an integer in 1..={MAX_CELLS}")));

@@ -22,9 +22,11 @@
 //!   `2 pi v' / omega` with the step's axial speed `v'` (implicit) and the angular speed at the
 //!   step start ([`rate_depth`]), `rgd` `n` times the
 //!   cut surface's depth of cut of a blade ([`CutSurface`], the exact delay, the deepest-surface
-//!   rule); then [`solve_bit`] with the axial end of the string (no lumped axial mass) and the
-//!   torsional end with the BHA inertia `bit.bha_inertia`; the bit's work `dt (W v' + T w')` is
-//!   booked as `bit_loss`, the BHA's implicit-Euler term as in the torsional bit.
+//!   rule); then [`solve_bit`] with the axial end of the string (with `bit.bha_mass` a lumped
+//!   mass, [`Port::lumped`], pushed by its buoyed weight, which the initial static tension
+//!   carries) and the torsional end with the BHA inertia `bit.bha_inertia`; the bit's work
+//!   `dt (W v' + T w')` is booked as `bit_loss`, the BHA's implicit-Euler terms as in the
+//!   torsional bit, its weight's work as `gravity_work` and its axial kinetic energy in `bha`.
 
 use std::f64::consts::TAU;
 
@@ -92,6 +94,10 @@ pub struct Axial {
     /// impedance, proportional to the cell size (inside a stuck region the load relaxes
     /// towards a linear profile, zero at the free end); its position would integrate it.
     pub end_hold: f64,
+    /// The lumped BHA mass at the bit, kg (`bit.bha_mass`, 0: none), and its buoyed weight along
+    /// the hole at the bit, N.
+    bha_mass: f64,
+    bha_weight: f64,
 }
 
 impl Axial {
@@ -141,7 +147,11 @@ impl Axial {
             beta_next: vec![0.0; len],
             nl: None,
         };
-        let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &centres);
+        let last = parts.last().expect("at least one section");
+        let bha_mass = cfg.bit.bha_mass;
+        let bha_weight = bha_mass * last.buoyed_gravity(mud, g, inclination(cfg, top));
+        // The BHA hangs from the string: a negative weight on bit.
+        let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &centres);
         let mut k = 0;
         for s in 0..field.sections.len() {
             for j in 1..=field.sections[s].cells {
@@ -150,7 +160,7 @@ impl Axial {
             }
         }
         let params = hoist.params();
-        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &[0.0])[0];
+        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &[0.0])[0];
         let initial = if params.mode == HoistMode::HookLoad { hanging } else { 0.0 };
         let law = cfg.bit.detournay.law(cfg.bit.radius);
         let rule = match cfg.bit.law {
@@ -188,7 +198,15 @@ impl Axial {
             courant,
             field,
             end_hold: 0.0,
+            bha_mass,
+            bha_weight,
         })
+    }
+
+    /// The lumped BHA's axial kinetic energy, J (0 without `bit.bha_mass`).
+    pub fn bha_kinetic(&self) -> f64 {
+        let v = self.state.contact.axial_speed;
+        0.5 * self.bha_mass * v * v
     }
 
     /// The Detournay law of the run.
@@ -214,7 +232,12 @@ impl Axial {
     /// torsional field's bottom is set by the caller).
     pub fn bit(&mut self, torsion: Arriving, inertia: f64, omega: f64, dt: f64, ledger: &mut Ledger) -> (f64, f64) {
         let arriving = self.field.arriving_bottom();
-        let axial = Port::string(arriving.value, arriving.impedance);
+        let (m, v0) = (self.bha_mass, self.state.contact.axial_speed);
+        let axial = if m > 0.0 {
+            Port::lumped(arriving.value, arriving.impedance, m, v0, dt, self.bha_weight)
+        } else {
+            Port::string(arriving.value, arriving.impedance)
+        };
         let turning = Port::lumped(torsion.value, torsion.impedance, inertia, omega, dt, 0.0);
         let depth = match &self.rule {
             DepthOfCut::Rate => rate_depth(&self.law, axial, turning, omega, self.turning_depth),
@@ -231,9 +254,21 @@ impl Axial {
         } else {
             ledger.inertia += stop;
         }
+        if m > 0.0 {
+            // The BHA's weight's work and its implicit-Euler term (the rock's when it stops it).
+            let v1 = c.axial_speed;
+            ledger.gravity += dt * self.bha_weight * v1;
+            let stop = 0.5 * m * (v1 - v0) * (v1 - v0);
+            if v1 == 0.0 && c.weight_on_bit != 0.0 {
+                ledger.bit += stop;
+            } else {
+                ledger.inertia += stop;
+            }
+        }
         self.field.set_bottom(arriving, c.axial_speed);
         let last = self.field.last();
         if self.end_hold > 0.0
+            && m == 0.0
             && c.phase == BitPhase::LiftOff
             && self.field.speed(last.offset + last.cells) == 0.0
             && (arriving.impedance * arriving.value).abs() <= self.end_hold
@@ -326,3 +361,7 @@ pub fn rate_depth(law: &DetournayBit, axial: Port, torsion: Port, omega: f64, la
 #[cfg(test)]
 #[path = "axial_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "axial_bha_tests.rs"]
+mod bha_tests;

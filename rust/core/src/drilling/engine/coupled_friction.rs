@@ -259,4 +259,4 @@ fn apply_cells(field: &mut Field, cells: &Cells) -> f64 {
 
 #[cfg(test)]
 #[path = "coupled_friction_tests.rs"]
-mod tests;
+pub(super) mod tests;

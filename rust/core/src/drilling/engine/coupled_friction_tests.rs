@@ -136,7 +136,7 @@ fn a_string_pulled_below_the_static_limit_sticks() {
 }
 
 /// A 60-degree well with soft-string contact, drilling at 30 m/h and 60 rpm.
-fn inclined(extra: &str) -> DrillConfig {
+pub(crate) fn inclined(extra: &str) -> DrillConfig {
     let json = format!(
         r#"{{"sections": [{{"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
             "shear_modulus": {g}, "density": 8000.0, "poisson_ratio": 0.3}}],

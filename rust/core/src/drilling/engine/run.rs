@@ -274,6 +274,7 @@ impl<'c> Simulation<'c> {
         };
         if let Some(ax) = &self.axial {
             (s.axial_kinetic, s.axial_elastic) = ax.field.energies();
+            s.bha += ax.bha_kinetic();
         }
         s
     }
