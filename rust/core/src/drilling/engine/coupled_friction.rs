@@ -73,17 +73,49 @@ pub struct Slide {
     pub stuck_torsional: bool,
 }
 
-/// The coupled wall friction of a contact of radius `r` moving at the axial speed `v` and the
-/// angular speed `w` (after the step's transport and other sources), with the speed changes
-/// `la`, `lt` (axial, torsional) of the static limit over the step (see the module).
+/// A contact's constants for [`slide`]: its radius and the speed changes `la`, `lt` (axial,
+/// torsional) of the static limit over a step, with their inverses and kinetic parts.
+#[derive(Debug, Clone, Copy)]
+pub struct Contact {
+    inv_radius: f64,
+    la: f64,
+    lt: f64,
+    inv_la: f64,
+    inv_lt: f64,
+    /// `kinetic_ratio la`, `kinetic_ratio lt`.
+    kla: f64,
+    klt: f64,
+    /// Whether the wall holds it at all (`la, lt > 0`).
+    touching: bool,
+}
+
+impl Contact {
+    pub fn new(radius: f64, la: f64, lt: f64, law: &Law) -> Self {
+        let touching = la > 0.0 && lt > 0.0;
+        Contact {
+            inv_radius: 1.0 / radius,
+            la,
+            lt,
+            inv_la: if touching { 1.0 / la } else { 0.0 },
+            inv_lt: if touching { 1.0 / lt } else { 0.0 },
+            kla: law.kinetic_ratio * la,
+            klt: law.kinetic_ratio * lt,
+            touching,
+        }
+    }
+}
+
+/// The coupled wall friction of a contact `c` moving at the axial speed `v` and the angular
+/// speed `w` (after the step's transport and other sources): see the module.
 #[inline]
-pub fn slide(v: f64, w: f64, r: f64, la: f64, lt: f64, law: &Law) -> Slide {
+pub fn slide(v: f64, w: f64, c: &Contact, law: &Law) -> Slide {
     let none = Slide { dv: 0.0, dw: 0.0, stuck_axial: false, stuck_torsional: false };
-    if !(la > 0.0 && lt > 0.0) {
+    if !c.touching {
         return none;
     }
-    let vr = v / r;
-    let s = vr.hypot(w);
+    let vr = v * c.inv_radius;
+    // (No overflow at drilling speeds: plain square roots, several times faster than `hypot`.)
+    let s = (vr * vr + w * w).sqrt();
     // `-x` when the change `d` would reverse `x`, and whether it does.
     let clip = |d: f64, x: f64| if d.abs() >= x.abs() { (-x, true) } else { (d, false) };
     if let Some(inv) = law.inv_regularisation {
@@ -91,21 +123,23 @@ pub fn slide(v: f64, w: f64, r: f64, la: f64, lt: f64, law: &Law) -> Slide {
             return none;
         }
         let f = law.kinetic_ratio * (s * inv).tanh() / s;
-        let (dv, _) = clip(-f * la * vr, v);
-        let (dw, _) = clip(-f * lt * w, w);
+        let (dv, _) = clip(-f * c.la * vr, v);
+        let (dw, _) = clip(-f * c.lt * w, w);
         return Slide { dv, dw, stuck_axial: false, stuck_torsional: false };
     }
     if s < law.slow_below {
         // The stop force over the static limit.
-        let q = (v / la).hypot(w / lt);
+        let (qa, qt) = (v * c.inv_la, w * c.inv_lt);
+        let q = (qa * qa + qt * qt).sqrt();
         if q <= 1.0 {
             return Slide { dv: -v, dw: -w, stuck_axial: true, stuck_torsional: true };
         }
         return Slide { dv: -v / q, dw: -w / q, stuck_axial: false, stuck_torsional: false };
     }
-    let k = law.kinetic_ratio;
-    let (dv, stuck_axial) = clip(-(k * la) * (vr / s), v);
-    let (dw, stuck_torsional) = clip(-(k * lt) * (w / s), w);
+    // The direction cosines by division (without axial speed `w / s` is exactly +-1: the
+    // torsional law's kinetic change, bit for bit).
+    let (dv, stuck_axial) = clip(-c.kla * (vr / s), v);
+    let (dw, stuck_torsional) = clip(-c.klt * (w / s), w);
     Slide { dv, dw, stuck_axial, stuck_torsional }
 }
 
@@ -116,14 +150,14 @@ struct Segment {
     axial: usize,
     wt: f64,
     wa: f64,
-    la: f64,
-    lt: f64,
-    radius: f64,
+    contact: Contact,
 }
 
 /// The per-cell sums of a step.
 #[derive(Debug, Clone, Default)]
 struct Cells {
+    /// The speeds before the friction (padded).
+    speed: Vec<f64>,
     change: Vec<f64>,
     /// Segments of the cell not stuck in the step.
     moving: Vec<u32>,
@@ -131,7 +165,7 @@ struct Cells {
 
 impl Cells {
     fn new(len: usize) -> Self {
-        Cells { change: vec![0.0; len], moving: vec![0; len] }
+        Cells { speed: vec![0.0; len], change: vec![0.0; len], moving: vec![0; len] }
     }
 
     fn add(&mut self, k: usize, w: f64, d: f64, stuck: bool) {
@@ -158,6 +192,7 @@ impl CoupledFriction {
     /// torsional wall friction's static-limit changes `stop` (padded) and the axial sections'
     /// masses per length in `axial.sections`; None when the wall has no friction anywhere.
     pub fn new(cfg: &DrillConfig, grid: &Grid, torsion: &Field, stop: &[f64], axial: &Field) -> Option<Self> {
+        let law = Law::new(cfg);
         let mut segments = Vec::new();
         let mut cell = 0;
         let mut end_hold = 0.0;
@@ -182,9 +217,7 @@ impl CoupledFriction {
                         axial: sa.offset + 1 + j,
                         wt: l / ht,
                         wa: l / ha,
-                        la,
-                        lt,
-                        radius: p.contact_radius,
+                        contact: Contact::new(p.contact_radius, la, lt, &law),
                     });
                 }
                 pos = end;
@@ -200,12 +233,12 @@ impl CoupledFriction {
             }
         }
         debug_assert_eq!(cell, grid.cells());
-        if segments.iter().all(|g| g.lt == 0.0) {
+        if segments.iter().all(|g| !g.contact.touching) {
             return None;
         }
         Some(CoupledFriction {
             segments,
-            law: Law::new(cfg),
+            law,
             torsional: Cells::new(torsion.padded_len()),
             axial: Cells::new(axial.padded_len()),
             end_hold,
@@ -227,9 +260,10 @@ impl CoupledFriction {
         ct.moving.fill(0);
         ca.change.fill(0.0);
         ca.moving.fill(0);
+        torsion.speeds(&mut ct.speed);
+        axial.speeds(&mut ca.speed);
         for g in &self.segments {
-            let (v, w) = (axial.speed(g.axial), torsion.speed(g.torsional));
-            let f = slide(v, w, g.radius, g.la, g.lt, &self.law);
+            let f = slide(ca.speed[g.axial], ct.speed[g.torsional], &g.contact, &self.law);
             ct.add(g.torsional, g.wt, f.dw, f.stuck_torsional);
             ca.add(g.axial, g.wa, f.dv, f.stuck_axial);
         }
@@ -245,7 +279,7 @@ fn apply_cells(field: &mut Field, cells: &Cells) -> f64 {
         let sp = field.sections[s];
         let m = sp.inertia_per_length * sp.h;
         for k in sp.offset + 1..=sp.offset + sp.cells {
-            let w = field.speed(k);
+            let w = cells.speed[k];
             let d = if cells.moving[k] == 0 { -w } else { cells.change[k] };
             if d == 0.0 && cells.moving[k] != 0 {
                 continue;

@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use super::{slide, Law};
+use super::{slide, Contact, Law};
 use crate::drilling::config::DrillConfig;
 use crate::drilling::solver::solve;
 use crate::interrupt::Never;
@@ -20,7 +20,7 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
     let (dt, mu, n, rho_a, rho_j, r) = (1e-3, 0.3, 275.0, 28.0, 0.1, 0.0635);
     let (la, lt) = (dt * mu * n / rho_a, dt * mu * n * r / rho_j);
     for (v, w) in [(0.01, 2.0 * PI), (-0.01, 2.0 * PI), (0.3, -4.0), (2.0, 0.5), (-0.2, 0.0)] {
-        let f = slide(v, w, r, la, lt, &LAW);
+        let f = slide(v, w, &Contact::new(r, la, lt, &LAW), &LAW);
         let u = (v * v + r * w * r * w).sqrt();
         let fa = -0.65 * mu * n * v / u;
         let ft = -0.65 * mu * n * r * w / u;
@@ -31,11 +31,11 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
     }
     // Without axial speed: the torsional law's kinetic change, bit for bit.
     for w in [2.0, -7.5] {
-        let f = slide(0.0, w, r, la, lt, &LAW);
+        let f = slide(0.0, w, &Contact::new(r, la, lt, &LAW), &LAW);
         assert_eq!((f.dv, f.dw), (0.0, -(0.65 * lt) * w.signum()), "{w}");
     }
     // A change that would reverse a speed stops it.
-    let f = slide(1e-6, 2.0 * PI, r, 1.0, lt, &LAW);
+    let f = slide(1e-6, 2.0 * PI, &Contact::new(r, 1.0, lt, &LAW), &LAW);
     assert!(f.stuck_axial && !f.stuck_torsional && f.dv == -1e-6);
 }
 
@@ -44,16 +44,16 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
 #[test]
 fn a_slow_contact_sticks_within_the_static_limit_else_takes_it() {
     let (la, lt, r) = (1e-3, 2e-3, 0.05);
-    let f = slide(0.6e-3, 1.5e-3, r, la, lt, &LAW);
+    let f = slide(0.6e-3, 1.5e-3, &Contact::new(r, la, lt, &LAW), &LAW);
     assert_eq!((f.dv, f.dw, f.stuck_axial, f.stuck_torsional), (-0.6e-3, -1.5e-3, true, true));
     let (v, w) = (3e-3, -4e-3);
-    let f = slide(v, w, r, la, lt, &LAW);
+    let f = slide(v, w, &Contact::new(r, la, lt, &LAW), &LAW);
     assert!(!f.stuck_axial && !f.stuck_torsional);
     // Static limit: |(dv / la, dw / lt)| = 1, along the stop force.
     assert!(((f.dv / la).hypot(f.dw / lt) - 1.0).abs() < 1e-14, "{f:?}");
     assert!((f.dv / v - f.dw / w).abs() < 1e-14 && f.dv < 0.0 && f.dw > 0.0);
     // No contact force: nothing.
-    let f = slide(3e-3, 1.0, r, 0.0, 0.0, &LAW);
+    let f = slide(3e-3, 1.0, &Contact::new(r, 0.0, 0.0, &LAW), &LAW);
     assert_eq!((f.dv, f.dw), (0.0, 0.0));
 }
 

@@ -298,6 +298,18 @@ impl Field {
         }
     }
 
+    /// The speeds at every padded index into `out` (the ghosts' values meaningless).
+    pub fn speeds(&self, out: &mut [f64]) {
+        match &self.nl {
+            Some(nl) => out.copy_from_slice(&nl.omega),
+            None => {
+                for ((o, a), b) in out.iter_mut().zip(&self.alpha).zip(&self.beta) {
+                    *o = 0.5 * (a + b);
+                }
+            }
+        }
+    }
+
     /// Changes the speed of the cell at padded index `k` by `d`, its load kept; with `stop`, sets
     /// it exactly to rest instead (the load kept).
     #[inline]
