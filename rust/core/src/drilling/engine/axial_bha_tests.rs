@@ -4,28 +4,24 @@
 
 use std::f64::consts::PI;
 
-use crate::drilling::config::DrillConfig;
+use crate::drilling::config::{DrillConfig, HoistKind};
 use crate::drilling::solver::solve;
 use crate::interrupt::Never;
 use crate::solution::Status;
 
-/// 1000 m of the pipe (OD 127 mm, ID 108 mm, rho 8000 kg/m^3) hanging vertically in mud of
-/// 1200 kg/m^3 with a BHA of `mass` kg, held at the hook load `hook` N (ramp 0), no damping.
+/// The coupled test string (1000 m of the pipe, OD 127 mm, ID 108 mm, rho 8000 kg/m^3,
+/// vertical, `super::tests::coupled`) in mud of 1200 kg/m^3 with a BHA of `mass` kg, held at the
+/// hook load `hook` N (ramp 0), no damping.
 fn hanging(mass: f64, hook: f64) -> DrillConfig {
-    let json = format!(
-        r#"{{"sections": [{{"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
-            "shear_modulus": {g}, "density": 8000.0, "poisson_ratio": 0.3}}],
-           "well": {{"inclination_deg": 0.0, "mud_density": 1200.0}},
-           "friction": {{"static": 0.0}},
-           "damping_rate": 0.0,
-           "top_drive": {{"rpm": 0.0, "controller": {{"type": "speed"}}}},
-           "bit": {{"radius": 0.108, "law": "detournay", "bha_mass": {mass}}},
-           "hoist": {{"mode": "hook_load", "hook_load": {hook}, "ramp_time": 0.0}},
-           "numerics": {{"cells": 200, "duration": 20.0, "output_interval": 0.01}},
-           "metrics": {{"window": [10.0, 20.0]}}}}"#,
-        g = 200e9 / 2.6,
-    );
-    DrillConfig::from_json(&json).unwrap()
+    let mut cfg = super::tests::coupled("detournay", "");
+    cfg.well.mud_density = 1200.0;
+    cfg.damping_rate = 0.0;
+    cfg.bit.bha_mass = mass;
+    let h = cfg.hoist.as_mut().expect("a hoist");
+    (h.mode, h.hook_load, h.ramp_time) = (HoistKind::HookLoad, hook, 0.0);
+    cfg.numerics.duration = 20.0;
+    cfg.metrics.window = Some([10.0, 20.0]);
+    cfg
 }
 
 /// `(string mass, buoyancy factor g (1 - rho_mud / rho))`.
@@ -68,12 +64,13 @@ fn the_bha_mass_hangs_from_the_string_and_moves_with_it() {
 /// Gaussian elimination of a 3x3 system.
 fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> [f64; 3] {
     for k in 0..3 {
+        let (pivot, bk) = (a[k], b[k]);
         for i in k + 1..3 {
-            let f = a[i][k] / a[k][k];
-            for j in k..3 {
-                a[i][j] -= f * a[k][j];
+            let f = a[i][k] / pivot[k];
+            for (x, p) in a[i][k..].iter_mut().zip(&pivot[k..]) {
+                *x -= f * p;
             }
-            b[i] -= f * b[k];
+            b[i] -= f * bk;
         }
     }
     let mut x = [0.0; 3];
