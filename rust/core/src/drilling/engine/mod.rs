@@ -160,7 +160,10 @@
 //! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
 //! it). The motor work is `sum dt tau_m Omega'`. A coupled run ([`axial`]) adds the axial field's
 //! energies (`e (alpha^2 + beta^2)` with `e = rho A h / 4`), the hoist's work `dt F v` at the top
-//! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss.
+//! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss; the
+//! coupled wall friction's work on each cell of both fields, `m h delta (w + delta / 2)`, goes
+//! to `friction_loss` (its axial part also to `axial_friction_loss`), a BHA mass's kinetic
+//! energy to `bha`, its weight's work to `gravity_work`.
 
 pub mod axial;
 pub mod boundary;
