@@ -78,3 +78,44 @@ def test_the_coupled_keys_are_checked_by_the_core() -> None:
     assert Hoist().mode == "velocity" and Hoist().speed == pytest.approx(30 / 3600)
     assert _config().to_toml().count("[hoist]") == 1
     assert DrillConfig.from_dict(_config().to_dict()) == _config()
+
+
+def _pulled_out(coupling: str, rpm: float) -> DrillConfig:
+    """500 m of the pipe in a horizontal hole (contact force ``g rho A``, no mud), pulled out at
+    0.01 m/s while turning at ``rpm``."""
+    return DrillConfig.from_dict({
+        "sections": [dict(PIPE, length=500.0)], "well": {"inclination_deg": 90.0, "mud_density": 0.0},
+        "friction": {"static": 0.3, "kinetic_ratio": 0.65, "contact": "weight", "stick_speed": 0.0,
+                     "coupling": coupling},
+        "damping_rate": 0.5,
+        "top_drive": {"rpm": rpm, "ramp_time": 0.5, "controller": {"type": "speed"}},
+        "bit": {"radius": 0.108, "law": "detournay"}, "hoist": {"speed": -0.01, "ramp_time": 0.5},
+        "numerics": {"cells": 100, "duration": 20.0, "output_interval": 0.01}, "metrics": {"window": [15.0, 20.0]},
+    })
+
+
+def test_the_coupled_wall_friction_drags_against_the_sliding_velocity() -> None:
+    # the hook load of a string pulled out at v: the drag mu_k N L v / sqrt(v^2 + (r omega)^2)
+    # plus the damping rho A d v L; with torsion_only the damping alone (no axial wall friction)
+    rho_a = 8000.0 * math.pi / 4 * (0.127**2 - 0.108**2)
+    n, v, length, r = 9.81 * rho_a, 0.01, 500.0, 0.0635
+    damping = rho_a * 0.5 * v * length
+    for coupling, rpm in (("axial_torsional", 60.0), ("axial_torsional", 0.0), ("torsion_only", 60.0)):
+        result = drill(_pulled_out(coupling, rpm))
+        assert result.success, result.message
+        t = result.t
+        hook = result.axial["hook_load"][(t >= 15.0)].mean()
+        rw = r * rpm * math.pi / 30
+        drag = 0.195 * n * length * v / math.hypot(v, rw) if coupling == "axial_torsional" else 0.0
+        assert hook == pytest.approx(drag + damping, rel=1e-3), (coupling, rpm)
+        friction = result.energy["axial_friction_loss"]
+        assert (friction > 0.0) == (coupling == "axial_torsional")
+        assert abs(result.energy["balance_error"]) < 1e-12
+
+
+def test_the_coupled_friction_and_bha_keys_are_validated() -> None:
+    assert _config().friction.coupling == "axial_torsional" and _config().bit.bha_mass == 0.0
+    with pytest.raises(ValidationError, match="friction.coupling"):
+        DrillConfig.from_dict({"sections": [PIPE], "friction": {"coupling": "both"}})
+    with pytest.raises(ValidationError, match="bit.bha_mass"):
+        DrillConfig.from_dict({"sections": [PIPE], "bit": {"bha_mass": -1.0}})

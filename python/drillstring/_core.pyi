@@ -820,7 +820,10 @@ class DrillEnergy(TypedDict):
     elastic: float
     top_drive: float
     bha: float
+    #: The wall friction's work on the string (both fields in a coupled run), and the axial
+    #: field's part of it (coupled runs with friction.coupling = "axial_torsional"; else 0).
     friction_loss: float
+    axial_friction_loss: float
     damping_loss: float
     bit_loss: float
     #: upwind_loss + inertia_loss.

@@ -256,6 +256,11 @@ class Friction:
     intervals: tuple[Mapping[str, float], ...] = _default("friction", "intervals", unit="", kind="tables")
     """Static friction factors over depth intervals, ``{top_md, bottom_md, static}`` (cased and
     open hole); ``static`` applies elsewhere. In TOML: ``[[friction.intervals]]`` tables."""
+    coupling: str = _default("friction", "coupling", unit="", kind="str")
+    """A coupled run's (``[hoist]``) wall friction: ``"axial_torsional"`` (default; against the
+    sliding velocity, axial speed and contact radius times angular speed, on both fields with one
+    stick phase: a rotating string slides axially with little drag) or ``"torsion_only"`` (the
+    torsional field alone, the coupled runs before this key). No effect without a hoist."""
 
 
 @dataclass(frozen=True)
@@ -356,6 +361,9 @@ class Bit:
     detournay: Detournay = field(default_factory=lambda: Detournay(),
                                  metadata={"kind": "table", "unit": "", "doc": ""})
     """The Detournay law's rock and bit parameters (the radius is ``radius``)."""
+    bha_mass: float = _default("bit", "bha_mass", unit="kg", kind="float")
+    """Lumped mass at the bit on the axial field of a coupled run, kg (0: none): its inertia and
+    its buoyed weight along the hole, carried by the string's initial static tension."""
 
 
 @dataclass(frozen=True)

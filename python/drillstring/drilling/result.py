@@ -312,7 +312,8 @@ class DrillResult:
         Stick-slip metrics over the window.
     energy : dict
         The energy balance, J: ``motor_work, initial, kinetic, elastic, top_drive, bha,
-        friction_loss, damping_loss, bit_loss, numerical_loss`` (``upwind_loss`` of the transport
+        friction_loss`` (both fields in a coupled run; ``axial_friction_loss`` its axial part)
+        ``damping_loss, bit_loss, numerical_loss`` (``upwind_loss`` of the transport
         plus ``inertia_loss`` of the implicit top-drive and BHA steps) and ``balance_error``.
     stats : dict
         ``cells``, ``steps``, ``dt`` of the solve, the Courant numbers ``courant_min``,

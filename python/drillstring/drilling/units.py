@@ -51,6 +51,7 @@ FIELD_UNITS: dict[str, str] = {
     "N": "klbf",
     "N*m": "ft*lbf",
     "kg*m^2": "lb*ft^2",
+    "kg": "lb",
     "N*m*s/rad": "ft*lbf*s/rad",
     "N*m/rad": "ft*lbf/rad",
     "deg/(30 m)": "deg/(100 ft)",
@@ -154,7 +155,7 @@ _DIMENSIONS = {
     "": "dimensionless", "m": "length", "m^2": "area", "m^4": "length^4", "m^6": "length^6", "Pa": "pressure",
     "kg/m^3": "density", "m/s^2": "acceleration", "deg": "angle", "deg/(30 m)": "angle per length",
     "rad/s": "angular speed", "rpm": "angular speed", "s/rad": "time per angle", "s": "time", "1/s": "rate",
-    "Hz": "frequency", "N": "force", "N*m": "torque", "kg*m^2": "moment of inertia",
+    "Hz": "frequency", "N": "force", "N*m": "torque", "kg*m^2": "moment of inertia", "kg": "mass",
     "N*m*s/rad": "torque per angular speed", "N*m/rad": "torque per angle", "m/s": "speed", "1": "dimensionless",
 }
 

@@ -231,6 +231,29 @@ pub struct Friction {
     /// one everywhere.
     #[schemars(extend("label" = "friction intervals"))]
     pub intervals: Vec<FrictionInterval>,
+    /// What the wall friction of a coupled run (`[hoist]`) acts on: `axial_torsional` (default),
+    /// the Coulomb friction against the contact's sliding velocity (axial speed, contact radius
+    /// times angular speed) on both fields with one stick phase, so that a rotating string
+    /// slides axially with little drag; or `torsion_only`, the torsional field alone (the axial
+    /// field without wall friction, the coupled runs before this key). No effect without a hoist.
+    #[schemars(extend("label" = "wall friction coupling"))]
+    pub coupling: FrictionCoupling,
+}
+
+/// What the wall friction of a coupled run acts on ([`Friction::coupling`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionCoupling {
+    /// Against the sliding velocity `(v, r omega)` on both fields
+    /// ([`super::engine::coupled_friction`]).
+    #[default]
+    AxialTorsional,
+    /// On the torsional field alone.
+    TorsionOnly,
+}
+
+impl FrictionCoupling {
+    pub const NAMES: [&'static str; 2] = ["axial_torsional", "torsion_only"];
 }
 
 /// The normal force of the wall's friction limit ([`Friction::contact`]).
@@ -274,6 +297,7 @@ impl Default for Friction {
             regularisation_speed: 0.1,
             contact: Contact::SoftString,
             intervals: Vec::new(),
+            coupling: FrictionCoupling::AxialTorsional,
         }
     }
 }
@@ -535,6 +559,11 @@ pub struct Bit {
     pub law: BitRockLaw,
     #[schemars(extend("label" = "Detournay bit law"))]
     pub detournay: Detournay,
+    /// Lumped mass at the bit on the axial field of a coupled run (`[hoist]`), >= 0 (0: none,
+    /// the string's end alone): its inertia and its buoyed weight along the hole (the density of
+    /// the last section), which the string carries in the initial static tension.
+    #[schemars(extend("unit" = "kg", "label" = "BHA mass"))]
+    pub bha_mass: f64,
 }
 
 /// The bit-rock law of the bit (`bit.law`).
@@ -739,6 +768,7 @@ impl Default for Bit {
             bha_inertia: 0.0,
             law: BitRockLaw::VelocityWeakening,
             detournay: Detournay::default(),
+            bha_mass: 0.0,
         }
     }
 }
@@ -1356,6 +1386,7 @@ impl DrillConfig {
         nonneg("bit.decay", b.decay, "s/rad")?;
         nonneg("bit.stick_speed", b.stick_speed, "rad/s")?;
         nonneg("bit.bha_inertia", b.bha_inertia, "kg m^2")?;
+        nonneg("bit.bha_mass", b.bha_mass, "kg")?;
         let nu = &self.numerics;
         if !(1..=MAX_CELLS).contains(&nu.max_cells) {
             return Err(Error::invalid("numerics.max_cells", nu.max_cells, format!("an integer in 1..={MAX_CELLS}")));

@@ -219,7 +219,7 @@ mod tests {
     fn every_entry_has_its_type_unit_label_and_description() {
         // the units a pint registry parses, as the Python edge converts to them
         let si: Vec<&str> =
-            "|m|m^2|m^4|m^6|Pa|kg/m^3|m/s|m/s^2|deg|deg/(30 m)|rad/s|s/rad|rpm|s|1/s|Hz|N|N*m|kg*m^2|N*m*s/rad|N*m/rad"
+            "|m|m^2|m^4|m^6|Pa|kg|kg/m^3|m/s|m/s^2|deg|deg/(30 m)|rad/s|s/rad|rpm|s|1/s|Hz|N|N*m|kg*m^2|N*m*s/rad|N*m/rad"
                 .split('|')
                 .collect();
         let schema = config_schema();

@@ -7,10 +7,12 @@
 //!   (`c_a = sqrt(E / rho)`, Courant number `c_a dt / h <= 1`; below 1 the upwind transport
 //!   dissipates, booked as `upwind_loss`); a section shorter than `c_a dt` is refused.
 //! * Sources: the viscous damping `damping_rate` (the torsion's, on the axial speed) through the
-//!   kernel (no wall friction on the axial field: it is not yet coupled), and the buoyed weight
+//!   kernel, the buoyed weight
 //!   `(1 - rho_mud / rho) g cos(inc)` per cell ([`AxialSection::buoyed_gravity`], `inc` at the
 //!   cell centre), added to both invariants after the transport; its work
-//!   `m h g dt (v* + g dt / 2)` is booked as `gravity_work`.
+//!   `m h g dt (v* + g dt / 2)` is booked as `gravity_work`; then the wall friction of
+//!   [`super::coupled_friction`] on both fields (`friction.coupling = "axial_torsional"`; with
+//!   `torsion_only` the axial field has none).
 //! * Initial state: at rest under the static tension of the hanging string with no weight on
 //!   bit ([`static_tension`] at the cell centres), the bit just touching flat rock.
 //! * Top: the hoist's command for the step gives the ghost `alpha_0`; the top speed
@@ -22,9 +24,11 @@
 //!   cut surface's depth of cut of a blade ([`CutSurface`], the exact delay, the deepest-surface
 //!   rule; or with `bit.detournay.cut_surface = "upwind"` the last cell of their upwind chain,
 //!   [`UpwindCutSurface`], advanced after the step with the bit's new speeds); then [`solve_bit`]
-//!   with the axial end of the string (no lumped axial mass) and the torsional end with the BHA
-//!   inertia `bit.bha_inertia`; the bit's work `dt (W v' + T w')` is booked as `bit_loss`, the
-//!   BHA's implicit-Euler term as in the torsional bit.
+//!   with the axial end of the string (with `bit.bha_mass` a lumped
+//!   mass, [`Port::lumped`], pushed by its buoyed weight, which the initial static tension
+//!   carries) and the torsional end with the BHA inertia `bit.bha_inertia`; the bit's work
+//!   `dt (W v' + T w')` is booked as `bit_loss`, the BHA's implicit-Euler terms as in the
+//!   torsional bit, its weight's work as `gravity_work` and its axial kinetic energy in `bha`.
 
 use std::f64::consts::TAU;
 
@@ -87,6 +91,19 @@ pub struct Axial {
     pub courant: Vec<f64>,
     /// Measured depths of the cell centres, m.
     pub z: Vec<f64>,
+    /// With the coupled wall friction, the static limit of the friction on the half of the last
+    /// cell below its centre, N (else 0): a bit off the rock below a stuck last cell (speed
+    /// exactly 0) is at rest (its position kept, its speed reported 0) while the load the free
+    /// end's speed stands for, `Z alpha_n`, is within it. The end's ghost keeps the free end's
+    /// speed `alpha_n`: the creep of the torsional bit below a stuck cell
+    /// ([`super::run`], `bit_speed`), a speed of the order of the stuck cell's load over the
+    /// impedance, proportional to the cell size (inside a stuck region the load relaxes
+    /// towards a linear profile, zero at the free end); its position would integrate it.
+    pub end_hold: f64,
+    /// The lumped BHA mass at the bit, kg (`bit.bha_mass`, 0: none), and its buoyed weight along
+    /// the hole at the bit, N.
+    bha_mass: f64,
+    bha_weight: f64,
 }
 
 impl Axial {
@@ -136,7 +153,11 @@ impl Axial {
             beta_next: vec![0.0; len],
             nl: None,
         };
-        let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &centres);
+        let last = parts.last().expect("at least one section");
+        let bha_mass = cfg.bit.bha_mass;
+        let bha_weight = bha_mass * last.buoyed_gravity(mud, g, inclination(cfg, top));
+        // The BHA hangs from the string: a negative weight on bit.
+        let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &centres);
         let mut k = 0;
         for s in 0..field.sections.len() {
             for j in 1..=field.sections[s].cells {
@@ -145,7 +166,7 @@ impl Axial {
             }
         }
         let params = hoist.params();
-        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), 0.0, &[0.0])[0];
+        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &[0.0])[0];
         let initial = if params.mode == HoistMode::HookLoad { hanging } else { 0.0 };
         let law = cfg.bit.detournay.law(cfg.bit.radius);
         let rule = match (cfg.bit.law, cfg.bit.detournay.cut_surface) {
@@ -186,7 +207,16 @@ impl Axial {
             courant,
             field,
             z: centres,
+            end_hold: 0.0,
+            bha_mass,
+            bha_weight,
         })
+    }
+
+    /// The lumped BHA's axial kinetic energy, J (0 without `bit.bha_mass`).
+    pub fn bha_kinetic(&self) -> f64 {
+        let v = self.state.contact.axial_speed;
+        0.5 * self.bha_mass * v * v
     }
 
     /// Calls `f(speed, force)` for every cell from the top down: the speed at the middle of the
@@ -225,7 +255,12 @@ impl Axial {
     /// torsional field's bottom is set by the caller).
     pub fn bit(&mut self, torsion: Arriving, inertia: f64, omega: f64, dt: f64, ledger: &mut Ledger) -> (f64, f64) {
         let arriving = self.field.arriving_bottom();
-        let axial = Port::string(arriving.value, arriving.impedance);
+        let (m, v0) = (self.bha_mass, self.state.contact.axial_speed);
+        let axial = if m > 0.0 {
+            Port::lumped(arriving.value, arriving.impedance, m, v0, dt, self.bha_weight)
+        } else {
+            Port::string(arriving.value, arriving.impedance)
+        };
         let turning = Port::lumped(torsion.value, torsion.impedance, inertia, omega, dt, 0.0);
         let depth = match &self.rule {
             DepthOfCut::Rate => rate_depth(&self.law, axial, turning, omega, self.turning_depth),
@@ -234,7 +269,7 @@ impl Axial {
             }
             DepthOfCut::Upwind(s) => f64::from(self.law.blades) * s.depth_per_blade(),
         };
-        let c = solve_bit(&self.law, axial, turning, depth);
+        let mut c = solve_bit(&self.law, axial, turning, depth);
         ledger.bit += dt * c.power();
         let w1 = c.angular_speed;
         let stop = 0.5 * inertia * (w1 - omega) * (w1 - omega);
@@ -243,7 +278,27 @@ impl Axial {
         } else {
             ledger.inertia += stop;
         }
+        if m > 0.0 {
+            // The BHA's weight's work and its implicit-Euler term (the rock's when it stops it).
+            let v1 = c.axial_speed;
+            ledger.gravity += dt * self.bha_weight * v1;
+            let stop = 0.5 * m * (v1 - v0) * (v1 - v0);
+            if v1 == 0.0 && c.weight_on_bit != 0.0 {
+                ledger.bit += stop;
+            } else {
+                ledger.inertia += stop;
+            }
+        }
         self.field.set_bottom(arriving, c.axial_speed);
+        let last = self.field.last();
+        if self.end_hold > 0.0
+            && m == 0.0
+            && c.phase == BitPhase::LiftOff
+            && self.field.speed(last.offset + last.cells) == 0.0
+            && (arriving.impedance * arriving.value).abs() <= self.end_hold
+        {
+            c.axial_speed = 0.0;
+        }
         self.angle += w1 * dt;
         let s = &mut self.state;
         s.position += c.axial_speed * dt;
@@ -332,3 +387,7 @@ pub fn rate_depth(law: &DetournayBit, axial: Port, torsion: Port, omega: f64, la
 #[cfg(test)]
 #[path = "axial_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "axial_bha_tests.rs"]
+mod bha_tests;

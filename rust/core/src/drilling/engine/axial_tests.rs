@@ -9,7 +9,7 @@ use crate::interrupt::Never;
 
 /// Aarsnes & van de Wouw's pipe (OD 127 mm, ID 108 mm, E 200 GPa, rho 8000 kg/m^3, nu 0.3 so
 /// that G = E / 2.6), 1000 m, vertical, friction off, with a hoist and the Detournay law.
-fn coupled(law: &str, extra: &str) -> DrillConfig {
+pub(super) fn coupled(law: &str, extra: &str) -> DrillConfig {
     let json = format!(
         r#"{{"sections": [{{"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
             "shear_modulus": {g}, "density": 8000.0, "poisson_ratio": 0.3}}],

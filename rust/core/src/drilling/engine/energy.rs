@@ -16,7 +16,11 @@ pub struct EnergyBalance {
     pub elastic: f64,
     pub top_drive: f64,
     pub bha: f64,
+    /// The wall friction's work on the string (both fields in a coupled run), J.
     pub friction_loss: f64,
+    /// The part of `friction_loss` on the axial field (coupled runs with
+    /// `friction.coupling = "axial_torsional"`; else 0), J.
+    pub axial_friction_loss: f64,
     pub damping_loss: f64,
     pub bit_loss: f64,
     /// `upwind_loss + inertia_loss`.
@@ -44,7 +48,9 @@ pub struct EnergyBalance {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Ledger {
     pub motor: f64,
+    /// Both fields'; `axial_friction` the axial field's part.
     pub friction: f64,
+    pub axial_friction: f64,
     pub damping: f64,
     pub bit: f64,
     pub upwind: f64,
@@ -110,6 +116,7 @@ impl Ledger {
             top_drive: end.top_drive,
             bha: end.bha,
             friction_loss: l.friction,
+            axial_friction_loss: l.axial_friction,
             damping_loss: l.damping,
             bit_loss: l.bit,
             numerical_loss: numerical,

@@ -289,6 +289,45 @@ impl Field {
         (kin, ela)
     }
 
+    /// The speed of the cell at padded index `k`.
+    #[inline]
+    pub fn speed(&self, k: usize) -> f64 {
+        match &self.nl {
+            Some(nl) => nl.omega[k],
+            None => 0.5 * (self.alpha[k] + self.beta[k]),
+        }
+    }
+
+    /// The speeds at every padded index into `out` (the ghosts' values meaningless).
+    pub fn speeds(&self, out: &mut [f64]) {
+        match &self.nl {
+            Some(nl) => out.copy_from_slice(&nl.omega),
+            None => {
+                for ((o, a), b) in out.iter_mut().zip(&self.alpha).zip(&self.beta) {
+                    *o = 0.5 * (a + b);
+                }
+            }
+        }
+    }
+
+    /// Changes the speed of the cell at padded index `k` by `d`, its load kept; with `stop`, sets
+    /// it exactly to rest instead (the load kept).
+    #[inline]
+    pub fn change_speed(&mut self, k: usize, d: f64, stop: bool) {
+        match &mut self.nl {
+            Some(nl) => nl.omega[k] = if stop { 0.0 } else { nl.omega[k] + d },
+            None if stop => {
+                let s = 0.5 * (self.alpha[k] - self.beta[k]);
+                self.alpha[k] = s;
+                self.beta[k] = -s;
+            }
+            None => {
+                self.alpha[k] += d;
+                self.beta[k] += d;
+            }
+        }
+    }
+
     /// Makes the next state the current one.
     #[inline]
     pub fn swap(&mut self) {

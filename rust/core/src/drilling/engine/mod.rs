@@ -20,6 +20,8 @@
 //!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
 //!   the bit on bottom as the set-valued boundary of both fields
 //!   ([`crate::drilling::axial::bit_boundary::solve_bit`]) in place of [`boundary::Bit`];
+//! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
+//!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
 //! * [`controller`]: the controllers and the setpoint;
 //! * [`sampler`]: the output series and field snapshots;
 //! * [`energy`]: the energy ledger and the balance;
@@ -162,11 +164,15 @@
 //! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
 //! it). The motor work is `sum dt tau_m Omega'`. A coupled run ([`axial`]) adds the axial field's
 //! energies (`e (alpha^2 + beta^2)` with `e = rho A h / 4`), the hoist's work `dt F v` at the top
-//! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss.
+//! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss; the
+//! coupled wall friction's work on each cell of both fields, `m h delta (w + delta / 2)`, goes
+//! to `friction_loss` (its axial part also to `axial_friction_loss`), a BHA mass's kinetic
+//! energy to `bha`, its weight's work to `gravity_work`.
 
 pub mod axial;
 pub mod boundary;
 pub mod controller;
+pub mod coupled_friction;
 pub mod energy;
 pub mod field;
 pub mod kernel;

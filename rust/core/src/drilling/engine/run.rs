@@ -9,6 +9,7 @@ use serde::Serialize;
 use super::axial::Axial;
 use super::boundary::{Bit, TopDrive};
 use super::controller::{Command, Controller, Setpoint, SpeedSeries, RPM_PER_RAD_S};
+use super::coupled_friction::CoupledFriction;
 use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
 use super::kernel::{godunov, transport};
@@ -17,7 +18,7 @@ use super::sampler::Sampler;
 use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
-use crate::drilling::config::{DrillConfig, FrictionModel, Nonlinearity, SourceSpeed};
+use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{non_finite_metrics_warning, off_bottom_warning, run_warnings, transient_warning};
 use crate::error::{Error, Num, Result};
@@ -139,6 +140,9 @@ pub struct Simulation<'c> {
     first_mode: f64,
     /// The axial field of a coupled run (`[hoist]`).
     axial: Option<Axial>,
+    /// A coupled run's wall friction on both fields (`friction.coupling = "axial_torsional"`;
+    /// then `wall` is zero and the torsional kernel applies none).
+    coupled_friction: Option<CoupledFriction>,
 }
 
 impl<'c> Simulation<'c> {
@@ -155,15 +159,29 @@ impl<'c> Simulation<'c> {
             ));
         }
         let field = Field::torsional(&grid, cfg.nonlinearity == Nonlinearity::Consistent);
-        let wall = WallFriction::torsional(cfg, &grid, &field);
+        let mut wall = WallFriction::torsional(cfg, &grid, &field);
         let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
         let control = Controller::new(cfg, &grid, first_mode)?;
-        let axial = match &cfg.hoist {
+        let mut axial = match &cfg.hoist {
             Some(h) => Some(Axial::new(cfg, &grid, h)?),
             None => None,
         };
+        let coupled_friction = match &mut axial {
+            Some(ax) if cfg.friction.coupling == FrictionCoupling::AxialTorsional => {
+                let cf = CoupledFriction::new(cfg, &grid, &field, &wall.stop, &ax.field);
+                ax.end_hold = cf.as_ref().map_or(0.0, CoupledFriction::end_hold);
+                cf
+            }
+            _ => None,
+        };
+        if coupled_friction.is_some() {
+            // The torsional kernel's friction off (the values of a zero limit).
+            wall.stop.fill(0.0);
+            wall.slip.fill(-0.0);
+        }
         Ok(Simulation {
             axial,
+            coupled_friction,
             cfg,
             sources: Sources::new(cfg, dt),
             top: TopDrive::new(cfg, dt),
@@ -270,6 +288,7 @@ impl<'c> Simulation<'c> {
         };
         if let Some(ax) = &self.axial {
             (s.axial_kinetic, s.axial_elastic) = ax.field.energies();
+            s.bha += ax.bha_kinetic();
         }
         s
     }
@@ -307,6 +326,11 @@ impl<'c> Simulation<'c> {
 
         self.field.junctions();
         self.cells(dt);
+        if let (Some(cf), Some(ax)) = (&mut self.coupled_friction, &mut self.axial) {
+            let (torsional, axial) = cf.apply(&mut self.field, &mut ax.field);
+            self.ledger.friction -= torsional + axial;
+            self.ledger.axial_friction -= axial;
+        }
         (motor, tbit)
     }
 

@@ -4,9 +4,10 @@
 //! A source is a change of a cell's speed over the step (`dd`, `df`) added to both invariants,
 //! and a set-valued flag (the cell stops exactly, its load kept). Its work goes to the energy
 //! ledger as `4 e delta (omega* + delta / 2)` per cell. Both schemes (the linear transport and
-//! the `consistent` Godunov update, [`super::kernel`]) call [`source`]. A coupled wall friction
-//! (against the sliding velocity of both fields) is a source of the same shape acting on two
-//! fields' transported speeds at once.
+//! the `consistent` Godunov update, [`super::kernel`]) call [`source`]. A coupled run's wall
+//! friction (against the sliding velocity of both fields, `friction.coupling =
+//! "axial_torsional"`) is [`super::coupled_friction`], applied after both fields' transport;
+//! the kernel then gets zero limits.
 
 use crate::drilling::config::{DrillConfig, FrictionModel};
 use crate::drilling::grid::Grid;

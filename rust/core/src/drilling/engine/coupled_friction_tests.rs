@@ -1,0 +1,195 @@
+//! The coupled wall friction against closed forms: the law's kinetic force against the sliding
+//! velocity and its stick phase, the drag of a string pulled out of a horizontal hole turning
+//! and not turning (rotation reduces drag), the stick of a string pulled below the static
+//! limit, the energy balance, and `torsion_only` giving the numbers of the runs before it.
+
+use std::f64::consts::PI;
+
+use super::{slide, Contact, Law};
+use crate::drilling::config::DrillConfig;
+use crate::drilling::solver::solve;
+use crate::interrupt::Never;
+use crate::solution::Status;
+
+const LAW: Law = Law { slow_below: 1.5, kinetic_ratio: 0.65, inv_regularisation: None };
+
+/// Sliding: the axial change is `dt mu_k N v / sqrt(v^2 + (r w)^2) / (rho A)` and the angular
+/// one `dt mu_k N r (r w) / sqrt(...) / (rho J)`, both against the sliding velocity.
+#[test]
+fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
+    let (dt, mu, n, rho_a, rho_j, r) = (1e-3, 0.3, 275.0, 28.0, 0.1, 0.0635);
+    let (la, lt) = (dt * mu * n / rho_a, dt * mu * n * r / rho_j);
+    for (v, w) in [(0.01, 2.0 * PI), (-0.01, 2.0 * PI), (0.3, -4.0), (2.0, 0.5), (-0.2, 0.0)] {
+        let f = slide(v, w, &Contact::new(r, la, lt, &LAW), &LAW);
+        let u = (v * v + r * w * r * w).sqrt();
+        let fa = -0.65 * mu * n * v / u;
+        let ft = -0.65 * mu * n * r * w / u;
+        assert!((f.dv - dt * fa / rho_a).abs() <= 1e-14 * la, "{v} {w}: {f:?}");
+        assert!((f.dw - dt * r * ft / rho_j).abs() <= 1e-14 * lt, "{v} {w}: {f:?}");
+        // A speed at rest stays at rest.
+        assert!(!f.stuck_axial && f.stuck_torsional == (w == 0.0), "{v} {w}: {f:?}");
+    }
+    // Without axial speed: the torsional law's kinetic change, bit for bit.
+    for w in [2.0, -7.5] {
+        let f = slide(0.0, w, &Contact::new(r, la, lt, &LAW), &LAW);
+        assert_eq!((f.dv, f.dw), (0.0, -(0.65 * lt) * w.signum()), "{w}");
+    }
+    // A change that would reverse a speed stops it.
+    let f = slide(1e-6, 2.0 * PI, &Contact::new(r, 1.0, lt, &LAW), &LAW);
+    assert!(f.stuck_axial && !f.stuck_torsional && f.dv == -1e-6);
+}
+
+/// Slow (angular sliding speed below the stick speed): the stop force if within the static
+/// limit (both speeds stop), else the stop force scaled to the static limit.
+#[test]
+fn a_slow_contact_sticks_within_the_static_limit_else_takes_it() {
+    let (la, lt, r) = (1e-3, 2e-3, 0.05);
+    let f = slide(0.6e-3, 1.5e-3, &Contact::new(r, la, lt, &LAW), &LAW);
+    assert_eq!((f.dv, f.dw, f.stuck_axial, f.stuck_torsional), (-0.6e-3, -1.5e-3, true, true));
+    let (v, w) = (3e-3, -4e-3);
+    let f = slide(v, w, &Contact::new(r, la, lt, &LAW), &LAW);
+    assert!(!f.stuck_axial && !f.stuck_torsional);
+    // Static limit: |(dv / la, dw / lt)| = 1, along the stop force.
+    assert!(((f.dv / la).hypot(f.dw / lt) - 1.0).abs() < 1e-14, "{f:?}");
+    assert!((f.dv / v - f.dw / w).abs() < 1e-14 && f.dv < 0.0 && f.dw > 0.0);
+    // No contact force: nothing.
+    let f = slide(3e-3, 1.0, &Contact::new(r, 0.0, 0.0, &LAW), &LAW);
+    assert_eq!((f.dv, f.dw), (0.0, 0.0));
+}
+
+/// A 500 m pipe (OD 127 mm, ID 108 mm, rho 8000 kg/m^3) in a horizontal hole, the contact force
+/// the buoyed weight (no mud: `N = g rho A`), `mu_s = 0.3`, `mu_k = 0.195`, damping 0.5 1/s,
+/// turning at `rpm` and pulled out at `pull` m/s (or held at a hook load `hook` N).
+fn horizontal(rpm: f64, hoist: &str, extra: &str) -> DrillConfig {
+    let json = format!(
+        r#"{{"sections": [{{"length": 500.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
+            "shear_modulus": {g}, "density": 8000.0, "poisson_ratio": 0.3}}],
+           "well": {{"inclination_deg": 90.0, "mud_density": 0.0}},
+           "friction": {{"static": 0.3, "kinetic_ratio": 0.65, "contact": "weight" {extra}}},
+           "damping_rate": 0.5,
+           "top_drive": {{"rpm": {rpm}, "ramp_time": 0.5, "controller": {{"type": "speed"}}}},
+           "bit": {{"radius": 0.108, "law": "detournay"}},
+           "hoist": {{{hoist}, "ramp_time": 0.5}},
+           "numerics": {{"cells": 100, "duration": 20.0, "output_interval": 0.01}},
+           "metrics": {{"window": [15.0, 20.0]}}}}"#,
+        g = 200e9 / 2.6,
+    );
+    DrillConfig::from_json(&json).unwrap()
+}
+
+/// The pipe's `rho A` (kg/m) and contact force per length `g rho A` (N/m).
+fn pipe() -> (f64, f64) {
+    let rho_a = 8000.0 * PI / 4.0 * (0.127 * 0.127 - 0.108 * 0.108);
+    (rho_a, 9.81 * rho_a)
+}
+
+fn window_mean(run: &crate::drilling::engine::DrillRun, x: &[f64]) -> f64 {
+    let k: Vec<usize> = (0..run.t.len()).filter(|&k| run.t[k] >= run.window[0]).collect();
+    k.iter().map(|&k| x[k]).sum::<f64>() / k.len() as f64
+}
+
+/// Pulled out at 36 m/h: the hook load is the drag `mu_k N L v / sqrt(v^2 + (r omega)^2)` plus the
+/// damping `rho A d v L`; turning at 60 rpm the drag is 1/40 of the non-rotating one
+/// (`mu_k N L`, with `friction.stick_speed = 0` so that the slow string slides kinetically).
+#[test]
+fn rotation_reduces_the_axial_drag_as_the_sliding_velocity_says() {
+    let (rho_a, n) = pipe();
+    let (v, r, l, mu_k) = (0.01, 0.0635, 500.0, 0.195);
+    for rpm in [60.0, 120.0, 0.0] {
+        let cfg = horizontal(rpm, r#""speed": -0.01"#, r#", "stick_speed": 0.0"#);
+        let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        assert_eq!(run.status, Status::Success, "{}", run.message);
+        let rw = r * rpm * PI / 30.0;
+        let drag = mu_k * n * l * v / (v * v + rw * rw).sqrt();
+        let want = drag + rho_a * 0.5 * v * l;
+        let hook = window_mean(&run, &run.hook_load);
+        println!("rpm {rpm}: hook load {hook} N, closed form {want} N (drag {drag} N)");
+        assert!((hook - want).abs() < 1e-3 * want, "rpm {rpm}: {hook} vs {want}");
+        let speed = window_mean(&run, &run.bit_axial_speed);
+        assert!((speed + v).abs() < 1e-3 * v, "rpm {rpm}: bit speed {speed}");
+        assert!(run.energy.balance_error.abs() < 1e-12, "{:?}", run.energy);
+    }
+}
+
+/// Not turning, held at a hook load below the static limit `mu_s N L` the string sticks (the
+/// bit does not move); above it, it slides out.
+#[test]
+fn a_string_pulled_below_the_static_limit_sticks() {
+    let (_, n) = pipe();
+    let limit = 0.3 * n * 500.0;
+    for (factor, moves) in [(0.5, false), (0.9, false), (1.2, true)] {
+        let hoist = format!(r#""mode": "hook_load", "hook_load": {}"#, factor * limit);
+        let mut cfg = horizontal(0.0, &hoist, "");
+        cfg.numerics.duration = 10.0;
+        cfg.metrics.window = Some([5.0, 10.0]);
+        let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        assert_eq!(run.status, Status::Success, "{}", run.message);
+        let moved = run.bit_depth.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+        println!("hook load {factor} mu_s N L: bit moved {moved} m");
+        if moves {
+            assert!(moved > 1.0, "{factor}: {moved}");
+        } else {
+            assert!(moved < 1e-9, "{factor}: {moved}");
+            assert!((run.hook_load.last().unwrap() - factor * limit).abs() < 1e-3 * limit);
+        }
+    }
+}
+
+/// A 60-degree well with soft-string contact, drilling at 30 m/h and 60 rpm.
+pub(crate) fn inclined(extra: &str) -> DrillConfig {
+    let json = format!(
+        r#"{{"sections": [{{"length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
+            "shear_modulus": {g}, "density": 8000.0, "poisson_ratio": 0.3}}],
+           "well": {{"inclination_deg": 60.0}},
+           "friction": {{"static": 0.3 {extra}}},
+           "damping_rate": 0.5,
+           "top_drive": {{"rpm": 60.0, "ramp_time": 2.0, "controller": {{"type": "speed"}}}},
+           "bit": {{"radius": 0.108, "law": "detournay"}},
+           "hoist": {{"speed": {v}, "ramp_time": 2.0}},
+           "numerics": {{"cells": 100, "duration": 10.0, "output_interval": 0.01}},
+           "metrics": {{"window": [5.0, 10.0]}}}}"#,
+        g = 200e9 / 2.6,
+        v = 30.0 / 3600.0,
+    );
+    DrillConfig::from_json(&json).unwrap()
+}
+
+/// The energy balance closes with the friction on both fields (set-valued and regularised,
+/// linear and consistent torsion), the axial part a loss within the total.
+#[test]
+fn the_energy_balance_closes_with_the_coupled_friction() {
+    for extra in ["", r#", "model": "regularised""#] {
+        for consistent in [false, true] {
+            let mut cfg = inclined(extra);
+            if consistent {
+                cfg.nonlinearity = crate::drilling::config::Nonlinearity::Consistent;
+            }
+            let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
+            assert_eq!(run.status, Status::Success, "{}", run.message);
+            let e = run.energy;
+            assert!(e.balance_error.abs() < 1e-12, "{extra} {consistent}: {e:?}");
+            assert!(e.axial_friction_loss > 0.0 && e.friction_loss > e.axial_friction_loss, "{e:?}");
+        }
+    }
+}
+
+/// `friction.coupling = "torsion_only"` gives the coupled run's numbers from before the coupled
+/// friction (the bits recorded then), and the default differs from them.
+#[test]
+fn torsion_only_reproduces_the_runs_without_coupled_friction() {
+    let last = |cfg: &DrillConfig| {
+        let run = solve(cfg, &Never, &mut |_| {}).unwrap();
+        let n = run.t.len() - 1;
+        [run.hook_load[n], run.bit_rpm[n], run.weight_on_bit[n], run.bit_depth[n], run.energy.friction_loss]
+            .map(f64::to_bits)
+    };
+    let old = last(&inclined(r#", "coupling": "torsion_only""#));
+    assert_eq!(old, FINGERPRINT);
+    assert_ne!(last(&inclined("")), old);
+}
+
+/// The last hook load, bit rpm, weight on bit, bit depth and friction loss of
+/// `inclined(torsion_only)` before the coupled friction (commit e829c94): 89791.62183991045 N,
+/// 56.54881508776878 rpm, 47877.84881486934 N, -0.001431170948766422 m, 142922.07685413523 J.
+const FINGERPRINT: [u64; 5] =
+    [4680906846478690284, 4633155355514421847, 4676813095018810630, 13787614970808123328, 4684150778005664619];
