@@ -222,6 +222,7 @@ pub fn off_bottom_warning(bounce_fraction: f64, window: [f64; 2], mode: HoistKin
         HoistKind::Velocity => "a larger downward hoist.speed (down is positive)",
         HoistKind::HookLoad => "a smaller hoist.hook_load (below the static hook load of the hanging string)",
         HoistKind::Autodriller => "a positive hoist.autodriller.max_speed and a larger setpoint",
+        HoistKind::WeightOnBit => "a positive hoist.weight_on_bit",
     };
     Some(format!(
         "the bit never touched bottom in the metrics window [{}, {}] s (no weight on bit in any sample): its ROP, \
