@@ -642,7 +642,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         _say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
              f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
              f"(mean {m.bit_rpm_mean:.4g}), motor torque {low:.4g}..{torque(m.motor_torque_max_Nm)}, "
-             f"break-off {torque(m.breakoff_torque_Nm)} (implied cycle minimum {torque(m.min_cycle_torque_Nm)})")
+             f"wall break-off {torque(m.breakoff_torque_Nm)}, implied cycle minimum {torque(m.min_cycle_torque_Nm)}")
         _say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
              f"{'settled' if m.settled else 'not settled'}")
         if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])

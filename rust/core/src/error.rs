@@ -52,37 +52,62 @@ pub struct Num(pub f64);
 
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        const DIGITS: i32 = 10;
-        let x = self.0;
-        if !x.is_finite() {
-            return f.write_str(if x.is_nan() {
-                "nan"
-            } else if x > 0.0 {
-                "inf"
-            } else {
-                "-inf"
-            });
-        }
-        if x == 0.0 {
-            return f.write_str(if x.is_sign_negative() { "-0" } else { "0" });
-        }
-        let sci = format!("{:.*e}", (DIGITS - 1) as usize, x);
-        let (mantissa, exponent) = sci.split_once('e').unwrap_or((sci.as_str(), "0"));
-        let exponent: i32 = exponent.parse().unwrap_or(0);
-        let trim = |s: &str| -> String {
-            if s.contains('.') {
-                s.trim_end_matches('0').trim_end_matches('.').to_string()
-            } else {
-                s.to_string()
-            }
-        };
-        if (-4..15).contains(&exponent) {
-            let decimals = (DIGITS - 1 - exponent).max(0) as usize;
-            f.write_str(&trim(&format!("{x:.decimals$}")))
+        write_significant(f, self.0, 10, false)
+    }
+}
+
+/// A computed number in a message (a torque, an amplitude: not a value the user typed), to 4
+/// significant digits in [`Num`]'s style.
+///
+/// ```
+/// use drillstring_core::error::Short;
+/// assert_eq!(Short(549361.0367).to_string(), "549400");
+/// assert_eq!(Short(0.002234360128).to_string(), "0.002234");
+/// assert_eq!(Short(2.29002411).to_string(), "2.29");
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Short(pub f64);
+
+impl fmt::Display for Short {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write_significant(f, self.0, 4, true)
+    }
+}
+
+/// `x` to `digits` (>= 1) significant digits, trailing zeros of the fraction dropped: plain notation
+/// for `1e-4 <= |x| < 1e15` (a longer integer part kept whole unless `round_integers`), exponent
+/// notation otherwise.
+fn write_significant(f: &mut fmt::Formatter<'_>, x: f64, digits: usize, round_integers: bool) -> fmt::Result {
+    if !x.is_finite() {
+        return f.write_str(if x.is_nan() {
+            "nan"
+        } else if x > 0.0 {
+            "inf"
         } else {
-            let sign = if exponent < 0 { '-' } else { '+' };
-            write!(f, "{}e{sign}{:02}", trim(mantissa), exponent.abs())
+            "-inf"
+        });
+    }
+    if x == 0.0 {
+        return f.write_str(if x.is_sign_negative() { "-0" } else { "0" });
+    }
+    let sci = format!("{:.*e}", digits - 1, x);
+    let (mantissa, exponent) = sci.split_once('e').unwrap_or((sci.as_str(), "0"));
+    let exponent: i32 = exponent.parse().unwrap_or(0);
+    let trim = |s: &str| -> String {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s.to_string()
         }
+    };
+    if (-4..15).contains(&exponent) {
+        // an integer part longer than `digits`: kept whole, or rounded to `digits` digits
+        let rounded: f64 = if round_integers { sci.parse().unwrap_or(x) } else { x };
+        let decimals = (digits as i32 - 1 - exponent).max(0) as usize;
+        f.write_str(&trim(&format!("{rounded:.decimals$}")))
+    } else {
+        let sign = if exponent < 0 { '-' } else { '+' };
+        write!(f, "{}e{sign}{:02}", trim(mantissa), exponent.abs())
     }
 }
 

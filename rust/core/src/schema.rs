@@ -98,7 +98,11 @@ pub(crate) fn parse<T: DeserializeOwned>(user: &Value) -> Result<T> {
             let key = rest.split_once('`').map_or(rest, |(k, _)| k);
             return Error::invalid(join(&field, key), "missing", "a value (required)");
         }
-        let value = node.map_or_else(|| "nothing".to_string(), shown);
+        // a non-finite number arrives from Python as its text: shown as the number it was
+        let value = match node.and_then(Value::as_str) {
+            Some(s @ ("nan" | "inf" | "-inf")) => s.to_string(),
+            _ => node.map_or_else(|| "nothing".to_string(), shown),
+        };
         let allowed = message.rsplit_once(", expected ").map_or(message.as_str(), |(_, e)| e);
         let field = if field.is_empty() { "config".to_string() } else { field };
         Error::invalid(field, value, expected_text(allowed, node))
@@ -155,7 +159,16 @@ mod tests {
         );
         assert_eq!(
             message(&with(r#", "top_drive": {"rpm": "nan"}"#)),
-            r#"invalid top_drive.rpm: got "nan", expected a finite number"#
+            "invalid top_drive.rpm: got nan, expected a finite number"
+        );
+        // a non-finite value where a range is checked: the range, in the words of the check
+        assert_eq!(
+            message(&with(r#", "bit": {"bha_mass": "nan"}"#)),
+            "invalid bit.bha_mass: got nan, expected a finite number >= 0 (kg)"
+        );
+        assert_eq!(
+            message(r#"{"sections": [{"length": 1000, "outer_diameter": "inf", "inner_diameter": 0.1}]}"#),
+            "invalid sections[0].outer_diameter: got inf, expected a finite number > 0 m, at most 10 m (in metres: 5 in = 0.127 m)"
         );
         assert_eq!(message(&with(r#", "numerics": 3"#)), "invalid numerics: got 3, expected an object");
         assert_eq!(message("[1]"), "invalid config: got an array, expected a JSON object");

@@ -963,8 +963,9 @@ pub(crate) const REQUIRED_TOP: [&str; 1] = ["sections"];
 pub(crate) const REQUIRED_SECTION: [&str; 3] = ["length", "outer_diameter", "inner_diameter"];
 
 /// A drilling configuration's error of the schema parse, in its own words: a top-drive step
-/// names the step (`top_drive.steps[1]`, `[time s, rpm]`), the inclination its two forms.
-fn refine(user: &Value, error: Error) -> Error {
+/// names the step (`top_drive.steps[1]`, `[time s, rpm]`), the inclination its two forms, a
+/// non-finite number the field's range ([`finite_range`], when `probe`).
+fn refine(user: &Value, error: Error, probe: bool) -> Error {
     let Error::InvalidInput { field, value, allowed } = error;
     for key in ["steps", "speed_series"] {
         if let Some(rest) = field.strip_prefix(&format!("top_drive.{key}[")) {
@@ -976,7 +977,31 @@ fn refine(user: &Value, error: Error) -> Error {
     if allowed.contains("untagged enum Inclination") {
         return Error::invalid(field, value, "a number or an array of numbers (degrees)");
     }
+    if allowed == "a finite number" && probe {
+        if let Some(range) = finite_range(user, &field) {
+            return Error::invalid(field, value, range);
+        }
+    }
     Error::InvalidInput { field, value, allowed }
+}
+
+/// The range a numeric field takes, in the words of its own check, for the message of a
+/// non-finite value there (`nan`, `inf`, which the parser refuses before any range is checked):
+/// the configuration is checked again with a finite value at `field` far out of every range,
+/// `-1e308` and then `1e308`, and the first error that names `field` gives the range. None when
+/// both pass, or another field fails first.
+fn finite_range(user: &Value, field: &str) -> Option<String> {
+    let pointer: String = field.replace('[', ".").replace(']', "").split('.').map(|k| format!("/{k}")).collect();
+    for probe in [-1e308, 1e308] {
+        let mut copy = user.clone();
+        *copy.pointer_mut(&pointer)? = Value::from(probe);
+        match DrillConfig::parse_value(copy, false).and_then(|c| c.validate()) {
+            Err(Error::InvalidInput { field: f, allowed, .. }) if f == field => return Some(allowed),
+            Err(_) => return None,
+            Ok(()) => {}
+        }
+    }
+    None
 }
 
 /// The constant-inclination rule, the one place it lives: one inclination number
@@ -1036,7 +1061,13 @@ impl DrillConfig {
     }
 
     /// [`DrillConfig::from_json`] of a parsed JSON value.
-    pub fn from_value(mut user: Value) -> Result<DrillConfig> {
+    pub fn from_value(user: Value) -> Result<DrillConfig> {
+        DrillConfig::parse_value(user, true)
+    }
+
+    /// [`DrillConfig::from_value`]; `probe`: a non-finite number's error names the field's
+    /// range ([`finite_range`], which parses without probing).
+    fn parse_value(mut user: Value, probe: bool) -> Result<DrillConfig> {
         let Value::Object(map) = &mut user else {
             return Err(Error::invalid("config", kind(&user), "a JSON object"));
         };
@@ -1081,7 +1112,7 @@ impl DrillConfig {
                 return Err(bit_size_conflict());
             }
         }
-        let mut cfg: DrillConfig = schema::parse(&user).map_err(|e| refine(&user, e))?;
+        let mut cfg: DrillConfig = schema::parse(&user).map_err(|e| refine(&user, e, probe))?;
         if let Some(d) = cfg.bit.diameter.take() {
             // the normalised configuration gives the bit by its radius
             pos("bit.diameter", d, "m, or null to give bit.radius")?;

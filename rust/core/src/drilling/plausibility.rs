@@ -3,7 +3,7 @@
 //! breaks the string free, a transient still decaying inside the metrics window, and metrics
 //! that are not finite. Each names the value and the likely mistake.
 
-use crate::error::Num;
+use crate::error::{Num, Short};
 use crate::metrics::StickSlip;
 
 use super::config::{DrillConfig, HoistKind};
@@ -41,7 +41,7 @@ pub fn torque_limit_warning(cfg: &DrillConfig, breakoff: f64) -> Option<String> 
         "top_drive.torque_limit = {} N m is below the static torque of the string, {} N m (the wall's \
          break-off torque{}): the motor may never break it free; {likely}",
         Num(limit),
-        Num(needed),
+        Short(needed),
         if needed > breakoff { " and the bit's" } else { "" }
     ))
 }
@@ -147,17 +147,22 @@ pub fn transient_warning(t: &[f64], surface_rpm: &[f64], motor_torque: &[f64], w
         let level = 0.5 * (mean1.abs() + mean2.abs());
         let big = p1.max(p2);
         if big > TRANSIENT_MIN_AMPLITUDE * level && (p2 - p1).abs() > TRANSIENT_AMPLITUDE_CHANGE * big {
+            // a change from next to nothing is no percentage
+            let change = if p2 > 10.0 * p1 {
+                format!("{}-fold", Short(p2 / p1.max(f64::MIN_POSITIVE)))
+            } else {
+                format!("{:+.0} %", 100.0 * (p2 - p1) / p1)
+            };
             found.push(format!(
-                "the {name}'s peak-to-peak amplitude went from {} to {} {unit} ({:+.0} %)",
-                Num(p1),
-                Num(p2),
-                100.0 * (p2 - p1) / p1.max(f64::MIN_POSITIVE)
+                "the {name}'s peak-to-peak amplitude went from {} to {} {unit} ({change})",
+                Short(p1),
+                Short(p2),
             ));
         }
         if name == "motor torque" {
             let moved = (mean2 - mean1).abs();
             if moved > TRANSIENT_MEAN_CHANGE * mean1.abs().max(mean2.abs()) && moved > 0.5 * big {
-                found.push(format!("the mean motor torque went from {} to {} N m", Num(mean1), Num(mean2)));
+                found.push(format!("the mean motor torque went from {} to {} N m", Short(mean1), Short(mean2)));
             }
         }
     }
