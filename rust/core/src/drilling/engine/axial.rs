@@ -79,6 +79,8 @@ pub struct Axial {
     sources: Sources,
     /// `g dt` per padded index (0 at ghosts).
     gravity: Vec<f64>,
+    /// Each cell's work of the buoyed weight in a step (summed in lanes).
+    gravity_work: Vec<f64>,
     hoist: Hoist,
     law: DetournayBit,
     rule: DepthOfCut,
@@ -181,6 +183,7 @@ impl Axial {
         let src = Sources::new(cfg, dt);
         Ok(Axial {
             zeros: vec![0.0; len],
+            gravity_work: vec![0.0; len],
             sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
             gravity,
             hoist: Hoist::new(params, initial).hanging(hanging),
@@ -335,15 +338,16 @@ impl Axial {
                 &self.sources,
             );
             ledger.transport(sp.e, sp.courant, &sums);
-            let mut work = 0.0;
-            for k in r.start + 1..r.end - 1 {
-                let dv = self.gravity[k];
-                let v = 0.5 * (alpha_next[k] + beta_next[k]);
-                work += dv * (v + 0.5 * dv);
-                alpha_next[k] += dv;
-                beta_next[k] += dv;
+            let cells = r.start + 1..r.end - 1;
+            let (an, bn) = (&mut alpha_next[cells.clone()], &mut beta_next[cells.clone()]);
+            let (g, work) = (&self.gravity[cells.clone()], &mut self.gravity_work[cells]);
+            for (((a, b), &dv), e) in an.iter_mut().zip(bn.iter_mut()).zip(g).zip(work.iter_mut()) {
+                let v = 0.5 * (*a + *b);
+                *e = dv * (v + 0.5 * dv);
+                *a += dv;
+                *b += dv;
             }
-            ledger.gravity += 4.0 * sp.e * work;
+            ledger.gravity += 4.0 * sp.e * super::kernel::lane_sum(work);
         }
         self.field.swap();
     }

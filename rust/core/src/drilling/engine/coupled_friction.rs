@@ -33,6 +33,11 @@
 //! against its cell's speed and never reverses it, so the friction's work on each cell,
 //! `m h delta (w + delta / 2)`, is a loss; it is booked as `friction_loss` (the axial part also
 //! as `axial_friction_loss`).
+//!
+//! The Coulomb law runs over all touching segments at once ([`slide_coulomb`], the branches of
+//! [`slide`] as selects, under [`crate::simd::dispatch`]): the same operations, so the same
+//! bits as [`slide`] segment by segment (a test holds them equal). Segments without contact
+//! force change nothing and count as moving: they are left out of the pass and counted once.
 
 use crate::drilling::config::{DrillConfig, FrictionModel};
 use crate::drilling::grid::Grid;
@@ -143,6 +148,113 @@ pub fn slide(v: f64, w: f64, c: &Contact, law: &Law) -> Slide {
     Slide { dv, dw, stuck_axial, stuck_torsional }
 }
 
+/// [`slide`] of a touching contact (`inv_radius`, `inv_la`, `inv_lt`, `kla`, `klt` of its
+/// [`Contact`]) under the Coulomb law (not `regularised`), written without branches (the
+/// branches computed and one selected) so that a loop over contacts vectorises, with the same
+/// operations as [`slide`]'s: the same bits. Returns `(dv, dw, stuck_axial, stuck_torsional,
+/// fix)`; `fix`: a slow contact over the static limit (rare), whose changes are not computed
+/// here (the caller takes [`slide`]'s).
+///
+/// The stick test `q <= 1` of [`slide`], `q = sqrt(qa^2 + qt^2)` rounded, is `qa^2 + qt^2 <= 1
+/// + 2^-52` here without the root: the correctly rounded root of a double `x` is at most 1
+/// exactly when `x` is at most the next double after 1.
+#[inline(always)]
+fn slide_coulomb(
+    v: f64,
+    w: f64,
+    [inv_radius, inv_la, inv_lt, kla, klt]: [f64; 5],
+    slow_below: f64,
+) -> (f64, f64, bool, bool, bool) {
+    let vr = v * inv_radius;
+    let s = (vr * vr + w * w).sqrt();
+    let (qa, qt) = (v * inv_la, w * inv_lt);
+    let stick = qa * qa + qt * qt <= 1.0 + f64::EPSILON;
+    // sliding: the kinetic force against the sliding velocity, a reversal clipped
+    let (ka, kt) = (-kla * (vr / s), -klt * (w / s));
+    let (clip_a, clip_t) = (ka.abs() >= v.abs(), kt.abs() >= w.abs());
+    let dv_kinetic = if clip_a { -v } else { ka };
+    let dw_kinetic = if clip_t { -w } else { kt };
+    if s < slow_below {
+        (-v, -w, stick, stick, !stick)
+    } else {
+        (dv_kinetic, dw_kinetic, clip_a, clip_t, false)
+    }
+}
+
+/// The touching segments' contacts and weights, a vector per constant (the operands of
+/// [`SlideMany`]).
+#[derive(Debug, Clone, Default)]
+struct Contacts {
+    inv_radius: Vec<f64>,
+    inv_la: Vec<f64>,
+    inv_lt: Vec<f64>,
+    kla: Vec<f64>,
+    klt: Vec<f64>,
+    wt: Vec<f64>,
+    wa: Vec<f64>,
+}
+
+impl Contacts {
+    fn new(segments: &[Segment]) -> Self {
+        let mut out = Contacts::default();
+        for g in segments {
+            let c = &g.contact;
+            out.inv_radius.push(c.inv_radius);
+            out.inv_la.push(c.inv_la);
+            out.inv_lt.push(c.inv_lt);
+            out.kla.push(c.kla);
+            out.klt.push(c.klt);
+            out.wt.push(g.wt);
+            out.wa.push(g.wa);
+        }
+        out
+    }
+
+    fn len(&self) -> usize {
+        self.inv_radius.len()
+    }
+}
+
+/// [`slide_coulomb`] of every contact `i` of `contacts` at the speeds `v[i]`, `w[i]`: its
+/// changes weighted by its shares of its cells, `pt[i] = wt[i] dw`, `pa[i] = wa[i] dv`, whether
+/// it moves (1, or 0 stuck) in each field, `free_t[i]`, `free_a[i]`, and `fix[i]` (1 when
+/// [`slide`] must give its values); returns whether any contact needs its fix.
+struct SlideMany<'a> {
+    contacts: &'a Contacts,
+    v: &'a [f64],
+    w: &'a [f64],
+    slow_below: f64,
+    out: &'a mut Shares,
+    fix: &'a mut [u64],
+}
+
+impl crate::simd::Kernel for SlideMany<'_> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> bool {
+        let c = self.contacts;
+        let n = c.len();
+        let (ir, ia, it, ka, kt) = (&c.inv_radius[..n], &c.inv_la[..n], &c.inv_lt[..n], &c.kla[..n], &c.klt[..n]);
+        let (wt, wa) = (&c.wt[..n], &c.wa[..n]);
+        let (v, w, fix) = (&self.v[..n], &self.w[..n], &mut self.fix[..n]);
+        let o = self.out;
+        let (pt, pa, ft, fa) = (&mut o.pt[..n], &mut o.pa[..n], &mut o.free_t[..n], &mut o.free_a[..n]);
+        let mut any = 0;
+        for i in 0..n {
+            let (dv, dw, stuck_a, stuck_t, f) =
+                slide_coulomb(v[i], w[i], [ir[i], ia[i], it[i], ka[i], kt[i]], self.slow_below);
+            pt[i] = wt[i] * dw;
+            pa[i] = wa[i] * dv;
+            ft[i] = if stuck_t { 0.0 } else { 1.0 };
+            fa[i] = if stuck_a { 0.0 } else { 1.0 };
+            fix[i] = u64::from(f);
+            any |= fix[i];
+        }
+        any != 0
+    }
+}
+
 /// A segment of the overlay of the two grids (padded indices, weights `l / h`, the limits).
 #[derive(Debug, Clone, Copy)]
 struct Segment {
@@ -153,33 +265,82 @@ struct Segment {
     contact: Contact,
 }
 
-/// The per-cell sums of a step.
+/// The touching segments' contributions of a step to their cells, one more element at the end
+/// that adds nothing (`0`: the empty slots of [`Slots`] point to it).
 #[derive(Debug, Clone, Default)]
-struct Cells {
-    /// The speeds before the friction (padded).
-    speed: Vec<f64>,
-    change: Vec<f64>,
-    /// Segments of the cell not stuck in the step.
-    moving: Vec<u32>,
+struct Shares {
+    /// Weighted changes of the angular and the axial speed.
+    pt: Vec<f64>,
+    pa: Vec<f64>,
+    /// 1 where the segment moves (not stuck), torsionally and axially.
+    free_t: Vec<f64>,
+    free_a: Vec<f64>,
 }
 
-impl Cells {
-    fn new(len: usize) -> Self {
-        Cells { speed: vec![0.0; len], change: vec![0.0; len], moving: vec![0; len] }
+impl Shares {
+    fn new(n: usize) -> Self {
+        Shares { pt: vec![0.0; n + 1], pa: vec![0.0; n + 1], free_t: vec![0.0; n + 1], free_a: vec![0.0; n + 1] }
     }
 
-    fn add(&mut self, k: usize, w: f64, d: f64, stuck: bool) {
-        self.change[k] += w * d;
-        self.moving[k] += u32::from(!stuck);
+    /// Segment `i`'s (`g`) contributions from its friction `f`.
+    fn set(&mut self, i: usize, g: &Segment, f: Slide) {
+        self.pt[i] = g.wt * f.dw;
+        self.pa[i] = g.wa * f.dv;
+        self.free_t[i] = if f.stuck_torsional { 0.0 } else { 1.0 };
+        self.free_a[i] = if f.stuck_axial { 0.0 } else { 1.0 };
+    }
+}
+
+/// A field's cells' segments: `slot[s][k]`, the `s`-th touching segment of the cell at padded
+/// index `k` in the segments' order (the empty element of [`Shares`] where the cell has fewer),
+/// and `untouched[k]`, its segments without contact force (they change nothing and never stick).
+#[derive(Debug, Clone)]
+struct Slots {
+    slot: Vec<Vec<u32>>,
+    untouched: Vec<f64>,
+}
+
+impl Slots {
+    /// The slots of a field of `len` padded cells with the touching segments' cells `cells`
+    /// (in order) and the untouched segments' cells `untouched`.
+    fn new(len: usize, cells: &[usize], untouched: impl Iterator<Item = usize>) -> Self {
+        let empty = cells.len() as u32;
+        let mut count = vec![0usize; len];
+        let mut slot: Vec<Vec<u32>> = Vec::new();
+        for (i, &k) in cells.iter().enumerate() {
+            if count[k] == slot.len() {
+                slot.push(vec![empty; len]);
+            }
+            slot[count[k]][k] = i as u32;
+            count[k] += 1;
+        }
+        let mut free = vec![0.0; len];
+        for k in untouched {
+            free[k] += 1.0;
+        }
+        Slots { slot, untouched: free }
     }
 }
 
 /// The coupled wall friction of a run: the overlay's segments and the law.
 pub struct CoupledFriction {
+    /// The segments with contact force (the others are counted in [`Slots::untouched`]).
     segments: Vec<Segment>,
+    /// Their contacts, for the vector pass.
+    contacts: Contacts,
     law: Law,
-    torsional: Cells,
-    axial: Cells,
+    /// The step's speeds at the segments and their contributions to their cells.
+    v: Vec<f64>,
+    w: Vec<f64>,
+    shares: Shares,
+    fix: Vec<u64>,
+    /// The cells' segments, torsional and axial.
+    torsional: Slots,
+    axial: Slots,
+    /// The fields' speeds before the friction (padded), and scratch of the cell pass.
+    speed_t: Vec<f64>,
+    speed_a: Vec<f64>,
+    scratch: CellScratch,
     /// The static limit of the friction on the last half axial cell, N.
     end_hold: f64,
 }
@@ -236,11 +397,28 @@ impl CoupledFriction {
         if segments.iter().all(|g| !g.contact.touching) {
             return None;
         }
+        let (lt, la) = (torsion.padded_len(), axial.padded_len());
+        let idle = |axial: bool| {
+            segments.iter().filter(|g| !g.contact.touching).map(move |g| if axial { g.axial } else { g.torsional })
+        };
+        let (idle_t, idle_a): (Vec<usize>, Vec<usize>) = (idle(false).collect(), idle(true).collect());
+        segments.retain(|g| g.contact.touching);
+        let n = segments.len();
+        let cells_t: Vec<usize> = segments.iter().map(|g| g.torsional).collect();
+        let cells_a: Vec<usize> = segments.iter().map(|g| g.axial).collect();
         Some(CoupledFriction {
+            contacts: Contacts::new(&segments),
+            torsional: Slots::new(lt, &cells_t, idle_t.into_iter()),
+            axial: Slots::new(la, &cells_a, idle_a.into_iter()),
             segments,
             law,
-            torsional: Cells::new(torsion.padded_len()),
-            axial: Cells::new(axial.padded_len()),
+            v: vec![0.0; n],
+            w: vec![0.0; n],
+            shares: Shares::new(n),
+            fix: vec![0; n],
+            speed_t: vec![0.0; lt],
+            speed_a: vec![0.0; la],
+            scratch: CellScratch::new(lt.max(la)),
             end_hold,
         })
     }
@@ -255,40 +433,162 @@ impl CoupledFriction {
     /// The friction over a step on the fields' current speeds; returns its work on the
     /// torsional and on the axial field, J (negative).
     pub fn apply(&mut self, torsion: &mut Field, axial: &mut Field) -> (f64, f64) {
-        let (ct, ca) = (&mut self.torsional, &mut self.axial);
-        ct.change.fill(0.0);
-        ct.moving.fill(0);
-        ca.change.fill(0.0);
-        ca.moving.fill(0);
-        torsion.speeds(&mut ct.speed);
-        axial.speeds(&mut ca.speed);
-        for g in &self.segments {
-            let f = slide(ca.speed[g.axial], ct.speed[g.torsional], &g.contact, &self.law);
-            ct.add(g.torsional, g.wt, f.dw, f.stuck_torsional);
-            ca.add(g.axial, g.wa, f.dv, f.stuck_axial);
+        torsion.speeds(&mut self.speed_t);
+        axial.speeds(&mut self.speed_a);
+        for ((g, v), w) in self.segments.iter().zip(&mut self.v).zip(&mut self.w) {
+            *v = self.speed_a[g.axial];
+            *w = self.speed_t[g.torsional];
         }
-        (apply_cells(torsion, ct), apply_cells(axial, ca))
+        let sh = &mut self.shares;
+        if self.law.inv_regularisation.is_some() {
+            for (i, g) in self.segments.iter().enumerate() {
+                sh.set(i, g, slide(self.v[i], self.w[i], &g.contact, &self.law));
+            }
+        } else {
+            let any_fix = crate::simd::dispatch(SlideMany {
+                contacts: &self.contacts,
+                v: &self.v,
+                w: &self.w,
+                slow_below: self.law.slow_below,
+                out: sh,
+                fix: &mut self.fix,
+            });
+            if any_fix {
+                let fixes: Vec<usize> = (0..self.fix.len()).filter(|&i| self.fix[i] != 0).collect();
+                for i in fixes {
+                    let g = &self.segments[i];
+                    sh.set(i, g, slide(self.v[i], self.w[i], &g.contact, &self.law));
+                }
+            }
+        }
+        let sh = &self.shares;
+        let work_t = apply_cells(torsion, &self.speed_t, &self.torsional, &sh.pt, &sh.free_t, &mut self.scratch);
+        let work_a = apply_cells(axial, &self.speed_a, &self.axial, &sh.pa, &sh.free_a, &mut self.scratch);
+        (work_t, work_a)
     }
 }
 
-/// A field's cells' changes applied (a cell whose segments all stuck set exactly to rest);
-/// returns their work, J.
-fn apply_cells(field: &mut Field, cells: &Cells) -> f64 {
-    let mut work = 0.0;
+/// The scratch of [`apply_cells`]: each cell's change, moving segments and work.
+#[derive(Debug, Clone)]
+struct CellScratch {
+    change: Vec<f64>,
+    moving: Vec<f64>,
+    work: Vec<f64>,
+}
+
+impl CellScratch {
+    fn new(len: usize) -> Self {
+        CellScratch { change: vec![0.0; len], moving: vec![0.0; len], work: vec![0.0; len] }
+    }
+}
+
+/// The cells' changes applied to `field` (speeds `speed` before the friction): a cell's change
+/// is the sum of its segments' shares `p` (from 0, in the segments' order), a cell whose
+/// segments all stuck (none `free`, none untouched) is set exactly to rest, a cell with no
+/// change left as it is. Returns their work `m h d (w + d / 2)`, J, summed in lanes.
+fn apply_cells(
+    field: &mut Field,
+    speed: &[f64],
+    slots: &Slots,
+    p: &[f64],
+    free: &[f64],
+    scratch: &mut CellScratch,
+) -> f64 {
+    let mut total = 0.0;
     for s in 0..field.sections.len() {
         let sp = field.sections[s];
-        let m = sp.inertia_per_length * sp.h;
-        for k in sp.offset + 1..=sp.offset + sp.cells {
-            let w = cells.speed[k];
-            let d = if cells.moving[k] == 0 { -w } else { cells.change[k] };
-            if d == 0.0 && cells.moving[k] != 0 {
-                continue;
-            }
-            work += m * d * (w + 0.5 * d);
-            field.change_speed(k, d, cells.moving[k] == 0);
-        }
+        let r = sp.offset + 1..sp.offset + 1 + sp.cells;
+        let state = match &mut field.nl {
+            Some(nl) => State::Nonlinear(&mut nl.omega[r.clone()]),
+            None => State::Linear(&mut field.alpha[r.clone()], &mut field.beta[r.clone()]),
+        };
+        total += crate::simd::dispatch(CellPass {
+            mass: sp.inertia_per_length * sp.h,
+            speed: &speed[r.clone()],
+            slots: slots.slot.iter().map(|slot| &slot[r.clone()]).collect(),
+            untouched: &slots.untouched[r.clone()],
+            p,
+            free,
+            state,
+            change: &mut scratch.change[..sp.cells],
+            moving: &mut scratch.moving[..sp.cells],
+            work: &mut scratch.work[..sp.cells],
+        });
     }
-    work
+    total
+}
+
+/// A section's speeds: the invariants `alpha`, `beta`, or the `consistent` scheme's speeds.
+enum State<'a> {
+    Linear(&'a mut [f64], &'a mut [f64]),
+    Nonlinear(&'a mut [f64]),
+}
+
+/// [`apply_cells`] on one section, as a [`crate::simd::Kernel`].
+struct CellPass<'a> {
+    mass: f64,
+    speed: &'a [f64],
+    slots: Vec<&'a [u32]>,
+    untouched: &'a [f64],
+    p: &'a [f64],
+    free: &'a [f64],
+    state: State<'a>,
+    change: &'a mut [f64],
+    moving: &'a mut [f64],
+    work: &'a mut [f64],
+}
+
+impl crate::simd::Kernel for CellPass<'_> {
+    type Output = f64;
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) -> f64 {
+        let n = self.speed.len();
+        let (change, moving, work) = (&mut self.change[..n], &mut self.moving[..n], &mut self.work[..n]);
+        change.fill(0.0);
+        moving.copy_from_slice(&self.untouched[..n]);
+        for slot in &self.slots {
+            for ((c, m), &i) in change.iter_mut().zip(moving.iter_mut()).zip(&slot[..n]) {
+                *c += self.p[i as usize];
+                *m += self.free[i as usize];
+            }
+        }
+        let (m, speed) = (self.mass, &self.speed[..n]);
+        // (the selects keep a skipped cell's bits, a zero's sign included)
+        match self.state {
+            State::Nonlinear(omega) => {
+                for ((((o, &w), &c), &k), e) in
+                    omega[..n].iter_mut().zip(speed).zip(&*change).zip(&*moving).zip(work.iter_mut())
+                {
+                    let stop = k == 0.0;
+                    let d = if stop { -w } else { c };
+                    let skip = d == 0.0 && !stop;
+                    *e = if skip { 0.0 } else { m * d * (w + 0.5 * d) };
+                    let next = if stop { 0.0 } else { *o + d };
+                    *o = if skip { *o } else { next };
+                }
+            }
+            State::Linear(alpha, beta) => {
+                for (((((a, b), &w), &c), &k), e) in alpha[..n]
+                    .iter_mut()
+                    .zip(beta[..n].iter_mut())
+                    .zip(speed)
+                    .zip(&*change)
+                    .zip(&*moving)
+                    .zip(work.iter_mut())
+                {
+                    let stop = k == 0.0;
+                    let d = if stop { -w } else { c };
+                    let skip = d == 0.0 && !stop;
+                    *e = if skip { 0.0 } else { m * d * (w + 0.5 * d) };
+                    let half = 0.5 * (*a - *b);
+                    let (na, nb) = if stop { (half, -half) } else { (*a + d, *b + d) };
+                    (*a, *b) = if skip { (*a, *b) } else { (na, nb) };
+                }
+            }
+        }
+        super::kernel::lane_sum(work)
+    }
 }
 
 #[cfg(test)]

@@ -5,8 +5,9 @@
 
 use std::f64::consts::PI;
 
-use super::{slide, Contact, Law};
+use super::{slide, Contact, Contacts, CoupledFriction, Law, Segment, Shares, SlideMany};
 use crate::drilling::config::DrillConfig;
+use crate::drilling::engine::field::Field;
 use crate::drilling::solver::solve;
 use crate::interrupt::Never;
 use crate::solution::Status;
@@ -37,6 +38,195 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
     // A change that would reverse a speed stops it.
     let f = slide(1e-6, 2.0 * PI, &Contact::new(r, 1.0, lt, &LAW), &LAW);
     assert!(f.stuck_axial && !f.stuck_torsional && f.dv == -1e-6);
+}
+
+/// A xorshift generator of uniform numbers in [0, 1).
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut x = seed;
+    move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The vector pass (the branchless law under the SIMD dispatch) gives `slide`'s bits, contact by
+/// contact: slow and sliding contacts, sticking and clipped ones, speeds at exactly 0; the slow
+/// contacts over the static limit, and only they, are left to `slide` (the fix).
+#[test]
+fn the_vector_pass_is_slide_bit_for_bit() {
+    let mut uniform = uniform(0x9E37_79B9_7F4A_7C15);
+    let n = 100_000;
+    let (mut segments, mut v, mut w) = (Vec::new(), Vec::new(), Vec::new());
+    for i in 0..n {
+        // speeds and limits over 8 decades, each sign, some exactly 0
+        let mut log = |lo: f64, hi: f64| 10f64.powf(lo + (hi - lo) * uniform());
+        let (la, lt, r) = (log(-7.0, 0.0), log(-6.0, 0.0), log(-1.5, -0.5));
+        let sv = if i % 2 == 0 { 1.0 } else { -1.0 };
+        let sw = if i % 3 == 0 { 1.0 } else { -1.0 };
+        let contact = Contact::new(r, la, lt, &LAW);
+        segments.push(Segment { torsional: 0, axial: 0, wt: 1.0, wa: 1.0, contact });
+        v.push(if i % 7 == 0 { 0.0 } else { sv * log(-7.0, 1.0) });
+        w.push(if i % 11 == 0 { 0.0 } else { sw * log(-6.0, 1.5) });
+    }
+    // at the stick edge: (v / la)^2 + (w / lt)^2 = 1 + 2^-52, whose root rounds to 1 (stick)
+    let contact = Contact::new(1.0, 1.0, 1.0, &LAW);
+    segments[0] = Segment { torsional: 0, axial: 0, wt: 1.0, wa: 1.0, contact };
+    (v[0], w[0]) = (1.0, 2f64.powi(-26));
+    assert!(slide(v[0], w[0], &contact, &LAW).stuck_torsional);
+    let (mut shares, mut fix) = (Shares::new(n), vec![0u64; n]);
+    let any_fix = crate::simd::dispatch(SlideMany {
+        contacts: &Contacts::new(&segments),
+        v: &v,
+        w: &w,
+        slow_below: LAW.slow_below,
+        out: &mut shares,
+        fix: &mut fix,
+    });
+    assert!(any_fix);
+    let (mut slow, mut stuck, mut clipped, mut fixed, mut over) = (0, 0, 0, 0, 0);
+    for i in 0..n {
+        let f = slide(v[i], w[i], &segments[i].contact, &LAW);
+        let vr = v[i] * segments[i].contact.inv_radius;
+        let is_slow = (vr * vr + w[i] * w[i]).sqrt() < LAW.slow_below;
+        slow += usize::from(is_slow);
+        over += usize::from(is_slow && !f.stuck_torsional);
+        if fix[i] != 0 {
+            assert!(is_slow && !f.stuck_axial && !f.stuck_torsional, "{i}: {f:?}");
+            fixed += 1;
+            continue;
+        }
+        let got = (shares.pa[i].to_bits(), shares.pt[i].to_bits(), shares.free_a[i] == 0.0, shares.free_t[i] == 0.0);
+        let want = (f.dv.to_bits(), f.dw.to_bits(), f.stuck_axial, f.stuck_torsional);
+        assert_eq!(got, want, "{i}: v {} w {} -> {f:?}, got ({}, {})", v[i], w[i], shares.pa[i], shares.pt[i]);
+        stuck += usize::from(f.stuck_axial && f.stuck_torsional);
+        clipped += usize::from(f.stuck_axial != f.stuck_torsional);
+    }
+    // every branch is exercised, and the fixed contacts are those slow and over the limit
+    assert!(slow > n / 20 && slow < n - n / 20, "{slow}");
+    assert!(stuck > n / 100 && clipped > n / 100 && fixed > n / 100, "{stuck} {clipped} {fixed}");
+    assert_eq!(over, fixed);
+    // The stick test without the root: sqrt(x) <= 1 exactly when x <= 1 + 2^-52, at the edge.
+    for k in -8..=8 {
+        let x = 1.0 + k as f64 * f64::EPSILON / 2.0;
+        assert_eq!(x.sqrt() <= 1.0, x <= 1.0 + f64::EPSILON, "{x:e}");
+    }
+}
+
+/// The friction's step in its direct form, the module's rule segment by segment: each
+/// segment's `slide` added to its cells (`change += (l / h) d`, the moving segments counted),
+/// then each cell's change applied by `Field::change_speed`, a cell whose segments all stuck
+/// set to rest. Returns the work on the two fields, J.
+fn direct_step(cf: &CoupledFriction, torsion: &mut Field, axial: &mut Field) -> (f64, f64) {
+    let mut fields = [torsion, axial];
+    let speeds: Vec<Vec<f64>> = fields
+        .iter()
+        .map(|f| {
+            let mut s = vec![0.0; f.padded_len()];
+            f.speeds(&mut s);
+            s
+        })
+        .collect();
+    let mut change: Vec<Vec<f64>> = speeds.iter().map(|s| vec![0.0; s.len()]).collect();
+    let mut moving: Vec<Vec<f64>> = vec![cf.torsional.untouched.clone(), cf.axial.untouched.clone()];
+    for g in &cf.segments {
+        let f = slide(speeds[1][g.axial], speeds[0][g.torsional], &g.contact, &cf.law);
+        change[0][g.torsional] += g.wt * f.dw;
+        change[1][g.axial] += g.wa * f.dv;
+        moving[0][g.torsional] += f64::from(u8::from(!f.stuck_torsional));
+        moving[1][g.axial] += f64::from(u8::from(!f.stuck_axial));
+    }
+    let mut work = [0.0; 2];
+    for (i, field) in fields.iter_mut().enumerate() {
+        for s in 0..field.sections.len() {
+            let sp = field.sections[s];
+            let m = sp.inertia_per_length * sp.h;
+            for k in sp.offset + 1..=sp.offset + sp.cells {
+                let w = speeds[i][k];
+                let stop = moving[i][k] == 0.0;
+                let d = if stop { -w } else { change[i][k] };
+                if d == 0.0 && !stop {
+                    continue;
+                }
+                work[i] += m * d * (w + 0.5 * d);
+                field.change_speed(k, d, stop);
+            }
+        }
+    }
+    (work[0], work[1])
+}
+
+/// The friction's pass (the vector law, the fix, the cells' slots, the cell pass under the SIMD
+/// dispatch) gives the direct form's speeds bit for bit and its work to rounding, on random
+/// states of a string with a vertical top (segments without contact), two sections and slow
+/// cells: the Coulomb law and the regularised one, linear and consistent torsion.
+#[test]
+fn the_friction_pass_is_the_direct_form_bit_for_bit() {
+    use crate::drilling::engine::axial::Axial;
+    use crate::drilling::engine::sources::WallFriction;
+    use crate::drilling::grid::Grid;
+    let pipe = r#""outer_diameter": 0.127, "inner_diameter": 0.108, "shear_modulus": 7.7e10, "density": 8000.0"#;
+    for (model, nonlinearity) in [("set_valued", "linear"), ("set_valued", "consistent"), ("regularised", "linear")] {
+        let json = format!(
+            r#"{{"sections": [{{"length": 700.0, {pipe}}},
+                 {{"length": 300.0, "outer_diameter": 0.17, "inner_diameter": 0.07, "shear_modulus": 7.7e10, "density": 7850.0}}],
+               "nonlinearity": "{nonlinearity}",
+               "well": {{"md": [0.0, 300.0, 600.0, 1000.0], "inclination_deg": [0.0, 0.0, 60.0, 60.0]}},
+               "friction": {{"static": 0.3, "stick_speed": 0.5, "model": "{model}"}},
+               "top_drive": {{"rpm": 60.0, "controller": {{"type": "speed"}}}},
+               "bit": {{"radius": 0.108, "law": "detournay"}},
+               "hoist": {{"speed": 0.01}},
+               "numerics": {{"cells": 150, "duration": 1.0}}}}"#
+        );
+        let cfg = DrillConfig::from_json(&json).unwrap();
+        let grid = Grid::new(&cfg).unwrap();
+        let mut torsion = Field::torsional(&grid, nonlinearity == "consistent");
+        let wall = WallFriction::torsional(&cfg, &grid, &torsion);
+        let mut axial = Axial::new(&cfg, &grid, cfg.hoist.as_ref().unwrap()).unwrap().field;
+        let mut cf = CoupledFriction::new(&cfg, &grid, &torsion, &wall.stop, &axial).unwrap();
+        assert!(cf.torsional.untouched.iter().sum::<f64>() > 10.0, "segments without contact");
+        assert!(cf.torsional.slot.len() >= 2 && cf.axial.slot.len() >= 2);
+        let mut uniform = uniform(17);
+        let (mut stuck, mut cells) = (0, 0);
+        for round in 0..20 {
+            // random speeds: sliding, slow, exactly at rest
+            let scale = [3.0, 0.3, 0.01][round % 3];
+            let mut draw = |k: usize| match k % 13 {
+                0 => 0.0,
+                _ => scale * (2.0 * uniform() - 1.0),
+            };
+            for (k, (a, b)) in torsion.alpha.iter_mut().zip(torsion.beta.iter_mut()).enumerate() {
+                (*a, *b) = (draw(k), draw(k + 1));
+            }
+            if let Some(nl) = &mut torsion.nl {
+                for (k, o) in nl.omega.iter_mut().enumerate() {
+                    *o = draw(k);
+                }
+            }
+            for (k, (a, b)) in axial.alpha.iter_mut().zip(axial.beta.iter_mut()).enumerate() {
+                (*a, *b) = (0.1 * draw(k), 0.1 * draw(k + 5));
+            }
+            let (mut t2, mut a2) = (torsion.clone(), axial.clone());
+            let got = cf.apply(&mut torsion, &mut axial);
+            let want = direct_step(&cf, &mut t2, &mut a2);
+            let bits = |f: &Field| -> Vec<u64> {
+                let omega = f.nl.as_ref().map_or(&[][..], |nl| &nl.omega[..]);
+                f.alpha.iter().chain(&f.beta).chain(omega).map(|x| x.to_bits()).collect()
+            };
+            assert_eq!(bits(&torsion), bits(&t2), "{model} {nonlinearity} round {round}: torsion");
+            assert_eq!(bits(&axial), bits(&a2), "{model} {nonlinearity} round {round}: axial");
+            for (g, w) in [(got.0, want.0), (got.1, want.1)] {
+                assert!((g - w).abs() <= 1e-12 * w.abs(), "{model} {nonlinearity} round {round}: work {g} {w}");
+            }
+            let mut sp = vec![0.0; torsion.padded_len()];
+            torsion.speeds(&mut sp);
+            stuck += sp.iter().filter(|x| **x == 0.0).count();
+            cells += sp.len();
+        }
+        // (the regularised law never sticks)
+        assert!(model == "regularised" || stuck > cells / 20, "{model} {nonlinearity}: stuck cells {stuck} of {cells}");
+    }
 }
 
 /// Slow (angular sliding speed below the stick speed): the stop force if within the static

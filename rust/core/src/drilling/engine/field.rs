@@ -51,6 +51,7 @@ impl Section {
 /// invariants (`[ghost, cells, ghost]` per section, ghosts unused), and the face values
 /// `(omega*, tau*)` at padded index `offset + j` for the face below cell `j` (`offset`: the
 /// section's top face).
+#[derive(Clone)]
 pub struct Nonlinear {
     /// The finite-strain torque-twist law of each section.
     pub laws: Vec<SectionProps>,
@@ -68,6 +69,7 @@ pub struct Nonlinear {
 }
 
 /// A field: its sections and its state.
+#[derive(Clone)]
 pub struct Field {
     pub sections: Vec<Section>,
     /// The invariants `alpha = w + s / Z` (down) and `beta = w - s / Z` (up), padded, and the

@@ -324,7 +324,7 @@ const LANES: usize = 4;
 
 /// `sum x` with [`LANES`] accumulators.
 #[inline(always)]
-fn lane_sum(x: &[f64]) -> f64 {
+pub(super) fn lane_sum(x: &[f64]) -> f64 {
     let mut acc = [0.0; LANES];
     let blocks = x.chunks_exact(LANES);
     let rest = blocks.remainder();
