@@ -1163,6 +1163,15 @@ impl DrillConfig {
             }
             _ => {}
         }
+        if coupled && self.bit.on_bottom {
+            // the velocity-weakening law's keys: a coupled bit meets the rock through the hoist
+            return Err(Error::invalid(
+                "bit.on_bottom",
+                format!("true with bit.law = {}", if self.bit.law == BitRockLaw::Rgd { "rgd" } else { "detournay" }),
+                "false (a coupled run's bit reaches the rock through the [hoist] table: hoist.weight_on_bit, \
+                 hoist.speed or hoist.hook_load; bit.on_bottom and bit.weight_on_bit belong to the velocity-weakening law)",
+            ));
+        }
         if let Some(h) = &self.hoist {
             finite("hoist.speed", h.speed, "m/s")?;
             nonneg("hoist.hook_load", h.hook_load, "N")?;

@@ -207,6 +207,11 @@ fn a_coupled_law_and_a_hoist_come_together() {
     let mut cfg = coupled("rgd", "");
     cfg.bit.detournay.blades = 0;
     assert!(cfg.validate().unwrap_err().to_string().contains("bit.detournay.blades"));
+    // the velocity-weakening law's bit on bottom has no meaning with a coupled law
+    let mut cfg = coupled("rgd", "");
+    cfg.bit.on_bottom = true;
+    let message = cfg.validate().unwrap_err().to_string();
+    assert!(message.starts_with("invalid bit.on_bottom: got true with bit.law = rgd, expected false"), "{message}");
 }
 
 /// The short string of [`settling`] drilled by the autodriller on `target` at `setpoint` with
