@@ -93,4 +93,5 @@ def test_the_console_names_the_on_bottom_numbers(tmp_path: Path, capsys: pytest.
     c = json.loads((tmp_path / "run" / "metrics.json").read_text())["coupled"]
     assert line == [f"on bottom: ROP {c['rop_mean_m_per_h']:.4g} m/h, weight on bit {c['wob_mean_N'] / 1e3:.4g} kN, "
                     f"torque on bit {c['tob_mean_Nm'] / 1e3:.4g} kN m, bit bounce {c['bounce_fraction']:.3g} of the "
-                    f"window, MSE {c['mse_mean_Pa'] / 1e6:.4g} MPa; regime: {c['regime']}"]
+                    f"window, MSE {c['mse_mean_Pa'] / 1e6:.4g} MPa, hook load {c['hook_load_mean_N'] / 1e3:.4g} kN; "
+                    f"regime: {c['regime']}"]

@@ -870,7 +870,7 @@ class DrillCoupledOutput(TypedDict, total=False):
     bit_depth: NDArray[np.float64]
     depth_of_cut: NDArray[np.float64]
     #: The coupled metrics over the window (rop_mean_m_per_h, wob_mean_N, tob_mean_Nm,
-    #: bounce_fraction, mse_mean_Pa).
+    #: bounce_fraction, hook_load_mean_N, mse_mean_Pa).
     coupled: dict[str, float]
     #: Axial cell centres, m; at field_t, (len(field_t), len(axial_z)): axial speed m/s (down
     #: positive) and axial force N (compression positive); absent without snapshots.
@@ -932,8 +932,8 @@ class DrillMapOutput(TypedDict):
     ``numerics.max_shear_strain``)."""
     coupled: dict[str, Any]
     """A coupled run's metrics (``rop_mean_m_per_h``, ``wob_mean_N``, ``tob_mean_Nm``,
-    ``bounce_fraction``, ``mse_mean_Pa``: float arrays, NaN without them) and ``regime`` (a list of
-    str, ``undetermined`` without them)."""
+    ``bounce_fraction``, ``hook_load_mean_N``, ``mse_mean_Pa``: float arrays, NaN without them) and
+    ``regime`` (a list of str, ``undetermined`` without them)."""
     interrupt: Optional[BaseException]
     """The exception that stopped the map (Ctrl-C or raised by ``progress``), or None."""
 

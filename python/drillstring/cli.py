@@ -649,9 +649,13 @@ def _cmd_drill(args: argparse.Namespace) -> int:
             c = result.coupled_metrics
             mse = f"{c['mse_mean_Pa'] / 1e6:.4g} MPa" if system == "si" else shown(c["mse_mean_Pa"], "Pa", system)
             wob = shown(c["wob_mean_N"], "N", system, kilo=system == "si")
-            _say(f"on bottom: ROP {shown(c['rop_mean_m_per_h'], 'm/h', system)}, weight on bit {wob}, "
-                 f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
-                 f"MSE {mse}; regime: {result.coupled_regime}")
+            hook = shown(c["hook_load_mean_N"], "N", system, kilo=system == "si")
+            if c["bounce_fraction"] >= 1.0:  # a pick-up or slack-off: the hook load is the number
+                _say(f"off bottom: hook load {hook} (mean over the window); regime: {result.coupled_regime}")
+            else:
+                _say(f"on bottom: ROP {shown(c['rop_mean_m_per_h'], 'm/h', system)}, weight on bit {wob}, "
+                     f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
+                     f"MSE {mse}, hook load {hook}; regime: {result.coupled_regime}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
             _say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "

@@ -13,7 +13,9 @@ name               unit (SI)    what
                                 top-drive inertia's acceleration torque)
 ``bit_rpm``        rpm          bit speed (downhole, optional)
 ``bit_torque``     N m          torque on bit (downhole, optional)
-``hook_load``      N            hook load (read and kept; not modelled)
+``hook_load``      N            hook load (modelled in coupled runs: a ``[hoist]``)
+``weight_on_bit``  N            weight on bit (downhole or from the hook load,
+                                optional; modelled in coupled runs)
 ``block_position`` m            block position (read and kept; not modelled)
 =================  ===========  ====================================================
 
@@ -48,7 +50,7 @@ from numpy.typing import NDArray
 
 from ..errors import ValidationError
 
-__all__ = ["COLUMNS", "MODEL_SERIES", "UNITS", "MeasuredData", "read_measured"]
+__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "MeasuredData", "read_measured"]
 
 #: The columns a data file may have, each with its dimension (the model's SI unit in :data:`UNITS`).
 COLUMNS: dict[str, str] = {
@@ -58,11 +60,15 @@ COLUMNS: dict[str, str] = {
     "bit_rpm": "speed",
     "bit_torque": "torque",
     "hook_load": "force",
+    "weight_on_bit": "force",
     "block_position": "length",
 }
 
 #: The series the model computes (``drill``'s series), which a fit can compare.
 MODEL_SERIES: tuple[str, ...] = ("surface_rpm", "motor_torque", "bit_rpm", "bit_torque")
+#: The series a coupled axial-torsional run (a ``[hoist]`` table) computes besides, which a fit of
+#: a coupled configuration can compare.
+AXIAL_SERIES: tuple[str, ...] = ("hook_load", "weight_on_bit")
 
 _FT_LBF = 0.3048 * 4.4482216152605
 #: Per dimension: the model's unit first, then every known unit with its factor to the model's.

@@ -67,7 +67,7 @@ from .. import _core
 from ..drilling.config import DrillConfig
 from ..drilling.solve import ConfigLike, _config
 from ..errors import ValidationError
-from .data import MODEL_SERIES, MeasuredData, read_measured
+from .data import AXIAL_SERIES, MODEL_SERIES, MeasuredData, read_measured
 
 __all__ = ["CONDITION_LIMIT", "Event", "FitResult", "Landscape", "ParameterEstimate", "Profile", "fit"]
 
@@ -266,7 +266,10 @@ class _Problem:
                 sd = float(np.std(v))
                 scales[s] = sd if sd > 0 else (float(np.mean(np.abs(v))) or 1.0)
             duration = float(idx[-1] * dt + dt)
-            overrides: dict[str, Any] = {"numerics.duration": duration, "numerics.field_interval": 0.0}
+            # (the metrics window, which the fit does not read, as the default: the last half of the
+            # shortened run, so that a window set in the configuration cannot fall outside it)
+            overrides: dict[str, Any] = {"numerics.duration": duration, "numerics.field_interval": 0.0,
+                                         "metrics.window": None}
             if top == "measured":
                 overrides.update({"top_drive.mode": "measured_speed",
                                   "top_drive.speed_series": _speed_series(ev.data, duration)})
@@ -295,7 +298,7 @@ class _Problem:
             return f"{out['status']}: {out['message']}"
         series: dict[str, Any] = dict(out)
         if whole:
-            return {name: np.asarray(series[name]) for name in ("t", *MODEL_SERIES)}
+            return {name: np.asarray(series[name]) for name in ("t", *MODEL_SERIES, *AXIAL_SERIES) if name in series}
         return {s: np.asarray(series[s])[self.index[e]] for s in self.targets}
 
     def run(self, points: Sequence[NDArray[np.float64]], whole: bool = False) -> list[list[Any]]:
@@ -424,12 +427,14 @@ def _targets(targets: Union[str, Sequence[str], Mapping[str, float]]) -> dict[st
     if isinstance(targets, str):
         targets = [targets]
     items = dict(targets) if isinstance(targets, Mapping) else {t: 1.0 for t in targets}
+    known = (*MODEL_SERIES, *AXIAL_SERIES)
     if not items:
-        raise ValidationError("targets", targets, f"at least one series of {', '.join(MODEL_SERIES)}")
+        raise ValidationError("targets", targets, f"at least one series of {', '.join(known)}")
     out = {}
     for name, weight in items.items():
-        if name not in MODEL_SERIES:
-            raise ValidationError("targets", name, f"series the model computes: {', '.join(MODEL_SERIES)}")
+        if name not in known:
+            raise ValidationError("targets", name, f"series the model computes: {', '.join(known)} (the last "
+                                  f"{len(AXIAL_SERIES)} in coupled runs)")
         w = float(weight)
         if not (math.isfinite(w) and w > 0):
             raise ValidationError(f"targets[{name}]", weight, "a finite weight > 0")
@@ -536,8 +541,9 @@ def fit(
         ``friction.kinetic_ratio``, ``friction.stick_speed``, ``damping_rate``,
         ``sections[1].density``, ...).
     targets : str, sequence of str, or mapping of str to float
-        The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``),
-        with their weights when a mapping (default weight 1).
+        The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``,
+        and in a coupled run, a ``[hoist]`` table, ``hook_load`` and ``weight_on_bit``), with their
+        weights when a mapping (default weight 1).
     windows : list of (start, end), optional
         Model times compared, s (default: from 0 to the end of the data or of the configuration's
         duration); the same for every event.
@@ -620,6 +626,11 @@ def fit(
 
     events = []
     for cfg, ds_ in zip(configs, datasets):
+        axial = [name for name in target_map if name in AXIAL_SERIES]
+        if axial and cfg.hoist is None:
+            raise ValidationError("targets", axial[0], "a series of a torsion-only run (surface_rpm, motor_torque, "
+                                  "bit_rpm, bit_torque): hook_load and weight_on_bit need a coupled run, a [hoist] "
+                                  "table with bit.law = rgd or detournay")
         ds_.require(list(target_map) + (["surface_rpm"] if top == "measured" else []))
         wins = _windows(windows, ds_, cfg)
         ds_.check_windows(wins, list(target_map), max_gap)

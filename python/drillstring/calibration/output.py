@@ -115,7 +115,8 @@ def series_figure(result: FitResult) -> Figure:
 
     rows, cols = len(result.events), len(result.targets)
     fig, axes = plt.subplots(rows, cols, figsize=(6.5 * cols, 3.0 * rows), squeeze=False)
-    units = {"motor_torque": "N m", "bit_torque": "N m", "surface_rpm": "rpm", "bit_rpm": "rpm"}
+    units = {"motor_torque": "N m", "bit_torque": "N m", "surface_rpm": "rpm", "bit_rpm": "rpm", "hook_load": "N",
+             "weight_on_bit": "N"}
     for e, (event, fitted) in enumerate(zip(result.events, result.fitted)):
         for j, s in enumerate(result.targets):
             ax = axes[e][j]

@@ -289,6 +289,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
                   f"| mean weight on bit, kN | {_fmt(c['wob_mean_N'] / 1e3)} |",
                   f"| mean torque on bit, kN m | {_fmt(c['tob_mean_Nm'] / 1e3)} |",
                   f"| bit bounce (share of the window with no weight on bit) | {_fmt(c['bounce_fraction'], 3)} |",
+                  f"| mean hook load, kN | {_fmt(c['hook_load_mean_N'] / 1e3)} |",
                   f"| mechanical specific energy of the means, MPa | {_fmt(c['mse_mean_Pa'] / 1e6)} |"]
     if result.energy:
         lines += ["", "## Energy balance, J", "",

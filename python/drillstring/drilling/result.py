@@ -67,7 +67,7 @@ COUPLED_REGIMES: tuple[str, ...] = tuple(_core.COUPLED_REGIMES)
 #: The coupled metrics of ``metrics.json``'s ``coupled`` block and a coupled map's columns, in order
 #: (``regime`` the text one).
 COUPLED_METRICS: tuple[str, ...] = ("rop_mean_m_per_h", "wob_mean_N", "tob_mean_Nm", "bounce_fraction",
-                                    "mse_mean_Pa", "regime")
+                                    "hook_load_mean_N", "mse_mean_Pa", "regime")
 
 #: The criterion of the boolean ``stick_slip`` (``stick_slip_verdict == "yes"``).
 STICK_SLIP_STOPS = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
@@ -379,7 +379,8 @@ class DrillResult:
             {str(k): float(v) for k, v in coupled.items() if k != "regime"} if coupled else None)
         """A coupled run's metrics over the window (None without a hoist): ``rop_mean_m_per_h``,
         ``wob_mean_N``, ``tob_mean_Nm``, ``bounce_fraction`` (share of samples with no weight on
-        bit) and ``mse_mean_Pa`` (Teale's mechanical specific energy of the means)."""
+        bit), ``hook_load_mean_N`` and ``mse_mean_Pa`` (Teale's mechanical specific energy of the
+        means)."""
         self.coupled_regime: Optional[str] = str(coupled["regime"]) if "regime" in coupled else None
         """A coupled run's regime over the window (None without a hoist): ``"smooth drilling"``,
         ``"stick-slip"``, ``"bit bounce"``, ``"stick-slip and bit bounce"``, ``"off bottom"`` or

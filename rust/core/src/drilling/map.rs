@@ -79,6 +79,8 @@ pub struct CoupledColumns {
     #[serde(rename = "tob_mean_Nm")]
     pub tob_mean_nm: Vec<f64>,
     pub bounce_fraction: Vec<f64>,
+    #[serde(rename = "hook_load_mean_N")]
+    pub hook_load_mean_n: Vec<f64>,
     #[serde(rename = "mse_mean_Pa")]
     pub mse_mean_pa: Vec<f64>,
     /// The regime's name ([`Regime::name`]).
@@ -170,6 +172,7 @@ impl MapColumns {
                 wob_mean_n: coupled(|c| c.wob_mean_n),
                 tob_mean_nm: coupled(|c| c.tob_mean_nm),
                 bounce_fraction: coupled(|c| c.bounce_fraction),
+                hook_load_mean_n: coupled(|c| c.hook_load_mean_n),
                 mse_mean_pa: coupled(|c| c.mse_mean_pa),
                 regime: rows.iter().map(|r| r.coupled.map_or(Regime::Undetermined, |c| c.regime).name()).collect(),
             },

@@ -542,6 +542,9 @@ pub struct CoupledMetrics {
     pub tob_mean_nm: f64,
     /// Fraction of the samples with no weight on bit (bit bounce).
     pub bounce_fraction: f64,
+    /// Mean hook load, N (a pick-up's or slack-off's load off bottom).
+    #[serde(rename = "hook_load_mean_N")]
+    pub hook_load_mean_n: f64,
     /// Teale's mechanical specific energy of the means (WOB, TOB, bit speed, ROP), Pa
     /// ([`mechanical_specific_energy`]; `inf` when nothing was drilled while the bit turned).
     #[serde(rename = "mse_mean_Pa")]
@@ -569,6 +572,7 @@ pub fn coupled_metrics(run: &DrillRun, radius: f64) -> Option<CoupledMetrics> {
         wob_mean_n: wob,
         tob_mean_nm: tob,
         bounce_fraction: bounce,
+        hook_load_mean_n: mean(&run.hook_load),
         mse_mean_pa: mse,
         regime: regime(run.metrics.as_ref().map(|m| m.verdict), bounce),
     })
