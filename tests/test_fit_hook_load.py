@@ -76,6 +76,10 @@ def test_the_command_fits_the_hook_load(measured: pd.DataFrame, tmp_path: Path,
                  "--no-landscape", "--samples", "16"]) == 0
     text = capsys.readouterr().out
     assert "friction.static" in text and (out / "fit.json").exists()
+    # next: the torque and drag of the calibrated well, which runs
+    assert "next, the torque and drag of the calibrated well" in text
+    (command,) = [line.strip() for line in text.splitlines() if line.strip().startswith("drillstring torque-drag")]
+    assert main(command.split()[1:]) == 0
 
 
 def test_axial_targets_need_a_coupled_run(measured: pd.DataFrame) -> None:

@@ -1046,7 +1046,7 @@ def _pairs(texts: Sequence[str], field: str, form: str) -> list[tuple[str, str]]
 def _cmd_fit(args: argparse.Namespace) -> int:
     from .calibration.data import read_measured
     from .calibration.fit import fit
-    from .calibration.output import next_commands, write_files
+    from .calibration.output import next_commands, next_heading, write_files
     from .drilling import load_drill_config
     from .drilling.output import output_folder
 
@@ -1092,7 +1092,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
             _say(f"warning: {warning}")
         written = write_files(result, directory, plots)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
-    _say("next, the stick-slip map of the calibrated well and the controller recommendation:")
+    _say(next_heading(result))
     for command in next_commands(os.fspath(args.out), result):
         _say(f"  {command}")
     return 0

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..drilling.output import MARKER, _json_ready, _md, output_folder
 from ..io.output import atomic_write, write_text
+from .data import AXIAL_SERIES
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -179,11 +180,26 @@ def profile_figure(result: FitResult) -> Figure:
     return fig
 
 
+def _axial_fit(result: FitResult) -> bool:
+    """Whether the fit compared only a coupled run's axial series (a pick-up's hook load)."""
+    return all(name in AXIAL_SERIES for name in result.targets)
+
+
+def next_heading(result: FitResult) -> str:
+    """What :func:`next_commands` gives, as the command line announces it."""
+    if _axial_fit(result):
+        return "next, the torque and drag of the calibrated well (pick-up, slack-off, rotating loads, the broomstick):"
+    return "next, the stick-slip map of the calibrated well and the controller recommendation:"
+
+
 def next_commands(out_dir: str, result: FitResult) -> list[str]:
     """The commands that follow a fit: the stick-slip map of the calibrated well over the
     setpoint and the controllers (the controller recommendation), with the fitted static
-    friction's interval as an axis when it was fitted."""
+    friction's interval as an axis when it was fitted; after a fit of axial series only (a
+    pick-up's hook load), the torque and drag of the calibrated well."""
     config = os.path.join(out_dir, "config.toml")
+    if _axial_fit(result):
+        return [f"drillstring torque-drag {config} --out {out_dir.rstrip('/')}-td"]
     rpm = result.config.top_drive.rpm
     axes = [f"--axis top_drive.rpm={max(rpm / 2, 10):.3g}:{max(4 * rpm, 120):.3g}:9"]
     est = result.parameters.get("friction.static")
