@@ -35,6 +35,11 @@ def test_the_pickup_load_is_the_torque_and_drag_pickup_load(pickup: ds.DrillResu
     # pulled at 0.05 m/s: the static load plus the drag mu N L (the mean over the axial waves)
     c = pickup.coupled_metrics
     assert c is not None and pickup.coupled_regime == "off bottom"
+    # a pick-up without rotation: one note says why there are no torsional metrics, no warning
+    # that the bit never touched bottom (the hoist lifts it on purpose)
+    assert not pickup.rotating and not pickup.metrics_finite
+    assert len(pickup.warnings) == 1 and pickup.warnings[0].startswith("no rotation: top_drive.rpm is 0"), \
+        pickup.warnings
     drag = td.hook_load_pickup_N - hanging.hook_load_pickup_N
     assert drag > 80e3
     assert c["hook_load_mean_N"] == pytest.approx(td.hook_load_pickup_N, abs=0.005 * drag)
@@ -80,6 +85,18 @@ def test_the_command_fits_the_hook_load(measured: pd.DataFrame, tmp_path: Path,
     assert "next, the torque and drag of the calibrated well" in text
     (command,) = [line.strip() for line in text.splitlines() if line.strip().startswith("drillstring torque-drag")]
     assert main(command.split()[1:]) == 0
+
+
+def test_the_console_of_a_pickup(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["drill", str(EXAMPLE), "--out", str(tmp_path / "run"), "--no-plots"]) == 0
+    out = capsys.readouterr().out
+    assert "(success; no rotation: no torsional metrics)" in out
+    assert "off bottom: hook load 862.9 kN (mean over the window); regime: off bottom" in out
+    # lowered onto the rock (the same string turning), the run is on bottom and rotating again
+    assert main(["drill", str(EXAMPLE), "--out", str(tmp_path / "down"), "--no-plots", "--set", "hoist.speed=0.01",
+                 "--set", "top_drive.rpm=60"]) == 0
+    out = capsys.readouterr().out
+    assert "(success)" in out and "on bottom: ROP" in out and "no rotation" not in out
 
 
 def test_axial_targets_need_a_coupled_run(measured: pd.DataFrame) -> None:

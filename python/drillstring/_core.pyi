@@ -901,6 +901,8 @@ class DrillOutput(DrillCoupledOutput):
     #: False when a headline metric (ssi, stuck fraction, bit speed, motor torque) is not
     #: finite or the window has none: not a result, whatever ``status`` says.
     metrics_finite: bool
+    #: Whether the top drive was asked to turn (a pick-up without rotation: False).
+    rotating: bool
     metrics: DrillMetrics
     energy: DrillEnergy
     stats: DrillStats

@@ -627,7 +627,10 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         seconds = time.perf_counter() - start
         m = result.metrics
         system = args.units
-        status = result.status if result.metrics_finite else f"{result.status}, but metrics not finite: not a result"
+        status = (result.status if result.metrics_finite
+                  else f"{result.status}; no rotation: no torsional metrics"
+                  if not result.rotating and result.coupled_metrics is not None
+                  else f"{result.status}, but metrics not finite: not a result")
 
         def torque(x: float) -> str:  # kN m, or kft-lbf in field units
             return shown(x, "N*m", system, kilo=True)

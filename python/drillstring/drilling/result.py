@@ -393,6 +393,9 @@ class DrillResult:
         self.name: Optional[str] = None
         """The well's name in figure titles (the configuration file's stem when :func:`drill` read one)."""
         self.metrics_finite: bool = bool(raw.get("metrics_finite", True))
+        self.rotating: bool = bool(raw.get("rotating", True))
+        """Whether the top drive was asked to turn (a setpoint, step or measured speed other than
+        0): a coupled pick-up or slack-off without rotation has no torsional metrics by design."""
 
     @property
     def success(self) -> bool:
@@ -436,7 +439,8 @@ class DrillResult:
         from .units import convert, system_of
 
         system = system_of(output_units, "output_units")
-        out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite}
+        out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite,
+                               "rotating": self.rotating}
         out.update(self.metrics.to_dict())
         out["stick_slip_reason"] = self.metrics.stick_slip_reason
         out["stick_slip_criterion"] = STICK_SLIP_CRITERION

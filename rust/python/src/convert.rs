@@ -111,10 +111,13 @@ pub(crate) struct StickSlipReport<'a> {
 
 impl<'a> StickSlipReport<'a> {
     pub(crate) fn new(metrics: Option<&'a StickSlip>) -> Self {
-        StickSlipReport {
-            metrics: metrics.unwrap_or(&StickSlip::UNDEFINED),
-            warnings: metrics.map_or_else(Vec::new, StickSlip::warnings),
-        }
+        StickSlipReport::with_warnings(metrics, metrics.map_or_else(Vec::new, StickSlip::warnings))
+    }
+
+    /// The metrics with the warnings the core chose for them (a drilling run's
+    /// `DrillRun::metric_warnings`).
+    pub(crate) fn with_warnings(metrics: Option<&'a StickSlip>, warnings: Vec<String>) -> Self {
+        StickSlipReport { metrics: metrics.unwrap_or(&StickSlip::UNDEFINED), warnings }
     }
 }
 

@@ -95,7 +95,7 @@ struct RunMetrics<'a> {
 
 fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
     let metrics = RunMetrics {
-        stick_slip: StickSlipReport::new(run.metrics.as_ref()),
+        stick_slip: StickSlipReport::with_warnings(run.metrics.as_ref(), run.metric_warnings()),
         window_start: run.window[0],
         window_end: run.window[1],
         breakoff_torque: run.breakoff_torque,

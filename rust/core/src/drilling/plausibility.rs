@@ -214,6 +214,29 @@ pub fn non_finite_metrics_warning(m: &StickSlip) -> Option<String> {
     })
 }
 
+/// Whether the top drive is asked to turn at some time: a setpoint or step other than 0 rpm, or
+/// a measured speed series that is not all 0.
+pub fn rotation_commanded(cfg: &DrillConfig) -> bool {
+    let td = &cfg.top_drive;
+    if td.mode == super::config::TopMode::MeasuredSpeed {
+        return td.speed_series.iter().any(|p| p[1] != 0.0);
+    }
+    td.rpm != 0.0 || td.steps.iter().any(|s| s[1] != 0.0)
+}
+
+/// The note of a coupled run without rotation ([`rotation_commanded`] false) whose torsional
+/// metrics are undefined: in place of [`non_finite_metrics_warning`], whose likely mistakes do
+/// not apply.
+pub const NO_ROTATION: &str = "no rotation: top_drive.rpm is 0, so the torsional metrics (ssi, stuck_fraction, \
+     bit_rpm_*, the period) are undefined; a run without rotation (a pick-up or slack-off) is read by its axial \
+     series and coupled metrics (hook_load_mean_N)";
+
+/// Whether the hoist only lifts the string (`velocity` mode, every block velocity upward): without
+/// rotation a pick-up, its bit off bottom on purpose, and [`off_bottom_warning`] does not apply.
+pub fn lifting(hoist: &super::config::Hoist) -> bool {
+    hoist.mode == HoistKind::Velocity && hoist.speed < 0.0 && hoist.steps.iter().all(|s| s[1] < 0.0)
+}
+
 /// A coupled run whose bit never touched bottom in the metrics window `[a, b]` s: every sample
 /// there has no weight on bit (`bounce_fraction` 1), so the window's ROP, weight and torque on
 /// bit are 0 and its MSE is undefined. Says what to change for the hoist's mode `mode`: the bit

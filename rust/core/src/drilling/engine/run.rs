@@ -20,7 +20,10 @@ use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
-use crate::drilling::plausibility::{non_finite_metrics_warning, off_bottom_warning, run_warnings, transient_warning};
+use crate::drilling::plausibility::{
+    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, transient_warning,
+    NO_ROTATION,
+};
 use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Poller};
 use crate::metrics::{stick_slip, StickSlip};
@@ -120,7 +123,24 @@ pub struct DrillRun {
     /// False when a headline metric is not finite or the window has none
     /// ([`crate::drilling::plausibility::non_finite_metrics`]): not a result, whatever `status` says.
     pub metrics_finite: bool,
+    /// Whether the top drive is asked to turn ([`crate::drilling::plausibility::rotation_commanded`]):
+    /// without rotation (a coupled pick-up or slack-off) the torsional metrics are undefined by
+    /// design, and the warnings say so once.
+    pub rotating: bool,
     pub stats: DrillStats,
+}
+
+impl DrillRun {
+    /// The stick-slip metrics' warnings ([`StickSlip::warnings`]); in a coupled run without
+    /// rotation, less those that only restate it (an undefined SSI, a bit that never turns).
+    pub fn metric_warnings(&self) -> Vec<String> {
+        let Some(m) = &self.metrics else { return Vec::new() };
+        let mut out = m.warnings();
+        if !self.rotating && self.coupled.is_some() {
+            out.retain(|w| !(w.starts_with("ssi undefined") || w.starts_with("the bit never turns")));
+        }
+        out
+    }
 }
 
 /// A drilling-system run being set up (initial state) and run.
@@ -406,6 +426,7 @@ impl<'c> Simulation<'c> {
             message: String::new(),
             warnings: run_warnings(cfg, breakoff),
             metrics_finite: true,
+            rotating: true,
             stats: DrillStats {
                 cells: nz,
                 steps: 0,
@@ -485,11 +506,20 @@ impl<'c> Simulation<'c> {
         if let Some(ax) = &self.axial {
             run.coupled = coupled_metrics(&run, ax.law().radius);
         }
+        run.rotating = rotation_commanded(cfg);
         if let (Some(c), Some(h)) = (&run.coupled, &cfg.hoist) {
-            run.warnings.extend(off_bottom_warning(c.bounce_fraction, run.window, h.mode));
+            // (a string lifted without rotation is a pick-up, off bottom on purpose; lifted while
+            // turning, the sign of hoist.speed may be the mistake)
+            if run.rotating || !lifting(h) {
+                run.warnings.extend(off_bottom_warning(c.bounce_fraction, run.window, h.mode));
+            }
         }
         run.metrics_finite = run.metrics.as_ref().is_some_and(|m| non_finite_metrics_warning(m).is_none());
-        run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));
+        if run.rotating || cfg.hoist.is_none() {
+            run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));
+        } else if !run.metrics_finite {
+            run.warnings.push(NO_ROTATION.to_string());
+        }
         run.warnings.extend(transient_warning(&run.t, &run.surface_rpm, &run.motor_torque, run.window));
         progress(1.0);
         run
