@@ -50,6 +50,21 @@ def test_the_pickup_load_is_the_torque_and_drag_pickup_load(pickup: ds.DrillResu
     assert free.coupled_metrics["hook_load_mean_N"] == pytest.approx(hanging.hook_load_pickup_N, abs=0.01 * drag)
 
 
+def test_the_slackoff_load_is_the_torque_and_drag_slackoff_load() -> None:
+    """Picked up for 25 s, then lowered at 0.02 m/s (the friction reverses along the string over
+    some 20 s): the mean hook load over 60-75 s is the soft-string slack-off load."""
+    cfg = ds.load_drill_config(EXAMPLE).with_overrides(
+        {"hoist.steps": [[25.0, 0.02]], "numerics.duration": 75.0, "metrics.window": [60.0, 75.0]})
+    run = ds.drill(cfg, progress=False)
+    td = ds.torque_drag(cfg)
+    hanging = ds.torque_drag(cfg.with_overrides({"friction.static": 0.0})).hook_load_pickup_N
+    drag = hanging - td.hook_load_slackoff_N
+    assert drag > 80e3
+    c = run.coupled_metrics
+    assert c is not None and run.coupled_regime == "off bottom"  # lowered, not yet on the rock
+    assert c["hook_load_mean_N"] == pytest.approx(td.hook_load_slackoff_N, abs=0.005 * drag)
+
+
 @pytest.fixture(scope="module")
 def measured(pickup: ds.DrillResult) -> pd.DataFrame:
     """The pick-up's hook load at 10 Hz with 2 kN of sensor noise, in kN."""
