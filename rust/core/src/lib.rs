@@ -49,3 +49,18 @@ pub use interrupt::{CancelFlag, Interrupt};
 pub use options::{AdaptiveOptions, FixedOptions, Output};
 pub use solution::{Solution, Stats, Status};
 pub use system::{Dissipating, FirstOrder, OdeSystem, SecondOrderSystem};
+
+/// Helpers of the crate's tests.
+#[cfg(test)]
+pub(crate) mod test_support {
+    /// Deterministic pseudo-random numbers in [0, 1) (xorshift64 from `seed`, non-zero).
+    pub(crate) fn uniform(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+}

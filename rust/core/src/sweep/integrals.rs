@@ -460,13 +460,8 @@ mod tests {
 
     /// Deterministic pseudo-random numbers in [-1, 1).
     fn uniform(seed: u64) -> impl FnMut() -> f64 {
-        let mut state = seed;
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
-        }
+        let mut unit = crate::test_support::uniform(seed);
+        move || 2.0 * unit() - 1.0
     }
 
     /// The largest relative difference of the spectral and the term-sum force and potential over

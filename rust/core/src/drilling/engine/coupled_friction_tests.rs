@@ -11,6 +11,7 @@ use crate::drilling::engine::field::Field;
 use crate::drilling::solver::solve;
 use crate::interrupt::Never;
 use crate::solution::Status;
+use crate::test_support::uniform;
 
 const LAW: Law = Law { slow_below: 1.5, kinetic_ratio: 0.65, inv_regularisation: None };
 
@@ -38,17 +39,6 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
     // A change that would reverse a speed stops it.
     let f = slide(1e-6, 2.0 * PI, &Contact::new(r, 1.0, lt, &LAW), &LAW);
     assert!(f.stuck_axial && !f.stuck_torsional && f.dv == -1e-6);
-}
-
-/// A xorshift generator of uniform numbers in [0, 1).
-fn uniform(seed: u64) -> impl FnMut() -> f64 {
-    let mut x = seed;
-    move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// The vector pass (the branchless law under the SIMD dispatch) gives `slide`'s bits, contact by
