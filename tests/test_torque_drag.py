@@ -26,7 +26,10 @@ REFERENCE = Path(__file__).resolve().parent / "reference" / "welleng"
 
 @pytest.fixture(scope="module")
 def td() -> ds.TorqueDragResult:
-    return ds.torque_drag(EXAMPLE)
+    # The references' friction factors (0.2 cased, 0.3 open) are the sliding factors torque and
+    # drag use, friction.static x friction.kinetic_ratio: one factor here.
+    cfg = ds.drilling.load_drill_config(EXAMPLE).with_overrides(["friction.kinetic_ratio=1"])
+    return ds.torque_drag(cfg)
 
 
 def test_minimum_curvature_matches_welleng(td: ds.TorqueDragResult) -> None:
@@ -83,16 +86,21 @@ def test_rotating_hook_load_is_the_buoyed_weight_along_the_vertical(td: ds.Torqu
 
 
 def test_straight_inclined_hole_closed_form() -> None:
-    """T = w L (cos i + mu sin i) picking up, (cos i - mu sin i) slacking off; M = mu r w L sin i."""
+    """T = w L (cos i + mu sin i) picking up, (cos i - mu sin i) slacking off; M = mu r w L sin i,
+    with mu the sliding factor friction.static x friction.kinetic_ratio (0.25 x 0.8 = 0.2)."""
     cfg = ds.DrillConfig(sections=[{"length": 2000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
-                         well={"inclination_deg": 40.0}, friction={"static": 0.25})
+                         well={"inclination_deg": 40.0}, friction={"static": 0.25, "kinetic_ratio": 0.8})
     r = ds.torque_drag(cfg)
     area = math.pi / 4 * (0.127**2 - 0.1086**2)
     w = 7850.0 * 9.81 * area
     i = math.radians(40.0)
-    assert r.hook_load_pickup_N == pytest.approx(w * 2000 * (math.cos(i) + 0.25 * math.sin(i)), rel=1e-12)
-    assert r.hook_load_slackoff_N == pytest.approx(w * 2000 * (math.cos(i) - 0.25 * math.sin(i)), rel=1e-12)
-    assert r.surface_torque_off_bottom_Nm == pytest.approx(0.25 * 0.127 / 2 * w * 2000 * math.sin(i), rel=1e-12)
+    mu = 0.25 * 0.8
+    assert r.hook_load_pickup_N == pytest.approx(w * 2000 * (math.cos(i) + mu * math.sin(i)), rel=1e-12)
+    assert r.hook_load_slackoff_N == pytest.approx(w * 2000 * (math.cos(i) - mu * math.sin(i)), rel=1e-12)
+    assert r.surface_torque_off_bottom_Nm == pytest.approx(mu * 0.127 / 2 * w * 2000 * math.sin(i), rel=1e-12)
+    # the static factor is the break-off torque's
+    static = ds.drilling.friction_profile(cfg.with_overrides(["friction.contact=weight"]))
+    assert static.breakoff_torque == pytest.approx(0.25 * 0.127 / 2 * w * 2000 * math.sin(i), rel=1e-9)
 
 
 def test_a_plan_in_three_lines_and_its_doglegs() -> None:
@@ -110,9 +118,10 @@ def test_soft_string_contact_sets_the_wall_limit_and_the_break_off_torque() -> N
     cfg = ds.load_drill_config(EXAMPLE)
     profile = ds.drilling.friction_profile(cfg)
     r = ds.torque_drag(cfg)
-    # the break-off torque is the rotating torque without the bit's (on bottom: with the WOB)
+    # the break-off torque is the rotating torque without the bit's (on bottom: with the WOB) at
+    # the static factors; torque and drag's at the sliding ones (x friction.kinetic_ratio)
     on_bottom = r.surface_torque_on_bottom_Nm - cfg.torque_drag.bit_torque
-    assert profile.breakoff_torque == pytest.approx(on_bottom, rel=1e-9)
+    assert profile.breakoff_torque * cfg.friction.kinetic_ratio == pytest.approx(on_bottom, rel=1e-9)
     weight = ds.drilling.friction_profile(cfg.with_overrides(["friction.contact=weight"]))
     assert weight.breakoff_torque != pytest.approx(profile.breakoff_torque, rel=0.05)
 

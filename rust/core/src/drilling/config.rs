@@ -203,14 +203,25 @@ pub enum FrictionModel {
 #[serde(deny_unknown_fields, default)]
 pub struct Friction {
     /// Static friction factor between string and wall, >= 0 (where no interval applies).
+    ///
+    /// One friction vocabulary for both models: a contact that sticks holds up to `static`
+    /// (the break-off torque, the stick phases of the dynamic model); a contact that slides
+    /// carries the kinetic factor `static x kinetic_ratio`, in the dynamic model and in every
+    /// load of `torque-drag` (pick-up, slack-off and rotating are steady slides). A
+    /// torque-and-drag "friction factor" is the kinetic factor: with `kinetic_ratio = 1` (one
+    /// factor) `static` is it.
     #[serde(rename = "static")]
     #[schemars(extend("unit" = "", "label" = "static friction factor"))]
     pub static_coefficient: f64,
-    /// Kinetic over static friction factor, in [0, 1].
+    /// Kinetic over static friction factor, in [0, 1]: the sliding factor of the dynamic model
+    /// and of `torque-drag` is `static x kinetic_ratio`.
     #[schemars(extend("unit" = "", "label" = "kinetic/static friction ratio"))]
     pub kinetic_ratio: f64,
     /// A cell slower than this sticks if the torque needed to stop it is within the static
-    /// limit, >= 0 (Aarsnes-Shor `o_thres`).
+    /// limit, >= 0 (Aarsnes-Shor `o_thres`): the torsional wall friction's rule. The coupled
+    /// wall friction of a run with a hoist (`coupling = "axial_torsional"`) has no threshold: a
+    /// contact sticks exactly when the force that stops it in a step is within the static
+    /// limit, and slides on the kinetic factor otherwise.
     #[schemars(extend("unit" = "rad/s", "label" = "stick speed"))]
     pub stick_speed: f64,
     /// The wall friction law: `set_valued` (a true stick phase) or `regularised` (smooth).

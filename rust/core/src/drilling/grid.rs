@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use crate::error::{Error, Num, Result};
 use crate::model::{consistent_k5, p_wave_modulus, youngs_modulus};
 
-use super::config::{Contact, DrillConfig, Inclination, Nonlinearity, Section};
+use super::config::{Contact, DrillConfig, Nonlinearity, Section};
 use super::well;
 
 /// Subdivisions of each interval between breakpoints (section ends, survey stations) in the
@@ -115,26 +115,6 @@ impl SectionProps {
     pub fn friction_limit(&self, mu_static: f64, gravity: f64, inc: f64) -> f64 {
         (mu_static * gravity * inc.sin() * self.buoyed_mass_per_length * self.contact_radius).max(0.0)
     }
-}
-
-/// The inclination (rad) at a measured depth: linear between stations, constant beyond.
-pub fn inclination(cfg: &DrillConfig, md: f64) -> f64 {
-    let deg = match (&cfg.well.md, &cfg.well.inclination_deg) {
-        (_, Inclination::Constant(x)) => *x,
-        (Some(d), Inclination::Table(inc)) if !d.is_empty() && d.len() == inc.len() => {
-            let k = d.partition_point(|&x| x <= md);
-            if k == 0 {
-                inc[0]
-            } else if k == d.len() {
-                inc[d.len() - 1]
-            } else {
-                let w = (md - d[k - 1]) / (d[k] - d[k - 1]);
-                inc[k - 1] + w * (inc[k] - inc[k - 1])
-            }
-        }
-        _ => 0.0,
-    };
-    deg.to_radians()
 }
 
 /// The cells of a run.

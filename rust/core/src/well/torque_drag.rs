@@ -355,8 +355,7 @@ impl Setup {
                             -q.tangent[2] * q.tangent[1],
                             1.0 - q.tangent[2] * q.tangent[2],
                         ];
-                        let v = [t * k[0] + p.weight * z[0], t * k[1] + p.weight * z[1], t * k[2] + p.weight * z[2]];
-                        let nf = dot(v, v).sqrt();
+                        let nf = normal_force(t, k, [p.weight * z[0], p.weight * z[1], p.weight * z[2]]);
                         // d/d(-s): tension and torque grow going up
                         (
                             p.weight * q.tangent[2] + sign * mu * nf,
@@ -380,6 +379,18 @@ impl Setup {
         normal[n - 1] = if n > 1 { normal[n - 2] } else { 0.0 };
         Profile { md, tension, torque, normal_force: normal }
     }
+}
+
+/// The soft-string normal force per length, N/m: `|T kappa + wz|` with the tension `T` (N),
+/// the trajectory's curvature vector `kappa` (1/m) and `wz = w (e_z - (e_z . t) t)`, the buoyed
+/// weight per length `w` times the part of the vertical `e_z` across the direction `t` (the
+/// lateral balance of a string element, `d(T t)/ds + w e_z + N = 0` across `t`). The continuous
+/// equations here and the coupled run's wall contact
+/// ([`crate::drilling::engine::coupled_friction`]) take it.
+#[inline(always)]
+pub fn normal_force(tension: f64, kappa: [f64; 3], wz: [f64; 3]) -> f64 {
+    let v = [tension * kappa[0] + wz[0], tension * kappa[1] + wz[1], tension * kappa[2] + wz[2]];
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
 /// The summary of the four operations (serialised under the names of `torque_drag.json`,

@@ -14,7 +14,10 @@
 //!   [`super::coupled_friction`] on both fields (`friction.coupling = "axial_torsional"`; with
 //!   `torsion_only` the axial field has none).
 //! * Initial state: at rest under the static tension of the hanging string with no weight on
-//!   bit ([`static_tension`] at the cell centres), the bit just touching flat rock.
+//!   bit ([`static_tension`] at the cell centres, along the configuration's one trajectory,
+//!   [`crate::drilling::well::trajectory`]), the bit just touching flat rock; with the coupled
+//!   wall friction every cell at half its gravity kick ([`Axial::start_at_rest`]: the speed at
+//!   the middle of the kick, the string's, is 0).
 //! * Top: the hoist's command for the step gives the ghost `alpha_0`; the top speed
 //!   `(alpha_0 + beta_1) / 2` and the compression `Z (v - beta_1)` (the hook load is its
 //!   negative); the hoist's work `dt F v` is booked as `hoist_work`.
@@ -40,10 +43,11 @@ use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{solve_bit, BitContact, BitPhase, Port};
 use crate::drilling::axial::bitrock::DetournayBit;
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
-use crate::drilling::axial::hoist::{Hoist, HoistMeasurement, HoistMode};
+use crate::drilling::axial::hoist::{Hoist, HoistCommand, HoistMeasurement, HoistMode};
 use crate::drilling::axial::section::{static_tension, AxialSection};
 use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
-use crate::drilling::grid::{inclination, Grid};
+use crate::drilling::grid::Grid;
+use crate::drilling::well;
 use crate::error::{Error, Num, Result};
 
 /// How the depth of cut of a step is found.
@@ -106,6 +110,9 @@ pub struct Axial {
     /// the hole at the bit, N.
     bha_mass: f64,
     bha_weight: f64,
+    /// The travelling block's weight, N (`torque_drag.block_weight`): in the hook load the
+    /// weight indicator reads and `hook_load` mode's setpoint.
+    block_weight: f64,
 }
 
 impl Axial {
@@ -113,6 +120,10 @@ impl Axial {
     pub fn new(cfg: &DrillConfig, grid: &Grid, hoist: &crate::drilling::config::Hoist) -> Result<Self> {
         let dt = grid.dt;
         let (mud, g) = (cfg.well.mud_density, cfg.well.gravity);
+        // The one trajectory of the configuration's well (stations, survey file or plan), as
+        // the torsional grid, the wall contact and torque and drag read it.
+        let traj = well::trajectory(cfg)?;
+        let inclination = |md: f64| traj.at(md).inc;
         let parts: Vec<AxialSection> = cfg.sections.iter().map(AxialSection::from_section).collect();
         let mut sections = Vec::with_capacity(parts.len());
         let mut gravity = Vec::new();
@@ -140,7 +151,7 @@ impl Axial {
             for j in 0..n {
                 let z = top + (j as f64 + 0.5) * h;
                 centres.push(z);
-                gravity.push(dt * p.buoyed_gravity(mud, g, inclination(cfg, z)));
+                gravity.push(dt * p.buoyed_gravity(mud, g, inclination(z)));
             }
             gravity.push(0.0);
             offset += n + 2;
@@ -157,9 +168,9 @@ impl Axial {
         };
         let last = parts.last().expect("at least one section");
         let bha_mass = cfg.bit.bha_mass;
-        let bha_weight = bha_mass * last.buoyed_gravity(mud, g, inclination(cfg, top));
+        let bha_weight = bha_mass * last.buoyed_gravity(mud, g, inclination(top));
         // The BHA hangs from the string: a negative weight on bit.
-        let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &centres);
+        let tension = static_tension(&parts, mud, g, &inclination, -bha_weight, &centres);
         let mut k = 0;
         for s in 0..field.sections.len() {
             for j in 1..=field.sections[s].cells {
@@ -168,8 +179,11 @@ impl Axial {
             }
         }
         let params = hoist.params();
-        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &[0.0])[0];
-        let initial = if params.mode == HoistMode::HookLoad { hanging } else { 0.0 };
+        let hanging = static_tension(&parts, mud, g, &inclination, -bha_weight, &[0.0])[0];
+        // The hook load of `hook_load` mode as the weight indicator reads it: the string's
+        // tension at the top and the travelling block's weight (`torque_drag.block_weight`).
+        let block_weight = cfg.torque_drag.block_weight;
+        let initial = if params.mode == HoistMode::HookLoad { hanging + block_weight } else { 0.0 };
         let law = cfg.bit.detournay.law(cfg.bit.radius);
         let rule = match (cfg.bit.law, cfg.bit.detournay.cut_surface) {
             (BitRockLaw::Rgd, CutSurfaceScheme::ExactDelay) => {
@@ -202,7 +216,7 @@ impl Axial {
                     phase: BitPhase::LiftOff,
                 },
                 depth: 0.0,
-                hook_load: hanging,
+                hook_load: hanging + block_weight,
                 position: 0.0,
                 hole: 0.0,
                 rop: 0.0,
@@ -213,7 +227,40 @@ impl Axial {
             end_hold: 0.0,
             bha_mass,
             bha_weight,
+            block_weight,
         })
+    }
+
+    /// Half the buoyed weight's speed change over a step at padded index `k`, `g cos(inc) dt / 2`,
+    /// m/s (0 at ghosts): the state of a cell at rest (the speed at the middle of the kick is 0).
+    pub fn half_kick(&self, k: usize) -> f64 {
+        0.5 * self.gravity[k]
+    }
+
+    /// Whether the cell at padded index `k` is at rest in the coupled wall friction's sense:
+    /// its speed half its gravity kick (set so by a stick: `(F / Z + s, s - F / Z)`, whose
+    /// mean is `s` to the rounding of the invariants).
+    fn at_rest(&self, k: usize) -> bool {
+        let (a, b) = (self.field.alpha[k], self.field.beta[k]);
+        (0.5 * (a + b) - self.half_kick(k)).abs() <= 2.0 * f64::EPSILON * a.abs().max(b.abs())
+    }
+
+    /// Sets every cell to rest in the coupled wall friction's sense (speed half its gravity
+    /// kick, so that the speed at the middle of the first step's kick is 0), the loads kept: the
+    /// initial state of a run with the coupled wall friction.
+    pub fn start_at_rest(&mut self) {
+        for sp in &self.field.sections {
+            for k in sp.offset + 1..=sp.offset + sp.cells {
+                let s = 0.5 * self.gravity[k];
+                self.field.alpha[k] += s;
+                self.field.beta[k] += s;
+            }
+        }
+    }
+
+    /// [`Axial::half_kick`] of every padded index.
+    pub fn half_kicks(&self) -> Vec<f64> {
+        self.gravity.iter().map(|g| 0.5 * g).collect()
     }
 
     /// The lumped BHA's axial kinetic energy, J (0 without `bit.bha_mass`).
@@ -244,11 +291,18 @@ impl Axial {
     pub fn top(&mut self, dt: f64, ledger: &mut Ledger) {
         let arriving = self.field.arriving_top();
         let measured = HoistMeasurement { weight_on_bit: self.state.contact.weight_on_bit, rop: self.state.rop };
-        let alpha0 = self.hoist.step(dt, measured).incoming(arriving.value, arriving.impedance);
+        let command = match self.hoist.step(dt, measured) {
+            // the weight indicator's hook load less the block: the string's tension at the top
+            HoistCommand::HookLoad(h) if self.hoist.params.mode == HoistMode::HookLoad => {
+                HoistCommand::HookLoad(h - self.block_weight)
+            }
+            c => c,
+        };
+        let alpha0 = command.incoming(arriving.value, arriving.impedance);
         let v = 0.5 * (alpha0 + arriving.value);
         let force = arriving.impedance * (v - arriving.value);
         ledger.hoist += dt * force * v;
-        self.state.hook_load = -force;
+        self.state.hook_load = self.block_weight - force;
         self.field.set_top(arriving, v, force);
     }
 
@@ -297,7 +351,7 @@ impl Axial {
         if self.end_hold > 0.0
             && m == 0.0
             && c.phase == BitPhase::LiftOff
-            && self.field.speed(last.offset + last.cells) == 0.0
+            && self.at_rest(last.offset + last.cells)
             && (arriving.impedance * arriving.value).abs() <= self.end_hold
         {
             c.axial_speed = 0.0;

@@ -3,53 +3,75 @@
 //! speed and the contact radius times the angular speed), shared by the axial and the
 //! torsional field, with one stick phase. A rotating string slides axially with little drag.
 //!
-//! The law, [`slide`] (the one place of the convention): per length of contact, the normal
-//! force `N` (the one the torsional wall friction uses, [`crate::drilling::grid::Grid::limit`]
-//! over `mu_s r`) limits the friction force `f = (f_a, f_t)` (axial, tangential at the contact)
-//! to `|f| <= mu_s N`. With the speeds after the transport and the other sources (damping, the
-//! buoyed weight) `u = (v, r omega)` and the angular sliding speed `s = |u| / r`:
+//! The normal force per length follows the string's live axial force: the soft-string contact
+//! `N = |T kappa + w (e_z - (e_z . t) t)|` ([`crate::well::torque_drag::normal_force`], the
+//! equation of the torque-and-drag module) with `T` the tension of the segment's axial cell in
+//! the step (the negative of its compression), `kappa` the curvature vector and `t` the
+//! direction of the trajectory at the segment, `w` the buoyed weight per length; with
+//! `friction.contact = "weight"` the buoyed weight times the sine of the inclination alone
+//! (`kappa` taken as 0). The static factor `mu_s` of `friction.static` (or its interval) limits
+//! the friction force `f = (f_a, f_t)` (axial, tangential at the contact) to `|f| <= mu_s N`.
 //!
-//! * slow, `s < friction.stick_speed` (or the contact at rest): the force that stops both
-//!   speeds in the step, `-(rho A v, rho J omega / r) / dt`, if within `mu_s N` (stick: both
-//!   stop exactly, the loads kept), else that force scaled to `mu_s N` (the stop force
-//!   clipped to the static limit, as the torsional law's);
-//! * sliding: the kinetic force `mu_k N` against `u`, `f = -mu_k N u / |u|`, its axial part
-//!   `-mu_k N v / |u|` and its torque per length `-mu_k N r (r omega) / |u|`; a component that
-//!   would reverse its speed in the step stops instead (exactly, the load kept);
-//! * `regularised`: `f = -mu_k N tanh(s / v_r) u / |u|`, no stick, a component never reversed.
+//! The law, [`slide`] (the one place of the convention), is the implicit (Moreau) Coulomb step
+//! on the speeds after the transport and the other sources, `u = (v, r omega)`, `v` the axial
+//! speed at the middle of the step's gravity kick (the stored speed less half of it,
+//! [`super::axial::Axial::half_kick`]: the speed the string moves at, so that gravity and
+//! friction enter the step together and a slow direction never flips however large the kick):
+//!
+//! * stick, decided by the step's impulse balance and by no speed threshold: if the force that
+//!   stops both speeds in the step, `-(rho A v, rho J omega / r) / dt`, is within `mu_s N`, both
+//!   stop exactly (the loads kept; the axial cell at rest is the speed at the middle of the
+//!   kick at 0);
+//! * else sliding: the kinetic force `mu_k N` (`mu_k = kinetic_ratio mu_s`) against `u`,
+//!   `f = -mu_k N u / |u|`, its axial part `-mu_k N v / |u|` and its torque per length
+//!   `-mu_k N r (r omega) / |u|`; a component that would reverse its speed in the step stops
+//!   instead (exactly, the load kept);
+//! * `regularised`: `f = -mu_k N tanh(s / v_r) u / |u|` (`s = |u| / r`), no stick, a component
+//!   never reversed.
 //!
 //! The changes of speed over a step are `dt f_a / (rho A)` and `dt r f_t / (rho J)`: with the
-//! static-limit changes `la = dt mu_s N / (rho A)` and `lt = dt mu_s N r / (rho J)` (the
-//! torsional wall friction's `stop`, [`super::sources::WallFriction`]) the law needs no other
-//! property. Without axial speed the sliding branch is the torsional law's (`-mu_k N r sign
-//! omega` per length).
+//! static-limit changes `la = dt mu_s N / (rho A)` and `lt = dt mu_s N r / (rho J)` the law
+//! needs no other property. Without axial speed the sliding branch is the torsional law's
+//! (`-mu_k N r sign omega` per length). `friction.stick_speed` is the torsional wall friction's
+//! threshold ([`super::sources`], the published scheme's); the coupled law has none.
 //!
 //! The two fields have their own cells (the axial cells are longer: the axial wave is faster
 //! on the common time step). The friction acts on the overlay of both grids: each segment
 //! (the intersection of a torsional and an axial cell, length `l`) slides at its torsional
-//! cell's angular speed and its axial cell's axial speed with its torsional cell's normal
-//! force; a cell's change is the length-weighted mean of its segments' changes (`l / h`), and
-//! a cell sticks (set exactly to rest) when all its segments stick. Every segment's change is
-//! against its cell's speed and never reverses it, so the friction's work on each cell,
-//! `m h delta (w + delta / 2)`, is a loss; it is booked as `friction_loss` (the axial part also
-//! as `axial_friction_loss`).
+//! cell's angular speed and its axial cell's axial speed with the normal force at its
+//! torsional cell's centre; a cell's change is the length-weighted mean of its segments'
+//! changes (`l / h`), and a cell sticks (set exactly to rest) when all its segments stick.
+//!
+//! Energy: on the torsional field the friction's work is the kinetic energy it takes,
+//! `m h d (w + d / 2)` per cell (`d` the change); on the axial field it is booked at the speed
+//! the string moves at after the step, `m h d v'` (`v'` less half the kick), so that a steady
+//! slide books `mu_k N v` per length exactly on any grid; the buoyed weight's work is booked at
+//! the same speed (the kick's work at the middle of the kick, [`super::axial::Axial::cells`],
+//! corrected by `m h g dt d`), and what the split step's kinetic energy differs from the two by,
+//! `m h d (g dt + d) / 2` per cell and step (first order in `dt`), is the implicit step's
+//! numerical dissipation (`inertia_loss`).
 //!
 //! The Coulomb law runs over all touching segments at once ([`slide_coulomb`], the branches of
 //! [`slide`] as selects, under [`crate::simd::dispatch`]): the same operations, so the same
 //! bits as [`slide`] segment by segment (a test holds them equal). Segments without contact
-//! force change nothing and count as moving: they are left out of the pass and counted once.
+//! force anywhere (a straight vertical stretch) change nothing and count as moving: they are
+//! left out of the pass and counted once.
 
-use crate::drilling::config::{DrillConfig, FrictionModel};
+use crate::drilling::config::{Contact as ContactModel, DrillConfig, FrictionModel};
 use crate::drilling::grid::Grid;
+use crate::drilling::well;
+use crate::error::Result;
+use crate::well::torque_drag::normal_force;
 
 use super::field::Field;
+
+/// The least normal force per length a touching segment keeps, N/m (a force of exactly 0 would
+/// make the static limit's inverse infinite).
+const LEAST_NORMAL_FORCE: f64 = 1e-200;
 
 /// The constants of [`slide`].
 #[derive(Debug, Clone, Copy)]
 pub struct Law {
-    /// The angular sliding speed below which a contact is slow (`friction.stick_speed`, or the
-    /// least positive double when it is 0: then only a contact at rest is slow), rad/s.
-    pub slow_below: f64,
     /// `friction.kinetic_ratio`.
     pub kinetic_ratio: f64,
     /// `Some(1 / v_r)` for the regularised law.
@@ -60,7 +82,6 @@ impl Law {
     pub fn new(cfg: &DrillConfig) -> Self {
         let fr = &cfg.friction;
         Law {
-            slow_below: if fr.stick_speed > 0.0 { fr.stick_speed } else { f64::from_bits(1) },
             kinetic_ratio: fr.kinetic_ratio,
             inv_regularisation: (fr.model == FrictionModel::Regularised).then(|| 1.0 / fr.regularisation_speed),
         }
@@ -132,14 +153,11 @@ pub fn slide(v: f64, w: f64, c: &Contact, law: &Law) -> Slide {
         let (dw, _) = clip(-f * c.lt * w, w);
         return Slide { dv, dw, stuck_axial: false, stuck_torsional: false };
     }
-    if s < law.slow_below {
-        // The stop force over the static limit.
-        let (qa, qt) = (v * c.inv_la, w * c.inv_lt);
-        let q = (qa * qa + qt * qt).sqrt();
-        if q <= 1.0 {
-            return Slide { dv: -v, dw: -w, stuck_axial: true, stuck_torsional: true };
-        }
-        return Slide { dv: -v / q, dw: -w / q, stuck_axial: false, stuck_torsional: false };
+    // The stop force over the static limit: stick when it is at most 1 (`sqrt(x) <= 1` exactly
+    // when `x <= 1 + 2^-52`).
+    let (qa, qt) = (v * c.inv_la, w * c.inv_lt);
+    if qa * qa + qt * qt <= 1.0 + f64::EPSILON {
+        return Slide { dv: -v, dw: -w, stuck_axial: true, stuck_torsional: true };
     }
     // The direction cosines by division (without axial speed `w / s` is exactly +-1: the
     // torsional law's kinetic change, bit for bit).
@@ -151,20 +169,9 @@ pub fn slide(v: f64, w: f64, c: &Contact, law: &Law) -> Slide {
 /// [`slide`] of a touching contact (`inv_radius`, `inv_la`, `inv_lt`, `kla`, `klt` of its
 /// [`Contact`]) under the Coulomb law (not `regularised`), written without branches (the
 /// branches computed and one selected) so that a loop over contacts vectorises, with the same
-/// operations as [`slide`]'s: the same bits. Returns `(dv, dw, stuck_axial, stuck_torsional,
-/// fix)`; `fix`: a slow contact over the static limit (rare), whose changes are not computed
-/// here (the caller takes [`slide`]'s).
-///
-/// The stick test `q <= 1` of [`slide`], `q = sqrt(qa^2 + qt^2)` rounded, is `qa^2 + qt^2 <= 1
-/// + 2^-52` here without the root: the correctly rounded root of a double `x` is at most 1
-/// exactly when `x` is at most the next double after 1.
+/// operations as [`slide`]'s: the same bits. Returns `(dv, dw, stuck_axial, stuck_torsional)`.
 #[inline(always)]
-fn slide_coulomb(
-    v: f64,
-    w: f64,
-    [inv_radius, inv_la, inv_lt, kla, klt]: [f64; 5],
-    slow_below: f64,
-) -> (f64, f64, bool, bool, bool) {
+fn slide_coulomb(v: f64, w: f64, [inv_radius, inv_la, inv_lt, kla, klt]: [f64; 5]) -> (f64, f64, bool, bool) {
     let vr = v * inv_radius;
     let s = (vr * vr + w * w).sqrt();
     let (qa, qt) = (v * inv_la, w * inv_lt);
@@ -174,15 +181,15 @@ fn slide_coulomb(
     let (clip_a, clip_t) = (ka.abs() >= v.abs(), kt.abs() >= w.abs());
     let dv_kinetic = if clip_a { -v } else { ka };
     let dw_kinetic = if clip_t { -w } else { kt };
-    if s < slow_below {
-        (-v, -w, stick, stick, !stick)
+    if stick {
+        (-v, -w, true, true)
     } else {
-        (dv_kinetic, dw_kinetic, clip_a, clip_t, false)
+        (dv_kinetic, dw_kinetic, clip_a, clip_t)
     }
 }
 
 /// The touching segments' contacts and weights, a vector per constant (the operands of
-/// [`SlideMany`]).
+/// [`SlideMany`]), and the constants their static limits are made of each step.
 #[derive(Debug, Clone, Default)]
 struct Contacts {
     inv_radius: Vec<f64>,
@@ -216,46 +223,62 @@ impl Contacts {
 }
 
 /// [`slide_coulomb`] of every contact `i` of `contacts` at the speeds `v[i]`, `w[i]`: its
-/// changes weighted by its shares of its cells, `pt[i] = wt[i] dw`, `pa[i] = wa[i] dv`, whether
-/// it moves (1, or 0 stuck) in each field, `free_t[i]`, `free_a[i]`, and `fix[i]` (1 when
-/// [`slide`] must give its values); returns whether any contact needs its fix.
+/// changes weighted by its shares of its cells, `pt[i] = wt[i] dw`, `pa[i] = wa[i] dv`, and
+/// whether it moves (1, or 0 stuck) in each field, `free_t[i]`, `free_a[i]`.
 struct SlideMany<'a> {
     contacts: &'a Contacts,
     v: &'a [f64],
     w: &'a [f64],
-    slow_below: f64,
     out: &'a mut Shares,
-    fix: &'a mut [u64],
 }
 
 impl crate::simd::Kernel for SlideMany<'_> {
-    type Output = bool;
+    type Output = ();
 
     #[inline(always)]
-    fn run<M: crate::simd::MulAdd>(self) -> bool {
+    fn run<M: crate::simd::MulAdd>(self) {
         let c = self.contacts;
         let n = c.len();
         let (ir, ia, it, ka, kt) = (&c.inv_radius[..n], &c.inv_la[..n], &c.inv_lt[..n], &c.kla[..n], &c.klt[..n]);
         let (wt, wa) = (&c.wt[..n], &c.wa[..n]);
-        let (v, w, fix) = (&self.v[..n], &self.w[..n], &mut self.fix[..n]);
+        let (v, w) = (&self.v[..n], &self.w[..n]);
         let o = self.out;
         let (pt, pa, ft, fa) = (&mut o.pt[..n], &mut o.pa[..n], &mut o.free_t[..n], &mut o.free_a[..n]);
-        let mut any = 0;
         for i in 0..n {
-            let (dv, dw, stuck_a, stuck_t, f) =
-                slide_coulomb(v[i], w[i], [ir[i], ia[i], it[i], ka[i], kt[i]], self.slow_below);
+            let (dv, dw, stuck_a, stuck_t) = slide_coulomb(v[i], w[i], [ir[i], ia[i], it[i], ka[i], kt[i]]);
             pt[i] = wt[i] * dw;
             pa[i] = wa[i] * dv;
             ft[i] = if stuck_t { 0.0 } else { 1.0 };
             fa[i] = if stuck_a { 0.0 } else { 1.0 };
-            fix[i] = u64::from(f);
-            any |= fix[i];
         }
-        any != 0
     }
 }
 
-/// A segment of the overlay of the two grids (padded indices, weights `l / h`, the limits).
+/// Where a segment's normal force comes from: `N = |T kappa + wz|` with the tension `T` of its
+/// axial cell, and its static-limit changes per newton of it, `la = ca N`, `lt = ct N`.
+#[derive(Debug, Clone, Copy, Default)]
+struct Geometry {
+    /// The trajectory's curvature vector at the segment, 1/m (0 with `friction.contact = "weight"`).
+    kappa: [f64; 3],
+    /// The buoyed weight per length times the part of the vertical across the hole, N/m.
+    wz: [f64; 3],
+    /// `dt mu_s / (rho A)` and `dt mu_s r / (rho J)`.
+    ca: f64,
+    ct: f64,
+    radius: f64,
+}
+
+impl Geometry {
+    /// The normal force per length at the tension `tension`, N/m (at least
+    /// [`LEAST_NORMAL_FORCE`]).
+    #[inline(always)]
+    fn normal_force(&self, tension: f64) -> f64 {
+        normal_force(tension, self.kappa, self.wz).max(LEAST_NORMAL_FORCE)
+    }
+}
+
+/// A segment of the overlay of the two grids (padded indices, weights `l / h`, the contact of
+/// the step and its geometry).
 #[derive(Debug, Clone, Copy)]
 struct Segment {
     torsional: usize,
@@ -263,6 +286,7 @@ struct Segment {
     wt: f64,
     wa: f64,
     contact: Contact,
+    geometry: Geometry,
 }
 
 /// The touching segments' contributions of a step to their cells, one more element at the end
@@ -322,6 +346,17 @@ impl Slots {
     }
 }
 
+/// The work of the coupled friction over a step, J: on the torsional and the axial field (both
+/// negative or 0), the buoyed weight's work it moves to the speed after the step, and the
+/// implicit step's numerical dissipation (see the module).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FrictionWork {
+    pub torsional: f64,
+    pub axial: f64,
+    pub gravity: f64,
+    pub numerical: f64,
+}
+
 /// The coupled wall friction of a run: the overlay's segments and the law.
 pub struct CoupledFriction {
     /// The segments with contact force (the others are counted in [`Slots::untouched`]).
@@ -333,7 +368,6 @@ pub struct CoupledFriction {
     v: Vec<f64>,
     w: Vec<f64>,
     shares: Shares,
-    fix: Vec<u64>,
     /// The cells' segments, torsional and axial.
     torsional: Slots,
     axial: Slots,
@@ -341,7 +375,16 @@ pub struct CoupledFriction {
     speed_t: Vec<f64>,
     speed_a: Vec<f64>,
     scratch: CellScratch,
-    /// The static limit of the friction on the last half axial cell, N.
+    /// Half the axial field's gravity kick per padded index (0 at ghosts), m/s, and half its
+    /// impedance (`F = Z (alpha - beta) / 2`), N s/m.
+    half_kick: Vec<f64>,
+    half_impedance: Vec<f64>,
+    /// The axial cells' masses `rho A h` per padded index (0 at ghosts), kg.
+    mass_a: Vec<f64>,
+    /// The last segment's contact geometry and `mu_s h / 2` of the last axial cell, for
+    /// [`CoupledFriction::end_hold`].
+    last: Option<(Geometry, f64)>,
+    /// The static limit of the friction on the last half axial cell at the last step, N.
     end_hold: f64,
 }
 
@@ -349,40 +392,64 @@ pub struct CoupledFriction {
 const SAME_FACE: f64 = 1e-9;
 
 impl CoupledFriction {
-    /// The overlay of the torsional `field` (of `grid`) and the axial field `axial`, with the
-    /// torsional wall friction's static-limit changes `stop` (padded) and the axial sections'
-    /// masses per length in `axial.sections`; None when the wall has no friction anywhere.
-    pub fn new(cfg: &DrillConfig, grid: &Grid, torsion: &Field, stop: &[f64], axial: &Field) -> Option<Self> {
+    /// The overlay of the torsional `field` (of `grid`) and the axial field `axial` (with the
+    /// half gravity kicks `half_kick` per padded index); None when the wall has no friction
+    /// anywhere.
+    pub fn new(
+        cfg: &DrillConfig,
+        grid: &Grid,
+        torsion: &Field,
+        axial: &Field,
+        half_kick: &[f64],
+    ) -> Result<Option<Self>> {
         let law = Law::new(cfg);
+        let traj = well::trajectory(cfg)?;
+        let gravity = cfg.well.gravity;
         let mut segments = Vec::new();
         let mut cell = 0;
-        let mut end_hold = 0.0;
+        let mut last = None;
         for (s, (st, sa)) in torsion.sections.iter().zip(&axial.sections).enumerate() {
             let p = &grid.props[s];
             let length = grid.spacing[s] * st.cells as f64;
             let (ht, ha) = (length / st.cells as f64, length / sa.cells as f64);
+            let w = p.buoyed_mass_per_length * gravity;
             let (mut i, mut j, mut pos) = (0, 0, 0.0);
             while i < st.cells && j < sa.cells {
                 let (et, ea) = ((i + 1) as f64 * ht, (j + 1) as f64 * ha);
-                let last = i + 1 == st.cells && j + 1 == sa.cells;
-                let end = if last { length } else { et.min(ea) };
+                let end = if i + 1 == st.cells && j + 1 == sa.cells { length } else { et.min(ea) };
                 let kt = st.offset + 1 + i;
-                let lt = stop[kt];
-                // mu_s N per metre from the torsional limit mu_s N r per metre.
-                let force = lt * p.inertia_per_length / (grid.dt * p.contact_radius);
-                let la = grid.dt * force / sa.inertia_per_length;
+                let zc = grid.z[cell];
+                let mu = well::friction_factor(cfg, zc);
+                let q = traj.at(zc);
+                let t = q.tangent;
+                let kappa = match cfg.friction.contact {
+                    ContactModel::SoftString => traj.curvature_vector_on(zc, traj.interval(zc)),
+                    ContactModel::Weight => [0.0; 3],
+                };
+                let wz = [-w * t[2] * t[0], -w * t[2] * t[1], w * (1.0 - t[2] * t[2])];
+                let geometry = Geometry {
+                    kappa,
+                    wz,
+                    ca: grid.dt * mu / sa.inertia_per_length,
+                    ct: grid.dt * mu * p.contact_radius / p.inertia_per_length,
+                    radius: p.contact_radius,
+                };
+                let touches = mu > 0.0 && kappa.iter().chain(&wz).any(|&x| x != 0.0);
+                let ja = sa.offset + 1 + j;
+                // the static limit at the initial state's tension
+                let contact = if touches {
+                    let tension = -0.5 * sa.impedance * (axial.alpha[ja] - axial.beta[ja]);
+                    let n = geometry.normal_force(tension);
+                    Contact::new(p.contact_radius, geometry.ca * n, geometry.ct * n, &law)
+                } else {
+                    Contact::new(p.contact_radius, 0.0, 0.0, &law)
+                };
                 if end > pos {
                     let l = end - pos;
-                    segments.push(Segment {
-                        torsional: kt,
-                        axial: sa.offset + 1 + j,
-                        wt: l / ht,
-                        wa: l / ha,
-                        contact: Contact::new(p.contact_radius, la, lt, &law),
-                    });
+                    segments.push(Segment { torsional: kt, axial: ja, wt: l / ht, wa: l / ha, contact, geometry });
                 }
                 pos = end;
-                end_hold = 0.5 * force * ha;
+                last = Some((geometry, 0.5 * mu * ha));
                 let tol = SAME_FACE * ht.min(ha);
                 if et <= end + tol {
                     i += 1;
@@ -395,7 +462,7 @@ impl CoupledFriction {
         }
         debug_assert_eq!(cell, grid.cells());
         if segments.iter().all(|g| !g.contact.touching) {
-            return None;
+            return Ok(None);
         }
         let (lt, la) = (torsion.padded_len(), axial.padded_len());
         let idle = |axial: bool| {
@@ -406,7 +473,14 @@ impl CoupledFriction {
         let n = segments.len();
         let cells_t: Vec<usize> = segments.iter().map(|g| g.torsional).collect();
         let cells_a: Vec<usize> = segments.iter().map(|g| g.axial).collect();
-        Some(CoupledFriction {
+        let (mut half_impedance, mut mass_a) = (vec![0.0; la], vec![0.0; la]);
+        for sa in &axial.sections {
+            for k in sa.offset + 1..=sa.offset + sa.cells {
+                half_impedance[k] = 0.5 * sa.impedance;
+                mass_a[k] = sa.inertia_per_length * sa.h;
+            }
+        }
+        let mut cf = CoupledFriction {
             contacts: Contacts::new(&segments),
             torsional: Slots::new(lt, &cells_t, idle_t.into_iter()),
             axial: Slots::new(la, &cells_a, idle_a.into_iter()),
@@ -415,29 +489,56 @@ impl CoupledFriction {
             v: vec![0.0; n],
             w: vec![0.0; n],
             shares: Shares::new(n),
-            fix: vec![0; n],
             speed_t: vec![0.0; lt],
             speed_a: vec![0.0; la],
             scratch: CellScratch::new(lt.max(la)),
-            end_hold,
-        })
+            half_kick: half_kick.to_vec(),
+            half_impedance,
+            mass_a,
+            last,
+            end_hold: 0.0,
+        };
+        cf.end_hold = cf.hold_at(axial);
+        Ok(Some(cf))
     }
 
     /// The static limit of the wall friction on the half of the last axial cell below its
-    /// centre (`mu_s N h / 2`), N: it holds the free end of a stuck string at rest
-    /// ([`super::axial::Axial::end_hold`]).
+    /// centre (`mu_s N h / 2` at the last cell's tension), N: it holds the free end of a stuck
+    /// string at rest ([`super::axial::Axial::end_hold`]).
     pub fn end_hold(&self) -> f64 {
         self.end_hold
     }
 
-    /// The friction over a step on the fields' current speeds; returns its work on the
-    /// torsional and on the axial field, J (negative).
-    pub fn apply(&mut self, torsion: &mut Field, axial: &mut Field) -> (f64, f64) {
+    fn hold_at(&self, axial: &Field) -> f64 {
+        let Some((geometry, mu_h)) = self.last else { return 0.0 };
+        let sa = axial.last();
+        let k = sa.offset + sa.cells;
+        let tension = -self.half_impedance[k] * (axial.alpha[k] - axial.beta[k]);
+        if geometry.ca > 0.0 {
+            mu_h * geometry.normal_force(tension)
+        } else {
+            0.0
+        }
+    }
+
+    /// The friction over a step on the fields' current speeds, with the normal forces of the
+    /// axial field's current tensions; returns its work (see [`FrictionWork`]).
+    pub fn apply(&mut self, torsion: &mut Field, axial: &mut Field) -> FrictionWork {
         torsion.speeds(&mut self.speed_t);
         axial.speeds(&mut self.speed_a);
-        for ((g, v), w) in self.segments.iter().zip(&mut self.v).zip(&mut self.w) {
-            *v = self.speed_a[g.axial];
-            *w = self.speed_t[g.torsional];
+        let c = &mut self.contacts;
+        for (i, g) in self.segments.iter_mut().enumerate() {
+            let k = g.axial;
+            self.v[i] = self.speed_a[k] - self.half_kick[k];
+            self.w[i] = self.speed_t[g.torsional];
+            let tension = -self.half_impedance[k] * (axial.alpha[k] - axial.beta[k]);
+            let n = g.geometry.normal_force(tension);
+            let (la, lt) = (g.geometry.ca * n, g.geometry.ct * n);
+            g.contact = Contact::new(g.geometry.radius, la, lt, &self.law);
+            c.inv_la[i] = g.contact.inv_la;
+            c.inv_lt[i] = g.contact.inv_lt;
+            c.kla[i] = g.contact.kla;
+            c.klt[i] = g.contact.klt;
         }
         let sh = &mut self.shares;
         if self.law.inv_regularisation.is_some() {
@@ -445,26 +546,36 @@ impl CoupledFriction {
                 sh.set(i, g, slide(self.v[i], self.w[i], &g.contact, &self.law));
             }
         } else {
-            let any_fix = crate::simd::dispatch(SlideMany {
-                contacts: &self.contacts,
-                v: &self.v,
-                w: &self.w,
-                slow_below: self.law.slow_below,
-                out: sh,
-                fix: &mut self.fix,
-            });
-            if any_fix {
-                let fixes: Vec<usize> = (0..self.fix.len()).filter(|&i| self.fix[i] != 0).collect();
-                for i in fixes {
-                    let g = &self.segments[i];
-                    sh.set(i, g, slide(self.v[i], self.w[i], &g.contact, &self.law));
-                }
-            }
+            crate::simd::dispatch(SlideMany { contacts: &self.contacts, v: &self.v, w: &self.w, out: sh });
         }
         let sh = &self.shares;
-        let work_t = apply_cells(torsion, &self.speed_t, &self.torsional, &sh.pt, &sh.free_t, &mut self.scratch);
-        let work_a = apply_cells(axial, &self.speed_a, &self.axial, &sh.pa, &sh.free_a, &mut self.scratch);
-        (work_t, work_a)
+        let torsional =
+            apply_cells(torsion, &self.speed_t, &self.torsional, &sh.pt, &sh.free_t, None, &mut self.scratch);
+        let kinetic = apply_cells(
+            axial,
+            &self.speed_a,
+            &self.axial,
+            &sh.pa,
+            &sh.free_a,
+            Some(&self.half_kick),
+            &mut self.scratch,
+        );
+        // The axial work at the speed after the step, the weight's moved there, the rest
+        // numerical (see the module).
+        let (mut work, mut gravity) = (0.0, 0.0);
+        for k in 0..self.mass_a.len() {
+            let m = self.mass_a[k];
+            if m == 0.0 {
+                continue;
+            }
+            let after = 0.5 * (axial.alpha[k] + axial.beta[k]);
+            let d = after - self.speed_a[k];
+            let s = self.half_kick[k];
+            work += m * d * (after - s);
+            gravity += m * d * (2.0 * s);
+        }
+        self.end_hold = self.hold_at(axial);
+        FrictionWork { torsional, axial: work, gravity, numerical: work + gravity - kinetic }
     }
 }
 
@@ -484,23 +595,28 @@ impl CellScratch {
 
 /// The cells' changes applied to `field` (speeds `speed` before the friction): a cell's change
 /// is the sum of its segments' shares `p` (from 0, in the segments' order), a cell whose
-/// segments all stuck (none `free`, none untouched) is set exactly to rest, a cell with no
-/// change left as it is. Returns their work `m h d (w + d / 2)`, J, summed in lanes.
+/// segments all stuck (none `free`, none untouched) is set exactly to rest (the speed
+/// `rest[k]`, or 0 without it), a cell with no change left as it is. Returns their kinetic
+/// energy change `m h d (w + d / 2)`, J, summed in lanes.
 fn apply_cells(
     field: &mut Field,
     speed: &[f64],
     slots: &Slots,
     p: &[f64],
     free: &[f64],
+    rest: Option<&[f64]>,
     scratch: &mut CellScratch,
 ) -> f64 {
     let mut total = 0.0;
     for s in 0..field.sections.len() {
         let sp = field.sections[s];
         let r = sp.offset + 1..sp.offset + 1 + sp.cells;
-        let state = match &mut field.nl {
-            Some(nl) => State::Nonlinear(&mut nl.omega[r.clone()]),
-            None => State::Linear(&mut field.alpha[r.clone()], &mut field.beta[r.clone()]),
+        let state = match (&mut field.nl, rest) {
+            (Some(nl), _) => State::Nonlinear(&mut nl.omega[r.clone()]),
+            (None, None) => State::Linear(&mut field.alpha[r.clone()], &mut field.beta[r.clone()]),
+            (None, Some(rest)) => {
+                State::Resting(&mut field.alpha[r.clone()], &mut field.beta[r.clone()], &rest[r.clone()])
+            }
         };
         total += crate::simd::dispatch(CellPass {
             mass: sp.inertia_per_length * sp.h,
@@ -518,9 +634,11 @@ fn apply_cells(
     total
 }
 
-/// A section's speeds: the invariants `alpha`, `beta`, or the `consistent` scheme's speeds.
+/// A section's speeds: the invariants `alpha`, `beta` (at rest: speed 0, or the speeds `rest`),
+/// or the `consistent` scheme's speeds.
 enum State<'a> {
     Linear(&'a mut [f64], &'a mut [f64]),
+    Resting(&'a mut [f64], &'a mut [f64], &'a [f64]),
     Nonlinear(&'a mut [f64]),
 }
 
@@ -583,6 +701,25 @@ impl crate::simd::Kernel for CellPass<'_> {
                     *e = if skip { 0.0 } else { m * d * (w + 0.5 * d) };
                     let half = 0.5 * (*a - *b);
                     let (na, nb) = if stop { (half, -half) } else { (*a + d, *b + d) };
+                    (*a, *b) = if skip { (*a, *b) } else { (na, nb) };
+                }
+            }
+            State::Resting(alpha, beta, rest) => {
+                for ((((((a, b), &w), &c), &k), e), &r) in alpha[..n]
+                    .iter_mut()
+                    .zip(beta[..n].iter_mut())
+                    .zip(speed)
+                    .zip(&*change)
+                    .zip(&*moving)
+                    .zip(work.iter_mut())
+                    .zip(&rest[..n])
+                {
+                    let stop = k == 0.0;
+                    let d = if stop { r - w } else { c };
+                    let skip = d == 0.0 && !stop;
+                    *e = if skip { 0.0 } else { m * d * (w + 0.5 * d) };
+                    let half = 0.5 * (*a - *b);
+                    let (na, nb) = if stop { (half + r, r - half) } else { (*a + d, *b + d) };
                     (*a, *b) = if skip { (*a, *b) } else { (na, nb) };
                 }
             }

@@ -188,7 +188,10 @@ impl<'c> Simulation<'c> {
         };
         let coupled_friction = match &mut axial {
             Some(ax) if cfg.friction.coupling == FrictionCoupling::AxialTorsional => {
-                let cf = CoupledFriction::new(cfg, &grid, &field, &wall.stop, &ax.field);
+                let cf = CoupledFriction::new(cfg, &grid, &field, &ax.field, &ax.half_kicks())?;
+                if cf.is_some() {
+                    ax.start_at_rest();
+                }
                 ax.end_hold = cf.as_ref().map_or(0.0, CoupledFriction::end_hold);
                 cf
             }
@@ -347,9 +350,12 @@ impl<'c> Simulation<'c> {
         self.field.junctions();
         self.cells(dt);
         if let (Some(cf), Some(ax)) = (&mut self.coupled_friction, &mut self.axial) {
-            let (torsional, axial) = cf.apply(&mut self.field, &mut ax.field);
-            self.ledger.friction -= torsional + axial;
-            self.ledger.axial_friction -= axial;
+            let work = cf.apply(&mut self.field, &mut ax.field);
+            self.ledger.friction -= work.torsional + work.axial;
+            self.ledger.axial_friction -= work.axial;
+            self.ledger.gravity += work.gravity;
+            self.ledger.inertia += work.numerical;
+            ax.end_hold = cf.end_hold();
         }
         (motor, tbit)
     }
