@@ -620,7 +620,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         config = config.with_overrides(args.overrides)
     plots = not args.no_plots
     # the folder is checked, created and locked before solving: a second run into it is refused now
-    with output_folder(args.out, plots=plots, field="--out") as directory:
+    with output_folder(args.out, plots=plots, field="--out") as folder:
         start = time.perf_counter()
         result = drill(config, progress=_show_progress(args), check_grid=args.check_grid)
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
@@ -670,7 +670,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = _write_files(result, directory, plots, args.units)
+        written = _write_files(result, folder.directory, plots, args.units)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0
 
@@ -1050,6 +1050,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     from .calibration.data import read_measured
     from .calibration.fit import fit
     from .calibration.output import next_commands, next_heading, write_files
+    from .calibration.output import owned as fit_owned
     from .drilling import load_drill_config
     from .drilling.output import output_folder
 
@@ -1081,7 +1082,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     units = dict(_pairs(args.units, "--unit", "NAME=UNIT (e.g. 'motor_torque=kN m')"))
     data = [read_measured(path, columns=columns, units=units, start=args.start) for path in args.data]
     plots = not args.no_plots
-    with output_folder(args.out, plots=plots, field="--out", command="fit") as directory:
+    with output_folder(args.out, plots=plots, field="--out", command="fit", owns=fit_owned) as folder:
         result = fit(config, data, params, targets=targets, windows=windows or None, per_event=args.per_event,
                      samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
                      landscape_points=args.landscape_points, progress=lambda msg: _say(f"fit: {msg}"),
@@ -1093,7 +1094,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
              f"{result.seconds:.3g} s")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = write_files(result, directory, plots)
+        written = write_files(result, folder.directory, plots, shown=folder.path)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     _say(next_heading(result))
     for command in next_commands(os.fspath(args.out), result):

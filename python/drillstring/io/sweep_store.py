@@ -34,15 +34,11 @@ Guarantees
 
 from __future__ import annotations
 
-import contextlib
 import errno
 import hashlib
 import json
 import os
-import signal
 import stat
-import threading
-from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any, Optional
 
@@ -55,6 +51,7 @@ from .output import (
     lock_directory,
     read_regular,
     refuse_foreign_folder,
+    sigint_deferred,
     write_bytes,
 )
 
@@ -76,27 +73,8 @@ def _atomic_write(path: Path, data: bytes) -> None:
     write_bytes(path, data, field="out_dir")
 
 
-@contextlib.contextmanager
-def _sigint_deferred() -> Iterator[None]:
-    """Holds back SIGINT (Ctrl-C) for the body: a signal received meanwhile is handed to the
-    previous handler (normally raising KeyboardInterrupt) when the body ends. Only the main
-    thread can change handlers; elsewhere, or when the handler is not a Python callable, the body
-    runs as it is."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.getsignal(signal.SIGINT)
-    if not callable(previous):
-        yield
-        return
-    received: list[tuple[int, Any]] = []
-    signal.signal(signal.SIGINT, lambda signum, frame: received.append((signum, frame)))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-        if received:
-            previous(*received[0])
+#: Holds back Ctrl-C while a chunk and its record are written (:func:`drillstring.io.output.sigint_deferred`).
+_sigint_deferred = sigint_deferred
 
 
 def _sha256(data: bytes) -> str:
