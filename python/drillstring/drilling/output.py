@@ -36,15 +36,10 @@ from ..io.output import (
     atomic_write,
     check_destination,
     check_directory_name,
-    lock_directory,
-    make_directory,
     recover_folder,
-    refuse_foreign_folder,
-    remove_leftovers,
-    replaced_folder,
-    unlock_directory,
     write_bytes,
     write_text,
+    writing_folder,
 )
 from .metrics import STICK_SLIP_CRITERION
 
@@ -113,28 +108,10 @@ def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
     display = os.fsdecode(os.fspath(out_dir))
     check_directory_name(display, field)
     recover_folder(display)  # an old set moved aside by an interrupted swap goes back first
-    key = os.path.realpath(display)
     files = (*output_names(plots), *COUPLED_PLOT_FILES) if names is None else names
     check_destination(display, field=field, directory=True, files=(*files, MARKER))
-    refuse_foreign_folder(display, command, field=field)
-    created = not os.path.isdir(key)
-    directory = make_directory(display)
-    try:
-        lock = lock_directory(directory, field=field, busy="a folder no other run is writing to: it is locked by "
-                              "{holder} ({path}); wait for that run to finish or choose another output directory")
-        try:
-            refuse_foreign_folder(display, command, field=field)  # written by another command meanwhile
-            remove_leftovers(display)  # of an interrupted run (we hold the lock: no live run has them)
-            with replaced_folder(display, owned=owned if owns is None else owns, field=field) as folder:
-                yield folder
-        finally:
-            unlock_directory(lock, directory)
-    finally:
-        if created:
-            try:
-                os.rmdir(key)  # only if empty
-            except OSError:
-                pass
+    with writing_folder(display, field=field, owned=owned if owns is None else owns, command=command) as folder:
+        yield folder
 
 
 def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,

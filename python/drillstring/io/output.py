@@ -76,6 +76,7 @@ __all__ = [
     "write_bytes",
     "write_text",
     "write_to",
+    "writing_folder",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -929,3 +930,45 @@ def replaced_folder(path: PathLike, *, owned: Callable[[str], bool], field: str 
             raise folder.error(exc) from exc
     finally:
         folder.discard()
+
+
+#: The ``allowed`` text of an output folder another run is writing to (see :func:`lock_directory`).
+BUSY_FOLDER = ("a folder no other run is writing to: it is locked by {holder} ({path}); wait for that run to "
+               "finish or choose another output directory")
+
+
+@contextmanager
+def writing_folder(path: PathLike, *, field: str, owned: Callable[[str], bool], command: Optional[str] = None,
+                   busy: str = BUSY_FOLDER) -> Iterator[FolderWrite]:
+    """An output folder written whole, for the ``with`` block: an old set moved aside by an
+    interrupted swap is put back (:func:`recover_folder`), the folder is created if needed and
+    locked (:func:`lock_directory`, ``busy`` its refusal), with ``command`` another command's
+    output in it is refused (:func:`refuse_foreign_folder`, also once locked), what an
+    interrupted run left beside it is removed (:func:`remove_leftovers`) and the new set is
+    written and swapped in (:func:`replaced_folder`, ``owned`` the command's own names). At the
+    end the lock is released and its file removed, as is the folder if it was created here and
+    is still empty. Check the destination first (:func:`check_destination`)."""
+    display = os.fsdecode(os.fspath(path))
+    check_directory_name(display, field)
+    recover_folder(display)
+    if command is not None:
+        refuse_foreign_folder(display, command, field=field)
+    key = os.path.realpath(display)
+    created = not os.path.isdir(key)
+    directory = make_directory(display)
+    try:
+        lock = lock_directory(directory, field=field, busy=busy)
+        try:
+            if command is not None:
+                refuse_foreign_folder(display, command, field=field)  # written by another command meanwhile
+            remove_leftovers(display)  # of an interrupted run (we hold the lock: no live run has them)
+            with replaced_folder(display, owned=owned, field=field) as folder:
+                yield folder
+        finally:
+            unlock_directory(lock, directory)
+    finally:
+        if created:
+            try:
+                os.rmdir(key)  # only if empty
+            except OSError:
+                pass
