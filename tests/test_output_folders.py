@@ -134,8 +134,10 @@ def test_a_failure_at_the_swap_keeps_the_old_set(step: str, tmp_path: Path, monk
     with monkeypatch.context() as m:
         if step == "carry":
             m.setattr(io_output, "_link_or_copy", full)
-        elif step == "lock":
-            m.setattr(io_output, "lock_directory", full)
+        elif step == "lock":  # the new folder's own lock, taken before the exchange
+            real_lock = io_output.lock_directory
+            m.setattr(io_output, "lock_directory",
+                      lambda d, **kw: full() if STAGE_TAG in os.fspath(d) else real_lock(d, **kw))
         else:
             m.setattr(io_output, "_exchange", full)
         with pytest.raises(OutputError) as info:
