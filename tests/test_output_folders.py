@@ -146,6 +146,40 @@ def test_a_failure_at_the_swap_keeps_the_old_set(step: str, tmp_path: Path, monk
     assert snapshot(out) == old and beside(out) == []
 
 
+# --------------------------------------------------------------------------- drill-map's final files
+
+
+def tree(folder: Path) -> dict[str, bytes]:
+    """Every file under ``folder`` (relative path -> bytes), the lock file left out."""
+    return {os.fspath(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*"))
+            if p.is_file() and p.name != LOCK}
+
+
+def test_a_full_disk_at_a_maps_final_files_keeps_the_earlier_set_and_the_store(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    out = tmp_path / "map"
+    command = ["drill-map", str(EXAMPLE), "--axis", "top_drive.rpm=40,60", "--out", str(out), *SHORT,
+               "--threads", "1", "--chunk-size", "1"]
+    assert run_cli(capsys, *command)[0] == 0
+    old = tree(out)
+    assert {"map.parquet", "map.csv", "config.toml", "ssi_lines.png", "chunks/chunk-00001.parquet"} <= set(old)
+    with monkeypatch.context() as m:
+        disk_full_at(m, 1)  # map.parquet written beside, then the disk is full
+        code, _, err = run_cli(capsys, *command, "--no-plots")
+    assert code == 2
+    line = one_line_error(err, f"cannot write {out / 'map.csv'}", "No space left on device")
+    assert STAGE_TAG not in line
+    assert tree(out) == old and beside(out) == []  # the earlier figures, tables and store as they were
+    code, printed, err = run_cli(capsys, *command, "--no-plots")  # resumes: every chunk reused
+    assert code == 0, err
+    assert "recomputed" not in printed + err
+    new = tree(out)
+    assert "ssi_lines.png" not in new and {name: old[name] for name in new if name.startswith("chunks/")} == {
+        name: data for name, data in new.items() if name.startswith("chunks/")}
+    assert sorted(p.name for p in out.iterdir()) == ["chunks", "config.toml", "manifest.json", "map.csv",
+                                                     "map.parquet"]
+
+
 # --------------------------------------------------------------------------- a full disk at the lock
 
 

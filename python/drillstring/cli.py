@@ -893,9 +893,9 @@ def _add_drill_map(sub: Any) -> None:
     p.set_defaults(func=_cmd_drill_map)
 
 
-#: The files ``drill-map --out DIR`` may write.
-DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "controllers.png", "ssi_lines.png",
-                   "manifest.json", "regime_map.png")
+#: The files ``drill-map --out DIR`` may write (``drillstring.drilling.maps.MAP_FILES`` and the manifest).
+DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "regime_map.png", "controllers.png",
+                   "ssi_lines.png", "manifest.json")
 
 
 def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
@@ -943,10 +943,25 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     refuse_foreign_folder(args.out, "drill-map", field="--out")
     client = _dask_client(args.scheduler)
     start = time.perf_counter()
+    written: list[Any] = []
+
+    def also_write(table: Any, directory: str) -> None:  # swapped in with map.parquet and map.csv
+        from .io.output import write_text
+
+        write_text(os.path.join(directory, "config.toml"), config.to_toml())
+        written[:] = [os.path.join(args.out, name) for name in ("map.parquet", "map.csv", "config.toml")]
+        if not args.no_plots:
+            from .drilling.maps import map_figures
+            from .io.figures import save
+
+            for name, fig in map_figures(table, args.units).items():
+                save(fig, os.path.join(directory, name))
+                written.append(os.path.join(args.out, name))
+
     try:
         frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
                           chunk_size=args.chunk_size, client=client,
-                          name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0])
+                          name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0], also_write=also_write)
     except KeyboardInterrupt:
         print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
               file=sys.stderr)
@@ -977,16 +992,6 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         _say(f"controller recommendation: {ranking[0].controller} (" + "; ".join(s.line() for s in ranking)
              + f"); set it with --set top_drive.controller.type={ranking[0].controller}; the presets' settings: "
              f"drillstring tune {os.fsdecode(args.config)}")
-    from .io.output import write_text
-
-    written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),
-               write_text(os.path.join(args.out, "config.toml"), config.to_toml())]
-    if not args.no_plots:
-        from .drilling.maps import map_figures
-        from .io.figures import save
-
-        for name, fig in map_figures(frame, args.units).items():
-            written.append(save(fig, os.path.join(args.out, name)))
     _say(f"wrote {len(written)} files to {args.out} (and the resumable store: manifest.json, chunks/)")
     return 0
 

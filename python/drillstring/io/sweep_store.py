@@ -50,6 +50,7 @@ from .output import (
     check_directory_name,
     lock_directory,
     read_regular,
+    recover_folder,
     refuse_foreign_folder,
     sigint_deferred,
     write_bytes,
@@ -144,6 +145,7 @@ class SweepStore:
         """
         check_directory_name(out_dir, "out_dir")
         root = Path(os.fspath(out_dir))
+        recover_folder(root)  # a map's folder whose swap (write_map_files) was interrupted midway
         refuse_foreign_folder(root, "drill-map" if manifest.get("format") == MAP_FORMAT else "sweep", field="out_dir")
         try:
             root.mkdir(parents=True, exist_ok=True)
