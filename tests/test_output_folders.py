@@ -146,6 +146,28 @@ def test_a_failure_at_the_swap_keeps_the_old_set(step: str, tmp_path: Path, monk
     assert snapshot(out) == old and beside(out) == []
 
 
+# --------------------------------------------------------------------------- torque-drag
+
+
+def test_a_full_disk_mid_write_leaves_the_old_torque_drag_folder_whole(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    well = ROOT / "examples" / "s-well-3d.toml"
+    out = tmp_path / "td"
+    assert run_cli(capsys, "torque-drag", str(well), "--out", str(out))[0] == 0  # with figures
+    old = snapshot(out)
+    assert "well_path.png" in old
+    with monkeypatch.context() as m:
+        delivered = disk_full_at(m, 3)
+        code, _, err = run_cli(capsys, "torque-drag", str(well), "--out", str(out), "--no-plots",
+                               "--set", "friction.static=0.3")
+    assert code == 2 and delivered == ["torque_drag.json", "profiles.csv", "broomstick.csv"]
+    one_line_error(err, f"cannot write {out / 'survey.csv'}", "No space left on device")
+    assert snapshot(out) == old and beside(out) == []
+    assert run_cli(capsys, "torque-drag", str(well), "--out", str(out), "--no-plots")[0] == 0
+    assert sorted(p.name for p in out.iterdir()) == sorted(["torque_drag.json", "profiles.csv", "broomstick.csv",
+                                                            "survey.csv", "config.toml"])
+
+
 # --------------------------------------------------------------------------- drill-map's final files
 
 
@@ -272,6 +294,30 @@ def test_without_an_atomic_exchange_the_folder_is_swapped_by_two_renames(tmp_pat
     monkeypatch.setattr(io_output, "_exchange", lambda a, b: False)
     ds.drill(cfg).save(out, plots=False)
     assert sorted(p.name for p in out.iterdir()) == NO_PLOT_FILES and beside(out) == []
+
+
+@pytest.mark.parametrize("why", ["mount point", "parent not writable"])
+def test_a_folder_that_cannot_be_swapped_is_written_in_place(why: str, tmp_path: Path,
+                                                             monkeypatch: pytest.MonkeyPatch) -> None:
+    cfg = ds.load_drill_config(EXAMPLE).with_overrides(["numerics.duration=1", "numerics.cells=40"])
+    out = tmp_path / "out"
+    ds.drill(cfg).save(out, plots=True)
+    real_mkdir = os.mkdir
+
+    def mkdir(path: Any, *args: Any, **kwargs: Any) -> None:
+        if STAGE_TAG in os.fspath(path):
+            raise PermissionError(errno.EACCES, "Permission denied", os.fspath(path))
+        real_mkdir(path, *args, **kwargs)
+
+    if why == "mount point":
+        monkeypatch.setattr(io_output.os.path, "ismount", lambda p: os.fspath(p) == str(out))
+    else:
+        monkeypatch.setattr(os, "mkdir", mkdir)
+    inode = out.stat().st_ino
+    written = ds.drill(cfg).save(out, plots=False)
+    assert out.stat().st_ino == inode  # the same folder, written file by file
+    assert sorted(p.name for p in out.iterdir()) == NO_PLOT_FILES  # the stale figures removed, no marker
+    assert sorted(written) == sorted(out / name for name in NO_PLOT_FILES) and beside(out) == []
 
 
 def test_a_symlinked_folder_stays_a_link_and_the_working_directory_follows(tmp_path: Path,

@@ -709,7 +709,12 @@ def _link_or_copy(source: str, target: str) -> None:
     """``target`` as a hard link to ``source`` (a symlink itself, not followed), or a copy where
     no link can be made."""
     try:
-        os.link(source, target, follow_symlinks=False)
+        try:
+            os.link(source, target, follow_symlinks=False)
+        except NotImplementedError:  # no linkat: a symlink is recreated below, a file linked
+            if os.path.islink(source):
+                raise OSError(errno.ENOTSUP, "cannot link a symlink", source) from None
+            os.link(source, target)
     except OSError as exc:
         if exc.errno not in (errno.EXDEV, errno.EPERM, errno.EMLINK, errno.ENOTSUP, errno.EOPNOTSUPP):
             raise
@@ -748,7 +753,8 @@ class FolderWrite:
     ``path`` is the folder as the caller named it; ``directory`` is where the new files are
     written: a fresh hidden folder beside the target (``.NAME.drillstring-new-*``, in the same
     parent directory, so on the same file system), or the folder itself where it cannot be
-    swapped (a mount point: ``in_place``). :meth:`shown` turns a path written into ``directory``
+    swapped (a mount point, or a folder whose parent directory may not be written: ``in_place``;
+    the command's files are then replaced one by one). :meth:`shown` turns a path written into ``directory``
     into the path the user sees, :meth:`commit` swaps the new set in, :meth:`discard` drops it.
     """
 
@@ -765,6 +771,9 @@ class FolderWrite:
         try:
             os.mkdir(stage, 0o700)  # private while written; given the old folder's mode at the swap
         except OSError as exc:
+            if exc.errno in (errno.EACCES, errno.EPERM):  # a parent we may not write: in place
+                self.in_place = True
+                return
             raise _output_error(exc, os.fspath(self.path)) from exc
         self.directory = Path(stage)
         self._stage = stage
@@ -829,6 +838,8 @@ class FolderWrite:
                 continue
             if entry.is_dir(follow_symlinks=False):
                 shutil.copytree(entry.path, target, symlinks=True, copy_function=_link_or_copy)
+                for folder, _, _ in os.walk(target):
+                    _fsync_directory(folder)
             else:
                 _link_or_copy(entry.path, target)
 
@@ -838,13 +849,14 @@ class FolderWrite:
         :data:`LOCK` is held throughout), is flushed to disk, exchanged with the old folder in one
         step (or, where that is not available, the old folder is renamed aside and the new one
         into place), the parent directory is flushed and the old set removed. Ctrl-C is held
-        back meanwhile. An ``OSError`` before the exchange leaves the old folder as it was."""
+        back from the permissions to the exchange. An exception before the exchange leaves the old
+        folder as it was."""
         if self.in_place:
             return
         stage = os.fspath(self.directory)
+        self._through()
+        self._carry()
         with sigint_deferred():
-            self._through()
-            self._carry()
             try:
                 st = os.stat(self.real)
                 os.chmod(stage, stat.S_IMODE(st.st_mode))
