@@ -53,6 +53,9 @@ from typing import IO, Any, Callable, Optional, Union
 from ..errors import ValidationError
 
 __all__ = [
+    "ASIDE_TAG",
+    "BUSY_FOLDER",
+    "STAGE_TAG",
     "STDOUT",
     "FolderWrite",
     "OutputError",
@@ -69,7 +72,9 @@ __all__ = [
     "lock_directory",
     "make_directory",
     "read_regular",
+    "recover_folder",
     "refuse_foreign_folder",
+    "remove_leftovers",
     "replaced_folder",
     "sigint_deferred",
     "unlock_directory",
