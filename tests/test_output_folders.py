@@ -202,6 +202,29 @@ def test_a_full_disk_at_a_maps_final_files_keeps_the_earlier_set_and_the_store(
                                                      "map.parquet"]
 
 
+def test_ctrl_c_while_a_maps_figures_are_drawn_keeps_the_earlier_set_and_the_resume(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    from drillstring.io import figures
+
+    out = tmp_path / "map"
+    command = ["drill-map", str(EXAMPLE), "--axis", "top_drive.rpm=40,60", "--out", str(out), *SHORT,
+               "--threads", "1", "--chunk-size", "1"]
+    assert run_cli(capsys, *command, "--no-plots")[0] == 0
+    old = tree(out)
+
+    def interrupted(*args: object, **kwargs: object) -> None:
+        raise KeyboardInterrupt
+
+    with monkeypatch.context() as m:
+        m.setattr(figures, "save", interrupted)
+        code, _, err = run_cli(capsys, *command, "--units", "field")
+    assert code == 130 and "the same command resumes the map" in err
+    assert tree(out) == old and beside(out) == []  # no figure beside the earlier tables, the store whole
+    code, printed, err = run_cli(capsys, *command, "--units", "field")
+    assert code == 0 and "recomputed" not in printed + err
+    assert "ssi_lines.png" in tree(out)
+
+
 # --------------------------------------------------------------------------- a full disk at the lock
 
 
