@@ -94,11 +94,18 @@ def test_a_folder_locked_by_another_process_is_refused(tmp_path: Path, capsys: p
     assert sorted(p.name for p in out.iterdir()) == NO_PLOT_FILES
 
 
-def test_an_interrupted_write_leaves_the_folder_marked_and_a_rerun_makes_it_whole(
+def snapshot(folder: Path) -> dict[str, bytes]:
+    """Every file of ``folder`` (name -> bytes)."""
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
+
+
+def test_an_interrupted_write_leaves_the_old_set_whole_and_a_rerun_writes_the_new_one(
         tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     out = tmp_path / "out"
     assert run_cli(capsys, "drill", str(EXAMPLE), "--out", str(out), *SHORT)[0] == 0  # with figures
     assert not (out / MARKER).exists()
+    old = snapshot(out)
+    assert set(PLOT_FILES) <= set(old)
     real = drill_output.write_text
 
     def write_text(path: str, text: str, **kwargs: object) -> object:
@@ -111,13 +118,13 @@ def test_an_interrupted_write_leaves_the_folder_marked_and_a_rerun_makes_it_whol
         code, _, err = run_cli(capsys, "drill", str(EXAMPLE), "--out", str(out), *SHORT, "--no-plots",
                                "--set", "top_drive.rpm=60")
     assert code == 130
-    names = {p.name for p in out.iterdir()}
-    assert MARKER in names and "did not finish" in (out / MARKER).read_text()
-    assert not names & set(PLOT_FILES)  # the earlier run's figures are gone: files of two runs never mix
+    assert snapshot(out) == old  # the earlier run's complete set: files of two runs never mix
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # nothing left beside it
     code, _, err = run_cli(capsys, "drill", str(EXAMPLE), "--out", str(out), *SHORT, "--no-plots")
     assert code == 0, err
     assert sorted(p.name for p in out.iterdir()) == NO_PLOT_FILES
     assert load_drill_config(out / "config.toml").top_drive.rpm == load_drill_config(EXAMPLE).top_drive.rpm
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]
 
 
 def test_the_api_save_takes_the_lock_too(tmp_path: Path) -> None:

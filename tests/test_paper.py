@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import errno
 import io
+import os
 import re
+import shutil
 
 import numpy as np
 import pytest
@@ -13,6 +16,7 @@ import pytest
 import drillstring as ds
 from drillstring import report as paper
 from drillstring.cli import main
+from drillstring.io import output as io_output
 
 SCALE = paper.QUICK_T_END_SCALE  # 0.1: the 1-s runs last 0.1 s, the 10-s runs 1 s
 SPS = paper.QUICK_SAMPLES_PER_SECOND
@@ -199,6 +203,43 @@ def test_bad_options_are_one_line_errors(tmp_path, capsys):
     assert main(["paper", "--out", str(tmp_path / "x"), "--t-end-scale", "0"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "t_end_scale" in err
+
+
+def test_a_full_disk_mid_write_keeps_the_earlier_reproduction_whole(quick, tmp_path, capsys, monkeypatch):
+    out = tmp_path / "paper"
+    shutil.copytree(quick[0], out)
+    (out / "notes.txt").write_text("mine\n")
+    old = {p.name: p.read_bytes() for p in out.iterdir()}
+    delivered = []
+    real = io_output._deliver
+
+    def deliver(tmp, target):
+        if len(delivered) == 3:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        real(tmp, target)
+        delivered.append(os.path.basename(target.real))
+
+    monkeypatch.setattr(io_output, "_deliver", deliver)
+    assert main(["paper", "--out", str(out), "--quick"]) == 2
+    err = capsys.readouterr().err
+    assert delivered == ["fig01.png", "fig01.csv", "fig02.png"]
+    assert err.count("\n") == 1 and f"cannot write {out / 'fig02.csv'}: No space left on device" in err
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == old  # the earlier report with its own figures
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["paper"]
+
+
+def test_a_folder_another_run_writes_is_refused_before_any_run(tmp_path, capsys, monkeypatch):
+    def called(*args, **kwargs):
+        raise AssertionError("a run before the folder was taken")
+
+    monkeypatch.setattr(paper.run, "references", called)
+    held = io_output.lock_directory(tmp_path, field="x", busy="{holder}")
+    try:
+        assert main(["paper", "--out", str(tmp_path), "--quick"]) == 2
+    finally:
+        held.close()
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and str(tmp_path) in err and f"locked by process {os.getpid()}" in err
 
 
 def test_single_figure_is_a_reusable_matplotlib_figure():

@@ -620,7 +620,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         config = config.with_overrides(args.overrides)
     plots = not args.no_plots
     # the folder is checked, created and locked before solving: a second run into it is refused now
-    with output_folder(args.out, plots=plots, field="--out") as directory:
+    with output_folder(args.out, plots=plots, field="--out") as folder:
         start = time.perf_counter()
         result = drill(config, progress=_show_progress(args), check_grid=args.check_grid)
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
@@ -670,7 +670,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = _write_files(result, directory, plots, args.units)
+        written = _write_files(result, folder.directory, plots, args.units)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0
 
@@ -893,9 +893,9 @@ def _add_drill_map(sub: Any) -> None:
     p.set_defaults(func=_cmd_drill_map)
 
 
-#: The files ``drill-map --out DIR`` may write.
-DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "controllers.png", "ssi_lines.png",
-                   "manifest.json", "regime_map.png")
+#: The files ``drill-map --out DIR`` may write (``drillstring.drilling.maps.MAP_FILES`` and the manifest).
+DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "regime_map.png", "controllers.png",
+                   "ssi_lines.png", "manifest.json")
 
 
 def _map_axis(text: str, field: str = "--axis") -> tuple[str, list[Any]]:
@@ -943,10 +943,25 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     refuse_foreign_folder(args.out, "drill-map", field="--out")
     client = _dask_client(args.scheduler)
     start = time.perf_counter()
+    written: list[Any] = []
+
+    def also_write(table: Any, directory: str) -> None:  # swapped in with map.parquet and map.csv
+        from .io.output import write_text
+
+        write_text(os.path.join(directory, "config.toml"), config.to_toml())
+        written[:] = [os.path.join(args.out, name) for name in ("map.parquet", "map.csv", "config.toml")]
+        if not args.no_plots:
+            from .drilling.maps import map_figures
+            from .io.figures import save
+
+            for name, fig in map_figures(table, args.units).items():
+                save(fig, os.path.join(directory, name))
+                written.append(os.path.join(args.out, name))
+
     try:
         frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
                           chunk_size=args.chunk_size, client=client,
-                          name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0])
+                          name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0], also_write=also_write)
     except KeyboardInterrupt:
         print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
               file=sys.stderr)
@@ -977,16 +992,6 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         _say(f"controller recommendation: {ranking[0].controller} (" + "; ".join(s.line() for s in ranking)
              + f"); set it with --set top_drive.controller.type={ranking[0].controller}; the presets' settings: "
              f"drillstring tune {os.fsdecode(args.config)}")
-    from .io.output import write_text
-
-    written = [os.path.join(args.out, "map.parquet"), os.path.join(args.out, "map.csv"),
-               write_text(os.path.join(args.out, "config.toml"), config.to_toml())]
-    if not args.no_plots:
-        from .drilling.maps import map_figures
-        from .io.figures import save
-
-        for name, fig in map_figures(frame, args.units).items():
-            written.append(save(fig, os.path.join(args.out, name)))
     _say(f"wrote {len(written)} files to {args.out} (and the resumable store: manifest.json, chunks/)")
     return 0
 
@@ -1050,6 +1055,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     from .calibration.data import read_measured
     from .calibration.fit import fit
     from .calibration.output import next_commands, next_heading, write_files
+    from .calibration.output import owned as fit_owned
     from .drilling import load_drill_config
     from .drilling.output import output_folder
 
@@ -1081,7 +1087,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     units = dict(_pairs(args.units, "--unit", "NAME=UNIT (e.g. 'motor_torque=kN m')"))
     data = [read_measured(path, columns=columns, units=units, start=args.start) for path in args.data]
     plots = not args.no_plots
-    with output_folder(args.out, plots=plots, field="--out", command="fit") as directory:
+    with output_folder(args.out, plots=plots, field="--out", command="fit", owns=fit_owned) as folder:
         result = fit(config, data, params, targets=targets, windows=windows or None, per_event=args.per_event,
                      samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
                      landscape_points=args.landscape_points, progress=lambda msg: _say(f"fit: {msg}"),
@@ -1093,7 +1099,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
              f"{result.seconds:.3g} s")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = write_files(result, directory, plots)
+        written = write_files(result, folder.directory, plots, shown=folder.path)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     _say(next_heading(result))
     for command in next_commands(os.fspath(args.out), result):

@@ -1,9 +1,9 @@
 """The folder of a fit (``drillstring fit --out DIR``, :meth:`FitResult.save`).
 
 Written as ``drill`` writes its folder (:func:`drillstring.drilling.output.output_folder`): one
-writer (locked), refused if it holds another command's output, every file atomic, the marker
-``INCOMPLETE`` first and removed last, the files of :data:`FILES` this fit does not write
-removed (never a mix of two fits):
+writer (locked), refused if it holds another command's output, the complete set written beside
+it and swapped in at the end (an interrupted fit leaves the earlier fit's complete set, never a
+mix of two fits; the files of :data:`FILES` this fit does not write go with the earlier set):
 
 * ``config.toml``: the fitted configuration (of the first event; ``config-event-N.toml`` for the
   others), ready for ``drill`` and ``drill-map``;
@@ -21,7 +21,7 @@ import json
 import math
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Union
+from typing import TYPE_CHECKING, Any, Optional, Union
 
 import numpy as np
 
@@ -34,11 +34,17 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from .fit import FitResult
 
-__all__ = ["FILES", "PLOT_FILES", "next_commands", "report_markdown", "write_fit"]
+__all__ = ["FILES", "PLOT_FILES", "next_commands", "owned", "report_markdown", "write_fit"]
 
 DATA_FILES: tuple[str, ...] = ("config.toml", "fit.json", "fit_series.csv")
 PLOT_FILES: tuple[str, ...] = ("fit_series.png", "landscape.png", "profiles.png")
 FILES: tuple[str, ...] = (*DATA_FILES, *PLOT_FILES, "report.md")
+
+
+def owned(name: str) -> bool:
+    """Whether ``name`` is a file of a fit's folder (:data:`FILES`, ``config-event-N.toml``, the
+    marker): replaced by each fit; the folder's other entries are kept."""
+    return name in FILES or name == MARKER or (name.startswith("config-event-") and name.endswith(".toml"))
 
 
 def write_fit(result: FitResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
@@ -46,12 +52,16 @@ def write_fit(result: FitResult, out_dir: Union[str, os.PathLike[str]], *, plots
     """Writes the fit's files into ``out_dir`` (see the module docstring); returns their paths."""
     extra = tuple(f"config-event-{e}.toml" for e in range(1, len(result.configs)))
     names = (*DATA_FILES, *extra, *(PLOT_FILES if plots else ()), "report.md")
-    with output_folder(out_dir, plots=plots, field=field, command="fit", names=names) as directory:
-        return write_files(result, directory, plots)
+    with output_folder(out_dir, plots=plots, field=field, command="fit", names=names, owns=owned) as folder:
+        written = write_files(result, folder.directory, plots, shown=folder.path)
+    return [folder.shown(path) for path in written]
 
 
-def write_files(result: FitResult, directory: Path, plots: bool) -> list[Path]:
-    """The files of :func:`write_fit` into ``directory``, held by ``output_folder``."""
+def write_files(result: FitResult, directory: Path, plots: bool,
+                shown: Optional[Union[str, os.PathLike[str]]] = None) -> list[Path]:
+    """The files of :func:`write_fit` into ``directory`` (the ``directory`` of ``output_folder``);
+    ``shown`` is the folder as the user named it (default ``directory``), which the report's
+    next commands name. Returns the paths written in ``directory``."""
     def path(name: str) -> str:
         return os.path.join(os.fspath(directory), name)
 
@@ -85,7 +95,8 @@ def write_files(result: FitResult, directory: Path, plots: bool) -> list[Path]:
             import matplotlib.pyplot as plt
 
             plt.close(fig)
-    written.append(write_text(path("report.md"), report_markdown(result, os.fspath(directory), figures)))
+    folder = os.fspath(directory if shown is None else shown)
+    written.append(write_text(path("report.md"), report_markdown(result, folder, figures)))
     os.unlink(marker)
     return written
 

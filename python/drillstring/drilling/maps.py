@@ -18,8 +18,9 @@ With ``out=DIR`` the map is stored as it goes in the chunked, verified, resumabl
 modal sweeps (:mod:`drillstring.io.sweep_store`: ``manifest.json``, ``chunks/chunk-NNNNN.parquet``
 with a SHA-256 record each, one writer at a time); the same call again reuses every verified
 chunk, recomputes missing or failed ones and solves only the interrupted runs of a chunk; the
-whole table is written as ``map.parquet`` and ``map.csv`` at the end. Without ``out`` the map is
-held in memory only.
+whole table is written as ``map.parquet`` and ``map.csv`` at the end, with the command's
+``config.toml`` and figures swapped into the folder as one set (:func:`write_map_files`). Without
+``out`` the map is held in memory only.
 
 Figures: :func:`ssi_map` (the stick-slip severity over two axes with the stick-slip boundary,
 the contour SSI = 1: the bit-speed oscillation as large as its mean, where the bit starts to
@@ -63,8 +64,9 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     from matplotlib.figure import Figure
 
-__all__ = ["CONTROLLER_AXIS", "COUPLED_COLUMNS", "METRIC_COLUMNS", "ControllerScore", "axis_label", "boundary_note",
-           "controller_maps", "controller_recommendation", "drill_map", "regime_map", "ssi_lines", "ssi_map"]
+__all__ = ["CONTROLLER_AXIS", "COUPLED_COLUMNS", "MAP_FILES", "METRIC_COLUMNS", "ControllerScore", "axis_label",
+           "boundary_note", "controller_maps", "controller_recommendation", "drill_map", "regime_map", "ssi_lines",
+           "ssi_map", "write_map_files"]
 
 #: The axis of the controller type (one panel per controller in :func:`controller_maps`).
 CONTROLLER_AXIS = "top_drive.controller.type"
@@ -224,6 +226,7 @@ def drill_map(
     chunk_size: Optional[int] = None,
     client: Any = None,
     name: Optional[str] = None,
+    also_write: Optional[Callable[[pd.DataFrame, str], Any]] = None,
 ) -> pd.DataFrame:
     """Solves ``config`` at every combination of the ``axes`` values; one row per run.
 
@@ -245,8 +248,10 @@ def drill_map(
         (about every 20 ms while runs finish). An exception it raises stops the map as Ctrl-C does.
     out : path, optional
         A directory to store the map in as it goes (see the module docstring), resumable by the
-        same call; ``map.parquet`` and ``map.csv`` hold the table at the end. A directory holding
-        another map (other configuration, axes, chunk size or core build) is refused.
+        same call; ``map.parquet`` and ``map.csv`` hold the table at the end, swapped in with
+        ``also_write``'s files as one set (:func:`write_map_files`: an interruption leaves the
+        earlier map's files or the new ones, never a mix). A directory holding another map
+        (other configuration, axes, chunk size or core build) is refused.
     chunk_size : int, optional
         Runs per chunk with ``out`` or ``client`` (default :data:`CHUNK_SIZE`).
     client : dask.distributed.Client or str, optional
@@ -257,6 +262,11 @@ def drill_map(
     name : str, optional
         The well's name in the figures' titles (``frame.attrs["name"]``); default: the stem of
         ``config``'s file name when it is a path, else none.
+    also_write : callable, optional
+        With ``out``: ``f(table, directory)`` writes more files of the finished map (of
+        :data:`MAP_FILES`: ``drillstring drill-map`` its ``config.toml`` and figures) into
+        ``directory``, the folder being written beside ``out``; they are swapped in with the
+        tables.
 
     Returns
     -------
@@ -306,7 +316,8 @@ def drill_map(
     if out is None and client is None:
         frame, interrupt = _solve(cfg, named, combos, count, report, 0)
     else:
-        frame, interrupt = _chunked(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE), client)
+        frame, interrupt = _chunked(cfg, named, combos, count, report, out, int(chunk_size or CHUNK_SIZE), client,
+                                    name, also_write)
     frame.attrs["name"] = None if name is None else str(name)
     try:
         close(None if interrupt is not None else int((frame["status"] != "interrupted").sum()))
@@ -382,15 +393,18 @@ class _Chunk:
 
 def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], threads: Optional[int],
              report: Optional[Callable[[float], None]], out: Any, size: int, client: Any,
+             name: Optional[str] = None, also_write: Optional[Callable[[pd.DataFrame, str], Any]] = None,
              ) -> tuple[pd.DataFrame, Optional[BaseException]]:
     """The map in chunks of ``size`` runs: stored in a :class:`~drillstring.io.sweep_store.SweepStore`
-    in ``out`` (resumable) if given, solved locally or on the Dask cluster ``client``."""
+    in ``out`` (resumable) if given, solved locally or on the Dask cluster ``client``; a finished
+    map's files (the tables, and what ``also_write`` writes) are swapped in as one set
+    (:func:`write_map_files`)."""
     import contextlib
 
     import pandas as pd
 
     from ..errors import ResumeWarning
-    from ..io.output import MAP_FORMAT, atomic_write
+    from ..io.output import MAP_FORMAT
     from ..io.sweep_store import SweepStore, core_build
 
     identity = {"format": MAP_FORMAT, "drillstring_version": _core.__version__,
@@ -448,15 +462,42 @@ def _chunked(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tupl
             reasons = "; ".join(f"chunk {i}: {why}" for i, why in recomputed.items())
             warnings.warn(f"resuming the drill map in {out}: {len(recomputed)} stored chunk(s) failed verification "
                           f"and are recomputed ({reasons})", ResumeWarning, stacklevel=3)
+        table.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict(),
+                           resume={"recomputed": recomputed}, name=None if name is None else str(name))
         if interrupt is None and store is not None:
-            root = os.fspath(store.root)
-            atomic_write(os.path.join(root, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
-                         suffix=".parquet", field="out")
-            atomic_write(os.path.join(root, "map.csv"),
-                         lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g"), suffix=".csv", field="out")
-    table.attrs.update(axes={k: list(v) for k, v in named.items()}, config=cfg.to_dict(),
-                       resume={"recomputed": recomputed})
+            write_map_files(table, store.root, also_write)
     return table, interrupt
+
+
+#: The files of a finished map in its folder (besides the store: ``manifest.json``, ``chunks/``):
+#: the tables, the configuration and the figures of ``drillstring drill-map``.
+MAP_FILES: tuple[str, ...] = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "regime_map.png",
+                              "controllers.png", "ssi_lines.png")
+
+
+def _map_owned(name: str) -> bool:
+    return name in MAP_FILES
+
+
+def write_map_files(table: pd.DataFrame, root: Union[str, os.PathLike[str]],
+                    also_write: Optional[Callable[[pd.DataFrame, str], Any]] = None) -> None:
+    """Writes a finished map's ``map.parquet`` and ``map.csv`` (and what ``also_write(table,
+    directory)`` writes into ``directory``) into the map's folder ``root`` as one set: the
+    folder, store included (hard links), is written beside it and swapped in
+    (:func:`drillstring.io.output.replaced_folder`), so an interruption leaves the earlier map's
+    :data:`MAP_FILES` or the new ones, never a mix; the store and its resume are untouched. Call
+    it holding the store's lock."""
+    from ..io.output import atomic_write, remove_leftovers, replaced_folder
+
+    remove_leftovers(root)  # of an interrupted swap (the store's lock is held)
+    with replaced_folder(root, owned=_map_owned, field="out") as folder:
+        directory = os.fspath(folder.directory)
+        atomic_write(os.path.join(directory, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
+                     suffix=".parquet", field="out")
+        atomic_write(os.path.join(directory, "map.csv"),
+                     lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g"), suffix=".csv", field="out")
+        if also_write is not None:
+            also_write(table, directory)
 
 
 def _on_dask(client: Any, cfg: DrillConfig, named: Mapping[str, list[Any]], jobs: list[_Chunk],

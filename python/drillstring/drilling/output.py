@@ -7,9 +7,13 @@ The folder is written as a whole (:func:`output_folder`):
 * **one writer**: the folder is locked (:func:`drillstring.io.output.lock_directory`, the lock of
   the sweep and map stores) while a run writes it (``drillstring drill`` takes it before solving);
   a second run into it is refused, naming the process that holds it;
-* **complete or marked partial**: :data:`MARKER` is written first and removed last, so a folder
-  whose writing was interrupted says so; the files of :data:`FILES` this run does not write (the
-  figures with ``plots=False``) are removed, so the folder never mixes files of two runs;
+* **all or nothing**: the run's complete set is written into a hidden folder beside it and
+  swapped in at the end (:func:`drillstring.io.output.replaced_folder`): ``kill -9``, Ctrl-C or
+  a full disk at any moment leave the complete old set or the complete new one, never a mix (the
+  files of :data:`FILES` this run does not write, the figures with ``plots=False``, go with the
+  old set; other files the user keeps in the folder stay). Where the folder cannot be swapped
+  (a mount point) it is written in place: :data:`MARKER` first and removed last, so a folder
+  whose writing was interrupted says so;
 * **its own folder**: a folder holding another command's output (a ``drill-map`` or ``sweep``
   store) is refused (:func:`drillstring.io.output.refuse_foreign_folder`).
 """
@@ -23,20 +27,19 @@ import unicodedata
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional, Union
+from typing import TYPE_CHECKING, Any, Callable, Optional, Union
 
 import numpy as np
 
 from ..io.output import (
+    FolderWrite,
     atomic_write,
     check_destination,
     check_directory_name,
-    lock_directory,
-    make_directory,
-    refuse_foreign_folder,
-    unlock_directory,
+    recover_folder,
     write_bytes,
     write_text,
+    writing_folder,
 )
 from .metrics import STICK_SLIP_CRITERION
 
@@ -77,40 +80,38 @@ def output_names(plots: bool = True) -> tuple[str, ...]:
     return FILES if plots else tuple(name for name in FILES if name not in PLOT_FILES)
 
 
+def owned(name: str) -> bool:
+    """Whether ``name`` is a file of a ``drill`` folder (:data:`FILES`, :data:`COUPLED_PLOT_FILES`,
+    :data:`MARKER`): replaced by each run; the folder's other entries are kept."""
+    return name in FILES or name in COUPLED_PLOT_FILES or name == MARKER
+
+
 @contextmanager
 def output_folder(out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
                   field: str = "out_dir", command: str = "drill",
-                  names: Optional[tuple[str, ...]] = None) -> Iterator[Path]:
+                  names: Optional[tuple[str, ...]] = None,
+                  owns: Optional[Callable[[str], bool]] = None) -> Iterator[FolderWrite]:
     """Holds the output folder ``out_dir`` of a run for the ``with`` block: checks it
     (:func:`~drillstring.io.output.check_destination`, not another command's output), creates it
-    and takes its lock (see the module docstring); yields its path. At the end the lock is
+    and takes its lock (see the module docstring), removes what an interrupted run left beside
+    it; yields a :class:`~drillstring.io.output.FolderWrite`: write the new set into its
+    ``directory`` (:func:`_write_files`), name the files by its ``shown``. A normal exit swaps the
+    new set in; an exception drops it (the folder keeps its old set). At the end the lock is
     released and its file removed, as is the folder if it was created here and is still empty
     (a run interrupted before writing leaves nothing). Refusals raise
     :class:`~drillstring.errors.ValidationError` naming ``field``; so does a folder held by
-    anyone else, also another ``with`` block of this process. ``command`` names the command
-    whose folder it is (another command's is refused) and ``names`` the files it writes
-    (default: :func:`output_names`). Write the files inside it with
-    :func:`_write_files`."""
+    anyone else, also another ``with`` block of this process; a failed write an
+    :class:`~drillstring.io.output.OutputError` naming the user's path. ``command`` names the
+    command whose folder it is (another command's is refused), ``names`` the files it writes
+    (default: :func:`output_names`) and ``owns`` which names are its own (default :func:`owned`;
+    the others are kept)."""
     display = os.fsdecode(os.fspath(out_dir))
     check_directory_name(display, field)
-    key = os.path.realpath(display)
+    recover_folder(display)  # an old set moved aside by an interrupted swap goes back first
     files = (*output_names(plots), *COUPLED_PLOT_FILES) if names is None else names
     check_destination(display, field=field, directory=True, files=(*files, MARKER))
-    refuse_foreign_folder(display, command, field=field)
-    created = not os.path.isdir(key)
-    directory = make_directory(display)
-    lock = lock_directory(directory, field=field, busy="a folder no other run is writing to: it is locked by "
-                          "{holder} ({path}); wait for that run to finish or choose another output directory")
-    try:
-        refuse_foreign_folder(display, command, field=field)  # written by another command meanwhile
-        yield directory
-    finally:
-        unlock_directory(lock, directory)
-        if created:
-            try:
-                os.rmdir(key)  # only if empty
-            except OSError:
-                pass
+    with writing_folder(display, field=field, owned=owned if owns is None else owns, command=command) as folder:
+        yield folder
 
 
 def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
@@ -119,20 +120,21 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
     returns their paths. The folder and every file destination in it are checked first
     (:func:`~drillstring.io.output.check_destination`): a refused one raises
     :class:`~drillstring.errors.ValidationError` naming ``field`` before anything is written.
-    The folder is held (:func:`output_folder`) while it is written: :data:`MARKER` first, the
-    stale files of :data:`FILES` this run does not write removed, the files, then the marker
-    removed. ``output_units`` adds a converted copy of the metrics to ``metrics.json``
+    The folder is held (:func:`output_folder`) while it is written and replaced as a whole (see
+    the module docstring). ``output_units`` adds a converted copy of the metrics to ``metrics.json``
     (:meth:`DrillResult.summary`) and is the unit system of the figures (their ``units``); the
     data files stay SI."""
     from .units import system_of
 
     output_units = system_of(output_units, "output_units")  # refused before anything is written
-    with output_folder(out_dir, plots=plots, field=field) as directory:
-        return _write_files(result, directory, plots, output_units)
+    with output_folder(out_dir, plots=plots, field=field) as folder:
+        written = _write_files(result, folder.directory, plots, output_units)
+    return [folder.shown(path) for path in written]
 
 
 def _write_files(result: DrillResult, directory: Path, plots: bool, output_units: str = "si") -> list[Path]:
-    """The files of :func:`write_outputs` into ``directory``, held by :func:`output_folder`."""
+    """The files of :func:`write_outputs` into ``directory`` (the ``directory`` of
+    :func:`output_folder`); returns their paths there."""
     written: list[Path] = []
 
     def path(name: str) -> str:

@@ -167,19 +167,26 @@ def _csv(frame: pd.DataFrame, tmp: str) -> None:
     frame.to_csv(tmp, index=False, float_format="%.10g")
 
 
+def owned(name: str) -> bool:
+    """Whether ``name`` is a file of a ``torque-drag`` folder (:data:`TD_FILES`, the marker):
+    replaced by each run; the folder's other entries are kept."""
+    return name in TD_FILES or name == _MARKER
+
+
 def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
                       field: str = "out_dir", units: str = "si") -> list[Path]:
     """Writes ``torque_drag.json``, ``profiles.csv``, ``broomstick.csv``, ``survey.csv``,
     ``config.toml`` and (with ``plots``) ``torque_drag.png``, ``broomstick.png`` and
     ``well_path.png`` into ``out_dir``, with the folder rules of ``drillstring drill`` (checked
-    first, locked while written, a marker file until complete, stale figures removed, another
-    command's folder refused). ``units`` is the unit system of the figures (``"si"`` or
-    ``"field"``); the data files are SI either way. Returns the paths written."""
+    first, locked while written, the complete set swapped in at the end so that an interrupted
+    run leaves the old set, stale figures dropped, another command's folder refused). ``units``
+    is the unit system of the figures (``"si"`` or ``"field"``); the data files are SI either way.
+    Returns the paths written."""
     units = system_of(units, "units")
     names = TD_FILES if plots else TD_DATA_FILES
-    with output_folder(out_dir, field=field, command="torque-drag", names=names) as directory:
+    with output_folder(out_dir, field=field, command="torque-drag", names=names, owns=owned) as folder:
         def path(name: str) -> str:
-            return os.path.join(os.fspath(directory), name)
+            return os.path.join(os.fspath(folder.directory), name)
 
         marker = path(_MARKER)
         write_text(marker, f"drillstring torque-drag (process {os.getpid()}) is writing this folder. If this file "
@@ -198,7 +205,7 @@ def write_torque_drag(result: TorqueDragResult, out_dir: Union[str, os.PathLike[
             for name, make in zip(TD_PLOT_FILES, (profiles_figure, broomstick_figure, well_path_figure)):
                 written.append(Path(os.fsdecode(os.fspath(save(make(result, units=units), path(name))))))
         os.unlink(marker)
-    return written
+    return [folder.shown(p) for p in written]
 
 
 # --- figures -------------------------------------------------------------------------------------------------

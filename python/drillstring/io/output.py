@@ -24,17 +24,26 @@ any work is done. An ``OSError`` of the write itself (disk full, a closed pipe) 
 
 The temporary name keeps the target's extension (or ``suffix``), so writers that infer a format
 from it (matplotlib's ``savefig``) or append one (``numpy.savez``) behave as on the target.
+
+An output *folder* (``drill``, ``fit``, ``torque-drag``, ``paper``, ``drill-map``'s tables and
+figures) is replaced as a whole (:func:`replaced_folder`): the command writes its complete new
+set into a hidden folder beside the target and swaps it in at the end, so that an interruption
+(``kill -9``, Ctrl-C, a full disk) at any moment leaves the complete old set or the complete new
+one, never a mix.
 """
 
 from __future__ import annotations
 
 import errno
 import os
+import re
 import secrets
 import shutil
+import signal
 import stat
 import sys
 import tempfile
+import threading
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -44,7 +53,11 @@ from typing import IO, Any, Callable, Optional, Union
 from ..errors import ValidationError
 
 __all__ = [
+    "ASIDE_TAG",
+    "BUSY_FOLDER",
+    "STAGE_TAG",
     "STDOUT",
+    "FolderWrite",
     "OutputError",
     "atomic_path",
     "atomic_write",
@@ -59,11 +72,16 @@ __all__ = [
     "lock_directory",
     "make_directory",
     "read_regular",
+    "recover_folder",
     "refuse_foreign_folder",
+    "remove_leftovers",
+    "replaced_folder",
+    "sigint_deferred",
     "unlock_directory",
     "write_bytes",
     "write_text",
     "write_to",
+    "writing_folder",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -81,6 +99,9 @@ ALLOWED_DIRECTORY = "a directory path (not empty, and not '-': standard output i
 ALLOWED_FILE = "a new or regular file (or a symlink to one), a character device, a FIFO or '-' for standard output"
 
 _CHUNK = 1 << 16
+
+#: The errors of a write for want of room: a full disk, a full quota, a read-only file system.
+_NO_ROOM = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EROFS, errno.EIO})
 
 
 class OutputError(OSError):
@@ -515,7 +536,10 @@ def lock_directory(directory: PathLike, *, field: str, busy: str) -> IO[str]:
     A directory locked by another process (or by another open of this one) is refused with a
     :class:`~drillstring.errors.ValidationError` naming ``field`` and the directory; ``busy`` is the
     text of its ``allowed`` part, with ``{holder}`` and ``{path}`` (of the lock file) filled in. A
-    lock file that is not a regular file is refused too, without blocking on it."""
+    lock file that is not a regular file is refused too, without blocking on it. A lock file
+    that cannot be created or written for want of room (a full disk or quota, a read-only or
+    failing file system) raises :class:`OutputError` naming the lock file's path, and leaves no
+    lock file behind."""
     import socket
     import time
 
@@ -526,6 +550,8 @@ def lock_directory(directory: PathLike, *, field: str, busy: str) -> IO[str]:
             fd = os.open(path, os.O_RDWR | os.O_CREAT | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0),
                          0o644)
         except OSError as exc:
+            if exc.errno in _NO_ROOM:
+                raise _output_error(exc, path) from exc
             raise ValidationError(field, display, f"a directory where {LOCK} can be created ({exc})") from exc
         mode = os.fstat(fd).st_mode
         if not stat.S_ISREG(mode):
@@ -550,19 +576,416 @@ def lock_directory(directory: PathLike, *, field: str, busy: str) -> IO[str]:
         if same:
             break
         handle.close()
-    handle.seek(0)
-    handle.truncate()
-    handle.write(f"process {os.getpid()} on {socket.gethostname()} since {time.strftime('%Y-%m-%d %H:%M:%S')}\n")
-    handle.flush()
+    holder = f"process {os.getpid()} on {socket.gethostname()} since {time.strftime('%Y-%m-%d %H:%M:%S')}\n"
+    try:  # unbuffered, so that a full disk is seen here and not when the handle is closed
+        os.ftruncate(fd, 0)
+        data = memoryview(holder.encode("utf-8"))
+        while data:
+            data = data[os.write(fd, data):]
+    except OSError as exc:
+        try:  # we hold it: no empty lock file left behind
+            os.unlink(path)
+        except OSError:
+            pass
+        handle.close()
+        raise _output_error(exc, path) from exc
     return handle
 
 
 def unlock_directory(handle: IO[str], directory: PathLike) -> None:
-    """Removes the :data:`LOCK` file of ``directory`` (while still holding it) and releases the
-    lock taken by :func:`lock_directory`."""
+    """Removes the :data:`LOCK` file of ``directory`` (while still holding it, and only if it is
+    the file ``handle`` holds: a folder replaced meanwhile has a lock file of its own) and
+    releases the lock taken by :func:`lock_directory`."""
+    path = os.path.join(os.fsdecode(os.fspath(directory)), LOCK)
     try:
-        os.unlink(os.path.join(os.fsdecode(os.fspath(directory)), LOCK))
-    except OSError:
+        if os.path.samestat(os.fstat(handle.fileno()), os.stat(path)):
+            os.unlink(path)
+    except (OSError, ValueError):
         pass
     finally:
         handle.close()
+
+
+# --------------------------------------------------------------------------- output folders written whole
+
+#: What the hidden folders beside an output folder ``NAME`` are called while it is replaced:
+#: ``.NAME.drillstring-new-XXXXXXXXXXXX`` holds the set being written (after the swap, the old
+#: set being removed); ``.NAME.drillstring-old-XXXXXXXXXXXX`` the old set moved aside where the
+#: two cannot be exchanged in one step. Both are left behind only by an interrupted run, and
+#: the next run into ``NAME`` removes them (or puts an old set back, see :func:`recover_folder`).
+STAGE_TAG = ".drillstring-new-"
+ASIDE_TAG = ".drillstring-old-"
+
+#: The temporary files of :func:`atomic_path` (an interrupted write leaves one).
+_TEMPORARY = re.compile(r"^\..+\.[0-9a-f]{12}\.tmp(\.[^.]*)?$")
+
+
+def _hidden(real: str, tag: str, token: Optional[str] = None) -> str:
+    parent, name = os.path.split(real)
+    return os.path.join(parent, f".{name}{tag}{token or secrets.token_hex(6)}")
+
+
+def _leftovers(real: str, tag: str) -> list[str]:
+    """The hidden folders ``tag`` (:data:`STAGE_TAG`, :data:`ASIDE_TAG`) of the output folder at
+    ``real``, newest first (real directories only, never a symlink)."""
+    parent, name = os.path.split(real)
+    pattern = re.compile(re.escape(f".{name}{tag}") + r"[0-9a-f]{12}$")
+    found = []
+    try:
+        entries = list(os.scandir(parent or "."))
+    except OSError:
+        return []
+    for entry in entries:
+        if pattern.match(entry.name) and entry.is_dir(follow_symlinks=False):
+            try:
+                found.append((entry.stat(follow_symlinks=False).st_mtime, entry.path))
+            except OSError:
+                continue
+    return [path for _, path in sorted(found, reverse=True)]
+
+
+def recover_folder(path: PathLike) -> None:
+    """Puts back the old set of the output folder ``path`` when a swap without an atomic exchange
+    (see :class:`FolderWrite`) was interrupted between moving the old folder aside and moving the
+    new one in: ``path`` is then missing and its old set lies in ``.NAME.drillstring-old-*``.
+    Call it before the folder is created; a present ``path`` is left alone."""
+    real = os.path.realpath(os.fsdecode(os.fspath(path)))
+    if os.path.lexists(real):
+        return
+    for aside in _leftovers(real, ASIDE_TAG):
+        try:
+            os.rename(aside, real)
+        except OSError:
+            continue
+        _fsync_directory(os.path.dirname(real))
+        return
+
+
+def _remove_tree(path: str) -> None:
+    shutil.rmtree(path, ignore_errors=True)
+
+
+def remove_leftovers(path: PathLike) -> None:
+    """Removes the hidden folders an interrupted replacement of the output folder ``path`` left
+    beside it (:data:`STAGE_TAG`, :data:`ASIDE_TAG`). Call it holding the folder's lock: no live
+    run has them then."""
+    real = os.path.realpath(os.fsdecode(os.fspath(path)))
+    for tag in (STAGE_TAG, ASIDE_TAG):
+        for leftover in _leftovers(real, tag):
+            _remove_tree(leftover)
+
+
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+_renameat2: Any = None
+
+
+def _exchange(a: str, b: str) -> bool:
+    """Swaps the directories at ``a`` and ``b`` in one step (Linux ``renameat2`` with
+    ``RENAME_EXCHANGE``); ``False`` where that is not available (another system, an old kernel
+    or C library, a file system without it), an ``OSError`` if it failed otherwise."""
+    global _renameat2
+    if not sys.platform.startswith("linux"):
+        return False
+    if _renameat2 is None:
+        import ctypes
+
+        try:
+            function = ctypes.CDLL(None, use_errno=True).renameat2
+        except (OSError, AttributeError):
+            _renameat2 = False
+            return False
+        function.argtypes = (ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint)
+        function.restype = ctypes.c_int
+        _renameat2 = function
+    if _renameat2 is False:
+        return False
+    import ctypes
+
+    if _renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE) == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
+        return False
+    raise OSError(code, os.strerror(code), b)
+
+
+def _link_or_copy(source: str, target: str) -> None:
+    """``target`` as a hard link to ``source`` (a symlink itself, not followed), or a copy where
+    no link can be made."""
+    try:
+        try:
+            os.link(source, target, follow_symlinks=False)
+        except NotImplementedError:  # no linkat: a symlink is recreated below, a file linked
+            if os.path.islink(source):
+                raise OSError(errno.ENOTSUP, "cannot link a symlink", source) from None
+            os.link(source, target)
+    except OSError as exc:
+        if exc.errno not in (errno.EXDEV, errno.EPERM, errno.EMLINK, errno.ENOTSUP, errno.EOPNOTSUPP):
+            raise
+        if os.path.islink(source):
+            os.symlink(os.readlink(source), target)
+        else:
+            shutil.copy2(source, target, follow_symlinks=False)
+
+
+@contextmanager
+def sigint_deferred() -> Iterator[None]:
+    """Holds back SIGINT (Ctrl-C) for the body: a signal received meanwhile is handed to the
+    previous handler (normally raising KeyboardInterrupt) when the body ends. Only the main
+    thread can change handlers; elsewhere, or when the handler is not a Python callable, the body
+    runs as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.getsignal(signal.SIGINT)
+    if not callable(previous):
+        yield
+        return
+    received: list[tuple[int, Any]] = []
+    signal.signal(signal.SIGINT, lambda signum, frame: received.append((signum, frame)))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if received:
+            previous(*received[0])
+
+
+class FolderWrite:
+    """The replacement of one output folder by a new set of files (see :func:`replaced_folder`).
+
+    ``path`` is the folder as the caller named it; ``directory`` is where the new files are
+    written: a fresh hidden folder beside the target (``.NAME.drillstring-new-*``, in the same
+    parent directory, so on the same file system), or the folder itself where it cannot be
+    swapped (a mount point, or a folder whose parent directory may not be written: ``in_place``;
+    the command's files are then replaced one by one). :meth:`shown` turns a path written into ``directory``
+    into the path the user sees, :meth:`commit` swaps the new set in, :meth:`discard` drops it.
+    """
+
+    def __init__(self, path: PathLike, owned: Callable[[str], bool]) -> None:
+        self.path = Path(os.fsdecode(os.fspath(path)))
+        self.real = os.path.realpath(os.fspath(self.path))
+        self.owned = owned
+        self.in_place = os.path.ismount(self.real)
+        self.directory = self.path
+        self._stage = os.fspath(self.path)
+        if self.in_place:
+            return
+        stage = _hidden(self.real, STAGE_TAG)
+        try:
+            os.mkdir(stage, 0o700)  # private while written; given the old folder's mode at the swap
+        except OSError as exc:
+            if exc.errno in (errno.EACCES, errno.EPERM):  # a parent we may not write: in place
+                self.in_place = True
+                return
+            raise _output_error(exc, os.fspath(self.path)) from exc
+        self.directory = Path(stage)
+        self._stage = stage
+
+    def shown(self, written: PathLike) -> Path:
+        """``written`` (a path in :attr:`directory`) as the user sees it: in :attr:`path`."""
+        text = os.fsdecode(os.fspath(written))
+        base = self._stage
+        if text == base or text.startswith(base + os.sep):
+            return Path(os.fspath(self.path) + text[len(base):])
+        return Path(text)
+
+    def error(self, exc: OSError) -> OutputError:
+        """``exc`` as an :class:`OutputError` naming the user's path, never the hidden folder."""
+        name = exc.filename if isinstance(exc.filename, str) else os.fspath(self.path)
+        shown = os.fspath(self.shown(name))
+        if self._stage in shown:
+            shown = os.fspath(self.path)
+        code = exc.errno if exc.errno is not None else errno.EIO
+        return OutputError(code, exc.strerror or str(exc) or type(exc).__name__, shown)
+
+    def _through(self) -> None:
+        """The old folder's entries the new set replaces keep what they are, as a single file's
+        output does (see the module docstring): a regular file its permissions; a symlink (to a
+        file elsewhere), a FIFO or a character device stays in the folder and gets the new
+        bytes written through it (those files outside the folder are written at the swap,
+        before the exchange, each atomically)."""
+        stage = os.fspath(self.directory)
+        for name in os.listdir(stage):
+            old = os.path.join(self.real, name)
+            try:
+                st = os.lstat(old)
+            except FileNotFoundError:
+                continue
+            new = os.path.join(stage, name)
+            if stat.S_ISDIR(st.st_mode) or os.path.isdir(new):
+                continue
+            if stat.S_ISREG(st.st_mode):
+                if stat.S_IMODE(st.st_mode) != stat.S_IMODE(os.stat(new).st_mode):
+                    os.chmod(new, stat.S_IMODE(st.st_mode))
+                continue
+            with atomic_path(old, field="path") as tmp:
+                shutil.copyfile(new, tmp)
+            os.unlink(new)
+            _link_or_copy(old, new)
+
+    def _carry(self) -> None:
+        """Hard links (copies across file systems) into the new folder every entry of the old one
+        that is not the command's (:attr:`owned`), the lock file or a leftover temporary file:
+        what the user keeps in the folder stays there."""
+        stage = os.fspath(self.directory)
+        try:
+            entries = list(os.scandir(self.real))
+        except FileNotFoundError:
+            return
+        for entry in entries:
+            name = entry.name
+            if self.owned(name) or name == LOCK or _TEMPORARY.match(name):
+                continue
+            target = os.path.join(stage, name)
+            if os.path.lexists(target):  # written by the command under a name it does not own
+                continue
+            if entry.is_dir(follow_symlinks=False):
+                shutil.copytree(entry.path, target, symlinks=True, copy_function=_link_or_copy)
+                for folder, _, _ in os.walk(target):
+                    _fsync_directory(folder)
+            else:
+                _link_or_copy(entry.path, target)
+
+    def commit(self, lock_field: str) -> None:
+        """Swaps the new set in: the old folder's other entries are carried over, the new folder
+        takes the old one's permissions and a lock of its own (so that the folder's
+        :data:`LOCK` is held throughout), is flushed to disk, exchanged with the old folder in one
+        step (or, where that is not available, the old folder is renamed aside and the new one
+        into place), the parent directory is flushed and the old set removed. Ctrl-C is held
+        back from the permissions to the exchange. An exception before the exchange leaves the old
+        folder as it was."""
+        if self.in_place:
+            return
+        stage = os.fspath(self.directory)
+        self._through()
+        self._carry()
+        with sigint_deferred():
+            try:
+                st = os.stat(self.real)
+                os.chmod(stage, stat.S_IMODE(st.st_mode))
+                if hasattr(os, "chown"):
+                    try:
+                        os.chown(stage, st.st_uid, st.st_gid)
+                    except OSError:
+                        pass
+            except FileNotFoundError:
+                os.chmod(stage, 0o777 & ~_umask())
+            lock = lock_directory(stage, field=lock_field, busy="{holder}")
+            try:
+                _fsync_directory(stage)
+                parent = os.path.dirname(self.real)
+                if os.path.lexists(self.real):
+                    if not _exchange(stage, self.real):
+                        aside = _hidden(self.real, ASIDE_TAG, os.path.basename(stage)[-12:])
+                        os.rename(self.real, aside)
+                        try:
+                            os.rename(stage, self.real)
+                        except OSError:
+                            os.rename(aside, self.real)
+                            raise
+                        stage = aside
+                else:
+                    os.rename(stage, self.real)
+                    stage = ""
+                _fsync_directory(parent)
+            except BaseException:
+                lock.close()
+                raise
+            self.directory = self.path
+            if stage:
+                self._follow_cwd(stage)
+            unlock_directory(lock, self.path)
+        if stage:
+            _remove_tree(stage)  # the old set (holding the old lock file, still held by the caller)
+
+    def _follow_cwd(self, moved: str) -> None:
+        """A process whose working directory was the old folder (or inside it), now at ``moved``,
+        moves into the new folder at the old path: relative paths keep meaning what they meant."""
+        try:
+            here = os.getcwd()
+        except OSError:
+            return
+        if here != moved and not here.startswith(moved + os.sep):
+            return
+        for place in (self.real + here[len(moved):], self.real):
+            try:
+                os.chdir(place)
+                return
+            except OSError:
+                continue
+
+    def discard(self) -> None:
+        """Drops the new set: the old folder stays as it was."""
+        if not self.in_place and os.fspath(self.directory) != os.fspath(self.path):
+            _remove_tree(os.fspath(self.directory))
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+@contextmanager
+def replaced_folder(path: PathLike, *, owned: Callable[[str], bool], field: str = "path") -> Iterator[FolderWrite]:
+    """The output folder ``path`` replaced as a whole by what the ``with`` block writes into the
+    yielded :class:`FolderWrite`'s ``directory``: on a normal exit the new set is swapped in
+    (:meth:`FolderWrite.commit`), on an exception it is dropped and ``path`` keeps its old set.
+    Hold the folder's lock (:func:`lock_directory`) around it. ``owned`` tells the names of the
+    command's own files: the old folder's other entries are kept. An ``OSError`` becomes an
+    :class:`OutputError` naming the user's path (never the hidden folder)."""
+    folder = FolderWrite(path, owned)
+    try:
+        try:
+            yield folder
+            folder.commit(field)
+        except OSError as exc:
+            if isinstance(exc, OutputError) and os.fspath(folder.directory) not in os.fsdecode(exc.filename or ""):
+                raise
+            raise folder.error(exc) from exc
+    finally:
+        folder.discard()
+
+
+#: The ``allowed`` text of an output folder another run is writing to (see :func:`lock_directory`).
+BUSY_FOLDER = ("a folder no other run is writing to: it is locked by {holder} ({path}); wait for that run to "
+               "finish or choose another output directory")
+
+
+@contextmanager
+def writing_folder(path: PathLike, *, field: str, owned: Callable[[str], bool], command: Optional[str] = None,
+                   busy: str = BUSY_FOLDER) -> Iterator[FolderWrite]:
+    """An output folder written whole, for the ``with`` block: an old set moved aside by an
+    interrupted swap is put back (:func:`recover_folder`), the folder is created if needed and
+    locked (:func:`lock_directory`, ``busy`` its refusal), with ``command`` another command's
+    output in it is refused (:func:`refuse_foreign_folder`, also once locked), what an
+    interrupted run left beside it is removed (:func:`remove_leftovers`) and the new set is
+    written and swapped in (:func:`replaced_folder`, ``owned`` the command's own names). At the
+    end the lock is released and its file removed, as is the folder if it was created here and
+    is still empty. Check the destination first (:func:`check_destination`)."""
+    display = os.fsdecode(os.fspath(path))
+    check_directory_name(display, field)
+    recover_folder(display)
+    if command is not None:
+        refuse_foreign_folder(display, command, field=field)
+    key = os.path.realpath(display)
+    created = not os.path.isdir(key)
+    directory = make_directory(display)
+    try:
+        lock = lock_directory(directory, field=field, busy=busy)
+        try:
+            if command is not None:
+                refuse_foreign_folder(display, command, field=field)  # written by another command meanwhile
+            remove_leftovers(display)  # of an interrupted run (we hold the lock: no live run has them)
+            with replaced_folder(display, owned=owned, field=field) as folder:
+                yield folder
+        finally:
+            unlock_directory(lock, directory)
+    finally:
+        if created:
+            try:
+                os.rmdir(key)  # only if empty
+            except OSError:
+                pass

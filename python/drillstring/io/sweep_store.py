@@ -34,15 +34,11 @@ Guarantees
 
 from __future__ import annotations
 
-import contextlib
 import errno
 import hashlib
 import json
 import os
-import signal
 import stat
-import threading
-from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, TYPE_CHECKING, Any, Optional
 
@@ -54,7 +50,9 @@ from .output import (
     check_directory_name,
     lock_directory,
     read_regular,
+    recover_folder,
     refuse_foreign_folder,
+    sigint_deferred,
     write_bytes,
 )
 
@@ -76,27 +74,8 @@ def _atomic_write(path: Path, data: bytes) -> None:
     write_bytes(path, data, field="out_dir")
 
 
-@contextlib.contextmanager
-def _sigint_deferred() -> Iterator[None]:
-    """Holds back SIGINT (Ctrl-C) for the body: a signal received meanwhile is handed to the
-    previous handler (normally raising KeyboardInterrupt) when the body ends. Only the main
-    thread can change handlers; elsewhere, or when the handler is not a Python callable, the body
-    runs as it is."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.getsignal(signal.SIGINT)
-    if not callable(previous):
-        yield
-        return
-    received: list[tuple[int, Any]] = []
-    signal.signal(signal.SIGINT, lambda signum, frame: received.append((signum, frame)))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-        if received:
-            previous(*received[0])
+#: Holds back Ctrl-C while a chunk and its record are written (:func:`drillstring.io.output.sigint_deferred`).
+_sigint_deferred = sigint_deferred
 
 
 def _sha256(data: bytes) -> str:
@@ -166,6 +145,7 @@ class SweepStore:
         """
         check_directory_name(out_dir, "out_dir")
         root = Path(os.fspath(out_dir))
+        recover_folder(root)  # a map's folder whose swap (write_map_files) was interrupted midway
         refuse_foreign_folder(root, "drill-map" if manifest.get("format") == MAP_FORMAT else "sweep", field="out_dir")
         try:
             root.mkdir(parents=True, exist_ok=True)

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import plots
 from ..errors import ValidationError
-from ..io.output import check_destination, make_directory, write_bytes, write_text
+from ..io.output import check_destination, write_bytes, write_text, writing_folder
 from ..io.progress import bar as progress_bar
 from ..model.parameters import preset
 from ..studies import analysis
@@ -157,89 +157,96 @@ def reproduce(
         )
     check_destination(out_dir, field="out_dir", directory=True, files=output_names(convergence))
     start = time.perf_counter()
-    out = make_directory(out_dir)
-    stream = _progress_stream(progress)
-    scale = float(t_end_scale)
-    if command is None:
-        command = f"drillstring paper --out {out}" + ("" if scale == 1.0 else f" --t-end-scale {scale:g}")
-        if samples_per_second != SAMPLES_PER_SECOND:
-            command += f"  # samples_per_second={samples_per_second}"
-    runs = Runs(scale, samples_per_second)
-    timings: dict[str, float] = {}
-    files: list[Path] = []
-    images: dict[str, bytes] = {}
+    with writing_folder(out_dir, field="out_dir", owned=_owned) as folder:
+        out, at = folder.path, folder.directory
+        stream = _progress_stream(progress)
+        scale = float(t_end_scale)
+        if command is None:
+            command = f"drillstring paper --out {out}" + ("" if scale == 1.0 else f" --t-end-scale {scale:g}")
+            if samples_per_second != SAMPLES_PER_SECOND:
+                command += f"  # samples_per_second={samples_per_second}"
+        runs = Runs(scale, samples_per_second)
+        timings: dict[str, float] = {}
+        files: list[Path] = []
+        images: dict[str, bytes] = {}
 
-    # On a terminal a tqdm bar of the steps under the lines; elsewhere the lines alone.
-    bar = progress_bar(len(specs.FIGURES) + (4 if convergence else 3), "paper", "steps",
-                       enabled=stream is not None and bool(getattr(stream, "isatty", lambda: False)()))
+        # On a terminal a tqdm bar of the steps under the lines; elsewhere the lines alone.
+        bar = progress_bar(len(specs.FIGURES) + (4 if convergence else 3), "paper", "steps",
+                           enabled=stream is not None and bool(getattr(stream, "isatty", lambda: False)()))
 
-    def tick(label: str, seconds: float) -> None:
-        timings[label] = seconds
-        if stream is not None:
-            bar.write(f"{label} ... {seconds:.1f} s", file=stream)
-            bar.update(1)
+        def tick(label: str, seconds: float) -> None:
+            timings[label] = seconds
+            if stream is not None:
+                bar.write(f"{label} ... {seconds:.1f} s", file=stream)
+                bar.update(1)
 
-    t0 = time.perf_counter()
-    ctx = references(runs)
-    ctx["rigid"] = float(analyse(preset("aluminum"), modes=1, rigid_mode=True).mode_eigenvalues[0].real)
-    tick("[ 0/15] simulations and reference values", time.perf_counter() - t0)
-    results: list[FigureResult] = []
-    total = len(specs.FIGURES)
-    for spec in specs.FIGURES:
         t0 = time.perf_counter()
-        window = (spec.window[0] * scale, spec.window[1] * scale)
-        title = spec.caption if scale == 1.0 else f"{spec.caption} (quick run, times x{scale:g})"
-        fig = _plot(spec, runs, window, title)
-        png = out / f"{spec.stem}.png"
-        image = io.BytesIO()
-        fig.savefig(image, dpi=DPI, format="png")
-        images[png.name] = image.getvalue()
-        write_bytes(png, images[png.name], field="out_dir")
-        header, data = _figure_table(spec, runs, window)
-        csv_path = out / f"{spec.stem}.csv"
-        _write_csv(csv_path, header, data)
-        curves = measure(spec, runs, window)
-        findings, verdict = assess(spec.number, curves, ctx)
-        keys = list(dict.fromkeys(key for key, _, _ in spec.runs))
-        python = [f"{key} = {RUNS[key].python(scale, samples_per_second)}" for key in keys]
-        cli = [c for c in (RUNS[key].cli(scale, samples_per_second) for key in keys) if c]
-        python.append(_plot_call(spec, window))
-        seconds = time.perf_counter() - t0
-        results.append(FigureResult(spec.number, spec.caption, spec.kind, png, csv_path, curves,
-                                    spec.claim, findings, verdict, seconds, python, cli))
-        files += [png, csv_path]
-        tick(f"[{spec.number:2d}/{total}] {spec.stem} {spec.name}", seconds)
-    t0 = time.perf_counter()
-    rows2 = table2()
-    write_table2_csv(rows2, out / "table2.csv")
-    files.append(out / "table2.csv")
-    srows = stability_rows()
-    _write_stability_csv(srows, out / "stability.csv")
-    files.append(out / "stability.csv")
-    tick("        table 2 and stability", time.perf_counter() - t0)
-    study = None
-    if convergence:
+        ctx = references(runs)
+        ctx["rigid"] = float(analyse(preset("aluminum"), modes=1, rigid_mode=True).mode_eigenvalues[0].real)
+        tick("[ 0/15] simulations and reference values", time.perf_counter() - t0)
+        results: list[FigureResult] = []
+        total = len(specs.FIGURES)
+        for spec in specs.FIGURES:
+            t0 = time.perf_counter()
+            window = (spec.window[0] * scale, spec.window[1] * scale)
+            title = spec.caption if scale == 1.0 else f"{spec.caption} (quick run, times x{scale:g})"
+            fig = _plot(spec, runs, window, title)
+            png = out / f"{spec.stem}.png"
+            image = io.BytesIO()
+            fig.savefig(image, dpi=DPI, format="png")
+            images[png.name] = image.getvalue()
+            write_bytes(at / png.name, images[png.name], field="out_dir")
+            header, data = _figure_table(spec, runs, window)
+            csv_path = out / f"{spec.stem}.csv"
+            _write_csv(at / csv_path.name, header, data)
+            curves = measure(spec, runs, window)
+            findings, verdict = assess(spec.number, curves, ctx)
+            keys = list(dict.fromkeys(key for key, _, _ in spec.runs))
+            python = [f"{key} = {RUNS[key].python(scale, samples_per_second)}" for key in keys]
+            cli = [c for c in (RUNS[key].cli(scale, samples_per_second) for key in keys) if c]
+            python.append(_plot_call(spec, window))
+            seconds = time.perf_counter() - t0
+            results.append(FigureResult(spec.number, spec.caption, spec.kind, png, csv_path, curves,
+                                        spec.claim, findings, verdict, seconds, python, cli))
+            files += [png, csv_path]
+            tick(f"[{spec.number:2d}/{total}] {spec.stem} {spec.name}", seconds)
         t0 = time.perf_counter()
-        quick: dict[str, Any] = {} if scale == 1.0 else {"cells": 60, "max_nodes": 241, "tol": 1e-3,
-                                                          "modes": (1, 2, 3, 6)}
-        study = _convergence.study(preset("aluminum"), t_end=scale, samples=max(201, int(1000 * scale) + 1),
-                                   **quick)
-        rendered = _convergence.render(study)
-        files += [write_bytes(out / name, data, field="out_dir") for name, data in rendered.items()]
-        images.update((name, data) for name, data in rendered.items() if name.endswith(".png"))
-        tick("        truncation study against the PDE", time.perf_counter() - t0)
-    t0 = time.perf_counter()
-    rep = ReproductionReport(out, scale, samples_per_second, results, rows2, srows, files, timings, 0.0)
-    rep.notes = {"context": ctx, "convergence": study, "physics": physics_notes()}
-    rep.total_seconds = time.perf_counter() - start
-    doc = document.build(rep, ctx, command)
-    write_text(rep.report_md, render.markdown(doc), field="out_dir")
-    write_text(rep.report_html, render.html(doc, images), field="out_dir")
-    files += [rep.report_md, rep.report_html]
-    tick("        report.md, report.html", time.perf_counter() - t0)
-    bar.close()
-    rep.total_seconds = time.perf_counter() - start
-    return rep
+        rows2 = table2()
+        write_table2_csv(rows2, at / "table2.csv")
+        files.append(out / "table2.csv")
+        srows = stability_rows()
+        _write_stability_csv(srows, at / "stability.csv")
+        files.append(out / "stability.csv")
+        tick("        table 2 and stability", time.perf_counter() - t0)
+        study = None
+        if convergence:
+            t0 = time.perf_counter()
+            quick: dict[str, Any] = {} if scale == 1.0 else {"cells": 60, "max_nodes": 241, "tol": 1e-3,
+                                                              "modes": (1, 2, 3, 6)}
+            study = _convergence.study(preset("aluminum"), t_end=scale, samples=max(201, int(1000 * scale) + 1),
+                                       **quick)
+            rendered = _convergence.render(study)
+            files += [folder.shown(write_bytes(at / name, data, field="out_dir")) for name, data in rendered.items()]
+            images.update((name, data) for name, data in rendered.items() if name.endswith(".png"))
+            tick("        truncation study against the PDE", time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        rep = ReproductionReport(out, scale, samples_per_second, results, rows2, srows, files, timings, 0.0)
+        rep.notes = {"context": ctx, "convergence": study, "physics": physics_notes()}
+        rep.total_seconds = time.perf_counter() - start
+        doc = document.build(rep, ctx, command)
+        write_text(at / rep.report_md.name, render.markdown(doc), field="out_dir")
+        write_text(at / rep.report_html.name, render.html(doc, images), field="out_dir")
+        files += [rep.report_md, rep.report_html]
+        tick("        report.md, report.html", time.perf_counter() - t0)
+        bar.close()
+        rep.total_seconds = time.perf_counter() - start
+        return rep
+
+
+def _owned(name: str) -> bool:
+    """Whether ``name`` is a file of the reproduction (:func:`output_names`): replaced by each
+    run; the folder's other entries are kept."""
+    return name in _ALL_NAMES
 
 
 def output_names(convergence: bool = True) -> list[str]:
@@ -280,3 +287,6 @@ def _plot_call(spec: FigureSpec, window: tuple[float, float]) -> str:
     func = "section_response" if spec.kind == "section" else "section_phase_portrait"
     runs = "{" + ", ".join(f"{label!r}: {key}" for key, label, _ in spec.runs) + "}"
     return f"fig = ds.plots.{func}({runs}, {win}, {title})"
+
+
+_ALL_NAMES = frozenset(output_names(True))
