@@ -595,10 +595,10 @@ def _add_drill(sub: Any) -> None:
 
 def _add_units(p: argparse.ArgumentParser) -> None:
     """``--units si|field``, the unit system of a command's console lines and figures."""
-    p.add_argument("--units", choices=("si", "field"), default="si",
+    p.add_argument("--units", choices=("si", "field"), default=None,
                    help="the unit system of the console lines and the figures (field: ft, klbf, kft-lbf, ...) and, "
-                   "for drill, of a converted copy of the metrics in metrics.json (output_units); the data files "
-                   "keep their SI values (default si; the configuration's own units key sets how it is read)")
+                   "for drill, of report.md and of a converted copy of the metrics in metrics.json (output_units); "
+                   "the data files keep their SI values (default: the configuration's units key, si without one)")
 
 
 def _change(kind: str, change: Optional[float]) -> str:
@@ -626,7 +626,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
         seconds = time.perf_counter() - start
         m = result.metrics
-        system = args.units
+        system = args.units or config.units
         status = (result.status if result.metrics_finite
                   else f"{result.status}; no rotation: no torsional metrics"
                   if not result.rotating and result.coupled_metrics is not None
@@ -670,7 +670,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
             _say(f"warning: {warning}")
-        written = _write_files(result, directory, plots, args.units)
+        written = _write_files(result, directory, plots, system)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0
 
@@ -731,10 +731,11 @@ def _cmd_torque_drag(args: argparse.Namespace) -> int:
     result = torque_drag(config)
     seconds = time.perf_counter() - start
     s = result.summary
-    force, force_unit = axis_unit("N", args.units, kilo=True)  # kN or klbf
-    torque, torque_unit = axis_unit("N*m", args.units, kilo=True)
-    normal, normal_unit = axis_unit("N/m", args.units)
-    depth, depth_unit = axis_unit("m", args.units)
+    units = args.units or config.units
+    force, force_unit = axis_unit("N", units, kilo=True)  # kN or klbf
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
+    normal, normal_unit = axis_unit("N/m", units)
+    depth, depth_unit = axis_unit("m", units)
     _say(f"torque-drag: {config.length * depth:.6g} {depth_unit} string, solved in {seconds:.2g} s (with the "
          "broomstick sweep)")
     _say(f"hook load: pick-up {s['hook_load_pickup_N'] * force:.1f} {force_unit}, slack-off "
@@ -745,7 +746,7 @@ def _cmd_torque_drag(args: argparse.Namespace) -> int:
          f"{s['surface_torque_on_bottom_Nm'] * torque:.2f} {torque_unit}; largest normal force "
          f"{s['max_normal_force_N_per_m'] * normal:.0f} {normal_unit} at {s['max_normal_force_md'] * depth:.0f} "
          f"{depth_unit} ({s['max_normal_force_operation']})")
-    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=args.units)
+    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=units)
     _say(f"wrote {len(written)} files to {args.out}")
     return 0
 
@@ -944,7 +945,8 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     client = _dask_client(args.scheduler)
     start = time.perf_counter()
     try:
-        frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
+        # the axes are SI now (check_axis read them in the configuration's units)
+        frame = drill_map(config.with_units("si"), axes, threads=args.threads, progress=_show_progress(args), out=args.out,
                           chunk_size=args.chunk_size, client=client,
                           name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0])
     except KeyboardInterrupt:
@@ -985,7 +987,7 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
         from .drilling.maps import map_figures
         from .io.figures import save
 
-        for name, fig in map_figures(frame, args.units).items():
+        for name, fig in map_figures(frame, args.units or config.units).items():
             written.append(save(fig, os.path.join(args.out, name)))
     _say(f"wrote {len(written)} files to {args.out} (and the resumable store: manifest.json, chunks/)")
     return 0

@@ -123,9 +123,11 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     type (``top_drive.rpm`` takes numbers, ``bit.on_bottom`` true/false, ...) is refused before
     anything is solved; and all of one kind (numbers, strings, true/false or lists, and ``None``:
     one column of the table). A number with a unit (``"5 in"``) is converted to the key's SI unit
-    (:mod:`drillstring.drilling.units`). Raises :class:`~drillstring.errors.ValidationError`
+    (:mod:`drillstring.drilling.units`), and a plain number is in the unit system of ``config``
+    (:attr:`DrillConfig.units`: a field file's axes are in field units). Raises :class:`~drillstring.errors.ValidationError`
     naming ``field`` (the dotted path for a path error)."""
-    plain = [_si_value(key, _plain_value(v, field), field) for v in values]
+    system, chosen = (config.units, config.chosen_units()) if config is not None else ("si", {})
+    plain = [_si_value(key, _plain_value(v, field), field, system, chosen) for v in values]
     base = config.to_json() if config is not None else json.dumps(_core.drill_defaults())
     # the path (malformed, an index out of range, a key through a value): the core's message as it is
     _core.drill_config_override(base, json.dumps([[key, plain[0] if plain else None]]), field, parse=False)
@@ -143,10 +145,11 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     return plain
 
 
-def _si_value(key: str, value: Any, field: str) -> Any:
-    """An axis value with its quantities in SI; a bad unit named as the axis's."""
+def _si_value(key: str, value: Any, field: str, system: str, chosen: Mapping[str, tuple[str, str]]) -> Any:
+    """An axis value with its quantities in SI, plain numbers in the unit system ``system``; a
+    bad unit named as the axis's."""
     try:
-        return override_to_si(key, value)
+        return override_to_si(key, value, system, chosen)
     except ValidationError as exc:
         raise ValidationError(field, value, f"a value of {key}: {exc.allowed}") from None
 
@@ -172,7 +175,7 @@ def _map_config(config: ConfigLike) -> DrillConfig:
     """The base configuration of a map with ``numerics.field_interval = 0``: a map keeps no field
     snapshots, so their size must neither refuse it nor count in its memory."""
     if isinstance(config, DrillConfig):
-        return config.with_overrides({"numerics.field_interval": 0.0})
+        return config.with_overrides({"numerics.field_interval": 0.0}, units="si")
     source: Optional[str] = None
     if isinstance(config, (str, os.PathLike)):
         source = os.fsdecode(os.fspath(config))

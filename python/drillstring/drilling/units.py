@@ -29,7 +29,8 @@ from .. import _core
 from ..errors import ValidationError
 
 __all__ = [
-    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "axis_unit", "convert", "field_unit", "override_to_si",
+    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "axis_unit", "chosen_units", "convert", "field_unit",
+    "hoist_after", "override_to_si",
     "quantity", "shown", "shown_unit", "system_of", "to_si",
 ]
 
@@ -38,8 +39,11 @@ SYSTEMS: tuple[str, ...] = ("si", "field")
 
 #: The field unit of each SI unit of the reference and of the outputs (units as pint parses them;
 #: ``ppg`` is pounds per US gallon; ``N/m`` and ``N*m/m``, the normal force and the friction limit
-#: per length, and ``m/h``, a coupled run's rate of penetration, only in outputs). SI units not
-#: listed (rpm, s, Hz, deg, rad/s, 1/s, m/s, dimensionless) are the same in both systems.
+#: per length, and ``m/h``, a coupled run's rate of penetration, only in outputs). Axial speeds
+#: (``m/s``: the block velocity, the autodriller's ROP setpoint and its limits) are in ft/h, the
+#: unit of the rate of penetration the block drives, as the figures draw them; the autodriller's
+#: gains on the weight on bit in (ft/h)/klbf and (ft/h)/(klbf s). SI units not listed (rpm, s,
+#: Hz, deg, rad/s, 1/s, dimensionless) are the same in both systems.
 FIELD_UNITS: dict[str, str] = {
     "m": "ft",
     "m^2": "in^2",
@@ -58,16 +62,21 @@ FIELD_UNITS: dict[str, str] = {
     "N/m": "lbf/ft",
     "N*m/m": "ft*lbf/ft",
     "m/h": "ft/h",
+    "m/s": "ft/h",
+    "m/(N*s)": "ft/h/klbf",
+    "m/(N*s^2)": "ft/h/klbf/s",
 }
 
 #: Keys whose field unit is not their SI unit's in :data:`FIELD_UNITS`: diameters and the bit's
-#: size in inches.
+#: lengths (its size, the wear flats) in inches; every other length of the reference (section
+#: lengths, depths, plan holds, the torque-and-drag element) is in ft.
 FIELD_UNITS_BY_KEY: dict[str, str] = {
     "sections[].outer_diameter": "in",
     "sections[].inner_diameter": "in",
     "sections[].contact_diameter": "in",
     "bit.radius": "in",
     "bit.diameter": "in",
+    "bit.detournay.wear_flat_length": "in",
 }
 
 #: How unit systems are named in messages.
@@ -115,16 +124,19 @@ def _magnitude(value: Any, unit: str) -> float:
 
 
 def _in(number: float, unit: str) -> Any:
-    """The float ``number`` (its exact binary value) as a quantity in ``unit``."""
-    return Decimal(number) * _expression(unit)
+    """The float ``number`` as a quantity in ``unit``: the decimal of its shortest repr (the
+    number as written, ``5.123`` and not its binary neighbour), so that a plain number converts
+    to the same float as the string ``"5.123 in"``."""
+    return (Decimal(repr(number)) if isinstance(number, float) else Decimal(number)) * _expression(unit)
 
 
-def field_unit(key: str) -> Optional[str]:
+def field_unit(key: str, unit: Optional[str] = None) -> Optional[str]:
     """The field unit of the reference key ``key`` (``sections[].outer_diameter``), or None when
-    the key is no number or its field unit is its SI unit."""
+    the key is no number or its field unit is its SI unit. ``unit``: the key's SI unit where its
+    mode chooses it (:func:`chosen_units`), else the reference's."""
     if key in FIELD_UNITS_BY_KEY:
         return FIELD_UNITS_BY_KEY[key]
-    unit = _unit_of(key)
+    unit = unit if unit is not None else _unit_of(key)
     return FIELD_UNITS.get(unit) if unit is not None else None
 
 
@@ -157,6 +169,7 @@ _DIMENSIONS = {
     "rad/s": "angular speed", "rpm": "angular speed", "s/rad": "time per angle", "s": "time", "1/s": "rate",
     "Hz": "frequency", "N": "force", "N*m": "torque", "kg*m^2": "moment of inertia", "kg": "mass",
     "N*m*s/rad": "torque per angular speed", "N*m/rad": "torque per angle", "m/s": "speed", "1": "dimensionless",
+    "m/(N*s)": "speed per force", "m/(N*s^2)": "speed per force and time",
 }
 
 
@@ -166,12 +179,43 @@ def _dimension(unit: str) -> str:
     return _DIMENSIONS.get(unit) or str(_expression(unit or "1").dimensionality)
 
 
-def quantity(path: str, value: Any, system: str = "si") -> Any:
+def chosen_units(hoist: Any) -> dict[str, tuple[str, str]]:
+    """The SI unit of each key whose unit is its target's (``hoist.steps[][1]``: ``m/s or N``;
+    ``hoist.autodriller.setpoint``: ``N or m/s``; the autodriller's gains), as the hoist table
+    ``hoist`` (a plain mapping, None without a hoist) chooses it by its ``mode`` and its
+    autodriller's ``target`` (their defaults where unset): ``{key: (unit, why)}``, ``why`` the
+    setting that chose it for messages (``hoist.mode = "velocity"``). A mode or target that is not
+    one of the core's is left out (the core refuses it)."""
+    if not isinstance(hoist, Mapping):
+        return {}
+    schema = _schema()
+    mode = hoist.get("mode") or schema["hoist.mode"]["default"]
+    autodriller = hoist.get("autodriller")
+    target = (autodriller.get("target") if isinstance(autodriller, Mapping) else None) \
+        or schema["hoist.autodriller.target"]["default"]
+    out: dict[str, tuple[str, str]] = {}
+    by_target = {"weight_on_bit": ("N", "m/(N*s)", "m/(N*s^2)"), "rop": ("m/s", "1", "1/s")}.get(str(target))
+    why_target = f'hoist.autodriller.target = "{target}"'
+    if by_target is not None:
+        for name, unit in zip(("setpoint", "kp", "ki"), by_target):
+            out[f"hoist.autodriller.{name}"] = (unit, why_target)
+    step = {"velocity": "m/s", "hook_load": "N", "weight_on_bit": "N",
+            "autodriller": by_target[0] if by_target else None}.get(str(mode))
+    if step is not None:
+        why = f'hoist.mode = "{mode}"' + (f" and {why_target}" if mode == "autodriller" else "")
+        out["hoist.steps[][1]"] = (step, why)
+    return out
+
+
+def quantity(path: str, value: Any, system: str = "si",
+             chosen: Optional[Mapping[str, tuple[str, str]]] = None) -> Any:
     """The value of the configuration field ``path`` (``sections[1].outer_diameter``) in the
     core's SI unit: a string with a unit (``"5 in"``) converted, a plain number (or a string
     without a unit) in ``system``'s unit of the key; anything else (a name, a boolean, a key
     that takes no number, a string that does not start with a number) unchanged: the core
-    refuses what is wrong there.
+    refuses what is wrong there. ``chosen`` (:func:`chosen_units`) gives the unit of a key whose
+    unit is its target's (the hoist's steps, the autodriller's setpoint and gains): a quantity
+    must be of that unit's dimension and a plain number is in ``system``'s unit of it.
 
     Raises
     ------
@@ -181,6 +225,10 @@ def quantity(path: str, value: Any, system: str = "si") -> Any:
     """
     key = _key(path)
     unit = _unit_of(key)
+    why = ""
+    if unit is not None and chosen and key in chosen:
+        unit, why = chosen[key]
+        why = f" ({why})"
     if unit is None or isinstance(value, bool):
         return value
     if isinstance(value, str):
@@ -200,9 +248,9 @@ def quantity(path: str, value: Any, system: str = "si") -> Any:
                     return _magnitude(parsed, choice)
                 except Exception:  # pint's DimensionalityError
                     continue
-            raise ValidationError(path, value, _expected(key, unit, f"a quantity of {_dimension(unit)}"))
+            raise ValidationError(path, value, _expected(key, unit, f"a quantity of {_dimension(unit)}{why}"))
     if system == "field" and isinstance(value, (int, float)) and math.isfinite(value):
-        source = field_unit(key)
+        source = field_unit(key, unit)
         if source is not None:
             return _magnitude(_in(value, source), unit)
     return value
@@ -215,21 +263,21 @@ def _is_number(parsed: Any) -> bool:
 
 def _expected(key: str, unit: str, what: str) -> str:
     """What a numeric field takes, for messages."""
-    if not unit:
+    if not unit or unit == "1":
         return f"{what}: a dimensionless number (a string such as \"30 %\" is read too)"
-    field = field_unit(key)
+    field = field_unit(key, unit)
     return f"{what}: a number (in {unit}) or a string with a unit of {_dimension(unit)}, e.g. \"1.5 {field or unit}\""
 
 
-def _convert(path: str, value: Any, system: str) -> Any:
+def _convert(path: str, value: Any, system: str, chosen: Mapping[str, tuple[str, str]]) -> Any:
     """``value`` at ``path`` with every quantity in SI (tables and lists entry by entry)."""
     if isinstance(value, Mapping):
-        return {k: _convert(f"{path}.{k}" if path else str(k), v, system) for k, v in value.items()}
+        return {k: _convert(f"{path}.{k}" if path else str(k), v, system, chosen) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_convert(f"{path}[{i}]", v, system) for i, v in enumerate(value)]
+        return [_convert(f"{path}[{i}]", v, system, chosen) for i, v in enumerate(value)]
     if value is None:
         return value
-    return quantity(path, value, system)
+    return quantity(path, value, system, chosen)
 
 
 def system_of(value: Any, field: str = "units") -> str:
@@ -245,13 +293,38 @@ def to_si(config: Mapping[str, Any]) -> dict[str, Any]:
     system of its top-level ``units`` key (``si`` when absent; the key is removed)."""
     data = dict(config)
     system = system_of(data.pop("units", "si"))
-    return _convert("", data, system)
+    return _convert("", data, system, chosen_units(data.get("hoist")))
 
 
-def override_to_si(key: str, value: Any) -> Any:
+def override_to_si(key: str, value: Any, system: str = "si",
+                   chosen: Optional[Mapping[str, tuple[str, str]]] = None) -> Any:
     """The value of an override of the dotted key ``key`` (``sections[1].outer_diameter``, a
-    table such as ``bit``) with its quantities in SI (plain numbers are SI)."""
-    return _convert(key, value, "si")
+    table such as ``bit``) with its quantities in SI: plain numbers in ``system``'s unit of the
+    key (a configuration's own system, :attr:`DrillConfig.units
+    <drillstring.drilling.config.DrillConfig.units>`), the hoist's and the autodriller's
+    alternatives as ``chosen`` (:func:`chosen_units`) says."""
+    return _convert(key, value, system_of(system), chosen or {})
+
+
+def hoist_after(hoist: Any, pairs: Any) -> Any:
+    """The hoist table ``hoist`` (plain, None without a hoist) after the overrides ``pairs``
+    (``(dotted key, value)``) of its mode and its autodriller's target: what
+    :func:`chosen_units` reads for the values of the same overrides."""
+    table = dict(hoist) if isinstance(hoist, Mapping) else None
+    for key, value in pairs:
+        key = str(key).replace(" ", "")
+        if key == "hoist":
+            table = dict(value) if isinstance(value, Mapping) else None
+        elif key.startswith("hoist."):
+            table = dict(table or {})
+            if key == "hoist.mode":
+                table["mode"] = value
+            elif key == "hoist.autodriller":
+                table["autodriller"] = value
+            elif key == "hoist.autodriller.target":
+                autodriller = table.get("autodriller")
+                table["autodriller"] = {**(autodriller if isinstance(autodriller, Mapping) else {}), "target": value}
+    return table
 
 
 def convert(value: Optional[float], unit: str, system: str, *, key: Optional[str] = None
@@ -271,7 +344,9 @@ def convert(value: Optional[float], unit: str, system: str, *, key: Optional[str
 
 #: How units are written on the console.
 _SHOWN = {"N*m": "N m", "ft*lbf": "ft-lbf", "kg*m^2": "kg m^2", "lb*ft^2": "lb ft^2", "N*m/m": "N m/m",
-          "ft*lbf/ft": "ft-lbf/ft", "deg/(30 m)": "deg/30 m", "deg/(100 ft)": "deg/100 ft"}
+          "ft*lbf/ft": "ft-lbf/ft", "deg/(30 m)": "deg/30 m", "deg/(100 ft)": "deg/100 ft",
+          "ft/h/klbf": "(ft/h)/klbf", "ft/h/klbf/s": "(ft/h)/(klbf s)", "ft*lbf*s/rad": "ft-lbf s/rad",
+          "ft*lbf/rad": "ft-lbf/rad", "N*m*s/rad": "N m s/rad", "N*m/rad": "N m/rad"}
 
 
 def shown_unit(unit: str, system: str, *, kilo: bool = False) -> str:

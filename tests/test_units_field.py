@@ -1,0 +1,323 @@
+"""A field-units configuration end to end: plain numbers of ``--set``, ``with_overrides``, a map's
+axes, a fit's bounds and every series, step and setpoint are read in the file's unit system;
+speeds and the bit's small lengths have their oilfield units; a quantity of the wrong dimension
+for the hoist's mode is refused. Exact factors: 1 ft = 0.3048 m, 1 in = 0.0254 m,
+1 lbf = 4.4482216152605 N, 1 lb = 0.45359237 kg, 1 US gal = 3.785411784 L."""
+
+from __future__ import annotations
+
+import math
+import sys
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import pytest
+from _cli import one_line_error, run_cli
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from drillstring.drilling import DrillConfig, load_drill_config
+from drillstring.drilling.maps import check_axis
+from drillstring.drilling.units import FIELD_UNITS, FIELD_UNITS_BY_KEY, field_unit, to_si
+from drillstring.errors import ValidationError
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+pytest.importorskip("pint")
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+FT, INCH, LBF, LB, GAL = 0.3048, 0.0254, 4.4482216152605, 0.45359237, 3.785411784e-3
+FT_PER_H = FT / 3600.0
+
+
+def _close(a: float, b: float, rel: float = 4e-16) -> bool:
+    return abs(a - b) <= rel * abs(b)
+
+
+def _pickup(**changes: Any) -> dict[str, Any]:
+    """examples/pickup-3200m.toml (a coupled configuration) as a document, tables updated."""
+    document = tomllib.loads((EXAMPLES / "pickup-3200m.toml").read_text())
+    for table, values in changes.items():
+        if isinstance(values, dict) and isinstance(document.get(table), dict):
+            document[table] = {**document[table], **values}
+        else:
+            document[table] = values
+    return document
+
+
+def _field_file(tmp_path: Path, text: str = "") -> Path:
+    path = tmp_path / "field.toml"
+    path.write_text((EXAMPLES / "on-bottom-3000m-field.toml").read_text() + text)
+    return path
+
+
+# ---------------------------------------------------------------- 1. plain numbers of overrides
+
+
+def test_a_field_file_remembers_its_unit_system() -> None:
+    field = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml")
+    si = load_drill_config(EXAMPLES / "on-bottom-3000m.toml")
+    assert field.units == "field" and si.units == "si"
+    assert field.with_overrides({"top_drive.rpm": 60}).units == "field"
+    assert field.with_units("si").units == "si" and field.with_units("si") == field
+    with pytest.raises(ValidationError, match="units"):
+        field.with_units("imperial")
+
+
+def test_with_overrides_reads_plain_numbers_in_the_files_units() -> None:
+    field = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml")
+    changed = field.with_overrides(["sections[0].outer_diameter=5.5", "bit.weight_on_bit=20",
+                                    "sections[1].length=700", "well.mud_density=11"])
+    assert changed.sections[0].outer_diameter == 5.5 * INCH
+    assert _close(changed.bit.weight_on_bit, 20e3 * LBF)
+    assert _close(changed.sections[1].length, 700 * FT)
+    assert _close(changed.well.mud_density, 11 * LB / GAL)
+    # a string with a unit is read in its own unit, and units="si" reads plain numbers as SI
+    assert field.with_overrides({"sections[0].outer_diameter": "0.14 m"}).sections[0].outer_diameter == 0.14
+    assert field.with_overrides({"bit.weight_on_bit": 80e3}, units="si").bit.weight_on_bit == 80e3
+    # an SI file's plain numbers stay SI
+    si = load_drill_config(EXAMPLES / "on-bottom-3000m.toml")
+    assert si.with_overrides({"bit.weight_on_bit": 80e3}).bit.weight_on_bit == 80e3
+
+
+def test_set_in_a_field_file_gives_the_pickup_of_the_field_value(tmp_path: Path,
+                                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    config = str(EXAMPLES / "on-bottom-3000m-field.toml")
+    lines = []
+    for n, value in enumerate(("5", "'5 in'")):
+        code, out, _ = run_cli(capsys, "torque-drag", config, "--out", str(tmp_path / f"td{n}"), "--no-plots",
+                               "--set", f"sections[0].outer_diameter={value}")
+        assert code == 0
+        lines.append(next(line for line in out.splitlines() if line.startswith("hook load")))
+    assert lines[0] == lines[1] and "klbf" in lines[0]  # the same pick-up, in the file's units
+    pickup = float(lines[0].split("pick-up ")[1].split()[0])
+    assert 100 < pickup < 400  # not the 871,097 klbf of a 5 m pipe
+
+
+def test_map_axes_of_a_field_file_are_field_units() -> None:
+    field = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml")
+    values = check_axis("bit.weight_on_bit", [10.0, 20.0, 30.0, 40.0], "--axis", field)
+    assert all(_close(v, w * 1e3 * LBF) for v, w in zip(values, (10, 20, 30, 40)))
+    assert check_axis("sections[0].outer_diameter", [5.0, "0.14 m"], "--axis", field) == [0.127, 0.14]
+    si = load_drill_config(EXAMPLES / "on-bottom-3000m.toml")
+    assert check_axis("bit.weight_on_bit", [10.0], "--axis", si) == [10.0]
+
+
+def test_drill_map_axis_in_a_field_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import pandas as pd
+
+    code, out, err = run_cli(capsys, "drill-map", str(EXAMPLES / "on-bottom-3000m-field.toml"),
+                             "--axis", "bit.weight_on_bit=10:40:4", "--set", "numerics.duration=0.5",
+                             "--set", "numerics.cells=40", "--out", str(tmp_path / "map"), "--no-plots",
+                             "--threads", "1")
+    assert code == 0, err
+    frame = pd.read_parquet(tmp_path / "map" / "map.parquet")
+    assert all(_close(v, w * 1e3 * LBF, 1e-15) for v, w in zip(frame["bit.weight_on_bit"], (10, 20, 30, 40)))
+
+
+def test_fit_bounds_of_a_field_file_are_field_units() -> None:
+    from drillstring.calibration.fit import _bounds
+
+    field = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml")
+    bounds = _bounds({"bit.weight_on_bit": (10, 40), "friction.static": (0.05, 0.5),
+                      "sections[1].outer_diameter": ("6 in", 7)}, field)
+    assert _close(bounds["bit.weight_on_bit"][0], 10e3 * LBF) and _close(bounds["bit.weight_on_bit"][1], 40e3 * LBF)
+    assert bounds["friction.static"] == (0.05, 0.5)
+    assert bounds["sections[1].outer_diameter"] == (0.1524, 0.1778)  # exact decimal factors
+    assert _bounds({"bit.weight_on_bit": (10e3, 40e3)}, field.with_units("si"))["bit.weight_on_bit"] == (10e3, 40e3)
+    with pytest.raises(ValidationError, match=r"parameters\[bit.weight_on_bit\].*force"):
+        _bounds({"bit.weight_on_bit": ("10 ft", 40)}, field)
+
+
+def test_series_and_steps_of_a_field_file_are_field_units() -> None:
+    document = _pickup(units="field", hoist={"mode": "velocity", "speed": -600, "steps": [[5, 100], [10, "1 ft/s"]]},
+                       top_drive={"mode": "measured_speed", "speed_series": [[0, 0], [40, 60]],
+                                  "steps": [[1, 30]]})
+    document["sections"] = [{**s, "length": s["length"] / FT, "outer_diameter": s["outer_diameter"] / INCH,
+                             "inner_diameter": s["inner_diameter"] / INCH, "shear_modulus": "79.3 GPa",
+                             "density": "7850 kg/m^3"} for s in document["sections"]]
+    document["well"] = {**document["well"], "mud_density": "1200 kg/m^3"}
+    document["bit"] = {**document["bit"], "radius": "0.108 m"}
+    hoist = to_si(document)["hoist"]
+    assert _close(hoist["speed"], -600 * FT_PER_H)
+    assert hoist["steps"][0][0] == 5 and _close(hoist["steps"][0][1], 100 * FT_PER_H)
+    assert _close(hoist["steps"][1][1], FT)
+    top = to_si(document)["top_drive"]
+    assert top["speed_series"] == [[0, 0], [40, 60]] and top["steps"] == [[1, 30]]  # s and rpm in both systems
+    # the hook load's steps of hook_load mode are forces: klbf
+    hook = to_si({**document, "hoist": {"mode": "hook_load", "hook_load": 170, "steps": [[5, 180]]}})["hoist"]
+    assert _close(hook["hook_load"], 170e3 * LBF) and _close(hook["steps"][0][1], 180e3 * LBF)
+    # the autodriller's setpoint and gains by its target
+    wob = {"mode": "autodriller", "autodriller": {"target": "weight_on_bit", "setpoint": 18, "kp": 2, "ki": 1,
+                                                  "max_speed": 100}, "steps": [[5, 20]]}
+    wob_si = to_si({**document, "hoist": wob})["hoist"]
+    assert _close(wob_si["autodriller"]["setpoint"], 18e3 * LBF)
+    assert _close(wob_si["steps"][0][1], 20e3 * LBF)
+    assert _close(wob_si["autodriller"]["kp"], 2 * FT_PER_H / (1e3 * LBF))
+    assert _close(wob_si["autodriller"]["ki"], FT_PER_H / (1e3 * LBF))
+    assert _close(wob_si["autodriller"]["max_speed"], 100 * FT_PER_H)
+    rop = {"mode": "autodriller", "autodriller": {"target": "rop", "setpoint": 60, "kp": 0.5, "ki": 0.1},
+           "steps": [[5, 90]]}
+    rop_si = to_si({**document, "hoist": rop})["hoist"]
+    assert _close(rop_si["autodriller"]["setpoint"], 60 * FT_PER_H) and _close(rop_si["steps"][0][1], 90 * FT_PER_H)
+    assert rop_si["autodriller"]["kp"] == 0.5 and rop_si["autodriller"]["ki"] == 0.1
+    # with_overrides of a field configuration: the steps by the mode it sets
+    field = DrillConfig.from_dict({**document, "hoist": {"mode": "velocity", "speed": 100}})
+    changed = field.with_overrides(["hoist.mode=hook_load", "hoist.hook_load=170", "hoist.steps=[[5, 180]]"])
+    assert _close(changed.hoist.steps[0][1], 180e3 * LBF)
+    assert _close(field.with_overrides(["hoist.steps=[[5, 120]]"]).hoist.steps[0][1], 120 * FT_PER_H)
+
+
+# ---------------------------------------------------------------- 2. speeds and the bit's lengths
+
+
+def test_the_field_unit_of_a_speed_is_ft_per_hour() -> None:
+    assert FIELD_UNITS["m/s"] == "ft/h" and FIELD_UNITS["m/h"] == "ft/h"
+    for key in ("hoist.speed", "hoist.autodriller.min_speed", "hoist.autodriller.max_speed"):
+        assert field_unit(key) == "ft/h"
+    hoist = to_si(_pickup(units="field", hoist={"speed": 100}))["hoist"]
+    assert _close(hoist["speed"], 100 * FT_PER_H)  # 100 ft/h, not 100 m/s
+
+
+def test_the_bits_small_lengths_are_inches_and_every_other_length_feet() -> None:
+    from drillstring.drilling.config import config_schema
+
+    lengths = {k for k, v in config_schema().items() if v["unit"] == "m"}
+    inches = {k for k in lengths if field_unit(k) == "in"}
+    assert inches == {"sections[].outer_diameter", "sections[].inner_diameter", "sections[].contact_diameter",
+                      "bit.radius", "bit.diameter", "bit.detournay.wear_flat_length"}
+    assert {field_unit(k) for k in lengths - inches} == {"ft"}
+    assert all(k in lengths for k in FIELD_UNITS_BY_KEY)
+    bit = to_si({"units": "field", "sections": [{"length": 1000}],
+                 "bit": {"diameter": 8.5, "detournay": {"wear_flat_length": 0.5}}})["bit"]
+    assert bit["detournay"]["wear_flat_length"] == 0.5 * INCH and _close(bit["diameter"], 8.5 * INCH)
+
+
+# ---------------------------------------------------------------- 3. the dimension of a mode's value
+
+
+@pytest.mark.parametrize(
+    ("hoist", "path", "words"),
+    [
+        ({"mode": "velocity", "steps": [[5.0, "100 kN"]]}, "hoist.steps[0][1]", 'speed (hoist.mode = "velocity")'),
+        ({"mode": "hook_load", "steps": [[5.0, "1 ft/min"]]}, "hoist.steps[0][1]", 'force (hoist.mode = "hook_load")'),
+        ({"mode": "weight_on_bit", "steps": [[1.0, 10e3], [5.0, "3 m/h"]]}, "hoist.steps[1][1]", "force"),
+        ({"mode": "autodriller", "autodriller": {"target": "rop", "setpoint": "18 klbf"}},
+         "hoist.autodriller.setpoint", 'speed (hoist.autodriller.target = "rop")'),
+        ({"mode": "autodriller", "autodriller": {"setpoint": "60 ft/h"}},
+         "hoist.autodriller.setpoint", 'force (hoist.autodriller.target = "weight_on_bit")'),
+        ({"mode": "autodriller", "autodriller": {"target": "rop"}, "steps": [[5.0, "10 kN"]]},
+         "hoist.steps[0][1]", "speed"),
+    ],
+)
+def test_a_quantity_of_another_dimension_than_the_modes_is_refused(hoist: dict[str, Any], path: str,
+                                                                   words: str) -> None:
+    for units in ("si", "field"):
+        with pytest.raises(ValidationError) as info:
+            DrillConfig.from_dict(_pickup(units=units, hoist=hoist))
+        assert info.value.field == path and words in str(info.value), str(info.value)
+
+
+def test_a_wrong_dimension_in_the_hoists_steps_is_one_line_exit_2(tmp_path: Path,
+                                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    config = tmp_path / "pickup.toml"
+    config.write_text((EXAMPLES / "pickup-3200m.toml").read_text().replace(
+        "ramp_time = 2.0", 'ramp_time = 2.0\nsteps = [[5.0, "100 kN"]]'))
+    code, _, err = run_cli(capsys, "drill", str(config), "--out", str(tmp_path / "run"))
+    assert code == 2
+    one_line_error(err, "hoist.steps[0][1]", "100 kN", "speed", "velocity")
+    assert not (tmp_path / "run").exists()
+    # and by --set, with the mode the same overrides set
+    code, _, err = run_cli(capsys, "drill", str(EXAMPLES / "pickup-3200m.toml"), "--out", str(tmp_path / "run"),
+                           "--set", "hoist.mode=hook_load", "--set", "hoist.steps=[[5.0, '3 ft/min']]")
+    assert code == 2
+    one_line_error(err, "hoist.steps[0][1]", "force", "hook_load")
+
+
+def test_a_right_dimension_is_converted_in_either_system() -> None:
+    for units in ("si", "field"):
+        hoist = DrillConfig.from_dict(_pickup(units=units, hoist={"mode": "velocity", "steps": [[5.0, "60 ft/min"]]}))
+        assert math.isclose(hoist.hoist.steps[0][1], 60 * FT / 60, rel_tol=1e-15)
+
+
+# ---------------------------------------------------------------- one configuration, however written
+
+
+def _si(value: float, factor: Fraction) -> float:
+    """The SI float of the field number ``value`` as written (its shortest repr), correctly rounded."""
+    return float(Fraction(repr(value)) * factor)
+
+
+#: key -> (field unit, its exact SI factor, the values a user writes)
+_KEYS = {
+    "sections[0].outer_diameter": ("in", Fraction("0.0254"), st.floats(2.5, 12.0)),
+    "sections[1].length": ("ft", Fraction("0.3048"), st.floats(10.0, 30000.0)),
+    "bit.radius": ("in", Fraction("0.0254"), st.floats(2.0, 10.0)),
+    "hoist.speed": ("ft/h", Fraction("0.3048") / 3600, st.floats(-3000.0, 3000.0)),
+    "well.mud_density": ("ppg", Fraction("0.45359237") / Fraction("0.003785411784"), st.floats(0.0, 20.0)),
+    "friction.static": ("", Fraction(1), st.floats(0.0, 1.0)),
+    "top_drive.rpm": ("rpm", Fraction(1), st.floats(-300.0, 300.0)),
+}
+#: weight on bit of a torsion-only run (the hoist's own is checked above): klbf
+_WOB = ("klbf", Fraction("4448.2216152605"), st.floats(0.0, 100.0))
+
+
+def _document(units: str, values: dict[str, Any]) -> dict[str, Any]:
+    """A coupled configuration: every value not in ``values`` a string with its SI unit (the same
+    in either system), those of ``values`` at their dotted keys."""
+    document: dict[str, Any] = {
+        "units": units,
+        "sections": [{"length": "3000 m", "outer_diameter": "0.127 m", "inner_diameter": "0.05 m",
+                      "shear_modulus": "79.3 GPa", "density": "7850 kg/m^3"},
+                     {"length": "200 m", "outer_diameter": "0.1651 m", "inner_diameter": "0.05 m",
+                      "shear_modulus": "79.3 GPa", "density": "7850 kg/m^3"}],
+        "well": {"inclination_deg": 30.0, "mud_density": "1200 kg/m^3"},
+        "friction": {"static": 0.2, "kinetic_ratio": 1.0},
+        "top_drive": {"rpm": 0.0, "controller": {"type": "speed"}},
+        "bit": {"law": "rgd", "radius": "0.108 m"},
+        "hoist": {"mode": "velocity", "speed": "-0.05 m/s", "ramp_time": 2.0},
+        "numerics": {"duration": 30.0},
+    }
+    for path, value in values.items():
+        node: Any = document
+        parts = path.replace("]", "").replace("[", ".").split(".")
+        for part in parts[:-1]:
+            node = node[int(part)] if part.isdigit() else node[part]
+        node[parts[-1]] = value
+    return document
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.fixed_dictionaries({key: strategy for key, (_, _, strategy) in _KEYS.items()}))
+def test_one_configuration_however_its_numbers_are_written(values: dict[str, float]) -> None:
+    # (a) plain numbers of a field file
+    plain = DrillConfig.from_dict(_document("field", values))
+    # (b) strings with their units (either system)
+    text = {k: f"{v!r} {_KEYS[k][0]}".strip() for k, v in values.items()}
+    written = DrillConfig.from_dict(_document("si", text))
+    # (c) SI numbers in an SI file
+    si = DrillConfig.from_dict(_document("si", {k: _si(v, _KEYS[k][1]) for k, v in values.items()}))
+    # (d) overrides of a field configuration, plain numbers (a mapping, and --set's key=value text)
+    base = DrillConfig.from_dict(_document("field", {}))
+    overridden = base.with_overrides(values)
+    assigned = base.with_overrides([f"{k}={v!r}" for k, v in values.items()])
+    assert plain == written == si == overridden == assigned
+    assert plain.to_json() == written.to_json() == si.to_json() == overridden.to_json() == assigned.to_json()
+    assert plain.units == overridden.units == "field" and si.units == "si"
+
+
+@settings(max_examples=30, deadline=None)
+@given(_WOB[2], st.floats(0.0, 20.0))
+def test_the_weight_on_bit_however_it_is_written(wob: float, diameter_in: float) -> None:
+    field = {"units": "field", "sections": [{"length": "1000 m", "outer_diameter": "0.127 m",
+                                             "inner_diameter": "0.1 m"}]}
+    plain = DrillConfig.from_dict({**field, "bit": {"weight_on_bit": wob}})
+    written = DrillConfig.from_dict({**field, "units": "si", "bit": {"weight_on_bit": f"{wob!r} klbf"}})
+    si = DrillConfig.from_dict({**field, "units": "si", "bit": {"weight_on_bit": _si(wob, _WOB[1])}})
+    overridden = DrillConfig.from_dict(field).with_overrides([f"bit.weight_on_bit={wob!r}"])
+    assert plain == written == si == overridden
+    assert plain.to_json() == si.to_json() == overridden.to_json()
