@@ -202,10 +202,12 @@ def test_metrics_in_field_units_are_a_copy_beside_the_si_ones(tmp_path: Path,
     copy = field.pop("output_units")
     assert field == si  # every SI entry unchanged
     assert copy["system"] == "field"
-    assert copy["units"]["motor_torque_max_Nm"] == "ft*lbf" and copy["units"]["bit_rpm_mean"] == "rpm"
+    # a key naming a unit holds that unit: the field values under field-named keys
+    assert copy["units"]["motor_torque_max_ftlbf"] == "ft*lbf" and copy["units"]["bit_rpm_mean"] == "rpm"
+    assert not any(k.endswith("_Nm") for k in (*copy["units"], *copy["metrics"]))
     ft_lbf = FT * LBF
     for name in ("motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "min_cycle_torque_Nm"):
-        assert _close(copy["metrics"][name], si[name] / ft_lbf, 1e-15), name
+        assert _close(copy["metrics"][name[:-2] + "ftlbf"], si[name] / ft_lbf, 1e-15), name
     for name in ("ssi", "period_s", "bit_rpm_mean", "window_start"):
         assert copy["metrics"][name] == si[name], name
 

@@ -321,3 +321,36 @@ def test_the_weight_on_bit_however_it_is_written(wob: float, diameter_in: float)
     overridden = DrillConfig.from_dict(field).with_overrides([f"bit.weight_on_bit={wob!r}"])
     assert plain == written == si == overridden
     assert plain.to_json() == si.to_json() == overridden.to_json()
+
+
+# ---------------------------------------------------------------- 4. a key naming a unit holds that unit
+
+
+def test_a_converted_value_is_written_under_its_field_named_key() -> None:
+    from drillstring.drilling.units import unit_key
+
+    assert unit_key("motor_torque_max_Nm", "N*m", "ft*lbf") == "motor_torque_max_ftlbf"
+    assert unit_key("rop_mean_m_per_h", "m/h", "ft/h") == "rop_mean_ft_per_h"
+    assert unit_key("hook_load_mean_N", "N", "klbf") == "hook_load_mean_klbf"
+    assert unit_key("mse_mean_Pa", "Pa", "psi") == "mse_mean_psi"
+    assert unit_key("bit_rpm_mean", "rpm", "rpm") == "bit_rpm_mean"
+    assert unit_key("motor_torque_max_Nm", "N*m", "N*m") == "motor_torque_max_Nm"
+    assert unit_key("window_start", "s", "s") == "window_start"
+
+
+def test_a_coupled_runs_field_copy_has_field_named_keys() -> None:
+    from drillstring.drilling import drill
+
+    config = load_drill_config(EXAMPLES / "pickup-3200m.toml").with_overrides(
+        ["numerics.cells=60", "numerics.duration=4", "metrics.window=[2.0, 4.0]"])
+    summary = drill(config).summary("field")
+    copy = summary["output_units"]
+    coupled = summary["coupled"]
+    assert copy["units"]["hook_load_mean_klbf"] == "klbf" and copy["units"]["rop_mean_ft_per_h"] == "ft/h"
+    assert _close(copy["metrics"]["hook_load_mean_klbf"], coupled["hook_load_mean_N"] / (1e3 * LBF), 1e-15)
+    assert _close(copy["metrics"]["wob_mean_klbf"] or 1.0, (coupled["wob_mean_N"] / (1e3 * LBF)) or 1.0, 1e-15)
+    assert copy["metrics"]["bounce_fraction"] == coupled["bounce_fraction"]
+    for key in copy["metrics"]:  # every name with a unit suffix names the field unit it holds
+        assert not key.endswith(("_N", "_Nm", "_Pa", "_m_per_h")), key
+    # the SI entries keep their names and values
+    assert "hook_load_mean_N" in coupled and "motor_torque_max_Nm" in summary

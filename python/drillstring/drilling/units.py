@@ -30,7 +30,7 @@ from ..errors import ValidationError
 
 __all__ = [
     "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "axis_unit", "chosen_units", "convert", "field_unit",
-    "hoist_after", "override_to_si",
+    "hoist_after", "override_to_si", "UNIT_SUFFIXES", "unit_key",
     "quantity", "shown", "shown_unit", "system_of", "to_si",
 ]
 
@@ -340,6 +340,28 @@ def convert(value: Optional[float], unit: str, system: str, *, key: Optional[str
     if target is None or value is None or (isinstance(value, float) and math.isnan(value)):
         return value, unit
     return _magnitude(_in(value, unit), target), target
+
+
+#: The suffix a key's name gives its unit by (``motor_torque_max_Nm``, ``rop_mean_m_per_h``).
+UNIT_SUFFIXES: dict[str, str] = {
+    "N*m": "Nm", "ft*lbf": "ftlbf", "N": "N", "klbf": "klbf", "m/h": "m_per_h", "ft/h": "ft_per_h", "Pa": "Pa",
+    "psi": "psi", "m": "m", "ft": "ft", "in": "in", "N/m": "N_per_m", "lbf/ft": "lbf_per_ft", "s": "s",
+    "rpm": "rpm",
+}
+
+
+def unit_key(name: str, unit: str, target: str) -> str:
+    """The name of the value ``name`` (a key in SI ``unit``) in the unit ``target``: keys whose
+    name carries a unit always hold that unit, so a converted value is written under its SI
+    suffix replaced by the target's (``motor_torque_max_Nm`` in ``ft*lbf``:
+    ``motor_torque_max_ftlbf``; ``rop_mean_m_per_h`` in ``ft/h``: ``rop_mean_ft_per_h``); a name
+    without its unit's suffix, or a unit unchanged, keeps its name (``bit_rpm_mean``)."""
+    suffix, other = UNIT_SUFFIXES.get(unit), UNIT_SUFFIXES.get(target)
+    if target == unit or suffix is None or not name.endswith(f"_{suffix}"):
+        return name
+    if other is None:
+        raise ValueError(f"no key suffix for the unit {target!r}")  # a new field unit needs its suffix
+    return f"{name[: -len(suffix)]}{other}"
 
 
 #: How units are written on the console.
