@@ -354,3 +354,138 @@ def test_a_coupled_runs_field_copy_has_field_named_keys() -> None:
         assert not key.endswith(("_N", "_Nm", "_Pa", "_m_per_h")), key
     # the SI entries keep their names and values
     assert "hook_load_mean_N" in coupled and "motor_torque_max_Nm" in summary
+
+
+# ---------------------------------------------------------------- 5. a field user reads field units
+
+
+SHORT = ["--set", "numerics.duration=5", "--set", "numerics.cells=60", "--no-plots"]
+
+
+def test_a_field_files_report_and_console_are_in_field_units(tmp_path: Path,
+                                                             capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run_cli(capsys, "drill", str(EXAMPLES / "on-bottom-3000m-field.toml"), "--out",
+                           str(tmp_path / "field"), *SHORT)
+    assert code == 0
+    report = (tmp_path / "field" / "report.md").read_text()
+    assert "| section | length, ft | OD, in | ID, in | G, psi | density, ppg |" in report
+    assert "| drill pipe 5 in 19.5 lb/ft | 9842.52 | 5 | 4.27559 |" in report
+    assert "WOB 17.98 klbf, r 4.25197 in" in report and "motor torque min / max, kft-lbf" in report
+    assert "kN" not in report and "| 3000 |" not in report
+    # a warning's SI quantities are followed by their field values, on the console and in the report
+    warned = [line for line in out.splitlines() if line.startswith("warning:") and " N m" in line]
+    assert warned and all("ft-lbf" in line for line in warned)
+    assert all("ft-lbf" in line for line in report.splitlines() if line.startswith("- warning") and " N m" in line)
+    # the SI file's report is SI, and --units si gives it for a field file
+    run_cli(capsys, "drill", str(EXAMPLES / "on-bottom-3000m.toml"), "--out", str(tmp_path / "si"), *SHORT)
+    si = (tmp_path / "si" / "report.md").read_text()
+    assert "| section | length, m | OD, m | ID, m | G, GPa | density, kg/m³ |" in si and "ft-lbf" not in si
+    assert "| drill pipe 5 in 19.5 lb/ft | 3000 | 0.127 | 0.1086 | 79.3 | 7850 |" in si
+    assert "WOB 80 kN, r 0.108 m" in si
+    run_cli(capsys, "drill", str(EXAMPLES / "on-bottom-3000m-field.toml"), "--out", str(tmp_path / "si2"), *SHORT,
+            "--units", "si")
+    assert "length, m" in (tmp_path / "si2" / "report.md").read_text()
+
+
+def test_tune_prints_the_gains_in_field_units_too(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run_cli(capsys, "tune", str(EXAMPLES / "on-bottom-3000m-field.toml"))
+    assert code == 0
+    assert "14825 N m s/rad (10934.4 ft-lbf s/rad)" in out and "2900 kg m^2 (68818 lb ft^2)" in out
+    code, si, _ = run_cli(capsys, "tune", str(EXAMPLES / "on-bottom-3000m.toml"))
+    assert code == 0 and "ft-lbf" not in si and "14825 N m s/rad" in si
+    assert "ft-lbf" in run_cli(capsys, "tune", str(EXAMPLES / "on-bottom-3000m.toml"), "--units", "field")[1]
+
+
+def test_a_value_error_of_a_field_file_gives_the_range_in_field_units(tmp_path: Path,
+                                                                     capsys: pytest.CaptureFixture[str]) -> None:
+    field = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml")
+    with pytest.raises(ValidationError) as info:
+        field.with_overrides(["sections[0].outer_diameter=500"])
+    assert info.value.field == "sections[0].outer_diameter"
+    assert "at most 10 m" in str(info.value)  # the core's range, and the field user's
+    assert "(in field units: got 500 in; a finite number > 0 in, at most 393.701 in)" in str(info.value)
+    with pytest.raises(ValidationError, match=r"in field units: got -1 klbf; a finite number >= 0 \(klbf\)"):
+        field.with_overrides({"bit.weight_on_bit": -1})
+    with pytest.raises(ValidationError, match=r"in field units: got 70 ppg; a finite number in \[0, 65.5114\) ppg"):
+        field.with_overrides({"well.mud_density": 70})
+    # from the file itself, with its line; an SI file's error is SI alone
+    bad = tmp_path / "bad.toml"
+    bad.write_text((EXAMPLES / "on-bottom-3000m-field.toml").read_text().replace(
+        'outer_diameter = "5 in"', "outer_diameter = 500"))
+    code, _, err = run_cli(capsys, "drill", str(bad), "--out", str(tmp_path / "run"))
+    assert code == 2
+    one_line_error(err, "line 17", "sections[0].outer_diameter", "at most 393.701 in")
+    code, _, err = run_cli(capsys, "drill", str(EXAMPLES / "on-bottom-3000m.toml"), "--out", str(tmp_path / "run"),
+                           "--set", "sections[0].outer_diameter=12.7")
+    assert code == 2 and "field units" not in one_line_error(err, "at most 10 m")
+    # an SI file with --units field: the range in field units too
+    code, _, err = run_cli(capsys, "torque-drag", str(EXAMPLES / "on-bottom-3000m.toml"), "--out",
+                           str(tmp_path / "run"), "--set", "sections[0].outer_diameter=12.7", "--units", "field")
+    assert code == 2
+    one_line_error(err, "at most 10 m", "(in field units: got 500 in;", "at most 393.701 in)")
+
+
+def test_annotate_gives_each_si_quantity_its_field_value() -> None:
+    from drillstring.drilling.units import annotate
+
+    text = "went from 808.1 to 1378 N m (+71 %), 0.6431 rpm at 3000 m, 80 kN and 12 kN m; [2.5, 5] s"
+    assert annotate(text, "si") == text
+    assert annotate(text, "field") == ("went from 808.1 to 1378 N m (596.024 to 1016.36 ft-lbf) (+71 %), 0.6431 rpm "
+                                       "at 3000 m (9842.52 ft), 80 kN (17.9847 klbf) and 12 kN m (8.85075 kft-lbf); "
+                                       "[2.5, 5] s")
+
+
+def test_a_coupled_maps_console_and_figure_in_field_units(tmp_path: Path,
+                                                          capsys: pytest.CaptureFixture[str]) -> None:
+    import pandas as pd
+
+    from drillstring.drilling.maps import regime_map
+
+    args = ["drill-map", str(EXAMPLES / "coupled-rpm-wob-map.toml"), "--axis", "top_drive.rpm=200,400",
+            "--axis", "hoist.weight_on_bit=120e3,200e3", "--set", "numerics.duration=4", "--set", "numerics.cells=60",
+            "--set", "metrics.window=[2.0, 4.0]", "--threads", "1", "--no-plots"]
+    code, si, _ = run_cli(capsys, *args, "--out", str(tmp_path / "si"))
+    assert code == 0 and "m/h" in si and "MPa" in si
+    code, field, _ = run_cli(capsys, *args, "--out", str(tmp_path / "field"), "--units", "field")
+    regimes = next(line for line in field.splitlines() if line.startswith("regimes:"))
+    assert code == 0 and "ft/h" in regimes and "psi" in regimes and "m/h" not in regimes
+    frame = pd.read_parquet(tmp_path / "si" / "map.parquet")
+    frame.attrs["axes"] = {"top_drive.rpm": [200.0, 400.0], "hoist.weight_on_bit": [120e3, 200e3]}
+    fig = regime_map(frame, "top_drive.rpm", "hoist.weight_on_bit", units="field")
+    labels = [ax.get_ylabel() for ax in fig.axes]
+    assert any("ft/h" in label for label in labels) and any("psi" in label for label in labels), labels
+
+
+def test_fit_of_a_field_file_reads_and_reports_field_units(tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    import pandas as pd
+
+    from drillstring.drilling import drill
+
+    config = tmp_path / "pickup-field.toml"
+    config.write_text("units = \"field\"\n" + (EXAMPLES / "pickup-3200m.toml").read_text()
+                      .replace("length = 3000.0", 'length = "3000 m"').replace("length = 200.0", 'length = "200 m"')
+                      .replace("outer_diameter = 0.127", "outer_diameter = 5").replace("inner_diameter = 0.1086",
+                                                                                      'inner_diameter = "0.1086 m"')
+                      .replace("outer_diameter = 0.1651", "outer_diameter = 6.5")
+                      .replace("inner_diameter = 0.0714", 'inner_diameter = "0.0714 m"')
+                      .replace("shear_modulus = 79.3e9", 'shear_modulus = "79.3 GPa"')
+                      .replace("density = 7850.0", 'density = "7850 kg/m^3"')
+                      .replace("mud_density = 1200.0", "mud_density = 10.0")
+                      .replace("radius = 0.108", "radius = 4.25").replace("speed = -0.05", "speed = -600")
+                      .replace("cells = 300", "cells = 60").replace("duration = 30.0", "duration = 12.0")
+                      .replace("window = [20.0, 30.0]", "window = [6.0, 12.0]"))
+    run = drill(load_drill_config(config))
+    assert _close(run.config.hoist.speed, -600 * FT_PER_H) and _close(run.config.well.mud_density, 10 * LB / GAL)
+    pd.DataFrame({"t": run.t, "hook_load": run.axial["hook_load"]}).to_csv(tmp_path / "data.csv", index=False)
+    code, out, err = run_cli(capsys, "fit", str(config), "--data", str(tmp_path / "data.csv"), "--target",
+                             "hook_load", "--param", "well.mud_density=8:12", "--window", "4:12", "--samples", "8",
+                             "--no-landscape", "--no-plots", "--threads", "1", "--out", str(tmp_path / "fit"))
+    assert code == 0, err
+    line = next(line for line in out.splitlines() if line.startswith("well.mud_density = "))
+    assert "ppg" in line, line
+    value = float(line.split("; ")[1].split()[0])
+    assert abs(value - 10.0) < 0.05, line  # the fitted mud weight, in ppg, from bounds read in ppg
+    report = (tmp_path / "fit" / "report.md").read_text()
+    row = next(r for r in report.splitlines() if r.startswith("| `well.mud\\_density`"))
+    assert "ppg" in row and "(8 .. 12 ppg)" in row, row

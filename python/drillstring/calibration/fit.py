@@ -511,7 +511,7 @@ def _as_list(value: Any) -> list[Any]:
 def fit(
     config: Union[ConfigLike, Sequence[ConfigLike]],
     data: Union[DataLike, Sequence[DataLike]],
-    parameters: Mapping[str, tuple[float, float]],
+    parameters: Mapping[str, tuple[Any, Any]],
     *,
     targets: Union[str, Sequence[str], Mapping[str, float]] = ("motor_torque",),
     windows: Optional[Sequence[tuple[float, float]]] = None,
@@ -545,7 +545,10 @@ def fit(
     parameters : mapping
         Dotted key -> ``(low, high)``: any real configuration value (``friction.static``,
         ``friction.kinetic_ratio``, ``friction.stick_speed``, ``damping_rate``,
-        ``sections[1].density``, ...).
+        ``sections[1].density``, ...). Plain numbers are in the configuration's unit system
+        (:attr:`DrillConfig.units <drillstring.drilling.config.DrillConfig.units>`: klbf for
+        ``bit.weight_on_bit`` of a field file), strings with units (``"10 klbf"``) in their own;
+        the result's values are SI.
     targets : str, sequence of str, or mapping of str to float
         The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``,
         and in a coupled run, a ``[hoist]`` table, ``hook_load`` and ``weight_on_bit``), with their

@@ -610,7 +610,13 @@ class DrillConfig:
             if not isinstance(data, Mapping):
                 raise ValidationError("config", data, "a table/mapping of the configuration")
             system = _units.system_of(data.get("units", "si"))
-            config = cls._from_core(_core.drill_validate(_core_json(_units.to_si(_plain(data)))))
+            try:
+                config = cls._from_core(_core.drill_validate(_core_json(_units.to_si(_plain(data)))))
+            except ValidationError as exc:  # a field file's user reads the range in field units too
+                error = _units.field_error(exc, system)
+                if error is exc:
+                    raise
+                raise error from None
             object.__setattr__(config, "_units", system)
             return config
         except ValidationError as exc:
@@ -674,7 +680,8 @@ class DrillConfig:
         ValidationError
             A malformed assignment or key (``field="--set"``), a key that is not in the
             configuration (naming it and listing the keys allowed there), an index out of
-            range, or a value of the wrong type or refused by the core (naming the field).
+            range, or a value of the wrong type or refused by the core (naming the field; for
+            a field configuration with the value and the range in field units too).
         """
         items = list(assignments.items() if isinstance(assignments, Mapping) else (
             _split_assignment(a) for a in _assignment_list(assignments)))
@@ -685,7 +692,13 @@ class DrillConfig:
         chosen = self.chosen_units(items)
         pairs = [[key.strip(), json_ready(_units.override_to_si(key.strip(), _plain(value), system, chosen))]
                  for key, value in items]
-        config = type(self)._from_core(_core.drill_config_override(self.to_json(), json.dumps(pairs), "--set"))
+        try:
+            config = type(self)._from_core(_core.drill_config_override(self.to_json(), json.dumps(pairs), "--set"))
+        except ValidationError as exc:  # a field configuration's user reads the range in field units too
+            error = _units.field_error(exc, self.units)
+            if error is exc:
+                raise
+            raise error from None
         object.__setattr__(config, "_units", self.units)
         return config
 

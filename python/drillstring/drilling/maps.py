@@ -856,10 +856,10 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
     """The regimes of a coupled map over the numeric axes ``x`` and ``y`` (a cell per run, one
     colour per regime: smooth drilling, stick-slip, bit bounce, both, off bottom, undetermined;
     the core's criterion, :data:`~drillstring.drilling.result.COUPLED_REGIME_CRITERION`) beside
-    the mean rate of penetration (m/h) and the mechanical specific energy (MPa) over the same
-    axes; the stick-slip boundary SSI = 1 (cyan) on the ROP panel. One row of three panels per
-    combination of the values of the map's other axes; failed runs are blank. ``units`` as
-    :func:`ssi_map`'s.
+    the mean rate of penetration (m/h; ft/h in field units) and the mechanical specific energy
+    (MPa; psi) over the same axes; the stick-slip boundary SSI = 1 (cyan) on the ROP panel. One
+    row of three panels per combination of the values of the map's other axes; failed runs are
+    blank. ``units`` as :func:`ssi_map`'s.
 
     Examples
     --------
@@ -884,8 +884,10 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
     norm = BoundaryNorm(np.arange(len(COUPLED_REGIMES) + 1) - 0.5, cmap.N)
     seen: set[str] = set()
     meshes: list[Any] = [None, None]
-    rop_max = float(np.nanmax(frame["rop_mean_m_per_h"].to_numpy(dtype=float), initial=0.0))
-    mse = frame["mse_mean_Pa"].to_numpy(dtype=float) / 1e6
+    rop_scale, rop_unit = axis_unit("m/h", units)
+    mse_scale, mse_unit = (1e-6, "MPa") if system_of(units, "units") == "si" else axis_unit("Pa", units)
+    rop_max = float(np.nanmax(frame["rop_mean_m_per_h"].to_numpy(dtype=float), initial=0.0)) * rop_scale
+    mse = frame["mse_mean_Pa"].to_numpy(dtype=float) * mse_scale
     mse = mse[np.isfinite(mse)]
     mse_range = (float(mse.min()), float(mse.max())) if mse.size else (0.0, 1.0)
     for row, (name, part) in zip(axs, parts):
@@ -894,7 +896,7 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
         seen.update(part["regime"][ok])
         xs, ys, z = _grid(part.assign(_regime=codes), x, y, "_regime")
         row[0].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap=cmap, norm=norm)
-        xs, ys, z = _grid(part.assign(_rop=part["rop_mean_m_per_h"].where(ok)), x, y, "_rop")
+        xs, ys, z = _grid(part.assign(_rop=(part["rop_mean_m_per_h"] * rop_scale).where(ok)), x, y, "_rop")
         meshes[0] = row[1].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap="viridis", vmin=0.0,
                                       vmax=max(rop_max, 1e-9))
         _, _, ssi = _grid(part.assign(_ssi=part["ssi"].where(ok)), x, y, "_ssi")
@@ -902,15 +904,15 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 row[1].contour(xs * xscale, ys * yscale, ssi, levels=[1.0], colors="tab:cyan", linewidths=2.0)
-        xs, ys, z = _grid(part.assign(_mse=(part["mse_mean_Pa"] / 1e6).where(ok)), x, y, "_mse")
+        xs, ys, z = _grid(part.assign(_mse=(part["mse_mean_Pa"] * mse_scale).where(ok)), x, y, "_mse")
         meshes[1] = row[2].pcolormesh(xs * xscale, ys * yscale, np.ma.masked_invalid(z), shading="nearest",
                                       cmap="magma_r", vmin=mse_range[0], vmax=max(mse_range[1], mse_range[0] + 1e-9))
         for ax, what in zip(row, ("regime", "mean ROP", "mechanical specific energy")):
             ax.set_title(f"{what}{', ' + name if name else ''}", fontsize=10)
             ax.set_xlabel(xlabel)
             ax.set_ylabel(ylabel)
-    fig.colorbar(meshes[0], ax=list(axs[:, 1]), label="mean rate of penetration [m/h] (cyan: SSI = 1)")
-    fig.colorbar(meshes[1], ax=list(axs[:, 2]), label="MSE of the means [MPa]")
+    fig.colorbar(meshes[0], ax=list(axs[:, 1]), label=f"mean rate of penetration [{rop_unit}] (cyan: SSI = 1)")
+    fig.colorbar(meshes[1], ax=list(axs[:, 2]), label=f"MSE of the means [{mse_unit}]")
     handles = [Patch(facecolor=REGIME_COLOURS[r], edgecolor="0.5", label=r) for r in COUPLED_REGIMES if r in seen]
     if handles:
         axs[0, 0].legend(handles=handles, fontsize="small", loc="upper left", framealpha=0.85)

@@ -29,8 +29,8 @@ from .. import _core
 from ..errors import ValidationError
 
 __all__ = [
-    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "axis_unit", "chosen_units", "convert", "field_unit",
-    "hoist_after", "override_to_si", "UNIT_SUFFIXES", "unit_key",
+    "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "UNIT_SUFFIXES", "annotate", "axis_unit", "chosen_units",
+    "convert", "field_error", "field_unit", "field_value", "hoist_after", "in_field_units", "override_to_si", "unit_key",
     "quantity", "shown", "shown_unit", "system_of", "to_si",
 ]
 
@@ -57,6 +57,7 @@ FIELD_UNITS: dict[str, str] = {
     "kg*m^2": "lb*ft^2",
     "kg": "lb",
     "N*m*s/rad": "ft*lbf*s/rad",
+    "N*m*s": "ft*lbf*s",
     "N*m/rad": "ft*lbf/rad",
     "deg/(30 m)": "deg/(100 ft)",
     "N/m": "lbf/ft",
@@ -368,7 +369,7 @@ def unit_key(name: str, unit: str, target: str) -> str:
 _SHOWN = {"N*m": "N m", "ft*lbf": "ft-lbf", "kg*m^2": "kg m^2", "lb*ft^2": "lb ft^2", "N*m/m": "N m/m",
           "ft*lbf/ft": "ft-lbf/ft", "deg/(30 m)": "deg/30 m", "deg/(100 ft)": "deg/100 ft",
           "ft/h/klbf": "(ft/h)/klbf", "ft/h/klbf/s": "(ft/h)/(klbf s)", "ft*lbf*s/rad": "ft-lbf s/rad",
-          "ft*lbf/rad": "ft-lbf/rad", "N*m*s/rad": "N m s/rad", "N*m/rad": "N m/rad"}
+          "ft*lbf/rad": "ft-lbf/rad", "ft*lbf*s": "ft-lbf s", "N*m*s/rad": "N m s/rad", "N*m/rad": "N m/rad"}
 
 
 def shown_unit(unit: str, system: str, *, kilo: bool = False) -> str:
@@ -406,3 +407,121 @@ def axis_unit(unit: str, system: str, *, kilo: bool = False) -> tuple[float, str
     assert factor is not None  # a number converts to a number
     kilo = kilo and not target.startswith("k")
     return (factor / 1e3 if kilo else factor), shown_unit(unit, system, kilo=kilo)
+
+
+# ---------------------------------------------------------------------- messages in field units
+
+_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+#: The SI units a message writes a quantity in (as the core writes them), longest first, with their
+#: pint form: a number before one of them is converted by :func:`annotate`.
+_MESSAGE_UNITS: tuple[tuple[str, str], ...] = (
+    ("kN m", "kN*m"), ("N m s/rad", "N*m*s/rad"), ("N m/rad", "N*m/rad"), ("N m s", "N*m*s"), ("N m/m", "N*m/m"),
+    ("N m", "N*m"), ("kg m^2", "kg*m^2"), ("kg/m^3", "kg/m^3"), ("kg/m³", "kg/m^3"), ("MPa", "MPa"),
+    ("GPa", "GPa"), ("Pa", "Pa"), ("kN", "kN"), ("N/m", "N/m"), ("N", "N"), ("m/h", "m/h"), ("m/s", "m/s"),
+    ("km", "km"), ("mm", "mm"), ("m", "m"),
+)
+_MESSAGE_QUANTITY = re.compile(  # "1378 N m", and a range "from 808.1 to 1378 N m"
+    rf"(?<![\w.])(?:({_NUMBER}) to )?({_NUMBER})\s?({'|'.join(re.escape(text) for text, _ in _MESSAGE_UNITS)})"
+    r"(?![\w/^*³²])")
+
+
+def _field_number(value: float, unit: str, target: str) -> str:
+    return f"{_magnitude(_in(value, unit), target):.6g}"
+
+
+def _field_of(unit: str) -> Optional[tuple[str, str]]:
+    """The field unit of the SI ``unit`` (a prefixed one, ``kN``, by its base) and its text."""
+    base = {"kN*m": "N*m", "kN": "N", "MPa": "Pa", "GPa": "Pa", "km": "m", "mm": "m"}.get(unit, unit)
+    target = FIELD_UNITS.get(base)
+    if target is None:
+        return None
+    if base in ("N*m",) and unit.startswith("k"):
+        return "kft*lbf", "kft-lbf"
+    return target, _SHOWN.get(target, target)
+
+
+def annotate(text: str, system: str) -> str:
+    """A message (a warning) with each SI quantity in it followed by its value in ``system``'s
+    unit: ``"1378 N m"`` as ``"1378 N m (1016 ft-lbf)"`` in field units; the text unchanged in
+    SI."""
+    if system_of(system) == "si":
+        return text
+    forms = dict(_MESSAGE_UNITS)
+
+    def one(match: re.Match[str]) -> str:
+        unit = forms[match.group(3)]
+        field = _field_of(unit)
+        if field is None:
+            return match.group(0)
+        start = f"{_field_number(float(match.group(1)), unit, field[0])} to " if match.group(1) else ""
+        return f"{match.group(0)} ({start}{_field_number(float(match.group(2)), unit, field[0])} {field[1]})"
+
+    return _MESSAGE_QUANTITY.sub(one, text)
+
+
+def in_field_units(text: str, path: str) -> Optional[str]:
+    """The allowed range ``text`` of the configuration field ``path`` (as the core words it, in
+    the key's SI unit) with its quantities in the key's field unit (``"a finite number > 0 m, at
+    most 10 m"`` of ``sections[0].outer_diameter``: ``"a finite number > 0 in, at most 393.701
+    in"``), or None when the key has no other field unit or nothing in the text is in its unit."""
+    key = _key(path)
+    unit = _unit_of(key)
+    target = field_unit(key)
+    if not unit or " or " in unit or target is None:
+        return None
+    shown_si, shown_field = _SHOWN.get(unit, unit), _SHOWN.get(target, target)
+    si = re.escape(shown_si)
+    end = r"(?![\w/^*³²])"
+
+    def number(match: re.Match[str]) -> str:
+        return _field_number(float(match.group(0)), unit, target)
+
+    def interval(match: re.Match[str]) -> str:
+        return (f"{match.group(1)}{_field_number(float(match.group(2)), unit, target)}, "
+                f"{_field_number(float(match.group(3)), unit, target)}{match.group(4)}{match.group(5)}{shown_field}")
+
+    def quantity_(match: re.Match[str]) -> str:
+        return f"{_field_number(float(match.group(1)), unit, target)}{match.group(2)}{shown_field}"
+
+    text = re.sub(r"\s*\(in metres:[^)]*\)", "", text)  # the SI hint of a field number: moot here
+    out = re.sub(rf"([\[(])\s*({_NUMBER})\s*,\s*({_NUMBER})\s*([\])])(\s*){si}{end}", interval, text)
+    out = re.sub(rf"(?<![\w.])({_NUMBER})(\s?){si}{end}", quantity_, out)
+    if out.rstrip().endswith(f"({shown_si})"):  # "a finite number >= 0 (N)": every number in the unit
+        head = out.rstrip()[: -len(shown_si) - 2]
+        out = re.sub(rf"(?<![\w.^]){_NUMBER}(?![\w.])", number, head) + f"({shown_field})"
+    return out if out != text else None
+
+
+def field_error(error: ValidationError, system: str) -> ValidationError:
+    """``error`` of a configuration field, with the value and the allowed range in field units
+    appended when ``system`` is ``"field"`` (``"... at most 10 m (in field units: got 500 in;
+    at most 393.701 in)"``); ``error`` itself otherwise or when it has no quantity to convert."""
+    if system_of(system) != "field" or not isinstance(error.field, str) or "(in field units:" in error.allowed:
+        return error
+    allowed = in_field_units(error.allowed, error.field)
+    if allowed is None:
+        return error
+    got = ""
+    target = field_unit(_key(error.field))
+    unit = _unit_of(_key(error.field))
+    try:
+        value = float(error.value)
+    except (TypeError, ValueError):
+        value = math.nan
+    if target is not None and unit is not None and math.isfinite(value):
+        got = f"got {_field_number(value, unit, target)} {_SHOWN.get(target, target)}; "
+    return ValidationError(error.field, error.value, f"{error.allowed} (in field units: {got}{allowed})",
+                           source=error.source, line=error.line)
+
+
+def field_value(path: str, value: float, system: str, digits: int = 6) -> Optional[str]:
+    """The SI ``value`` of the configuration field ``path`` as text in ``system``'s unit of the
+    key (``"20 klbf"`` for ``bit.weight_on_bit`` in field units), or None in SI, for a key that
+    takes no number or whose unit is the same in both systems."""
+    if system_of(system) == "si":
+        return None
+    key = _key(path)
+    unit, target = _unit_of(key), field_unit(key)
+    if unit is None or target is None or " or " in unit or not math.isfinite(value):
+        return None
+    return f"{_magnitude(_in(value, unit), target):.{digits}g} {_SHOWN.get(target, target)}"
