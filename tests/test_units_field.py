@@ -489,3 +489,38 @@ def test_fit_of_a_field_file_reads_and_reports_field_units(tmp_path: Path,
     report = (tmp_path / "fit" / "report.md").read_text()
     row = next(r for r in report.splitlines() if r.startswith("| `well.mud\\_density`"))
     assert "ppg" in row and "(8 .. 12 ppg)" in row, row
+
+
+# ---------------------------------------------------------------- 6. the field example end to end
+
+
+def test_the_field_example_is_its_si_twin_within_its_rounding() -> None:
+    from drillstring.drilling.torque_drag import torque_drag
+
+    field = load_drill_config(EXAMPLES / "s-well-3d-field.toml")
+    si = load_drill_config(EXAMPLES / "s-well-3d.toml")
+    assert field.units == "field" and si.units == "si"
+    assert _close(field.bit.weight_on_bit, 22.5e3 * LBF) and field.sections[0].outer_diameter == 0.127
+    a, b = torque_drag(field).summary, torque_drag(si).summary
+    for name in ("hook_load_pickup_N", "hook_load_slackoff_N", "hook_load_rotating_N", "surface_torque_off_bottom_Nm"):
+        assert math.isclose(a[name], b[name], rel_tol=2e-3), (name, a[name], b[name])
+
+
+def test_a_survey_in_feet_is_the_survey_in_metres() -> None:
+    import numpy as np
+    import pandas as pd
+
+    metres = pd.read_csv(EXAMPLES / "s-well-3d-survey.csv")
+    feet = pd.read_csv(EXAMPLES / "s-well-3d-survey-ft.csv")
+    assert list(feet.columns) == ["md_ft", "inc_deg", "azi_deg"]
+    assert np.allclose(feet["md_ft"] * FT, metres["md_m"], atol=0.005 * FT)
+    assert (feet[["inc_deg", "azi_deg"]].to_numpy() == metres[["inc_deg", "azi_deg"]].to_numpy()).all()
+
+
+def test_a_map_of_a_file_with_a_survey_reads_it_beside_the_file(tmp_path: Path) -> None:
+    from drillstring.drilling.maps import _map_config
+
+    for name in ("s-well-3d.toml", "s-well-3d-field.toml"):
+        config = _map_config(EXAMPLES / name)  # the survey path is relative to the file
+        assert config.well.survey is not None and Path(config.well.survey).is_absolute()
+    assert _map_config(EXAMPLES / "s-well-3d-field.toml").units == "field"

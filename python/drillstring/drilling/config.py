@@ -824,9 +824,17 @@ def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
 
 
 def _load_document(path: PathLike) -> dict[str, Any]:
+    """The TOML document of a configuration file, its survey file's path made relative to the
+    configuration file (as the file says it)."""
     from ..io.toml import load_toml
 
-    return load_toml(path)
+    source = os.fspath(path)
+    document = load_toml(source)
+    well = document.get("well")
+    if isinstance(well, dict) and isinstance(well.get("survey"), str) and not os.path.isabs(well["survey"]):
+        well = {**well, "survey": os.path.join(os.path.dirname(os.path.abspath(source)), well["survey"])}
+        document = {**document, "well": well}
+    return document
 
 
 def load_drill_config(path: PathLike) -> DrillConfig:
@@ -840,13 +848,7 @@ def load_drill_config(path: PathLike) -> DrillConfig:
         and the dotted field.
     """
     source = os.fspath(path)
-    document = _load_document(source)
-    well = document.get("well")
-    if isinstance(well, dict) and isinstance(well.get("survey"), str) and not os.path.isabs(well["survey"]):
-        # a survey file is relative to the configuration file
-        well = {**well, "survey": os.path.join(os.path.dirname(os.path.abspath(source)), well["survey"])}
-        document = {**document, "well": well}
-    return DrillConfig.from_dict(document, source=source)
+    return DrillConfig.from_dict(_load_document(source), source=source)
 
 
 _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")
