@@ -962,8 +962,8 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     try:
         # the axes are SI now (check_axis read them in the configuration's units)
-        frame = drill_map(config.with_units("si"), axes, threads=args.threads, progress=_show_progress(args), out=args.out,
-                          chunk_size=args.chunk_size, client=client,
+        frame = drill_map(config.with_units("si"), axes, threads=args.threads, progress=_show_progress(args),
+                          out=args.out, chunk_size=args.chunk_size, client=client,
                           name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0])
     except KeyboardInterrupt:
         print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",

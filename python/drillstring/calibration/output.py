@@ -250,7 +250,8 @@ def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
     for key, p in result.parameters.items():
         lines.append(f"| `{_md(key)}` | {_fmt(p.value)}{_field(key, system, p.value)} | {_fmt(p.ci_low)} .. "
                      f"{_fmt(p.ci_high)}{_field(key, system, p.ci_low, p.ci_high)} | {p.lower:g} .. {p.upper:g}"
-                     f"{_field(key, system, p.lower, p.upper)} | {p.method} | {'yes' if p.identifiable else '**no**'} |")
+                     f"{_field(key, system, p.lower, p.upper)} | {p.method} | "
+                     f"{'yes' if p.identifiable else '**no**'} |")
     lines += ["", "## Misfit", "",
               f"- sum of squared normalised residuals {result.ssr:.5g} (mean square {result.misfit:.4g}); "
               f"global stage best {result.global_stage['best_ssr']:.5g} over {result.global_stage['points']} points",

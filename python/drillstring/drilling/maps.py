@@ -124,8 +124,9 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     anything is solved; and all of one kind (numbers, strings, true/false or lists, and ``None``:
     one column of the table). A number with a unit (``"5 in"``) is converted to the key's SI unit
     (:mod:`drillstring.drilling.units`), and a plain number is in the unit system of ``config``
-    (:attr:`DrillConfig.units`: a field file's axes are in field units). Raises :class:`~drillstring.errors.ValidationError`
-    naming ``field`` (the dotted path for a path error)."""
+    (:attr:`DrillConfig.units`: a field file's axes are in field units). Raises
+    :class:`~drillstring.errors.ValidationError` naming ``field`` (the dotted path for a path
+    error)."""
     system, chosen = (config.units, config.chosen_units()) if config is not None else ("si", {})
     plain = [_si_value(key, _plain_value(v, field), field, system, chosen) for v in values]
     base = config.to_json() if config is not None else json.dumps(_core.drill_defaults())

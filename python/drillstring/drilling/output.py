@@ -122,8 +122,8 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
     The folder is held (:func:`output_folder`) while it is written: :data:`MARKER` first, the
     stale files of :data:`FILES` this run does not write removed, the files, then the marker
     removed. ``output_units`` adds a converted copy of the metrics to ``metrics.json``
-    (:meth:`DrillResult.summary`) and is the unit system of the figures (their ``units``); the
-    data files stay SI."""
+    (:meth:`DrillResult.summary`) and is the unit system of the figures (their ``units``) and of
+    ``report.md`` (:func:`report_markdown`); the data files stay SI."""
     from .units import system_of
 
     output_units = system_of(output_units, "output_units")  # refused before anything is written
@@ -182,7 +182,8 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
             figures += [axial_histories, axial_space_time]
         for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), figures):
             written.append(Path(os.fsdecode(os.fspath(save(make(result, units=output_units), path(name))))))
-    written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots, units=output_units).encode("utf-8")))
+    report = report_markdown(result, plots=plots, units=output_units)
+    written.append(write_bytes(path("report.md"), report.encode("utf-8")))
     os.unlink(marker)
     return written
 
@@ -308,7 +309,8 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
         *([f"| static torque to break free (wall + bit {num(result.profile.bit_static_torque, 'N*m', kilo=True)}), "
            f"{torque_unit} | {num(result.profile.static_torque, 'N*m', kilo=True)} |"]
           if result.profile.bit_static_torque > 0 else []),
-        f"| minimum cycle torque implied by break-off, {torque_unit} | {num(m.min_cycle_torque_Nm, 'N*m', kilo=True)} |",
+        f"| minimum cycle torque implied by break-off, {torque_unit} | "
+        f"{num(m.min_cycle_torque_Nm, 'N*m', kilo=True)} |",
     ]
     if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
         from .result import COUPLED_REGIME_CRITERION

@@ -30,8 +30,8 @@ from ..errors import ValidationError
 
 __all__ = [
     "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "UNIT_SUFFIXES", "annotate", "axis_unit", "chosen_units",
-    "convert", "field_error", "field_unit", "field_value", "hoist_after", "in_field_units", "override_to_si", "unit_key",
-    "quantity", "shown", "shown_unit", "system_of", "to_si",
+    "convert", "field_error", "field_unit", "field_value", "hoist_after", "in_field_units", "override_to_si",
+    "quantity", "shown", "shown_unit", "system_of", "to_si", "unit_key",
 ]
 
 #: The unit systems: ``si`` (the core's units; plain numbers pass untouched) and ``field``.
