@@ -341,9 +341,15 @@ def test_a_converted_value_is_written_under_its_field_named_key() -> None:
 def test_a_coupled_runs_field_copy_has_field_named_keys() -> None:
     from drillstring.drilling import drill
 
+    from drillstring.drilling.output import report_markdown
+
     config = load_drill_config(EXAMPLES / "pickup-3200m.toml").with_overrides(
         ["numerics.cells=60", "numerics.duration=4", "metrics.window=[2.0, 4.0]"])
-    summary = drill(config).summary("field")
+    result = drill(config)
+    summary = result.summary("field")
+    report = report_markdown(result, units="field")  # and the report's coupled table in field units
+    assert "| mean hook load, klbf |" in report and "| mean rate of penetration, ft/h |" in report
+    assert "| mechanical specific energy of the means, psi |" in report and "kN" not in report
     copy = summary["output_units"]
     coupled = summary["coupled"]
     assert copy["units"]["hook_load_mean_klbf"] == "klbf" and copy["units"]["rop_mean_ft_per_h"] == "ft/h"
