@@ -530,3 +530,22 @@ def test_a_map_of_a_file_with_a_survey_reads_it_beside_the_file(tmp_path: Path) 
         config = _map_config(EXAMPLES / name)  # the survey path is relative to the file
         assert config.well.survey is not None and Path(config.well.survey).is_absolute()
     assert _map_config(EXAMPLES / "s-well-3d-field.toml").units == "field"
+
+
+def test_the_field_workflows_documented_output(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The console lines the README and docs/units.md show for examples/s-well-3d-field.toml."""
+    root = EXAMPLES.parent
+    readme, units_md = (root / "README.md").read_text(), (root / "docs" / "units.md").read_text()
+    config = str(EXAMPLES / "s-well-3d-field.toml")
+    code, out, _ = run_cli(capsys, "torque-drag", config, "--out", str(tmp_path / "td"), "--no-plots")
+    hook = next(line for line in out.splitlines() if line.startswith("hook load"))
+    assert code == 0 and hook.split(" (with")[0] in readme and hook.split(" (with")[0] in units_md
+    code, out, _ = run_cli(capsys, "drill", config, "--out", str(tmp_path / "run"), "--no-plots",
+                           "--set", "bit.weight_on_bit=30")
+    window = next(line for line in out.splitlines() if line.startswith("window"))
+    assert code == 0 and "SSI 1.11," in window and "motor torque 16.25..21.71 kft-lbf, wall break-off 16 kft-lbf" \
+        in window and "motor torque 16.25..21.71 kft-lbf, wall break-off 16 kft-lbf" in readme
+    code, out, _ = run_cli(capsys, "drill", config, "--out", str(tmp_path / "run80"), "--no-plots",
+                           "--set", "bit.weight_on_bit=30", "--set", "top_drive.rpm=80")
+    window = next(line for line in out.splitlines() if line.startswith("window"))
+    assert code == 0 and f"# {window}" in units_md
