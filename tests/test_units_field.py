@@ -340,7 +340,6 @@ def test_a_converted_value_is_written_under_its_field_named_key() -> None:
 
 def test_a_coupled_runs_field_copy_has_field_named_keys() -> None:
     from drillstring.drilling import drill
-
     from drillstring.drilling.output import report_markdown
 
     config = load_drill_config(EXAMPLES / "pickup-3200m.toml").with_overrides(
