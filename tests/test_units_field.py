@@ -548,3 +548,12 @@ def test_the_field_workflows_documented_output(tmp_path: Path, capsys: pytest.Ca
                            "--set", "bit.weight_on_bit=30", "--set", "top_drive.rpm=80")
     window = next(line for line in out.splitlines() if line.startswith("window"))
     assert code == 0 and f"# {window}" in units_md
+
+
+def test_a_field_files_figures_are_field_figures(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    config = str(EXAMPLES / "on-bottom-3000m-field.toml")
+    for name, extra in (("default", []), ("field", ["--units", "field"]), ("si", ["--units", "si"])):
+        assert run_cli(capsys, "torque-drag", config, "--out", str(tmp_path / name), *extra)[0] == 0
+    for figure in ("torque_drag.png", "broomstick.png", "well_path.png"):
+        default, field, si = ((tmp_path / name / figure).read_bytes() for name in ("default", "field", "si"))
+        assert default == field != si, figure
