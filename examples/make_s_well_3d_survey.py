@@ -1,5 +1,7 @@
 """Writes examples/s-well-3d-survey.csv: a 3-D S-shaped well of 4000 m as a survey company
-delivers it (stations 25-35 m apart, angles read to 0.01 degree with a small scatter).
+delivers it (stations 25-35 m apart, angles read to 0.01 degree with a small scatter), and
+examples/s-well-3d-survey-ft.csv, the same stations with measured depths in feet (to 0.01 ft;
+column md_ft) for examples/s-well-3d-field.toml.
 
 The plan, as inclination and azimuth changing at constant rates in measured depth:
 vertical to 600 m; build at 2.5 deg/30 m to 35 deg at azimuth 60 deg; hold to 1500 m; turn
@@ -41,6 +43,8 @@ def main() -> None:
     a = np.where(scatter & (i > 0.5), a + rng.normal(0.0, 0.1, m.size), a)
     rows = ["md_m,inc_deg,azi_deg"] + [f"{x:.2f},{y:.2f},{z % 360.0:.2f}" for x, y, z in zip(m, i, a)]
     Path(__file__).with_name("s-well-3d-survey.csv").write_text("\n".join(rows) + "\n")
+    feet = ["md_ft,inc_deg,azi_deg"] + [f"{x / 0.3048:.2f},{y:.2f},{z % 360.0:.2f}" for x, y, z in zip(m, i, a)]
+    Path(__file__).with_name("s-well-3d-survey-ft.csv").write_text("\n".join(feet) + "\n")
 
 
 if __name__ == "__main__":

@@ -274,8 +274,10 @@ def test_drill_units_field_writes_field_figures_and_si_data(tmp_path: Path,
     assert runs["default"] == runs["si"]  # --units si is the default, byte for byte
     field, default = runs["field"], runs["default"]
     assert set(field) == set(default)
-    for name in ("series.csv", "series.parquet", "fields.npz", "config.toml", "report.md"):
+    for name in ("series.csv", "series.parquet", "fields.npz", "config.toml"):
         assert field[name] == default[name], name  # the data files stay SI
+    assert b"| section | length, ft | OD, in |" in field["report.md"]  # the report follows --units
+    assert b"| section | length, m | OD, m |" in default["report.md"]
     metrics = json.loads(field["metrics.json"])
     metrics.pop("output_units")
     assert metrics == json.loads(default["metrics.json"])

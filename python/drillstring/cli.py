@@ -574,6 +574,27 @@ def _add_drilling_config_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
 
 
+def _drilling_config(args: argparse.Namespace, load: Any = None, extra: Sequence[str] = ()) -> Any:
+    """The configuration of a command on one drilling configuration: ``args.config`` read (by
+    ``load``, default :func:`~drillstring.drilling.load_drill_config`) and ``args.overrides``
+    (with ``extra``) set. With ``--units field`` an error of a value gives its range in field
+    units too (a field file's errors do already)."""
+    from .drilling import load_drill_config
+    from .drilling.units import field_error
+
+    try:
+        config = (load or load_drill_config)(args.config)
+        if args.overrides:
+            config = config.with_overrides([*args.overrides, *extra])
+    except ValidationError as exc:
+        units = getattr(args, "units", None)  # fit's --unit (the data's columns) is a list: not a system
+        error = field_error(exc, units if isinstance(units, str) else "si")
+        if error is exc:
+            raise
+        raise error from None
+    return config
+
+
 def _add_drill(sub: Any) -> None:
     p = sub.add_parser(
         "drill",
@@ -595,10 +616,10 @@ def _add_drill(sub: Any) -> None:
 
 def _add_units(p: argparse.ArgumentParser) -> None:
     """``--units si|field``, the unit system of a command's console lines and figures."""
-    p.add_argument("--units", choices=("si", "field"), default="si",
+    p.add_argument("--units", choices=("si", "field"), default=None,
                    help="the unit system of the console lines and the figures (field: ft, klbf, kft-lbf, ...) and, "
-                   "for drill, of a converted copy of the metrics in metrics.json (output_units); the data files "
-                   "keep their SI values (default si; the configuration's own units key sets how it is read)")
+                   "for drill, of report.md and of a converted copy of the metrics in metrics.json (output_units); "
+                   "the data files keep their SI values (default: the configuration's units key, si without one)")
 
 
 def _change(kind: str, change: Optional[float]) -> str:
@@ -611,13 +632,11 @@ def _change(kind: str, change: Optional[float]) -> str:
 def _cmd_drill(args: argparse.Namespace) -> int:
     import time
 
-    from .drilling import drill, load_drill_config
+    from .drilling import drill
     from .drilling.output import _write_files, output_folder
-    from .drilling.units import convert, shown
+    from .drilling.units import annotate, convert, shown
 
-    config = load_drill_config(args.config)
-    if args.overrides:
-        config = config.with_overrides(args.overrides)
+    config = _drilling_config(args)
     plots = not args.no_plots
     # the folder is checked, created and locked before solving: a second run into it is refused now
     with output_folder(args.out, plots=plots, field="--out") as folder:
@@ -626,7 +645,7 @@ def _cmd_drill(args: argparse.Namespace) -> int:
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
         seconds = time.perf_counter() - start
         m = result.metrics
-        system = args.units
+        system = args.units or config.units
         status = (result.status if result.metrics_finite
                   else f"{result.status}; no rotation: no torsional metrics"
                   if not result.rotating and result.coupled_metrics is not None
@@ -669,8 +688,8 @@ def _cmd_drill(args: argparse.Namespace) -> int:
             _say(f"grid check, {g.cells} -> {g.refined_cells} cells: "
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
         for warning in result.warnings:
-            _say(f"warning: {warning}")
-        written = _write_files(result, folder.directory, plots, args.units)
+            _say(f"warning: {annotate(warning, system)}")
+        written = _write_files(result, folder.directory, plots, system)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0
 
@@ -688,16 +707,17 @@ def _add_tune(sub: Any) -> None:
     p.add_argument("config", metavar="CONFIG.toml", help="drilling configuration (examples/*.toml)")
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
                    help="change a field first, e.g. sections[0].length=4000 (repeatable)")
+    p.add_argument("--units", choices=("si", "field"), default=None,
+                   help="field: each SI number followed by its field value (ft-lbf s/rad, ...) (default: the "
+                   "configuration's units key, si without one)")
     p.set_defaults(func=_cmd_tune)
 
 
 def _cmd_tune(args: argparse.Namespace) -> int:
-    from .drilling import load_drill_config, recommend_controllers
+    from .drilling import recommend_controllers
 
-    config = load_drill_config(args.config)
-    if args.overrides:
-        config = config.with_overrides(args.overrides)
-    for line in recommend_controllers(config).lines():
+    config = _drilling_config(args)
+    for line in recommend_controllers(config).lines(args.units or config.units):
         print(line)
     return 0
 
@@ -720,21 +740,19 @@ def _add_torque_drag(sub: Any) -> None:
 def _cmd_torque_drag(args: argparse.Namespace) -> int:
     import time
 
-    from .drilling import load_drill_config
     from .drilling.torque_drag import torque_drag, write_torque_drag
     from .drilling.units import axis_unit
 
-    config = load_drill_config(args.config)
-    if args.overrides:
-        config = config.with_overrides(args.overrides)
+    config = _drilling_config(args)
     start = time.perf_counter()
     result = torque_drag(config)
     seconds = time.perf_counter() - start
     s = result.summary
-    force, force_unit = axis_unit("N", args.units, kilo=True)  # kN or klbf
-    torque, torque_unit = axis_unit("N*m", args.units, kilo=True)
-    normal, normal_unit = axis_unit("N/m", args.units)
-    depth, depth_unit = axis_unit("m", args.units)
+    units = args.units or config.units
+    force, force_unit = axis_unit("N", units, kilo=True)  # kN or klbf
+    torque, torque_unit = axis_unit("N*m", units, kilo=True)
+    normal, normal_unit = axis_unit("N/m", units)
+    depth, depth_unit = axis_unit("m", units)
     _say(f"torque-drag: {config.length * depth:.6g} {depth_unit} string, solved in {seconds:.2g} s (with the "
          "broomstick sweep)")
     _say(f"hook load: pick-up {s['hook_load_pickup_N'] * force:.1f} {force_unit}, slack-off "
@@ -745,7 +763,7 @@ def _cmd_torque_drag(args: argparse.Namespace) -> int:
          f"{s['surface_torque_on_bottom_Nm'] * torque:.2f} {torque_unit}; largest normal force "
          f"{s['max_normal_force_N_per_m'] * normal:.0f} {normal_unit} at {s['max_normal_force_md'] * depth:.0f} "
          f"{depth_unit} ({s['max_normal_force_operation']})")
-    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=args.units)
+    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=units)
     _say(f"wrote {len(written)} files to {args.out}")
     return 0
 
@@ -930,9 +948,8 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
     from .drilling.maps import _map_config, check_axis, drill_map
     from .io.output import refuse_foreign_folder
 
-    config = _map_config(args.config)  # no field snapshots: a map keeps none
-    if args.overrides:
-        config = config.with_overrides([*args.overrides, "numerics.field_interval=0"])
+    config = _drilling_config(args, _map_config, ["numerics.field_interval=0"])  # a map keeps no snapshots
+    system = args.units or config.units
     axes: dict[str, list[Any]] = {}
     for text in args.axes:
         key, values = _map_axis(text)
@@ -954,13 +971,14 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
             from .drilling.maps import map_figures
             from .io.figures import save
 
-            for name, fig in map_figures(table, args.units).items():
+            for name, fig in map_figures(table, system).items():
                 save(fig, os.path.join(directory, name))
                 written.append(os.path.join(args.out, name))
 
     try:
-        frame = drill_map(config, axes, threads=args.threads, progress=_show_progress(args), out=args.out,
-                          chunk_size=args.chunk_size, client=client,
+        # the axes are SI now (check_axis read them in the configuration's units)
+        frame = drill_map(config.with_units("si"), axes, threads=args.threads, progress=_show_progress(args),
+                          out=args.out, chunk_size=args.chunk_size, client=client,
                           name=os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0], also_write=also_write)
     except KeyboardInterrupt:
         print(f"drillstring: the finished runs are stored in {args.out}; the same command resumes the map",
@@ -981,10 +999,14 @@ def _cmd_drill_map(args: argparse.Namespace) -> int:
              f"runs (the bit stops during part of the window), no in {int(verdicts.get('no', 0))}, undetermined in "
              f"{int(verdicts.get('undetermined', 0))}; settled in {int((ok['settled'] == 1).sum())} of {len(ok)}")
         if "regime" in ok.columns:  # a coupled map ([hoist])
+            from .drilling.units import axis_unit
+
             regimes = ok["regime"].value_counts()
+            rop, rop_unit = axis_unit("m/h", system)
+            mse, mse_unit = (1e-6, "MPa") if system == "si" else axis_unit("Pa", system)
             _say("regimes: " + ", ".join(f"{r} in {n} runs" for r, n in regimes.items())
-                 + f"; ROP {ok['rop_mean_m_per_h'].min():.3g}..{ok['rop_mean_m_per_h'].max():.3g} m/h, "
-                 f"MSE {ok['mse_mean_Pa'].min() / 1e6:.3g}..{ok['mse_mean_Pa'].max() / 1e6:.3g} MPa")
+                 + f"; ROP {ok['rop_mean_m_per_h'].min() * rop:.3g}..{ok['rop_mean_m_per_h'].max() * rop:.3g} "
+                 f"{rop_unit}, MSE {ok['mse_mean_Pa'].min() * mse:.3g}..{ok['mse_mean_Pa'].max() * mse:.3g} {mse_unit}")
     from .drilling.maps import controller_recommendation
 
     ranking = controller_recommendation(frame)
@@ -1014,7 +1036,9 @@ def _add_fit(sub: Any) -> None:
     p.add_argument("--data", action="append", required=True, metavar="FILE",
                    help="measured data, CSV or Parquet (repeat for several events fitted jointly)")
     p.add_argument("--param", action="append", required=True, metavar="KEY=LOW:HIGH", dest="params",
-                   help="a configuration value to fit and its bounds, e.g. friction.static=0.1:0.6 (repeatable)")
+                   help="a configuration value to fit and its bounds, e.g. friction.static=0.1:0.6, in the "
+                   "configuration's units (a field file's bit.weight_on_bit=10:40 is klbf) or with units "
+                   "('bit.weight_on_bit=10 klbf:40 klbf') (repeatable)")
     p.add_argument("--per-event", action="append", default=[], metavar="KEY",
                    help="a --param key with one value per event (the others are shared) (repeatable)")
     p.add_argument("--target", action="append", default=[], metavar="NAME[=WEIGHT]", dest="targets",
@@ -1056,19 +1080,22 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     from .calibration.fit import fit
     from .calibration.output import next_commands, next_heading, write_files
     from .calibration.output import owned as fit_owned
-    from .drilling import load_drill_config
     from .drilling.output import output_folder
+    from .drilling.units import annotate, field_value
 
-    config = load_drill_config(args.config)
-    if args.overrides:
-        config = config.with_overrides(args.overrides)
-    params: dict[str, tuple[float, float]] = {}
+    config = _drilling_config(args)
+    params: dict[str, tuple[Any, Any]] = {}
     for key, value in _pairs(args.params, "--param", "KEY=LOW:HIGH (e.g. friction.static=0.1:0.6)"):
-        try:
-            low, high = (float(v) for v in value.split(":"))
-        except ValueError:
-            raise ValidationError("--param", f"{key}={value}", "KEY=LOW:HIGH with two numbers") from None
-        params[key] = (low, high)
+        bounds: list[Any] = []
+        for v in value.split(":"):  # numbers in the configuration's units, or quantities ("10 klbf")
+            try:
+                bounds.append(float(v))
+            except ValueError:
+                bounds.append(v.strip() if v.strip()[:1].isdigit() or v.strip()[:1] in "+-." else None)
+        if len(bounds) != 2 or None in bounds:
+            raise ValidationError("--param", f"{key}={value}", "KEY=LOW:HIGH with two numbers (in the configuration's "
+                                  "units) or quantities (10 klbf:40 klbf)")
+        params[key] = (bounds[0], bounds[1])
     targets: dict[str, float] = {}
     for text in args.targets or ["motor_torque"]:
         name, _, weight = text.partition("=")
@@ -1092,13 +1119,17 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                      samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
                      landscape_points=args.landscape_points, progress=lambda msg: _say(f"fit: {msg}"),
                      top=args.top)
+        system = config.units
         for key, p in result.parameters.items():
-            _say(f"{key} = {p.value:.6g} ({result.level:.0%}: {p.ci_low:.6g} .. {p.ci_high:.6g}, {p.method})"
+            low, high = field_value(key, p.ci_low, system), field_value(key, p.ci_high, system)
+            field = (f"; {field_value(key, p.value, system)} ({low.split(' ', 1)[0]} .. {high})"
+                     if low is not None and high is not None else "")
+            _say(f"{key} = {p.value:.6g} ({result.level:.0%}: {p.ci_low:.6g} .. {p.ci_high:.6g}, {p.method}{field})"
                  + ("" if p.identifiable else " NOT identifiable"))
         _say(f"misfit {result.ssr:.5g} over {result.points} samples; {result.evaluations} runs in "
              f"{result.seconds:.3g} s")
         for warning in result.warnings:
-            _say(f"warning: {warning}")
+            _say(f"warning: {annotate(warning, system)}")
         written = write_files(result, folder.directory, plots, shown=folder.path)
     _say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     _say(next_heading(result))

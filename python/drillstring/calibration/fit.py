@@ -66,6 +66,7 @@ from numpy.typing import NDArray
 from .. import _core
 from ..drilling.config import DrillConfig
 from ..drilling.solve import ConfigLike, _config
+from ..drilling.units import override_to_si
 from ..errors import ValidationError
 from .data import AXIAL_SERIES, MODEL_SERIES, MeasuredData, read_measured
 
@@ -273,7 +274,7 @@ class _Problem:
             if top == "measured":
                 overrides.update({"top_drive.mode": "measured_speed",
                                   "top_drive.speed_series": _speed_series(ev.data, duration)})
-            cfg = ev.config.with_overrides(overrides)
+            cfg = ev.config.with_overrides(overrides, units="si")
             self.bases.append(cfg.to_json())
             self.index.append(idx)
             self.measured.append(meas)
@@ -461,15 +462,20 @@ def _bounds(parameters: Mapping[str, Any], config: DrillConfig) -> dict[str, tup
     if not isinstance(parameters, Mapping) or not parameters:
         raise ValidationError("parameters", parameters, "a mapping of dotted keys to (low, high) bounds")
     out = {}
+    chosen = config.chosen_units()
     for key, bounds in parameters.items():
         try:
-            lo, hi = (float(b) for b in bounds)
+            # plain numbers in the configuration's unit system, strings with units converted
+            lo, hi = (float(override_to_si(str(key), b, config.units, chosen)) for b in bounds)
+        except ValidationError as exc:
+            raise ValidationError(f"parameters[{key}]", bounds, f"(low, high): two values of {key}: {exc.allowed}") \
+                from None
         except (TypeError, ValueError):
             raise ValidationError(f"parameters[{key}]", bounds, "(low, high): two numbers") from None
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
             raise ValidationError(f"parameters[{key}]", bounds, "finite bounds low < high")
         for value in (lo, hi):  # the key exists, takes numbers and the core accepts both bounds
-            config.with_overrides({key: value})
+            config.with_overrides({key: value}, units="si")
         current = _number_at(config, key)
         if isinstance(current, bool) or not isinstance(current, float):
             raise ValidationError(f"parameters[{key}]", current, "a key of a real number (not an integer, a flag, "
@@ -505,7 +511,7 @@ def _as_list(value: Any) -> list[Any]:
 def fit(
     config: Union[ConfigLike, Sequence[ConfigLike]],
     data: Union[DataLike, Sequence[DataLike]],
-    parameters: Mapping[str, tuple[float, float]],
+    parameters: Mapping[str, tuple[Any, Any]],
     *,
     targets: Union[str, Sequence[str], Mapping[str, float]] = ("motor_torque",),
     windows: Optional[Sequence[tuple[float, float]]] = None,
@@ -539,7 +545,10 @@ def fit(
     parameters : mapping
         Dotted key -> ``(low, high)``: any real configuration value (``friction.static``,
         ``friction.kinetic_ratio``, ``friction.stick_speed``, ``damping_rate``,
-        ``sections[1].density``, ...).
+        ``sections[1].density``, ...). Plain numbers are in the configuration's unit system
+        (:attr:`DrillConfig.units <drillstring.drilling.config.DrillConfig.units>`: klbf for
+        ``bit.weight_on_bit`` of a field file), strings with units (``"10 klbf"``) in their own;
+        the result's values are SI.
     targets : str, sequence of str, or mapping of str to float
         The series compared (of ``surface_rpm``, ``motor_torque``, ``bit_rpm``, ``bit_torque``,
         and in a coupled run, a ``[hoist]`` table, ``hook_load`` and ``weight_on_bit``), with their
@@ -823,7 +832,8 @@ def fit(
                                         columns[i].lower + grid * span[i], columns[j].lower + grid * span[j], block))
 
     # the fitted runs, whole
-    fitted_configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e))) for e in range(len(events))]
+    fitted_configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e)), units="si")
+                      for e in range(len(events))]
     whole = problem.run([u_opt], whole=True)[0]
     fitted = [w if isinstance(w, dict) else {} for w in whole]
     rms = []

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, Optional, Union
 import numpy as np
 
 from ..drilling.output import MARKER, _json_ready, _md, output_folder
+from ..drilling.units import annotate, field_value
 from ..io.output import atomic_write, write_text
 from .data import AXIAL_SERIES
 
@@ -227,8 +228,23 @@ def _fmt(value: float) -> str:
     return "–" if not math.isfinite(value) else f"{value:.5g}"
 
 
+def _field(key: str, system: str, low: float, high: Optional[float] = None) -> str:
+    """`` (20 klbf)`` or `` (18 .. 22 klbf)``: the SI value(s) of ``key`` in field units, for a
+    field configuration (``system``); empty in SI or for a key whose unit is the same in both."""
+    first = field_value(key, low, system, 5)
+    if first is None:
+        return ""
+    if high is None:
+        return f" ({first})"
+    second = field_value(key, high, system, 5)
+    if second is None:
+        return ""
+    return f" ({first.split(' ', 1)[0]} .. {second})"
+
+
 def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
-    """A short Markdown report of the fit."""
+    """A short Markdown report of the fit; for a field configuration (``units = "field"``) the
+    parameters in field units too, beside the SI values the fitted ``config.toml`` holds."""
     lines = [
         "# Calibration from measured data",
         "",
@@ -241,9 +257,12 @@ def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
         "| parameter | value | interval | bounds | from | identifiable |",
         "|---|---:|---|---|---|---|",
     ]
+    system = result.config.units  # a field configuration's values in field units too
     for key, p in result.parameters.items():
-        lines.append(f"| `{_md(key)}` | {_fmt(p.value)} | {_fmt(p.ci_low)} .. {_fmt(p.ci_high)} | "
-                     f"{p.lower:g} .. {p.upper:g} | {p.method} | {'yes' if p.identifiable else '**no**'} |")
+        lines.append(f"| `{_md(key)}` | {_fmt(p.value)}{_field(key, system, p.value)} | {_fmt(p.ci_low)} .. "
+                     f"{_fmt(p.ci_high)}{_field(key, system, p.ci_low, p.ci_high)} | {p.lower:g} .. {p.upper:g}"
+                     f"{_field(key, system, p.lower, p.upper)} | {p.method} | "
+                     f"{'yes' if p.identifiable else '**no**'} |")
     lines += ["", "## Misfit", "",
               f"- sum of squared normalised residuals {result.ssr:.5g} (mean square {result.misfit:.4g}); "
               f"global stage best {result.global_stage['best_ssr']:.5g} over {result.global_stage['points']} points",
@@ -253,7 +272,7 @@ def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
         lines.append(f"- event {e} ({_md(os.path.basename(result.events[e].data.source))}): RMS error "
                      + ", ".join(f"{k} {v:.4g}" for k, v in row.items()))
     if result.warnings:
-        lines += ["", "## Warnings", ""] + [f"- {_md(w)}" for w in result.warnings]
+        lines += ["", "## Warnings", ""] + [f"- {_md(annotate(w, system))}" for w in result.warnings]
     lines += ["", "## What the data must contain", "",
               "- static friction: a break-off (a start-up from rest, the torque peak before the string turns);",
               "- kinetic ratio: the torque while the string slips, after break-off;",

@@ -43,6 +43,7 @@ TOML (``examples/on-bottom-3000m.toml``)::
 
 from __future__ import annotations
 
+import copy as _copy
 import dataclasses
 import json
 import math
@@ -417,7 +418,8 @@ class Hoist:
     steps: tuple[tuple[float, float], ...] = _default("hoist", "steps", unit="s, m/s or N", kind="pairs")
     """Changes of the mode's target ``(time s, value)`` at increasing times, approached with
     ``ramp_time`` like the top drive's ``steps``: the block velocity (m/s), the hook load (N) or
-    the autodriller's setpoint (N or m/s); plain numbers are SI in either unit system."""
+    the autodriller's setpoint (N or m/s) by ``mode``; plain numbers are in the document's unit
+    system (field: ft/h, klbf), a string with a unit must be of the mode's dimension."""
     autodriller: Autodriller = field(default_factory=lambda: Autodriller(),
                                      metadata={"kind": "table", "unit": "", "doc": ""})
     """The autodriller of ``mode = "autodriller"``."""
@@ -434,8 +436,9 @@ class Autodriller:
     target: str = _default("hoist.autodriller", "target", unit="", kind="str")
     """``"weight_on_bit"`` (default) or ``"rop"``."""
     setpoint: float = _default("hoist.autodriller", "setpoint", unit="N or m/s", kind="float")
-    """The target's setpoint: N (``weight_on_bit``) or m/s (``rop``); a plain number is SI in
-    either unit system, a string with a unit (``"18 klbf"``, ``"60 ft/h"``) is converted."""
+    """The target's setpoint: N (``weight_on_bit``) or m/s (``rop``); a plain number is in the
+    document's unit system (field: klbf or ft/h), a string with a unit (``"18 klbf"``,
+    ``"60 ft/h"``) of the target's dimension is converted."""
     kp: float = _default("hoist.autodriller", "kp", unit="m/(N*s) or 1", kind="float")
     """Proportional gain: (m/s)/N on the weight on bit, dimensionless on ROP."""
     ki: float = _default("hoist.autodriller", "ki", unit="m/(N*s^2) or 1/s", kind="float")
@@ -536,11 +539,40 @@ class DrillConfig:
     hoist: Optional[Hoist] = field(default=None, metadata={"kind": "table?", "unit": "", "doc": ""})
     """The hoist: None (the default) for a torsion-only run, else the coupled axial-torsional run."""
 
+    #: The unit system of plain numbers given to this configuration after it was read (see :attr:`units`).
+    _units = "si"
+
     def __post_init__(self) -> None:
         plain = _plain({f.name: getattr(self, f.name) for f in dataclasses.fields(self)})
         normal = _core.drill_validate(_core_json(_units.to_si(plain)))
         for name, value in _from_core(type(self), normal).items():
             object.__setattr__(self, name, value)
+
+    @property
+    def units(self) -> str:
+        """The unit system the configuration was written in: ``"field"`` when its document said
+        ``units = "field"`` (:meth:`from_dict`, :func:`load_drill_config`), else ``"si"``. The
+        numbers it holds are SI either way (equal configurations compare equal whatever their
+        systems); the system says how plain numbers given to it later are read
+        (:meth:`with_overrides`, a stick-slip map's axes, the bounds of a fit) and in which units
+        the commands report on it. :meth:`with_units` changes it; :meth:`with_overrides` keeps
+        it; the constructor and :func:`dataclasses.replace` give ``"si"`` (their plain numbers are
+        SI)."""
+        return self._units
+
+    def with_units(self, system: str) -> DrillConfig:
+        """The same configuration (the same SI numbers) with :attr:`units` ``system`` (``"si"``
+        or ``"field"``): the unit system of plain numbers given to it later and of its reports.
+
+        Raises
+        ------
+        ValidationError
+            An unknown system, naming ``units``.
+        """
+        system = _units.system_of(system)
+        copy = _copy.copy(self)
+        object.__setattr__(copy, "_units", system)
+        return copy
 
     @classmethod
     def _from_core(cls, normal: Union[str, Mapping[str, Any]]) -> DrillConfig:
@@ -577,7 +609,16 @@ class DrillConfig:
         try:
             if not isinstance(data, Mapping):
                 raise ValidationError("config", data, "a table/mapping of the configuration")
-            return cls._from_core(_core.drill_validate(_core_json(_units.to_si(_plain(data)))))
+            system = _units.system_of(data.get("units", "si"))
+            try:
+                config = cls._from_core(_core.drill_validate(_core_json(_units.to_si(_plain(data)))))
+            except ValidationError as exc:  # a field file's user reads the range in field units too
+                error = _units.field_error(exc, system)
+                if error is exc:
+                    raise
+                raise error from None
+            object.__setattr__(config, "_units", system)
+            return config
         except ValidationError as exc:
             if source is None or exc.source is not None:
                 raise
@@ -611,7 +652,8 @@ class DrillConfig:
 
     # ------------------------------------------------------------------ overrides
 
-    def with_overrides(self, assignments: Union[Iterable[str], Mapping[str, Any]]) -> DrillConfig:
+    def with_overrides(self, assignments: Union[Iterable[str], Mapping[str, Any]], *,
+                       units: Optional[str] = None) -> DrillConfig:
         """A copy with some fields changed, by dotted keys with indices.
 
         ``assignments`` is a list of ``"key=value"`` strings, as ``drillstring drill --set``
@@ -620,7 +662,12 @@ class DrillConfig:
         ``top_drive.controller.tuning_frequency``, and a number with a unit such as ``5 in`` or
         ``"18 klbf"`` is converted to the key's SI unit), or a mapping of dotted keys to values; a
         table given for a table (``{"top_drive.controller": {"kp": 1.0}}``) is merged into it.
-        Plain numbers are SI. Setting ``bit.radius`` replaces a ``bit.diameter`` and the reverse.
+        Plain numbers are in the configuration's unit system (:attr:`units`: field units when its
+        file says ``units = "field"``, ``5`` for ``sections[0].outer_diameter`` is then 5 in) or
+        in ``units`` when given (``"si"`` or ``"field"``); the hoist's steps and the autodriller's
+        setpoint take the unit of the hoist's mode and target (after these overrides), and a
+        quantity of another dimension is refused. The copy keeps :attr:`units`.
+        Setting ``bit.radius`` replaces a ``bit.diameter`` and the reverse.
         The core sets them (``_core.drill_config_override``, as a stick-slip map its axes). Setting
         ``well.inclination_deg`` to one number (a constant inclination) without ``well.md``
         drops the survey stations::
@@ -633,16 +680,34 @@ class DrillConfig:
         ValidationError
             A malformed assignment or key (``field="--set"``), a key that is not in the
             configuration (naming it and listing the keys allowed there), an index out of
-            range, or a value of the wrong type or refused by the core (naming the field).
+            range, or a value of the wrong type or refused by the core (naming the field; for
+            a field configuration with the value and the range in field units too).
         """
         items = list(assignments.items() if isinstance(assignments, Mapping) else (
             _split_assignment(a) for a in _assignment_list(assignments)))
-        pairs = []
-        for key, value in items:
+        system = _units.system_of(self.units if units is None else units)
+        for key, _ in items:
             if not isinstance(key, str):
                 raise ValidationError("--set", key, _SET_FORM)
-            pairs.append([key.strip(), json_ready(_units.override_to_si(key.strip(), _plain(value)))])
-        return type(self)._from_core(_core.drill_config_override(self.to_json(), json.dumps(pairs), "--set"))
+        chosen = self.chosen_units(items)
+        pairs = [[key.strip(), json_ready(_units.override_to_si(key.strip(), _plain(value), system, chosen))]
+                 for key, value in items]
+        try:
+            config = type(self)._from_core(_core.drill_config_override(self.to_json(), json.dumps(pairs), "--set"))
+        except ValidationError as exc:  # a field configuration's user reads the range in field units too
+            error = _units.field_error(exc, self.units)
+            if error is exc:
+                raise
+            raise error from None
+        object.__setattr__(config, "_units", self.units)
+        return config
+
+    def chosen_units(self, overrides: Iterable[tuple[str, Any]] = ()) -> dict[str, tuple[str, str]]:
+        """The SI unit of each key whose unit is its target's (the hoist's steps, the autodriller's
+        setpoint and gains) as this configuration's hoist chooses it, after the ``(key, value)``
+        ``overrides`` of its mode and target (:func:`drillstring.drilling.units.chosen_units`)."""
+        hoist = _plain(self.hoist) if self.hoist is not None else None
+        return _units.chosen_units(_units.hoist_after(hoist, [(k, _plain(v)) for k, v in overrides]))
 
 
 # --------------------------------------------------------------------------- the core's JSON
@@ -759,9 +824,17 @@ def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
 
 
 def _load_document(path: PathLike) -> dict[str, Any]:
+    """The TOML document of a configuration file, its survey file's path made relative to the
+    configuration file (as the file says it)."""
     from ..io.toml import load_toml
 
-    return load_toml(path)
+    source = os.fspath(path)
+    document = load_toml(source)
+    well = document.get("well")
+    if isinstance(well, dict) and isinstance(well.get("survey"), str) and not os.path.isabs(well["survey"]):
+        well = {**well, "survey": os.path.join(os.path.dirname(os.path.abspath(source)), well["survey"])}
+        document = {**document, "well": well}
+    return document
 
 
 def load_drill_config(path: PathLike) -> DrillConfig:
@@ -775,13 +848,7 @@ def load_drill_config(path: PathLike) -> DrillConfig:
         and the dotted field.
     """
     source = os.fspath(path)
-    document = _load_document(source)
-    well = document.get("well")
-    if isinstance(well, dict) and isinstance(well.get("survey"), str) and not os.path.isabs(well["survey"]):
-        # a survey file is relative to the configuration file
-        well = {**well, "survey": os.path.join(os.path.dirname(os.path.abspath(source)), well["survey"])}
-        document = {**document, "well": well}
-    return DrillConfig.from_dict(document, source=source)
+    return DrillConfig.from_dict(_load_document(source), source=source)
 
 
 _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")

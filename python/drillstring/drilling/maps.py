@@ -125,9 +125,12 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     type (``top_drive.rpm`` takes numbers, ``bit.on_bottom`` true/false, ...) is refused before
     anything is solved; and all of one kind (numbers, strings, true/false or lists, and ``None``:
     one column of the table). A number with a unit (``"5 in"``) is converted to the key's SI unit
-    (:mod:`drillstring.drilling.units`). Raises :class:`~drillstring.errors.ValidationError`
-    naming ``field`` (the dotted path for a path error)."""
-    plain = [_si_value(key, _plain_value(v, field), field) for v in values]
+    (:mod:`drillstring.drilling.units`), and a plain number is in the unit system of ``config``
+    (:attr:`DrillConfig.units`: a field file's axes are in field units). Raises
+    :class:`~drillstring.errors.ValidationError` naming ``field`` (the dotted path for a path
+    error)."""
+    system, chosen = (config.units, config.chosen_units()) if config is not None else ("si", {})
+    plain = [_si_value(key, _plain_value(v, field), field, system, chosen) for v in values]
     base = config.to_json() if config is not None else json.dumps(_core.drill_defaults())
     # the path (malformed, an index out of range, a key through a value): the core's message as it is
     _core.drill_config_override(base, json.dumps([[key, plain[0] if plain else None]]), field, parse=False)
@@ -145,10 +148,11 @@ def check_axis(key: str, values: Union[Sequence[Any], np.ndarray], field: str,
     return plain
 
 
-def _si_value(key: str, value: Any, field: str) -> Any:
-    """An axis value with its quantities in SI; a bad unit named as the axis's."""
+def _si_value(key: str, value: Any, field: str, system: str, chosen: Mapping[str, tuple[str, str]]) -> Any:
+    """An axis value with its quantities in SI, plain numbers in the unit system ``system``; a
+    bad unit named as the axis's."""
     try:
-        return override_to_si(key, value)
+        return override_to_si(key, value, system, chosen)
     except ValidationError as exc:
         raise ValidationError(field, value, f"a value of {key}: {exc.allowed}") from None
 
@@ -174,7 +178,7 @@ def _map_config(config: ConfigLike) -> DrillConfig:
     """The base configuration of a map with ``numerics.field_interval = 0``: a map keeps no field
     snapshots, so their size must neither refuse it nor count in its memory."""
     if isinstance(config, DrillConfig):
-        return config.with_overrides({"numerics.field_interval": 0.0})
+        return config.with_overrides({"numerics.field_interval": 0.0}, units="si")
     source: Optional[str] = None
     if isinstance(config, (str, os.PathLike)):
         source = os.fsdecode(os.fspath(config))
@@ -894,10 +898,10 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
     """The regimes of a coupled map over the numeric axes ``x`` and ``y`` (a cell per run, one
     colour per regime: smooth drilling, stick-slip, bit bounce, both, off bottom, undetermined;
     the core's criterion, :data:`~drillstring.drilling.result.COUPLED_REGIME_CRITERION`) beside
-    the mean rate of penetration (m/h) and the mechanical specific energy (MPa) over the same
-    axes; the stick-slip boundary SSI = 1 (cyan) on the ROP panel. One row of three panels per
-    combination of the values of the map's other axes; failed runs are blank. ``units`` as
-    :func:`ssi_map`'s.
+    the mean rate of penetration (m/h; ft/h in field units) and the mechanical specific energy
+    (MPa; psi) over the same axes; the stick-slip boundary SSI = 1 (cyan) on the ROP panel. One
+    row of three panels per combination of the values of the map's other axes; failed runs are
+    blank. ``units`` as :func:`ssi_map`'s.
 
     Examples
     --------
@@ -922,8 +926,10 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
     norm = BoundaryNorm(np.arange(len(COUPLED_REGIMES) + 1) - 0.5, cmap.N)
     seen: set[str] = set()
     meshes: list[Any] = [None, None]
-    rop_max = float(np.nanmax(frame["rop_mean_m_per_h"].to_numpy(dtype=float), initial=0.0))
-    mse = frame["mse_mean_Pa"].to_numpy(dtype=float) / 1e6
+    rop_scale, rop_unit = axis_unit("m/h", units)
+    mse_scale, mse_unit = (1e-6, "MPa") if system_of(units, "units") == "si" else axis_unit("Pa", units)
+    rop_max = float(np.nanmax(frame["rop_mean_m_per_h"].to_numpy(dtype=float), initial=0.0)) * rop_scale
+    mse = frame["mse_mean_Pa"].to_numpy(dtype=float) * mse_scale
     mse = mse[np.isfinite(mse)]
     mse_range = (float(mse.min()), float(mse.max())) if mse.size else (0.0, 1.0)
     for row, (name, part) in zip(axs, parts):
@@ -932,7 +938,7 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
         seen.update(part["regime"][ok])
         xs, ys, z = _grid(part.assign(_regime=codes), x, y, "_regime")
         row[0].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap=cmap, norm=norm)
-        xs, ys, z = _grid(part.assign(_rop=part["rop_mean_m_per_h"].where(ok)), x, y, "_rop")
+        xs, ys, z = _grid(part.assign(_rop=(part["rop_mean_m_per_h"] * rop_scale).where(ok)), x, y, "_rop")
         meshes[0] = row[1].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap="viridis", vmin=0.0,
                                       vmax=max(rop_max, 1e-9))
         _, _, ssi = _grid(part.assign(_ssi=part["ssi"].where(ok)), x, y, "_ssi")
@@ -940,15 +946,15 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 row[1].contour(xs * xscale, ys * yscale, ssi, levels=[1.0], colors="tab:cyan", linewidths=2.0)
-        xs, ys, z = _grid(part.assign(_mse=(part["mse_mean_Pa"] / 1e6).where(ok)), x, y, "_mse")
+        xs, ys, z = _grid(part.assign(_mse=(part["mse_mean_Pa"] * mse_scale).where(ok)), x, y, "_mse")
         meshes[1] = row[2].pcolormesh(xs * xscale, ys * yscale, np.ma.masked_invalid(z), shading="nearest",
                                       cmap="magma_r", vmin=mse_range[0], vmax=max(mse_range[1], mse_range[0] + 1e-9))
         for ax, what in zip(row, ("regime", "mean ROP", "mechanical specific energy")):
             ax.set_title(f"{what}{', ' + name if name else ''}", fontsize=10)
             ax.set_xlabel(xlabel)
             ax.set_ylabel(ylabel)
-    fig.colorbar(meshes[0], ax=list(axs[:, 1]), label="mean rate of penetration [m/h] (cyan: SSI = 1)")
-    fig.colorbar(meshes[1], ax=list(axs[:, 2]), label="MSE of the means [MPa]")
+    fig.colorbar(meshes[0], ax=list(axs[:, 1]), label=f"mean rate of penetration [{rop_unit}] (cyan: SSI = 1)")
+    fig.colorbar(meshes[1], ax=list(axs[:, 2]), label=f"MSE of the means [{mse_unit}]")
     handles = [Patch(facecolor=REGIME_COLOURS[r], edgecolor="0.5", label=r) for r in COUPLED_REGIMES if r in seen]
     if handles:
         axs[0, 0].legend(handles=handles, fontsize="small", loc="upper left", framealpha=0.85)

@@ -122,8 +122,8 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
     :class:`~drillstring.errors.ValidationError` naming ``field`` before anything is written.
     The folder is held (:func:`output_folder`) while it is written and replaced as a whole (see
     the module docstring). ``output_units`` adds a converted copy of the metrics to ``metrics.json``
-    (:meth:`DrillResult.summary`) and is the unit system of the figures (their ``units``); the
-    data files stay SI."""
+    (:meth:`DrillResult.summary`) and is the unit system of the figures (their ``units``) and of
+    ``report.md`` (:func:`report_markdown`); the data files stay SI."""
     from .units import system_of
 
     output_units = system_of(output_units, "output_units")  # refused before anything is written
@@ -184,7 +184,8 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
             figures += [axial_histories, axial_space_time]
         for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), figures):
             written.append(Path(os.fsdecode(os.fspath(save(make(result, units=output_units), path(name))))))
-    written.append(write_bytes(path("report.md"), report_markdown(result, plots=plots).encode("utf-8")))
+    report = report_markdown(result, plots=plots, units=output_units)
+    written.append(write_bytes(path("report.md"), report.encode("utf-8")))
     os.unlink(marker)
     return written
 
@@ -212,26 +213,53 @@ def _fmt(value: float, digits: int = 4) -> str:
     return "–" if not math.isfinite(value) else f"{value:.{digits}g}"
 
 
-def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
+def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si") -> str:
     """A short Markdown report of the run: the system, how the solve ended, the metrics, the
-    energy balance and the files."""
+    energy balance and the files. ``units`` (``"si"`` or ``"field"``) is the unit system of its
+    numbers (field: ft, in, klbf, kft-lbf, ppg, psi, ft/h; :mod:`drillstring.drilling.units`); the
+    data files it lists are SI either way."""
+    from .units import annotate, convert, shown_unit, system_of
+
+    system = system_of(units, "units")
     cfg = result.config
     m = result.metrics
     td = cfg.top_drive
     bit = cfg.bit
+
+    def unit(si: str, key: str = "", kilo: bool = False) -> str:  # the unit a column writes
+        if system == "field" and key:
+            return convert(1.0, si, system, key=key)[1]
+        return shown_unit(si, system, kilo=kilo)
+
+    def num(value: float, si: str, key: str = "", kilo: bool = False, digits: int = 4) -> str:
+        number = convert(value, si, system, key=key or None)[0]
+        number = float("nan") if number is None else number
+        return _fmt(number / 1e3 if kilo and not unit(si, key).startswith("k") else number, digits)
+
+    def kilo(si: str) -> bool:  # a thousand of the unit: kN m, kN; klbf is one already
+        return not unit(si).startswith("k")
+
+    pressure = "GPa" if system == "si" else unit("Pa")
     lines = [
         "# Drilling-system run",
         "",
         f"Status: **{result.status}**" + (f" ({_md(result.message)})" if result.message else ""),
         "",
+        *([f"Units: field ({', '.join(('ft', 'in', 'klbf', 'ft-lbf', 'ppg', 'psi', 'ft/h'))}); "
+           "the data files are SI.", ""] if system == "field" else []),
         "## System",
         "",
-        "| section | length, m | OD, m | ID, m | G, GPa | density, kg/m³ |",
+        f"| section | length, {unit('m')} | OD, {unit('m', 'sections[].outer_diameter')} | "
+        f"ID, {unit('m', 'sections[].inner_diameter')} | G, {pressure} | density, "
+        f"{'kg/m³' if system == 'si' else unit('kg/m^3')} |",
         "|---|---:|---:|---:|---:|---:|",
     ]
     for s in cfg.sections:
-        lines.append(f"| {_md(s.name)} | {s.length:.6g} | {s.outer_diameter:.6g} | {s.inner_diameter:.6g} | "
-                     f"{s.shear_modulus / 1e9:.4g} | {s.density:.6g} |")
+        modulus = _fmt(s.shear_modulus / 1e9, 4) if system == "si" else num(s.shear_modulus, "Pa", digits=4)
+        lines.append(f"| {_md(s.name)} | {num(s.length, 'm', digits=6)} | "
+                     f"{num(s.outer_diameter, 'm', 'sections[].outer_diameter', digits=6)} | "
+                     f"{num(s.inner_diameter, 'm', 'sections[].inner_diameter', digits=6)} | "
+                     f"{modulus} | {num(s.density, 'kg/m^3', digits=6)} |")
     inclination = cfg.well.inclination_deg
     if cfg.well.survey is not None:
         survey = f"survey file {_md(cfg.well.survey)} (minimum curvature)"
@@ -239,18 +267,22 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         survey = f"a plan of {len(cfg.well.plan)} segments (minimum curvature)"
     else:
         survey = (f"{inclination:g}° constant" if isinstance(inclination, float) else
-                  ", ".join(f"{i:g}° at {md:g} m" for md, i in zip(cfg.well.md or (), inclination)))
+                  ", ".join(f"{i:g}° at {num(md, 'm', digits=6)} {unit('m')}"
+                            for md, i in zip(cfg.well.md or (), inclination)))
     contact = ("the soft-string normal force (buoyed weight and tension times curvature)"
                if cfg.friction.contact == "soft_string" else "the buoyed weight times sin(inclination)")
-    on_bottom = (f"on bottom, WOB {bit.weight_on_bit / 1e3:.4g} kN, r {bit.radius:g} m, "
+    on_bottom = (f"on bottom, WOB {num(bit.weight_on_bit, 'N', kilo=kilo('N'))} {unit('N', kilo=kilo('N'))}, "
+                 f"r {num(bit.radius, 'm', 'bit.radius', digits=6)} {unit('m', 'bit.radius')}, "
                  f"mu_s {bit.mu_static:g}, mu_k {bit.mu_kinetic:g}" if bit.on_bottom else "off bottom")
+    torque_unit = unit("N*m", kilo=True)
     lines += [
         "",
         f"- Well: {survey}; wall friction mu {cfg.friction.static:g}"
         + (f" (and {len(cfg.friction.intervals)} depth interval(s) of their own)" if cfg.friction.intervals else "")
         + f" (kinetic x{cfg.friction.kinetic_ratio:g}, {cfg.friction.model}) on the contact force "
         f"`{cfg.friction.contact}`: {contact}",
-        f"- Top drive: {td.rpm:g} rpm, {td.controller.type} controller, inertia {td.inertia:g} kg m²",
+        f"- Top drive: {td.rpm:g} rpm, {td.controller.type} controller, inertia "
+        f"{num(td.inertia, 'kg*m^2', digits=6)} {unit('kg*m^2').replace('^2', '²')}",
         f"- Bit: {on_bottom}",
         f"- Numerics: {cfg.numerics.cells} cells asked"
         + (f" ({result.stats['cells']} used), {cfg.numerics.duration:g} s in {result.stats['steps']} steps of "
@@ -264,7 +296,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         "",
         f"Criterion: {_md(STICK_SLIP_CRITERION)}.",
         "",
-        *[f"- warning: {_md(w)}" for w in result.warnings],
+        *[f"- warning: {_md(annotate(w, system))}" for w in result.warnings],
         *([""] if result.warnings else []),
         "| metric | value |",
         "|---|---:|",
@@ -273,31 +305,39 @@ def report_markdown(result: DrillResult, *, plots: bool = True) -> str:
         f"| period, s (autocorrelation of the motor torque) | {_fmt(m.period_s)} |",
         f"| period from the bit's slip onsets, s | {_fmt(m.slip_period_s)} |",
         f"| bit speed min / mean / max, rpm | {_fmt(m.bit_rpm_min)} / {_fmt(m.bit_rpm_mean)} / {_fmt(m.bit_rpm_max)} |",
-        f"| motor torque min / max, kN m | {_fmt(m.motor_torque_min_Nm / 1e3)} / {_fmt(m.motor_torque_max_Nm / 1e3)} |",
-        f"| break-off torque (wall friction), kN m | {_fmt(m.breakoff_torque_Nm / 1e3)} |",
-        *([f"| static torque to break free (wall + bit {_fmt(result.profile.bit_static_torque / 1e3)}), kN m | "
-           f"{_fmt(result.profile.static_torque / 1e3)} |"] if result.profile.bit_static_torque > 0 else []),
-        f"| minimum cycle torque implied by break-off, kN m | {_fmt(m.min_cycle_torque_Nm / 1e3)} |",
+        f"| motor torque min / max, {torque_unit} | {num(m.motor_torque_min_Nm, 'N*m', kilo=True)} / "
+        f"{num(m.motor_torque_max_Nm, 'N*m', kilo=True)} |",
+        f"| break-off torque (wall friction), {torque_unit} | {num(m.breakoff_torque_Nm, 'N*m', kilo=True)} |",
+        *([f"| static torque to break free (wall + bit {num(result.profile.bit_static_torque, 'N*m', kilo=True)}), "
+           f"{torque_unit} | {num(result.profile.static_torque, 'N*m', kilo=True)} |"]
+          if result.profile.bit_static_torque > 0 else []),
+        f"| minimum cycle torque implied by break-off, {torque_unit} | "
+        f"{num(m.min_cycle_torque_Nm, 'N*m', kilo=True)} |",
     ]
     if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
         from .result import COUPLED_REGIME_CRITERION
 
         c = result.coupled_metrics
+        force_unit = unit("N", kilo=kilo("N"))
+        mse = (f"| mechanical specific energy of the means, MPa | {_fmt(c['mse_mean_Pa'] / 1e6)} |" if system == "si"
+               else f"| mechanical specific energy of the means, {unit('Pa')} | {num(c['mse_mean_Pa'], 'Pa')} |")
         lines += ["", f"## Coupled axial-torsional run (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)", "",
                   f"**Regime: {result.coupled_regime}**.", "",
                   f"Criterion: {_md(COUPLED_REGIME_CRITERION)}.", "",
                   "| metric | value |", "|---|---:|",
-                  f"| mean rate of penetration, m/h | {_fmt(c['rop_mean_m_per_h'])} |",
-                  f"| mean weight on bit, kN | {_fmt(c['wob_mean_N'] / 1e3)} |",
-                  f"| mean torque on bit, kN m | {_fmt(c['tob_mean_Nm'] / 1e3)} |",
+                  f"| mean rate of penetration, {unit('m/h')} | {num(c['rop_mean_m_per_h'], 'm/h')} |",
+                  f"| mean weight on bit, {force_unit} | {num(c['wob_mean_N'], 'N', kilo=kilo('N'))} |",
+                  f"| mean torque on bit, {torque_unit} | {num(c['tob_mean_Nm'], 'N*m', kilo=True)} |",
                   f"| bit bounce (share of the window with no weight on bit) | {_fmt(c['bounce_fraction'], 3)} |",
-                  f"| mean hook load, kN | {_fmt(c['hook_load_mean_N'] / 1e3)} |",
-                  f"| mechanical specific energy of the means, MPa | {_fmt(c['mse_mean_Pa'] / 1e6)} |"]
+                  f"| mean hook load, {force_unit} | {num(c['hook_load_mean_N'], 'N', kilo=kilo('N'))} |",
+                  mse]
     if result.energy:
-        lines += ["", "## Energy balance, J", "",
+        energy = "J" if system == "si" else unit("N*m")
+        lines += ["", f"## Energy balance, {energy}", "",
                   "Motor work and losses from the start; kinetic, elastic, top-drive and BHA energies at the end.",
                   "", "| term | value |", "|---|---:|"]
-        lines += [f"| {name.replace('_', ' ')} | {_fmt(value, 6)} |" for name, value in result.energy.items()]
+        lines += [f"| {name.replace('_', ' ')} | {num(value, 'N*m', digits=6)} |"
+                  for name, value in result.energy.items()]
     lines += ["", "## Files", "",
               "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque"
               + (" and the coupled run's bit_axial_speed (m/s), rop (m/h), weight_on_bit, hook_load (N), bit_depth, "

@@ -101,6 +101,13 @@ METRIC_DEFINITIONS: dict[str, str] = {
     "stick_slip_verdict": "the verdict yes / no / undetermined (stick_slip_criterion; stick_slip_reason says why)",
 }
 
+#: The SI unit of each numeric metric of a coupled run (:data:`COUPLED_METRICS`), as
+#: :data:`METRIC_UNITS`.
+COUPLED_METRIC_UNITS: dict[str, str] = {
+    "rop_mean_m_per_h": "m/h", "wob_mean_N": "N", "tob_mean_Nm": "N*m", "bounce_fraction": "",
+    "hook_load_mean_N": "N", "mse_mean_Pa": "Pa",
+}
+
 #: The metrics of :data:`METRICS` that are text (the others are numbers and verdicts as true/false).
 TEXT_METRICS: tuple[str, ...] = ("stick_slip_verdict",)
 
@@ -435,9 +442,12 @@ class DrillResult:
         energy balance and the solver counters (NaN as ``None``), and for a coupled run its
         metrics under ``coupled`` (:attr:`coupled_metrics`). Every number is SI; with
         ``output_units="field"`` the summary also holds ``output_units``: ``{"system": "field",
-        "units": {metric: unit}, "metrics": {metric: value}}``, the numeric metrics converted
-        (torques to ft-lbf; rpm, s and ratios stay; :mod:`drillstring.drilling.units`)."""
-        from .units import convert, system_of
+        "units": {name: unit}, "metrics": {name: value}}``, the numeric metrics (and a coupled
+        run's) converted (torques to ft-lbf, forces to klbf, ROP to ft/h, MSE to psi; rpm, s and
+        ratios stay; :mod:`drillstring.drilling.units`), each under its name with the SI unit
+        suffix replaced by the field unit's (``motor_torque_max_ftlbf``, ``rop_mean_ft_per_h``;
+        :func:`~drillstring.drilling.units.unit_key`): a key naming a unit holds that unit."""
+        from .units import convert, system_of, unit_key
 
         system = system_of(output_units, "output_units")
         out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite,
@@ -458,7 +468,13 @@ class DrillResult:
                 out["coupled"]["regime"] = self.coupled_regime
                 out["coupled"]["regime_criterion"] = COUPLED_REGIME_CRITERION
         if system != "si":
-            converted = {name: convert(out[name], unit, system) for name, unit in METRIC_UNITS.items()}
+            values = dict(out)
+            units = dict(METRIC_UNITS)
+            if self.coupled_metrics is not None:
+                values.update(self.coupled_metrics)
+                units.update(COUPLED_METRIC_UNITS)
+            converted = {unit_key(name, unit, convert(1.0, unit, system)[1]): convert(values[name], unit, system)
+                         for name, unit in units.items()}
             out["output_units"] = {"system": system, "units": {k: u for k, (_, u) in converted.items()},
                                    "metrics": {k: v for k, (v, _) in converted.items()}}
         return out

@@ -77,7 +77,7 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
     if check_grid:
         refined_cells = 2 * cfg.numerics.cells
         try:
-            refined_cfg = cfg.with_overrides({"numerics.cells": refined_cells})
+            refined_cfg = cfg.with_overrides({"numerics.cells": refined_cells}, units="si")
         except ValidationError as exc:
             raise ValidationError(
                 "check_grid", f"numerics.cells = {cfg.numerics.cells}",

@@ -86,9 +86,14 @@ class ControllerRecommendations:
                 return p
         raise KeyError(preset)
 
-    def lines(self) -> list[str]:
-        """What ``drillstring tune`` prints: the string's numbers, then one line per preset."""
-        return [self.string.line(), *(p.line() for p in self.presets)]
+    def lines(self, units: str = "si") -> list[str]:
+        """What ``drillstring tune`` prints: the string's numbers, then one line per preset. With
+        ``units="field"`` each SI quantity is followed by its field value (``14825 N m s/rad
+        (10935 ft-lbf s/rad)``; :func:`drillstring.drilling.units.annotate`); the gains a
+        configuration takes are the SI ones either way (or write them with their unit)."""
+        from .units import annotate
+
+        return [annotate(line, units) for line in (self.string.line(), *(p.line() for p in self.presets))]
 
 
 def recommend_controllers(
