@@ -103,7 +103,8 @@ def test_the_coupled_wall_friction_drags_against_the_sliding_velocity() -> None:
     for coupling, rpm in (("axial_torsional", 60.0), ("axial_torsional", 0.0), ("torsion_only", 60.0)):
         # one factor (static = kinetic): with a static factor above the kinetic one the slow
         # non-rotating pull sticks and slips
-        result = drill(_pulled_out(coupling, rpm).with_overrides({"friction.static": 0.195, "friction.kinetic_ratio": 1.0}))
+        one_factor = {"friction.static": 0.195, "friction.kinetic_ratio": 1.0}
+        result = drill(_pulled_out(coupling, rpm).with_overrides(one_factor))
         assert result.success, result.message
         t = result.t
         hook = result.axial["hook_load"][(t >= 15.0)].mean()
