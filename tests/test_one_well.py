@@ -211,3 +211,65 @@ def test_a_steady_pick_up_books_the_kinetic_friction_work(cells, tolerance):
     normal = (STEEL - 1200.0) * area * 9.81 * math.sin(math.radians(30.0))
     want = mu * normal * 1000.0 * speed * 10.0
     assert losses[1] - losses[0] == pytest.approx(want, rel=tolerance)
+
+
+FIELD_EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "directional-10000ft-field.toml"
+
+
+def _field_twin(tmp_path: Path) -> Path:
+    """The field example with its survey's stations written as arrays (in ft, as the file has them)."""
+    text = FIELD_EXAMPLE.read_text()
+    survey = FIELD_EXAMPLE.with_name("directional-10000ft-survey.csv").read_text().splitlines()
+    rows = [line.split(",") for line in survey if line and not line.startswith("#")][1:]
+    md, inc, azi = ([float(r[k]) for r in rows] for k in range(3))
+    twin = text.replace('survey = "directional-10000ft-survey.csv"',
+                        f"md = {md}\ninclination_deg = {inc}\nazimuth_deg = {azi}")
+    assert twin != text
+    path = tmp_path / "twin.toml"
+    path.write_text(twin)
+    return path
+
+
+def test_a_field_units_well_from_a_survey_file_is_its_array_twin_and_torque_and_drag(tmp_path):
+    """The 10,000 ft directional well of examples/directional-10000ft-field.toml, written by hand in
+    field units with its survey in ft: its coupled pick-up, slack-off (after a pick-up) and
+    drilling hook loads equal its array twin's to rounding and torque and drag's within 0.5 %
+    (torque and drag with the string's viscous drag and, drilling, with the wall's axial drag of
+    the bit's advance, ``mu_k N v / sqrt(v^2 + (r omega)^2)`` over torque and drag's normal
+    force, which torque and drag's rotating loads leave out)."""
+    survey = ds.load_drill_config(FIELD_EXAMPLE)
+    twin = ds.load_drill_config(_field_twin(tmp_path))
+    assert survey.units == "field" and twin.units == "field"
+    mu_k = survey.friction.static * survey.friction.kinetic_ratio
+    cases = {
+        "pick-up": ({}, "hook_load_pickup_N", 600.0),
+        "slack-off": ({"hoist.speed": -2400.0, "hoist.steps": [[12.0, 1200.0]], "numerics.duration": 30.0,
+                       "metrics.window": [22.0, 30.0]}, "hook_load_slackoff_N", -1200.0),
+        "drilling": ({"top_drive.rpm": 120.0, "hoist.mode": "weight_on_bit", "hoist.weight_on_bit": 25.0,
+                      "numerics.duration": 40.0, "metrics.window": [25.0, 40.0]}, "hook_load_rotating_on_bottom_N",
+                     None),
+    }
+    for name, (changes, key, speed_ft_per_h) in cases.items():
+        a, b = survey.with_overrides(changes), twin.with_overrides(changes)
+        run_a, run_b = ds.drill(a), ds.drill(b)
+        hook_a, hook_b = (r.coupled_metrics["hook_load_mean_N"] for r in (run_a, run_b))
+        assert hook_a == pytest.approx(hook_b, rel=1e-9), name
+        c = run_a.coupled_metrics
+        if speed_ft_per_h is None:  # drilling: torque and drag at the run's weight on bit
+            td = ds.torque_drag(a.with_overrides({"bit.weight_on_bit": f"{c['wob_mean_N']} N"}))
+            v = c["rop_mean_m_per_h"] / 3600.0
+            frame = td.profiles_frame()
+            md = frame["md_m"].to_numpy()
+            normal = frame["rotating_on_bottom_normal_force_N_per_m"].to_numpy()
+            omega = a.top_drive.rpm * math.pi / 30.0
+            length_pipe = a.sections[0].length
+            radius = np.where(md <= length_pipe, a.sections[0].outer_diameter / 2, a.sections[1].outer_diameter / 2)
+            ds_ = np.diff(md)
+            drag = float(np.sum(mu_k * normal[:-1] * ds_ * v / np.hypot(v, radius[:-1] * omega)))
+            want = td.summary[key] - drag - _viscous_drag(a, v)
+        else:
+            td = ds.torque_drag(a)
+            v = speed_ft_per_h * 0.3048 / 3600.0
+            want = td.summary[key] + math.copysign(_viscous_drag(a, v), v)
+        print(f"{name}: {hook_a / 4448.2216:.2f} klbf, torque and drag {want / 4448.2216:.2f} klbf ({hook_a / want - 1:+.3%})")
+        assert hook_a == pytest.approx(want, rel=5e-3), name
