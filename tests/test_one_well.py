@@ -17,11 +17,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import drillstring as ds
 from drillstring.drilling.config import DrillConfig
+from drillstring.errors import ValidationError
 
 FT = 0.3048
 STEEL = 7850.0
@@ -151,7 +152,11 @@ def test_the_steady_hook_loads_are_torque_and_drags(well, mu, ratio, cells):
     pick = _config(w, sections, speed=-0.05, rpm=0.0, duration=25.0, window=(15.0, 25.0), **common)
     td = ds.torque_drag(pick).summary
     rotating_load = td["hook_load_rotating_N"]
-    run = ds.drill(pick)
+    try:
+        run = ds.drill(pick)
+    except ValidationError as exc:  # a grid the solver does not accept (a section under one axial cell)
+        assume("axial cell" not in str(exc))
+        raise
     got = run.coupled_metrics["hook_load_mean_N"]
     assert got == pytest.approx(td["hook_load_pickup_N"] + _viscous_drag(pick, 0.05), rel=tol), "pick-up"
     spread = td["hook_load_pickup_N"] - td["hook_load_slackoff_N"]
