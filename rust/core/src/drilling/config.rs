@@ -1123,7 +1123,7 @@ impl DrillConfig {
             .pointer("/top_drive/controller")
             .and_then(Value::as_object)
             .map_or_else(Vec::new, |c| c.keys().cloned().collect());
-        super::tuning::apply_preset(&mut cfg, &given);
+        super::tuning::apply_preset(&mut cfg, &given)?;
         Ok(cfg)
     }
 

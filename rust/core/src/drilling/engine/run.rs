@@ -21,12 +21,12 @@ use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{
-    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, transient_warning,
-    NO_ROTATION,
+    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, torque_limit_share,
+    torque_limit_verdict, transient_warning, NO_ROTATION,
 };
 use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Poller};
-use crate::metrics::{stick_slip, StickSlip};
+use crate::metrics::{stick_slip, StickSlip, Verdict};
 use crate::solution::{serialize_list, Status};
 
 /// A run whose top-drive or bit speed exceeds this many times the largest setpoint (or 1 rad/s)
@@ -503,6 +503,14 @@ impl<'c> Simulation<'c> {
             run.message = format!("the energy became non-finite by t = {} s", Num(t));
         }
         metrics(cfg, &mut run);
+        let share = torque_limit_share(&run.t, &run.motor_torque, run.window, cfg.top_drive.torque_limit);
+        if let Some((warning, reason)) = torque_limit_verdict(cfg, share) {
+            run.warnings.push(warning);
+            if let Some(m) = &mut run.metrics {
+                m.verdict = Verdict::Undetermined;
+                m.verdict_reason = reason.into();
+            }
+        }
         if let Some(ax) = &self.axial {
             run.coupled = coupled_metrics(&run, ax.law().radius);
         }
