@@ -8,6 +8,7 @@ Before: the ``z_torque`` preset on a string with ``bit.bha_inertia = 0`` chatter
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 from _cli import one_line_error, run_cli
 
@@ -62,3 +63,92 @@ def test_the_cli_refuses_the_preset_in_one_line(tmp_path: object, capsys: pytest
                            "--no-plots")
     assert code == 2
     one_line_error(err, "top_drive.controller.preset", "bit.bha_inertia")
+
+
+# A short coupled string (the van de Wouw pipe, 500 m, no gravity, no wall friction): the rate law
+# at 120 rpm and 10 m/h; 4 s of a string that takes tens of seconds to compress onto the bit.
+COUPLED = {"sections": [{"length": 500.0, "outer_diameter": 0.127, "inner_diameter": 0.108,
+                         "shear_modulus": 77e9, "density": 8000.0, "poisson_ratio": 0.2987012987012987}],
+           "well": {"inclination_deg": 0.0, "gravity": 0.0}, "friction": {"static": 0.0}, "damping_rate": 2.0,
+           "top_drive": {"rpm": 120.0, "torque_limit": 1e12, "controller": {"type": "speed"},
+                         "motor_bandwidth": 1000.0},
+           "bit": {"radius": 0.108, "law": "detournay"},
+           "hoist": {"mode": "velocity", "speed": 10.0 / 3600.0},
+           "numerics": {"cells": 200, "duration": 4.0}}
+
+
+def _coupled(**numerics: object) -> dict[str, object]:
+    return {**COUPLED, "numerics": {**COUPLED["numerics"], **numerics}}  # type: ignore[dict-item]
+
+
+def test_the_initial_state_defaults_to_rest_and_steady_drills_at_the_steady_state_from_the_start() -> None:
+    assert ds.DrillConfig.from_dict(COUPLED).numerics.initial_state == "rest"
+    rest = ds.drill(COUPLED, progress=False)
+    steady = ds.drill(_coupled(initial_state="steady"), progress=False)
+    again = ds.drill(_coupled(initial_state="rest"), progress=False)
+    assert np.array_equal(rest.motor_torque, again.motor_torque)  # "rest" is the default, bit for bit
+    # from the steady state: the hoist's 10 m/h from the first second; from rest the string is
+    # still compressing (the bit far below it)
+    assert steady.coupled_metrics is not None and rest.coupled_metrics is not None
+    assert steady.coupled_metrics["rop_mean_m_per_h"] == pytest.approx(10.0, abs=0.02)
+    assert rest.coupled_metrics["rop_mean_m_per_h"] < 5.0
+    assert steady.coupled_regime == "smooth drilling"
+
+
+def test_a_window_inside_the_axial_transient_is_no_smooth_drilling() -> None:
+    # before: "smooth drilling" while the string was still compressing onto the bit
+    rest = ds.drill(COUPLED, progress=False)
+    assert rest.metrics.stick_slip_verdict == "no"
+    assert rest.coupled_regime == "undetermined"
+    warning = next(w for w in rest.warnings if w.startswith("regime undetermined, not smooth drilling"))
+    assert "weight on bit" in warning and "numerics.initial_state" in warning
+    assert "still changing between its halves" in ds.drilling.result.COUPLED_REGIME_CRITERION
+
+
+def test_a_steady_start_is_refused_without_a_hoist() -> None:
+    with pytest.raises(ds.ValidationError, match="numerics.initial_state"):
+        ds.drill({**STRING, "numerics": {**STRING["numerics"], "initial_state": "steady"}}, progress=False)
+    with pytest.raises(ds.ValidationError, match="numerics.initial_state"):
+        ds.DrillConfig.from_dict(_coupled(initial_state="moving"))
+    with pytest.raises(ds.ValidationError, match="check_start"):
+        ds.drill(STRING, check_start=True, progress=False)
+
+
+def test_check_start_compares_the_runs_from_rest_and_from_the_steady_state() -> None:
+    r = ds.drill(COUPLED, check_start=True, progress=False)
+    s = r.start_check
+    assert s is not None and not s.agree
+    rows = {row.metric: row for row in s.rows}
+    assert rows["rop_mean_m_per_h"].rest == r.coupled_metrics["rop_mean_m_per_h"]  # type: ignore[index]
+    assert rows["rop_mean_m_per_h"].steady == pytest.approx(10.0, abs=0.02)
+    assert (rows["regime"].rest, rows["regime"].steady) == ("undetermined", "smooth drilling")
+    warning = next(w for w in r.warnings if w.startswith("start check:"))
+    assert "wob_mean_N moves by +857 %" in warning and "regime is 'undetermined' from rest" in warning
+    assert r.summary()["start_check"]["agree"] is False
+
+
+def test_check_grid_compares_the_coupled_metrics_too() -> None:
+    # before: only the torsional metrics were compared
+    r = ds.drill(_coupled(initial_state="steady", duration=2.0), check_grid=True, progress=False)
+    g = r.grid_check
+    assert g is not None
+    rows = {row.metric: row for row in g.rows}
+    for name in ("rop_mean_m_per_h", "wob_mean_N", "tob_mean_Nm", "hook_load_mean_N", "bounce_fraction",
+                 "mse_mean_Pa", "regime"):
+        assert name in rows, name
+    assert rows["regime"].value == rows["regime"].refined == "smooth drilling" and rows["regime"].within
+    assert rows["rop_mean_m_per_h"].within
+    # the tolerances are the core's
+    assert ds.drilling.result.GRID_TOLERANCES["regime"] == ("equal", 0.0)
+    assert ds.drilling.result.GRID_FLOORS["ssi"] == 0.01
+
+
+def test_the_cli_checks_the_start(tmp_path: object, capsys: pytest.CaptureFixture[str]) -> None:
+    import pathlib
+
+    folder = pathlib.Path(str(tmp_path))
+    (folder / "short.toml").write_text(ds.DrillConfig.from_dict(COUPLED).to_toml())
+    code, out, _ = run_cli(capsys, "drill", str(folder / "short.toml"), "--check-start", "--out",
+                           str(folder / "out"), "--no-plots")
+    assert code == 0
+    assert "start check, rest -> steady: DISAGREE (" in out and "regime 'undetermined' -> 'smooth drilling'" in out

@@ -39,6 +39,7 @@
 
 pub mod axial;
 pub mod bit;
+pub mod compare;
 pub mod config;
 pub mod engine;
 pub mod grid;
@@ -47,6 +48,7 @@ pub mod map;
 pub mod plausibility;
 pub mod schema_doc;
 pub mod solver;
+pub mod start;
 pub mod tuning;
 pub mod well;
 

@@ -134,10 +134,33 @@ fn half(t: &[f64], x: &[f64], a: f64, b: f64, closed: bool) -> (usize, f64, f64,
 /// None with fewer than 2 samples in a half or non-finite values. The likely mistake: a run too
 /// short, or a window that starts too early.
 pub fn transient_warning(t: &[f64], surface_rpm: &[f64], motor_torque: &[f64], window: [f64; 2]) -> Option<String> {
+    let found = transient_changes(
+        t,
+        &[("surface speed", "rpm", surface_rpm, false), ("motor torque", "N m", motor_torque, true)],
+        window,
+    )?;
+    let [a, b] = window;
+    (!found.is_empty()).then(|| {
+        format!(
+            "a transient is still decaying in the metrics window [{}, {}] s: between its halves {}; the metrics \
+             describe the approach, not the steady state: a run too short or a window that starts too early? \
+             (lengthen numerics.duration or move metrics.window later)",
+            Num(a),
+            Num(b),
+            found.join(" and ")
+        )
+    })
+}
+
+/// The changes between the halves of the window `[a, b]` of each series `(name, unit, x, mean)`
+/// sampled at `t` that make a transient by the criteria of [`transient_warning`] (the mean's
+/// only where `mean`), each described in a few words; None with fewer than 2 samples in a half
+/// or non-finite values.
+pub fn transient_changes(t: &[f64], series: &[(&str, &str, &[f64], bool)], window: [f64; 2]) -> Option<Vec<String>> {
     let [a, b] = window;
     let m = 0.5 * (a + b);
     let mut found = Vec::new();
-    for (name, unit, x) in [("surface speed", "rpm", surface_rpm), ("motor torque", "N m", motor_torque)] {
+    for &(name, unit, x, judge_mean) in series {
         let (n1, mean1, lo1, hi1) = half(t, x, a, m, false);
         let (n2, mean2, lo2, hi2) = half(t, x, m, b, true);
         if n1 < 2 || n2 < 2 || ![mean1, mean2, lo1, lo2, hi1, hi2].iter().all(|v| v.is_finite()) {
@@ -159,23 +182,24 @@ pub fn transient_warning(t: &[f64], surface_rpm: &[f64], motor_torque: &[f64], w
                 Short(p2),
             ));
         }
-        if name == "motor torque" {
-            let moved = (mean2 - mean1).abs();
-            if moved > TRANSIENT_MEAN_CHANGE * mean1.abs().max(mean2.abs()) && moved > 0.5 * big {
-                found.push(format!("the mean motor torque went from {} to {} N m", Short(mean1), Short(mean2)));
-            }
+        let moved = (mean2 - mean1).abs();
+        if judge_mean && moved > TRANSIENT_MEAN_CHANGE * mean1.abs().max(mean2.abs()) && moved > 0.5 * big {
+            found.push(format!("the mean {name} went from {} to {} {unit}", Short(mean1), Short(mean2)));
         }
     }
-    (!found.is_empty()).then(|| {
-        format!(
-            "a transient is still decaying in the metrics window [{}, {}] s: between its halves {}; the metrics \
-             describe the approach, not the steady state: a run too short or a window that starts too early? \
-             (lengthen numerics.duration or move metrics.window later)",
-            Num(a),
-            Num(b),
-            found.join(" and ")
-        )
-    })
+    Some(found)
+}
+
+/// A coupled run's axial transient in the metrics window: the criteria of [`transient_warning`]
+/// (amplitude and mean) on the rate of penetration (m/h) and the weight on bit (N) sampled at
+/// `t`. The string of a coupled run compresses over minutes (the hoist lowers the top at its
+/// rate while the bit drills slower until the string carries the weight): a window inside that
+/// approach describes no steady regime. The reason, or None (also without samples to judge).
+pub fn axial_transient(t: &[f64], rop: &[f64], weight_on_bit: &[f64], window: [f64; 2]) -> Option<String> {
+    let found =
+        transient_changes(t, &[("ROP", "m/h", rop, true), ("weight on bit", "N", weight_on_bit, true)], window)?;
+    (!found.is_empty())
+        .then(|| format!("the axial transient is still decaying: between the window's halves {}", found.join(" and ")))
 }
 
 /// [`torque_limit_share`]: a motor torque within this fraction of `top_drive.torque_limit` is
@@ -214,7 +238,8 @@ pub fn torque_limit_share(t: &[f64], motor_torque: &[f64], window: [f64; 2], lim
 /// controller or the string, so that no stick-slip verdict follows from it (a motor chattering
 /// between its limits makes the bit stop and go at the chatter's rate). Returns the warning
 /// and the verdict's reason, None otherwise (and with an imposed top speed,
-/// `top_drive.mode = "measured_speed"`, where the limit is not used).
+/// `top_drive.mode = "measured_speed"`, where the limit is not used). A run does not ask it
+/// when the limit is below the string's static torque: [`torque_limit_warning`] says that.
 pub fn torque_limit_verdict(cfg: &DrillConfig, share: f64) -> Option<(String, String)> {
     if cfg.top_drive.mode == super::config::TopMode::MeasuredSpeed || !(share > TORQUE_LIMIT_SHARE) {
         return None;
