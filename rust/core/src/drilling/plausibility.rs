@@ -241,7 +241,7 @@ pub fn torque_limit_share(t: &[f64], motor_torque: &[f64], window: [f64; 2], lim
 /// `top_drive.mode = "measured_speed"`, where the limit is not used). A run does not ask it
 /// when the limit is below the string's static torque: [`torque_limit_warning`] says that.
 pub fn torque_limit_verdict(cfg: &DrillConfig, share: f64) -> Option<(String, String)> {
-    if cfg.top_drive.mode == super::config::TopMode::MeasuredSpeed || !(share > TORQUE_LIMIT_SHARE) {
+    if cfg.top_drive.mode == super::config::TopMode::MeasuredSpeed || share.is_nan() || share <= TORQUE_LIMIT_SHARE {
         return None;
     }
     let percent = format!("{:.0} %", 100.0 * share);

@@ -164,7 +164,7 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
             "\"rest\" for a run without a [hoist]: the steady state is a coupled run's steady drilling",
         ));
     };
-    if !(omega > 0.0) {
+    if omega.is_nan() || omega <= 0.0 {
         return Err(Error::invalid(
             FIELD,
             "\"steady\"",
