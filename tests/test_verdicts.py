@@ -8,12 +8,15 @@ Before: the ``z_torque`` preset on a string with ``bit.bha_inertia = 0`` chatter
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from _cli import one_line_error, run_cli
 
 import drillstring as ds
 
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 STRING = {"sections": [{"length": 2000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
           "numerics": {"cells": 100, "duration": 20.0}}
 
@@ -152,3 +155,21 @@ def test_the_cli_checks_the_start(tmp_path: object, capsys: pytest.CaptureFixtur
                            str(folder / "out"), "--no-plots")
     assert code == 0
     assert "start check, rest -> steady: DISAGREE (" in out and "regime 'undetermined' -> 'smooth drilling'" in out
+
+
+def test_z_torque_without_bha_inertia_chatters_at_the_limits_and_says_so() -> None:
+    # examples/s-well-3d.toml without its BHA inertia, with what the z_torque rule gave it
+    # (torque_highpass_time = 1 / (pi f1) of the bare string): before, "stick-slip: yes" for a
+    # motor chattering between its +-60 kN m limits with a 0.18 s period
+    cfg = ds.load_drill_config(EXAMPLES / "s-well-3d.toml").with_overrides([
+        "top_drive.rpm=40", "bit.bha_inertia=0", "top_drive.controller.type='z_torque'",
+        "top_drive.controller.z_factor=4", "top_drive.controller.torque_highpass_time=2.108418168067379"])
+    r = ds.drill(cfg, progress=False)
+    m = r.metrics
+    assert (m.motor_torque_min_Nm, m.motor_torque_max_Nm) == (-60e3, 60e3) and m.period_s < 0.2
+    assert m.stick_slip_verdict == "undetermined"
+    assert m.stick_slip_reason == "motor torque at its limit 12 % of the window"
+    assert any("top_drive.torque_limit = 60000 N m, 12 % of the metrics window" in w for w in r.warnings)
+    # the preset itself is refused on this string
+    with pytest.raises(ds.ValidationError, match="bit.bha_inertia"):
+        cfg.with_overrides(["top_drive.controller.preset='z_torque'"])

@@ -210,8 +210,9 @@ pub const TORQUE_LIMIT_TOLERANCE: f64 = 1e-3;
 /// torque limit above which the run says so and its stick-slip verdict is `undetermined`. A
 /// stick-slip cycle whose wind-up peak touches the limit spends a few per cent of the window
 /// there (2 % for a 2000 m string at 40 rpm with a limit 8 % above the break-off torque); 5 %
-/// is well above that and well below a motor that chatters between its limits (the measured
-/// `z_torque` run without BHA inertia: 37 %).
+/// is above that and below a motor that chatters between its limits (`z_torque` tuned to the bare
+/// pipe on `examples/s-well-3d.toml` at 40 rpm without its BHA inertia: 12 %; on the corrected
+/// Well B: 8 %).
 pub const TORQUE_LIMIT_SHARE: f64 = 0.05;
 
 /// The share of the samples of `t` in the window `[a, b]` whose motor torque is at the limit
