@@ -173,3 +173,15 @@ def test_z_torque_without_bha_inertia_chatters_at_the_limits_and_says_so() -> No
     # the preset itself is refused on this string
     with pytest.raises(ds.ValidationError, match="bit.bha_inertia"):
         cfg.with_overrides(["top_drive.controller.preset='z_torque'"])
+
+
+def test_the_cli_refuses_a_start_check_or_a_steady_start_without_a_hoist(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    on_bottom = str(EXAMPLES / "on-bottom-3000m.toml")
+    code, _, err = run_cli(capsys, "drill", on_bottom, "--check-start", "--out", str(tmp_path / "a"), "--no-plots")
+    assert code == 2
+    one_line_error(err, "check_start", "[hoist]")
+    code, _, err = run_cli(capsys, "drill", on_bottom, "--set", "numerics.initial_state='steady'", "--out",
+                           str(tmp_path / "b"), "--no-plots")
+    assert code == 2
+    one_line_error(err, "numerics.initial_state", "[hoist]")
