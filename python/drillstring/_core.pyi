@@ -1,6 +1,6 @@
 """Type stubs of the compiled module ``drillstring._core`` (Rust, PyO3)."""
 
-from typing import Any, Callable, Literal, Optional, TypedDict, final
+from typing import Any, Callable, Literal, Optional, TypedDict, Union, final
 
 import numpy as np
 from numpy.typing import NDArray
@@ -908,7 +908,8 @@ class DrillOutput(DrillCoupledOutput):
     stats: DrillStats
 
 def drill_solve(config_json: str, progress: Optional[Callable[[float], object]] = None) -> DrillOutput:
-    """Runs the drilling system from rest; ``progress(fraction)`` is called every ~20 ms.
+    """Runs the drilling system from ``numerics.initial_state`` (rest, or a coupled run's steady
+    drilling); ``progress(fraction)`` is called every ~20 ms.
     Runs without the GIL.
 
     Raises
@@ -918,6 +919,23 @@ def drill_solve(config_json: str, progress: Optional[Callable[[float], object]] 
     KeyboardInterrupt
         Ctrl-C during the solve (or any exception raised by ``progress``).
     """
+
+
+def drill_compare(metrics: dict[str, Union[float, str, None]],
+                  other: dict[str, Union[float, str, None]]) -> list[dict[str, Any]]:
+    """Two runs' metrics (names to numbers, texts or None) compared with the core's tolerances
+    (``drilling::compare``): one dict per metric both give, ``metric``, ``value``, ``other``,
+    ``change``, ``kind``, ``tolerance``, ``within``.
+
+    Raises
+    ------
+    ValidationError
+        a value that is not a number, a text or None.
+    """
+
+def drill_compare_tolerances() -> list[tuple[str, str, float, float]]:
+    """The tolerances of :func:`drill_compare`: ``(metric, kind, tolerance, floor)``, kind
+    ``"rel"``, ``"abs"`` or ``"equal"``."""
 
 
 class DrillMapOutput(TypedDict):

@@ -608,7 +608,12 @@ def _add_drill(sub: Any) -> None:
     _add_drilling_config_arguments(p)
     p.add_argument("--check-grid", action="store_true",
                    help="also solve on twice the cells and report how much every metric moves (about four "
-                   "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning")
+                   "times the work); metrics.json gets grid_check, a move beyond its tolerance a warning (a "
+                   "coupled run's ROP, weight and torque on bit, hook load, MSE and regime too)")
+    p.add_argument("--check-start", action="store_true",
+                   help="a coupled run ([hoist]): also solve it from the other start, numerics.initial_state = rest "
+                   "or steady (the bit law's steady drilling), and warn where the regimes or metrics disagree (more "
+                   "than one attractor); metrics.json gets start_check")
     _add_units(p)
     _add_progress(p)
     p.set_defaults(func=_cmd_drill)
@@ -641,7 +646,8 @@ def _cmd_drill(args: argparse.Namespace) -> int:
     # the folder is checked, created and locked before solving: a second run into it is refused now
     with output_folder(args.out, plots=plots, field="--out") as folder:
         start = time.perf_counter()
-        result = drill(config, progress=_show_progress(args), check_grid=args.check_grid)
+        result = drill(config, progress=_show_progress(args), check_grid=args.check_grid,
+                       check_start=args.check_start)
         result.name = os.path.splitext(os.path.basename(os.fsdecode(args.config)))[0]
         seconds = time.perf_counter() - start
         m = result.metrics
@@ -687,6 +693,12 @@ def _cmd_drill(args: argparse.Namespace) -> int:
             moves = ", ".join(f"{r.metric} {_change(r.kind, r.change)}" for r in g.rows if r.kind != "equal")
             _say(f"grid check, {g.cells} -> {g.refined_cells} cells: "
                  f"{'converged' if g.converged else 'NOT converged'} ({moves})")
+        if result.start_check is not None:
+            s = result.start_check
+            moved = [r for r in s.rows if not r.within]
+            _say("start check, rest -> steady: " + ("the same answer" if s.agree else "DISAGREE (" + ", ".join(
+                f"{r.metric} {r.rest!r} -> {r.steady!r}" if r.change is None or r.kind == "equal"
+                else f"{r.metric} {_change(r.kind, r.change)}" for r in moved) + ")"))
         for warning in result.warnings:
             _say(f"warning: {annotate(warning, system)}")
         written = _write_files(result, folder.directory, plots, system)

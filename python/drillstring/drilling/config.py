@@ -476,6 +476,12 @@ class Numerics:
     at: ``"after_transport"`` (default) or ``"before_transport"`` (the speed at the step start,
     the scheme of Aarsnes & Shor's torsionalWaveStep.m, to reproduce their published runs; both
     converge with the grid)."""
+    initial_state: str = _default("numerics", "initial_state", unit="", kind="str")
+    """Where a coupled run starts: ``"rest"`` (default; the string at rest under its static
+    tension, the setpoints ramping up) or ``"steady"`` (the bit law's steady drilling at the
+    setpoints of t = 0, where Aarsnes & van de Wouw's code starts: the string turning at the
+    top-drive speed with the torque of steady rotation, moving down at the hoist's rate,
+    compressed to the steady weight on bit, the bit at its steady depth of cut)."""
 
 
 @dataclass(frozen=True)

@@ -153,23 +153,47 @@ class DrillMetrics(StickSlipMetrics):
         return out
 
 
-#: How far each metric may move between a run and the same run on twice the cells before a grid
-#: check (:func:`drillstring.drill` with ``check_grid=True``, ``drillstring drill --check-grid``)
-#: warns: ``(kind, tolerance)`` with kind ``"rel"`` (relative change), ``"abs"`` (in the
-#: metric's unit) or ``"equal"`` (a verdict that must not change).
+#: How far each metric may move between the two runs of a check before it warns (the grid check,
+#: :func:`drillstring.drill` with ``check_grid=True``, ``drillstring drill --check-grid``, and the
+#: start check, ``check_start=True``, ``--check-start``): ``(kind, tolerance)`` with kind ``"rel"``
+#: (relative change), ``"abs"`` (in the metric's unit) or ``"equal"`` (a verdict or regime that
+#: must not change). The core's table (``drilling::compare::TOLERANCES``), coupled metrics included;
+#: the core also holds each metric's floor, a change too small to count whatever its relative size
+#: (the SSI's 0.01), in :data:`GRID_FLOORS`.
 GRID_TOLERANCES: dict[str, tuple[str, float]] = {
-    "ssi": ("rel", 0.05),
-    "stuck_fraction": ("abs", 0.03),
-    "period_s": ("rel", 0.02),
-    "bit_rpm_min": ("abs", 1.0),
-    "bit_rpm_max": ("rel", 0.05),
-    "bit_rpm_mean": ("rel", 0.02),
-    "motor_torque_min_Nm": ("rel", 0.03),
-    "motor_torque_max_Nm": ("rel", 0.03),
-    "breakoff_torque_Nm": ("rel", 0.001),
-    "stick_slip": ("equal", 0.0),
-    "settled": ("equal", 0.0),
-}
+    str(name): (str(kind), float(tol)) for name, kind, tol, _ in _core.drill_compare_tolerances()}
+GRID_FLOORS: dict[str, float] = {str(name): float(floor) for name, _, _, floor in _core.drill_compare_tolerances()}
+
+CheckValue = Union[float, str, None]
+
+
+def _check_metrics(result: DrillResult) -> dict[str, CheckValue]:
+    """A run's metrics as the core's comparison takes them (numbers, texts, None for undefined;
+    verdicts as 0 / 1; a coupled run's ``coupled`` block with its regime)."""
+    out: dict[str, CheckValue] = {}
+    for name, value in result.metrics.to_dict().items():
+        out[name] = float(value) if isinstance(value, bool) else value
+    if result.coupled_metrics is not None:
+        out.update(result.coupled_metrics)
+        out["regime"] = result.coupled_regime
+    return out
+
+
+def _compared(a: DrillResult, b: DrillResult) -> list[dict[str, Any]]:
+    """The core's rows (``_core.drill_compare``) of two runs' metrics."""
+    return list(_core.drill_compare(_check_metrics(a), _check_metrics(b)))
+
+
+def _moved(r: Any, first: str, second: str) -> str:
+    """How a row's metric moved between the runs ``first`` and ``second``, in words."""
+    if r.change is None:
+        return f"is {r.value} {first} and {r.other} {second}"
+    if r.kind == "equal":
+        return f"is {r.value!r} {first} and {r.other!r} {second}"
+    if r.kind == "rel":
+        return f"moves by {100 * r.change:+.3g} % from {r.value:.5g} {first} to {r.other:.5g} {second} " \
+               f"(tolerance {100 * r.tolerance:g} %)"
+    return f"moves by {r.change:+.4g} from {r.value:.5g} {first} to {r.other:.5g} {second} (tolerance {r.tolerance:g})"
 
 
 @dataclass(frozen=True)
@@ -177,46 +201,36 @@ class GridCheckRow:
     """One metric of a grid check: its value on the run's grid and on twice the cells."""
 
     metric: str
-    value: Optional[float]
-    refined: Optional[float]
+    value: CheckValue
+    refined: CheckValue
     change: Optional[float]
     """``refined - value`` (``"abs"``), ``refined / value - 1`` (``"rel"``; None when ``value``
-    is 0), or 0 / 1 for a verdict that kept / changed."""
+    is 0), or 0 / 1 for a verdict or regime that kept / changed."""
     kind: str
     tolerance: float
     within: bool
     """The change is within the tolerance (a metric undefined on one grid only is not)."""
 
+    @property
+    def other(self) -> CheckValue:
+        return self.refined
+
 
 @dataclass(frozen=True)
 class GridCheck:
-    """A run repeated on twice the cells (:data:`GRID_TOLERANCES`): how much every metric moved."""
+    """A run repeated on twice the cells (:data:`GRID_TOLERANCES`): how much every metric moved,
+    a coupled run's ROP, weight and torque on bit, hook load, bounce fraction, MSE and regime too."""
 
     cells: int
     refined_cells: int
     rows: tuple[GridCheckRow, ...]
 
     @classmethod
-    def compare(cls, base: DrillMetrics, refined: DrillMetrics, cells: int, refined_cells: int) -> GridCheck:
-        """The rows of :data:`GRID_TOLERANCES` from the metrics of the two runs."""
-        rows = []
-        for name, (kind, tol) in GRID_TOLERANCES.items():
-            a, b = float(getattr(base, name)), float(getattr(refined, name))
-            change: Optional[float]
-            if math.isnan(a) or math.isnan(b):
-                change, within = None, math.isnan(a) and math.isnan(b)
-            elif kind == "equal":
-                change = float(a != b)
-                within = a == b
-            elif kind == "rel":
-                change = None if a == 0 else b / a - 1.0
-                within = (a == b) if change is None else abs(change) <= tol
-            else:
-                change = b - a
-                within = abs(change) <= tol
-            rows.append(GridCheckRow(name, None if math.isnan(a) else a, None if math.isnan(b) else b, change,
-                                     kind, tol, within))
-        return cls(cells, refined_cells, tuple(rows))
+    def compare(cls, base: DrillResult, refined: DrillResult, cells: int, refined_cells: int) -> GridCheck:
+        """The rows of :data:`GRID_TOLERANCES` both runs give, judged in the core."""
+        rows = tuple(GridCheckRow(r["metric"], r["value"], r["other"], r["change"], r["kind"], r["tolerance"],
+                                  r["within"]) for r in _compared(base, refined))
+        return cls(cells, refined_cells, rows)
 
     @property
     def converged(self) -> bool:
@@ -225,28 +239,69 @@ class GridCheck:
 
     def warnings(self) -> list[str]:
         """One sentence per metric that moved more than its tolerance."""
-        out = []
-        for r in self.rows:
-            if r.within:
-                continue
-            if r.change is None:
-                what = f"is {r.value} on {self.cells} cells and {r.refined} on {self.refined_cells}"
-            elif r.kind == "equal":
-                what = (f"changes from {bool(r.value)} on {self.cells} cells to {bool(r.refined)} on "
-                        f"{self.refined_cells}")
-            elif r.kind == "rel":
-                what = (f"moves by {100 * r.change:+.3g} % from {self.cells} to {self.refined_cells} cells "
-                        f"(tolerance {100 * r.tolerance:g} %)")
-            else:
-                what = (f"moves by {r.change:+.4g} from {self.cells} to {self.refined_cells} cells "
-                        f"(tolerance {r.tolerance:g})")
-            out.append(f"grid check: {r.metric} {what}: not converged, refine numerics.cells")
-        return out
+        first, second = f"on {self.cells} cells", f"on {self.refined_cells}"
+        return [f"grid check: {r.metric} {_moved(r, first, second)}: not converged, refine numerics.cells"
+                for r in self.rows if not r.within]
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (``metrics.json``'s ``grid_check``)."""
         return {"cells": self.cells, "refined_cells": self.refined_cells, "converged": self.converged,
                 "rows": [dataclasses.asdict(r) for r in self.rows]}
+
+
+@dataclass(frozen=True)
+class StartCheckRow:
+    """One metric of a start check: its value in the run from rest and from the steady state."""
+
+    metric: str
+    rest: CheckValue
+    steady: CheckValue
+    change: Optional[float]
+    """``steady - rest`` (``"abs"``), ``steady / rest - 1`` (``"rel"``), 0 / 1 (``"equal"``)."""
+    kind: str
+    tolerance: float
+    within: bool
+
+    @property
+    def value(self) -> CheckValue:
+        return self.rest
+
+    @property
+    def other(self) -> CheckValue:
+        return self.steady
+
+
+@dataclass(frozen=True)
+class StartCheck:
+    """A coupled run repeated from both starts, ``numerics.initial_state = "rest"`` and
+    ``"steady"`` (:data:`GRID_TOLERANCES`, judged in the core): where they disagree, the case has
+    more than one attractor (or the window is still in a transient) and each start's answer is one
+    of them."""
+
+    rows: tuple[StartCheckRow, ...]
+
+    @classmethod
+    def compare(cls, rest: DrillResult, steady: DrillResult) -> StartCheck:
+        """The rows both runs give."""
+        return cls(tuple(StartCheckRow(r["metric"], r["value"], r["other"], r["change"], r["kind"], r["tolerance"],
+                                       r["within"]) for r in _compared(rest, steady)))
+
+    @property
+    def agree(self) -> bool:
+        """Every metric within its tolerance: one answer whatever the start."""
+        return all(r.within for r in self.rows)
+
+    def warnings(self) -> list[str]:
+        """One sentence for the disagreeing metrics (none when they agree)."""
+        moved = [f"{r.metric} {_moved(r, 'from rest', 'from the steady state')}" for r in self.rows if not r.within]
+        if not moved:
+            return []
+        return ["start check: the runs from rest and from the steady state disagree (more than one attractor, or a "
+                "window still in a transient; each start's answer is one of them): " + "; ".join(moved)]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (``metrics.json``'s ``start_check``)."""
+        return {"agree": self.agree, "rows": [dataclasses.asdict(r) for r in self.rows]}
 
 
 def _no_cells() -> NDArray[np.float64]:
@@ -396,6 +451,9 @@ class DrillResult:
         :data:`~drillstring.drilling.result.COUPLED_REGIME_CRITERION` from the stick-slip verdict
         and ``bounce_fraction``."""
         self.grid_check: Optional[GridCheck] = None
+        self.start_check: Optional[StartCheck] = None
+        """With ``drill(..., check_start=True)``: the run from rest against the run from the steady
+        state (its disagreements are in ``warnings``)."""
         self.status: str = str(raw["status"])
         self.message: str = str(raw["message"])
         self.name: Optional[str] = None
@@ -458,6 +516,8 @@ class DrillResult:
         out["warnings"] = list(self.warnings)
         if self.grid_check is not None:
             out["grid_check"] = self.grid_check.to_dict()
+        if self.start_check is not None:
+            out["start_check"] = self.start_check.to_dict()
         out["definitions"] = dict(METRIC_DEFINITIONS)
         out["window"] = [self.metrics.window_start, self.metrics.window_end]
         out["energy"] = {k: (None if math.isnan(v) else v) for k, v in self.energy.items()}

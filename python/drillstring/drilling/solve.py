@@ -10,7 +10,7 @@ from .. import _core
 from ..errors import SolveError, ValidationError
 from ..io.progress import ProgressOption, SolveProgress, check_progress
 from .config import DrillConfig, load_drill_config
-from .result import DrillProfile, DrillResult, GridCheck
+from .result import DrillProfile, DrillResult, GridCheck, StartCheck
 
 __all__ = ["drill", "friction_profile"]
 
@@ -34,7 +34,7 @@ def friction_profile(config: ConfigLike) -> DrillProfile:
 
 
 def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, check: bool = True,
-          check_grid: bool = False) -> DrillResult:
+          check_grid: bool = False, check_start: bool = False) -> DrillResult:
     """Solves the drilling system ``config`` over ``numerics.duration`` in the core.
 
     Parameters
@@ -51,8 +51,17 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
         early (default); ``False`` returns the partial result with its ``status``.
     check_grid : bool
         Also solve the configuration on twice the cells (about four times the work) and report
-        in ``result.grid_check`` how much every metric moved; a move beyond its tolerance
-        (:data:`~drillstring.drilling.result.GRID_TOLERANCES`) is added to ``result.warnings``.
+        in ``result.grid_check`` how much every metric moved (a coupled run's ROP, weight and
+        torque on bit, hook load, MSE and regime too); a move beyond its tolerance
+        (:data:`~drillstring.drilling.result.GRID_TOLERANCES`, the core's) is added to
+        ``result.warnings``.
+    check_start : bool
+        A coupled run ([hoist]) only: also solve it from the other start
+        (``numerics.initial_state``, ``"rest"`` and ``"steady"``: the bit law's steady drilling)
+        and report in ``result.start_check`` where the two disagree (the regime, or a metric
+        beyond its tolerance, with the values): a case with more than one attractor, or a window
+        still in a transient. The disagreement is added to ``result.warnings``; the result is the
+        configuration's own start's.
 
     Returns
     -------
@@ -69,7 +78,7 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
         Ctrl-C (the core stops within a few tens of milliseconds).
     """
     cfg = _config(config)
-    for name, flag in (("check", check), ("check_grid", check_grid)):
+    for name, flag in (("check", check), ("check_grid", check_grid), ("check_start", check_start)):
         if not isinstance(flag, bool):
             raise ValidationError(name, flag, "True or False")
     option = check_progress(False if progress is None else progress)
@@ -82,12 +91,23 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
             raise ValidationError(
                 "check_grid", f"numerics.cells = {cfg.numerics.cells}",
                 f"a grid whose double ({refined_cells} cells) the core accepts: {exc}") from exc
+    other_cfg = None
+    if check_start:
+        if cfg.hoist is None:
+            raise ValidationError("check_start", "a configuration without [hoist]",
+                                  "a coupled run ([hoist]): the steady start is its steady drilling")
+        other = "rest" if cfg.numerics.initial_state == "steady" else "steady"
+        other_cfg = cfg.with_overrides({"numerics.initial_state": other})
     result = _solve(cfg, option, check)
     if refined_cfg is not None:
         refined = _solve(refined_cfg, option, check)
-        result.grid_check = GridCheck.compare(result.metrics, refined.metrics, cfg.numerics.cells,
-                                              refined_cfg.numerics.cells)
+        result.grid_check = GridCheck.compare(result, refined, cfg.numerics.cells, refined_cfg.numerics.cells)
         result.warnings = (*result.warnings, *result.grid_check.warnings())
+    if other_cfg is not None:
+        second = _solve(other_cfg, option, check)
+        rest, steady = (result, second) if cfg.numerics.initial_state != "steady" else (second, result)
+        result.start_check = StartCheck.compare(rest, steady)
+        result.warnings = (*result.warnings, *result.start_check.warnings())
     if isinstance(config, (str, os.PathLike)):
         result.name = os.path.splitext(os.path.basename(os.fsdecode(os.fspath(config))))[0]
     return result

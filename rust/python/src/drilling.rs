@@ -1,7 +1,9 @@
 //! Bindings of the drilling-system solver (`drillstring_core::drilling`): JSON configuration
 //! in, dicts of numpy arrays and floats out (by [`to_python`]).
 
-use drillstring_core::drilling::{self, DrillConfig, DrillRun};
+use std::collections::BTreeMap;
+
+use drillstring_core::drilling::{self, compare, DrillConfig, DrillRun};
 use drillstring_core::interrupt::Interrupt;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -111,4 +113,52 @@ fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
         reshape(&d, "axial_force_field", shape)?;
     }
     Ok(d)
+}
+
+/// The metrics of one run as `drill_compare` takes them: a dict of names to a number, a text or
+/// None (undefined); `field` names the argument in the error of another value.
+fn metric_values(py: Python<'_>, field: &str, d: &Bound<'_, PyDict>) -> PyResult<BTreeMap<String, compare::Value>> {
+    let mut out = BTreeMap::new();
+    for (k, v) in d.iter() {
+        let name: String = k.extract()?;
+        let value = if v.is_none() {
+            compare::Value::Number(f64::NAN)
+        } else if let Ok(text) = v.extract::<String>() {
+            compare::Value::Text(text)
+        } else if let Ok(x) = v.extract::<f64>() {
+            compare::Value::Number(x)
+        } else {
+            let shown = v.repr().map_or_else(|_| "?".to_string(), |r| r.to_string());
+            return Err(validation_error(
+                py,
+                drillstring_core::error::Error::invalid(
+                    format!("{field}[{name:?}]"),
+                    shown,
+                    "a number, a text or None",
+                ),
+            ));
+        };
+        out.insert(name, value);
+    }
+    Ok(out)
+}
+
+/// Two runs' metrics (dicts of names to numbers, texts or None) compared with the core's
+/// tolerances (`drilling::compare`): a list of dicts `metric`, `value`, `other`, `change`,
+/// `kind`, `tolerance`, `within`, one per metric both give.
+#[pyfunction]
+pub(crate) fn drill_compare<'py>(
+    py: Python<'py>,
+    metrics: &Bound<'py, PyDict>,
+    other: &Bound<'py, PyDict>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (a, b) = (metric_values(py, "metrics", metrics)?, metric_values(py, "other", other)?);
+    to_python(py, &compare::compare(&a, &b))
+}
+
+/// The tolerances of `drill_compare`: a list of `(metric, kind, tolerance, floor)`, kind `rel`,
+/// `abs` or `equal`, the floor a change that is within whatever its relative size.
+#[pyfunction]
+pub(crate) fn drill_compare_tolerances(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_python(py, &compare::TOLERANCES.to_vec())
 }

@@ -81,6 +81,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_compare, m)?)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_compare_tolerances, m)?)?;
     m.add_function(wrap_pyfunction!(config::drill_config_override, m)?)?;
     m.add_function(wrap_pyfunction!(config::drill_config_schema, m)?)?;
     m.add_function(wrap_pyfunction!(config::parameters_defaults, m)?)?;

@@ -837,6 +837,14 @@ pub struct Numerics {
     /// refined. Linear torque-twist law and set-valued friction only.
     #[schemars(extend("label" = "source speed"))]
     pub source_speed: SourceSpeed,
+    /// Where a coupled run starts: `rest` (default; the string at rest under its static
+    /// tension, the bit just touching the rock, the setpoints ramping up) or `steady` (the bit
+    /// law's steady drilling at the setpoints of t = 0, where Aarsnes & van de Wouw's code starts:
+    /// turning at the top-drive speed with the torque of steady rotation, moving down at the
+    /// hoist's rate, compressed to the steady weight on bit less the wall's drag, the bit at its
+    /// steady depth of cut; [`super::start`]). `steady` needs a `[hoist]` that drills at t = 0.
+    #[schemars(extend("label" = "initial state"))]
+    pub initial_state: super::start::InitialState,
 }
 
 /// The speed of a cell its sources are evaluated at ([`Numerics::source_speed`]).
@@ -862,6 +870,7 @@ impl Default for Numerics {
             max_shear_strain: 0.005,
             courant: 1.0,
             source_speed: SourceSpeed::AfterTransport,
+            initial_state: super::start::InitialState::Rest,
         }
     }
 }
@@ -1134,7 +1143,7 @@ impl DrillConfig {
             .pointer("/top_drive/controller")
             .and_then(Value::as_object)
             .map_or_else(Vec::new, |c| c.keys().cloned().collect());
-        super::tuning::apply_preset(&mut cfg, &given);
+        super::tuning::apply_preset(&mut cfg, &given)?;
         Ok(cfg)
     }
 

@@ -29,8 +29,10 @@
 //! * [`tuning`]: the controller presets' rules (gains from the string's impedance, first mode
 //!   and the top-drive inertia) and the recommendation of `drillstring tune`;
 //! * [`plausibility`]: warnings (not errors) for values that are likely mistakes, a torque
-//!   limit below the break-off torque, a transient still decaying in the metrics window and
-//!   metrics that are not finite;
+//!   limit below the break-off torque, a motor at its torque limit, a transient still decaying
+//!   in the metrics window and metrics that are not finite;
+//! * [`start`]: where a run starts, at rest or in a coupled run's steady drilling;
+//! * [`compare`]: two runs' metrics compared with the tolerances of the grid and start checks;
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
 //!   with a true stick phase, its steady rotations and their stability.
 //! * [`axial`]: the bit on bottom as parts (axial section properties and statics, the Detournay
@@ -39,6 +41,7 @@
 
 pub mod axial;
 pub mod bit;
+pub mod compare;
 pub mod config;
 pub mod engine;
 pub mod grid;
@@ -47,6 +50,7 @@ pub mod map;
 pub mod plausibility;
 pub mod schema_doc;
 pub mod solver;
+pub mod start;
 pub mod tuning;
 pub mod well;
 

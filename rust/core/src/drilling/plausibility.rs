@@ -1,7 +1,7 @@
 //! Warnings (not errors) for what makes a run doubtful: values far outside drilling practice
 //! (more likely a unit or a digit than a well), a top-drive torque limit below the torque that
-//! breaks the string free, a transient still decaying inside the metrics window, and metrics
-//! that are not finite. Each names the value and the likely mistake.
+//! breaks the string free, a motor at its torque limit for a share of the metrics window, a
+//! transient still decaying inside the metrics window, and metrics that are not finite. Each names the value and the likely mistake.
 
 use crate::error::{Num, Short};
 use crate::metrics::StickSlip;
@@ -134,10 +134,33 @@ fn half(t: &[f64], x: &[f64], a: f64, b: f64, closed: bool) -> (usize, f64, f64,
 /// None with fewer than 2 samples in a half or non-finite values. The likely mistake: a run too
 /// short, or a window that starts too early.
 pub fn transient_warning(t: &[f64], surface_rpm: &[f64], motor_torque: &[f64], window: [f64; 2]) -> Option<String> {
+    let found = transient_changes(
+        t,
+        &[("surface speed", "rpm", surface_rpm, false), ("motor torque", "N m", motor_torque, true)],
+        window,
+    )?;
+    let [a, b] = window;
+    (!found.is_empty()).then(|| {
+        format!(
+            "a transient is still decaying in the metrics window [{}, {}] s: between its halves {}; the metrics \
+             describe the approach, not the steady state: a run too short or a window that starts too early? \
+             (lengthen numerics.duration or move metrics.window later)",
+            Num(a),
+            Num(b),
+            found.join(" and ")
+        )
+    })
+}
+
+/// The changes between the halves of the window `[a, b]` of each series `(name, unit, x, mean)`
+/// sampled at `t` that make a transient by the criteria of [`transient_warning`] (the mean's
+/// only where `mean`), each described in a few words; None with fewer than 2 samples in a half
+/// or non-finite values.
+pub fn transient_changes(t: &[f64], series: &[(&str, &str, &[f64], bool)], window: [f64; 2]) -> Option<Vec<String>> {
     let [a, b] = window;
     let m = 0.5 * (a + b);
     let mut found = Vec::new();
-    for (name, unit, x) in [("surface speed", "rpm", surface_rpm), ("motor torque", "N m", motor_torque)] {
+    for &(name, unit, x, judge_mean) in series {
         let (n1, mean1, lo1, hi1) = half(t, x, a, m, false);
         let (n2, mean2, lo2, hi2) = half(t, x, m, b, true);
         if n1 < 2 || n2 < 2 || ![mean1, mean2, lo1, lo2, hi1, hi2].iter().all(|v| v.is_finite()) {
@@ -159,23 +182,79 @@ pub fn transient_warning(t: &[f64], surface_rpm: &[f64], motor_torque: &[f64], w
                 Short(p2),
             ));
         }
-        if name == "motor torque" {
-            let moved = (mean2 - mean1).abs();
-            if moved > TRANSIENT_MEAN_CHANGE * mean1.abs().max(mean2.abs()) && moved > 0.5 * big {
-                found.push(format!("the mean motor torque went from {} to {} N m", Short(mean1), Short(mean2)));
-            }
+        let moved = (mean2 - mean1).abs();
+        if judge_mean && moved > TRANSIENT_MEAN_CHANGE * mean1.abs().max(mean2.abs()) && moved > 0.5 * big {
+            found.push(format!("the mean {name} went from {} to {} {unit}", Short(mean1), Short(mean2)));
         }
     }
-    (!found.is_empty()).then(|| {
-        format!(
-            "a transient is still decaying in the metrics window [{}, {}] s: between its halves {}; the metrics \
-             describe the approach, not the steady state: a run too short or a window that starts too early? \
-             (lengthen numerics.duration or move metrics.window later)",
-            Num(a),
-            Num(b),
-            found.join(" and ")
-        )
-    })
+    Some(found)
+}
+
+/// A coupled run's axial transient in the metrics window: the criteria of [`transient_warning`]
+/// (amplitude and mean) on the rate of penetration (m/h) and the weight on bit (N) sampled at
+/// `t`. The string of a coupled run compresses over minutes (the hoist lowers the top at its
+/// rate while the bit drills slower until the string carries the weight): a window inside that
+/// approach describes no steady regime. The reason, or None (also without samples to judge).
+pub fn axial_transient(t: &[f64], rop: &[f64], weight_on_bit: &[f64], window: [f64; 2]) -> Option<String> {
+    let found =
+        transient_changes(t, &[("ROP", "m/h", rop, true), ("weight on bit", "N", weight_on_bit, true)], window)?;
+    (!found.is_empty())
+        .then(|| format!("the axial transient is still decaying: between the window's halves {}", found.join(" and ")))
+}
+
+/// [`torque_limit_share`]: a motor torque within this fraction of `top_drive.torque_limit` is
+/// at the limit (the controller clamps its command to the limit exactly; the tolerance only
+/// absorbs the rounding of a limit reached through a sum).
+pub const TORQUE_LIMIT_TOLERANCE: f64 = 1e-3;
+/// [`torque_limit_verdict`]: the share of the metrics window's samples with the motor at its
+/// torque limit above which the run says so and its stick-slip verdict is `undetermined`. A
+/// stick-slip cycle whose wind-up peak touches the limit spends a few per cent of the window
+/// there (2 % for a 2000 m string at 40 rpm with a limit 8 % above the break-off torque); 5 %
+/// is above that and below a motor that chatters between its limits (`z_torque` tuned to the bare
+/// pipe on `examples/s-well-3d.toml` at 40 rpm without its BHA inertia: 12 %; on the corrected
+/// Well B: 8 %).
+pub const TORQUE_LIMIT_SHARE: f64 = 0.05;
+
+/// The share of the samples of `t` in the window `[a, b]` whose motor torque is at the limit
+/// `limit` (`|tau| >= (1 - TORQUE_LIMIT_TOLERANCE) limit`); NaN without samples.
+pub fn torque_limit_share(t: &[f64], motor_torque: &[f64], window: [f64; 2], limit: f64) -> f64 {
+    let [a, b] = window;
+    let at = (1.0 - TORQUE_LIMIT_TOLERANCE) * limit;
+    let (mut n, mut hits) = (0usize, 0usize);
+    for (&ti, &tau) in t.iter().zip(motor_torque) {
+        if ti >= a && ti <= b {
+            n += 1;
+            hits += usize::from(tau.abs() >= at);
+        }
+    }
+    if n == 0 {
+        f64::NAN
+    } else {
+        hits as f64 / n as f64
+    }
+}
+
+/// A motor at its torque limit for more than [`TORQUE_LIMIT_SHARE`] of the metrics window
+/// (`share` from [`torque_limit_share`]): the motion is set by the motor's limit, not by the
+/// controller or the string, so that no stick-slip verdict follows from it (a motor chattering
+/// between its limits makes the bit stop and go at the chatter's rate). Returns the warning
+/// and the verdict's reason, None otherwise (and with an imposed top speed,
+/// `top_drive.mode = "measured_speed"`, where the limit is not used). A run does not ask it
+/// when the limit is below the string's static torque: [`torque_limit_warning`] says that.
+pub fn torque_limit_verdict(cfg: &DrillConfig, share: f64) -> Option<(String, String)> {
+    if cfg.top_drive.mode == super::config::TopMode::MeasuredSpeed || share.is_nan() || share <= TORQUE_LIMIT_SHARE {
+        return None;
+    }
+    let percent = format!("{:.0} %", 100.0 * share);
+    let warning = format!(
+        "the motor torque is at its limit, top_drive.torque_limit = {} N m, {percent} of the metrics window \
+         (more than {:.0} %): the motion is the motor's limit, not the controller's, and the stick-slip verdict \
+         is undetermined; a limit too low for the string, or a controller that chatters between its limits \
+         (a preset on a string it cannot tune?)",
+        Num(cfg.top_drive.torque_limit),
+        100.0 * TORQUE_LIMIT_SHARE
+    );
+    Some((warning, format!("motor torque at its limit {percent} of the window")))
 }
 
 /// The headline metrics a run reports as its result (the drilling names) with their values:
@@ -300,6 +379,36 @@ mod tests {
         assert_eq!(transient_warning(&t, &steady, &slow, w), None);
         // a window with fewer than 2 samples in a half: nothing to judge
         assert_eq!(transient_warning(&t, &decaying, &torque, [59.995, 60.0]), None);
+    }
+
+    /// A motor at its torque limit over more than 5 % of the window: a warning naming
+    /// `top_drive.torque_limit` with the share, and the verdict undetermined with the reason.
+    #[test]
+    fn a_motor_at_its_torque_limit_makes_the_verdict_undetermined() {
+        let mut cfg = DrillConfig::from_json(
+            r#"{"sections": [{"length": 2000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
+                "numerics": {"cells": 100, "duration": 20.0}}"#,
+        )
+        .unwrap();
+        let run = super::super::solve(&cfg, &Never, &mut |_| {}).unwrap();
+        let m = run.metrics.as_ref().unwrap();
+        let free = torque_limit_share(&run.t, &run.motor_torque, run.window, cfg.top_drive.torque_limit);
+        assert_eq!((m.verdict, free), (crate::metrics::Verdict::Yes, 0.0), "{:?}", m.verdict_reason);
+        assert!(!run.warnings.iter().any(|w| w.contains("at its limit")), "{:?}", run.warnings);
+        // a limit of 4.2 kN m, just over the break-off torque (4.17 kN m): the wind-up rests on it
+        cfg.top_drive.torque_limit = 4200.0;
+        let run = super::super::solve(&cfg, &Never, &mut |_| {}).unwrap();
+        let share = torque_limit_share(&run.t, &run.motor_torque, run.window, 4200.0);
+        assert!(share > TORQUE_LIMIT_SHARE, "{share}");
+        let m = run.metrics.as_ref().unwrap();
+        let percent = format!("{:.0} %", 100.0 * share);
+        assert_eq!(m.verdict, crate::metrics::Verdict::Undetermined);
+        assert_eq!(m.verdict_reason, format!("motor torque at its limit {percent} of the window"));
+        let w = run.warnings.iter().find(|w| w.contains("top_drive.torque_limit = 4200 N m,")).expect("warned");
+        assert!(w.contains(&percent), "{w}");
+        // an imposed speed does not use the limit
+        cfg.top_drive.mode = super::super::config::TopMode::MeasuredSpeed;
+        assert_eq!(torque_limit_verdict(&cfg, 0.5), None);
     }
 
     #[test]

@@ -135,13 +135,45 @@ pub fn preset_controller(preset: ControllerPreset, numbers: &StringNumbers, base
 /// The configuration keys of `top_drive.controller` a preset sets (the others keep their value).
 pub const PRESET_KEYS: [&str; 6] = ["type", "kp", "ki", "tuning_frequency", "z_factor", "torque_highpass_time"];
 
+/// Whether `preset`'s rule needs the BHA's inertia: `soft_torque` and `z_torque` tune to the
+/// string's first mode `f1`, the stick-slip mode of the BHA swinging on the string's
+/// compliance. Without a BHA inertia (`bit.bha_inertia = 0`) there is no such mass at the bit:
+/// `f1` is the bare pipe's quarter-wave mode, which is not the stick-slip cycle, and the tuned
+/// controller need not damp anything (measured: `z_torque` on `examples/s-well-3d.toml` at 40 rpm
+/// without its BHA inertia chattered with a 0.18 s period between the +-60 kN m torque limits,
+/// at the limit 12 % of the window, `tests/test_verdicts.py`). `stiff` takes no frequency
+/// (`kp = 50 Z`, `ki = 5 I_TD`) and suits any string.
+pub fn needs_bha_inertia(preset: ControllerPreset) -> bool {
+    matches!(preset, ControllerPreset::SoftTorque | ControllerPreset::ZTorque)
+}
+
+/// Refuses a preset that [`needs_bha_inertia`] on a string without one (`bit.bha_inertia = 0`),
+/// naming both keys and what to do instead.
+pub fn check_preset(cfg: &DrillConfig) -> crate::error::Result<()> {
+    match cfg.top_drive.controller.preset {
+        Some(p) if needs_bha_inertia(p) && cfg.bit.bha_inertia <= 0.0 => Err(crate::error::Error::invalid(
+            "top_drive.controller.preset",
+            format!("{:?} with bit.bha_inertia = 0", p.name()),
+            format!(
+                "bit.bha_inertia > 0 kg m^2 for the preset {:?}: it tunes to the first mode of the BHA on the \
+                 string, and this string has no BHA inertia; give the BHA's inertia, or the preset \"stiff\", or \
+                 top_drive.controller.type = {:?} with its gains and no preset",
+                p.name(),
+                p.name()
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// Sets in `cfg`'s controller the values of its preset (if any) for the keys not in `given`
 /// (the keys the configuration gave beside the preset), computed from `cfg`'s string when the
-/// configuration is read.
-pub fn apply_preset(cfg: &mut DrillConfig, given: &[String]) {
+/// configuration is read; refused ([`check_preset`]) for a preset the string cannot be tuned by.
+pub fn apply_preset(cfg: &mut DrillConfig, given: &[String]) -> crate::error::Result<()> {
     let Some(preset) = cfg.top_drive.controller.preset else {
-        return;
+        return Ok(());
     };
+    check_preset(cfg)?;
     let given_values = cfg.top_drive.controller.clone();
     let mut c = preset_controller(preset, &string_numbers(cfg), &given_values);
     for key in given {
@@ -156,6 +188,7 @@ pub fn apply_preset(cfg: &mut DrillConfig, given: &[String]) {
         }
     }
     cfg.top_drive.controller = c;
+    Ok(())
 }
 
 /// One preset's recommended settings and what they give.
@@ -304,15 +337,17 @@ mod tests {
         let cfg = DrillConfig::from_json(
             r#"{"sections": [{"length": 2000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086,
                  "shear_modulus": 80e9, "density": 8000.0}],
-                "top_drive": {"controller": {"preset": "z_torque"}}}"#,
+                "top_drive": {}}"#,
         )
         .unwrap();
         let c = (80e9f64 / 8000.0).sqrt();
         let n = string_numbers(&cfg);
         assert!((n.first_mode_hz - c / 8000.0).abs() < 1e-9 * n.first_mode_hz, "{n:?}");
-        let t = cfg.top_drive.controller.torque_highpass_time;
+        // the rule's numbers (the preset itself is refused on a string without BHA inertia)
+        let z = preset_controller(ControllerPreset::ZTorque, &n, &Controller::default());
+        let t = z.torque_highpass_time;
         assert!((t - 8000.0 / (PI * c)).abs() < 1e-8 * t, "{t}");
-        assert_eq!(cfg.top_drive.controller.kind, ControllerKind::ZTorque);
+        assert_eq!(z.kind, ControllerKind::ZTorque);
         let r = windup_speed_ratio(t, n.stiffness, 4.0, n.impedance);
         assert!((r - 1.0 / (1.0 + 4.0 / (PI * 4.0))).abs() < 1e-8, "{r}");
     }
@@ -340,10 +375,32 @@ mod tests {
         assert_eq!(&again, &cfg);
         let soft = DrillConfig::from_json(
             r#"{"sections": [{"length": 2000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}],
+                "bit": {"bha_inertia": 100.0},
                 "top_drive": {"controller": {"preset": "soft_torque", "z_factor": 2.0}}}"#,
         )
         .unwrap();
         assert_eq!(soft.top_drive.controller.kind, ControllerKind::SoftTorque);
         assert_eq!(soft.top_drive.controller.z_factor, 2.0);
+    }
+
+    /// `soft_torque` and `z_torque` tune to the BHA's mode: refused without a BHA inertia (with
+    /// both keys named), `stiff` accepted; a type without a preset is the user's choice.
+    #[test]
+    fn presets_that_tune_to_the_bha_mode_are_refused_without_bha_inertia() {
+        let string = r#""sections": [{"length": 3000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}]"#;
+        for preset in ["soft_torque", "z_torque"] {
+            let json = format!(r#"{{{string}, "top_drive": {{"controller": {{"preset": "{preset}"}}}}}}"#);
+            let err = DrillConfig::from_json(&json).unwrap_err().to_string();
+            assert!(err.contains("top_drive.controller.preset") && err.contains("bit.bha_inertia"), "{err}");
+            let with_bha = format!(
+                r#"{{{string}, "bit": {{"bha_inertia": 50.0}}, "top_drive": {{"controller": {{"preset": "{preset}"}}}}}}"#
+            );
+            assert!(DrillConfig::from_json(&with_bha).is_ok(), "{preset}");
+        }
+        let stiff = format!(r#"{{{string}, "top_drive": {{"controller": {{"preset": "stiff"}}}}}}"#);
+        assert!(DrillConfig::from_json(&stiff).is_ok());
+        let typed = format!(r#"{{{string}, "top_drive": {{"controller": {{"type": "z_torque"}}}}}}"#);
+        assert!(DrillConfig::from_json(&typed).is_ok());
+        assert!(!needs_bha_inertia(ControllerPreset::Stiff));
     }
 }

@@ -36,6 +36,8 @@
 //! * [`break_off_torque`]: the static break-off torque of a well, the integral over measured
 //!   depth of the friction limit per metre (trapezoidal).
 
+use std::borrow::Cow;
+
 use serde::Serialize;
 
 use crate::error::{Error, Num, Result};
@@ -108,7 +110,7 @@ pub fn verdict(stuck_fraction: f64, severity: f64, settled: bool, growing: bool)
 const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * std::f64::consts::PI);
 
 /// The stick-slip metrics of one window.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StickSlip {
     /// First and last sample time in the window, s.
     pub t_start: f64,
@@ -139,9 +141,10 @@ pub struct StickSlip {
     pub stick_slip: bool,
     /// The window holds a steady regime (see the module).
     pub settled: bool,
-    /// The three-way verdict ([`verdict`]) and its reason.
+    /// The three-way verdict ([`verdict`]) and its reason (a drilling run may overrule it with
+    /// its own, e.g. a motor at its torque limit: `drilling::plausibility::torque_limit_verdict`).
     pub verdict: Verdict,
-    pub verdict_reason: &'static str,
+    pub verdict_reason: Cow<'static, str>,
 }
 
 /// Most samples the period estimator uses: a longer window is resampled to this many (the
@@ -174,7 +177,7 @@ impl StickSlip {
         stick_slip: false,
         settled: false,
         verdict: Verdict::Undetermined,
-        verdict_reason: "no metrics in the window",
+        verdict_reason: Cow::Borrowed("no metrics in the window"),
     };
 
     /// Short sentences on what in these metrics cannot be trusted as they stand (empty when
@@ -555,7 +558,7 @@ pub fn stick_slip(
         stick_slip: stuck_fraction > 0.0 && stuck_fraction < 1.0,
         settled,
         verdict,
-        verdict_reason,
+        verdict_reason: Cow::Borrowed(verdict_reason),
     })
 }
 

@@ -57,7 +57,10 @@ pub const REGIME_CRITERION: &str = "off bottom: no weight on bit throughout the 
      (bounce_fraction = 1); bit bounce: no weight on bit during part of it (0 < bounce_fraction < 1); \
      stick-slip: the torsional verdict is yes (the bit stops turning during part of the window); both: \
      stick-slip and bit bounce; smooth drilling: the bit stays on the rock (bounce_fraction = 0) and the \
-     torsional verdict is no; undetermined: no window, or the torsional verdict undetermined without bit bounce";
+     torsional verdict is no and the window is past the axial transient; undetermined: no window, the torsional \
+     verdict undetermined without bit bounce, or a window that would be smooth drilling but whose ROP or weight \
+     on bit is still changing between its halves (the string still compressing: the transient criterion of the \
+     motor torque, on the axial series)";
 
 /// The regime of a coupled run's window from its torsional stick-slip verdict
 /// (`metrics::stickslip::verdict`; `None` without metrics) and its bounce fraction (the share of
@@ -78,7 +81,14 @@ pub const REGIME_CRITERION: &str = "off bottom: no weight on bit throughout the 
 /// of penetration: a bit resting on the rock with a weight below its wear flats' contact force
 /// `a l sigma` (it hardly cuts: `hoist.weight_on_bit = 0` drills at ~0.1 m/h) is `smooth
 /// drilling` as long as it keeps contact and turns.
-pub fn regime(verdict: Option<Verdict>, bounce_fraction: f64) -> Regime {
+///
+/// `axial_transient`: the window's ROP or weight on bit still changes between its halves
+/// (`plausibility::axial_transient`, the criterion of the torsional transient warning): the
+/// string is still compressing (the converged van de Wouw example at 120 rpm and 10 m/h drills
+/// at 8.08 m/h over 180-240 s against the hoist's 10). Such a window is no steady regime, and
+/// what would be `smooth drilling` is `undetermined`; a stop of the bit or a bounce in it is
+/// real whatever follows, and keeps its name.
+pub fn regime(verdict: Option<Verdict>, bounce_fraction: f64, axial_transient: bool) -> Regime {
     let Some(verdict) = verdict else { return Regime::Undetermined };
     if !bounce_fraction.is_finite() {
         return Regime::Undetermined;
@@ -91,6 +101,7 @@ pub fn regime(verdict: Option<Verdict>, bounce_fraction: f64) -> Regime {
             (Verdict::Yes, true) => Regime::StickSlipAndBitBounce,
             (Verdict::Yes, false) => Regime::StickSlip,
             (_, true) => Regime::BitBounce,
+            (Verdict::No, false) if axial_transient => Regime::Undetermined,
             (Verdict::No, false) => Regime::SmoothDrilling,
             (Verdict::Undetermined, false) => Regime::Undetermined,
         }
@@ -117,10 +128,14 @@ mod tests {
             (Some(No), f64::NAN, "undetermined"),
         ];
         for (verdict, bounce, name) in cases {
-            let r = regime(verdict, bounce);
+            let r = regime(verdict, bounce, false);
             assert_eq!(r.name(), name, "{verdict:?} {bounce}");
             assert_eq!(serde_json::to_value(r).unwrap(), name);
         }
+        // a window still in the axial transient: smooth drilling is undetermined, the others stay
+        assert_eq!(regime(Some(No), 0.0, true), Regime::Undetermined);
+        assert_eq!(regime(Some(Yes), 0.0, true), Regime::StickSlip);
+        assert_eq!(regime(Some(No), 0.2, true), Regime::BitBounce);
         assert_eq!(Regime::ALL.len(), 6);
     }
 }

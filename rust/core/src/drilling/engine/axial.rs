@@ -449,3 +449,6 @@ mod tests;
 #[cfg(test)]
 #[path = "axial_bha_tests.rs"]
 mod bha_tests;
+
+#[path = "axial_steady.rs"]
+mod steady;

@@ -114,6 +114,21 @@ impl Controller {
         }
     }
 
+    /// Sets the state that holds the top at its setpoint against the string torque `torque`
+    /// (N m) at the top, for a run started in steady rotation
+    /// ([`crate::drilling::start::InitialState::Steady`]): a PI's integral `torque / ki` (its
+    /// command at zero speed error; without an integral gain the command stays 0), `z_torque`'s
+    /// low-passed torque.
+    pub fn hold(&mut self, torque: f64) {
+        match self.kind {
+            ControllerKind::Pi | ControllerKind::SoftTorque if self.ki > 0.0 => {
+                self.integral = torque.clamp(-self.limit, self.limit) / self.ki;
+            }
+            ControllerKind::ZTorque => self.slow_torque = torque,
+            _ => {}
+        }
+    }
+
     /// Takes the string torque at the top after the step (`z_torque`'s low-pass).
     #[inline]
     pub fn observe(&mut self, tau_top: f64) {

@@ -21,12 +21,13 @@ use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{
-    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, transient_warning,
-    NO_ROTATION,
+    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, torque_limit_share,
+    torque_limit_verdict, torque_limit_warning, transient_warning, NO_ROTATION,
 };
+use crate::drilling::start::{steady_point, InitialState, Wall};
 use crate::error::{Error, Num, Result};
 use crate::interrupt::{Interrupt, Poller};
-use crate::metrics::{stick_slip, StickSlip};
+use crate::metrics::{stick_slip, StickSlip, Verdict};
 use crate::solution::{serialize_list, Status};
 
 /// A run whose top-drive or bit speed exceeds this many times the largest setpoint (or 1 rad/s)
@@ -202,7 +203,7 @@ impl<'c> Simulation<'c> {
             wall.stop.fill(0.0);
             wall.slip.fill(-0.0);
         }
-        Ok(Simulation {
+        let mut sim = Simulation {
             axial,
             coupled_friction,
             cfg,
@@ -217,7 +218,34 @@ impl<'c> Simulation<'c> {
             measured: SpeedSeries::new(&cfg.top_drive),
             ledger: Ledger::default(),
             first_mode,
-        })
+        };
+        if cfg.numerics.initial_state == InitialState::Steady {
+            sim.start_steady()?;
+        }
+        Ok(sim)
+    }
+
+    /// Sets the steady drilling state of a coupled run ([`crate::drilling::start`]): every cell
+    /// turning at the top drive's speed at `t = 0` with the torque of steady rotation, the
+    /// controller holding the top torque, the axial field, bit and hoist by
+    /// [`Axial::set_steady`]. Refused without a hoist, rotation or a drilling hoist.
+    fn start_steady(&mut self) -> Result<()> {
+        let cfg = self.cfg;
+        let td = &cfg.top_drive;
+        let omega = match SpeedSeries::new(td) {
+            Some(mut series) => series.at(0.0),
+            None => Setpoint::target(td, 0.0),
+        };
+        let wall = Wall::new(cfg, &self.grid, self.coupled_friction.is_some());
+        let point = steady_point(cfg, &wall, omega)?;
+        let (torque, top) = wall.torques(point.rop, omega, point.bit.torque_on_bit);
+        self.set_state(&vec![omega; self.grid.cells()], &torque, omega, omega)?;
+        self.setpoint.value = omega;
+        self.control.hold(top);
+        if let Some(ax) = &mut self.axial {
+            ax.set_steady(cfg, &point, &wall);
+        }
+        Ok(())
     }
 
     /// Sets `k5 = 0` in every section (the `consistent` scheme with the linear law), for tests
@@ -509,8 +537,27 @@ impl<'c> Simulation<'c> {
             run.message = format!("the energy became non-finite by t = {} s", Num(t));
         }
         metrics(cfg, &mut run);
+        let share = torque_limit_share(&run.t, &run.motor_torque, run.window, cfg.top_drive.torque_limit);
+        // (a limit below the static torque has its own warning: the motor may never break it free)
+        let verdict = torque_limit_warning(cfg, breakoff).is_none().then(|| torque_limit_verdict(cfg, share)).flatten();
+        if let Some((warning, reason)) = verdict {
+            run.warnings.push(warning);
+            if let Some(m) = &mut run.metrics {
+                m.verdict = Verdict::Undetermined;
+                m.verdict_reason = reason.into();
+            }
+        }
         if let Some(ax) = &self.axial {
             run.coupled = coupled_metrics(&run, ax.law().radius);
+            if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
+                if c.regime == Regime::Undetermined && run.metrics.as_ref().is_some_and(|m| m.verdict == Verdict::No) {
+                    run.warnings.push(format!(
+                        "regime undetermined, not smooth drilling: {why}; the string is still settling onto the bit \
+                         (lengthen numerics.duration, move metrics.window later, or start from \
+                         numerics.initial_state = \"steady\")"
+                    ));
+                }
+            }
         }
         run.rotating = rotation_commanded(cfg);
         if let (Some(c), Some(h)) = (&run.coupled, &cfg.hoist) {
@@ -610,8 +657,13 @@ pub fn coupled_metrics(run: &DrillRun, radius: f64) -> Option<CoupledMetrics> {
         bounce_fraction: bounce,
         hook_load_mean_n: mean(&run.hook_load),
         mse_mean_pa: mse,
-        regime: regime(run.metrics.as_ref().map(|m| m.verdict), bounce),
+        regime: regime(run.metrics.as_ref().map(|m| m.verdict), bounce, axial_transient(run).is_some()),
     })
+}
+
+/// [`crate::drilling::plausibility::axial_transient`] of a coupled run's series over its window.
+pub fn axial_transient(run: &DrillRun) -> Option<String> {
+    crate::drilling::plausibility::axial_transient(&run.t, &run.rop, &run.weight_on_bit, run.window)
 }
 
 /// The stick-slip metrics of a run's series over its window, or a note why there are none.

@@ -1,0 +1,63 @@
+//! The axial field in steady drilling ([`crate::drilling::start`]): `Axial::set_steady`.
+
+use super::{Axial, DepthOfCut};
+use crate::drilling::axial::bit_boundary::{BitContact, BitPhase};
+use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
+use crate::drilling::axial::hoist::{AutodrillerTarget, HoistMode};
+use crate::drilling::axial::section::{static_tension, AxialSection};
+use crate::drilling::config::DrillConfig;
+use crate::drilling::grid::inclination;
+use crate::drilling::start::{SteadyPoint, Wall};
+
+impl Axial {
+    /// Sets the field, the bit and the hoist in the steady drilling state `s` of `cfg` with the
+    /// wall `wall`: every cell moving at the rate of penetration (the state after a step's
+    /// gravity kick, [`Axial::each_cell`]) under the static tension with the BHA hanging, less
+    /// the weight on bit and the axial resistance below it; the bit cutting at the steady depth
+    /// of cut (the cut surface the steady helix, [`CutSurface::steady`], or the upwind chain's
+    /// discrete steady profile); the hoist at its setpoint (an autodriller on weight on bit
+    /// with the integral of the steady rate).
+    pub fn set_steady(&mut self, cfg: &DrillConfig, s: &SteadyPoint, wall: &Wall) {
+        let (mud, g) = (cfg.well.mud_density, cfg.well.gravity);
+        let parts: Vec<AxialSection> = cfg.sections.iter().map(AxialSection::from_section).collect();
+        let inc = |md: f64| inclination(cfg, md);
+        let w = s.bit.weight_on_bit - self.bha_weight;
+        let tension = static_tension(&parts, mud, g, &inc, w, &self.z);
+        let mut k = 0;
+        for sec in 0..self.field.sections.len() {
+            let (offset, cells) = (self.field.sections[sec].offset, self.field.sections[sec].cells);
+            for j in 1..=cells {
+                let n = tension[k] - wall.axial_resistance_below(self.z[k], s.rop, s.omega);
+                self.field.set_cell(sec, j, s.rop + 0.5 * self.gravity[offset + j], -n);
+                k += 1;
+            }
+        }
+        let top = static_tension(&parts, mud, g, &inc, w, &[0.0])[0] - wall.axial_resistance_below(0.0, s.rop, s.omega);
+        let wf = self.law.contact_weight();
+        self.state.contact = BitContact {
+            axial_speed: s.rop,
+            angular_speed: s.omega,
+            weight_on_bit: s.bit.weight_on_bit,
+            torque_on_bit: s.bit.torque_on_bit,
+            contact_weight: wf,
+            contact_torque: self.law.contact_torque(wf),
+            phase: BitPhase::Cutting,
+        };
+        self.state.depth = s.bit.depth;
+        self.state.rop = s.rop;
+        self.state.hook_load = top;
+        self.turning_depth = s.bit.depth;
+        let blades = self.law.blades;
+        match &mut self.rule {
+            DepthOfCut::Regenerative(c) => *c = CutSurface::steady(blades, SurfaceRule::Deepest, 0.0, 0.0, s.bit.depth),
+            DepthOfCut::Upwind(u) => *u = UpwindCutSurface::new(blades, u.cells(), s.bit.depth),
+            DepthOfCut::Rate => {}
+        }
+        let p = &self.hoist.params;
+        self.hoist.setpoint = p.target(0.0);
+        let a = &p.autodriller;
+        if p.mode == HoistMode::Autodriller && a.target == AutodrillerTarget::WeightOnBit && a.ki > 0.0 {
+            self.hoist.integral = s.rop / a.ki;
+        }
+    }
+}
