@@ -29,7 +29,7 @@ use super::axial::bitrock::{DetournayBit, SteadyDrilling};
 use super::axial::hoist::{AutodrillerTarget, HoistMode};
 use super::axial::section::{static_tension, AxialSection};
 use super::config::DrillConfig;
-use super::grid::{inclination, Grid};
+use super::grid::Grid;
 use crate::error::{Error, Num, Result};
 
 /// Where a run starts (`numerics.initial_state`).
@@ -143,13 +143,15 @@ pub struct SteadyPoint {
 
 /// The buoyed weight of `cfg`'s lumped BHA along the hole at the bit, N, and the hook load of
 /// the string hanging off bottom, N (the static tension at the top with the BHA hanging).
-pub fn hanging(cfg: &DrillConfig) -> (f64, f64) {
+pub fn hanging(cfg: &DrillConfig) -> Result<(f64, f64)> {
     let (mud, g) = (cfg.well.mud_density, cfg.well.gravity);
+    let traj = super::well::trajectory(cfg)?;
+    let inclination = |md: f64| traj.at(md).inc;
     let parts: Vec<AxialSection> = cfg.sections.iter().map(AxialSection::from_section).collect();
     let length: f64 = cfg.sections.iter().map(|s| s.length).sum();
-    let bha = parts.last().map_or(0.0, |p| cfg.bit.bha_mass * p.buoyed_gravity(mud, g, inclination(cfg, length)));
-    let hook = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha, &[0.0])[0];
-    (bha, hook)
+    let bha = parts.last().map_or(0.0, |p| cfg.bit.bha_mass * p.buoyed_gravity(mud, g, inclination(length)));
+    let hook = static_tension(&parts, mud, g, &inclination, -bha, &[0.0])[0];
+    Ok((bha, hook))
 }
 
 /// The steady drilling point of a coupled configuration turning at `omega` (rad/s) with the wall
@@ -184,7 +186,8 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
         (HoistMode::Velocity, _) | (HoistMode::Autodriller, AutodrillerTarget::Rop) => None,
         (HoistMode::Autodriller, AutodrillerTarget::WeightOnBit) => Some((target, false)),
         (HoistMode::WeightOnBit, _) => Some((target, true)),
-        (HoistMode::HookLoad, _) => Some((hanging(cfg).1 - target, true)),
+        // (the setpoint the weight indicator's reading, the travelling block's weight with it)
+        (HoistMode::HookLoad, _) => Some((hanging(cfg)?.1 + cfg.torque_drag.block_weight - target, true)),
     };
     let rop = match imposed {
         None => target,

@@ -6,8 +6,8 @@ use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurf
 use crate::drilling::axial::hoist::{AutodrillerTarget, HoistMode};
 use crate::drilling::axial::section::{static_tension, AxialSection};
 use crate::drilling::config::DrillConfig;
-use crate::drilling::grid::inclination;
 use crate::drilling::start::{SteadyPoint, Wall};
+use crate::error::Result;
 
 impl Axial {
     /// Sets the field, the bit and the hoist in the steady drilling state `s` of `cfg` with the
@@ -17,10 +17,11 @@ impl Axial {
     /// of cut (the cut surface the steady helix, [`CutSurface::steady`], or the upwind chain's
     /// discrete steady profile); the hoist at its setpoint (an autodriller on weight on bit
     /// with the integral of the steady rate).
-    pub fn set_steady(&mut self, cfg: &DrillConfig, s: &SteadyPoint, wall: &Wall) {
+    pub fn set_steady(&mut self, cfg: &DrillConfig, s: &SteadyPoint, wall: &Wall) -> Result<()> {
         let (mud, g) = (cfg.well.mud_density, cfg.well.gravity);
         let parts: Vec<AxialSection> = cfg.sections.iter().map(AxialSection::from_section).collect();
-        let inc = |md: f64| inclination(cfg, md);
+        let traj = crate::drilling::well::trajectory(cfg)?;
+        let inc = |md: f64| traj.at(md).inc;
         let w = s.bit.weight_on_bit - self.bha_weight;
         let tension = static_tension(&parts, mud, g, &inc, w, &self.z);
         let mut k = 0;
@@ -45,7 +46,7 @@ impl Axial {
         };
         self.state.depth = s.bit.depth;
         self.state.rop = s.rop;
-        self.state.hook_load = top;
+        self.state.hook_load = top + self.block_weight;
         self.turning_depth = s.bit.depth;
         let blades = self.law.blades;
         match &mut self.rule {
@@ -59,5 +60,6 @@ impl Axial {
         if p.mode == HoistMode::Autodriller && a.target == AutodrillerTarget::WeightOnBit && a.ki > 0.0 {
             self.hoist.integral = s.rop / a.ki;
         }
+        Ok(())
     }
 }

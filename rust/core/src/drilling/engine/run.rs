@@ -243,7 +243,7 @@ impl<'c> Simulation<'c> {
         self.setpoint.value = omega;
         self.control.hold(top);
         if let Some(ax) = &mut self.axial {
-            ax.set_steady(cfg, &point, &wall);
+            ax.set_steady(cfg, &point, &wall)?;
         }
         Ok(())
     }
