@@ -31,6 +31,10 @@
 //! * [`plausibility`]: warnings (not errors) for values that are likely mistakes, a torque
 //!   limit below the break-off torque, a transient still decaying in the metrics window and
 //!   metrics that are not finite;
+//! * [`limits`]: what a configuration may ask for beyond each value's range (loads within the
+//!   string's buoyed weight, a hole without a reversing dogleg nor above the rig floor, the
+//!   torque and drag's and the cut surface's work), checked before anything sized by it is
+//!   allocated; [`effect`]: whether a key changes a run under the configuration's modes;
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
 //!   with a true stick phase, its steady rotations and their stability.
 //! * [`axial`]: the bit on bottom as parts (axial section properties and statics, the Detournay
@@ -40,8 +44,10 @@
 pub mod axial;
 pub mod bit;
 pub mod config;
+pub mod effect;
 pub mod engine;
 pub mod grid;
+pub mod limits;
 pub mod lumped;
 pub mod map;
 pub mod plausibility;

@@ -155,9 +155,8 @@ impl Axial {
             beta_next: vec![0.0; len],
             nl: None,
         };
-        let last = parts.last().expect("at least one section");
         let bha_mass = cfg.bit.bha_mass;
-        let bha_weight = bha_mass * last.buoyed_gravity(mud, g, inclination(cfg, top));
+        let bha_weight = crate::drilling::limits::bha_weight(cfg);
         // The BHA hangs from the string: a negative weight on bit.
         let tension = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &centres);
         let mut k = 0;
@@ -168,7 +167,7 @@ impl Axial {
             }
         }
         let params = hoist.params();
-        let hanging = static_tension(&parts, mud, g, &|md| inclination(cfg, md), -bha_weight, &[0.0])[0];
+        let hanging = crate::drilling::limits::hanging_hook_load(cfg);
         let initial = if params.mode == HoistMode::HookLoad { hanging } else { 0.0 };
         let law = cfg.bit.detournay.law(cfg.bit.radius);
         let rule = match (cfg.bit.law, cfg.bit.detournay.cut_surface) {
