@@ -964,6 +964,7 @@ def drill_map(
     threads: Optional[int] = None,
     memory_budget: Optional[int] = None,
     progress: Optional[Callable[[float], object]] = None,
+    check_axes: bool = True,
 ) -> DrillMapOutput:
     """A stick-slip map: ``config_json`` with each run's overrides (``runs_json``: a list of runs,
     each a list of ``[dotted key, value]`` pairs; null unsets a field) solved in parallel without
@@ -973,8 +974,22 @@ def drill_map(
     Raises
     ------
     ValidationError
-        ``config_json`` or ``runs_json`` not JSON of the right shape, ``threads``, or a map
-        over ``memory_budget`` bytes (``threads``).
+        ``config_json`` or ``runs_json`` not JSON of the right shape, ``threads``, a map
+        over ``memory_budget`` bytes (``threads``), or with ``check_axes`` an axis without
+        effect in every run (``drill_map_check_axes``).
+    """
+
+
+def drill_map_check_axes(config_json: str, runs_json: str) -> None:
+    """Refuses a map (``config_json`` with the runs ``runs_json``, as :func:`drill_map`) with an
+    axis that changes nothing in any run (``top_drive.rpm`` under ``top_drive.mode =
+    "measured_speed"``, a hoist key of another ``hoist.mode``, ...): the core's rule
+    ``drilling::effect::no_effect``.
+
+    Raises
+    ------
+    ValidationError
+        Naming ``axis KEY`` and why it has no effect.
     """
 
 

@@ -288,7 +288,9 @@ def drill_map(
     ------
     ValidationError
         A base configuration the core refuses; empty or malformed axes, a key that is not in
-        the configuration (naming it); a ``client`` that is not a Dask client or address; too many
+        the configuration (naming it), an axis without effect in every run (``top_drive.rpm``
+        under ``top_drive.mode = "measured_speed"``: its rows would all be the same; named with
+        the reason); a ``client`` that is not a Dask client or address; too many
         runs (:func:`drillstring.limits.check_run_count`)
         or a map over the memory budget.
     KeyboardInterrupt
@@ -314,6 +316,9 @@ def drill_map(
         name = os.path.splitext(os.path.basename(os.fsdecode(os.fspath(config))))[0]
     report, close = _progress_hook(progress, runs)
     combos = list(itertools.product(*named.values()))
+    # an axis without effect in every run refuses the whole map (the core's rule), checked once
+    # here for the chunks that solve parts of it
+    _core.drill_map_check_axes(cfg.to_json(), _runs_json(named, combos))
     count = None if threads is None else int(threads)
     if report is not None:
         report(0)
@@ -346,10 +351,14 @@ def _solve(cfg: DrillConfig, named: Mapping[str, list[Any]], combos: list[tuple[
     """Solves the runs ``combos`` in one core call; the table and the exception that stopped it."""
     # no field snapshots in any run, also with a numerics.field_interval axis: the core's
     # drilling::map::run_config drops them
-    runs_json = json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
     hook = None if report is None else (lambda done: report(offset + done))
-    raw = _core.drill_map(cfg.to_json(), runs_json, threads, memory_budget(), hook)
+    raw = _core.drill_map(cfg.to_json(), _runs_json(named, combos), threads, memory_budget(), hook, check_axes=False)
     return _frame(named, combos, raw, cfg), raw.get("interrupt")
+
+
+def _runs_json(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]]) -> str:
+    """The runs ``combos`` of the axes ``named`` as the core's JSON list of ``[path, value]`` pairs."""
+    return json.dumps([list(zip(named, combo)) for combo in combos], allow_nan=False)
 
 
 def _digest(value: Any) -> str:

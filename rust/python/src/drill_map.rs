@@ -25,8 +25,10 @@ pub(crate) fn add_constants(m: &Bound<'_, PyModule>) -> PyResult<()> {
 /// and `interrupt`: the
 /// exception that stopped the map (Ctrl-C, or raised by `progress`), or None; the caller raises
 /// it once it has kept the finished rows. `progress(finished_runs)` is called about every 20 ms.
+/// An axis without effect in every run refuses the map (ValidationError naming it), unless
+/// `check_axes` is false (a part of a map checked whole by `drill_map_check_axes`).
 #[pyfunction]
-#[pyo3(signature = (config_json, runs_json, threads=None, memory_budget=None, progress=None))]
+#[pyo3(signature = (config_json, runs_json, threads=None, memory_budget=None, progress=None, check_axes=true))]
 pub(crate) fn drill_map<'py>(
     py: Python<'py>,
     config_json: &str,
@@ -34,14 +36,28 @@ pub(crate) fn drill_map<'py>(
     threads: Option<usize>,
     memory_budget: Option<u64>,
     progress: Option<Py<PyAny>>,
+    check_axes: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let runs = map::parse_runs(runs_json).map_err(|e| validation_error(py, e))?;
     let signals = SignalCheck::with_progress(py, progress);
-    let solved = py
-        .detach(|| no_panic(|| map::solve_map(config_json, &runs, threads, memory_budget, &signals, &mut |_, _| {})))?;
+    let solved = py.detach(|| {
+        no_panic(|| {
+            map::solve_map_part(config_json, &runs, check_axes, threads, memory_budget, &signals, &mut |_, _| {})
+        })
+    })?;
     let interrupt = signals.finish().err().map(|e| e.into_value(py));
     let rows = solved.map_err(|e| validation_error(py, e))?;
     let d = to_dict(py, &map::MapColumns::new(&rows))?;
     d.set_item("interrupt", interrupt)?;
     Ok(d)
+}
+
+/// Refuses a map (`config_json` with the runs `runs_json`, as `drill_map`) with an axis that
+/// changes nothing in any run: ValidationError naming the key and why
+/// (`drilling::map::check_axes`).
+#[pyfunction]
+pub(crate) fn drill_map_check_axes(py: Python<'_>, config_json: &str, runs_json: &str) -> PyResult<()> {
+    let runs = map::parse_runs(runs_json).map_err(|e| validation_error(py, e))?;
+    let base = map::map_base(config_json).map_err(|e| validation_error(py, e))?;
+    map::check_axes(&base, &runs).map_err(|e| validation_error(py, e))
 }

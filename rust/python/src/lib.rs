@@ -88,6 +88,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(config::parameters_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(config::parameters_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drill_map::drill_map, m)?)?;
+    m.add_function(wrap_pyfunction!(drill_map::drill_map_check_axes, m)?)?;
     drill_map::add_constants(m)?;
     m.add_function(wrap_pyfunction!(lumped::lumped_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(lumped::lumped_solve, m)?)?;

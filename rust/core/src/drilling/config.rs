@@ -136,7 +136,7 @@ pub struct Well {
     /// inclination (one number in `inclination_deg`).
     #[schemars(extend("unit" = "m", "label" = "measured depth"))]
     pub md: Option<Vec<f64>>,
-    /// Inclination at each `md` station, 0 to 180 degrees (0: vertical); one number without `md` is
+    /// Inclination at each `md` station, from 0 to below 180 degrees (0: vertical); one number without `md` is
     /// a constant inclination.
     #[schemars(extend("unit" = "deg", "label" = "inclination"))]
     pub inclination_deg: Inclination,
@@ -904,10 +904,11 @@ pub struct TorqueDragConfig {
     /// The travelling block's weight (with hook and top drive), added to hook loads, >= 0.
     #[schemars(extend("unit" = "N", "label" = "block weight"))]
     pub block_weight: f64,
-    /// The longest element of the stepped solution, > 0.
+    /// The longest element of the stepped solution, > 0 and at least the string's length over
+    /// a million (the elements' count is bounded).
     #[schemars(extend("unit" = "m", "label" = "element length"))]
     pub step: f64,
-    /// The friction factors of the broomstick plot (uniform along the hole), each in [0, 10].
+    /// The friction factors of the broomstick plot (uniform along the hole), 1 to 100, each in [0, 10].
     #[schemars(extend("unit" = "", "label" = "friction factor"))]
     pub friction_factors: Vec<f64>,
     /// Bit depths of the broomstick plot, evenly spaced to the string's length, 2 to 100000.
@@ -1159,7 +1160,8 @@ impl DrillConfig {
     pub fn validate(&self) -> Result<()> {
         self.validate_values()?;
         let grid = Grid::new(self)?;
-        self.check_outputs(&grid)
+        self.check_outputs(&grid)?;
+        super::limits::check_cut_surface_work(self, &grid)
     }
 
     /// The coupled run's keys: `bit.law` `detournay` or `rgd` with a `[hoist]` table and the
@@ -1316,7 +1318,7 @@ impl DrillConfig {
         let replaced = w.survey.is_some() || w.plan.is_some();
         match (&w.md, &w.inclination_deg) {
             _ if replaced => {}
-            (None, Inclination::Constant(x)) => within("well.inclination_deg", *x, 0.0, 180.0, "degrees")?,
+            (None, Inclination::Constant(x)) => super::limits::check_inclination("well.inclination_deg", *x)?,
             (Some(_), Inclination::Constant(_)) => {
                 return Err(Error::invalid(
                     "well.inclination_deg",
@@ -1349,7 +1351,7 @@ impl DrillConfig {
                     ));
                 }
                 for (j, x) in inc.iter().enumerate() {
-                    within(format!("well.inclination_deg[{j}]"), *x, 0.0, 180.0, "degrees")?;
+                    super::limits::check_inclination(format!("well.inclination_deg[{j}]"), *x)?;
                 }
             }
         }
@@ -1369,7 +1371,7 @@ impl DrillConfig {
                 }
             }
         }
-        super::well::survey(self)?;
+        super::well::trajectory(self)?;
         for (j, iv) in self.friction.intervals.iter().enumerate() {
             let f = |k: &str| format!("friction.intervals[{j}].{k}");
             nonneg(f("top_md"), iv.top_md, "m")?;
@@ -1382,20 +1384,7 @@ impl DrillConfig {
             }
             nonneg(f("static"), iv.static_coefficient, "-")?;
         }
-        let tdc = &self.torque_drag;
-        nonneg("torque_drag.bit_torque", tdc.bit_torque, "N m")?;
-        nonneg("torque_drag.block_weight", tdc.block_weight, "N")?;
-        pos("torque_drag.step", tdc.step, "m")?;
-        if !(2..=100_000).contains(&tdc.broomstick_points) {
-            return Err(Error::invalid(
-                "torque_drag.broomstick_points",
-                tdc.broomstick_points,
-                "an integer in 2..=100000",
-            ));
-        }
-        for (j, m) in tdc.friction_factors.iter().enumerate() {
-            within(format!("torque_drag.friction_factors[{j}]"), *m, 0.0, 10.0, "-")?;
-        }
+        super::limits::validate_torque_drag(self)?;
         let fr = &self.friction;
         nonneg("friction.static", fr.static_coefficient, "-")?;
         within("friction.kinetic_ratio", fr.kinetic_ratio, 0.0, 1.0, "-")?;
@@ -1527,7 +1516,7 @@ impl DrillConfig {
             }
         }
         nonneg("metrics.stick_speed", m.stick_speed, "rad/s")?;
-        Ok(())
+        super::limits::validate_loads(self)
     }
 
     /// Number of series samples (`t = k output_interval <= duration`).

@@ -12,7 +12,9 @@
 //! it is solving).
 //!
 //! A run whose configuration is refused is a row with status `invalid` and the message naming
-//! the field; it never fails the map. The runs go on a thread pool made for the call (never
+//! the field; it never fails the map. An axis that changes nothing (a key without effect in
+//! every run's configuration, [`super::effect::no_effect`]: `top_drive.rpm` under
+//! `top_drive.mode = "measured_speed"`) fails it, naming the key and why ([`check_axes`]). The runs go on a thread pool made for the call (never
 //! rayon's global pool, so a process that forks can run maps in the child), as
 //! [`crate::sweep::batch_solve_with`] does.
 
@@ -25,6 +27,7 @@ use serde_json::Value;
 use super::axial::regime::Regime;
 pub use super::config::{apply_overrides, set_path, Override};
 use super::config::{override_pairs, DrillConfig, SERIES};
+use super::effect::no_effect;
 use super::engine::CoupledMetrics;
 use super::solver::{solve, DrillStats};
 use crate::error::{Error, Result};
@@ -240,6 +243,48 @@ pub fn run_bytes(cfg: &DrillConfig) -> u64 {
         .saturating_add(4096)
 }
 
+/// Refuses a map with an axis that changes nothing: a key the runs set that is without effect
+/// ([`super::effect::no_effect`]) in the configuration of every run without it (`base` with the
+/// run's other overrides, parsed: what the key would change; runs that do not parse are left
+/// to their `invalid` rows). The error names the key and why.
+pub fn check_axes(base: &Value, runs: &[Vec<Override>]) -> Result<()> {
+    let mut keys: Vec<&str> = Vec::new();
+    for (key, _) in runs.iter().flatten() {
+        if !keys.contains(&key.as_str()) {
+            keys.push(key);
+        }
+    }
+    for key in keys {
+        let mut first: Option<String> = None;
+        let mut all = true;
+        for run in runs {
+            let others: Vec<Override> = run.iter().filter(|(k, _)| k != key).cloned().collect();
+            let mut value = base.clone();
+            if apply_overrides(&mut value, &others, "axis").is_err() {
+                continue;
+            }
+            let Ok(cfg) = DrillConfig::from_value(value) else { continue };
+            match no_effect(&cfg, key) {
+                Some(why) => {
+                    first.get_or_insert(why);
+                }
+                None => {
+                    all = false;
+                    break;
+                }
+            }
+        }
+        if let (true, Some(why)) = (all, first) {
+            return Err(Error::invalid(
+                format!("axis {key}"),
+                "a key without effect in every run of the map (its rows would all be the same)",
+                format!("an axis that changes the runs: {why}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Bytes of one row (an upper estimate, without the message text).
 pub const ROW_BYTES: u64 = 512;
 
@@ -247,9 +292,10 @@ pub const ROW_BYTES: u64 = 512;
 /// `threads` threads (every core for `None`, at most [`crate::sweep::MAX_THREADS`]). One row
 /// per run, in input order.
 ///
-/// Errors only for a shared input the map cannot use: `base` not a JSON object, `threads`, or a
-/// map over `memory_budget` bytes (the rows, and on each thread the run it solves). A run whose
-/// configuration is refused is a row with status `invalid`; a failed solve a row with its status.
+/// Errors only for a shared input the map cannot use: `base` not a JSON object, `threads`, an
+/// axis without effect ([`check_axes`]), or a map over `memory_budget` bytes (the rows, and on
+/// each thread the run it solves). A run whose configuration is refused is a row with status
+/// `invalid`; a failed solve a row with its status.
 ///
 /// The calling thread waits for the pool and, every few milliseconds, asks
 /// `interrupt.interrupted_at(finished runs)` (so a hook that must run on that thread, such as
@@ -265,10 +311,33 @@ pub fn solve_map(
     interrupt: &dyn Interrupt,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Vec<MapRow>> {
+    solve_map_part(base, runs, true, threads, memory_budget, interrupt, progress)
+}
+
+/// The base configuration of a map: a JSON object.
+pub fn map_base(base: &str) -> Result<Value> {
     let base: Value = serde_json::from_str(base)
         .map_err(|e| Error::invalid("config", format!("text that is not JSON ({e})"), "a JSON object"))?;
     if !base.is_object() {
         return Err(Error::invalid("config", "not an object", "a JSON object"));
+    }
+    Ok(base)
+}
+
+/// [`solve_map`] of one part of a map, whose axes ([`check_axes`]) are checked with every run
+/// of the map (once, before its parts) when `check` is false.
+pub fn solve_map_part(
+    base: &str,
+    runs: &[Vec<Override>],
+    check: bool,
+    threads: Option<usize>,
+    memory_budget: Option<u64>,
+    interrupt: &dyn Interrupt,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Vec<MapRow>> {
+    let base = map_base(base)?;
+    if check {
+        check_axes(&base, runs)?;
     }
     let threads = resolve_threads(threads)?;
     let configs: Vec<Result<DrillConfig>> = runs.iter().map(|o| run_config(&base, o)).collect();
@@ -398,15 +467,15 @@ mod tests {
             "friction": {"static": 0.0},
             "top_drive": {"rpm": 120.0, "controller": {"type": "speed"}},
             "bit": {"law": "detournay"},
-            "hoist": {"mode": "weight_on_bit", "weight_on_bit": 80e3},
+            "hoist": {"mode": "weight_on_bit", "weight_on_bit": 40e3},
             "numerics": {"cells": 50, "duration": 6.0}
         })
         .to_string();
         let runs: Vec<Vec<Override>> =
-            [60e3, 90e3].iter().map(|&w| vec![("hoist.weight_on_bit".to_string(), json!(w))]).collect();
+            [30e3, 45e3].iter().map(|&w| vec![("hoist.weight_on_bit".to_string(), json!(w))]).collect();
         let rows = solve_map(&base, &runs, Some(2), None, &Never, &mut |_, _| {}).unwrap();
         let columns = MapColumns::new(&rows);
-        for (k, (row, w)) in rows.iter().zip([60e3, 90e3]).enumerate() {
+        for (k, (row, w)) in rows.iter().zip([30e3, 45e3]).enumerate() {
             let mut cfg = DrillConfig::from_json(&base).unwrap();
             cfg.hoist.as_mut().unwrap().weight_on_bit = w;
             let single = solve(&cfg, &Never, &mut |_| {}).unwrap();

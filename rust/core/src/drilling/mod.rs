@@ -33,6 +33,10 @@
 //!   in the metrics window and metrics that are not finite;
 //! * [`start`]: where a run starts, at rest or in a coupled run's steady drilling;
 //! * [`compare`]: two runs' metrics compared with the tolerances of the grid and start checks;
+//! * [`limits`]: what a configuration may ask for beyond each value's range (loads within the
+//!   string's buoyed weight, a hole without a reversing dogleg nor above the rig floor, the
+//!   torque and drag's and the cut surface's work), checked before anything sized by it is
+//!   allocated; [`effect`]: whether a key changes a run under the configuration's modes;
 //! * [`lumped`]: the lumped two-inertia model of Navarro-Lopez & Cortes (2007), its solver
 //!   with a true stick phase, its steady rotations and their stability.
 //! * [`axial`]: the bit on bottom as parts (axial section properties and statics, the Detournay
@@ -43,8 +47,10 @@ pub mod axial;
 pub mod bit;
 pub mod compare;
 pub mod config;
+pub mod effect;
 pub mod engine;
 pub mod grid;
+pub mod limits;
 pub mod lumped;
 pub mod map;
 pub mod plausibility;

@@ -14,6 +14,7 @@ use super::grid::static_torque;
 pub fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
     let mut out: Vec<String> = torque_limit_warning(cfg, breakoff).into_iter().collect();
     out.extend(plausibility_warnings(cfg));
+    out.extend(super::limits::load_warnings(cfg, breakoff));
     out
 }
 
@@ -52,10 +53,16 @@ pub const PLAUSIBLE_OUTER_DIAMETER: f64 = 1.0;
 pub const PLAUSIBLE_BIT_RADIUS: f64 = 0.25;
 pub const PLAUSIBLE_STRING_LENGTH: f64 = 15_000.0;
 pub const PLAUSIBLE_RPM: f64 = 400.0;
+/// The fastest block a hoist moves, m/s (tripping runs below about 1.5 m/s; 30 m/h of drilling
+/// is 0.0083 m/s).
+pub const PLAUSIBLE_BLOCK_SPEED: f64 = 3.0;
 
 /// Warnings (not errors) for values far outside drilling practice: a pipe over
 /// [`PLAUSIBLE_OUTER_DIAMETER`] m across, a bit over 2 [`PLAUSIBLE_BIT_RADIUS`] m, a string
-/// longer than [`PLAUSIBLE_STRING_LENGTH`] m, a top-drive speed over [`PLAUSIBLE_RPM`] rpm.
+/// longer than [`PLAUSIBLE_STRING_LENGTH`] m, a top-drive speed over [`PLAUSIBLE_RPM`] rpm (the
+/// setpoint, its steps or the measured speed series), a block velocity over
+/// [`PLAUSIBLE_BLOCK_SPEED`] m/s (the hoist's speed, its steps in `velocity` mode, the
+/// autodriller's speed limits and rate-of-penetration setpoint).
 pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
     let mut out = Vec::new();
     for (i, s) in cfg.sections.iter().enumerate() {
@@ -82,16 +89,48 @@ pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
             Num(PLAUSIBLE_STRING_LENGTH)
         ));
     }
-    let rpm = std::iter::once(cfg.top_drive.rpm).chain(cfg.top_drive.steps.iter().map(|s| s[1]));
-    if let Some(fast) = rpm.map(f64::abs).filter(|r| *r > PLAUSIBLE_RPM).reduce(f64::max) {
+    let td = &cfg.top_drive;
+    let mut rpm: Vec<(String, f64)> = vec![("top_drive.rpm".into(), td.rpm)];
+    rpm.extend(td.steps.iter().enumerate().map(|(i, s)| (format!("top_drive.steps[{i}][1]"), s[1])));
+    rpm.extend(td.speed_series.iter().enumerate().map(|(i, s)| (format!("top_drive.speed_series[{i}][1]"), s[1])));
+    if let Some((field, fast)) = fastest(rpm, PLAUSIBLE_RPM) {
         out.push(format!(
-            "a top-drive speed of {} rpm is over the {} rpm of top drives: rad/s or a digit too many? \
-             (top_drive.rpm and top_drive.steps are in rpm)",
+            "a top-drive speed of {} rpm is over the {} rpm of top drives ({field}): rad/s or a digit too many? \
+             (top_drive.rpm, top_drive.steps and top_drive.speed_series are in rpm)",
             Num(fast),
             Num(PLAUSIBLE_RPM)
         ));
     }
+    if let Some(h) = &cfg.hoist {
+        let mut speeds: Vec<(String, f64)> = Vec::new();
+        if h.mode == HoistKind::Velocity {
+            speeds.push(("hoist.speed".into(), h.speed));
+            speeds.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
+        }
+        if h.mode == HoistKind::Autodriller {
+            let a = &h.autodriller;
+            speeds.push(("hoist.autodriller.max_speed".into(), a.max_speed));
+            speeds.push(("hoist.autodriller.min_speed".into(), a.min_speed));
+            if a.target == super::axial::hoist::AutodrillerTarget::Rop {
+                speeds.push(("hoist.autodriller.setpoint".into(), a.setpoint));
+                speeds.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
+            }
+        }
+        if let Some((field, fast)) = fastest(speeds, PLAUSIBLE_BLOCK_SPEED) {
+            out.push(format!(
+                "{field} = {} m/s is over the {} m/s of a hoisting block: m/h or ft/h? (block speeds are in m/s, \
+                 30 m/h = 0.008333 m/s)",
+                Num(fast),
+                Num(PLAUSIBLE_BLOCK_SPEED)
+            ));
+        }
+    }
     out
+}
+
+/// The value of largest magnitude over `bound` in magnitude (its field and value), if any.
+fn fastest(values: Vec<(String, f64)>, bound: f64) -> Option<(String, f64)> {
+    values.into_iter().filter(|(_, v)| v.abs() > bound).max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
 }
 
 /// [`transient_warning`]: the relative change of an oscillation's peak-to-peak amplitude

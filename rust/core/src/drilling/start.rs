@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 
 use super::axial::bitrock::{DetournayBit, SteadyDrilling};
 use super::axial::hoist::{AutodrillerTarget, HoistMode};
-use super::axial::section::{static_tension, AxialSection};
+use super::axial::section::AxialSection;
 use super::config::DrillConfig;
 use super::grid::Grid;
 use crate::error::{Error, Num, Result};
@@ -144,14 +144,7 @@ pub struct SteadyPoint {
 /// The buoyed weight of `cfg`'s lumped BHA along the hole at the bit, N, and the hook load of
 /// the string hanging off bottom, N (the static tension at the top with the BHA hanging).
 pub fn hanging(cfg: &DrillConfig) -> Result<(f64, f64)> {
-    let (mud, g) = (cfg.well.mud_density, cfg.well.gravity);
-    let traj = super::well::trajectory(cfg)?;
-    let inclination = |md: f64| traj.at(md).inc;
-    let parts: Vec<AxialSection> = cfg.sections.iter().map(AxialSection::from_section).collect();
-    let length: f64 = cfg.sections.iter().map(|s| s.length).sum();
-    let bha = parts.last().map_or(0.0, |p| cfg.bit.bha_mass * p.buoyed_gravity(mud, g, inclination(length)));
-    let hook = static_tension(&parts, mud, g, &inclination, -bha, &[0.0])[0];
-    Ok((bha, hook))
+    Ok((super::limits::bha_weight(cfg), super::limits::hanging_hook_load(cfg)))
 }
 
 /// The steady drilling point of a coupled configuration turning at `omega` (rad/s) with the wall

@@ -780,7 +780,10 @@ fn consistent_pulse_travels_at_the_tangent_speed() {
     cfg.nonlinearity = Nonlinearity::Consistent;
     cfg.numerics.max_shear_strain = 0.025;
     cfg.numerics.field_interval = cfg.numerics.duration;
-    cfg.bit = Bit { on_bottom: true, weight_on_bit: 1e9, mu_static: 1.0, mu_kinetic: 0.5, ..Bit::default() };
+    // a bit held by the rock: a static torque of 1 MN m (500 kN, within the rod's 605 kN buoyed
+    // weight, on a 1 m bit at mu_s = 2) above tau0
+    cfg.bit =
+        Bit { on_bottom: true, weight_on_bit: 5e5, radius: 1.0, mu_static: 2.0, mu_kinetic: 0.5, ..Bit::default() };
     let rpm = 1.0;
     cfg.top_drive.rpm = rpm;
     let dw = rpm / RPM;

@@ -121,8 +121,8 @@ pub fn read_survey_csv(path: &str) -> Result<[Vec<f64>; 3]> {
         if j > 0 && md[j] <= md[j - 1] {
             return Err(bad(&names[0], md[j], &format!("a depth > the row above's {}", Num(md[j - 1]))));
         }
-        if !(0.0..=180.0).contains(&out[1][j]) {
-            return Err(bad(&names[1], out[1][j], "0 <= inclination <= 180 degrees"));
+        if !(0.0..180.0).contains(&out[1][j]) {
+            return Err(bad(&names[1], out[1][j], "0 <= inclination < 180 degrees"));
         }
         if !(0.0..=360.0).contains(&out[2][j]) {
             return Err(bad(&names[2], out[2][j], "0 <= azimuth <= 360 degrees"));
@@ -167,6 +167,13 @@ pub fn survey(cfg: &DrillConfig) -> Result<Survey> {
         return Survey::from_degrees("well.survey", &md, &inc, &azi);
     }
     if let Some(specs) = &w.plan {
+        if specs.is_empty() {
+            return Err(Error::invalid(
+                "well.plan",
+                "an empty plan",
+                "at least one segment ({hold = m}, {build = deg/30 m, inclination = deg}, ...), or no well.plan",
+            ));
+        }
         let Some(azimuth) = constant_azimuth else {
             return Err(Error::invalid(
                 "well.azimuth_deg",
@@ -203,7 +210,8 @@ pub fn survey(cfg: &DrillConfig) -> Result<Survey> {
 
 /// The minimum-curvature trajectory of a configuration's survey; refused when the survey ends
 /// above the bit (the string's length) unless `well.extend` is true or the hole is a straight
-/// one of constant inclination.
+/// one of constant inclination, or when the hole reverses within an interval or rises above
+/// the rig floor ([`super::limits::check_hole`]).
 pub fn trajectory(cfg: &DrillConfig) -> Result<Trajectory> {
     let s = survey(cfg)?;
     let length: f64 = cfg.sections.iter().map(|s| s.length).sum();
@@ -226,7 +234,9 @@ pub fn trajectory(cfg: &DrillConfig) -> Result<Trajectory> {
             ),
         ));
     }
-    Ok(Trajectory::new(s))
+    let traj = Trajectory::new(s);
+    super::limits::check_hole(cfg, &traj, length)?;
+    Ok(traj)
 }
 
 /// The static friction factor at `md`: the first `friction.intervals` entry holding it, else
@@ -349,10 +359,8 @@ pub fn report(cfg: &DrillConfig) -> Result<TorqueDragReport> {
 pub fn broomstick(cfg: &DrillConfig) -> Result<Broomstick> {
     let traj = trajectory(cfg)?;
     let s = setup(cfg);
+    super::limits::validate_torque_drag(cfg)?;
     let n = cfg.torque_drag.broomstick_points;
-    if !(2..=100_000).contains(&n) {
-        return Err(Error::invalid("torque_drag.broomstick_points", n, "an integer in 2..=100000"));
-    }
     let length = s.depth();
     // (the last depth the string's length itself: `length * n / n` can round above it)
     let depths: Vec<f64> = (1..=n).map(|k| if k == n { length } else { length * k as f64 / n as f64 }).collect();

@@ -4,7 +4,7 @@
 //!
 //! Coordinates: north, east and true vertical depth (down), metres; angles in radians inside,
 //! degrees at the edges (configuration, CSV, tables). Inclination is measured from the
-//! vertical (0 straight down, 90 horizontal, up to 180), azimuth clockwise from north in
+//! vertical (0 straight down, 90 horizontal, up to below 180), azimuth clockwise from north in
 //! `[0, 360)` degrees.
 //!
 //! Minimum curvature (the industry's standard, e.g. SPE-84246 / ISCWSA): between two stations
@@ -58,7 +58,7 @@ pub struct Survey {
 impl Survey {
     /// A survey from stations in degrees, validated: the same number of values in each column,
     /// at least one station, the first at measured depth 0 (the surface), depths finite and
-    /// strictly increasing, inclinations in `[0, 180]` and azimuths in `[0, 360]` degrees
+    /// strictly increasing, inclinations in `[0, 180)` and azimuths in `[0, 360]` degrees
     /// (360 read as 0). `field` names the input in messages (`well`, or a file).
     pub fn from_degrees(field: &str, md: &[f64], inc_deg: &[f64], azi_deg: &[f64]) -> Result<Survey> {
         if md.is_empty() {
@@ -97,11 +97,11 @@ impl Survey {
             }
         }
         for (j, &x) in inc_deg.iter().enumerate() {
-            if !(0.0..=180.0).contains(&x) {
+            if !(0.0..180.0).contains(&x) {
                 return Err(Error::invalid(
                     format!("{field}.inclination_deg[{j}]"),
                     Num(x),
-                    "0 <= inclination <= 180 degrees",
+                    "0 <= inclination < 180 degrees (180 points straight up)",
                 ));
             }
         }

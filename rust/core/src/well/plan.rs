@@ -27,6 +27,15 @@ pub const TURN_STATION_INTERVAL: f64 = 30.0;
 /// Rates are in degrees per 30 m (the field's unit of dogleg severity).
 pub const RATE_LENGTH: f64 = 30.0;
 
+/// The most stations of a plan (3000 km of turns sampled every 30 m): a turn at a rate so slow
+/// that it would need more is refused before its stations are allocated.
+pub const MAX_PLAN_STATIONS: usize = 100_000;
+
+/// The largest inclination change of one planned station interval, degrees: a longer build or
+/// drop is written as several stations on its arc (exact: the arc is planar), so that no
+/// interval's dogleg comes near 180 degrees, where minimum curvature is undefined.
+pub const MAX_BUILD_INTERVAL_DEG: f64 = 90.0;
+
 /// One segment of a plan. In a configuration: a table with one of the keys `hold` (m),
 /// `build` / `drop` (deg/30 m, with `inclination`: the target, deg) or `turn` (deg/30 m,
 /// positive clockwise, with `azimuth`: the target, deg).
@@ -59,7 +68,7 @@ pub struct SegmentSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(extend("unit" = "deg/(30 m)", "label" = "turn rate"))]
     pub turn: Option<f64>,
-    /// The target inclination of a build or drop, 0 to 180 degrees.
+    /// The target inclination of a build or drop, from 0 to below 180 degrees.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(extend("unit" = "deg", "label" = "target inclination"))]
     pub inclination: Option<f64>,
@@ -127,7 +136,8 @@ impl SegmentSpec {
 
 /// The stations (md m, inclination deg, azimuth deg) of a plan starting vertical at the surface
 /// (with the azimuth `azimuth` deg for the first build). A build must raise the inclination and
-/// a drop lower it; targets within `[0, 180]` and `[0, 360)` degrees.
+/// a drop lower it; targets within `[0, 180)` and `[0, 360)` degrees; at most
+/// [`MAX_PLAN_STATIONS`] stations.
 pub fn stations(segments: &[Segment], azimuth: f64) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
     let (mut md, mut inc, mut azi) = (vec![0.0], vec![0.0], vec![azimuth]);
     for (j, seg) in segments.iter().enumerate() {
@@ -140,11 +150,11 @@ pub fn stations(segments: &[Segment], azimuth: f64) -> Result<(Vec<f64>, Vec<f64
                 azi.push(a0);
             }
             Segment::Build { rate, inclination } => {
-                if !(0.0..=180.0).contains(&inclination) {
+                if !(0.0..180.0).contains(&inclination) {
                     return Err(Error::invalid(
                         format!("{field}.inclination"),
                         Num(inclination),
-                        "0 <= inclination <= 180 deg",
+                        "0 <= inclination < 180 deg",
                     ));
                 }
                 let change = inclination - i0;
@@ -156,9 +166,13 @@ pub fn stations(segments: &[Segment], azimuth: f64) -> Result<(Vec<f64>, Vec<f64
                         format!("a target {want} the inclination reached, {} deg, for a {kind}", Num(i0)),
                     ));
                 }
-                md.push(d0 + change / rate * RATE_LENGTH);
-                inc.push(inclination);
-                azi.push(a0);
+                let n = (change.abs() / MAX_BUILD_INTERVAL_DEG).ceil().max(1.0) as usize;
+                for k in 1..=n {
+                    let f = k as f64 / n as f64;
+                    md.push(d0 + f * change / rate * RATE_LENGTH);
+                    inc.push(if k == n { inclination } else { i0 + f * change });
+                    azi.push(a0);
+                }
             }
             Segment::Turn { rate, azimuth } => {
                 if !(0.0..360.0).contains(&azimuth) {
@@ -171,7 +185,23 @@ pub fn stations(segments: &[Segment], azimuth: f64) -> Result<(Vec<f64>, Vec<f64
                 let change =
                     if rate > 0.0 { (azimuth - a0).rem_euclid(360.0) } else { -(a0 - azimuth).rem_euclid(360.0) };
                 let length = change / rate * RATE_LENGTH;
-                let n = (length / TURN_STATION_INTERVAL).ceil().max(1.0) as usize;
+                let n = (length / TURN_STATION_INTERVAL).ceil().max(1.0);
+                let room = MAX_PLAN_STATIONS.saturating_sub(md.len());
+                if n.is_nan() || n > room as f64 {
+                    // the slowest rate whose stations fit
+                    let slowest = change.abs() * RATE_LENGTH / (room.max(1) as f64 * TURN_STATION_INTERVAL);
+                    return Err(Error::invalid(
+                        format!("{field}.turn"),
+                        Num(rate),
+                        format!(
+                            "a rate of at least {} deg/30 m in magnitude for this {} deg turn (a plan of at most \
+                             {MAX_PLAN_STATIONS} stations, one every {TURN_STATION_INTERVAL} m of a turn)",
+                            Num(slowest),
+                            Num(change.abs())
+                        ),
+                    ));
+                }
+                let n = n as usize;
                 for k in 1..=n {
                     let f = k as f64 / n as f64;
                     md.push(d0 + f * length);

@@ -29,6 +29,11 @@ use crate::error::{Error, Num, Result};
 /// The largest element the torque-and-drag steps take by default, m.
 pub const DEFAULT_STEP: f64 = 1.0;
 
+/// The most elements of one profile (the string's length over `step`): each is a few values in
+/// each of the four operations' profiles, so this bounds the memory of an analysis (about
+/// 200 MB) before it is allocated.
+pub const MAX_ELEMENTS: usize = 1_000_000;
+
 /// A piece of the string of uniform properties, from the bit up (the order is from the top,
 /// like the configuration's sections).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -271,8 +276,17 @@ impl Setup {
                 return Err(Error::invalid(name, Num(v), "a finite number >= 0"));
             }
         }
-        if !(self.step.is_finite() && self.step > 0.0) {
-            return Err(Error::invalid("torque_drag.step", Num(self.step), "a finite element length > 0 m"));
+        let min_step = self.depth() / MAX_ELEMENTS as f64;
+        if !(self.step.is_finite() && self.step > 0.0 && self.step >= min_step) {
+            return Err(Error::invalid(
+                "torque_drag.step",
+                Num(self.step),
+                format!(
+                    "a finite element length of at least {} m (at most {MAX_ELEMENTS} elements over the string's {} m)",
+                    Num(min_step),
+                    Num(self.depth())
+                ),
+            ));
         }
         Ok(())
     }

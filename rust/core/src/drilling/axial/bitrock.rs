@@ -137,6 +137,19 @@ impl DetournayBit {
         0.5 * self.geometry * self.friction * self.radius * contact_weight
     }
 
+    /// The torque on bit, N m, of steady drilling at the weight on bit `w` (N, `>= 0`): below the
+    /// full contact weight `W_f` the wear flats alone, `gamma mu a w / 2`; above it the depth of
+    /// cut `d = (w - W_f) / (a zeta eps)` adds the cutting torque `a^2 eps d / 2` (the inverse of
+    /// [`DetournayBit::steady_state`]'s weight).
+    pub fn torque_at_weight(&self, w: f64) -> f64 {
+        let wf = self.contact_weight();
+        if w <= wf {
+            return self.contact_torque(w);
+        }
+        let depth = (w - wf) / (self.radius * self.cutting_ratio * self.intrinsic_specific_energy);
+        self.cutting_torque(depth) + self.contact_torque(wf)
+    }
+
     /// The depth of cut per blade `d_n = d / n`, m, of the depth per revolution `d`.
     #[inline]
     pub fn per_blade(&self, depth: f64) -> f64 {

@@ -166,9 +166,8 @@ impl Axial {
             beta_next: vec![0.0; len],
             nl: None,
         };
-        let last = parts.last().expect("at least one section");
         let bha_mass = cfg.bit.bha_mass;
-        let bha_weight = bha_mass * last.buoyed_gravity(mud, g, inclination(top));
+        let bha_weight = crate::drilling::limits::bha_weight(cfg);
         // The BHA hangs from the string: a negative weight on bit.
         let tension = static_tension(&parts, mud, g, &inclination, -bha_weight, &centres);
         let mut k = 0;
@@ -179,7 +178,7 @@ impl Axial {
             }
         }
         let params = hoist.params();
-        let hanging = static_tension(&parts, mud, g, &inclination, -bha_weight, &[0.0])[0];
+        let hanging = crate::drilling::limits::hanging_hook_load(cfg);
         // The hook load of `hook_load` mode as the weight indicator reads it: the string's
         // tension at the top and the travelling block's weight (`torque_drag.block_weight`).
         let block_weight = cfg.torque_drag.block_weight;
