@@ -276,5 +276,6 @@ def test_a_field_units_well_from_a_survey_file_is_its_array_twin_and_torque_and_
             td = ds.torque_drag(a)
             v = speed_ft_per_h * 0.3048 / 3600.0
             want = td.summary[key] + math.copysign(_viscous_drag(a, v), v)
-        print(f"{name}: {hook_a / 4448.2216:.2f} klbf, torque and drag {want / 4448.2216:.2f} klbf ({hook_a / want - 1:+.3%})")
+        klbf = 4448.2216
+        print(f"{name}: {hook_a / klbf:.2f} klbf, torque and drag {want / klbf:.2f} klbf ({hook_a / want - 1:+.3%})")
         assert hook_a == pytest.approx(want, rel=5e-3), name
