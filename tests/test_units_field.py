@@ -313,7 +313,7 @@ def test_one_configuration_however_its_numbers_are_written(values: dict[str, flo
 @settings(max_examples=30, deadline=None)
 @given(_WOB[2], st.floats(0.0, 20.0))
 def test_the_weight_on_bit_however_it_is_written(wob: float, diameter_in: float) -> None:
-    field = {"units": "field", "sections": [{"length": "1000 m", "outer_diameter": "0.127 m",
+    field = {"units": "field", "sections": [{"length": "3000 m", "outer_diameter": "0.127 m",
                                              "inner_diameter": "0.1 m"}]}
     plain = DrillConfig.from_dict({**field, "bit": {"weight_on_bit": wob}})
     written = DrillConfig.from_dict({**field, "units": "si", "bit": {"weight_on_bit": f"{wob!r} klbf"}})
