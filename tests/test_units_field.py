@@ -6,6 +6,7 @@ for the hoist's mode is refused. Exact factors: 1 ft = 0.3048 m, 1 in = 0.0254 m
 
 from __future__ import annotations
 
+import json
 import math
 import sys
 from fractions import Fraction
@@ -17,6 +18,7 @@ from _cli import one_line_error, run_cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import drillstring as ds
 from drillstring.drilling import DrillConfig, load_drill_config
 from drillstring.drilling.maps import check_axis
 from drillstring.drilling.units import FIELD_UNITS, FIELD_UNITS_BY_KEY, field_unit, to_si
@@ -557,3 +559,25 @@ def test_a_field_files_figures_are_field_figures(tmp_path: Path, capsys: pytest.
     for figure in ("torque_drag.png", "broomstick.png", "well_path.png"):
         default, field, si = ((tmp_path / name / figure).read_bytes() for name in ("default", "field", "si"))
         assert default == field != si, figure
+
+
+def test_the_python_api_speaks_a_field_files_units_by_default(tmp_path: Path) -> None:
+    """``ds.drill`` of a field configuration: its warnings carry the field values beside the SI
+    ones (once, however often annotated), and ``save``/``summary`` default to its units as the
+    command line does; ``output_units="si"`` still gives the SI set alone."""
+    from drillstring.drilling.units import annotate
+
+    config = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml").with_overrides(
+        {"numerics.duration": 5.0}, units="si")
+    result = ds.drill(config)
+    torque = [w for w in result.warnings if " N m" in w]
+    assert torque and all("ft-lbf)" in w for w in torque), torque
+    assert all(annotate(w, "field") == w for w in result.warnings)
+    assert result.summary()["output_units"]["system"] == "field"
+    assert "output_units" not in result.summary("si")
+    result.save(tmp_path / "field", plots=False)
+    result.save(tmp_path / "si", plots=False, output_units="si")
+    assert json.loads((tmp_path / "field" / "metrics.json").read_text())["output_units"]["system"] == "field"
+    assert "output_units" not in json.loads((tmp_path / "si" / "metrics.json").read_text())
+    si = ds.drill(config.with_units("si"))
+    assert si.warnings == tuple(w for w in si.warnings if "ft-lbf" not in w)

@@ -495,7 +495,7 @@ class DrillResult:
         )
         return frame
 
-    def summary(self, output_units: str = "si") -> dict[str, Any]:
+    def summary(self, output_units: Optional[str] = None) -> dict[str, Any]:
         """What ``metrics.json`` holds: the metrics, the window, the status and message, the
         energy balance and the solver counters (NaN as ``None``), and for a coupled run its
         metrics under ``coupled`` (:attr:`coupled_metrics`). Every number is SI; with
@@ -504,10 +504,11 @@ class DrillResult:
         run's) converted (torques to ft-lbf, forces to klbf, ROP to ft/h, MSE to psi; rpm, s and
         ratios stay; :mod:`drillstring.drilling.units`), each under its name with the SI unit
         suffix replaced by the field unit's (``motor_torque_max_ftlbf``, ``rop_mean_ft_per_h``;
-        :func:`~drillstring.drilling.units.unit_key`): a key naming a unit holds that unit."""
+        :func:`~drillstring.drilling.units.unit_key`): a key naming a unit holds that unit. The
+        default (None) is the configuration's ``units`` (:attr:`DrillConfig.units`)."""
         from .units import convert, system_of, unit_key
 
-        system = system_of(output_units, "output_units")
+        system = system_of(self.config.units if output_units is None else output_units, "output_units")
         out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite,
                                "rotating": self.rotating}
         out.update(self.metrics.to_dict())
@@ -540,7 +541,7 @@ class DrillResult:
         return out
 
     def plot(self, kind: str = "time", *, fig: Any = None, path: Any = None, title: Optional[str] = None,
-             units: str = "si") -> Figure:
+             units: Optional[str] = None) -> Figure:
         """A figure of the run.
 
         Parameters
@@ -565,9 +566,9 @@ class DrillResult:
         title : str, optional
             The figure's title instead of the default.
         units : {"si", "field"}, optional
-            The unit system of the axes and the title: ``"si"`` (the default) or ``"field"``
-            (depths in ft, torques in kft-lbf; :mod:`drillstring.drilling.units`). The data
-            stay SI.
+            The unit system of the axes and the title: ``"si"`` or ``"field"`` (depths in ft,
+            torques in kft-lbf; :mod:`drillstring.drilling.units`); by default the
+            configuration's ``units``. The data stay SI.
 
         Returns
         -------
@@ -593,7 +594,7 @@ class DrillResult:
         make = KINDS.get(kind) if isinstance(kind, str) else None
         if make is None:
             raise ValidationError("kind", kind, "one of " + ", ".join(KINDS))
-        units = system_of(units, "units")
+        units = system_of(self.config.units if units is None else units, "units")
         if path is not None:
             from ..io.figures import plot_path
 
@@ -606,14 +607,16 @@ class DrillResult:
         return figure
 
     def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True,
-             output_units: str = "si") -> list[Path]:
+             output_units: Optional[str] = None) -> list[Path]:
         """Writes the run into the folder ``out_dir`` (created if needed) and returns the paths
         written: ``series.parquet``, ``series.csv``, ``metrics.json``, ``fields.npz``,
         ``config.toml`` (the normalised configuration), the figures (unless ``plots=False``) and
         ``report.md``. The destinations are checked before anything is written; every file is
         written atomically (see :mod:`drillstring.io.output`). ``output_units="field"`` adds the
         metrics in field units to ``metrics.json`` (:meth:`summary`) and draws the figures in
-        field units (:meth:`plot`'s ``units``); the data files stay SI."""
+        field units (:meth:`plot`'s ``units``); the data files stay SI. The default (None) is the
+        configuration's ``units``, as on the command line."""
         from .output import write_outputs
 
-        return write_outputs(self, out_dir, plots=plots, output_units=output_units)
+        system = self.config.units if output_units is None else output_units
+        return write_outputs(self, out_dir, plots=plots, output_units=system)

@@ -11,6 +11,7 @@ from ..errors import SolveError, ValidationError
 from ..io.progress import ProgressOption, SolveProgress, check_progress
 from .config import DrillConfig, load_drill_config
 from .result import DrillProfile, DrillResult, GridCheck, StartCheck
+from .units import annotate
 
 __all__ = ["drill", "friction_profile"]
 
@@ -108,6 +109,8 @@ def drill(config: ConfigLike, *, progress: Optional[ProgressOption] = None, chec
         rest, steady = (result, second) if cfg.numerics.initial_state != "steady" else (second, result)
         result.start_check = StartCheck.compare(rest, steady)
         result.warnings = (*result.warnings, *result.start_check.warnings())
+    if cfg.units != "si":  # warnings speak the configuration's units too (the SI value first)
+        result.warnings = tuple(annotate(w, cfg.units) for w in result.warnings)
     if isinstance(config, (str, os.PathLike)):
         result.name = os.path.splitext(os.path.basename(os.fsdecode(os.fspath(config))))[0]
     return result

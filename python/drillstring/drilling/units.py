@@ -423,6 +423,8 @@ _MESSAGE_UNITS: tuple[tuple[str, str], ...] = (
 _MESSAGE_QUANTITY = re.compile(  # "1378 N m", and a range "from 808.1 to 1378 N m"
     rf"(?<![\w.])(?:({_NUMBER}) to )?({_NUMBER})\s?({'|'.join(re.escape(text) for text, _ in _MESSAGE_UNITS)})"
     r"(?![\w/^*³²])")
+#: What :func:`annotate` appends after a quantity: `` (1016 ft-lbf)``, `` (3098 to 4004 ft-lbf)``.
+_ANNOTATION = re.compile(rf" \((?:{_NUMBER} to )?{_NUMBER} [A-Za-z]")
 
 
 def _field_number(value: float, unit: str, target: str) -> str:
@@ -443,12 +445,15 @@ def _field_of(unit: str) -> Optional[tuple[str, str]]:
 def annotate(text: str, system: str) -> str:
     """A message (a warning) with each SI quantity in it followed by its value in ``system``'s
     unit: ``"1378 N m"`` as ``"1378 N m (1016 ft-lbf)"`` in field units; the text unchanged in
-    SI."""
+    SI. A quantity already followed by a parenthesis (an annotated message) is left as it is, so
+    annotating twice changes nothing."""
     if system_of(system) == "si":
         return text
     forms = dict(_MESSAGE_UNITS)
 
     def one(match: re.Match[str]) -> str:
+        if _ANNOTATION.match(match.string, match.end()):  # annotated before: once is enough
+            return match.group(0)
         unit = forms[match.group(3)]
         field = _field_of(unit)
         if field is None:
