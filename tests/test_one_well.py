@@ -109,12 +109,14 @@ def test_a_well_gives_one_answer_however_it_is_described(tmp_path, well, mu):
     td0, hook0 = answers["arrays"]
     for name, (td, hook) in answers.items():
         for key in ("hook_load_pickup_N", "hook_load_slackoff_N", "hook_load_rotating_N"):
-            assert td[key] == pytest.approx(td0[key], rel=1e-9), (name, key)
-        assert hook == pytest.approx(hook0, rel=1e-9), name
-    # and the coupled pick-up is the deviated well's, not a vertical one's
-    vertical = _answers(_config({"inclination_deg": 0.0}, sections, **common))[1]
-    if max(inc) > 20.0:
-        assert abs(hook0 - vertical) > 1e-3 * vertical
+            assert td[key] == pytest.approx(td0[key], rel=1e-7), (name, key)  # ft -> m rounding: ~1e-9
+        assert hook == pytest.approx(hook0, rel=1e-7), name
+    # and the coupled pick-up is the deviated well's, not a vertical one's: wherever torque and
+    # drag tell the two apart, the coupled pick-up moves by at least half as much
+    td_vertical, vertical = _answers(_config({"inclination_deg": 0.0}, sections, **common))
+    moved = td0["hook_load_pickup_N"] - td_vertical["hook_load_pickup_N"]
+    if abs(moved) > 5e-3 * td_vertical["hook_load_pickup_N"]:
+        assert (hook0 - vertical) * moved > 0 and abs(hook0 - vertical) > 0.5 * abs(moved)
 
 
 def test_a_plan_is_its_stations(tmp_path):
@@ -201,26 +203,37 @@ def test_the_hook_load_is_what_the_weight_indicator_reads():
     assert np.all(np.asarray(run.axial["weight_on_bit"]) == 0.0)
 
 
-@pytest.mark.parametrize(("cells", "tolerance"), [(100, 0.03), (300, 0.008), (1200, 0.002)])
-def test_a_steady_pick_up_books_the_kinetic_friction_work(cells, tolerance):
+def test_a_steady_pick_up_books_the_kinetic_friction_work():
     """In a steady pick-up up a straight 30 deg hole, the axial friction loss grows at
-    ``mu_k N v L`` (``N`` the buoyed weight x sin 30 deg): the ledger books the friction at the
-    speed the string moves at after the step, 97.7 / 99.4 / 100.0 % of it on 100 / 300 / 1200
-    cells (it once booked 75 / 88 / 93 % on 300 / 600 / 1200 cells, the rest as the weight's
-    work; the implicit step's own dissipation is the numerical loss)."""
+    ``mu_k N v L`` (``N`` the buoyed weight x sin 30 deg) and the weight's work at ``w cos 30 deg v L``:
+    the ledger books the friction and the weight at the mean speed of the step's sources, so the
+    split is the same on every grid (100, 300 and 1200 cells agree to 1e-4; they once booked
+    75 / 88 / 93 % of the friction on 300 / 600 / 1200 cells, then 97.7 / 99.4 / 100.0 % on
+    100 / 300 / 1200), within 0.5 % of the closed forms (the string still relaxes a little
+    between 20 and 30 s), and the numerical loss keeps under 0.1 % of the friction."""
     sections = [{"name": "pipe", "length": 1000.0, "outer_diameter": 0.127, "inner_diameter": 0.1086}]
     speed, mu = 0.05, 0.2
-    losses = []
-    for duration in (20.0, 30.0):
-        cfg = _config({"inclination_deg": 30.0}, sections, mu=mu, ratio=1.0, speed=-speed, rpm=0.0, cells=cells,
-                      duration=duration, window=(duration - 5.0, duration), damping=0.01)
-        run = ds.drill(cfg)
-        assert run.energy["balance_error"] < 1e-10
-        losses.append(run.energy["axial_friction_loss"])
     area = math.pi / 4 * (0.127 ** 2 - 0.1086 ** 2)
-    normal = (STEEL - 1200.0) * area * 9.81 * math.sin(math.radians(30.0))
-    want = mu * normal * 1000.0 * speed * 10.0
-    assert losses[1] - losses[0] == pytest.approx(want, rel=tolerance)
+    weight = (STEEL - 1200.0) * area * 9.81
+    friction_want = mu * weight * math.sin(math.radians(30.0)) * 1000.0 * speed * 10.0
+    gravity_want = -weight * math.cos(math.radians(30.0)) * 1000.0 * speed * 10.0
+    split = []
+    for cells in (100, 300, 1200):
+        energies = []
+        for duration in (20.0, 30.0):
+            cfg = _config({"inclination_deg": 30.0}, sections, mu=mu, ratio=1.0, speed=-speed, rpm=0.0, cells=cells,
+                          duration=duration, window=(duration - 5.0, duration), damping=0.01)
+            run = ds.drill(cfg)
+            assert run.energy["balance_error"] < 1e-10
+            energies.append(run.energy)
+        friction, gravity, numerical = (energies[1][k] - energies[0][k]
+                                        for k in ("axial_friction_loss", "gravity_work", "numerical_loss"))
+        assert friction == pytest.approx(friction_want, rel=5e-3), cells
+        assert gravity == pytest.approx(gravity_want, rel=5e-3), cells
+        assert abs(numerical) < 1e-3 * friction_want, cells  # it was 25 % of the friction on 100 cells
+        split.append((friction, gravity))
+    for friction, gravity in split[1:]:
+        assert friction == pytest.approx(split[0][0], rel=1e-4) and gravity == pytest.approx(split[0][1], rel=1e-4)
 
 
 FIELD_EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "directional-10000ft-field.toml"

@@ -43,13 +43,16 @@
 //! changes (`l / h`), and a cell sticks (set exactly to rest) when all its segments stick.
 //!
 //! Energy: on the torsional field the friction's work is the kinetic energy it takes,
-//! `m h d (w + d / 2)` per cell (`d` the change); on the axial field it is booked at the speed
-//! the string moves at after the step, `m h d v'` (`v'` less half the kick), so that a steady
-//! slide books `mu_k N v` per length exactly on any grid; the buoyed weight's work is booked at
-//! the same speed (the kick's work at the middle of the kick, [`super::axial::Axial::cells`],
-//! corrected by `m h g dt d`), and what the split step's kinetic energy differs from the two by,
-//! `m h d (g dt + d) / 2` per cell and step (first order in `dt`), is the implicit step's
-//! numerical dissipation (`inertia_loss`).
+//! `m h d (w + d / 2)` per cell (`d` the change). On the axial field the buoyed weight's kick
+//! `g dt` and the friction's change `d` follow each other within the step: both are booked at
+//! the mean speed of that part of the step, `v_m = (v* + v') / 2` (`v*` the speed after the
+//! transport, before the kick, `v'` after the friction): the friction's work `m h d v_m`, the
+//! weight's `m h g dt v_m` (the kick's own work at the middle of the kick,
+//! [`super::axial::Axial::cells`], corrected here by `m h d g dt / 2`). Their sum is the
+//! kinetic energy the two changes make, exactly, so the split leaves nothing to the numerical
+//! loss, and in a steady slide (where `v_m` is the speed the string moves at: the transport
+//! takes away what the sources add) it books `mu_k N v` per length and the weight's `w v cos i`
+//! on any grid.
 //!
 //! The Coulomb law runs over all touching segments at once ([`slide_coulomb`], the branches of
 //! [`slide`] as selects, under [`crate::simd::dispatch`]): the same operations, so the same
@@ -347,8 +350,8 @@ impl Slots {
 }
 
 /// The work of the coupled friction over a step, J: on the torsional and the axial field (both
-/// negative or 0), the buoyed weight's work it moves to the speed after the step, and the
-/// implicit step's numerical dissipation (see the module).
+/// negative or 0), the correction of the buoyed weight's work to the mean speed of the step's
+/// sources, and what the kinetic energy differs from the two by (rounding; see the module).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FrictionWork {
     pub torsional: f64,
@@ -560,8 +563,8 @@ impl CoupledFriction {
             Some(&self.half_kick),
             &mut self.scratch,
         );
-        // The axial work at the speed after the step, the weight's moved there, the rest
-        // numerical (see the module).
+        // The friction's and the weight's work at the mean speed of the sources' part of the
+        // step (see the module); what is left is rounding.
         let (mut work, mut gravity) = (0.0, 0.0);
         for k in 0..self.mass_a.len() {
             let m = self.mass_a[k];
@@ -571,8 +574,8 @@ impl CoupledFriction {
             let after = 0.5 * (axial.alpha[k] + axial.beta[k]);
             let d = after - self.speed_a[k];
             let s = self.half_kick[k];
-            work += m * d * (after - s);
-            gravity += m * d * (2.0 * s);
+            work += m * d * (after - s - 0.5 * d);
+            gravity += m * d * s;
         }
         self.end_hold = self.hold_at(axial);
         FrictionWork { torsional, axial: work, gravity, numerical: work + gravity - kinetic }

@@ -30,9 +30,8 @@ pub struct EnergyBalance {
     /// Godunov fluxes bring into a cell less its energy change in the transport.
     pub upwind_loss: f64,
     /// Dissipation of the implicit Euler steps of the top-drive and BHA inertias,
-    /// `I (Omega' - Omega)^2 / 2` per step, and of the coupled wall friction's implicit step on
-    /// the axial field with the gravity kick, `m h d (g dt + d) / 2` per cell and step (`d` the
-    /// friction's speed change; [`super::coupled_friction`]): first order in `dt`.
+    /// `I (Omega' - Omega)^2 / 2` per step: first order in `dt` (the coupled wall friction's
+    /// step with the gravity kick leaves only rounding here, [`super::coupled_friction`]).
     pub inertia_loss: f64,
     /// The coupled run's work of the hoist on the string (`dt F v` at the top, `F` the
     /// compression) and of the buoyed weight, J (0 without a hoist).
