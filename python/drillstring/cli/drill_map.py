@@ -80,7 +80,7 @@ def run(args: argparse.Namespace) -> int:
         write_text(os.path.join(directory, "config.toml"), config.to_toml())
         written[:] = [os.path.join(args.out, name) for name in ("map.parquet", "map.csv", "config.toml")]
         if not args.no_plots:
-            from ..drilling.maps import map_figures
+            from ..drilling.map_plots import map_figures
             from ..io.figures import save
 
             for name, fig in map_figures(table, system).items():
@@ -119,7 +119,7 @@ def run(args: argparse.Namespace) -> int:
             say("regimes: " + ", ".join(f"{r} in {n} runs" for r, n in regimes.items())
                  + f"; ROP {ok['rop_mean_m_per_h'].min() * rop:.3g}..{ok['rop_mean_m_per_h'].max() * rop:.3g} "
                  f"{rop_unit}, MSE {ok['mse_mean_Pa'].min() * mse:.3g}..{ok['mse_mean_Pa'].max() * mse:.3g} {mse_unit}")
-    from ..drilling.maps import controller_recommendation
+    from ..drilling.map_table import controller_recommendation
 
     ranking = controller_recommendation(frame)
     if ranking:
