@@ -13,6 +13,7 @@ from ._common import add_progress, say, show_progress, wrote
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring convergence`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "convergence",
         help="Galerkin truncation error against the converged PDE solution",
@@ -39,6 +40,7 @@ def _ints(text: str) -> tuple[int, ...]:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring convergence``; returns its exit status."""
     from ..studies import convergence
 
     if args.config and args.preset:

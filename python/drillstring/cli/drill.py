@@ -10,6 +10,7 @@ from ._common import add_drilling_config_arguments, add_progress, add_units, dri
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring drill`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "drill",
         help="stick-slip of the drilling system: a string in a well, top drive, wall friction, bit",
@@ -41,6 +42,7 @@ def _change(kind: str, change: Optional[float]) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring drill``; returns its exit status."""
     import time
 
     from ..drilling import drill

@@ -15,6 +15,7 @@ from ._common import add_progress, add_units, dask_client, drilling_config, int_
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring drill-map`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "drill-map",
         help="stick-slip map of the drilling system over configuration values (SSI heat map)",
@@ -55,6 +56,7 @@ DRILL_MAP_FILES = ("map.parquet", "map.csv", "config.toml", "ssi_map.png", "regi
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring drill-map``; returns its exit status."""
     import time
 
     from ..drilling.maps import _map_config, check_axis, drill_map

@@ -14,6 +14,7 @@ from ._common import add_drilling_config_arguments, drilling_config, finite_floa
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring fit`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "fit",
         help="calibrate configuration values (friction, damping, ...) from measured surface data",
@@ -71,6 +72,7 @@ def _pairs(texts: Sequence[str], field: str, form: str) -> list[tuple[str, str]]
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring fit``; returns its exit status."""
     from ..calibration.data import read_measured
     from ..calibration.fit import fit
     from ..calibration.output import next_commands, next_heading, write_files

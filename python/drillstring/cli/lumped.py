@@ -14,6 +14,7 @@ from ._common import finite_float, map_axis, say
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring lumped`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "lumped",
         help="the lumped two-inertia stick-slip model (Navarro-Lopez & Cortes 2007): equilibria and a run",
@@ -40,6 +41,7 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring lumped``; returns its exit status."""
     from ..drilling.lumped import lumped, lumped_equilibria
 
     params: dict[str, Any] = {}

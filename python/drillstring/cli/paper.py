@@ -10,6 +10,7 @@ from ._common import add_progress, say, show_progress
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring paper`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "paper",
         help="reproduce every figure and table of the paper as a report",
@@ -27,6 +28,7 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring paper``; returns its exit status."""
     from .. import report as paper
 
     scale = args.t_end_scale if args.t_end_scale is not None else (

@@ -12,6 +12,7 @@ from ._model import add_model_arguments, from_config, model_inputs, summary
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring pde`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "pde",
         help="solve the PDE itself (method of lines)",
@@ -34,6 +35,7 @@ PDE_KEYS = ("nodes", "t_end", "method", "rtol", "atol", "dt", "samples", "z")
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring pde``; returns its exit status."""
     from ..solvers.pde import field_path, solve_pde
 
     params, solver, z = model_inputs(args, PDE_KEYS)

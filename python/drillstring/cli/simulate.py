@@ -12,6 +12,7 @@ from ._model import add_model_arguments, from_config, model_inputs, summary
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring simulate`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "simulate",
         help="integrate the n-mode Galerkin model",
@@ -31,6 +32,7 @@ SIMULATE_KEYS = ("modes", "rigid_mode", "t_end", "method", "rtol", "atol", "dt",
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring simulate``; returns its exit status."""
     params, solver, z = model_inputs(args, SIMULATE_KEYS)
     plot = plot_target(args)
     info = check_outputs({"--out": args.out, "--plot": plot})

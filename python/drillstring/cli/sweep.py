@@ -31,6 +31,7 @@ SWEEP_SOLVER_KEYS = {
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring sweep`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "sweep",
         help="solve the Galerkin model over a parameter grid (parallel, resumable, optionally on Dask)",
@@ -83,6 +84,7 @@ def _sweep_config(path: str) -> tuple[Parameters, dict[str, Any], dict[str, Any]
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring sweep``; returns its exit status."""
     import time
 
     from ..io.sweep_store import MANIFEST, RESULTS_CSV, RESULTS_PARQUET

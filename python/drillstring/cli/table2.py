@@ -10,6 +10,7 @@ from ._common import say
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring table2`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "table2",
         help="reproduce the paper's Table 2",
@@ -20,6 +21,7 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring table2``; returns its exit status."""
     rows = table2()
     say(table2_json(rows) if args.json else format_table2(rows))
     return 0

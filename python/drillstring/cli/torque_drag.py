@@ -9,6 +9,7 @@ from ._common import add_drilling_config_arguments, add_units, drilling_config, 
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring torque-drag`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "torque-drag",
         help="static soft-string torque and drag: hook loads, surface torques, profiles, broomstick plot",
@@ -24,6 +25,7 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring torque-drag``; returns its exit status."""
     import time
 
     from ..drilling.torque_drag import torque_drag, write_torque_drag

@@ -9,6 +9,7 @@ from ._common import drilling_config
 
 
 def add_parser(sub: Any) -> None:
+    """Adds ``drillstring tune`` to the subcommands ``sub``: its arguments, help and example."""
     p = sub.add_parser(
         "tune",
         help="the recommended top-drive controller settings of each preset for a string",
@@ -28,6 +29,7 @@ def add_parser(sub: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Runs ``drillstring tune``; returns its exit status."""
     from ..drilling import recommend_controllers
 
     config = drilling_config(args)
