@@ -12,9 +12,9 @@ from ..model.parameters import PRESETS, load, preset
 from ._common import add_progress, say, show_progress, wrote
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring convergence`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring convergence`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "convergence",
         help="Galerkin truncation error against the converged PDE solution",
         description="Refine the finite-difference PDE until two (Richardson-extrapolated) grids agree, then "

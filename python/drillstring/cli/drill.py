@@ -9,9 +9,9 @@ from typing import Any, Optional
 from ._common import add_drilling_config_arguments, add_progress, add_units, drilling_config, say, show_progress
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring drill`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring drill`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "drill",
         help="stick-slip of the drilling system: a string in a well, top drive, wall friction, bit",
         description="Solve the torsional waves of a drill string in a deviated well (sections from the top, "

@@ -14,9 +14,9 @@ from ..limits import INT64_MAX
 from ._common import add_progress, add_units, dask_client, drilling_config, int_in, map_axis, say, show_progress
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring drill-map`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring drill-map`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "drill-map",
         help="stick-slip map of the drilling system over configuration values (SSI heat map)",
         description="Solve the drilling system at every combination of the axis values (any dotted configuration "

@@ -13,9 +13,9 @@ from ..limits import INT64_MAX
 from ._common import add_drilling_config_arguments, drilling_config, finite_float, int_in, say
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring fit`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring fit`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "fit",
         help="calibrate configuration values (friction, damping, ...) from measured surface data",
         description="Fit configuration values (dotted keys, --param KEY=LOW:HIGH) to a measured time series "

@@ -13,9 +13,9 @@ from ..limits import as_float
 from ._common import finite_float, map_axis, say
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring lumped`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring lumped`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "lumped",
         help="the lumped two-inertia stick-slip model (Navarro-Lopez & Cortes 2007): equilibria and a run",
         description="Print the steady rotations of the lumped two-inertia model, their stability and the regime, "

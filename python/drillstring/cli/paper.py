@@ -9,9 +9,9 @@ from ..io.output import check_destination
 from ._common import add_progress, say, show_progress
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring paper`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring paper`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "paper",
         help="reproduce every figure and table of the paper as a report",
         description="Regenerate Figs. 1-15 (PNG + CSV), Table 2, the stability table and a report "

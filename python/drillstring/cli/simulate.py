@@ -11,9 +11,9 @@ from ._common import add_progress, check_outputs, plot_target, show_progress, wr
 from ._model import add_model_arguments, from_config, model_inputs, summary
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring simulate`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring simulate`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "simulate",
         help="integrate the n-mode Galerkin model",
         description="Integrate the n-mode Galerkin model and write theta(z, t) at one section.",

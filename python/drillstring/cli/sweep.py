@@ -30,9 +30,9 @@ SWEEP_SOLVER_KEYS = {
 }
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring sweep`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring sweep`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "sweep",
         help="solve the Galerkin model over a parameter grid (parallel, resumable, optionally on Dask)",
         description="Solve the n-mode Galerkin model for every parameter set of a grid and write one row per "

@@ -9,9 +9,9 @@ from ..studies.table2 import format_table2, table2, table2_json
 from ._common import say
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring table2`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring table2`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "table2",
         help="reproduce the paper's Table 2",
         description="RK4 at dt = 1e-4 vs central differences at four steps: max |theta_1| over 0 <= t <= 1.",

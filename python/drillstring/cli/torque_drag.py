@@ -8,9 +8,9 @@ from typing import Any
 from ._common import add_drilling_config_arguments, add_units, drilling_config, say
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring torque-drag`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring torque-drag`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "torque-drag",
         help="static soft-string torque and drag: hook loads, surface torques, profiles, broomstick plot",
         description="Solve the static soft-string torque and drag (Johancsik et al. 1984) of the configuration's "

@@ -8,9 +8,9 @@ from typing import Any
 from ._common import drilling_config
 
 
-def add_parser(sub: Any) -> None:
-    """Adds ``drillstring tune`` to the subcommands ``sub``: its arguments, help and example."""
-    p = sub.add_parser(
+def add_parser(subparsers: Any) -> None:
+    """Adds ``drillstring tune`` to ``subparsers``: its arguments, help and example."""
+    p = subparsers.add_parser(
         "tune",
         help="the recommended top-drive controller settings of each preset for a string",
         description="Print the settings of each controller preset (stiff, soft_torque, z_torque) for the string of "
