@@ -13,7 +13,8 @@ import pytest
 
 import drillstring as ds
 from drillstring.drilling import DrillConfig, drill, drill_map, load_drill_config
-from drillstring.drilling.maps import COUPLED_COLUMNS, map_figures, regime_map
+from drillstring.drilling.map_plots import map_figures, regime_map
+from drillstring.drilling.map_table import COUPLED_COLUMNS
 from drillstring.drilling.result import COUPLED_REGIME_CRITERION, COUPLED_REGIMES
 from drillstring.errors import ResumeWarning, ValidationError
 
@@ -143,4 +144,4 @@ def test_the_cli_writes_the_regime(tmp_path: Path, capsys: pytest.CaptureFixture
     summary = json.loads((tmp_path / "run" / "metrics.json").read_text())
     assert summary["coupled"]["regime"] == "bit bounce"
     assert "**Regime: bit bounce**" in (tmp_path / "run" / "report.md").read_text()
-    assert ds.drilling.maps.COUPLED_COLUMNS[-1] == "regime"
+    assert ds.drilling.map_table.COUPLED_COLUMNS[-1] == "regime"

@@ -295,13 +295,13 @@ def test_the_api_refuses_the_same_values_naming_the_field(monkeypatch: pytest.Mo
 
 
 def test_axis_list_values_keep_their_commas() -> None:
-    from drillstring.cli import _map_axis
+    from drillstring.cli._common import map_axis
 
-    assert _map_axis("well.inclination_deg=[0, 0, 10, 10],[0, 0, 20, 20]") == (
+    assert map_axis("well.inclination_deg=[0, 0, 10, 10],[0, 0, 20, 20]") == (
         "well.inclination_deg", [[0, 0, 10, 10], [0, 0, 20, 20]])
-    assert _map_axis('sections[0].name="a,b",c') == ("sections[0].name", ["a,b", "c"])
-    assert _map_axis("top_drive.controller.type=pi,soft_torque") == ("top_drive.controller.type",
-                                                                     ["pi", "soft_torque"])
+    assert map_axis('sections[0].name="a,b",c') == ("sections[0].name", ["a,b", "c"])
+    assert map_axis("top_drive.controller.type=pi,soft_torque") == ("top_drive.controller.type",
+                                                                    ["pi", "soft_torque"])
 
 
 @pytest.mark.parametrize(("axis", "needles"), [

@@ -13,7 +13,9 @@ import pytest
 import drillstring as ds
 from drillstring.cli import main
 from drillstring.drilling import DrillConfig, drill, drill_map, load_drill_config
-from drillstring.drilling.maps import METRIC_COLUMNS, axis_label, controller_maps, map_figures, ssi_lines, ssi_map
+from drillstring.drilling.map_labels import axis_label
+from drillstring.drilling.map_plots import controller_maps, map_figures, ssi_lines, ssi_map
+from drillstring.drilling.map_table import METRIC_COLUMNS
 from drillstring.errors import ValidationError
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -18,7 +18,8 @@ from _cli import run_cli
 
 import drillstring as ds
 from drillstring.drilling import DrillConfig, DrillResult, drill
-from drillstring.drilling.maps import axis_label, map_figures, ssi_lines, ssi_map
+from drillstring.drilling.map_labels import axis_label
+from drillstring.drilling.map_plots import map_figures, ssi_lines, ssi_map
 from drillstring.drilling.plots import space_time_maps, time_histories, torque_depth
 from drillstring.drilling.torque_drag import broomstick_figure, profiles_figure, well_path_figure
 from drillstring.drilling.units import axis_unit

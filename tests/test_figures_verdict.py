@@ -13,9 +13,9 @@ import pytest
 from _cli import run_cli
 
 from drillstring import _core
-from drillstring.drilling import DrillConfig, drill, drill_map, load_drill_config
-from drillstring.drilling import maps as maps_module
-from drillstring.drilling.maps import axis_label, boundary_note, controller_maps, map_figures, ssi_lines, ssi_map
+from drillstring.drilling import DrillConfig, drill, drill_map, load_drill_config, map_labels
+from drillstring.drilling.map_labels import axis_label
+from drillstring.drilling.map_plots import boundary_note, controller_maps, map_figures, ssi_lines, ssi_map
 from drillstring.errors import ValidationError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -42,7 +42,7 @@ FAKE_SCHEMA = {
 
 @pytest.fixture
 def schema(monkeypatch: pytest.MonkeyPatch) -> dict[str, Any]:
-    monkeypatch.setattr(maps_module, "_schema", lambda: FAKE_SCHEMA)
+    monkeypatch.setattr(map_labels, "_schema", lambda: FAKE_SCHEMA)
     return FAKE_SCHEMA
 
 

@@ -323,7 +323,7 @@ def test_octave_series_with_noise_by_the_command(tmp_path, capsys):
 def test_controller_recommendation_of_a_map():
     """The ranking drill-map prints: fewest runs in stick-slip or without a result, then the
     lowest mean SSI (a table written by hand)."""
-    from drillstring.drilling.maps import controller_recommendation
+    from drillstring.drilling.map_table import controller_recommendation
 
     frame = pd.DataFrame({
         "top_drive.controller.type": ["pi"] * 3 + ["soft_torque"] * 3 + ["z_torque"] * 3,

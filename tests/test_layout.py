@@ -311,7 +311,7 @@ def test_metrics_json_and_map_columns_keep_their_names_and_order() -> None:
     contract = ["window_start", "window_end", "ssi", "stuck_fraction", "period_s", "bit_rpm_min", "bit_rpm_max",
                 "bit_rpm_mean", "motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "period_cycles",
                 "periodicity", "slip_period_s", "stick_slip", "settled", "min_cycle_torque_Nm", "stick_slip_verdict"]
-    from drillstring.drilling.maps import METRIC_COLUMNS
+    from drillstring.drilling.map_table import METRIC_COLUMNS
 
     assert list(METRICS) == contract and list(METRIC_COLUMNS) == contract
     fields: dict[str, Any] = {**{f: 1.0 for f in contract}, "stick_slip": True, "settled": True, "slip_onsets": 3,

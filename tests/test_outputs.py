@@ -277,7 +277,7 @@ def test_parameters_save_to_dash_writes_toml_to_stdout(capsysbinary):
 
 
 def test_two_outputs_to_stdout_are_refused_before_solving(capsys, monkeypatch):
-    refuse_call(monkeypatch, "drillstring.cli", "simulate")
+    refuse_call(monkeypatch, "drillstring.cli.simulate", "simulate")
     code, _, err = run_cli(capsys, "simulate", *QUICK, "--out", "-", "--plot", "-")
     assert code == 2
     one_line_error(err, "--plot", "--out")
@@ -306,7 +306,7 @@ def special_files(tmp_path: Path) -> Iterator[dict[str, Path]]:
 
 
 def test_directories_sockets_and_block_devices_are_refused(capsys, monkeypatch, special_files):
-    refuse_call(monkeypatch, "drillstring.cli", "simulate")
+    refuse_call(monkeypatch, "drillstring.cli.simulate", "simulate")
     for what, path in special_files.items():
         mode = path.lstat().st_mode
         code, _, err = run_cli(capsys, "simulate", *QUICK, "--out", str(path))
@@ -324,7 +324,7 @@ def test_the_input_config_is_never_overwritten(tmp_path, capsys, monkeypatch):
     before = config.read_bytes()
     os.link(config, tmp_path / "hard.toml")
     (tmp_path / "soft.toml").symlink_to(config)
-    refuse_call(monkeypatch, "drillstring.cli", "simulate")
+    refuse_call(monkeypatch, "drillstring.cli.simulate", "simulate")
     for out in ("config.toml", "hard.toml", "soft.toml"):
         code, _, err = run_cli(capsys, "simulate", str(config), "--out", str(tmp_path / out))
         assert code == 2
@@ -376,7 +376,7 @@ def unwritable_dir(tmp_path: Path) -> Iterator[Path]:
 
 
 def test_an_unwritable_directory_is_refused_before_solving(capsys, monkeypatch, unwritable_dir):
-    refuse_call(monkeypatch, "drillstring.cli", "simulate")
+    refuse_call(monkeypatch, "drillstring.cli.simulate", "simulate")
     refuse_call(monkeypatch, "drillstring.solvers.pde", "solve_pde")
     refuse_call(monkeypatch, "drillstring.studies.convergence", "study")
     target = str(unwritable_dir / "run.csv")
@@ -390,8 +390,8 @@ def test_an_unwritable_directory_is_refused_before_solving(capsys, monkeypatch, 
 @pytest.mark.parametrize(
     ("command", "module", "name", "extra"),
     [
-        ("simulate", "drillstring.cli", "simulate", ["--out", "{bad}/run.csv"]),
-        ("simulate", "drillstring.cli", "simulate", ["--plot", "{bad}/plot.png"]),
+        ("simulate", "drillstring.cli.simulate", "simulate", ["--out", "{bad}/run.csv"]),
+        ("simulate", "drillstring.cli.simulate", "simulate", ["--plot", "{bad}/plot.png"]),
         ("pde", "drillstring.solvers.pde", "solve_pde", ["--out", "{bad}/run.csv"]),
         ("pde", "drillstring.solvers.pde", "solve_pde", ["--field", "{bad}/field"]),
         ("pde", "drillstring.solvers.pde", "solve_pde", ["--plot", "{bad}/map.png"]),
@@ -496,7 +496,7 @@ def test_wrote_messages_name_the_files_actually_written(tmp_path, capsys, monkey
 
 
 def test_an_unknown_plot_format_is_refused_before_solving(capsys, monkeypatch):
-    refuse_call(monkeypatch, "drillstring.cli", "simulate")
+    refuse_call(monkeypatch, "drillstring.cli.simulate", "simulate")
     code, _, err = run_cli(capsys, "simulate", "--plot", "run.csv")
     assert code == 2
     one_line_error(err, "--plot", "run.csv", ".png")

@@ -446,7 +446,7 @@ def test_a_coupled_maps_console_and_figure_in_field_units(tmp_path: Path,
                                                           capsys: pytest.CaptureFixture[str]) -> None:
     import pandas as pd
 
-    from drillstring.drilling.maps import regime_map
+    from drillstring.drilling.map_plots import regime_map
 
     args = ["drill-map", str(EXAMPLES / "coupled-rpm-wob-map.toml"), "--axis", "top_drive.rpm=200,400",
             "--axis", "hoist.weight_on_bit=120e3,200e3", "--set", "numerics.duration=4", "--set", "numerics.cells=60",

@@ -236,6 +236,8 @@ class _Problem:
         self.columns = columns
         self.targets = targets
         self.threads = threads
+        #: The share of the windows' span compared (the horizon).
+        self.fraction = fraction
         self.evaluations = 0
         #: Every point solved (scaled) with its misfit: the likelihood-ratio set of the intervals.
         self.history: list[tuple[NDArray[np.float64], float]] = []
@@ -596,7 +598,101 @@ def fit(
         bounds the core refuses, windows outside the data.
     """
     start_time = time.perf_counter()
-    say = progress or (lambda _msg: None)
+    configs, datasets = _read_inputs(config, data)
+    target_map = _targets(targets)
+    bounds = _bounds(parameters, configs[0])
+    opts = _Options.checked(
+        target_map, bounds, per_event=per_event, samples=samples, threads=threads, seed=seed, level=level,
+        starts=starts, horizon=horizon, max_iterations=max_iterations, diff_step=diff_step, profile=profile,
+        profile_points=profile_points, landscape=landscape, landscape_points=landscape_points, max_gap=max_gap,
+        say=progress or (lambda _msg: None), top=top, carry=carry,
+    )
+    events = _events(configs, datasets, windows, opts)
+    columns = _columns(bounds, events, opts.per_event)
+    problems = _problems(events, columns, opts)
+    sobol, global_ssr, global_stage = _global_stage(problems, columns, opts)
+    u_opt, ssr, refinement = _refinement(problems, sobol, global_ssr, opts)
+    problem = problems[-1]
+    r = problem.residuals([u_opt])[0]
+    spread = _Spread.at(problem, u_opt, ssr, r, opts)
+    estimates = _jacobian_intervals(problem, u_opt, ssr, spread, columns)
+    warnings_ = _ridge_warnings(spread, columns)
+    profiles = _profiles(problem, u_opt, ssr, spread, columns, estimates, opts)
+    warnings_ += _identifiability_warnings(estimates, opts.level)
+    landscapes = _landscapes(problem, u_opt, columns, opts)
+    fitted_configs, fitted, failures = _fitted_runs(problem, events, u_opt)
+    return FitResult(
+        parameters=estimates, configs=fitted_configs, events=events, targets=target_map, ssr=ssr, points=r.size,
+        level=opts.level, evaluations=sum(q.evaluations for q in problems), seconds=time.perf_counter() - start_time,
+        condition=spread.condition, residual_autocorrelation=spread.rho, global_stage=global_stage,
+        refinement=refinement, rms=_rms(problem, r, target_map), fitted=fitted, landscapes=landscapes,
+        profiles=profiles, warnings=warnings_ + failures, top=opts.top,
+    )
+
+
+# --------------------------------------------------------------------------- the fit's steps
+
+
+@dataclass(frozen=True)
+class _Options:
+    """The settings of :func:`fit` (its keywords), checked; ``say`` reports progress."""
+
+    targets: dict[str, float]
+    per_event: list[str]
+    samples: Optional[int]
+    threads: int
+    seed: int
+    level: float
+    starts: int
+    horizon: float
+    max_iterations: int
+    diff_step: float
+    profile: Union[bool, str]
+    profile_points: int
+    landscape: bool
+    landscape_points: int
+    max_gap: Optional[float]
+    say: Callable[[str], Any]
+    top: str
+    carry: Optional[int]
+
+    @classmethod
+    def checked(cls, targets: dict[str, float], bounds: Mapping[str, tuple[float, float]], *, per_event: Sequence[str],
+                threads: Optional[int], **kw: Any) -> _Options:
+        """The options, each refused naming its keyword and what it takes."""
+        per = [str(k) for k in per_event]
+        for key in per:
+            if key not in bounds:
+                raise ValidationError("per_event", key, f"a key of parameters: {', '.join(bounds)}")
+        for name in ("level", "diff_step"):
+            value = kw[name]
+            if not (isinstance(value, (int, float)) and 0.0 < value < 1):
+                raise ValidationError(name, value, "a number in (0, 1)")
+        for name, least in (("profile_points", 3), ("landscape_points", 2), ("max_iterations", 1), ("starts", 1)):
+            count = kw[name]
+            if isinstance(count, bool) or not isinstance(count, int) or count < least:
+                raise ValidationError(name, count, f"an integer >= {least}")
+        if kw["profile"] not in ("auto", True, False):
+            raise ValidationError("profile", kw["profile"], "'auto', True or False")
+        top, carry = kw["top"], kw["carry"]
+        if top not in ("controller", "measured"):
+            raise ValidationError("top", top, "'controller' or 'measured'")
+        if top == "measured" and "surface_rpm" in targets:
+            raise ValidationError("targets", ", ".join(targets),
+                                  "targets other than surface_rpm with top='measured' (the model's top speed is the "
+                                  "data's)")
+        if carry is not None and (isinstance(carry, bool) or not isinstance(carry, int) or carry < 1):
+            raise ValidationError("carry", carry, "an integer >= 1, or None for every start")
+        if threads is None:
+            threads = os.cpu_count() or 1
+        if isinstance(threads, bool) or not isinstance(threads, int) or not 1 <= threads <= _core.MAX_THREADS:
+            raise ValidationError("threads", threads, f"an integer 1..{_core.MAX_THREADS}")
+        return cls(targets=targets, per_event=per, threads=threads, **kw)
+
+
+def _read_inputs(config: Union[ConfigLike, Sequence[ConfigLike]], data: Union[DataLike, Sequence[DataLike]]
+                 ) -> tuple[list[DrillConfig], list[MeasuredData]]:
+    """The configuration and the data of each event (one configuration serves every event)."""
     configs = [_config(c) for c in _as_list(config)] if isinstance(config, (list, tuple)) else [_config(config)]
     datasets = [d if isinstance(d, MeasuredData) else read_measured(d) for d in _as_list(data)] \
         if isinstance(data, (list, tuple)) else [data if isinstance(data, MeasuredData) else read_measured(data)]
@@ -605,256 +701,325 @@ def fit(
     if len(configs) != len(datasets):
         raise ValidationError("config", f"{len(configs)} configurations",
                               f"one configuration, or one per event ({len(datasets)} data sets)")
-    target_map = _targets(targets)
-    bounds = _bounds(parameters, configs[0])
-    per = [str(k) for k in per_event]
-    for key in per:
-        if key not in bounds:
-            raise ValidationError("per_event", key, f"a key of parameters: {', '.join(bounds)}")
-    for name, value, low in (("level", level, 0.0), ("diff_step", diff_step, 0.0)):
-        if not (isinstance(value, (int, float)) and low < value < 1):
-            raise ValidationError(name, value, "a number in (0, 1)")
-    for name, count, least in (("profile_points", profile_points, 3), ("landscape_points", landscape_points, 2),
-                               ("max_iterations", max_iterations, 1), ("starts", starts, 1)):
-        if isinstance(count, bool) or not isinstance(count, int) or count < least:
-            raise ValidationError(name, count, f"an integer >= {least}")
-    if profile not in ("auto", True, False):
-        raise ValidationError("profile", profile, "'auto', True or False")
-    if top not in ("controller", "measured"):
-        raise ValidationError("top", top, "'controller' or 'measured'")
-    if top == "measured" and "surface_rpm" in target_map:
-        raise ValidationError("targets", ", ".join(target_map),
-                              "targets other than surface_rpm with top='measured' (the model's top speed is the "
-                              "data's)")
-    if carry is not None and (isinstance(carry, bool) or not isinstance(carry, int) or carry < 1):
-        raise ValidationError("carry", carry, "an integer >= 1, or None for every start")
-    if threads is None:
-        threads = os.cpu_count() or 1
-    if isinstance(threads, bool) or not isinstance(threads, int) or not 1 <= threads <= _core.MAX_THREADS:
-        raise ValidationError("threads", threads, f"an integer 1..{_core.MAX_THREADS}")
+    return configs, datasets
 
+
+def _events(configs: list[DrillConfig], datasets: list[MeasuredData], windows: Any, opts: _Options) -> list[Event]:
+    """The events, their data checked for the targets over their windows."""
     events = []
     for cfg, ds_ in zip(configs, datasets):
-        axial = [name for name in target_map if name in AXIAL_SERIES]
+        axial = [name for name in opts.targets if name in AXIAL_SERIES]
         if axial and cfg.hoist is None:
             raise ValidationError("targets", axial[0], "a series of a torsion-only run (surface_rpm, motor_torque, "
                                   "bit_rpm, bit_torque): hook_load and weight_on_bit need a coupled run, a [hoist] "
                                   "table with bit.law = rgd or detournay")
-        ds_.require(list(target_map) + (["surface_rpm"] if top == "measured" else []))
+        ds_.require(list(opts.targets) + (["surface_rpm"] if opts.top == "measured" else []))
         wins = _windows(windows, ds_, cfg)
-        ds_.check_windows(wins, list(target_map), max_gap)
+        ds_.check_windows(wins, list(opts.targets), opts.max_gap)
         events.append(Event(cfg, ds_, wins))
+    return events
+
+
+def _columns(bounds: Mapping[str, tuple[float, float]], events: list[Event], per: list[str]) -> list[_Column]:
+    """The coordinates of the parameter vector: a shared key once, a per-event key once per event."""
     columns = []
     for key, (lo, hi) in bounds.items():
         if key in per and len(events) > 1:
             columns += [_Column(f"events[{e}].{key}", key, e, lo, hi) for e in range(len(events))]
         else:
             columns.append(_Column(key, key, None, lo, hi))
-    p = len(columns)
+    return columns
+
+
+def _problems(events: list[Event], columns: list[_Column], opts: _Options) -> list[_Problem]:
+    """The problem of each horizon, the shortest first and the whole windows last: the span of
+    the windows halved until it is shorter than twice ``horizon``."""
+    horizon = opts.horizon
     if isinstance(horizon, bool) or not isinstance(horizon, (int, float)) or not horizon > 0:
         raise ValidationError("horizon", horizon, "a time > 0, s")
     longest = max(max(b for _, b in e.windows) - min(a for a, _ in e.windows) for e in events)
     fractions = [1.0]
     while fractions[0] * longest / 2 >= horizon * (1 - 1e-9):
         fractions.insert(0, fractions[0] / 2)
-    problems = [_Problem(events, columns, target_map, threads, f, top) for f in fractions]
-    problem = problems[-1]
-    if min(q.points for q in problems) <= p:
+    problems = [_Problem(events, columns, opts.targets, opts.threads, f, opts.top) for f in fractions]
+    if min(q.points for q in problems) <= len(columns):
         raise ValidationError("windows", [e.windows for e in events],
                               f"more compared samples ({min(q.points for q in problems)}, in the shortest horizon) "
-                              f"than parameters ({p})")
+                              f"than parameters ({len(columns)})")
+    return problems
 
-    # 1. the global stage
+
+def _global_stage(problems: list[_Problem], columns: list[_Column], opts: _Options
+                  ) -> tuple[NDArray[np.float64], NDArray[np.float64], dict[str, Any]]:
+    """Stage 1: the scrambled Sobol sample of the box solved over the shortest horizon; the
+    points, their misfits and ``fit.json``'s ``global``."""
     from scipy.stats import qmc
 
-    n = samples if samples is not None else max(64 * p, 128)
+    p = len(columns)
+    n = opts.samples if opts.samples is not None else max(64 * p, 128)
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise ValidationError("samples", samples, "an integer >= 1")
+        raise ValidationError("samples", opts.samples, "an integer >= 1")
     m = max(int(math.ceil(math.log2(n))), 1)
-    sobol = qmc.Sobol(d=p, scramble=True, seed=seed).random_base2(m)
-    say(f"global stage: {sobol.shape[0]} points x {len(events)} event(s) on {threads} thread(s), over "
-        f"{fractions[0]:.3g} of the windows' span")
-    global_ssr = np.array([float(r @ r) for r in problems[0].residuals(list(sobol))])
+    sobol = qmc.Sobol(d=p, scramble=True, seed=opts.seed).random_base2(m)
+    first = problems[0]
+    opts.say(f"global stage: {sobol.shape[0]} points x {len(first.events)} event(s) on {opts.threads} thread(s), "
+             f"over {first.fraction:.3g} of the windows' span")
+    global_ssr = np.array([float(r @ r) for r in first.residuals(list(sobol))])
     best = int(np.argmin(global_ssr))
-    u0 = sobol[best].copy()
-    global_stage = {"points": int(sobol.shape[0]), "best_ssr": float(global_ssr[best]), "horizon": fractions[0],
-                    "best": {c.name: float(v) for c, v in zip(columns, problem.values(u0))},
-                    "failed": int(np.sum(global_ssr >= FAILED_RESIDUAL ** 2))}
+    stage = {"points": int(sobol.shape[0]), "best_ssr": float(global_ssr[best]), "horizon": first.fraction,
+             "best": {c.name: float(v) for c, v in zip(columns, problems[-1].values(sobol[best].copy()))},
+             "failed": int(np.sum(global_ssr >= FAILED_RESIDUAL ** 2))}
+    return sobol, global_ssr, stage
 
-    # 2. the refinement, from the best few points of the global stage
+
+def _through(problems: list[_Problem], u: NDArray[np.float64], stages: range, opts: _Options
+             ) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
+    """A start refined through the horizons ``stages``, the shortest first; before a longer
+    horizon, the best of a small Sobol sample within :data:`ZOOM` of the point."""
+    from scipy.stats import qmc
+
+    p = u.size
+    ssr = math.inf
+    info: dict[str, Any] = {}
+    for stage in stages:
+        q = problems[stage]
+        if stage:  # a longer horizon: the best of a small sample around the point first
+            near = np.clip(u + (qmc.Sobol(d=p, scramble=True, seed=opts.seed + stage).random_base2(ZOOM_LOG2)
+                                - 0.5) * 2 * ZOOM, 0.0, 1.0)
+            candidates = [u, *near]
+            misfits = [float(r @ r) for r in q.residuals(candidates)]
+            u = candidates[int(np.argmin(misfits))].copy()
+        u, ssr, info = _refine(q, u, list(range(p)), opts.diff_step, opts.max_iterations)
+    return u, ssr, info
+
+
+def _refinement(problems: list[_Problem], sobol: NDArray[np.float64], global_ssr: NDArray[np.float64],
+                opts: _Options) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
+    """Stage 2: least squares from the best ``starts`` distinct points of the global stage
+    through the horizons (with ``carry``, only the best after the first horizon go on); the
+    best point, its misfit and ``fit.json``'s ``refinement``."""
     order: list[int] = []
     for k in np.argsort(global_ssr):
-        if len(order) < starts and all(np.max(np.abs(sobol[k] - sobol[j])) >= START_SEPARATION for j in order):
+        if len(order) < opts.starts and all(np.max(np.abs(sobol[k] - sobol[j])) >= START_SEPARATION for j in order):
             order.append(int(k))
-    say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr[best]:.4g})")
-    def through(u: NDArray[np.float64], stages: range) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
-        """A start through the horizons ``stages``, the shortest first."""
-        ssr_k = math.inf
-        info: dict[str, Any] = {}
-        for stage in stages:
-            q = problems[stage]
-            if stage:  # a longer horizon: the best of a small sample around the point first
-                near = np.clip(u + (qmc.Sobol(d=p, scramble=True, seed=seed + stage).random_base2(ZOOM_LOG2)
-                                    - 0.5) * 2 * ZOOM, 0.0, 1.0)
-                candidates = [u, *near]
-                misfits = [float(r @ r) for r in q.residuals(candidates)]
-                u = candidates[int(np.argmin(misfits))].copy()
-            u, ssr_k, info = _refine(q, u, list(range(p)), diff_step, max_iterations)
-        return u, ssr_k, info
-
+    opts.say(f"refinement from the best {len(order)} point(s) (ssr {global_ssr.min():.4g})")
+    carry = opts.carry
     if carry is None or carry >= len(order) or len(problems) == 1:
-        runs = [through(sobol[k].copy(), range(len(problems))) for k in order]
+        runs = [_through(problems, sobol[k].copy(), range(len(problems)), opts) for k in order]
         dropped: list[float] = []
     else:  # early stopping: every start over the first horizon, the best `carry` on
-        first = sorted((through(sobol[k].copy(), range(1)) for k in order), key=lambda run: run[1])
-        runs = [through(u.copy(), range(1, len(problems))) for u, _, _ in first[:carry]]
+        first = sorted((_through(problems, sobol[k].copy(), range(1), opts) for k in order), key=lambda run: run[1])
+        runs = [_through(problems, u.copy(), range(1, len(problems)), opts) for u, _, _ in first[:carry]]
         dropped = [run[1] for run in first[carry:]]
-        say(f"carried the best {carry} of {len(first)} start(s) on (misfits over the first horizon "
-            f"{[round(run[1], 4) for run in first]})")
-    u_opt, ssr, refinement = min(runs, key=lambda run: run[1])
-    refinement = {**refinement, "starts": len(order), "ssr": ssr, "ssr_of_starts": [run[1] for run in runs],
-                  "horizons": fractions}
+        opts.say(f"carried the best {carry} of {len(first)} start(s) on (misfits over the first horizon "
+                 f"{[round(run[1], 4) for run in first]})")
+    u_opt, ssr, info = min(runs, key=lambda run: run[1])
+    refinement = {**info, "starts": len(order), "ssr": ssr, "ssr_of_starts": [run[1] for run in runs],
+                  "horizons": [q.fraction for q in problems]}
     if dropped:
         refinement["dropped_first_horizon_ssr"] = dropped
-    r = problem.residuals([u_opt])[0]
-    x_opt = problem.values(u_opt)
+    return u_opt, ssr, refinement
 
-    # 3. uncertainty
-    from scipy import stats
 
-    warnings_: list[str] = []
-    npts = r.size
-    dof = max(npts - p, 1)
-    rho = float(np.corrcoef(r[:-1], r[1:])[0, 1]) if npts > 3 and np.std(r) > 0 else 0.0
-    rho = rho if math.isfinite(rho) else 0.0
-    inflation = (1 + rho) / (1 - rho) if 0 < rho < 0.999 else (1e3 if rho >= 0.999 else 1.0)
-    s2 = ssr / dof * inflation
-    J = _jacobian(problem, u_opt, diff_step)
-    span = problem.upper - problem.lower
-    sing = np.linalg.svd(J, compute_uv=False)
-    condition = float(sing[0] / sing[-1]) if sing[-1] > 0 else math.inf
-    cov_u = s2 * np.linalg.pinv(J.T @ J)
-    se = np.sqrt(np.maximum(np.diag(cov_u), 0.0)) * span
-    estimates: dict[str, ParameterEstimate] = {}
-    need_profile = []
-    threshold = s2 * float(stats.chi2.ppf(level, 1))
-    # the Jacobian's interval checked along its own path: the points of the confidence ellipsoid
-    # that reach furthest in each parameter, and multiples of them, solved as one batch
+@dataclass(frozen=True)
+class _Spread:
+    """Stage 3's linearisation at the optimum (in the box scaled to ``[0, 1]``): the Jacobian,
+    its condition number, the covariance ``s^2 (J^T J)^-1``, the standard errors (SI) and the
+    misfit threshold ``s^2 chi2_1(level)`` of the intervals."""
+
+    jacobian: NDArray[np.float64]
+    condition: float
+    rho: float
+    s2: float
+    cov: NDArray[np.floating[Any]]
+    se: NDArray[np.float64]
+    span: NDArray[np.float64]
+    threshold: float
+    profile: list[int]
+
+    @classmethod
+    def at(cls, problem: _Problem, u_opt: NDArray[np.float64], ssr: float, r: NDArray[np.float64],
+           opts: _Options) -> _Spread:
+        """The linearisation at ``u_opt`` (residuals ``r``, misfit ``ssr``); ``profile`` the
+        parameters whose intervals come from profiles (``opts.profile``)."""
+        from scipy import stats
+
+        p = u_opt.size
+        dof = max(r.size - p, 1)
+        rho = float(np.corrcoef(r[:-1], r[1:])[0, 1]) if r.size > 3 and np.std(r) > 0 else 0.0
+        rho = rho if math.isfinite(rho) else 0.0
+        inflation = (1 + rho) / (1 - rho) if 0 < rho < 0.999 else (1e3 if rho >= 0.999 else 1.0)
+        s2 = ssr / dof * inflation
+        J = _jacobian(problem, u_opt, opts.diff_step)
+        span = problem.upper - problem.lower
+        sing = np.linalg.svd(J, compute_uv=False)
+        condition = float(sing[0] / sing[-1]) if sing[-1] > 0 else math.inf
+        cov = s2 * np.linalg.pinv(J.T @ J)
+        se = np.sqrt(np.maximum(np.diag(cov), 0.0)) * span
+        profile = opts.profile is True or (opts.profile == "auto" and condition > CONDITION_LIMIT)
+        return cls(J, condition, rho, s2, cov, se, span, s2 * float(stats.chi2.ppf(opts.level, 1)),
+                   list(range(p)) if profile else [])
+
+
+def _jacobian_intervals(problem: _Problem, u_opt: NDArray[np.float64], ssr: float, spread: _Spread,
+                        columns: list[_Column]) -> dict[str, ParameterEstimate]:
+    """The Jacobian's interval of each parameter, checked along its own path: the points of the
+    confidence ellipsoid that reach furthest in each parameter, and multiples of them, solved as
+    one batch; widened to every point solved so far within the threshold."""
+    p = u_opt.size
     path_points = []
     for i in range(p):
-        direction = cov_u[:, i] / math.sqrt(cov_u[i, i]) * math.sqrt(threshold / s2) if cov_u[i, i] > 0 \
-            else np.eye(p)[i] * 0.0
+        direction = spread.cov[:, i] / math.sqrt(spread.cov[i, i]) * math.sqrt(spread.threshold / spread.s2) \
+            if spread.cov[i, i] > 0 else np.eye(p)[i] * 0.0
         for sign in (1.0, -1.0):
             path_points += [np.clip(u_opt + sign * m * direction, 0.0, 1.0) for m in PATH_MULTIPLES]
     path_ssr = np.array([float(v @ v) for v in problem.residuals(path_points)]) - ssr
+    x_opt = problem.values(u_opt)
     count = len(PATH_MULTIPLES)
+    estimates: dict[str, ParameterEstimate] = {}
     for i, c in enumerate(columns):
         ends = []
         for side in range(2):
             part = slice((2 * i + side) * count, (2 * i + side + 1) * count)
             xs = np.array([problem.values(w)[i] for w in path_points[part]])
-            inside = path_ssr[part] <= threshold
-            # the Jacobian's (quadratic) reach at least: a jump of the misfit inside it is the
-            # set-valued friction's roughness at small scales, not information
-            reach = x_opt[i] + (1 if side == 0 else -1) * math.sqrt(threshold / s2) * se[i]
-            if not inside[0] or not math.isfinite(se[i]):
-                ends.append(reach)
-            else:
-                far = float(xs[np.flatnonzero(inside)[-1]])  # the furthest point inside
-                ends.append(max(far, reach) if side == 0 else min(far, reach))
-        hi_ci, lo_ci = max(ends[0], x_opt[i]), min(ends[1], x_opt[i])
-        # every point solved so far whose misfit is within the threshold belongs to the set too
-        # (the set-valued friction makes the misfit jump at the scale of the intervals)
-        near = [problem.values(u)[i] for u, v in problem.history if v - ssr <= threshold]
-        if near:
-            lo_ci, hi_ci = min(lo_ci, min(near)), max(hi_ci, max(near))
-        at_bounds = lo_ci <= c.lower + 1e-12 * span[i] and hi_ci >= c.upper - 1e-12 * span[i]
-        wide = not math.isfinite(se[i]) or at_bounds
-        # the fit searches the box only: an interval reaching past a bound is reported up to it
-        lo_ci, hi_ci = max(lo_ci, c.lower), min(hi_ci, c.upper)
-        if profile is True or (profile == "auto" and condition > CONDITION_LIMIT):
-            need_profile.append(i)
-        estimates[c.name] = ParameterEstimate(c.name, float(x_opt[i]), float(lo_ci), float(hi_ci), c.lower, c.upper,
-                                              float(se[i]), "jacobian", not wide)
-    if condition > CONDITION_LIMIT:
-        _, _, vt = np.linalg.svd(J)
-        weak = [columns[i].name for i in np.argsort(-np.abs(vt[-1])) if abs(vt[-1][i]) > 0.3]
-        warnings_.append(f"near-singular Jacobian (condition number {condition:.3g}): the data fix a combination of "
-                         f"{', '.join(weak)} better than each (a ridge of equally good fits; see the landscape)")
+            ends.append(_path_end(xs, path_ssr[part], side, float(x_opt[i]), float(spread.se[i]), spread))
+        estimates[c.name] = _jacobian_estimate(problem, c, i, float(x_opt[i]), ends, ssr, spread)
+    return estimates
+
+
+def _path_end(xs: NDArray[np.float64], excess: NDArray[np.float64], side: int, best: float, se: float,
+              spread: _Spread) -> float:
+    """One end of a Jacobian interval (``side`` 0 up, 1 down): the furthest point of its path
+    inside the threshold, never nearer than the Jacobian's (quadratic) reach: a jump of the misfit
+    inside it is the set-valued friction's roughness at small scales, not information."""
+    inside = excess <= spread.threshold
+    reach = best + (1 if side == 0 else -1) * math.sqrt(spread.threshold / spread.s2) * se
+    if not inside[0] or not math.isfinite(se):
+        return reach
+    far = float(xs[np.flatnonzero(inside)[-1]])  # the furthest point inside
+    return max(far, reach) if side == 0 else min(far, reach)
+
+
+def _jacobian_estimate(problem: _Problem, c: _Column, i: int, best: float, ends: list[float], ssr: float,
+                       spread: _Spread) -> ParameterEstimate:
+    """The estimate of parameter ``i`` from its path's ``ends`` (up, down), widened to every
+    point solved so far within the threshold and reported up to the box."""
+    hi_ci, lo_ci = max(ends[0], best), min(ends[1], best)
+    # every point solved so far whose misfit is within the threshold belongs to the set too
+    # (the set-valued friction makes the misfit jump at the scale of the intervals)
+    near = [problem.values(u)[i] for u, v in problem.history if v - ssr <= spread.threshold]
+    if near:
+        lo_ci, hi_ci = min(lo_ci, min(near)), max(hi_ci, max(near))
+    span = spread.span[i]
+    at_bounds = lo_ci <= c.lower + 1e-12 * span and hi_ci >= c.upper - 1e-12 * span
+    wide = not math.isfinite(spread.se[i]) or at_bounds
+    # the fit searches the box only: an interval reaching past a bound is reported up to it
+    lo_ci, hi_ci = max(lo_ci, c.lower), min(hi_ci, c.upper)
+    return ParameterEstimate(c.name, best, float(lo_ci), float(hi_ci), c.lower, c.upper, float(spread.se[i]),
+                             "jacobian", not wide)
+
+
+def _ridge_warnings(spread: _Spread, columns: list[_Column]) -> list[str]:
+    """A near-singular Jacobian's warning, naming the parameters of its weakest direction."""
+    if not spread.condition > CONDITION_LIMIT:
+        return []
+    _, _, vt = np.linalg.svd(spread.jacobian)
+    weak = [columns[i].name for i in np.argsort(-np.abs(vt[-1])) if abs(vt[-1][i]) > 0.3]
+    return [f"near-singular Jacobian (condition number {spread.condition:.3g}): the data fix a combination of "
+            f"{', '.join(weak)} better than each (a ridge of equally good fits; see the landscape)"]
+
+
+def _profiles(problem: _Problem, u_opt: NDArray[np.float64], ssr: float, spread: _Spread, columns: list[_Column],
+              estimates: dict[str, ParameterEstimate], opts: _Options) -> dict[str, Profile]:
+    """The profile likelihood of each parameter of ``spread.profile`` (the misfit minimised over
+    the others at each of ``profile_points`` values), whose interval replaces the Jacobian's in
+    ``estimates``."""
     profiles: dict[str, Profile] = {}
-    for i in need_profile:
+    p = u_opt.size
+    for i in spread.profile:
         c = columns[i]
-        say(f"profile likelihood of {c.name}")
-        grid = np.linspace(0.0, 1.0, profile_points)
-        prof = np.empty(grid.size)
+        opts.say(f"profile likelihood of {c.name}")
+        grid = np.linspace(0.0, 1.0, opts.profile_points)
+        points = []
+        for g in grid:
+            u = u_opt.copy()
+            u[i] = g
+            points.append(u)
         others = [j for j in range(p) if j != i]
         if not others:
-            points = []
-            for g in grid:
-                u = u_opt.copy()
-                u[i] = g
-                points.append(u)
             prof = np.array([float(v @ v) for v in problem.residuals(points)])
         else:
-            for k, g in enumerate(grid):
-                u = u_opt.copy()
-                u[i] = g
-                prof[k] = _refine(problem, u, others, diff_step, max(max_iterations // 2, 5))[1]
+            iterations = max(opts.max_iterations // 2, 5)
+            prof = np.array([_refine(problem, u, others, opts.diff_step, iterations)[1] for u in points])
         values = c.lower + grid * (c.upper - c.lower)
-        profiles[c.name] = Profile(c.name, values, prof, threshold)
-        lo_ci, hi_ci, flat = _profile_interval(values, prof - ssr, threshold, float(x_opt[i]))
-        estimates[c.name] = ParameterEstimate(c.name, float(x_opt[i]), lo_ci, hi_ci, c.lower, c.upper,
+        profiles[c.name] = Profile(c.name, values, prof, spread.threshold)
+        best = float(problem.values(u_opt)[i])
+        lo_ci, hi_ci, flat = _profile_interval(values, prof - ssr, spread.threshold, best)
+        estimates[c.name] = ParameterEstimate(c.name, best, lo_ci, hi_ci, c.lower, c.upper,
                                               estimates[c.name].std_error, "profile", not flat)
-    for est in estimates.values():
-        if not est.identifiable:
-            warnings_.append(f"{est.key} is not identifiable from these data: its {level:.0%} interval "
-                             f"({est.ci_low:.4g}..{est.ci_high:.4g}) spans its bounds {est.lower:g}..{est.upper:g} "
-                             "(flat misfit); fix it, narrow its bounds or add data that excite it")
+    return profiles
 
-    # 4. the landscape
-    landscapes: list[Landscape] = []
-    if landscape and p >= 2:
-        grid = np.linspace(0.0, 1.0, landscape_points)
-        pairs = [(i, j) for i in range(p) for j in range(i + 1, p)]
-        say(f"landscape: {len(pairs)} pair(s) x {grid.size ** 2} points")
-        points = []
-        for i, j in pairs:
-            for gy in grid:
-                for gx in grid:
-                    u = u_opt.copy()
-                    u[i], u[j] = gx, gy
-                    points.append(u)
-        flat_ssr = np.array([float(v @ v) for v in problem.residuals(points)])
-        size = grid.size ** 2
-        for n_pair, (i, j) in enumerate(pairs):
-            block = flat_ssr[n_pair * size:(n_pair + 1) * size].reshape(grid.size, grid.size)
-            landscapes.append(Landscape(columns[i].name, columns[j].name,
-                                        columns[i].lower + grid * span[i], columns[j].lower + grid * span[j], block))
 
-    # the fitted runs, whole
-    fitted_configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e)), units="si")
-                      for e in range(len(events))]
+def _identifiability_warnings(estimates: Mapping[str, ParameterEstimate], level: float) -> list[str]:
+    return [f"{est.key} is not identifiable from these data: its {level:.0%} interval "
+            f"({est.ci_low:.4g}..{est.ci_high:.4g}) spans its bounds {est.lower:g}..{est.upper:g} "
+            "(flat misfit); fix it, narrow its bounds or add data that excite it"
+            for est in estimates.values() if not est.identifiable]
+
+
+def _landscapes(problem: _Problem, u_opt: NDArray[np.float64], columns: list[_Column], opts: _Options
+                ) -> list[Landscape]:
+    """Stage 4: the misfit over a grid of each pair of parameters, the others at the optimum."""
+    p = u_opt.size
+    if not opts.landscape or p < 2:
+        return []
+    grid = np.linspace(0.0, 1.0, opts.landscape_points)
+    pairs = [(i, j) for i in range(p) for j in range(i + 1, p)]
+    opts.say(f"landscape: {len(pairs)} pair(s) x {grid.size ** 2} points")
+    points = []
+    for i, j in pairs:
+        for gy in grid:
+            for gx in grid:
+                u = u_opt.copy()
+                u[i], u[j] = gx, gy
+                points.append(u)
+    flat_ssr = np.array([float(v @ v) for v in problem.residuals(points)])
+    size = grid.size ** 2
+    span = problem.upper - problem.lower
+    landscapes = []
+    for n_pair, (i, j) in enumerate(pairs):
+        block = flat_ssr[n_pair * size:(n_pair + 1) * size].reshape(grid.size, grid.size)
+        landscapes.append(Landscape(columns[i].name, columns[j].name,
+                                    columns[i].lower + grid * span[i], columns[j].lower + grid * span[j], block))
+    return landscapes
+
+
+def _fitted_runs(problem: _Problem, events: list[Event], u_opt: NDArray[np.float64]
+                 ) -> tuple[list[DrillConfig], list[dict[str, NDArray[np.float64]]], list[str]]:
+    """The fitted configuration of each event, its run over the whole span, and the warnings of
+    the runs that failed."""
+    configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e)), units="si")
+               for e in range(len(events))]
     whole = problem.run([u_opt], whole=True)[0]
     fitted = [w if isinstance(w, dict) else {} for w in whole]
+    failures = [f"the fitted configuration's run failed: {w}" for w in whole if isinstance(w, str)]
+    return configs, fitted, failures
+
+
+def _rms(problem: _Problem, r: NDArray[np.float64], targets: Mapping[str, float]) -> list[dict[str, float]]:
+    """Per event and target: the RMS error in the series' unit over the windows (from the
+    normalised residuals ``r``)."""
     rms = []
     offset = 0
-    for e in range(len(events)):
+    for e in range(len(problem.events)):
         row = {}
-        for s in target_map:
+        for s in targets:
             size_e = problem.index[e].size
-            seg = r[offset:offset + size_e] * problem.scale[e][s] / math.sqrt(target_map[s])
+            seg = r[offset:offset + size_e] * problem.scale[e][s] / math.sqrt(targets[s])
             row[s] = float(np.sqrt(np.mean(seg ** 2)))
             offset += size_e
         rms.append(row)
-    for w in whole:
-        if isinstance(w, str):
-            warnings_.append(f"the fitted configuration's run failed: {w}")
-    return FitResult(
-        parameters=estimates, configs=fitted_configs, events=events, targets=target_map, ssr=ssr, points=npts,
-        level=level, evaluations=sum(q.evaluations for q in problems), seconds=time.perf_counter() - start_time,
-        condition=condition, residual_autocorrelation=rho, global_stage=global_stage, refinement=refinement,
-        rms=rms, fitted=fitted, landscapes=landscapes, profiles=profiles, warnings=warnings_, top=top,
-    )
+    return rms
 
 
 def _profile_interval(values: NDArray[np.float64], excess: NDArray[np.float64], threshold: float,

@@ -45,7 +45,8 @@ from .lumped import (
     lumped_sweep,
     lumped_sweep_figure,
 )
-from .maps import controller_maps, drill_map, regime_map, ssi_lines, ssi_map
+from .map_plots import controller_maps, regime_map, ssi_lines, ssi_map
+from .maps import drill_map
 from .output import FILES
 from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
 from .solve import drill, friction_profile

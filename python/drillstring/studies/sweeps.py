@@ -504,6 +504,43 @@ def sweep(
         axes = grid
     base = _base(base_params)
     named, fulls = _plan(base, axes, runs)
+    solver, integrals, z, size, threads_i = _checked_options(
+        fulls, modes=modes, rigid_mode=rigid_mode, t_end=t_end, method=method, rtol=rtol, atol=atol, dt=dt,
+        max_steps=max_steps, samples=samples, z=z, threads=threads, chunk_size=chunk_size, out_dir=out_dir,
+        client=client, trajectories=trajectories,
+    )
+    velocity_columns = max(
+        [1] + [len(f["initial_velocities"]) for f in fulls if isinstance(f.get("initial_velocities"), (list, tuple))]
+    )
+    names = columns(velocity_columns, integrals.indices.tolist())
+    check_table_size(len(fulls), len(names), velocity_columns)
+    tasks = [
+        ChunkTask(i, start, tuple(fulls[start : start + size]), solver, z, velocity_columns, threads_i, trajectories)
+        for i, start in enumerate(range(0, len(fulls), size))
+    ]
+    store, fingerprint = _open_store(out_dir, solver, z, size, velocity_columns, fulls, len(tasks), list(named))
+    try:
+        table, raws = _run_tasks(tasks, names, store, fingerprint, client, len(fulls), progress)
+        if store is not None:
+            store.save_results(table)
+    finally:
+        if store is not None:
+            store.close()
+    table.attrs["axes"] = {key: values for key, values in named.items()}
+    table.attrs["solver"] = dict(solver)
+    if not trajectories:
+        return table
+    return table, _trajectories(tasks, raws, integrals.indices, len(fulls))
+
+
+def _checked_options(
+    fulls: list[dict[str, Any]], *, modes: int, rigid_mode: bool, t_end: float, method: str, rtol: float,
+    atol: float, dt: Optional[float], max_steps: Optional[int], samples: int, z: Optional[float],
+    threads: Optional[int], chunk_size: int, out_dir: Any, client: Any, trajectories: bool,
+) -> tuple[dict[str, Any], Any, Optional[float], int, Optional[int]]:
+    """The checked options of :func:`sweep`: the solver's options of every run, the Galerkin
+    integrals of the basis, the section, the chunk size and the threads; the memory of a chunk
+    (and of every kept trajectory) checked against the budget."""
     method, t_end_f, rtol_f, atol_f, dt_f, steps = check_solver_options(
         method, t_end, rtol, atol, dt, max_steps, methods=SWEEP_METHODS
     )
@@ -534,52 +571,41 @@ def sweep(
         "max_steps": steps,
         "samples": samples_i,
     }
-    velocity_columns = max(
-        [1] + [len(f["initial_velocities"]) for f in fulls if isinstance(f.get("initial_velocities"), (list, tuple))]
-    )
-    names = columns(velocity_columns, integrals.indices.tolist())
-    check_table_size(len(fulls), len(names), velocity_columns)
-    tasks = [
-        ChunkTask(i, start, tuple(fulls[start : start + size]), solver, z, velocity_columns, threads_i, trajectories)
-        for i, start in enumerate(range(0, len(fulls), size))
-    ]
+    return solver, integrals, z, size, threads_i
 
-    store = None
-    fingerprint = ""
-    if out_dir is not None:
-        from ..io.sweep_store import SweepStore
 
-        identity = {
-            "format": _FORMAT,
-            "drillstring_version": _core.__version__,
-            "core_build": core_build(),
-            "solver": solver,
-            "z": z,
-            "chunk_size": size,
-            "velocity_columns": velocity_columns,
-            "runs": len(fulls),
-        }
-        fingerprint = _digest({**identity, "parameters": fulls})
-        manifest = {**identity, "fingerprint": fingerprint, "chunks": len(tasks), "axes": list(named)}
-        store = SweepStore.open(out_dir, manifest)
-    try:
-        table, raws = _run_tasks(tasks, names, store, fingerprint, client, len(fulls), progress)
-        if store is not None:
-            store.save_results(table)
-    finally:
-        if store is not None:
-            store.close()
-    table.attrs["axes"] = {key: values for key, values in named.items()}
-    table.attrs["solver"] = dict(solver)
-    if not trajectories:
-        return table
+def _open_store(out_dir: Any, solver: dict[str, Any], z: Optional[float], size: int, velocity_columns: int,
+                fulls: list[dict[str, Any]], chunks: int, axes: list[str]) -> tuple[Any, str]:
+    """The sweep's store in ``out_dir`` (None without one) and the fingerprint of the sweep."""
+    if out_dir is None:
+        return None, ""
+    from ..io.sweep_store import SweepStore
+
+    identity = {
+        "format": _FORMAT,
+        "drillstring_version": _core.__version__,
+        "core_build": core_build(),
+        "solver": solver,
+        "z": z,
+        "chunk_size": size,
+        "velocity_columns": velocity_columns,
+        "runs": len(fulls),
+    }
+    fingerprint = _digest({**identity, "parameters": fulls})
+    manifest = {**identity, "fingerprint": fingerprint, "chunks": chunks, "axes": axes}
+    return SweepStore.open(out_dir, manifest), fingerprint
+
+
+def _trajectories(tasks: list[ChunkTask], raws: list[Any], indices: Any, runs: int) -> SweepTrajectories:
+    """Every run's samples from the chunks' trajectories (each chunk's copy dropped as it is read)."""
+    m = indices.size
     t = raws[0]["t"]
     traj = SweepTrajectories(
         t=t,
-        theta=np.empty((len(fulls), t.size)),
-        q=np.empty((len(fulls), m, t.size)),
-        qdot=np.empty((len(fulls), m, t.size)),
-        indices=integrals.indices,
+        theta=np.empty((runs, t.size)),
+        q=np.empty((runs, m, t.size)),
+        qdot=np.empty((runs, m, t.size)),
+        indices=indices,
     )
     for task in tasks:  # fill the arrays chunk by chunk, dropping each chunk's copy
         rows = slice(task.start, task.start + len(task.runs))
@@ -588,7 +614,7 @@ def sweep(
         traj.q[rows] = raw["y"][:, :, :m].transpose(0, 2, 1)
         traj.qdot[rows] = raw["y"][:, :, m:].transpose(0, 2, 1)
         raws[task.index] = None
-    return table, traj
+    return traj
 
 
 def _digest(value: Any) -> str:

@@ -1,0 +1,7 @@
+"""``python -m drillstring.cli``: the ``drillstring`` command."""
+
+import sys
+
+from . import main
+
+sys.exit(main())
