@@ -21,8 +21,8 @@ use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{
-    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, torque_limit_share,
-    torque_limit_verdict, torque_limit_warning, transient_warning, NO_ROTATION,
+    axial_resolution_warning, lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded,
+    run_warnings, torque_limit_share, torque_limit_verdict, torque_limit_warning, transient_warning, NO_ROTATION,
 };
 use crate::drilling::start::{steady_point, InitialState, Wall};
 use crate::error::{Error, Num, Result};
@@ -548,6 +548,9 @@ impl<'c> Simulation<'c> {
             }
         }
         if let Some(ax) = &self.axial {
+            let sections: Vec<(f64, usize, f64)> =
+                ax.field.sections.iter().map(|s| (s.h * s.cells as f64, s.cells, s.courant)).collect();
+            run.warnings.extend(axial_resolution_warning(&sections));
             run.coupled = coupled_metrics(&run, ax.law().radius);
             if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
                 if c.regime == Regime::Undetermined && run.metrics.as_ref().is_some_and(|m| m.verdict == Verdict::No) {
