@@ -50,7 +50,8 @@ from numpy.typing import NDArray
 
 from ..errors import ValidationError
 
-__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "Columns", "MeasuredData", "read_columns", "read_measured"]
+__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "Columns", "MeasuredData", "read_columns",
+           "read_measured"]
 
 #: The columns a data file may have, each with its dimension (the model's SI unit in :data:`UNITS`).
 COLUMNS: dict[str, str] = {

@@ -277,24 +277,28 @@ def _runs(mask: NDArray[np.bool_]) -> list[tuple[int, int]]:
 
 
 def _clean_time(t: NDArray[np.float64], values: dict[str, NDArray[np.float64]]
-                ) -> tuple[NDArray[np.float64], dict[str, NDArray[np.float64]], int]:
-    """Rows kept: a finite time later than every time before it (repeated or earlier times
-    dropped, counted)."""
+                ) -> tuple[NDArray[np.float64], dict[str, NDArray[np.float64]], int, int]:
+    """Rows kept: a finite time not before any time before it. A time equal to the one before
+    (a repeated time stamp of a real sample) is kept and counted; an earlier time or a missing one
+    is dropped and counted."""
     finite = np.isfinite(t)
     running = np.maximum.accumulate(np.where(finite, t, -np.inf))
     keep = finite.copy()
-    keep[1:] &= t[1:] > running[:-1]
+    keep[1:] &= t[1:] >= running[:-1]
     dropped = int((~keep).sum())
-    if keep.sum() < 2:
-        raise ValidationError("data: t", f"{int(keep.sum())} rows with increasing times", "at least two rows")
-    return t[keep], {k: v[keep] for k, v in values.items()}, dropped
+    if keep.sum() < 2 or t[keep][-1] <= t[keep][0]:
+        raise ValidationError("data: t", f"{int(keep.sum())} rows with increasing times", "at least two rows over "
+                              "a time span")
+    kept = t[keep]
+    repeated = int((np.diff(kept) == 0).sum())
+    return kept, {k: v[keep] for k, v in values.items()}, dropped, repeated
 
 
 def _gaps(t: NDArray[np.float64], missing: NDArray[np.bool_], factor: float) -> tuple[list[dict[str, Any]], float]:
     """The time jumps (a step above ``factor`` median steps) and the runs of rows with a
     missing value, and the median step."""
     dt = np.diff(t)
-    median = float(np.median(dt))
+    median = float(np.median(dt[dt > 0]))
     out: list[dict[str, Any]] = []
     for k in np.flatnonzero(dt > factor * median).tolist():
         out.append({"kind": "time_jump", "t_start": float(t[k]), "t_end": float(t[k + 1]),
@@ -327,7 +331,8 @@ def _centred_rate(t: NDArray[np.float64], x: NDArray[np.float64], window: float)
     hi = np.searchsorted(t, t + window / 2, side="right") - 1
     hi = np.maximum(hi, np.minimum(lo + 1, t.size - 1))
     lo = np.minimum(lo, hi - 1)
-    return (x[hi] - x[lo]) / (t[hi] - t[lo])
+    span = t[hi] - t[lo]
+    return (x[hi] - x[lo]) / np.where(span > 0, span, np.inf)
 
 
 def _depths(t: NDArray[np.float64], v: Mapping[str, NDArray[np.float64]], slips: NDArray[np.bool_],
@@ -561,11 +566,11 @@ def rig_log(source: Any, *, columns: Optional[Mapping[str, str]] = None, units: 
         raise ValidationError(f"{table.source}: columns", ", ".join(table.headers.values()),
                               f"the channels {', '.join(missing_channels)} (hook_load, and block_height or bit_depth; "
                               "map a header with --column NAME=HEADER)")
-    t, values, dropped = _clean_time(values.pop("t"), values)
+    t, values, dropped, repeated = _clean_time(values.pop("t"), values)
     used = [n for n in ("hook_load", "block_height", "bit_depth", "surface_rpm") if n in values]
     missing = np.zeros(t.size, bool)
-    for name in used:
-        missing |= ~np.isfinite(values[name])
+    for channel in used:
+        missing |= ~np.isfinite(values[channel])
     gaps, step = _gaps(t, missing, rules.gap_factor)
     valid = ~missing
     block_weight = rules.block_weight if rules.block_weight is not None else estimate_block_weight(values["hook_load"])
@@ -574,7 +579,7 @@ def rig_log(source: Any, *, columns: Optional[Mapping[str, str]] = None, units: 
     speed = _centred_rate(t, bit, rules.speed_window)
     speed = np.where(np.isfinite(speed), speed, 0.0)
     on_bottom = bit >= hole - rules.on_bottom
-    state, rotating, pumps = _states(values, valid, slips, on_bottom, speed, rules)
+    state, rotating, _ = _states(values, valid, slips, on_bottom, speed, rules)
     rop = _rop(t, hole, state == 2, rules.rop_window)
     states = pd.DataFrame({"t": t, "rig_state": state, "bit_depth_m": bit, "hole_depth_m": hole, "rop_m_per_h": rop,
                            "in_slips": slips.astype(np.int8)})
@@ -584,8 +589,8 @@ def rig_log(source: Any, *, columns: Optional[Mapping[str, str]] = None, units: 
     intervals = _intervals(t, state, bit, hole, values, rules)
     events, series = _events(t, state, valid, slips, on_bottom, speed, rotating, bit, hole, values, rules)
     result = RigLogResult(states, events, intervals, series, {}, rules)
-    result.summary = _summary(table, t, state, bit, hole, gaps, step, dropped, block_weight, how, pumps, events,
-                              intervals, rules, values)
+    result.summary = _summary(table, t, state, bit, hole, gaps, step, (dropped, repeated), block_weight, how,
+                              events, intervals, rules, values)
     result.seconds = time.perf_counter() - started
     if out is not None:
         result.write(out, plots=plots)
@@ -593,8 +598,8 @@ def rig_log(source: Any, *, columns: Optional[Mapping[str, str]] = None, units: 
 
 
 def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: NDArray[np.float64],
-             hole: NDArray[np.float64], gaps: list[dict[str, Any]], step: float, dropped: int, block_weight: float,
-             how: str, pumps: NDArray[np.bool_], events: Any, intervals: Any, rules: RigStateRules,
+             hole: NDArray[np.float64], gaps: list[dict[str, Any]], step: float, dropped: tuple[int, int],
+             block_weight: float, how: str, events: Any, intervals: Any, rules: RigStateRules,
              values: Mapping[str, NDArray[np.float64]]) -> dict[str, Any]:
     """The ``summary.json`` document."""
     dt = np.diff(t, append=t[-1])
@@ -607,7 +612,8 @@ def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: N
         "rows": int(t.size),
         "duration_s": float(t[-1] - t[0]),
         "sampling_interval_s": step,
-        "rows_dropped_time_not_increasing": dropped,
+        "rows_dropped_time_backwards": dropped[0],
+        "rows_repeated_time": dropped[1],
         "gaps": gaps,
         "gap_count": {"time_jump": sum(g["kind"] == "time_jump" for g in gaps),
                       "missing_values": sum(g["kind"] == "missing_values" for g in gaps)},

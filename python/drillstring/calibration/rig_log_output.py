@@ -184,7 +184,8 @@ def report_markdown(result: RigLogResult, out_dir: str, *, plots: bool = True) -
     s = result.summary
     lines = [f"# Rig log: {_md(os.path.basename(s['source']))}", "",
              f"{s['rows']} rows over {s['duration_s'] / 3600:.3g} h (sampling {s['sampling_interval_s']:.3g} s); "
-             f"{s['rows_dropped_time_not_increasing']} rows dropped for a time not after the one before; "
+             f"{s['rows_dropped_time_backwards']} rows dropped for a time before the one before, "
+             f"{s['rows_repeated_time']} rows with the time of the one before kept; "
              f"{s['gap_count']['time_jump']} time jumps and {s['gap_count']['missing_values']} runs of missing values.",
              "", "| channel | header | unit read |", "|---|---|---|"]
     lines += [f"| {name} | {_md(c['header'])} | {_md(c['unit'])} |" for name, c in s["channels"].items()]

@@ -83,7 +83,8 @@ def run(args: argparse.Namespace) -> int:
     s = result.summary
     say(f"rig-log: {s['rows']} rows, {s['duration_s'] / 3600:.3g} h, read and analysed in {result.seconds:.2g} s; "
         f"{len(s['gaps'])} gaps ({s['gap_count']['time_jump']} time jumps, {s['gap_count']['missing_values']} runs "
-        f"of missing values), {s['rows_dropped_time_not_increasing']} rows with a repeated time dropped")
+        f"of missing values), {s['rows_repeated_time']} repeated time stamps kept, "
+        f"{s['rows_dropped_time_backwards']} rows going back in time dropped")
     states = ", ".join(f"{name.replace('_', ' ')} {seconds / 3600:.2f} h"
                        for name, seconds in s["time_per_state_s"].items() if seconds > 0)
     say(f"states: {states}")
