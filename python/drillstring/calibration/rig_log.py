@@ -12,8 +12,8 @@ Derived where the log does not carry them (the rules, each threshold a field of
 :class:`RigStateRules`, written once here and in ``docs/guide/rig-logs.md``):
 
 * **in slips**: the hook load at most ``slips_margin`` above the block weight (``block_weight``;
-  by default the most frequent hook load among the lower half of the log's hook loads, in 1 kN
-  bins: the load of the travelling block and top drive alone);
+  by default the lowest hook-load cluster holding at least 5 % of the rows: the load of the
+  travelling block and top drive alone, :func:`estimate_block_weight`);
 * **bit depth**: ``start_depth`` at the first row, then moved by the block when the string hangs
   from it: a row and the one before both out of slips move the bit by the block's fall between
   them; in slips the block moves alone. Across missing values the bit depth is held;
@@ -71,8 +71,8 @@ from numpy.typing import NDArray
 from ..errors import ValidationError
 from .data import read_columns
 
-__all__ = ["ALIASES", "CHANNELS", "EVENTS", "NULL", "STATES", "STATE_COLUMNS", "RigLogResult", "RigStateRules",
-           "parse_quantity", "rig_log"]
+__all__ = ["ALIASES", "BLOCK_WEIGHT_SHARE", "CHANNELS", "EVENTS", "NULL", "STATES", "STATE_COLUMNS", "RigLogResult",
+           "RigStateRules", "estimate_block_weight", "parse_quantity", "rig_log"]
 
 #: The canonical channels of a rig log, each with its dimension (SI unit in
 #: :data:`~drillstring.calibration.data.UNITS`: s, m, N, rpm, N m, %, Pa).
@@ -125,7 +125,7 @@ class RigStateRules:
     """The thresholds of the rig-state, depth, rate and event rules (SI; see the module
     docstring). ``block_weight`` None: estimated from the log."""
 
-    #: Hook load of the block and top drive alone, N (None: the log's most frequent low load).
+    #: Hook load of the block and top drive alone, N (None: estimated, :func:`estimate_block_weight`).
     block_weight: Optional[float] = None
     #: In slips: hook load at most this above the block weight, N (5 klbf).
     slips_margin: float = 5 * _KLBF
@@ -311,18 +311,30 @@ def _gaps(t: NDArray[np.float64], missing: NDArray[np.bool_], factor: float) -> 
     return out, median
 
 
+#: The share of the rows a hook-load cluster must hold to be taken as the block weight.
+BLOCK_WEIGHT_SHARE = 0.05
+
+
 def estimate_block_weight(hook_load: NDArray[np.float64]) -> float:
-    """The most frequent hook load (1 kN bins, the bin's centre) among the lower half of the
-    finite hook loads: the string in slips hangs the block and top drive alone, the log's most
-    common low load."""
+    """The block weight, N: the lowest hook-load cluster holding at least
+    :data:`BLOCK_WEIGHT_SHARE` of the rows (1 kN bins summed over 5 kN, the lowest local maximum
+    of that sum over +-5 kN), as the median of the loads within 2.5 kN of it. The string in slips
+    hangs the block and top drive alone: every connection adds rows at that load, the lowest
+    frequent one."""
     finite = hook_load[np.isfinite(hook_load)]
     if finite.size == 0:
         raise ValidationError("hook_load", "no finite values", "hook loads to find the block weight (or give "
                               "rules block_weight)")
-    low = finite[finite <= np.median(finite)]
-    bins = np.floor(low / 1000.0)
-    values, counts = np.unique(bins, return_counts=True)
-    return float((values[np.argmax(counts)] + 0.5) * 1000.0)
+    bins = np.floor(finite / 1000.0).astype(np.int64)
+    low = int(bins.min())
+    counts = np.bincount(bins - low)
+    summed = np.convolve(counts, np.ones(5), mode="same")
+    padded = np.pad(summed, 5, constant_values=-1.0)
+    local_max = summed >= np.max(np.lib.stride_tricks.sliding_window_view(padded, 11), axis=1)
+    found = np.flatnonzero(local_max & (summed >= BLOCK_WEIGHT_SHARE * finite.size))
+    centre = (int(found[0]) if found.size else int(np.argmax(summed))) + low + 0.5
+    near = finite[np.abs(finite / 1000.0 - centre) <= 2.5]
+    return float(np.median(near))
 
 
 def _centred_rate(t: NDArray[np.float64], x: NDArray[np.float64], window: float) -> NDArray[np.float64]:
@@ -336,7 +348,8 @@ def _centred_rate(t: NDArray[np.float64], x: NDArray[np.float64], window: float)
 
 
 def _depths(t: NDArray[np.float64], v: Mapping[str, NDArray[np.float64]], slips: NDArray[np.bool_],
-            start_depth: float, start_hole: float) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
+            valid: NDArray[np.bool_], start_depth: float, start_hole: float
+            ) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
     """Bit depth and hole depth: the log's, else from the block height and the slips."""
     if "bit_depth" in v:
         bit = v["bit_depth"].copy()
@@ -344,7 +357,7 @@ def _depths(t: NDArray[np.float64], v: Mapping[str, NDArray[np.float64]], slips:
     else:
         block = v["block_height"]
         fall = -(block[1:] - block[:-1])
-        hanging = ~slips[1:] & ~slips[:-1]
+        hanging = ~slips[1:] & ~slips[:-1] & valid[1:] & valid[:-1]
         fall = np.where(hanging & np.isfinite(fall), fall, 0.0)
         bit = start_depth + np.concatenate(([0.0], np.cumsum(fall)))
         how = ("from the block height: the bit moves with the block when the rows before and after are both out "
@@ -427,12 +440,16 @@ def _intervals(t: NDArray[np.float64], state: NDArray[np.int8], bit: NDArray[np.
 
     drilling = state == 2
     stand = np.cumsum(np.diff(np.concatenate(([0], (state == 3).astype(np.int8)))) == 1)
-    dt = np.diff(t, append=t[-1])
+    # the steps between two drilling rows: their time is drilling time, their advance drilled length
+    both = np.r_[False, drilling[1:] & drilling[:-1]]
+    dt = np.diff(t, prepend=t[0])
+    advance = np.diff(hole, prepend=hole[0])
     rows = []
     for s in np.unique(stand[drilling]):
         sel = np.flatnonzero(drilling & (stand == s))
-        drilled_time = float(dt[sel].sum())
-        length = float(hole[sel[-1]] - hole[sel[0]] + (hole[min(sel[-1] + 1, t.size - 1)] - hole[sel[-1]]))
+        steps = sel[both[sel]]
+        drilled_time = float(dt[steps].sum())
+        length = float(np.nansum(advance[steps]))
         if drilled_time <= 0:
             continue
         torque = v.get("surface_torque")
@@ -575,7 +592,7 @@ def rig_log(source: Any, *, columns: Optional[Mapping[str, str]] = None, units: 
     valid = ~missing
     block_weight = rules.block_weight if rules.block_weight is not None else estimate_block_weight(values["hook_load"])
     slips = valid & (values["hook_load"] <= block_weight + rules.slips_margin)
-    bit, hole, how = _depths(t, values, slips, depth0, hole0)
+    bit, hole, how = _depths(t, values, slips, valid, depth0, hole0)
     speed = _centred_rate(t, bit, rules.speed_window)
     speed = np.where(np.isfinite(speed), speed, 0.0)
     on_bottom = bit >= hole - rules.on_bottom
@@ -618,6 +635,7 @@ def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: N
         "gap_count": {"time_jump": sum(g["kind"] == "time_jump" for g in gaps),
                       "missing_values": sum(g["kind"] == "missing_values" for g in gaps)},
         "null_values": dict(table.nulls),
+        "missing_values": {name: int((~np.isfinite(x)).sum()) for name, x in values.items()},
         "channels": {name: {"header": table.headers[name], "unit": table.units[name]} for name in table.headers},
         "time_per_state_s": per_state,
         "states": {str(c): name for c, name in STATES.items()},
@@ -632,7 +650,7 @@ def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: N
         "rules": {
             "thresholds": rules_used,
             "block_weight": "given" if rules.block_weight is not None else
-            "estimated: the most frequent hook load (1 kN bins) among the lower half of the hook loads",
+            "estimated: the lowest hook-load cluster holding 5 % of the rows",
             "depth": how,
             "pumps": "flow_out or standpipe_pressure above its threshold" if "flow_out" in values
             or "standpipe_pressure" in values else "taken as on (no flow_out or standpipe_pressure in the log)",
