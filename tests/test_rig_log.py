@@ -386,3 +386,30 @@ def test_the_shared_rig_log(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert summary["time_per_state_s"]["drilling"] > 3 * 3600
     assert math.isfinite(summary["rop_mean_m_per_h"]) and 5 < summary["rop_mean_m_per_h"] < 100
     assert "drillstring fit" in text and "drillstring torque-drag" in text
+
+
+@needs_shared_log
+def test_the_guides_python_example_prints_what_it_says(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    """The Python example of docs/guide/rig-logs.md, run beside the shared log, prints the line
+    its comment gives; the numbers of the guide's command output are those of the summary."""
+    import _docs
+
+    page = Path(__file__).resolve().parents[1] / "docs" / "guide" / "rig-logs.md"
+    (block,) = [b for b in _docs.blocks("python", [page]) if "ds.rig_log(" in b]
+    (tmp_path / "sample-data-1.csv").symlink_to(SHARED_LOG)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    exec(compile(block, "rig-logs example", "exec"), {"__name__": "__example__"})
+    printed = capsys.readouterr().out.splitlines()
+    expected = [line[2:] for line in block.splitlines() if line.startswith("# ")]
+    assert printed[0] == expected[0]
+    summary = json.loads((tmp_path / "rig-states" / "summary.json").read_text(encoding="utf-8"))
+    text = page.read_text(encoding="utf-8")
+    hours = ", ".join(f"{name.replace('_', ' ')} {seconds / 3600:.2f} h"
+                      for name, seconds in summary["time_per_state_s"].items())
+    assert f"# states: {hours}\n" in text
+    d = summary["depth_range_m"]
+    assert (f"hole depth {d['hole_start']:.1f} m -> {d['hole_end']:.1f} m ({d['drilled']:.1f} m in "
+            f"{summary['drilled_intervals']} intervals, mean ROP {summary['rop_mean_m_per_h']:.3g} m/h)") in text
+    assert f"block weight of {summary['rules']['thresholds']['block_weight'] / 1e3:.0f} kN" in text
