@@ -40,7 +40,7 @@ def add_parser(subparsers: Any) -> None:
     p.add_argument("--rule", action="append", default=[], metavar="NAME=VALUE", dest="rules",
                    help="a threshold of the state rules, SI or a quantity, e.g. block_weight=32klbf, "
                    "'slips_margin=4 klbf', moving_speed=0.05 (see docs/guide/rig-logs.md) (repeatable)")
-    p.add_argument("--config", default="CONFIG.toml", metavar="CONFIG.toml",
+    p.add_argument("--config", default="CONFIG.toml", metavar="CONFIG.toml", dest="next_config",
                    help="the well's configuration named in the next commands printed (default CONFIG.toml)")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")
     p.set_defaults(func=run)
@@ -94,9 +94,9 @@ def run(args: argparse.Namespace) -> int:
         f"{s['drilled_intervals']} intervals" + (f", mean ROP {rop:.3g} m/h" if rop is not None else "") + ")")
     say("events: " + ", ".join(f"{n} {kind.replace('_', ' ')}" for kind, n in s["events"].items()))
     say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
-    commands = next_commands(os.fspath(args.out), result, args.config)
+    commands = next_commands(os.fspath(args.out), result, args.next_config)
     if commands:
-        say(f"next (with the well's string and survey in {args.config}):")
+        say(f"next (with the well's string and survey in {args.next_config}):")
         for command in commands:
             say(f"  {command}")
     return 0
