@@ -413,3 +413,40 @@ def test_the_guides_python_example_prints_what_it_says(tmp_path: Path, monkeypat
     assert (f"hole depth {d['hole_start']:.1f} m -> {d['hole_end']:.1f} m ({d['drilled']:.1f} m in "
             f"{summary['drilled_intervals']} intervals, mean ROP {summary['rop_mean_m_per_h']:.3g} m/h)") in text
     assert f"block weight of {summary['rules']['thresholds']['block_weight'] / 1e3:.0f} kN" in text
+
+
+def test_a_parquet_log_with_units_in_its_headers_reads_as_the_si_log(tmp_path: Path) -> None:
+    pytest.importorskip("pyarrow")
+    frame, _ = synthetic(drill_rows=300)
+    reference = ds.rig_log(frame, start_depth=1000.0)
+    field = pd.DataFrame({"t [s]": frame["t"], "block_height [ft]": frame["block_height"] / FT,
+                          "hook_load [klbf]": frame["hook_load"] / KLBF, "surface_rpm [rpm]": frame["surface_rpm"],
+                          "surface_torque [kft lbf]": frame["surface_torque"] / (1e3 * FT_LBF),
+                          "standpipe_pressure [psi]": frame["standpipe_pressure"] / PSI,
+                          "flow_out [%]": frame["flow_out"]})
+    path = tmp_path / "log.parquet"
+    field.to_parquet(path)
+    result = ds.rig_log(path, start_depth="3280.839895013123 ft")
+    assert (result.states["rig_state"] == reference.states["rig_state"]).all()
+    np.testing.assert_allclose(result.states["bit_depth_m"], reference.states["bit_depth_m"], atol=1e-6)
+    np.testing.assert_allclose(result.events["hook_load [N]"], reference.events["hook_load [N]"], rtol=1e-12)
+
+
+def test_the_guide_names_every_rule() -> None:
+    """Every threshold of RigStateRules is described in the guide, with its default."""
+    from dataclasses import fields
+
+    text = " ".join((Path(__file__).resolve().parents[1] / "docs" / "guide" / "rig-logs.md").read_text(
+        encoding="utf-8").split())
+    defaults = {"gap_factor": "5",
+                "slips_margin": "5 klbf", "on_bottom": "0.3 m", "moving_speed": "0.03 m/s", "rotating_rpm": "5 rpm",
+                "rest_rpm": "1 rpm", "flow_out_min": "5 %", "standpipe_min": "100 psi", "speed_window": "5 s",
+                "rop_window": "60 s", "severity_window": "60 s", "event_min": "15 s", "settle": "5 s",
+                "startup_rest": "10 s", "startup_length": "60 s"}
+    rules = RigStateRules()
+    for f in fields(RigStateRules):
+        assert f"`{f.name}`" in text, f.name
+        if f.name in defaults:
+            assert RigStateRules.from_pairs({f.name: defaults[f.name]}) == rules, f.name
+            number = defaults[f.name].split()[0]
+            assert f"`{f.name}` ({number}" in text or f"`{f.name}`, {number}" in text, f.name

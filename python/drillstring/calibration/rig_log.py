@@ -140,7 +140,7 @@ class RigStateRules:
     #: Pumps on: flow out above this, %.
     flow_out_min: float = 5.0
     #: Pumps on: standpipe pressure above this, Pa (100 psi).
-    standpipe_min: float = 689475.7293168361
+    standpipe_min: float = 689475.7293168362
     #: The window of the bit speed's centred difference, s.
     speed_window: float = 5.0
     #: The window of drilling time of the rate of penetration, s.
