@@ -450,3 +450,17 @@ def test_the_guide_names_every_rule() -> None:
             assert RigStateRules.from_pairs({f.name: defaults[f.name]}) == rules, f.name
             number = defaults[f.name].split()[0]
             assert f"`{f.name}` ({number}" in text or f"`{f.name}`, {number}" in text, f.name
+
+
+def test_a_time_column_of_dates_reads_as_seconds_from_the_first(tmp_path: Path) -> None:
+    frame, _ = synthetic(drill_rows=300)
+    reference = ds.rig_log(frame, start_depth=1000.0)
+    dated = frame.copy()
+    dated["t"] = (pd.Timestamp("2016-03-01 06:00:00") + pd.to_timedelta(frame["t"] - frame["t"][0], unit="s")
+                  ).dt.strftime("%Y-%m-%d %H:%M:%S")
+    path = tmp_path / "dated.csv"
+    dated.to_csv(path, index=False)
+    result = ds.rig_log(path, start_depth=1000.0)
+    assert result.summary["t_origin"] == "2016-03-01T06:00:00+00:00"
+    np.testing.assert_array_equal(result.states["t"], frame["t"] - frame["t"][0])
+    assert (result.states["rig_state"] == reference.states["rig_state"]).all()

@@ -263,13 +263,17 @@ def read_measured(source: Any, *, columns: Optional[Mapping[str, str]] = None,
 class Columns:
     """The columns of a table read by :func:`read_columns`, in SI, not yet checked: ``values``
     (name -> values), ``units`` (name -> the unit each was read in), ``headers`` (name -> the
-    file's column it came from), ``nulls`` (name -> how many values were the null value)."""
+    file's column it came from), ``nulls`` (name -> how many values were the null value),
+    ``origin`` (the date and time of ``t = 0`` when the time column holds dates)."""
 
     source: str
     values: Mapping[str, NDArray[np.float64]]
     units: Mapping[str, str]
     headers: Mapping[str, str]
     nulls: Mapping[str, int]
+    #: The first time of a time column of dates and times (ISO 8601, UTC), whose rows are then
+    #: seconds from it; None for a numeric time column.
+    origin: Optional[str] = None
 
 
 def _frame(source: Any) -> tuple[str, Any]:
@@ -304,8 +308,9 @@ def read_columns(source: Any, known: Mapping[str, str], *, columns: Optional[Map
     mapping ``columns`` (name -> the file's column), else the first of the name's ``aliases``
     the file has (compared without case and punctuation); units as :func:`read_measured` reads
     them. ``null``: a value meaning "missing" (the LAS null ``-999.25``), read as NaN and counted.
-    Unknown columns are ignored; a time column ``t`` is required. ``field`` and ``units_field``
-    name the options in messages."""
+    Unknown columns are ignored; a time column ``t`` is required: numbers (in its unit), or
+    dates and times, read as seconds from the first (:attr:`Columns.origin`). ``field`` and
+    ``units_field`` name the options in messages."""
     import pandas as pd
 
     mapping = dict(columns or {})
@@ -343,7 +348,7 @@ def read_columns(source: Any, known: Mapping[str, str], *, columns: Optional[Map
                               f"a time column 't' (s; map another name with {field}={{'t': NAME}}, --column t=NAME)")
     row_units: dict[str, str] = {}
     first = frame[wanted["t"]].iloc[0] if len(frame) else None
-    if isinstance(first, str) and not _is_number(first):  # a units row
+    if isinstance(first, str) and not _is_number(first) and _datetimes(pd.Series([first])) is None:  # a units row
         for name, col in wanted.items():
             value = frame[col].iloc[0]
             if isinstance(value, str) and value.strip():
@@ -356,11 +361,16 @@ def read_columns(source: Any, known: Mapping[str, str], *, columns: Optional[Map
     values: dict[str, NDArray[np.float64]] = {}
     used_units: dict[str, str] = {}
     nulls: dict[str, int] = {}
+    origin: Optional[str] = None
     for name, col in wanted.items():
         try:
             raw = pd.to_numeric(frame[col], errors="raise").to_numpy(dtype=np.float64)
         except (ValueError, TypeError) as exc:
-            raise ValidationError(f"{label}: column {col}", str(exc), "numbers") from None
+            stamps = _datetimes(frame[col]) if name == "t" else None
+            if stamps is None:
+                raise ValidationError(f"{label}: column {col}", str(exc), "numbers") from None
+            raw, origin = stamps
+            given[name] = "s"
         if null is not None:
             missing = raw == null
             nulls[name] = int(missing.sum())
@@ -369,7 +379,24 @@ def read_columns(source: Any, known: Mapping[str, str], *, columns: Optional[Map
         factor = 1.0 if unit is None else unit_factor(name, unit, units_field, dimension=known[name])
         used_units[name] = unit if unit is not None else next(iter(UNITS[known[name]]))
         values[name] = raw * factor
-    return Columns(label, values, used_units, dict(wanted), nulls)
+    return Columns(label, values, used_units, dict(wanted), nulls, origin)
+
+
+def _datetimes(column: Any) -> Optional[tuple[NDArray[np.float64], str]]:
+    """A time column of dates and times (``2016-03-01 12:00:00``, ISO 8601 with or without a
+    zone) as seconds from its first, and that first time (ISO); None if it holds other text."""
+    import pandas as pd
+
+    try:
+        stamps = pd.to_datetime(column, errors="raise", utc=True, format="mixed")
+    except (ValueError, TypeError, OverflowError):
+        return None
+    valid = stamps.notna().to_numpy()
+    if not valid.any():
+        return None
+    first = stamps[valid].iloc[0]
+    seconds = (stamps - first).dt.total_seconds().to_numpy(dtype=np.float64)
+    return seconds, first.isoformat()
 
 
 def header_units_by_model(header_units: Mapping[str, str], wanted: Mapping[str, str]) -> dict[str, str]:

@@ -628,6 +628,7 @@ def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: N
         "source": table.source,
         "rows": int(t.size),
         "duration_s": float(t[-1] - t[0]),
+        "t_origin": table.origin,
         "sampling_interval_s": step,
         "rows_dropped_time_backwards": dropped[0],
         "rows_repeated_time": dropped[1],
