@@ -387,9 +387,14 @@ def _datetimes(column: Any) -> Optional[tuple[NDArray[np.float64], str]]:
     zone) as seconds from its first, and that first time (ISO); None if it holds other text."""
     import pandas as pd
 
-    try:
-        stamps = pd.to_datetime(column, errors="raise", utc=True, format="mixed")
-    except (ValueError, TypeError, OverflowError):
+    stamps = None
+    for form in ("mixed", None):  # "mixed": each stamp its own form (pandas >= 2)
+        try:
+            stamps = pd.to_datetime(column, errors="raise", utc=True, format=form)
+            break
+        except (ValueError, TypeError, OverflowError):
+            continue
+    if stamps is None:
         return None
     valid = stamps.notna().to_numpy()
     if not valid.any():
