@@ -657,6 +657,6 @@ def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: N
             or "standpipe_pressure" in values else "taken as on (no flow_out or standpipe_pressure in the log)",
             "rop": "hole depth advance per drilling time over rop_window of drilling time",
             "stick_slip_severity": "median over severity_window windows of (max - min) / (2 mean) of the surface "
-                                   "torque while drilling",
+                                   "torque of the rotating rows of a drilled interval",
         },
     }

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..drilling.output import MARKER, _json_ready, _md, output_folder
 from ..io.output import atomic_write, write_text
-from .rig_log import STATES
+from .rig_log import STATES, RigStateRules
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -189,6 +189,10 @@ def report_markdown(result: RigLogResult, out_dir: str, *, plots: bool = True) -
              f"{s['gap_count']['time_jump']} time jumps and {s['gap_count']['missing_values']} runs of missing values.",
              "", "| channel | header | unit read |", "|---|---|---|"]
     lines += [f"| {name} | {_md(c['header'])} | {_md(c['unit'])} |" for name, c in s["channels"].items()]
+    if s["gaps"]:
+        lines += ["", "| gap | from t (s) | to t (s) | duration (s) | rows |", "|---|---|---|---|---|"]
+        lines += [f"| {g['kind'].replace('_', ' ')} | {g['t_start']:.6g} | {g['t_end']:.6g} | {g['duration_s']:.4g} | "
+                  f"{g['rows']} |" for g in s["gaps"]]
     lines += ["", "## Rig states", "", "| code | state | time (h) | share |", "|---|---|---|---|"]
     total = max(sum(s["time_per_state_s"].values()), 1e-300)
     for code, name in STATES.items():
@@ -220,7 +224,8 @@ def report_markdown(result: RigLogResult, out_dir: str, *, plots: bool = True) -
     lines += ["", "## Next", "", "The string and survey are not in a surface log: write them in a configuration "
               "(CONFIG.toml, see the drilling guide), then:", ""]
     lines += [f"    {c}" for c in next_commands(out_dir, result)]
-    lines += ["", "## Rules", "", "| rule | value (SI) |", "|---|---|"]
-    lines += [f"| {k} | {_f(v, 6)} |" for k, v in s["rules"]["thresholds"].items()]
+    lines += ["", "## Rules", "", "| rule | value | unit |", "|---|---|---|"]
+    lines += [f"| {k} | {_f(v, 6)} | {RigStateRules.UNITS.get(k) or '1'} |"
+              for k, v in s["rules"]["thresholds"].items()]
     lines += [""] + [f"- {k}: {_md(v)}" for k, v in s["rules"].items() if isinstance(v, str)] + [""]
     return "\n".join(lines)
