@@ -16,7 +16,8 @@ Derived where the log does not carry them (the rules, each threshold a field of
   travelling block and top drive alone, :func:`estimate_block_weight`);
 * **bit depth**: ``start_depth`` at the first row, then moved by the block when the string hangs
   from it: a row and the one before both out of slips move the bit by the block's fall between
-  them; in slips the block moves alone. Across missing values the bit depth is held;
+  them; in slips the block moves alone. Across missing values the bit depth is held (across a
+  time jump between two rows out of slips it moves by the block's fall);
 * **hole depth**: the largest bit depth reached (from ``start_hole_depth``, default the start
   depth);
 * **bit speed**: the centred difference of the bit depth over ``speed_window``; **on bottom**: the
