@@ -47,6 +47,7 @@ from . import solvers as solvers
 from . import studies as studies
 from ._core import __version__, simd_path
 from .calibration.fit import FitResult, fit
+from .calibration.rig_log import RigLogResult, rig_log
 from .drilling import (
     DrillConfig,
     DrillMetrics,
@@ -194,6 +195,8 @@ __all__ = [
     # calibration from measured data
     "fit",
     "FitResult",
+    "rig_log",
+    "RigLogResult",
     # the paper
     "table2",
     "Table2Row",
