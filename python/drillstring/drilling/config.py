@@ -53,10 +53,9 @@ import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional, Union
+from typing import Any, Optional, Union
 
 from .. import _core
-from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import json_ready
 from . import units as _units
@@ -976,12 +975,3 @@ def parse_values(raw: str, field: str, text: str) -> list[Any]:
         values.append(_parse_value(item, field, text))
     return values
 
-
-#: Old names, for one release: ``Section`` is :class:`StringSection` (a length of pipe;
-#: ``drillstring.model.cross_section.CrossSection`` is the paper model's cross-section).
-_RENAMED = {"Section": "StringSection"}
-
-if not TYPE_CHECKING:
-
-    def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())
