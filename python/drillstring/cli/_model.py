@@ -10,7 +10,7 @@ from typing import Any, TextIO
 
 from ..errors import ValidationError
 from ..io.extras import require
-from ..io.toml import load_toml, toml_key_line, with_toml_line
+from ..io.toml import load_toml, toml_line, with_toml_line
 from ..limits import as_float
 from ..model.parameters import MODELS, PRESETS, Parameters, load, preset
 from ..solvers.trajectory import TrajectoryResult, default_section
@@ -46,7 +46,7 @@ def solver_table(path: str) -> dict[str, Any]:
         if key not in SOLVER_KEYS:
             raise ValidationError(
                 f"solver.{key}", value, "one of the keys " + ", ".join(SOLVER_KEYS), source=path,
-                line=toml_key_line(path, "solver", key),
+                line=toml_line(path, f"solver.{key}"),
             )
         kind = SOLVER_KEYS[key]
         ok = isinstance(value, kind) and not (kind is not bool and isinstance(value, bool))
@@ -55,7 +55,7 @@ def solver_table(path: str) -> dict[str, Any]:
         if not ok:
             kinds = {int: "an integer", float: "a number", bool: "true or false", str: "a string"}
             raise ValidationError(
-                f"solver.{key}", value, kinds[kind], source=path, line=toml_key_line(path, "solver", key)
+                f"solver.{key}", value, kinds[kind], source=path, line=toml_line(path, f"solver.{key}")
             )
         out[key] = value
     return out
