@@ -97,6 +97,13 @@ def test_the_line_of_an_element_of_a_multi_line_array_and_of_what_is_not_there()
     assert key_line("[well\n", "well.md") is None  # not TOML
 
 
+def test_a_table_written_in_parts_is_found_at_the_part_that_holds_the_key() -> None:
+    text = "[a.b]\nx = 1\n[c]\ny = 1\n[a.e]\nz = 2\n[a]\nw = 3\n[[s]]\n[[s.t]]\nu = 1\n[[s]]\n"
+    assert tomllib.loads(text)["a"] == {"b": {"x": 1}, "e": {"z": 2}, "w": 3}
+    cases = {"a.b.x": 2, "a.e.z": 6, "a.w": 8, "a.q": 7, "a.b.q": 1, "s[0].t[0].u": 11, "s[1].t": 12, "s[1].v": 12}
+    assert {field: key_line(text, field) for field in cases} == cases
+
+
 GOOD = """\
 # a string of two sections
 damping_rate = 0.0

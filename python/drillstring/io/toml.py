@@ -11,15 +11,16 @@ keeps what was not changed.
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 import sys
 import uuid
+from collections.abc import Iterator
 from typing import Any, Optional, Union
 
 import tomlkit
-from tomlkit.container import Container, OutOfOrderTableProxy
-from tomlkit.exceptions import TOMLKitError
+from tomlkit.container import Container
 from tomlkit.items import AoT, Array, InlineTable, String, Table
 
 from ..errors import ValidationError
@@ -36,7 +37,6 @@ PathLike = Union[str, "os.PathLike[str]"]
 #: A dotted field's parts: names and ``[index]`` (``sections[1].length``, ``well.md[2]``).
 _FIELD_PART = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
 
-_TABLES = (Container, Table, InlineTable, OutOfOrderTableProxy)
 
 
 def toml_line(path: PathLike, field: str) -> Optional[int]:
@@ -59,68 +59,60 @@ def key_line(text: str, field: str) -> Optional[int]:
     of a ``[table]``, a dotted key (``controller.kp = 1`` in ``[top_drive]``), an entry of an
     inline table, a table of an array of tables, an element of a multi-line array, a quoted key.
     """
+    target = tuple(int(index) if index else name for name, index in _FIELD_PART.findall(field))
     try:
-        keys = _present_keys(tomlkit.parse(text), field)
-        while keys:  # the deepest part the document writes on a line of its own
-            line = _marked_line(text, keys)
-            if line is not None:
-                return line
-            keys.pop()
-    except (TOMLKitError, ValueError, RecursionError):
-        pass
+        paths = [path for path, _, _, _ in _entries(tomlkit.parse(text))]
+        for depth in range(len(target), 0, -1):  # the deepest part of the path the document writes
+            for number, path in enumerate(paths):
+                if path == target[:depth]:
+                    line = _marked_line(text, number)
+                    if line is not None:
+                        return line
+    except Exception:  # the line of an error message is best effort, never an error of its own
+        return None
     return None
 
 
-def _present_keys(document: Any, field: str) -> list[Union[str, int]]:
-    """The longest start of ``field``'s parts that ``document`` holds."""
-    keys: list[Union[str, int]] = []
-    node = document
-    for name, index in _FIELD_PART.findall(field):
-        if index:
-            if not (isinstance(node, (AoT, Array)) and int(index) < len(node)):
-                break
-            node = node[int(index)]
-            keys.append(int(index))
-        else:
-            if not (isinstance(node, _TABLES) and name in node):
-                break
-            node = node[name]
-            keys.append(name)
-    return keys
+KeyPath = tuple[Union[str, int], ...]
 
 
-def _marked_line(text: str, keys: list[Union[str, int]]) -> Optional[int]:
-    """The line of the item at ``keys`` in a fresh document of ``text``: the item is marked
-    (a value replaced by a unique string, a table's header given a unique comment), the document
-    rendered, and the mark's line counted; ``None`` for an item without a line of its own (a
-    table made by dotted keys or by a subtable's header)."""
+def _entries(node: Any, prefix: KeyPath = ()) -> Iterator[tuple[KeyPath, Any, Union[str, int], Any]]:
+    """Every item of a tomlkit document in document order, as written (not merged): its dotted
+    path (names and array indices), the container or array holding it, its key there, the item."""
+    if isinstance(node, (Array, AoT)):
+        for index, item in enumerate(node.body if isinstance(node, AoT) else node):
+            yield (*prefix, index), node, index, item
+            yield from _entries(item, (*prefix, index))
+        return
+    if isinstance(node, (Table, InlineTable)):
+        node = node.value
+    if isinstance(node, Container):
+        for key, item in node.body:
+            if key is not None:
+                yield (*prefix, key.key), node, key.key, item
+                yield from _entries(item, (*prefix, key.key))
+
+
+def _marked_line(text: str, number: int) -> Optional[int]:
+    """The line of the ``number``-th item (:func:`_entries`) of a fresh document of ``text``: the
+    item is marked (a value replaced by a unique string, a table's header given a unique comment),
+    the document rendered and the mark's line counted; ``None`` for an item without a line of its
+    own (a table made by dotted keys or by a subtable's header). An array of tables is at its
+    first table's header."""
     document = tomlkit.parse(text)
-    parent: Any = document
-    for key in keys[:-1]:
-        parent = parent[key]
-    key = keys[-1]
+    _, parent, key, item = next(itertools.islice(_entries(document), number, None))
     mark = f"drillstring-line-{uuid.uuid4().hex}"
-    if not _mark(parent, key, mark):
-        return None
-    rendered = document.as_string()
-    at = rendered.find(mark)
-    return rendered.count("\n", 0, at) + 1 if at >= 0 else None
-
-
-def _mark(parent: Any, key: Union[str, int], mark: str) -> bool:
-    item = parent[key]
     if isinstance(item, AoT):
-        item = item[0] if len(item) else None
-    elif isinstance(item, OutOfOrderTableProxy):  # a table written in parts: its first part
-        body = parent.body if isinstance(parent, Container) else parent.value.body
-        item = next(v for k, v in body if k is not None and k.key == key and isinstance(v, Table))
-    if item is None or isinstance(item, Table):
-        if item is None or item.is_super_table():
-            return False
+        item = item.body[0] if item.body else None
+    if item is None or (isinstance(item, Table) and item.is_super_table()):
+        return None
+    if isinstance(item, Table):
         item.comment(mark)
     else:
         parent[key] = mark
-    return True
+    rendered = document.as_string()
+    at = rendered.find(mark)
+    return rendered.count("\n", 0, at) + 1 if at >= 0 else None
 
 
 def with_toml_line(exc: ValidationError, path: PathLike, table: str) -> ValidationError:
