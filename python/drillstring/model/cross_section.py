@@ -18,10 +18,9 @@ the diameters and holds the values.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional
+from typing import Any, Optional
 
 from .. import _core
-from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import as_float
 
@@ -99,12 +98,3 @@ class CrossSection:
             raise ValidationError("inner_diameter", inner_diameter, allowed)
         return cls(**_core.section(big, small))
 
-
-#: Old names of this module's classes, for one release: ``Section`` is :class:`CrossSection`
-#: (``drillstring.drilling.StringSection`` is a length of pipe).
-_RENAMED = {"Section": "CrossSection"}
-
-if not TYPE_CHECKING:
-
-    def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())
