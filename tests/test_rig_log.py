@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 import drillstring as ds
 from drillstring.calibration.rig_log import RigStateRules, estimate_block_weight
-from drillstring.errors import ValidationError
+from drillstring.errors import MissingExtraError, ValidationError
 
 SHARED_LOG = Path(__file__).resolve().parents[2] / "shared" / "data" / "rig-logs" / "sample-data-1.csv"
 
@@ -261,7 +261,7 @@ def test_las_without_lasio_names_the_extra(tmp_path: Path, monkeypatch: pytest.M
     path = tmp_path / "log.las"
     path.write_text("~Version\n", encoding="utf-8")
     monkeypatch.setitem(sys.modules, "lasio", None)
-    with pytest.raises(ValidationError, match=r"drillstring\[las\]"):
+    with pytest.raises(MissingExtraError, match=r"extra 'las' \(lasio not installed\)"):
         ds.rig_log(path)
 
 

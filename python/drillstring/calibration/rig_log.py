@@ -244,11 +244,10 @@ class RigLogResult:
 
 def _read_las(path: str) -> Any:
     """An LAS file as a DataFrame with ``MNEMONIC [unit]`` headers (lasio; its null read as NaN)."""
-    try:
-        import lasio
-    except ImportError:
-        raise ValidationError("data", path, "an LAS file read with lasio: install the 'las' extra "
-                              "(pip install 'drillstring[las]')") from None
+    from ..io.extras import require
+
+    require("las", f"reading the LAS file {path}")
+    import lasio
     import pandas as pd
 
     try:

@@ -12,6 +12,7 @@ __all__ = ["EXTRAS", "require"]
 #: Each extra of an optional output -> the modules it brings (the distributions of the same names).
 EXTRAS: dict[str, tuple[str, ...]] = {
     "netcdf": ("xarray", "h5netcdf"),  # TrajectoryResult.to_xarray / save, `simulate --out run.nc`
+    "las": ("lasio",),  # LAS 2.0 rig logs of `drillstring rig-log` (calibration/rig_log.py)
 }
 
 
