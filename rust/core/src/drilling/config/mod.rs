@@ -31,7 +31,7 @@ use super::grid::Grid;
 
 pub use bit::{Bit, BitRockLaw, CutSurfaceScheme, Detournay, MAX_CUT_SURFACE_CELLS};
 pub use friction::{Contact, Friction, FrictionCoupling, FrictionInterval, FrictionModel};
-pub use hoist::{Hoist, HoistKind};
+pub use hoist::{Autodriller, AutodrillerTarget, Hoist, HoistMode};
 pub use metrics::MetricsConfig;
 pub use numerics::{Numerics, SourceSpeed};
 pub(crate) use overrides::override_pairs;
