@@ -37,7 +37,7 @@ use std::f64::consts::TAU;
 
 use super::boundary::Arriving;
 use super::energy::Ledger;
-use super::field::{Field, Section};
+use super::field::{Field, FieldSection};
 use super::kernel::transport;
 use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{solve_bit, BitContact, BitPhase, Port};
@@ -147,7 +147,7 @@ impl Axial {
             let n = cells as usize;
             let h = p.length / cells;
             courant.push((c * dt / h).min(1.0));
-            sections.push(Section::new(offset, n, courant[i], h, p.mass_per_length(), p.impedance()));
+            sections.push(FieldSection::new(offset, n, courant[i], h, p.mass_per_length(), p.impedance()));
             gravity.push(0.0);
             for j in 0..n {
                 let z = top + (j as f64 + 0.5) * h;
