@@ -11,7 +11,7 @@ For a hollow circular section (annulus) with outer radius ``R = D/2`` and inner 
 
 The last three follow from ``int_0^{2 pi} cos^4 = 3 pi/4`` and
 ``int_0^{2 pi} cos^2 sin^2 = pi/4`` with ``int_r^R rho^5 d rho = (R^6 - r^6)/6``. The formulas
-are evaluated in the Rust core (``drillstring_core::model::Section``); this module validates
+are evaluated in the Rust core (``drillstring_core::model::CrossSection``); this module validates
 the diameters and holds the values.
 """
 

@@ -6,7 +6,7 @@
 use crate::error::{Num, Short};
 use crate::metrics::StickSlip;
 
-use super::config::{DrillConfig, HoistKind};
+use super::config::{DrillConfig, HoistMode};
 use super::grid::static_torque;
 
 /// The warnings of a configuration with the wall break-off torque `breakoff` (see
@@ -139,15 +139,15 @@ pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
     }
     if let Some(h) = &cfg.hoist {
         let mut speeds: Vec<(String, f64)> = Vec::new();
-        if h.mode == HoistKind::Velocity {
+        if h.mode == HoistMode::Velocity {
             speeds.push(("hoist.speed".into(), h.speed));
             speeds.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
         }
-        if h.mode == HoistKind::Autodriller {
+        if h.mode == HoistMode::Autodriller {
             let a = &h.autodriller;
             speeds.push(("hoist.autodriller.max_speed".into(), a.max_speed));
             speeds.push(("hoist.autodriller.min_speed".into(), a.min_speed));
-            if a.target == super::axial::hoist::AutodrillerTarget::Rop {
+            if a.target == super::config::AutodrillerTarget::Rop {
                 speeds.push(("hoist.autodriller.setpoint".into(), a.setpoint));
                 speeds.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
             }
@@ -388,7 +388,7 @@ pub const NO_ROTATION: &str = "no rotation: top_drive.rpm is 0, so the torsional
 /// Whether the hoist only lifts the string (`velocity` mode, every block velocity upward): without
 /// rotation a pick-up, its bit off bottom on purpose, and [`off_bottom_warning`] does not apply.
 pub fn lifting(hoist: &super::config::Hoist) -> bool {
-    hoist.mode == HoistKind::Velocity && hoist.speed < 0.0 && hoist.steps.iter().all(|s| s[1] < 0.0)
+    hoist.mode == HoistMode::Velocity && hoist.speed < 0.0 && hoist.steps.iter().all(|s| s[1] < 0.0)
 }
 
 /// A coupled run whose bit never touched bottom in the metrics window `[a, b]` s: every sample
@@ -396,15 +396,15 @@ pub fn lifting(hoist: &super::config::Hoist) -> bool {
 /// bit are 0 and its MSE is undefined. Says what to change for the hoist's mode `mode`: the bit
 /// is lowered by a larger downward block velocity, a smaller hook load, or an autodriller
 /// allowed to move down; or the window comes later in a longer run.
-pub fn off_bottom_warning(bounce_fraction: f64, window: [f64; 2], mode: HoistKind) -> Option<String> {
+pub fn off_bottom_warning(bounce_fraction: f64, window: [f64; 2], mode: HoistMode) -> Option<String> {
     if bounce_fraction < 1.0 {
         return None;
     }
     let change = match mode {
-        HoistKind::Velocity => "a larger downward hoist.speed (down is positive)",
-        HoistKind::HookLoad => "a smaller hoist.hook_load (below the static hook load of the hanging string)",
-        HoistKind::Autodriller => "a positive hoist.autodriller.max_speed and a larger setpoint",
-        HoistKind::WeightOnBit => "a positive hoist.weight_on_bit",
+        HoistMode::Velocity => "a larger downward hoist.speed (down is positive)",
+        HoistMode::HookLoad => "a smaller hoist.hook_load (below the static hook load of the hanging string)",
+        HoistMode::Autodriller => "a positive hoist.autodriller.max_speed and a larger setpoint",
+        HoistMode::WeightOnBit => "a positive hoist.weight_on_bit",
     };
     Some(format!(
         "the bit never touched bottom in the metrics window [{}, {}] s (no weight on bit in any sample): its ROP, \
