@@ -12,8 +12,6 @@ from __future__ import annotations
 import sys
 from typing import Any, Callable, Optional, Union
 
-from tqdm import tqdm
-
 from ..errors import ValidationError
 
 __all__ = ["ProgressOption", "SolveProgress", "check_progress", "on_terminal", "bar"]
@@ -33,6 +31,8 @@ def bar(
 ) -> Any:
     """A tqdm bar on stderr (disabled: a bar that prints nothing); ``every_update`` redraws on
     every update (for coarse units such as sweep chunks) instead of at most every 0.1 s."""
+    from tqdm import tqdm  # on first use: ``import drillstring`` does not load it
+
     extra: dict[str, Any] = {"mininterval": 0.0, "miniters": 1} if every_update else {}
     return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not enabled, bar_format=bar_format,
                 dynamic_ncols=True, **extra)
