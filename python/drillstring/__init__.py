@@ -88,13 +88,12 @@ if TYPE_CHECKING:  # pragma: no cover
         DrillConfig,
         DrillMetrics,
         DrillResult,
-        TorqueDragResult,
         drill,
         drill_map,
         load_drill_config,
         recommend_controllers,
-        torque_drag,
     )
+    from .drilling.torque_drag import TorqueDragResult, torque_drag
     from .studies.sweeps import SweepTrajectories
 
     @overload
