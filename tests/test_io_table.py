@@ -4,10 +4,13 @@ columns, dtypes, values bit for bit), for any values, NaN, infinities and signed
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow.parquet as pq
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -56,6 +59,22 @@ def test_parquet_reads_back_in_pandas_as_the_frame(tmp_path_factory: pytest.Temp
     path = tmp_path_factory.mktemp("table") / "series.parquet"
     write_parquet(path, index, columns)
     pd.testing.assert_frame_equal(pd.read_parquet(path), _frame(index, columns), check_exact=True)
+    # and as pandas writes it: NaN as null, the same schema and metadata
+    theirs = path.with_name("pandas.parquet")
+    _frame(index, columns).to_parquet(theirs)
+    assert pq.read_table(path).equals(pq.read_table(theirs), check_metadata=True)
+
+
+def test_writing_parquet_does_not_import_pandas(tmp_path: Path) -> None:
+    code = ("import sys, numpy as np\n"
+            "from drillstring.io.table import write_parquet\n"
+            "columns = {'a': np.array([1.0, np.nan, 2.0]), 'b': np.ones(3, bool)}\n"
+            "write_parquet(sys.argv[1], ('t', np.arange(3.0)), columns)\n"
+            "print('pandas' in sys.modules)")
+    done = subprocess.run([sys.executable, "-c", code, str(tmp_path / "x.parquet")], capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.strip() == "False", done.stderr
+    assert pd.read_parquet(tmp_path / "x.parquet")["a"].isna().tolist() == [False, True, False]
 
 
 def test_bad_columns_are_refused(tmp_path: Path) -> None:

@@ -59,16 +59,31 @@ def _pandas_metadata(arrays: Mapping[str, np.ndarray], index: str) -> bytes:
     return json.dumps(meta).encode("utf-8")
 
 
+def _arrow(pa: Any, values: np.ndarray) -> Any:
+    """``values`` as a pyarrow array, from its buffer (``pyarrow.array`` would import pandas to
+    look at it first); NaN as null, as pandas hands a float column to pyarrow."""
+    if values.dtype.kind == "b":
+        bits = np.packbits(values, bitorder="little")
+        return pa.Array.from_buffers(pa.bool_(), len(values), [None, pa.py_buffer(bits)])
+    values = np.ascontiguousarray(values)
+    kind = pa.float64() if values.dtype.kind == "f" else pa.int64()
+    missing = np.isnan(values) if values.dtype.kind == "f" else None
+    if missing is not None and missing.any():
+        valid = pa.py_buffer(np.packbits(~missing, bitorder="little"))
+        return pa.Array.from_buffers(kind, len(values), [valid, pa.py_buffer(values)], null_count=int(missing.sum()))
+    return pa.Array.from_buffers(kind, len(values), [None, pa.py_buffer(values)])
+
+
 def write_parquet(target: Any, index: tuple[str, Any], columns: Mapping[str, Any]) -> None:
     """Writes the table to ``target`` (a path or a binary file) as Parquet (pyarrow's defaults:
-    snappy compression), as ``DataFrame.to_parquet`` writes the frame indexed by ``index``:
-    ``pandas.read_parquet`` gives that frame back."""
+    snappy compression), as ``DataFrame.to_parquet`` writes the frame indexed by ``index`` (NaN
+    as null): ``pandas.read_parquet`` gives that frame back. pandas is not imported."""
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     arrays = _arrays(index, columns)
     names = [name for name in arrays if name != index[0]] + [index[0]]
-    table = pa.table({name: arrays[name] for name in names})
+    table = pa.Table.from_arrays([_arrow(pa, arrays[name]) for name in names], names=names)
     table = table.replace_schema_metadata({b"pandas": _pandas_metadata(arrays, index[0])})
     pq.write_table(table, target)
 
