@@ -34,8 +34,15 @@ def bar(
     from tqdm import tqdm  # on first use: ``import drillstring`` does not load it
 
     extra: dict[str, Any] = {"mininterval": 0.0, "miniters": 1} if every_update else {}
-    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not enabled, bar_format=bar_format,
-                dynamic_ncols=True, **extra)
+    # Without tqdm's monitor thread (it only tunes the redraw rate of bars updated by their
+    # iteration; ours are updated when the work reports), which would outlive the bar and keep a
+    # command from forking the processes that draw its figures.
+    interval, tqdm.monitor_interval = tqdm.monitor_interval, 0
+    try:
+        return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not enabled,
+                    bar_format=bar_format, dynamic_ncols=True, **extra)
+    finally:
+        tqdm.monitor_interval = interval
 
 
 def check_progress(value: Any) -> ProgressOption:
