@@ -21,7 +21,10 @@ the package as well: ``model`` (the paper's model: ``parameters``, ``cross_secti
 (``analysis``, ``stability``, ``convergence``, ``sweeps``, ``sweep_axes``, ``table2``),
 ``drilling`` (the drilling system, its stick-slip ``metrics``, torque and drag, the lumped
 model), ``io`` (files, figures, TOML, progress, the sweep store), and the modules ``limits`` and
-``plots``; ``report`` (the reproduction report, ``drillstring paper``) is loaded on first use.
+``plots``. ``report`` (the reproduction report, ``drillstring paper``), ``drilling``,
+``calibration``, ``plots`` and the names of the drilling system, the calibration and sweeps load
+their modules on first use: ``import drillstring`` itself loads numpy and the core, not matplotlib,
+pandas or scipy.
 ``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps``.
 ``ds.table2`` is the function; its module is ``drillstring.studies.table2``. The modules' old
 paths (``drillstring.analysis``, ``drillstring.paper``, ...) work for one release and warn.
