@@ -5,6 +5,7 @@ under one name each."""
 from __future__ import annotations
 
 import ast
+import importlib
 import subprocess
 import sys
 from pathlib import Path
@@ -127,6 +128,38 @@ def test_the_package_has_no_module_outside_its_subpackages_but_the_listed_ones()
     top = {p.stem for p in PACKAGE.glob("*.py")} | {p.parent.name for p in PACKAGE.glob("*/__init__.py")}
     assert top == {"__init__", "__main__", "errors", "limits", "plots", "calibration", "cli", "drilling", "io",
                    "model", "report", "solvers", "studies"}
+
+
+#: What ``import drillstring`` must not load: each costs 0.1-0.4 s of a command line's start.
+HEAVY = ("matplotlib", "pandas", "scipy", "xarray", "pyarrow", "pint", "tqdm", "jinja2", "dask")
+
+
+def test_import_drillstring_loads_no_heavy_dependency() -> None:
+    # `import drillstring` (and the drilling package, all a run's command needs first) stays light;
+    # the names loaded on first use are then the objects of their modules
+    code = ("import sys, importlib, drillstring as ds\n"
+            f"heavy = {HEAVY!r}\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in heavy) or 'none')\n"
+            "import drillstring.drilling\n"
+            "print(sorted(m for m in sys.modules if m.split('.')[0] in heavy) or 'none')\n"
+            "for name, module in sorted(ds._LAZY.items()):\n"
+            "    value = getattr(ds, name)\n"
+            "    loaded = importlib.import_module(module)\n"
+            "    assert value is (loaded if module == f'drillstring.{name}' else getattr(loaded, name)), name\n"
+            "print('same')")
+    assert _run(code).split() == ["none", "none", "same"]
+
+
+def test_the_lazy_names_of_the_drilling_package_are_its_modules_objects() -> None:
+    from drillstring import drilling
+
+    for name, module in drilling._LAZY.items():
+        assert getattr(drilling, name) is getattr(importlib.import_module(f"drillstring.drilling.{module}"), name)
+    # the functions named like their modules stay the functions, whatever was imported since
+    importlib.import_module("drillstring.drilling.lumped")
+    importlib.import_module("drillstring.drilling.torque_drag")
+    assert callable(drilling.lumped) and callable(drilling.torque_drag) and callable(ds.torque_drag)
+    assert set(drilling._LAZY) <= set(dir(drilling)) and set(ds._LAZY) <= set(dir(ds))
 
 
 # the stick-slip metrics: one name per metric (``metrics.json``'s)
