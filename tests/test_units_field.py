@@ -16,7 +16,7 @@ from typing import Any
 
 import pytest
 from _cli import one_line_error, run_cli
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import drillstring as ds
@@ -268,8 +268,9 @@ def test_a_right_dimension_is_converted_in_either_system() -> None:
 
 
 def _si(value: float, factor: Fraction) -> float:
-    """The SI float of the field number ``value`` as written (its shortest repr), correctly rounded."""
-    return float(Fraction(repr(value)) * factor)
+    """The SI float of the field number ``value`` as written (its shortest repr), correctly rounded
+    (with its sign: a Fraction has no -0.0, the conversion keeps it)."""
+    return math.copysign(float(Fraction(repr(value)) * factor), value)
 
 
 #: key -> (field unit, its exact SI factor, the values a user writes)
@@ -313,6 +314,7 @@ def _document(units: str, values: dict[str, Any]) -> dict[str, Any]:
 
 @settings(max_examples=40, deadline=None)
 @given(st.fixed_dictionaries({key: strategy for key, (_, _, strategy) in _KEYS.items()}))
+@example({**{key: 5.0 for key in _KEYS}, "friction.static": 0.3, "top_drive.rpm": -0.0, "hoist.speed": -0.0})
 def test_one_configuration_however_its_numbers_are_written(values: dict[str, float]) -> None:
     # (a) plain numbers of a field file
     plain = DrillConfig.from_dict(_document("field", values))
