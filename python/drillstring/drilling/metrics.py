@@ -232,7 +232,8 @@ def stick_slip_metrics(
     Returns
     -------
     StickSlipMetrics
-        Every metric of :data:`OUTPUTS` with ``stick_slip`` (``metrics[name]``): severity ``ssi = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
+        Every metric of :data:`OUTPUTS` with ``stick_slip`` (``metrics[name]``): severity
+        ``ssi = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
         min / max / mean, motor torque min / max and its period ``period_s``.
 
     Raises

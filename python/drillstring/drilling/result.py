@@ -114,9 +114,9 @@ class DrillMetrics(StickSlipMetrics):
 #: :func:`drillstring.drill` with ``check_grid=True``, ``drillstring drill --check-grid``, and the
 #: start check, ``check_start=True``, ``--check-start``): ``(kind, tolerance)`` with kind ``"rel"``
 #: (relative change), ``"abs"`` (in the metric's unit) or ``"equal"`` (a verdict or regime that
-#: must not change). The core's table (each metric's ``tolerance`` in its registry of outputs), coupled metrics included;
-#: the core also holds each metric's floor, a change too small to count whatever its relative size
-#: (the SSI's 0.01), in :data:`GRID_FLOORS`.
+#: must not change). The core's table (each metric's ``tolerance`` in its registry of outputs),
+#: coupled metrics included; the core also holds each metric's floor, a change too small to count
+#: whatever its relative size (the SSI's 0.01), in :data:`GRID_FLOORS`.
 GRID_TOLERANCES: dict[str, tuple[str, float]] = {
     str(name): (str(kind), float(tol)) for name, kind, tol, _ in _core.drill_compare_tolerances()}
 GRID_FLOORS: dict[str, float] = {str(name): float(floor) for name, _, _, floor in _core.drill_compare_tolerances()}
