@@ -366,6 +366,13 @@ pub static OUTPUTS: &[Output] = &[
         ),
         Kind::Text,
     ),
+    metric(
+        "stick_duration_mean_s",
+        "s",
+        "mean duration of the bit's stick phases (|bit speed| <= metrics.stick_speed) that begin and end within the \
+         window, s; null without a complete one",
+        Source::StickSlip(|m| Cell::Number(m.stick_duration_mean_s)),
+    ),
     not_a_column(of_kind(
         metric("slip_onsets", "", "slip onsets of the bit in the window", Source::StickSlip(|m| Cell::Count(m.slip_onsets))),
         Kind::Count,

@@ -21,6 +21,9 @@
 //!     speed rising through `stick_speed` in the direction of its mean, linearly
 //!     interpolated, for a slip that carries it above its mean speed), NaN with fewer than
 //!     three;
+//!   - `stick_duration_mean_s` ([`stick_duration_mean`]): the mean duration of the bit's stick
+//!     phases (the maximal intervals with `|omega_bit| <= stick_speed` of the piecewise-linear
+//!     series) that begin and end inside the window, NaN without a complete one;
 //!   - the verdict `stick_slip`: the bit stops (`|omega_bit| <= stick_speed`) during part of
 //!     the window, neither never nor always (stuck fraction strictly between 0 and 1);
 //!   - the three-way verdict [`Verdict`] with its reason ([`verdict`], the criterion stated by
@@ -139,6 +142,8 @@ pub struct StickSlip {
     pub slip_period_s: f64,
     /// Slip onsets of the bit in the window.
     pub slip_onsets: usize,
+    /// Mean duration of the complete stick phases in the window, s ([`stick_duration_mean`]).
+    pub stick_duration_mean_s: f64,
     /// The bit stops during part of the window (stuck fraction strictly between 0 and 1).
     pub stick_slip: bool,
     /// The window holds a steady regime (see the module).
@@ -176,6 +181,7 @@ impl StickSlip {
         periodicity: f64::NAN,
         slip_period_s: f64::NAN,
         slip_onsets: 0,
+        stick_duration_mean_s: f64::NAN,
         stick_slip: false,
         settled: false,
         stick_slip_verdict: Verdict::Undetermined,
@@ -272,6 +278,48 @@ fn time_within(t: &[f64], x: &[f64], s: f64) -> f64 {
             (hi - lo).max(0.0) * dt
         })
         .sum()
+}
+
+/// The mean duration of the stick phases of `x` over `t` (the linear interpolant): the maximal
+/// intervals with `|x| <= s` that begin after the first sample and end before the last (a phase
+/// cut by the window's ends is not complete; a touch of no duration is no phase); NaN without
+/// one. Their durations and the cut phases' parts add up to [`time_within`].
+pub fn stick_duration_mean(t: &[f64], x: &[f64], s: f64) -> f64 {
+    let (mut total, mut count) = (0.0, 0usize);
+    // the current phase's start, and whether it began at the first sample (cut by the window)
+    let mut phase: Option<(f64, bool)> = None;
+    for (k, (t, x)) in t.windows(2).zip(x.windows(2)).enumerate() {
+        let (u, v, dt) = (x[0], x[1], t[1] - t[0]);
+        let (lo, hi) = if u == v {
+            if u.abs() <= s { (0.0, 1.0) } else { (1.0, 0.0) }
+        } else {
+            let (a, b) = ((-s - u) / (v - u), (s - u) / (v - u));
+            (a.min(b).max(0.0), a.max(b).min(1.0))
+        };
+        // slipping throughout the segment: a phase still open ended at its start
+        let (start, end) = if lo > hi {
+            match phase {
+                Some(start) => (start, t[0]),
+                None => continue,
+            }
+        } else {
+            let start = *phase.get_or_insert((t[0] + lo * dt, k == 0 && lo == 0.0));
+            if hi == 1.0 {
+                continue; // the phase goes on
+            }
+            (start, t[0] + hi * dt)
+        };
+        if !start.1 && end > start.0 {
+            total += end - start.0;
+            count += 1;
+        }
+        phase = None;
+    }
+    if count == 0 {
+        f64::NAN
+    } else {
+        total / count as f64
+    }
 }
 
 /// A vector of `n` zeros, or None when the memory cannot be had.
@@ -557,6 +605,7 @@ pub fn stick_slip(
         periodicity,
         slip_period_s: slip_period,
         slip_onsets,
+        stick_duration_mean_s: stick_duration_mean(tw, w, stick_speed),
         stick_slip: stuck_fraction > 0.0 && stuck_fraction < 1.0,
         settled,
         stick_slip_verdict: verdict,
@@ -750,6 +799,44 @@ mod tests {
         let flat = vec![4.0; t.len()];
         let m = stick_slip(&t, &flat, Some(&flat), None, STICK_SPEED).unwrap();
         assert!(m.settled && m.period_s.is_nan() && m.warnings().is_empty(), "{m:?}");
+    }
+
+    /// Stick phases of known durations (0.5, 1 and 1.5 s at rest, ramps of 0.1 s to 5 rad/s
+    /// between them): each lasts its rest plus the two ramps' parts below the stick speed,
+    /// `2 s / 50 s^-1` (linear ramps); a phase cut by the window's start or end does not count.
+    #[test]
+    fn stick_durations_of_a_known_series() {
+        let s = 0.01;
+        let rests = [0.5, 1.0, 1.5];
+        // knots: a slip of 0.4 s (up 0.1 s, 0.2 s at 5 rad/s, down 0.1 s), then a rest
+        let (mut t, mut w) = (vec![0.0], vec![5.0]);
+        let mut at = 0.0;
+        for rest in rests {
+            for (dt, v) in [(0.1, 5.0), (0.1, 0.0), (rest, 0.0)] {
+                at += dt;
+                t.push(at);
+                w.push(v);
+            }
+        }
+        for (dt, v) in [(0.1, 5.0), (0.2, 5.0)] {
+            at += dt;
+            t.push(at);
+            w.push(v);
+        }
+        let ramp = 2.0 * s / 50.0;
+        let expected = rests.iter().map(|r| r + ramp).sum::<f64>() / 3.0;
+        let m = stick_slip(&t, &w, None, None, s).unwrap();
+        assert!((m.stick_duration_mean_s - expected).abs() < 1e-12, "{} vs {expected}", m.stick_duration_mean_s);
+        // the complete phases and the window's share: the same time as the stuck fraction
+        let span = t[t.len() - 1] - t[0];
+        assert!((3.0 * m.stick_duration_mean_s - m.stuck_fraction * span).abs() < 1e-12);
+        // a window starting in the first rest: that phase is cut and does not count
+        let late = stick_slip(&t, &w, None, Some((0.5, at)), s).unwrap();
+        assert!((late.stick_duration_mean_s - (2.5 + 2.0 * ramp) / 2.0).abs() < 1e-12, "{late:?}");
+        // never stuck, stuck throughout, a touch of no duration: NaN
+        assert!(stick_slip(&t, &vec![5.0; t.len()], None, None, s).unwrap().stick_duration_mean_s.is_nan());
+        assert!(stick_slip(&t, &vec![0.0; t.len()], None, None, s).unwrap().stick_duration_mean_s.is_nan());
+        assert!(stick_duration_mean(&[0.0, 1.0, 2.0], &[1.0, s, 1.0], s).is_nan());
     }
 
     /// The period estimator's memory is bounded: a long series is resampled.
