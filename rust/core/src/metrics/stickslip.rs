@@ -678,7 +678,7 @@ mod tests {
         assert!((m.motor_torque_min_nm - 2.0).abs() < 1e-6 && (m.motor_torque_max_nm - 8.0).abs() < 1e-6);
         assert!((m.period_s - 1.0 / f).abs() < 1e-7, "{}", m.period_s);
         assert!(m.settled && !m.stick_slip && m.slip_onsets == 0 && m.slip_period_s.is_nan(), "{m:?}");
-        assert!(stick_slip(&t, &w, None, None, STICK_SPEED).unwrap().cycle_period.is_nan());
+        assert!(stick_slip(&t, &w, None, None, STICK_SPEED).unwrap().period_s.is_nan());
     }
 
     /// The three-way verdict on series whose stuck fraction, SSI and settling are known by
