@@ -267,7 +267,12 @@ pub static OUTPUTS: &[Output] = &[
         0.0,
     ),
     tolerance(
-        headline(metric("bit_rpm_max", "rpm", "highest bit speed, rpm", Source::StickSlip(|m| Cell::Number(m.bit_rpm_max)))),
+        headline(metric(
+            "bit_rpm_max",
+            "rpm",
+            "highest bit speed, rpm",
+            Source::StickSlip(|m| Cell::Number(m.bit_rpm_max)),
+        )),
         Judge::Rel,
         0.05,
         0.0,
@@ -374,7 +379,12 @@ pub static OUTPUTS: &[Output] = &[
         Source::StickSlip(|m| Cell::Number(m.stick_duration_mean_s)),
     ),
     not_a_column(of_kind(
-        metric("slip_onsets", "", "slip onsets of the bit in the window", Source::StickSlip(|m| Cell::Count(m.slip_onsets))),
+        metric(
+            "slip_onsets",
+            "",
+            "slip onsets of the bit in the window",
+            Source::StickSlip(|m| Cell::Count(m.slip_onsets)),
+        ),
         Kind::Count,
     )),
     not_a_column(of_kind(

@@ -5,10 +5,10 @@ use drillstring_core::drilling::{self, lumped};
 use pyo3::prelude::*;
 use serde::Serialize;
 
-use crate::convert::{no_panic, to_json_object, to_python, validation_error, SignalCheck};
 use crate::convert::stick_slip_report;
-use drillstring_core::outputs::{MetricsView, Report};
+use crate::convert::{no_panic, to_json_object, to_python, validation_error, SignalCheck};
 use crate::drilling::Fraction;
+use drillstring_core::outputs::{MetricsView, Report};
 
 /// The default parameters and numerics as dicts of JSON values.
 #[pyfunction]

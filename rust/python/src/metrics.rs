@@ -8,7 +8,7 @@ use pyo3::types::PyBool;
 
 use drillstring_core::outputs::Report;
 
-use crate::convert::{integer, stick_slip_report, no_panic, to_python, to_vec, validation_error};
+use crate::convert::{integer, no_panic, stick_slip_report, to_python, to_vec, validation_error};
 
 /// `(frequencies, amplitudes)` of spectral peaks.
 type Peaks<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);

@@ -360,8 +360,8 @@ pub fn run_one(cfg: &DrillConfig, cancel: &CancelFlag) -> MapRow {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::outputs::Column;
     use crate::interrupt::Never;
+    use crate::outputs::Column;
     use serde_json::json;
 
     fn base() -> String {
@@ -416,7 +416,10 @@ mod tests {
             assert!(row.status.is_success(), "{}", row.message);
             let c = single.coupled.unwrap();
             assert_eq!(row.coupled, Some(c));
-            assert_eq!(columns.coupled.get("wob_mean_N"), Some(&Column::Numbers(vec![rows[0].coupled.unwrap().wob_mean_n, rows[1].coupled.unwrap().wob_mean_n])));
+            assert_eq!(
+                columns.coupled.get("wob_mean_N"),
+                Some(&Column::Numbers(vec![rows[0].coupled.unwrap().wob_mean_n, rows[1].coupled.unwrap().wob_mean_n]))
+            );
             let Some(Column::Texts(regime)) = columns.coupled.get("regime") else { panic!("no regime column") };
             assert_eq!((k, regime[k].as_ref()), (k, c.regime.name()));
         }

@@ -291,7 +291,11 @@ pub fn stick_duration_mean(t: &[f64], x: &[f64], s: f64) -> f64 {
     for (k, (t, x)) in t.windows(2).zip(x.windows(2)).enumerate() {
         let (u, v, dt) = (x[0], x[1], t[1] - t[0]);
         let (lo, hi) = if u == v {
-            if u.abs() <= s { (0.0, 1.0) } else { (1.0, 0.0) }
+            if u.abs() <= s {
+                (0.0, 1.0)
+            } else {
+                (1.0, 0.0)
+            }
         } else {
             let (a, b) = ((-s - u) / (v - u), (s - u) / (v - u));
             (a.min(b).max(0.0), a.max(b).min(1.0))

@@ -550,7 +550,9 @@ impl<'c> Simulation<'c> {
         if let Some(ax) = &self.axial {
             run.coupled = coupled_metrics(&run, ax.law().radius);
             if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
-                if c.regime == Regime::Undetermined && run.metrics.as_ref().is_some_and(|m| m.stick_slip_verdict == Verdict::No) {
+                if c.regime == Regime::Undetermined
+                    && run.metrics.as_ref().is_some_and(|m| m.stick_slip_verdict == Verdict::No)
+                {
                     run.warnings.push(format!(
                         "regime undetermined, not smooth drilling: {why}; the string is still settling onto the bit \
                          (lengthen numerics.duration, move metrics.window later, or start from \
