@@ -33,12 +33,14 @@ extensions = [
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
     "config_reference",
+    "metric_reference",
     "gallery",
 ]
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"
-exclude_patterns = ["_build", "_generated/configuration.md", "gallery/*.py", "Thumbs.db", ".DS_Store"]
+exclude_patterns = ["_build", "_generated/configuration.md", "_generated/metrics.md", "gallery/*.py", "Thumbs.db",
+                    ".DS_Store"]
 
 myst_enable_extensions = ["colon_fence", "dollarmath"]
 myst_heading_anchors = 3

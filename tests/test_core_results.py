@@ -34,7 +34,7 @@ def test_stick_slip_warnings_are_a_list_even_when_empty() -> None:
     settled = _core.stick_slip_metrics(t, np.full_like(t, 2.0))
     assert settled["warnings"] == [] and type(settled["warnings"]) is list
     assert type(settled["slip_onsets"]) is int and type(settled["stick_slip"]) is bool
-    assert math.isnan(settled["torque_max"])  # no torque series
+    assert math.isnan(settled["motor_torque_max_Nm"])  # no torque series
 
 
 def test_lumped_forms() -> None:

@@ -164,21 +164,24 @@ def test_the_lazy_names_of_the_drilling_package_are_its_modules_objects() -> Non
 
 # the stick-slip metrics: one name per metric (``metrics.json``'s)
 
-def test_metrics_from_the_cores_names() -> None:
-    core = {"t_start": 1.0, "t_end": 9.0, "severity": 0.5, "stuck_fraction": 0.25, "rpm_min": 0.0, "rpm_max": 120.0,
-            "rpm_mean": 60.0, "torque_min": 5.0e3, "torque_max": 9.0e3, "cycle_period": 4.0, "period_cycles": 2.0,
-            "periodicity": 0.99, "slip_period": None, "slip_onsets": 2, "stick_slip": True, "settled": False,
-            "warnings": ["w"]}
+def test_metrics_from_the_cores_dict() -> None:
+    core = {"window_start": 1.0, "window_end": 9.0, "ssi": 0.5, "stuck_fraction": 0.25, "bit_rpm_min": 0.0,
+            "bit_rpm_max": 120.0, "bit_rpm_mean": 60.0, "motor_torque_min_Nm": 5.0e3, "motor_torque_max_Nm": 9.0e3,
+            "period_s": 4.0, "period_cycles": 2.0, "periodicity": 0.99, "slip_period_s": None, "slip_onsets": 2,
+            "stick_slip": True, "settled": False, "warnings": ["w"]}
     m = metrics_module.StickSlipMetrics.from_core(core)
     assert (m.window_start, m.window_end, m.ssi, m.bit_rpm_max, m.motor_torque_min_Nm, m.period_s) == (
         1.0, 9.0, 0.5, 120.0, 5.0e3, 4.0)
     assert np.isnan(m.slip_period_s) and m.slip_onsets == 2 and m.warnings == ("w",)
+    assert m["ssi"] == 0.5 and m["stick_slip"] is True
     # a drill run's dict: the window asked for, and the static torques
-    drill = DrillMetrics.from_core({**core, "window_start": 0.5, "window_end": 10.0, "breakoff_torque": 7.0e3,
-                                    "min_cycle_torque": 4.0e3})
+    drill = DrillMetrics.from_core({**core, "window_start": 0.5, "window_end": 10.0, "breakoff_torque_Nm": 7.0e3,
+                                    "min_cycle_torque_Nm": 4.0e3})
     assert isinstance(drill, metrics_module.StickSlipMetrics)
     assert (drill.window_start, drill.window_end, drill.breakoff_torque_Nm, drill.min_cycle_torque_Nm) == (
         0.5, 10.0, 7.0e3, 4.0e3)
+    with pytest.raises(KeyError, match="not a metric"):
+        drill["severity"]
 
 
 def test_metrics_json_and_map_columns_keep_their_names_and_order() -> None:

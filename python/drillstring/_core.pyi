@@ -488,27 +488,9 @@ COUPLED_REGIMES: list[str]
 """The coupled regimes' names: smooth drilling, stick-slip, bit bounce, stick-slip and bit bounce,
 off bottom, undetermined."""
 
-class StickSlipDict(TypedDict):
-    t_start: float
-    t_end: float
-    severity: float
-    stuck_fraction: float
-    rpm_min: float
-    rpm_max: float
-    rpm_mean: float
-    torque_min: float
-    torque_max: float
-    cycle_period: float
-    period_cycles: float
-    periodicity: float
-    slip_period: float
-    slip_onsets: int
-    stick_slip: bool
-    settled: bool
-    #: "yes", "no" or "undetermined" (STICK_SLIP_CRITERION) and why, in a few words.
-    verdict: str
-    verdict_reason: str
-    warnings: list[str]
+StickSlipDict = dict[str, Any]
+"""Stick-slip metrics by the names of :func:`drill_outputs` (those with ``stick_slip``: float, bool,
+int or str as their ``kind``; NaN where undefined) and ``warnings`` (list of str)."""
 
 def stick_slip_metrics(
     t: NDArray[np.float64],
@@ -800,16 +782,9 @@ def recommend_controllers(config_json: str) -> ControllerRecommendationsDict:
         as :func:`drill_validate`.
     """
 
-class DrillMetrics(StickSlipDict):
-    #: The metrics of :class:`StickSlipDict` (``t_start``, ``t_end``: first and last sample of
-    #: the window, s, NaN when it holds fewer than 2 samples), and
-    #: the window asked for (default: the last half of the run), s.
-    window_start: float
-    window_end: float
-    breakoff_torque: float
-    #: The minimum motor torque of a stick-slip cycle implied by break-off, 2 K - S (S the static
-    #: torque of the wall and, on bottom, the bit; K the same at the kinetic torques), N m.
-    min_cycle_torque: float
+DrillMetrics = dict[str, Any]
+"""A drilling run's metrics: the torsional metrics of :func:`drill_outputs` by name (the window
+asked for, default the last half of the run, as ``window_start``, ``window_end``), and ``warnings``."""
 
 class DrillEnergy(TypedDict):
     #: J, from the start to the end reached: motor work = (final - initial) + losses.
@@ -933,6 +908,27 @@ def drill_compare(metrics: dict[str, Union[float, str, None]],
         a value that is not a number, a text or None.
     """
 
+class OutputDict(TypedDict):
+    """One output of a run in the core's registry (``drillstring_core::outputs``)."""
+
+    name: str
+    #: SI unit as pint parses it ("" dimensionless); None for a verdict, a count or a text.
+    unit: Optional[str]
+    definition: str
+    #: Of "torsional", "coupled", "lumped".
+    runs: list[str]
+    map_column: bool
+    #: "number", "verdict", "count", "text" or "series".
+    kind: str
+    #: (kind, tolerance, floor) of the grid and start checks, or None.
+    tolerance: Optional[tuple[str, float, float]]
+    headline: bool
+    #: A metric of stick_slip_metrics (of any series).
+    stick_slip: bool
+
+def drill_outputs() -> list[OutputDict]:
+    """Every metric and series channel of a run, declared once in the core, in order."""
+
 def drill_compare_tolerances() -> list[tuple[str, str, float, float]]:
     """The tolerances of :func:`drill_compare`: ``(metric, kind, tolerance, floor)``, kind
     ``"rel"``, ``"abs"`` or ``"equal"``."""
@@ -944,8 +940,8 @@ class DrillMapOutput(TypedDict):
     status: list[str]
     message: list[str]
     metrics: dict[str, Any]
-    """The names of ``drill_solve``'s metrics (``severity``, ``stuck_fraction``, ...: float arrays), NaN
-    unless successful; ``verdict`` a list of str (``undetermined`` unless successful)."""
+    """The metrics of :func:`drill_outputs` with ``map_column`` of a torsional run: float arrays, NaN
+    unless successful (verdicts 1 or 0); texts as lists of str (``undetermined`` unless successful)."""
     stats: dict[str, NDArray[np.generic]]
     """``cells``, ``steps`` (uint64), ``dt``, ``balance_error``, ``courant_peak`` (the largest
     Courant number a run reached: above 1 only with ``nonlinearity = "consistent"`` past
@@ -1002,8 +998,9 @@ def lumped_defaults() -> tuple[dict[str, Any], dict[str, Any]]:
     numerics ``duration``, ``dt``, ``output_interval``, ``initial`` ([wr, phi, wb]),
     ``window`` (null or [t_start, t_end]), ``stick_speed``."""
 
-class LumpedMetrics(StickSlipDict):
-    """Of ``metrics::stick_slip`` with the spring torque as the torque series."""
+LumpedMetrics = dict[str, Any]
+"""The lumped metrics of :func:`drill_outputs` by name (of ``metrics::stick_slip`` with the spring
+torque as the torque series), and ``warnings``."""
 
 class LumpedEnergy(TypedDict):
     #: J: motor_work = (kinetic_top + kinetic_bit + spring - initial) + viscous_loss + friction_loss.

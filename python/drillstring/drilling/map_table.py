@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .config import DrillConfig
-from .metrics import core_value
 from .result import COUPLED_METRICS, METRICS, TEXT_METRICS
 from .units import annotate
 
@@ -72,7 +71,7 @@ def map_frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw
     columns["message"] = [annotate(m, cfg.units) if m else m for m in raw["message"]]
     metrics = raw["metrics"]
     for name in METRIC_COLUMNS:
-        value = core_value(metrics, name)
+        value = metrics.get(name)
         if name in TEXT_METRICS:
             columns[name] = np.asarray(list(value or ()), dtype=object)
         else:

@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
 
-__all__ = ["STICK_SPEED", "STICK_SLIP_CRITERION", "CORE_NAMES", "StickSlipMetrics", "stick_slip_metrics",
+__all__ = ["STICK_SPEED", "STICK_SLIP_CRITERION", "OUTPUTS", "Output", "StickSlipMetrics", "stick_slip_metrics",
            "break_off_torque"]
 
 
@@ -26,40 +26,52 @@ __all__ = ["STICK_SPEED", "STICK_SLIP_CRITERION", "CORE_NAMES", "StickSlipMetric
 STICK_SPEED: float = _core.STICK_SPEED
 
 
-#: The core's names of the metrics (``drillstring_core::metrics::stickslip`` and the dicts of
-#: ``_core.drill_solve``, ``_core.drill_map``, ``_core.lumped_solve``) by their names here, the
-#: drilling names of ``metrics.json`` and a map's columns.
-CORE_NAMES: dict[str, str] = {
-    "window_start": "t_start",
-    "window_end": "t_end",
-    "ssi": "severity",
-    "bit_rpm_min": "rpm_min",
-    "bit_rpm_max": "rpm_max",
-    "bit_rpm_mean": "rpm_mean",
-    "motor_torque_min_Nm": "torque_min",
-    "motor_torque_max_Nm": "torque_max",
-    "period_s": "cycle_period",
-    "slip_period_s": "slip_period",
-    "breakoff_torque_Nm": "breakoff_torque",
-    "min_cycle_torque_Nm": "min_cycle_torque",
-    "stick_slip_verdict": "verdict",
-    "stick_slip_reason": "verdict_reason",
-}
+@dataclass(frozen=True)
+class Output:
+    """One output of a run as the core's registry declares it (``drillstring_core::outputs``)."""
+
+    name: str
+    unit: Optional[str]
+    """SI unit as pint parses it (``""`` dimensionless); None for a verdict, a count or a text."""
+    definition: str
+    runs: tuple[str, ...]
+    """The runs that report it: of ``"torsional"``, ``"coupled"``, ``"lumped"``."""
+    map_column: bool
+    """A column of a stick-slip map and an entry of ``metrics.json``."""
+    kind: str
+    """``"number"``, ``"verdict"``, ``"count"``, ``"text"`` or ``"series"``."""
+    tolerance: Optional[tuple[str, float, float]]
+    """``(kind, tolerance, floor)`` of the grid and start checks, or None."""
+    headline: bool
+    """Finite in every run that has metrics, or the run is not a result."""
+    stick_slip: bool
+    """A metric of :func:`stick_slip_metrics` (of any series)."""
+
+    def value(self, raw: Any) -> Any:
+        """A value of the core as this output's kind: a float (None read as NaN), a bool, an int or a str."""
+        if self.kind == "verdict":
+            return bool(raw)
+        if self.kind == "count":
+            return 0 if raw is None else int(raw)
+        if self.kind == "text":
+            return "" if raw is None else str(raw)
+        return math.nan if raw is None else float(raw)
+
+
+#: Every output of a run by name, in the core's order (``_core.drill_outputs()``): the one list of
+#: the metrics and series channels that ``metrics.json``, a map's columns, the units and the
+#: documentation read.
+OUTPUTS: dict[str, Output] = {
+    str(d["name"]): Output(name=str(d["name"]), unit=d["unit"], definition=str(d["definition"]),
+                           runs=tuple(d["runs"]), map_column=bool(d["map_column"]), kind=str(d["kind"]),
+                           tolerance=None if d["tolerance"] is None else (
+                               str(d["tolerance"][0]), float(d["tolerance"][1]), float(d["tolerance"][2])),
+                           headline=bool(d["headline"]), stick_slip=bool(d["stick_slip"]))
+    for d in _core.drill_outputs()}
 
 #: The criterion of the three-way verdict ``stick_slip_verdict`` (the core's
 #: ``metrics::stickslip::verdict``), as ``metrics.json`` and ``report.md`` state it.
 STICK_SLIP_CRITERION: str = _core.STICK_SLIP_CRITERION
-
-#: The metrics that are verdicts (booleans; 1 / 0 in a map's table) and counts.
-VERDICTS = ("stick_slip", "settled")
-_COUNTS = ("slip_onsets",)
-_TEXTS = ("stick_slip_verdict", "stick_slip_reason")
-
-
-def core_value(d: Mapping[str, Any], name: str) -> Any:
-    """The metric ``name`` of a dict of the core: under its own name when the dict has it (a drill
-    run's ``window_start``, the window asked for), else under the core's name (None if absent)."""
-    return d[name] if name in d else d.get(CORE_NAMES.get(name, name))
 
 
 _M = TypeVar("_M", bound="StickSlipMetrics")
@@ -115,25 +127,35 @@ class StickSlipMetrics:
     window with ``ssi < 1``."""
     stick_slip_reason: str = ""
     """Why the verdict is what it is, in a few words (the core's)."""
+    values: Mapping[str, Any] = dataclasses.field(default_factory=dict, hash=False)
+    """Every metric the core gave, by its name in :data:`OUTPUTS` (also ``metrics[name]``)."""
 
     @classmethod
     def from_core(cls: type[_M], d: Mapping[str, Any]) -> _M:
-        """From a metrics dict of the core (its names, :data:`CORE_NAMES`; ``None`` read as NaN, the
+        """From a metrics dict of the core (the names of :data:`OUTPUTS`; ``None`` read as NaN, the
         ``warnings`` list as a tuple)."""
-        values: dict[str, Any] = {}
+        values = {name: o.value(d[name]) for name, o in OUTPUTS.items() if name in d and o.kind != "series"}
+        fields: dict[str, Any] = {}
         for f in dataclasses.fields(cls):
-            value = core_value(d, f.name)
             if f.name == "warnings":
-                values[f.name] = tuple(str(w) for w in (value or ()))
-            elif f.name in VERDICTS:
-                values[f.name] = bool(value)
-            elif f.name in _COUNTS:
-                values[f.name] = int(value)
-            elif f.name in _TEXTS:
-                values[f.name] = f.default if value is None else str(value)
+                fields[f.name] = tuple(str(w) for w in (d.get("warnings") or ()))
+            elif f.name == "values":
+                fields[f.name] = values
+            elif f.name in values:
+                fields[f.name] = values[f.name]
+            elif f.default is not dataclasses.MISSING:
+                fields[f.name] = f.default
             else:
-                values[f.name] = math.nan if value is None else float(value)
-        return cls(**values)
+                fields[f.name] = OUTPUTS[f.name].value(None)
+        return cls(**fields)
+
+    def __getitem__(self, name: str) -> Any:
+        """The metric ``name`` of :data:`OUTPUTS` (KeyError naming the metrics there are)."""
+        if name in self.values:
+            return self.values[name]
+        if name in OUTPUTS and any(f.name == name for f in dataclasses.fields(self)):
+            return getattr(self, name)
+        raise KeyError(f"{name!r}: not a metric of this run (metrics: {', '.join(self.values)})")
 
     @property
     def window(self) -> tuple[float, float]:
@@ -179,7 +201,8 @@ def stick_slip_metrics(
     Returns
     -------
     StickSlipMetrics
-        Severity ``ssi = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
+        Every metric of :data:`OUTPUTS` with ``stick_slip`` (``metrics[name]``): severity
+        ``ssi = (max - min) / (2 |mean|)`` of the bit speed, stuck fraction, bit rpm
         min / max / mean, motor torque min / max and its period ``period_s``.
 
     Raises

@@ -15,7 +15,7 @@ import numpy as np
 
 from .. import _core
 from .config import DrillConfig
-from .metrics import STICK_SLIP_CRITERION, StickSlipMetrics
+from .metrics import OUTPUTS, STICK_SLIP_CRITERION, StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -24,18 +24,16 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __all__ = ["SERIES", "UNITS", "METRICS", "DrillMetrics", "DrillProfile", "DrillResult"]
 
-#: The time series of a run, in the order of the tables (``t`` is the index).
-SERIES: tuple[str, ...] = ("surface_rpm", "bit_rpm", "motor_torque", "bit_torque")
+#: The time series of a run, in the order of the tables (``t`` is the index): the core's series
+#: channels of a torsional run (:data:`~drillstring.drilling.metrics.OUTPUTS`).
+SERIES: tuple[str, ...] = tuple(o.name for o in OUTPUTS.values() if o.kind == "series" and "torsional" in o.runs)
 #: A coupled run's series (``DrillResult.axial``), by the core's names.
-AXIAL_SERIES: tuple[str, ...] = ("bit_axial_speed", "rop", "weight_on_bit", "hook_load", "bit_depth", "depth_of_cut")
+AXIAL_SERIES: tuple[str, ...] = tuple(o.name for o in OUTPUTS.values() if o.kind == "series" and "coupled" in o.runs)
 
-#: Units of the series, fields, profile and metrics.
+#: Units of the series, fields, profile and metrics (the series' from the core's registry).
 UNITS: dict[str, str] = {
     "t": "s",
-    "surface_rpm": "rpm",
-    "bit_rpm": "rpm",
-    "motor_torque": "N m",
-    "bit_torque": "N m",
+    **{name: str(OUTPUTS[name].unit).replace("*", " ") for name in (*SERIES, *AXIAL_SERIES)},
     "z": "m",
     "field_t": "s",
     "omega_field": "rpm",
@@ -44,13 +42,7 @@ UNITS: dict[str, str] = {
     "cumulative": "N m",
     "breakoff_torque": "N m",
     "min_cycle_torque": "N m",
-    # a coupled run's series (DrillResult.axial) and axial fields, as the core gives them
-    "bit_axial_speed": "m/s",
-    "rop": "m/h",
-    "weight_on_bit": "N",
-    "hook_load": "N",
-    "bit_depth": "m",
-    "depth_of_cut": "m",
+    # a coupled run's axial fields, as the core gives them
     "axial_z": "m",
     "axial_speed_field": "m/s",
     "axial_force_field": "N",
@@ -66,60 +58,25 @@ COUPLED_REGIMES: tuple[str, ...] = tuple(_core.COUPLED_REGIMES)
 
 #: The coupled metrics of ``metrics.json``'s ``coupled`` block and a coupled map's columns, in order
 #: (``regime`` the text one).
-COUPLED_METRICS: tuple[str, ...] = ("rop_mean_m_per_h", "wob_mean_N", "tob_mean_Nm", "bounce_fraction",
-                                    "hook_load_mean_N", "mse_mean_Pa", "regime")
+COUPLED_METRICS: tuple[str, ...] = tuple(o.name for o in OUTPUTS.values() if o.map_column and "coupled" in o.runs)
 
-#: The criterion of the boolean ``stick_slip`` (``stick_slip_verdict == "yes"``).
-STICK_SLIP_STOPS = ("the bit stops (|bit speed| <= metrics.stick_speed) during part of the metrics window: "
-                    "0 < stuck_fraction < 1")
-
-#: What each entry of ``metrics.json`` is (written beside the numbers).
+#: What each entry of ``metrics.json`` is (written beside the numbers): the core's definitions.
 METRIC_DEFINITIONS: dict[str, str] = {
-    "window_start": "start of the metrics window, s",
-    "window_end": "end of the metrics window, s",
-    "ssi": "stick-slip severity (max - min) / (2 |mean|) of the bit speed over the window",
-    "stuck_fraction": "fraction of the window's time with |bit speed| <= metrics.stick_speed; the bit is "
-                      "at rest while the string above it is stuck (converges with the grid)",
-    "period_s": "stick-slip period from the autocorrelation of the motor torque, s; null with fewer than two "
-                "cycles in the window",
-    "bit_rpm_min": "lowest bit speed, rpm; off bottom the stopping front reflects at the free end at re-stick and "
-                   "turns the bit back by a few rpm for some tens of ms, an amount that varies from cycle to cycle "
-                   "and between grids (not converged: check it with check_grid)",
-    "bit_rpm_max": "highest bit speed, rpm",
-    "bit_rpm_mean": "time-weighted mean bit speed, rpm",
-    "motor_torque_min_Nm": "lowest motor torque, N m",
-    "motor_torque_max_Nm": "highest motor torque, N m",
-    "breakoff_torque_Nm": "static break-off torque of the string in the well, N m",
-    "period_cycles": "the window's length in periods",
-    "periodicity": "similarity of the motor torque with itself one period later (1: exactly periodic)",
-    "slip_period_s": "mean interval between the bit's slip onsets (slips that carry it above its mean speed), s "
-                     "(cross-check of period_s)",
-    "stick_slip": "the verdict as true/false: " + STICK_SLIP_STOPS + " (stick_slip_verdict is yes)",
-    "settled": "the first and the last whole periods of the window (as many as half of it holds) agree in "
-               "means and ranges to 5 %: not a transient",
-    "min_cycle_torque_Nm": "minimum motor torque of a stick-slip cycle that break-off implies, N m",
-    "stick_slip_verdict": "the verdict yes / no / undetermined (stick_slip_criterion; stick_slip_reason says why)",
-}
+    o.name: o.definition for o in OUTPUTS.values() if o.map_column and "torsional" in o.runs}
 
 #: The SI unit of each numeric metric of a coupled run (:data:`COUPLED_METRICS`), as
 #: :data:`METRIC_UNITS`.
 COUPLED_METRIC_UNITS: dict[str, str] = {
-    "rop_mean_m_per_h": "m/h", "wob_mean_N": "N", "tob_mean_Nm": "N*m", "bounce_fraction": "",
-    "hook_load_mean_N": "N", "mse_mean_Pa": "Pa",
-}
+    name: str(OUTPUTS[name].unit) for name in COUPLED_METRICS if OUTPUTS[name].kind == "number"}
 
 #: The metrics of :data:`METRICS` that are text (the others are numbers and verdicts as true/false).
-TEXT_METRICS: tuple[str, ...] = ("stick_slip_verdict",)
+TEXT_METRICS: tuple[str, ...] = tuple(name for name in METRIC_DEFINITIONS if OUTPUTS[name].kind == "text")
 
 
 #: The SI unit of each numeric metric as pint parses it (``""`` dimensionless); a unit system's
 #: copy in ``metrics.json`` (``output_units``) converts by it (:mod:`drillstring.drilling.units`).
 METRIC_UNITS: dict[str, str] = {
-    "window_start": "s", "window_end": "s", "ssi": "", "stuck_fraction": "", "period_s": "s", "bit_rpm_min": "rpm",
-    "bit_rpm_max": "rpm", "bit_rpm_mean": "rpm", "motor_torque_min_Nm": "N*m", "motor_torque_max_Nm": "N*m",
-    "breakoff_torque_Nm": "N*m", "period_cycles": "", "periodicity": "", "slip_period_s": "s",
-    "min_cycle_torque_Nm": "N*m",
-}
+    name: str(OUTPUTS[name].unit) for name in METRIC_DEFINITIONS if OUTPUTS[name].kind == "number"}
 
 
 #: The metrics of ``metrics.json`` and a map's columns, in order (the keys of :data:`METRIC_DEFINITIONS`).
@@ -148,7 +105,7 @@ class DrillMetrics(StickSlipMetrics):
         """``{name: value}`` of :data:`METRICS` with NaN as ``None`` (JSON-ready; the verdict a string)."""
         out: dict[str, Any] = {}
         for name in METRICS:
-            value = getattr(self, name)
+            value = self[name] if name in self.values or hasattr(self, name) else math.nan
             out[name] = None if name not in TEXT_METRICS and math.isnan(value) else value
         return out
 
@@ -157,9 +114,9 @@ class DrillMetrics(StickSlipMetrics):
 #: :func:`drillstring.drill` with ``check_grid=True``, ``drillstring drill --check-grid``, and the
 #: start check, ``check_start=True``, ``--check-start``): ``(kind, tolerance)`` with kind ``"rel"``
 #: (relative change), ``"abs"`` (in the metric's unit) or ``"equal"`` (a verdict or regime that
-#: must not change). The core's table (``drilling::compare::TOLERANCES``), coupled metrics included;
-#: the core also holds each metric's floor, a change too small to count whatever its relative size
-#: (the SSI's 0.01), in :data:`GRID_FLOORS`.
+#: must not change). The core's table (each metric's ``tolerance`` in its registry of outputs),
+#: coupled metrics included; the core also holds each metric's floor, a change too small to count
+#: whatever its relative size (the SSI's 0.01), in :data:`GRID_FLOORS`.
 GRID_TOLERANCES: dict[str, tuple[str, float]] = {
     str(name): (str(kind), float(tol)) for name, kind, tol, _ in _core.drill_compare_tolerances()}
 GRID_FLOORS: dict[str, float] = {str(name): float(floor) for name, _, _, floor in _core.drill_compare_tolerances()}

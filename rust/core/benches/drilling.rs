@@ -42,7 +42,7 @@ fn bench(c: &mut Criterion) {
     let m = run.metrics.unwrap();
     println!(
         "Well B, 60 s: {} cells, {} steps, motor torque {:.0}..{:.0} N m, period {:.2} s, bit rpm max {:.1}, balance error {:.1e}",
-        run.stats.cells, run.stats.steps, m.torque_min, m.torque_max, m.cycle_period, m.rpm_max, run.energy.balance_error
+        run.stats.cells, run.stats.steps, m.motor_torque_min_nm, m.motor_torque_max_nm, m.period_s, m.bit_rpm_max, run.energy.balance_error
     );
     let consistent = DrillConfig { nonlinearity: Nonlinearity::Consistent, ..cfg.clone() };
     let mut best = [f64::INFINITY; 2];

@@ -34,6 +34,7 @@ pub mod metrics;
 pub mod modal;
 pub mod model;
 pub mod options;
+pub mod outputs;
 pub mod pde;
 mod schema;
 pub mod simd;

@@ -12,7 +12,8 @@ use drillstring_core as core;
 use drillstring_core::integrators::{self, Method, SolveOptions};
 use drillstring_core::interrupt::Interrupt;
 use drillstring_core::metrics::StickSlip;
-use drillstring_core::solution::{serialize_list, LIST};
+use drillstring_core::outputs::{MetricsView, Report, RunValues};
+use drillstring_core::solution::LIST;
 use drillstring_core::{Output, SecondOrderSystem, Solution};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::PyRuntimeError;
@@ -99,26 +100,12 @@ pub(crate) fn solution_dict<'py>(
     Ok(out)
 }
 
-/// Stick-slip metrics as Python sees them (`StickSlipDict` of `_core.pyi`): the metrics, or
-/// [`StickSlip::UNDEFINED`] for a window without any, and their `warnings`.
-#[derive(Serialize)]
-pub(crate) struct StickSlipReport<'a> {
-    #[serde(flatten)]
-    metrics: &'a StickSlip,
-    #[serde(serialize_with = "serialize_list")]
-    warnings: Vec<String>,
-}
-
-impl<'a> StickSlipReport<'a> {
-    pub(crate) fn new(metrics: Option<&'a StickSlip>) -> Self {
-        StickSlipReport::with_warnings(metrics, metrics.map_or_else(Vec::new, StickSlip::warnings))
-    }
-
-    /// The metrics with the warnings the core chose for them (a drilling run's
-    /// `DrillRun::metric_warnings`).
-    pub(crate) fn with_warnings(metrics: Option<&'a StickSlip>, warnings: Vec<String>) -> Self {
-        StickSlipReport { metrics: metrics.unwrap_or(&StickSlip::UNDEFINED), warnings }
-    }
+/// Stick-slip metrics as Python sees them: the registry's metrics of a series alone or the lumped
+/// model (`drillstring_core::outputs`), or [`StickSlip::UNDEFINED`]'s for a window without any,
+/// and their `warnings`.
+pub(crate) fn stick_slip_report(metrics: Option<&StickSlip>, report: Report) -> MetricsView<'_> {
+    let warnings = metrics.map_or_else(Vec::new, StickSlip::warnings);
+    MetricsView { run: RunValues::of(metrics.unwrap_or(&StickSlip::UNDEFINED)), report, warnings }
 }
 
 /// How often a solve running without the GIL re-attaches to run Python's signal handlers.

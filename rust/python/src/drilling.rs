@@ -9,9 +9,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::Serialize;
 
-use crate::convert::{
-    no_panic, reshape, to_dict, to_json_object, to_python, validation_error, SignalCheck, StickSlipReport,
-};
+use drillstring_core::metrics::StickSlip;
+use drillstring_core::outputs::{self, MetricsView, Report, RunValues};
+
+use crate::convert::{no_panic, reshape, to_dict, to_json_object, to_python, validation_error, SignalCheck};
 
 fn parse(py: Python<'_>, config_json: &str) -> PyResult<DrillConfig> {
     let cfg = DrillConfig::from_json(config_json).map_err(|e| validation_error(py, e))?;
@@ -77,32 +78,23 @@ pub(crate) fn drill_solve<'py>(
 }
 
 /// A run as `drill_solve` returns it: the run's series, status, energy and stats, and under
-/// `metrics` the stick-slip metrics with the window and break-off values.
+/// `metrics` its metrics of the registry (`drillstring_core::outputs`: the stick-slip metrics,
+/// the window asked for and the static torques) with their warnings.
 #[derive(Serialize)]
 struct RunOutput<'a> {
     #[serde(flatten)]
     run: &'a DrillRun,
-    metrics: RunMetrics<'a>,
-}
-
-#[derive(Serialize)]
-struct RunMetrics<'a> {
-    #[serde(flatten)]
-    stick_slip: StickSlipReport<'a>,
-    window_start: f64,
-    window_end: f64,
-    breakoff_torque: f64,
-    min_cycle_torque: f64,
+    metrics: MetricsView<'a>,
 }
 
 fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
-    let metrics = RunMetrics {
-        stick_slip: StickSlipReport::with_warnings(run.metrics.as_ref(), run.metric_warnings()),
-        window_start: run.window[0],
-        window_end: run.window[1],
+    let values = RunValues {
+        metrics: run.metrics.as_ref().unwrap_or(&StickSlip::UNDEFINED),
+        window: run.window,
         breakoff_torque: run.breakoff_torque,
         min_cycle_torque: run.min_cycle_torque,
     };
+    let metrics = MetricsView { run: values, report: Report::Drilling, warnings: run.metric_warnings() };
     let d = to_dict(py, &RunOutput { run: &run, metrics })?;
     let shape = [run.field_t.len(), run.z.len()];
     reshape(&d, "omega_field", shape)?;
@@ -156,9 +148,19 @@ pub(crate) fn drill_compare<'py>(
     to_python(py, &compare::compare(&a, &b))
 }
 
+/// Every output of a run, once (`drillstring_core::outputs::OUTPUTS`): a list of dicts with
+/// `name`, `unit` (SI as pint parses it, `""` dimensionless, None for a verdict, count or text),
+/// `definition`, `runs` (of `torsional`, `coupled`, `lumped`), `map_column`, `kind` (`number`,
+/// `verdict`, `count`, `text`, `series`), `tolerance` (`(kind, tolerance, floor)` of the grid and
+/// start checks, or None), `headline` and `stick_slip` (a metric of `stick_slip_metrics`).
+#[pyfunction]
+pub(crate) fn drill_outputs(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    to_python(py, &outputs::describe())
+}
+
 /// The tolerances of `drill_compare`: a list of `(metric, kind, tolerance, floor)`, kind `rel`,
 /// `abs` or `equal`, the floor a change that is within whatever its relative size.
 #[pyfunction]
 pub(crate) fn drill_compare_tolerances(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-    to_python(py, &compare::TOLERANCES.to_vec())
+    to_python(py, &compare::tolerances())
 }

@@ -83,6 +83,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_compare, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_compare_tolerances, m)?)?;
+    m.add_function(wrap_pyfunction!(drilling::drill_outputs, m)?)?;
     m.add_function(wrap_pyfunction!(config::drill_config_override, m)?)?;
     m.add_function(wrap_pyfunction!(config::drill_config_schema, m)?)?;
     m.add_function(wrap_pyfunction!(config::parameters_defaults, m)?)?;

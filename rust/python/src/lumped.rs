@@ -5,8 +5,10 @@ use drillstring_core::drilling::{self, lumped};
 use pyo3::prelude::*;
 use serde::Serialize;
 
-use crate::convert::{no_panic, to_json_object, to_python, validation_error, SignalCheck, StickSlipReport};
+use crate::convert::stick_slip_report;
+use crate::convert::{no_panic, to_json_object, to_python, validation_error, SignalCheck};
 use crate::drilling::Fraction;
+use drillstring_core::outputs::{MetricsView, Report};
 
 /// The default parameters and numerics as dicts of JSON values.
 #[pyfunction]
@@ -20,7 +22,7 @@ pub(crate) fn lumped_defaults(py: Python<'_>) -> PyResult<(Bound<'_, PyAny>, Bou
 struct RunOutput<'a> {
     #[serde(flatten)]
     run: &'a lumped::LumpedRun,
-    metrics: StickSlipReport<'a>,
+    metrics: MetricsView<'a>,
     stats: RunStats,
 }
 
@@ -62,7 +64,7 @@ pub(crate) fn lumped_solve<'py>(
     let run = solved.map_err(|e| validation_error(py, e))?;
 
     let stats = RunStats { steps: run.steps, sticks: run.sticks, slips: run.slips };
-    to_python(py, &RunOutput { run: &run, metrics: StickSlipReport::new(run.metrics.as_ref()), stats })
+    to_python(py, &RunOutput { run: &run, metrics: stick_slip_report(run.metrics.as_ref(), Report::Lumped), stats })
 }
 
 /// The steady rotations of the lumped model, their eigenvalues and stability, and the regime.

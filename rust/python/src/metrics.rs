@@ -6,7 +6,9 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArra
 use pyo3::prelude::*;
 use pyo3::types::PyBool;
 
-use crate::convert::{integer, no_panic, to_python, to_vec, validation_error, StickSlipReport};
+use drillstring_core::outputs::Report;
+
+use crate::convert::{integer, no_panic, stick_slip_report, to_python, to_vec, validation_error};
 
 /// `(frequencies, amplitudes)` of spectral peaks.
 type Peaks<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
@@ -126,7 +128,7 @@ pub(crate) fn stick_slip_metrics<'py>(
     let torque = motor_torque.map(|m| to_vec(&m));
     let m = no_panic(|| core::metrics::stick_slip(&t, &omega, torque.as_deref(), window, stick_speed))?
         .map_err(|e| validation_error(py, e))?;
-    to_python(py, &StickSlipReport::new(Some(&m)))
+    to_python(py, &stick_slip_report(Some(&m), Report::Series))
 }
 
 /// The static break-off torque of a well, N m: the trapezoidal integral of the friction limit

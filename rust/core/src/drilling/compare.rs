@@ -1,5 +1,5 @@
 //! Two runs of one configuration compared metric by metric, with the tolerances defined once
-//! ([`TOLERANCES`]): the grid check (`check_grid`, the run on twice the cells) and the start
+//! ([`tolerances`]): the grid check (`check_grid`, the run on twice the cells) and the start
 //! check (`check_start`, the run from rest against the run from the steady state,
 //! [`super::start::InitialState`]).
 //!
@@ -24,33 +24,17 @@ pub enum Kind {
 }
 
 /// How far each metric may move between the two runs of a check before it warns: the name,
-/// the kind and the tolerance. The torsional ones: the stuck fraction and the lowest bit speed
-/// as differences (a fraction, rpm), the others relative; the coupled ones: the means of ROP,
-/// weight and torque on bit within 2 %, the hook load within 1 % (it is mostly the string's
+/// the kind, the tolerance and the floor, each metric's in the registry of outputs
+/// ([`crate::outputs::Output::tolerance`]). The torsional ones: the stuck fraction and the lowest
+/// bit speed as differences (a fraction, rpm), the others relative; the coupled ones: the means of
+/// ROP, weight and torque on bit within 2 %, the hook load within 1 % (it is mostly the string's
 /// weight), MSE within 3 % (a ratio of two means), the bounce fraction within 0.02, the regime
-/// unchanged. The fourth column is a floor: a change at most this large (in the metric's unit)
-/// is within whatever its relative size (the SSI of two runs that hardly oscillate, 3e-5 and
-/// 1e-7, agree: both below 0.01).
-pub const TOLERANCES: [(&str, Kind, f64, f64); 18] = [
-    ("ssi", Kind::Rel, 0.05, 0.01),
-    ("stuck_fraction", Kind::Abs, 0.03, 0.0),
-    ("period_s", Kind::Rel, 0.02, 0.0),
-    ("bit_rpm_min", Kind::Abs, 1.0, 0.0),
-    ("bit_rpm_max", Kind::Rel, 0.05, 0.0),
-    ("bit_rpm_mean", Kind::Rel, 0.02, 0.0),
-    ("motor_torque_min_Nm", Kind::Rel, 0.03, 0.0),
-    ("motor_torque_max_Nm", Kind::Rel, 0.03, 0.0),
-    ("breakoff_torque_Nm", Kind::Rel, 0.001, 0.0),
-    ("stick_slip", Kind::Equal, 0.0, 0.0),
-    ("settled", Kind::Equal, 0.0, 0.0),
-    ("rop_mean_m_per_h", Kind::Rel, 0.02, 0.0),
-    ("wob_mean_N", Kind::Rel, 0.02, 0.0),
-    ("tob_mean_Nm", Kind::Rel, 0.02, 0.0),
-    ("hook_load_mean_N", Kind::Rel, 0.01, 0.0),
-    ("bounce_fraction", Kind::Abs, 0.02, 0.0),
-    ("mse_mean_Pa", Kind::Rel, 0.03, 0.0),
-    ("regime", Kind::Equal, 0.0, 0.0),
-];
+/// unchanged. The floor: a change at most this large (in the metric's unit) is within whatever
+/// its relative size (the SSI of two runs that hardly oscillate, 3e-5 and 1e-7, agree: both below
+/// 0.01).
+pub fn tolerances() -> Vec<(&'static str, Kind, f64, f64)> {
+    crate::outputs::tolerances()
+}
 
 /// A metric's value: a number (NaN: undefined; a verdict as 0 or 1) or a text.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -86,11 +70,11 @@ pub struct Row {
     pub within: bool,
 }
 
-/// The rows of [`TOLERANCES`] whose metric both `a` and `b` give, in its order.
+/// The rows of [`tolerances`] whose metric both `a` and `b` give, in its order.
 pub fn compare(a: &BTreeMap<String, Value>, b: &BTreeMap<String, Value>) -> Vec<Row> {
-    TOLERANCES
-        .iter()
-        .filter_map(|&(name, kind, tolerance, floor)| {
+    tolerances()
+        .into_iter()
+        .filter_map(|(name, kind, tolerance, floor)| {
             let (x, y) = (a.get(name)?, b.get(name)?);
             let (change, within) = match (x.defined(), y.defined()) {
                 (false, false) => (None, true),
@@ -179,7 +163,5 @@ mod tests {
         let rop = row("rop_mean_m_per_h");
         assert!(!rop.within && (rop.change.unwrap() + 0.192).abs() < 1e-12, "{rop:?}");
         assert_eq!((row("regime").within, row("regime").change), (false, Some(1.0)));
-        assert_eq!(TOLERANCES.iter().filter(|t| t.1 == Kind::Equal).count(), 3);
-        assert_eq!(TOLERANCES.iter().filter(|t| t.3 > 0.0).count(), 1);
     }
 }

@@ -818,7 +818,7 @@ mod tests {
         let r = run(&p, &num);
         let m = r.metrics.unwrap();
         assert!(r.sticks >= 10 && r.slips >= 10, "{} {}", r.sticks, r.slips);
-        assert!(m.stuck_fraction > 0.1 && m.severity >= 1.0, "{m:?}");
+        assert!(m.stuck_fraction > 0.1 && m.ssi >= 1.0, "{m:?}");
         assert!(r.energy.balance_error.abs() < 1e-9, "{:?}", r.energy);
         // Stuck samples: exactly at rest with the applied torque within the static limit.
         for k in 0..r.t.len() {
@@ -898,8 +898,8 @@ mod step_tests {
         let coarse = LumpedNumerics { dt, ..LumpedNumerics::default() };
         let coarse = solve_lumped(&p, &coarse, &Never, &mut |_| {}).unwrap();
         let (a, b) = (fine.metrics.unwrap(), coarse.metrics.unwrap());
-        assert!((a.severity - 1.2158).abs() < 1e-3, "{}", a.severity);
-        assert!((a.severity - b.severity).abs() < 1e-4 * a.severity, "{} vs {}", a.severity, b.severity);
+        assert!((a.ssi - 1.2158).abs() < 1e-3, "{}", a.ssi);
+        assert!((a.ssi - b.ssi).abs() < 1e-4 * a.ssi, "{} vs {}", a.ssi, b.ssi);
         assert!((a.stuck_fraction - b.stuck_fraction).abs() < 1e-4, "{a:?} {b:?}");
     }
 }

@@ -24,7 +24,6 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use serde_json::Value;
 
-use super::axial::regime::Regime;
 pub use super::config::{apply_overrides, set_path, Override};
 use super::config::{override_pairs, DrillConfig, SERIES};
 use super::effect::no_effect;
@@ -33,6 +32,7 @@ use super::solver::{solve, DrillStats};
 use crate::error::{Error, Result};
 use crate::interrupt::{CancelFlag, Interrupt};
 use crate::metrics::StickSlip;
+use crate::outputs::{coupled_columns, metric_columns, Columns, RunValues};
 use crate::solution::Status;
 use crate::sweep::batch::run_on_pool;
 use crate::sweep::{resolve_threads, RunStatus};
@@ -60,60 +60,18 @@ pub struct MapRow {
 /// The rows of a map as the columns of its table: one entry per run. A run without metrics
 /// (refused, failed, interrupted) has NaN in every metric column; the verdicts `stick_slip` and
 /// `settled` are 1 or 0 (NaN without metrics), so that every metric column but the three-way
-/// `verdict` (its name) is a float column.
+/// `stick_slip_verdict` (its name) is a float column. The metric and coupled columns are the
+/// registry's ([`crate::outputs::metric_columns`], [`crate::outputs::coupled_columns`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct MapColumns {
     /// The run's status name (`success`, `invalid`, ...).
     pub status: Vec<&'static str>,
     pub message: Vec<String>,
-    pub metrics: MetricColumns,
+    pub metrics: Columns,
     pub stats: StatColumns,
     /// A coupled run's metrics (NaN, regime `undetermined`, for a run without them: a
     /// torsion-only or failed run).
-    pub coupled: CoupledColumns,
-}
-
-/// The coupled columns of [`MapColumns`] (the names of [`CoupledMetrics`] in metrics.json).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct CoupledColumns {
-    pub rop_mean_m_per_h: Vec<f64>,
-    #[serde(rename = "wob_mean_N")]
-    pub wob_mean_n: Vec<f64>,
-    #[serde(rename = "tob_mean_Nm")]
-    pub tob_mean_nm: Vec<f64>,
-    pub bounce_fraction: Vec<f64>,
-    #[serde(rename = "hook_load_mean_N")]
-    pub hook_load_mean_n: Vec<f64>,
-    #[serde(rename = "mse_mean_Pa")]
-    pub mse_mean_pa: Vec<f64>,
-    /// The regime's name ([`Regime::name`]).
-    pub regime: Vec<&'static str>,
-}
-
-/// The metric columns of [`MapColumns`] (the names of [`StickSlip`]).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct MetricColumns {
-    pub t_start: Vec<f64>,
-    pub t_end: Vec<f64>,
-    pub window_start: Vec<f64>,
-    pub window_end: Vec<f64>,
-    pub severity: Vec<f64>,
-    pub stuck_fraction: Vec<f64>,
-    pub rpm_min: Vec<f64>,
-    pub rpm_max: Vec<f64>,
-    pub rpm_mean: Vec<f64>,
-    pub torque_min: Vec<f64>,
-    pub torque_max: Vec<f64>,
-    pub cycle_period: Vec<f64>,
-    pub period_cycles: Vec<f64>,
-    pub periodicity: Vec<f64>,
-    pub slip_period: Vec<f64>,
-    pub stick_slip: Vec<f64>,
-    pub settled: Vec<f64>,
-    /// The three-way verdict's name (`yes`, `no`, `undetermined`; `undetermined` without metrics).
-    pub verdict: Vec<&'static str>,
-    pub breakoff_torque: Vec<f64>,
-    pub min_cycle_torque: Vec<f64>,
+    pub coupled: Columns,
 }
 
 /// The solver columns of [`MapColumns`].
@@ -128,41 +86,24 @@ pub struct StatColumns {
 
 impl MapColumns {
     pub fn new(rows: &[MapRow]) -> MapColumns {
-        let metric = |f: fn(&StickSlip) -> f64| -> Vec<f64> {
-            rows.iter().map(|r| r.metrics.as_ref().map_or(f64::NAN, f)).collect()
-        };
         let row = |f: fn(&MapRow) -> f64| -> Vec<f64> { rows.iter().map(f).collect() };
-        let coupled = |f: fn(&CoupledMetrics) -> f64| -> Vec<f64> {
-            rows.iter().map(|r| r.coupled.as_ref().map_or(f64::NAN, f)).collect()
-        };
+        let values: Vec<(bool, RunValues<'_>)> = rows
+            .iter()
+            .map(|r| {
+                let values = RunValues {
+                    metrics: r.metrics.as_ref().unwrap_or(&StickSlip::UNDEFINED),
+                    window: r.window,
+                    breakoff_torque: r.breakoff_torque,
+                    min_cycle_torque: r.min_cycle_torque,
+                };
+                (r.metrics.is_some(), values)
+            })
+            .collect();
+        let coupled: Vec<Option<CoupledMetrics>> = rows.iter().map(|r| r.coupled).collect();
         MapColumns {
             status: rows.iter().map(|r| r.status.name()).collect(),
             message: rows.iter().map(|r| r.message.clone()).collect(),
-            metrics: MetricColumns {
-                t_start: metric(|s| s.t_start),
-                t_end: metric(|s| s.t_end),
-                window_start: row(|r| r.window[0]),
-                window_end: row(|r| r.window[1]),
-                severity: metric(|s| s.severity),
-                stuck_fraction: metric(|s| s.stuck_fraction),
-                rpm_min: metric(|s| s.rpm_min),
-                rpm_max: metric(|s| s.rpm_max),
-                rpm_mean: metric(|s| s.rpm_mean),
-                torque_min: metric(|s| s.torque_min),
-                torque_max: metric(|s| s.torque_max),
-                cycle_period: metric(|s| s.cycle_period),
-                period_cycles: metric(|s| s.period_cycles),
-                periodicity: metric(|s| s.periodicity),
-                slip_period: metric(|s| s.slip_period),
-                stick_slip: metric(|s| f64::from(u8::from(s.stick_slip))),
-                settled: metric(|s| f64::from(u8::from(s.settled))),
-                verdict: rows
-                    .iter()
-                    .map(|r| r.metrics.as_ref().map_or(StickSlip::UNDEFINED.verdict, |s| s.verdict).name())
-                    .collect(),
-                breakoff_torque: row(|r| r.breakoff_torque),
-                min_cycle_torque: row(|r| r.min_cycle_torque),
-            },
+            metrics: metric_columns(&values),
             stats: StatColumns {
                 cells: rows.iter().map(|r| r.stats.cells as u64).collect(),
                 steps: rows.iter().map(|r| r.stats.steps).collect(),
@@ -170,15 +111,7 @@ impl MapColumns {
                 balance_error: row(|r| r.balance_error),
                 courant_peak: row(|r| r.stats.courant_peak),
             },
-            coupled: CoupledColumns {
-                rop_mean_m_per_h: coupled(|c| c.rop_mean_m_per_h),
-                wob_mean_n: coupled(|c| c.wob_mean_n),
-                tob_mean_nm: coupled(|c| c.tob_mean_nm),
-                bounce_fraction: coupled(|c| c.bounce_fraction),
-                hook_load_mean_n: coupled(|c| c.hook_load_mean_n),
-                mse_mean_pa: coupled(|c| c.mse_mean_pa),
-                regime: rows.iter().map(|r| r.coupled.map_or(Regime::Undetermined, |c| c.regime).name()).collect(),
-            },
+            coupled: coupled_columns(&coupled),
         }
     }
 }
@@ -428,6 +361,7 @@ pub fn run_one(cfg: &DrillConfig, cancel: &CancelFlag) -> MapRow {
 mod tests {
     use super::*;
     use crate::interrupt::Never;
+    use crate::outputs::Column;
     use serde_json::json;
 
     fn base() -> String {
@@ -482,12 +416,19 @@ mod tests {
             assert!(row.status.is_success(), "{}", row.message);
             let c = single.coupled.unwrap();
             assert_eq!(row.coupled, Some(c));
-            assert_eq!((columns.coupled.wob_mean_n[k], columns.coupled.regime[k]), (c.wob_mean_n, c.regime.name()));
+            assert_eq!(
+                columns.coupled.get("wob_mean_N"),
+                Some(&Column::Numbers(vec![rows[0].coupled.unwrap().wob_mean_n, rows[1].coupled.unwrap().wob_mean_n]))
+            );
+            let Some(Column::Texts(regime)) = columns.coupled.get("regime") else { panic!("no regime column") };
+            assert_eq!((k, regime[k].as_ref()), (k, c.regime.name()));
         }
         // A torsion-only map: NaN and undetermined.
         let rows = solve_map(&super::tests::base(), &[vec![]], Some(1), None, &Never, &mut |_, _| {}).unwrap();
         let columns = MapColumns::new(&rows);
-        assert!(columns.coupled.rop_mean_m_per_h[0].is_nan() && columns.coupled.regime[0] == "undetermined");
+        let Some(Column::Numbers(rop)) = columns.coupled.get("rop_mean_m_per_h") else { panic!("no ROP column") };
+        let Some(Column::Texts(regime)) = columns.coupled.get("regime") else { panic!("no regime column") };
+        assert!(rop[0].is_nan() && regime[0] == "undetermined");
     }
 
     #[test]

@@ -332,20 +332,12 @@ pub fn torque_limit_verdict(cfg: &DrillConfig, share: f64) -> Option<(String, St
     Some((warning, format!("motor torque at its limit {percent} of the window")))
 }
 
-/// The headline metrics a run reports as its result (the drilling names) with their values:
-/// the severity (`ssi`), the stuck fraction, the bit speed's min, max and mean and the motor
-/// torque's min and max; each is finite in a run that has metrics. (The period and what depends
-/// on it are NaN by definition without a periodic motion.)
-fn headline(m: &StickSlip) -> [(&'static str, f64); 7] {
-    [
-        ("ssi", m.severity),
-        ("stuck_fraction", m.stuck_fraction),
-        ("bit_rpm_min", m.rpm_min),
-        ("bit_rpm_max", m.rpm_max),
-        ("bit_rpm_mean", m.rpm_mean),
-        ("motor_torque_min_Nm", m.torque_min),
-        ("motor_torque_max_Nm", m.torque_max),
-    ]
+/// The headline metrics a run reports as its result with their values
+/// ([`crate::outputs::Output::headline`]: the severity, the stuck fraction, the bit speed's and
+/// the motor torque's extremes); each is finite in a run that has metrics. (The period and what
+/// depends on it are NaN by definition without a periodic motion.)
+fn headline(m: &StickSlip) -> Vec<(&'static str, f64)> {
+    crate::outputs::headline_values(m)
 }
 
 /// The names of the headline metrics ([`headline`]) that are not finite.
@@ -468,7 +460,7 @@ mod tests {
         let run = super::super::solve(&cfg, &Never, &mut |_| {}).unwrap();
         let m = run.metrics.as_ref().unwrap();
         let free = torque_limit_share(&run.t, &run.motor_torque, run.window, cfg.top_drive.torque_limit);
-        assert_eq!((m.verdict, free), (crate::metrics::Verdict::Yes, 0.0), "{:?}", m.verdict_reason);
+        assert_eq!((m.stick_slip_verdict, free), (crate::metrics::Verdict::Yes, 0.0), "{:?}", m.stick_slip_reason);
         assert!(!run.warnings.iter().any(|w| w.contains("at its limit")), "{:?}", run.warnings);
         // a limit of 4.2 kN m, just over the break-off torque (4.17 kN m): the wind-up rests on it
         cfg.top_drive.torque_limit = 4200.0;
@@ -477,8 +469,8 @@ mod tests {
         assert!(share > TORQUE_LIMIT_SHARE, "{share}");
         let m = run.metrics.as_ref().unwrap();
         let percent = format!("{:.0} %", 100.0 * share);
-        assert_eq!(m.verdict, crate::metrics::Verdict::Undetermined);
-        assert_eq!(m.verdict_reason, format!("motor torque at its limit {percent} of the window"));
+        assert_eq!(m.stick_slip_verdict, crate::metrics::Verdict::Undetermined);
+        assert_eq!(m.stick_slip_reason, format!("motor torque at its limit {percent} of the window"));
         let w = run.warnings.iter().find(|w| w.contains("top_drive.torque_limit = 4200 N m,")).expect("warned");
         assert!(w.contains(&percent), "{w}");
         // an imposed speed does not use the limit
@@ -510,7 +502,7 @@ mod tests {
         let run = super::super::solve(&cfg, &Never, &mut |_| {}).unwrap();
         assert_eq!(run.status, crate::solution::Status::Success);
         let m = run.metrics.as_ref().unwrap();
-        assert!(m.severity.is_nan());
+        assert!(m.ssi.is_nan());
         assert_eq!(non_finite_metrics(m), vec!["ssi"]);
         assert!(!run.metrics_finite);
         assert!(

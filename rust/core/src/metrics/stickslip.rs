@@ -21,6 +21,9 @@
 //!     speed rising through `stick_speed` in the direction of its mean, linearly
 //!     interpolated, for a slip that carries it above its mean speed), NaN with fewer than
 //!     three;
+//!   - `stick_duration_mean_s` ([`stick_duration_mean`]): the mean duration of the bit's stick
+//!     phases (the maximal intervals with `|omega_bit| <= stick_speed` of the piecewise-linear
+//!     series) that begin and end inside the window, NaN without a complete one;
 //!   - the verdict `stick_slip`: the bit stops (`|omega_bit| <= stick_speed`) during part of
 //!     the window, neither never nor always (stuck fraction strictly between 0 and 1);
 //!   - the three-way verdict [`Verdict`] with its reason ([`verdict`], the criterion stated by
@@ -113,38 +116,42 @@ const RPM_PER_RAD_S: f64 = 60.0 / (2.0 * std::f64::consts::PI);
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StickSlip {
     /// First and last sample time in the window, s.
-    pub t_start: f64,
-    pub t_end: f64,
+    pub window_start: f64,
+    pub window_end: f64,
     /// `(max - min) / (2 |mean|)` of the bit speed; NaN when the mean is 0.
-    pub severity: f64,
+    pub ssi: f64,
     /// Fraction of the window's time with `|omega_bit| <= stick_speed`.
     pub stuck_fraction: f64,
-    pub rpm_min: f64,
-    pub rpm_max: f64,
+    pub bit_rpm_min: f64,
+    pub bit_rpm_max: f64,
     /// Time-weighted (trapezoidal) mean, rpm.
-    pub rpm_mean: f64,
+    pub bit_rpm_mean: f64,
     /// NaN without a motor torque series.
-    pub torque_min: f64,
-    pub torque_max: f64,
+    #[serde(rename = "motor_torque_min_Nm")]
+    pub motor_torque_min_nm: f64,
+    #[serde(rename = "motor_torque_max_Nm")]
+    pub motor_torque_max_nm: f64,
     /// The autocorrelation period of the motor torque (see the module), s; NaN with fewer than
     /// two cycles in the window, without a clear peak or without a torque series.
-    pub cycle_period: f64,
+    pub period_s: f64,
     /// The window's length in periods (NaN without a period).
     pub period_cycles: f64,
     /// The normalised autocorrelation at the period (1: exactly periodic; NaN without one).
     pub periodicity: f64,
     /// Mean interval between the bit's slip onsets, s (NaN with fewer than three onsets).
-    pub slip_period: f64,
+    pub slip_period_s: f64,
     /// Slip onsets of the bit in the window.
     pub slip_onsets: usize,
+    /// Mean duration of the complete stick phases in the window, s ([`stick_duration_mean`]).
+    pub stick_duration_mean_s: f64,
     /// The bit stops during part of the window (stuck fraction strictly between 0 and 1).
     pub stick_slip: bool,
     /// The window holds a steady regime (see the module).
     pub settled: bool,
     /// The three-way verdict ([`verdict`]) and its reason (a drilling run may overrule it with
     /// its own, e.g. a motor at its torque limit: `drilling::plausibility::torque_limit_verdict`).
-    pub verdict: Verdict,
-    pub verdict_reason: Cow<'static, str>,
+    pub stick_slip_verdict: Verdict,
+    pub stick_slip_reason: Cow<'static, str>,
 }
 
 /// Most samples the period estimator uses: a longer window is resampled to this many (the
@@ -160,24 +167,25 @@ impl StickSlip {
     /// What a window without metrics (fewer than 2 samples) reports: NaN values, no slip
     /// onsets, neither verdict.
     pub const UNDEFINED: StickSlip = StickSlip {
-        t_start: f64::NAN,
-        t_end: f64::NAN,
-        severity: f64::NAN,
+        window_start: f64::NAN,
+        window_end: f64::NAN,
+        ssi: f64::NAN,
         stuck_fraction: f64::NAN,
-        rpm_min: f64::NAN,
-        rpm_max: f64::NAN,
-        rpm_mean: f64::NAN,
-        torque_min: f64::NAN,
-        torque_max: f64::NAN,
-        cycle_period: f64::NAN,
+        bit_rpm_min: f64::NAN,
+        bit_rpm_max: f64::NAN,
+        bit_rpm_mean: f64::NAN,
+        motor_torque_min_nm: f64::NAN,
+        motor_torque_max_nm: f64::NAN,
+        period_s: f64::NAN,
         period_cycles: f64::NAN,
         periodicity: f64::NAN,
-        slip_period: f64::NAN,
+        slip_period_s: f64::NAN,
         slip_onsets: 0,
+        stick_duration_mean_s: f64::NAN,
         stick_slip: false,
         settled: false,
-        verdict: Verdict::Undetermined,
-        verdict_reason: Cow::Borrowed("no metrics in the window"),
+        stick_slip_verdict: Verdict::Undetermined,
+        stick_slip_reason: Cow::Borrowed("no metrics in the window"),
     };
 
     /// Short sentences on what in these metrics cannot be trusted as they stand (empty when
@@ -191,27 +199,27 @@ impl StickSlip {
                     .to_string(),
             );
         }
-        if self.severity.is_nan() {
+        if self.ssi.is_nan() {
             out.push("ssi undefined: the bit's mean speed over the window is 0".to_string());
         }
         if self.stuck_fraction >= 1.0 {
             out.push("the bit never turns in the window (stuck throughout)".to_string());
         }
-        if self.cycle_period.is_nan()
+        if self.period_s.is_nan()
             && self.stuck_fraction < 1.0
-            && self.torque_max.is_finite()
-            && self.torque_max > self.torque_min
+            && self.motor_torque_max_nm.is_finite()
+            && self.motor_torque_max_nm > self.motor_torque_min_nm
         {
             out.push("period_s undefined: the window holds fewer than two cycles, or no periodic motion".to_string());
         }
-        if self.cycle_period.is_finite()
-            && self.slip_period.is_finite()
-            && (self.slip_period - self.cycle_period).abs() > PERIOD_AGREEMENT * self.cycle_period
+        if self.period_s.is_finite()
+            && self.slip_period_s.is_finite()
+            && (self.slip_period_s - self.period_s).abs() > PERIOD_AGREEMENT * self.period_s
         {
             out.push(format!(
                 "period_s = {} s and the mean interval between slip onsets, {} s, differ by more than {} %",
-                Num(self.cycle_period),
-                Num(self.slip_period),
+                Num(self.period_s),
+                Num(self.slip_period_s),
                 100.0 * PERIOD_AGREEMENT
             ));
         }
@@ -270,6 +278,52 @@ fn time_within(t: &[f64], x: &[f64], s: f64) -> f64 {
             (hi - lo).max(0.0) * dt
         })
         .sum()
+}
+
+/// The mean duration of the stick phases of `x` over `t` (the linear interpolant): the maximal
+/// intervals with `|x| <= s` that begin after the first sample and end before the last (a phase
+/// cut by the window's ends is not complete; a touch of no duration is no phase); NaN without
+/// one. Their durations and the cut phases' parts add up to [`time_within`].
+pub fn stick_duration_mean(t: &[f64], x: &[f64], s: f64) -> f64 {
+    let (mut total, mut count) = (0.0, 0usize);
+    // the current phase's start, and whether it began at the first sample (cut by the window)
+    let mut phase: Option<(f64, bool)> = None;
+    for (k, (t, x)) in t.windows(2).zip(x.windows(2)).enumerate() {
+        let (u, v, dt) = (x[0], x[1], t[1] - t[0]);
+        let (lo, hi) = if u == v {
+            if u.abs() <= s {
+                (0.0, 1.0)
+            } else {
+                (1.0, 0.0)
+            }
+        } else {
+            let (a, b) = ((-s - u) / (v - u), (s - u) / (v - u));
+            (a.min(b).max(0.0), a.max(b).min(1.0))
+        };
+        // slipping throughout the segment: a phase still open ended at its start
+        let (start, end) = if lo > hi {
+            match phase {
+                Some(start) => (start, t[0]),
+                None => continue,
+            }
+        } else {
+            let start = *phase.get_or_insert((t[0] + lo * dt, k == 0 && lo == 0.0));
+            if hi == 1.0 {
+                continue; // the phase goes on
+            }
+            (start, t[0] + hi * dt)
+        };
+        if !start.1 && end > start.0 {
+            total += end - start.0;
+            count += 1;
+        }
+        phase = None;
+    }
+    if count == 0 {
+        f64::NAN
+    } else {
+        total / count as f64
+    }
 }
 
 /// A vector of `n` zeros, or None when the memory cannot be had.
@@ -541,24 +595,25 @@ pub fn stick_slip(
     let growing = !settled && growing(tw, w, cycle_period, stick_speed);
     let (verdict, verdict_reason) = verdict(stuck_fraction, severity, settled, growing);
     Ok(StickSlip {
-        t_start: tw[0],
-        t_end: tw[tw.len() - 1],
-        severity,
+        window_start: tw[0],
+        window_end: tw[tw.len() - 1],
+        ssi: severity,
         stuck_fraction,
-        rpm_min: min * RPM_PER_RAD_S,
-        rpm_max: max * RPM_PER_RAD_S,
-        rpm_mean: mean * RPM_PER_RAD_S,
-        torque_min,
-        torque_max,
-        cycle_period,
+        bit_rpm_min: min * RPM_PER_RAD_S,
+        bit_rpm_max: max * RPM_PER_RAD_S,
+        bit_rpm_mean: mean * RPM_PER_RAD_S,
+        motor_torque_min_nm: torque_min,
+        motor_torque_max_nm: torque_max,
+        period_s: cycle_period,
         period_cycles: span / cycle_period,
         periodicity,
-        slip_period,
+        slip_period_s: slip_period,
         slip_onsets,
+        stick_duration_mean_s: stick_duration_mean(tw, w, stick_speed),
         stick_slip: stuck_fraction > 0.0 && stuck_fraction < 1.0,
         settled,
-        verdict,
-        verdict_reason: Cow::Borrowed(verdict_reason),
+        stick_slip_verdict: verdict,
+        stick_slip_reason: Cow::Borrowed(verdict_reason),
     })
 }
 
@@ -604,12 +659,12 @@ mod tests {
         let crossings = t.windows(2).zip(torque.windows(2)).filter(|(_, x)| x[0] < mean && x[1] >= mean).count();
         assert!(crossings >= 12, "{crossings} upward crossings: the wiggle must cross the mean more than once a cycle");
         let m = stick_slip(&t, &w, Some(&torque), None, STICK_SPEED).unwrap();
-        assert!((m.cycle_period - period).abs() < 1e-6 * period, "{}", m.cycle_period);
+        assert!((m.period_s - period).abs() < 1e-6 * period, "{}", m.period_s);
         assert!(m.periodicity > 0.999 && (m.period_cycles - 6.0).abs() < 1e-5, "{m:?}");
         // the same on a non-uniform grid (the spectral estimate resamples)
         let tn: Vec<f64> = t.iter().map(|&t| t + 0.003 * (t * 7.0).sin()).collect();
         let m = stick_slip(&tn, &w, Some(&torque), None, STICK_SPEED).unwrap();
-        assert!((m.cycle_period - period).abs() < 2e-3 * period, "{}", m.cycle_period);
+        assert!((m.period_s - period).abs() < 2e-3 * period, "{}", m.period_s);
     }
 
     #[test]
@@ -620,14 +675,14 @@ mod tests {
         let w: Vec<f64> = t.iter().map(|t| w0 * (1.0 + a * (2.0 * PI * f * t).sin())).collect();
         let torque: Vec<f64> = t.iter().map(|t| 5.0 + 3.0 * (2.0 * PI * f * t).cos()).collect();
         let m = stick_slip(&t, &w, Some(&torque), None, STICK_SPEED).unwrap();
-        assert!((m.severity - a).abs() < 1e-6, "{}", m.severity);
+        assert!((m.ssi - a).abs() < 1e-6, "{}", m.ssi);
         assert_eq!(m.stuck_fraction, 0.0);
-        assert!((m.rpm_mean - w0 * RPM_PER_RAD_S).abs() < 1e-9);
-        assert!((m.rpm_max - w0 * (1.0 + a) * RPM_PER_RAD_S).abs() < 1e-6);
-        assert!((m.torque_min - 2.0).abs() < 1e-6 && (m.torque_max - 8.0).abs() < 1e-6);
-        assert!((m.cycle_period - 1.0 / f).abs() < 1e-7, "{}", m.cycle_period);
-        assert!(m.settled && !m.stick_slip && m.slip_onsets == 0 && m.slip_period.is_nan(), "{m:?}");
-        assert!(stick_slip(&t, &w, None, None, STICK_SPEED).unwrap().cycle_period.is_nan());
+        assert!((m.bit_rpm_mean - w0 * RPM_PER_RAD_S).abs() < 1e-9);
+        assert!((m.bit_rpm_max - w0 * (1.0 + a) * RPM_PER_RAD_S).abs() < 1e-6);
+        assert!((m.motor_torque_min_nm - 2.0).abs() < 1e-6 && (m.motor_torque_max_nm - 8.0).abs() < 1e-6);
+        assert!((m.period_s - 1.0 / f).abs() < 1e-7, "{}", m.period_s);
+        assert!(m.settled && !m.stick_slip && m.slip_onsets == 0 && m.slip_period_s.is_nan(), "{m:?}");
+        assert!(stick_slip(&t, &w, None, None, STICK_SPEED).unwrap().period_s.is_nan());
     }
 
     /// The three-way verdict on series whose stuck fraction, SSI and settling are known by
@@ -639,26 +694,26 @@ mod tests {
         // clipped sine (stuck a third of each cycle): yes, and the boolean agrees
         let clipped: Vec<f64> = t.iter().map(|t| (10.0 * (1.0 + 2.0 * (2.0 * PI * t).sin())).max(0.0)).collect();
         let m = verdict_of(&clipped);
-        assert!(m.stick_slip && m.verdict == Verdict::Yes, "{m:?}");
+        assert!(m.stick_slip && m.stick_slip_verdict == Verdict::Yes, "{m:?}");
         // steady sine with SSI 0.6, never stuck, settled: no
         let soft: Vec<f64> = t.iter().map(|t| 10.0 * (1.0 + 0.6 * (2.0 * PI * t).sin())).collect();
         let m = verdict_of(&soft);
-        assert!(m.severity < 1.0 && m.stuck_fraction == 0.0 && m.settled, "{m:?}");
-        assert_eq!((m.verdict, m.verdict.name()), (Verdict::No, "no"));
+        assert!(m.ssi < 1.0 && m.stuck_fraction == 0.0 && m.settled, "{m:?}");
+        assert_eq!((m.stick_slip_verdict, m.stick_slip_verdict.name()), (Verdict::No, "no"));
         // an amplitude growing through the window: not settled, undetermined; decaying: no
         let growing: Vec<f64> = t.iter().map(|t| 10.0 * (1.0 + 0.06 * t * (2.0 * PI * t).sin())).collect();
         let m = verdict_of(&growing);
-        assert!(!m.settled && m.stuck_fraction == 0.0 && m.verdict == Verdict::Undetermined, "{m:?}");
+        assert!(!m.settled && m.stuck_fraction == 0.0 && m.stick_slip_verdict == Verdict::Undetermined, "{m:?}");
         let decaying: Vec<f64> = t.iter().map(|t| 10.0 * (1.0 + 0.06 * (10.0 - t) * (2.0 * PI * t).sin())).collect();
         let m = verdict_of(&decaying);
-        assert!(!m.settled && m.severity < 1.0 && m.verdict == Verdict::No, "{m:?}");
+        assert!(!m.settled && m.ssi < 1.0 && m.stick_slip_verdict == Verdict::No, "{m:?}");
         // SSI above 1 without a stop (tall narrow spikes on a slow turn)
         let spiky: Vec<f64> = t.iter().map(|t| 1.0 + 30.0 * (2.0 * PI * t).sin().max(0.0).powi(8)).collect();
         let m = verdict_of(&spiky);
-        assert!(m.severity > 1.0 && m.stuck_fraction == 0.0 && m.verdict == Verdict::Undetermined, "{m:?}");
+        assert!(m.ssi > 1.0 && m.stuck_fraction == 0.0 && m.stick_slip_verdict == Verdict::Undetermined, "{m:?}");
         // stuck throughout, and a window with a zero mean speed
-        assert_eq!(verdict_of(&vec![0.0; t.len()]).verdict, Verdict::Undetermined);
-        assert_eq!(StickSlip::UNDEFINED.verdict, Verdict::Undetermined);
+        assert_eq!(verdict_of(&vec![0.0; t.len()]).stick_slip_verdict, Verdict::Undetermined);
+        assert_eq!(StickSlip::UNDEFINED.stick_slip_verdict, Verdict::Undetermined);
         assert_eq!(verdict(f64::NAN, 0.5, true, false).0, Verdict::Undetermined);
         assert_eq!(verdict(0.0, f64::NAN, true, false).0, Verdict::Undetermined);
         assert_eq!(verdict(0.2, f64::NAN, false, true).0, Verdict::Yes);
@@ -679,8 +734,8 @@ mod tests {
         assert!((m.stuck_fraction - expected).abs() < 3e-4, "{} vs {expected}", m.stuck_fraction);
         // mean of max(0, 1 + a sin) over a period: (sqrt(a^2 - 1) + (pi - arccos(1/a))) / pi
         let mean = w0 * ((a * a - 1.0).sqrt() + PI - (1.0 / a).acos()) / PI;
-        assert!((m.rpm_mean / RPM_PER_RAD_S - mean).abs() < 1e-4 * mean);
-        assert!((m.severity - w0 * (1.0 + a) / (2.0 * mean)).abs() < 1e-4);
+        assert!((m.bit_rpm_mean / RPM_PER_RAD_S - mean).abs() < 1e-4 * mean);
+        assert!((m.ssi - w0 * (1.0 + a) / (2.0 * mean)).abs() < 1e-4);
     }
 
     #[test]
@@ -690,17 +745,17 @@ mod tests {
         let w: Vec<f64> = t.iter().map(|t| if t.fract() < 0.25 { 0.0 } else { 4.0 }).collect();
         let m = stick_slip(&t, &w, Some(&w), Some((0.0, 3.9999)), STICK_SPEED).unwrap();
         assert!((m.stuck_fraction - 0.25).abs() < 1e-3, "{}", m.stuck_fraction);
-        assert!((m.severity - 4.0 / (2.0 * 3.0)).abs() < 2e-3, "{}", m.severity);
-        assert!((m.cycle_period - 1.0).abs() < 1e-4, "{}", m.cycle_period);
+        assert!((m.ssi - 4.0 / (2.0 * 3.0)).abs() < 2e-3, "{}", m.ssi);
+        assert!((m.period_s - 1.0).abs() < 1e-4, "{}", m.period_s);
         // slip onsets at 0.25 + k (k = 0..3): three intervals of 1 s
         assert_eq!(m.slip_onsets, 4);
-        assert!((m.slip_period - 1.0).abs() < 1e-9 && m.stick_slip && m.settled, "{m:?}");
+        assert!((m.slip_period_s - 1.0).abs() < 1e-9 && m.stick_slip && m.settled, "{m:?}");
         let late = stick_slip(&t, &w, None, Some((2.5, 2.9)), STICK_SPEED).unwrap();
-        assert_eq!((late.stuck_fraction, late.t_start), (0.0, 2.5));
-        assert!((late.t_end - 2.9).abs() < 1e-12);
-        assert!(late.severity.abs() < 1e-15);
+        assert_eq!((late.stuck_fraction, late.window_start), (0.0, 2.5));
+        assert!((late.window_end - 2.9).abs() < 1e-12);
+        assert!(late.ssi.abs() < 1e-15);
         let zero = stick_slip(&t, &vec![0.0; t.len()], None, None, STICK_SPEED).unwrap();
-        assert!(zero.severity.is_nan());
+        assert!(zero.ssi.is_nan());
         assert_eq!(zero.stuck_fraction, 1.0);
     }
 
@@ -722,14 +777,14 @@ mod tests {
         let w: Vec<f64> = torque.iter().map(|v| (2.0 * (v - 0.3)).max(0.0)).collect();
         for start in [20.0, 20.7, 25.0, 30.0, 33.3] {
             let m = stick_slip(&t, &w, Some(&torque), Some((start, 60.0)), STICK_SPEED).unwrap();
-            assert!((m.cycle_period - period).abs() < 1e-4 * period, "start {start}: {}", m.cycle_period);
-            assert!((m.slip_period - period).abs() < 1e-3 * period, "start {start}: {}", m.slip_period);
+            assert!((m.period_s - period).abs() < 1e-4 * period, "start {start}: {}", m.period_s);
+            assert!((m.slip_period_s - period).abs() < 1e-3 * period, "start {start}: {}", m.slip_period_s);
             assert!(m.settled && m.stick_slip, "start {start}: {m:?}");
             assert!(m.warnings().is_empty(), "{:?}", m.warnings());
         }
         // 1.9 cycles: no period, and a warning says why
         let m = stick_slip(&t, &w, Some(&torque), Some((40.0, 40.0 + 1.9 * period)), STICK_SPEED).unwrap();
-        assert!(m.cycle_period.is_nan() && m.period_cycles.is_nan(), "{m:?}");
+        assert!(m.period_s.is_nan() && m.period_cycles.is_nan(), "{m:?}");
         assert!(m.warnings().iter().any(|s| s.contains("fewer than two cycles")), "{:?}", m.warnings());
     }
 
@@ -743,11 +798,49 @@ mod tests {
         let m = stick_slip(&t, &decaying, Some(&decaying), Some((10.0, 40.0)), STICK_SPEED).unwrap();
         assert!(!m.settled && m.warnings().iter().any(|s| s.starts_with("not settled")), "{m:?}");
         let m = stick_slip(&t, &steady, Some(&steady), Some((10.0, 40.0)), STICK_SPEED).unwrap();
-        assert!(m.settled && (m.cycle_period - 3.0).abs() < 1e-6, "{m:?}");
+        assert!(m.settled && (m.period_s - 3.0).abs() < 1e-6, "{m:?}");
         // steady rotation (no oscillation) is settled, with no period and no warning about it
         let flat = vec![4.0; t.len()];
         let m = stick_slip(&t, &flat, Some(&flat), None, STICK_SPEED).unwrap();
-        assert!(m.settled && m.cycle_period.is_nan() && m.warnings().is_empty(), "{m:?}");
+        assert!(m.settled && m.period_s.is_nan() && m.warnings().is_empty(), "{m:?}");
+    }
+
+    /// Stick phases of known durations (0.5, 1 and 1.5 s at rest, ramps of 0.1 s to 5 rad/s
+    /// between them): each lasts its rest plus the two ramps' parts below the stick speed,
+    /// `2 s / 50 s^-1` (linear ramps); a phase cut by the window's start or end does not count.
+    #[test]
+    fn stick_durations_of_a_known_series() {
+        let s = 0.01;
+        let rests = [0.5, 1.0, 1.5];
+        // knots: a slip of 0.4 s (up 0.1 s, 0.2 s at 5 rad/s, down 0.1 s), then a rest
+        let (mut t, mut w) = (vec![0.0], vec![5.0]);
+        let mut at = 0.0;
+        for rest in rests {
+            for (dt, v) in [(0.1, 5.0), (0.1, 0.0), (rest, 0.0)] {
+                at += dt;
+                t.push(at);
+                w.push(v);
+            }
+        }
+        for (dt, v) in [(0.1, 5.0), (0.2, 5.0)] {
+            at += dt;
+            t.push(at);
+            w.push(v);
+        }
+        let ramp = 2.0 * s / 50.0;
+        let expected = rests.iter().map(|r| r + ramp).sum::<f64>() / 3.0;
+        let m = stick_slip(&t, &w, None, None, s).unwrap();
+        assert!((m.stick_duration_mean_s - expected).abs() < 1e-12, "{} vs {expected}", m.stick_duration_mean_s);
+        // the complete phases and the window's share: the same time as the stuck fraction
+        let span = t[t.len() - 1] - t[0];
+        assert!((3.0 * m.stick_duration_mean_s - m.stuck_fraction * span).abs() < 1e-12);
+        // a window starting in the first rest: that phase is cut and does not count
+        let late = stick_slip(&t, &w, None, Some((0.5, at)), s).unwrap();
+        assert!((late.stick_duration_mean_s - (2.5 + 2.0 * ramp) / 2.0).abs() < 1e-12, "{late:?}");
+        // never stuck, stuck throughout, a touch of no duration: NaN
+        assert!(stick_slip(&t, &vec![5.0; t.len()], None, None, s).unwrap().stick_duration_mean_s.is_nan());
+        assert!(stick_slip(&t, &vec![0.0; t.len()], None, None, s).unwrap().stick_duration_mean_s.is_nan());
+        assert!(stick_duration_mean(&[0.0, 1.0, 2.0], &[1.0, s, 1.0], s).is_nan());
     }
 
     /// The period estimator's memory is bounded: a long series is resampled.

@@ -543,8 +543,8 @@ impl<'c> Simulation<'c> {
         if let Some((warning, reason)) = verdict {
             run.warnings.push(warning);
             if let Some(m) = &mut run.metrics {
-                m.verdict = Verdict::Undetermined;
-                m.verdict_reason = reason.into();
+                m.stick_slip_verdict = Verdict::Undetermined;
+                m.stick_slip_reason = reason.into();
             }
         }
         if let Some(ax) = &self.axial {
@@ -553,7 +553,9 @@ impl<'c> Simulation<'c> {
             run.warnings.extend(axial_resolution_warning(&sections));
             run.coupled = coupled_metrics(&run, ax.law().radius);
             if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
-                if c.regime == Regime::Undetermined && run.metrics.as_ref().is_some_and(|m| m.verdict == Verdict::No) {
+                if c.regime == Regime::Undetermined
+                    && run.metrics.as_ref().is_some_and(|m| m.stick_slip_verdict == Verdict::No)
+                {
                     run.warnings.push(format!(
                         "regime undetermined, not smooth drilling: {why}; the string is still settling onto the bit \
                          (lengthen numerics.duration, move metrics.window later, or start from \
@@ -660,7 +662,7 @@ pub fn coupled_metrics(run: &DrillRun, radius: f64) -> Option<CoupledMetrics> {
         bounce_fraction: bounce,
         hook_load_mean_n: mean(&run.hook_load),
         mse_mean_pa: mse,
-        regime: regime(run.metrics.as_ref().map(|m| m.verdict), bounce, axial_transient(run).is_some()),
+        regime: regime(run.metrics.as_ref().map(|m| m.stick_slip_verdict), bounce, axial_transient(run).is_some()),
     })
 }
 

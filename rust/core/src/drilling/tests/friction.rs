@@ -79,13 +79,13 @@ fn regularised_and_set_valued_friction_differ_measurably() {
         let m = run.metrics.unwrap();
         eprintln!(
             "{model:?}: SSI {:.3}, stuck {:.3}, bit rpm {:.1}..{:.1} mean {:.2}, motor torque {:.0}..{:.0}, period {:.3} s, friction loss {:.4e} J",
-            m.severity, m.stuck_fraction, m.rpm_min, m.rpm_max, m.rpm_mean, m.torque_min, m.torque_max, m.cycle_period, run.energy.friction_loss
+            m.ssi, m.stuck_fraction, m.bit_rpm_min, m.bit_rpm_max, m.bit_rpm_mean, m.motor_torque_min_nm, m.motor_torque_max_nm, m.period_s, run.energy.friction_loss
         );
         results.push(m);
     }
     // Both run to the end near the setpoint on average.
     for m in &results {
-        assert!((m.rpm_mean - 40.0).abs() < 5.0, "{m:?}");
+        assert!((m.bit_rpm_mean - 40.0).abs() < 5.0, "{m:?}");
     }
 }
 

@@ -80,12 +80,12 @@ fn bit_on_bottom_sticks_and_slips_with_positive_bit_work() {
         let (m, e) = (run.metrics.unwrap(), run.energy);
         eprintln!(
             "on bottom, BHA {bha}: SSI {:.3}, stuck {:.3}, bit rpm {:.1}..{:.1}, bit loss {:.4e} J, balance {:.1e}",
-            m.severity, m.stuck_fraction, m.rpm_min, m.rpm_max, e.bit_loss, e.balance_error
+            m.ssi, m.stuck_fraction, m.bit_rpm_min, m.bit_rpm_max, e.bit_loss, e.balance_error
         );
         assert_eq!(run.status, Status::Success);
         assert!(e.bit_loss > 0.0 && e.balance_error.abs() < 1e-11, "{e:?}");
         // The bit never turns backwards (it sticks instead), its torque at most W r mu_s.
-        assert!(m.rpm_min >= -1e-9, "{}", m.rpm_min);
+        assert!(m.bit_rpm_min >= -1e-9, "{}", m.bit_rpm_min);
         assert!(run.bit_torque.iter().all(|t| t.abs() <= 1e5 * 0.1 * 0.8 * (1.0 + 1e-12)));
     }
 }
@@ -129,11 +129,11 @@ fn well_b_agrees_with_the_published_model() {
     eprintln!(
         "Well B: motor torque {:.0}..{:.0} N m (Octave {torque_min:.0}..{torque_max:.0}), period {:.3} s ({period}), \
          bit rpm max {:.1} ({rpm_max}), mean {:.2} ({rpm_mean}), balance {:.1e}",
-        m.torque_min, m.torque_max, m.cycle_period, m.rpm_max, m.rpm_mean, run.energy.balance_error
+        m.motor_torque_min_nm, m.motor_torque_max_nm, m.period_s, m.bit_rpm_max, m.bit_rpm_mean, run.energy.balance_error
     );
     let rel = |a: f64, b: f64| (a / b - 1.0).abs();
-    assert!(rel(m.torque_min, torque_min) < 0.05 && rel(m.torque_max, torque_max) < 0.02);
-    assert!(rel(m.cycle_period, period) < 0.02 && rel(m.rpm_max, rpm_max) < 0.02 && rel(m.rpm_mean, rpm_mean) < 0.01);
+    assert!(rel(m.motor_torque_min_nm, torque_min) < 0.05 && rel(m.motor_torque_max_nm, torque_max) < 0.02);
+    assert!(rel(m.period_s, period) < 0.02 && rel(m.bit_rpm_max, rpm_max) < 0.02 && rel(m.bit_rpm_mean, rpm_mean) < 0.01);
 }
 
 #[test]
