@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 
 import drillstring as ds
 from drillstring.drilling import DrillMetrics
