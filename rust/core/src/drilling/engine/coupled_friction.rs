@@ -15,7 +15,7 @@
 //! The law, [`slide`] (the one place of the convention), is the implicit (Moreau) Coulomb step
 //! on the speeds after the transport and the other sources, `u = (v, r omega)`, `v` the axial
 //! speed at the middle of the step's gravity kick (the stored speed less half of it,
-//! [`super::axial::Axial::half_kick`]: the speed the string moves at, so that gravity and
+//! [`super::axial_field::Axial::half_kick`]: the speed the string moves at, so that gravity and
 //! friction enter the step together and a slow direction never flips however large the kick):
 //!
 //! * stick, decided by the step's impulse balance and by no speed threshold: if the force that
@@ -48,7 +48,7 @@
 //! the mean speed of that part of the step, `v_m = (v* + v') / 2` (`v*` the speed after the
 //! transport, before the kick, `v'` after the friction): the friction's work `m h d v_m`, the
 //! weight's `m h g dt v_m` (the kick's own work at the middle of the kick,
-//! [`super::axial::Axial::cells`], corrected here by `m h d g dt / 2`). Their sum is the
+//! [`super::axial_field::Axial::cells`], corrected here by `m h d g dt / 2`). Their sum is the
 //! kinetic energy the two changes make, exactly, so the split leaves nothing to the numerical
 //! loss, and in a steady slide (where `v_m` is the speed the string moves at: the transport
 //! takes away what the sources add) it books `mu_k N v` per length and the weight's `w v cos i`
@@ -507,7 +507,7 @@ impl CoupledFriction {
 
     /// The static limit of the wall friction on the half of the last axial cell below its
     /// centre (`mu_s N h / 2` at the last cell's tension), N: it holds the free end of a stuck
-    /// string at rest ([`super::axial::Axial::end_hold`]).
+    /// string at rest ([`super::axial_field::Axial::end_hold`]).
     pub fn end_hold(&self) -> f64 {
         self.end_hold
     }

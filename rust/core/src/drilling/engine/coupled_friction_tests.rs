@@ -142,7 +142,7 @@ fn direct_step(cf: &CoupledFriction, torsion: &mut Field, axial: &mut Field) -> 
 /// cells: the Coulomb law and the regularised one, linear and consistent torsion.
 #[test]
 fn the_friction_pass_is_the_direct_form_bit_for_bit() {
-    use crate::drilling::engine::axial::Axial;
+    use crate::drilling::engine::axial_field::Axial;
     use crate::drilling::grid::Grid;
     let pipe = r#""outer_diameter": 0.127, "inner_diameter": 0.108, "shear_modulus": 7.7e10, "density": 8000.0"#;
     for (model, nonlinearity) in [("set_valued", "linear"), ("set_valued", "consistent"), ("regularised", "linear")] {
