@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::error::{Error, Num, Result};
 use crate::well::plan;
 use crate::well::torque_drag::{
-    self, Operation, Piece, Profile, Scheme, Setup, SlidingFriction, SlidingInterval, TorqueDrag,
+    self, Operation, Piece, Profile, ProfileMethod, Setup, SlidingFriction, SlidingInterval, TorqueDrag,
 };
 use crate::well::{Survey, Trajectory};
 
@@ -295,7 +295,7 @@ pub fn torque_drag(cfg: &DrillConfig) -> Result<TorqueDrag> {
     let traj = trajectory(cfg)?;
     let s = setup(cfg);
     s.validate_string()?;
-    Ok(torque_drag::analyse_unchecked(&traj, &s, Scheme::Stepwise))
+    Ok(torque_drag::analyse_unchecked(&traj, &s, ProfileMethod::Stepwise))
 }
 
 /// The hook loads of the broomstick plot: bit depths `depth_m`, and for each friction factor
@@ -375,7 +375,7 @@ pub fn contact_profile(cfg: &DrillConfig, traj: &Trajectory) -> Result<Profile> 
     s.bit_torque = 0.0;
     s.validate_string()?;
     let op = if cfg.bit.on_bottom { Operation::RotatingOnBottom } else { Operation::RotatingOffBottom };
-    Ok(s.solve(traj, op, Scheme::Stepwise))
+    Ok(s.solve(traj, op, ProfileMethod::Stepwise))
 }
 
 /// The normal force per length (N/m) of `profile` at `md`: that of the element holding it.

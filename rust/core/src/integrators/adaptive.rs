@@ -32,7 +32,7 @@
 use std::marker::PhantomData;
 
 use super::form::Form;
-use super::sampling::{record_failure, Recorded, Sampler};
+use super::sampling::{record_failure, OutputSampler, Recorded};
 use super::tableau::{all_finite, Stages, Tableau};
 use crate::error::Num;
 use crate::error::Result;
@@ -265,8 +265,8 @@ pub(crate) trait Stepper {
     /// Attempts the step `t -> t + h`: the new state and the scaled error norm.
     fn attempt(&mut self, h: f64) -> f64;
     /// Accepts the attempted step of size `h` ending at `t_new`: output samples and the move
-    /// to the new state. `Err`: a sample could not be recorded (see [`Sampler::record`]).
-    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded;
+    /// to the new state. `Err`: a sample could not be recorded (see [`OutputSampler::record`]).
+    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded;
     /// Hairer's initial step guess ([`initial_step`]).
     fn hinit(&mut self) -> f64;
     /// The largest ratio of consecutive steps (`None`: no bound but `hmax`); with a bound a
@@ -281,7 +281,7 @@ pub(crate) trait Stepper {
     }
     /// After the loop (`done`: the size of the last step when `t_end` was reached): samples
     /// still to be recorded.
-    fn finish(&mut self, _done: Option<f64>, _sampler: &mut Sampler, _sol: &mut Solution) -> Recorded {
+    fn finish(&mut self, _done: Option<f64>, _sampler: &mut OutputSampler, _sol: &mut Solution) -> Recorded {
         Ok(())
     }
 }
@@ -289,7 +289,7 @@ pub(crate) trait Stepper {
 /// The one adaptive solve of a validated [`Stepper`] for `output`, polling `interrupt` once
 /// per step attempt: the samples, the status and the statistics.
 pub(crate) fn solve<R: Stepper>(run: &mut R, output: &Output, interrupt: &dyn Interrupt) -> Solution {
-    let mut sampler = Sampler::new(output);
+    let mut sampler = OutputSampler::new(output);
     let mut sol = sampler.solution(run.core().y.len(), 1024);
     let sampler = &mut sampler;
     let c = run.core();
@@ -331,7 +331,7 @@ enum Outcome {
 fn step_loop<R: Stepper>(
     run: &mut R,
     mut h: f64,
-    sampler: &mut Sampler,
+    sampler: &mut OutputSampler,
     sol: &mut Solution,
     poller: &mut Poller,
 ) -> Outcome {
@@ -472,7 +472,7 @@ impl<P: Scheme, F: Form> Stepper for Run<'_, P, F> {
     }
 
     /// FSAL derivative, output samples, and the move to the new state.
-    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    fn accept(&mut self, h: f64, t_new: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         self.core.stats.naccept += 1;
         if !P::FSAL_IN_ERROR {
             self.eval_fsal(t_new);
@@ -631,7 +631,7 @@ pub(crate) mod testing {
     pub(crate) fn uniform_steps<P: Scheme, F: Form>(form: &F, t0: f64, y0: &[f64], t_end: f64, n: usize) -> Vec<f64> {
         let opts = AdaptiveOptions::default();
         let output = Output::EveryStep;
-        let mut sampler = Sampler::new(&output);
+        let mut sampler = OutputSampler::new(&output);
         let mut sol = sampler.solution(y0.len(), n + 1);
         let mut run = Run::<P, F>::new(form, t0, y0, t_end, &opts);
         let h = (t_end - t0) / n as f64;

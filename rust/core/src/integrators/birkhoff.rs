@@ -44,7 +44,7 @@
 //! digits. Because the interval `[t_j, t_j+1]` needs the end `t_j+3`, its samples are recorded
 //! when the step ending at `t_j+3` is accepted (or when the solve ends).
 
-use super::sampling::{RecordError, Sampler};
+use super::sampling::{OutputSampler, RecordError};
 use crate::simd::{dispatch, Kernel, MulAdd, Unfused, MIN_DISPATCH_LEN};
 use crate::solution::Solution;
 
@@ -129,7 +129,7 @@ impl Birkhoff {
     /// Records the intervals whose interpolant is complete: `HALF` ends known on its right
     /// and `NODES` in all (every remaining interval when `last`: the solve has ended and no
     /// more ends will come).
-    pub fn emit(&mut self, sampler: &mut Sampler, sol: &mut Solution, last: bool) -> Result<(), RecordError> {
+    pub fn emit(&mut self, sampler: &mut OutputSampler, sol: &mut Solution, last: bool) -> Result<(), RecordError> {
         if self.ends == 0 {
             return Ok(());
         }
@@ -430,7 +430,7 @@ mod tests {
         let ends = [0.0, 0.13, 0.31, 0.42, 0.6, 0.85, 0.97, 1.1, 1.25];
         let times: Vec<f64> = (0..=124).map(|k| f64::from(k) * 0.01).collect();
         let output = Output::Times(times.clone());
-        let mut sampler = Sampler::new(&output);
+        let mut sampler = OutputSampler::new(&output);
         let mut sol = sampler.solution(2, 0);
         let mut b = Birkhoff::new(1);
         sampler.start(&mut sol, 0.0, &[q(0.0), dq(0.0)]).unwrap();
@@ -458,7 +458,7 @@ mod tests {
         let output = Output::Times(times.clone());
         let solve = |comps: &[usize]| {
             let m = comps.len();
-            let mut sampler = Sampler::new(&output);
+            let mut sampler = OutputSampler::new(&output);
             let mut sol = sampler.solution(2 * m, 0);
             let mut b = Birkhoff::new(m);
             let state = |t: f64| {

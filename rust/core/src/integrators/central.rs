@@ -7,13 +7,13 @@
 //! v_n     = (q_{n+1} - q_{n-1}) / (2 dt)   (v_0 given)
 //! ```
 //!
-//! on the uniform grid of [`super::grid::Grid`] ([`super::fixed`]); second-order accurate. The sampled state is `[q, v]`.
+//! on the uniform grid of [`super::grid::TimeGrid`] ([`super::fixed`]); second-order accurate. The sampled state is `[q, v]`.
 //! Between grid points `q` is interpolated by cubic Hermite with derivative `v`, and `v` by
 //! cubic Hermite with derivative `a(q)`. `Stats::nfev` counts evaluations of `a`
 //! (one per grid point).
 
 use super::fixed::{FixedScheme, SecondOrderEnds, SecondOrderScheme};
-use super::sampling::{Recorded, Sampler};
+use super::sampling::{OutputSampler, Recorded};
 use super::Method;
 use crate::solution::{Solution, Stats};
 use crate::system::SecondOrderSystem;
@@ -78,7 +78,7 @@ impl<S: SecondOrderSystem + ?Sized> FixedScheme for Central<'_, S> {
     }
 
     /// Records the interval `t -> t_new` and shifts the two-step history.
-    fn record(&mut self, t: f64, t_new: f64, _h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    fn record(&mut self, t: f64, t_new: f64, _h: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         self.ends.record(t, t_new, self.dt, sampler, sol)?;
         // (q_{n-1}, q_n, q_{n+1}) <- (q_n, q_{n+1}, unused)
         std::mem::swap(&mut self.q_prev, &mut self.q);

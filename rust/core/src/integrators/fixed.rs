@@ -1,11 +1,11 @@
 //! The one fixed-step loop of RK4, central differences and velocity Verlet: the uniform grid
-//! ([`Grid`]), the step limit and interrupt polling, the check of every new state, the samples
+//! ([`TimeGrid`]), the step limit and interrupt polling, the check of every new state, the samples
 //! and the statuses. The schemes differ only in their step and its interpolant
 //! ([`FixedScheme`]).
 
-use super::grid::Grid;
+use super::grid::TimeGrid;
 use super::hermite::hermite;
-use super::sampling::{record_failure, Recorded, Sampler};
+use super::sampling::{record_failure, OutputSampler, Recorded};
 use super::tableau::all_finite;
 use crate::error::Result;
 use crate::interrupt::{Interrupt, Poller};
@@ -25,7 +25,7 @@ pub(crate) trait FixedScheme {
     fn new_state(&self) -> &[f64];
     /// Records the samples of the step `t -> t_new` of size `h` (interpolated inside it) and
     /// moves to the new state.
-    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded;
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded;
     fn stats(&mut self) -> &mut Stats;
 }
 
@@ -42,8 +42,8 @@ pub(crate) fn integrate<R: FixedScheme>(
     validate_span(t0, t_end, output)?;
     opts.validate()?;
     check()?;
-    let grid = Grid::new(t0, t_end, opts.dt);
-    let mut sampler = Sampler::new(output);
+    let grid = TimeGrid::new(t0, t_end, opts.dt);
+    let mut sampler = OutputSampler::new(output);
     let mut run = new(grid.dt);
     let hint = usize::try_from(grid.steps.min(opts.max_steps)).unwrap_or(usize::MAX).saturating_add(1);
     let mut sol = sampler.solution(run.start().len(), hint);
@@ -57,9 +57,9 @@ pub(crate) fn integrate<R: FixedScheme>(
 /// Steps through the grid, recording output; `Err` carries a failure status.
 fn steps<R: FixedScheme>(
     run: &mut R,
-    grid: &Grid,
+    grid: &TimeGrid,
     max_steps: u64,
-    sampler: &mut Sampler,
+    sampler: &mut OutputSampler,
     sol: &mut Solution,
     interrupt: &dyn Interrupt,
 ) -> std::result::Result<(), (Status, String)> {
@@ -134,7 +134,7 @@ impl SecondOrderEnds {
     }
 
     /// Records the samples of the step `t -> t_new` of size `h` and moves to its end.
-    pub fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    pub fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         let dof = self.dof;
         let (q0, v0) = self.state.split_at(dof);
         let (q1, v1) = self.state_new.split_at(dof);

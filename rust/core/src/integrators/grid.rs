@@ -12,7 +12,7 @@ use crate::solution::Status;
 
 /// `N` uniform steps from `t0` to `t_end`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Grid {
+pub(crate) struct TimeGrid {
     pub t0: f64,
     pub t_end: f64,
     /// Number of steps `N >= 1`.
@@ -21,13 +21,13 @@ pub(crate) struct Grid {
     pub dt: f64,
 }
 
-impl Grid {
+impl TimeGrid {
     /// The grid for a requested step `dt > 0` on `t0 < t_end` (validated by the caller).
     pub fn new(t0: f64, t_end: f64, dt: f64) -> Self {
         let span = t_end - t0;
         // saturating: an absurd step count is caught by `max_steps`
         let steps = crate::options::fixed_steps(span, dt);
-        Grid { t0, t_end, steps, dt: span / steps as f64 }
+        TimeGrid { t0, t_end, steps, dt: span / steps as f64 }
     }
 
     /// The checks before the step after `done` completed steps: the step limit, then an
@@ -77,20 +77,20 @@ mod tests {
 
     #[test]
     fn shrinks_dt_to_divide_the_span() {
-        let g = Grid::new(0.0, 1.0, 0.3);
+        let g = TimeGrid::new(0.0, 1.0, 0.3);
         assert_eq!(g.steps, 4);
         assert_eq!(g.dt, 0.25);
         assert_eq!(g.time(4), 1.0);
         // A multiple of dt up to rounding gets no extra step.
-        let g = Grid::new(0.0, 0.3, 0.1);
+        let g = TimeGrid::new(0.0, 0.3, 0.1);
         assert_eq!(g.steps, 3);
         assert_eq!(g.time(3), 0.3);
         // dt larger than the span: one step.
-        let g = Grid::new(1.0, 2.0, 1e300);
+        let g = TimeGrid::new(1.0, 2.0, 1e300);
         assert_eq!(g.steps, 1);
         assert_eq!(g.dt, 1.0);
         // Absurdly small dt saturates instead of panicking.
-        let g = Grid::new(0.0, 1e300, 1e-300);
+        let g = TimeGrid::new(0.0, 1e300, 1e-300);
         assert_eq!(g.steps, crate::options::MAX_STEP_COUNT);
     }
 }

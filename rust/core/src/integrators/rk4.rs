@@ -6,13 +6,13 @@
 //! k4 = f(t + h, y + h k3),  y_new = y + h/6 (k1 + 2 k2 + 2 k3 + k4)
 //! ```
 //!
-//! on the uniform grid of [`super::grid::Grid`] ([`super::fixed`]). Requested output times between grid points are
+//! on the uniform grid of [`super::grid::TimeGrid`] ([`super::fixed`]). Requested output times between grid points are
 //! interpolated by cubic Hermite with the derivatives `f` at both ends; `f` at the end
 //! of a step is `k1` of the next, so it costs nothing except on the last step.
 
 use super::fixed::FixedScheme;
 use super::hermite::hermite;
-use super::sampling::{Recorded, Sampler};
+use super::sampling::{OutputSampler, Recorded};
 use super::tableau::{Stages, RK4};
 use crate::error::Result;
 use crate::interrupt::Interrupt;
@@ -84,7 +84,7 @@ impl<S: OdeSystem + ?Sized> FixedScheme for Run<'_, S> {
         &self.y_new
     }
 
-    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         if sampler.needs_interpolant(t_new) {
             self.sys.rhs(t_new, &self.y_new, &mut self.f_new);
             self.stats.nfev += 1;

@@ -29,7 +29,7 @@
 
 use super::adaptive::{initial_step, min_step, solve, Control, Core, Stepper};
 use super::birkhoff::Birkhoff;
-use super::sampling::{Recorded, Sampler};
+use super::sampling::{OutputSampler, Recorded};
 use super::tableau::{all_finite, Stages};
 use crate::error::Result;
 use crate::interrupt::Interrupt;
@@ -256,7 +256,7 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
 
     /// The acceleration at `t_new` (`K_0` of the next step), the output samples, and the move
     /// to the new state.
-    fn accept(&mut self, _h: f64, t_new: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    fn accept(&mut self, _h: f64, t_new: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         self.core.stats.naccept += 1;
         std::mem::swap(&mut self.core.y, &mut self.core.y_new);
         self.core.t = t_new;
@@ -307,7 +307,7 @@ impl<S: SecondOrderSystem + ?Sized> Stepper for Run<'_, S> {
 
     /// With output times, the ends after `t_end` when it was reached ([`Run::lead_out`]), then
     /// the output intervals still waiting for later step ends, from the ends reached.
-    fn finish(&mut self, done: Option<f64>, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    fn finish(&mut self, done: Option<f64>, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         if let (Some(h_last), true) = (done, self.dense.is_some()) {
             self.lead_out(h_last);
         }
@@ -346,7 +346,7 @@ pub(crate) mod testing {
     ) -> (Vec<f64>, f64) {
         let opts = AdaptiveOptions::default();
         let output = Output::EveryStep;
-        let mut sampler = Sampler::new(&output);
+        let mut sampler = OutputSampler::new(&output);
         let mut sol = sampler.solution(2 * q0.len(), n + 1);
         let mut run = Run::new(pair, sys, t0, q0, v0, t_end, &opts, false);
         let h = (t_end - t0) / n as f64;

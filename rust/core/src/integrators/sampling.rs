@@ -23,17 +23,17 @@ const MAX_PREALLOCATED_VALUES: usize = 1 << 24;
 
 /// The position in the output request during a solve.
 #[derive(Debug, Clone)]
-pub(crate) struct Sampler<'a> {
+pub(crate) struct OutputSampler<'a> {
     /// `None` for [`Output::EveryStep`].
     times: Option<&'a [f64]>,
     next: usize,
 }
 
-impl<'a> Sampler<'a> {
+impl<'a> OutputSampler<'a> {
     pub fn new(output: &'a Output) -> Self {
         match output {
-            Output::Times(times) => Sampler { times: Some(times), next: 0 },
-            Output::EveryStep => Sampler { times: None, next: 0 },
+            Output::Times(times) => OutputSampler { times: Some(times), next: 0 },
+            Output::EveryStep => OutputSampler { times: None, next: 0 },
         }
     }
 
@@ -102,12 +102,12 @@ impl<'a> Sampler<'a> {
     }
 }
 
-impl Sampler<'_> {
-    /// [`Sampler::record`] for an interpolant evaluated in blocks: the requested times of the
+impl OutputSampler<'_> {
+    /// [`OutputSampler::record`] for an interpolant evaluated in blocks: the requested times of the
     /// step strictly before `t_new` are handed to `fill(times, out)` at once, with `out` their
     /// `times.len() x dim` states, reserved in the solution up front and written in place;
     /// requested times equal to `t_new` get `y_new` exactly. Every-step output records `y_new`
-    /// (`fill` is not called). Same errors as [`Sampler::record`]: samples before a
+    /// (`fill` is not called). Same errors as [`OutputSampler::record`]: samples before a
     /// non-finite one are kept.
     pub fn record_block(
         &mut self,
@@ -216,7 +216,7 @@ mod tests {
     #[test]
     fn records_times_exactly_at_step_ends_and_interpolates_inside() {
         let output = Output::Times(vec![0.0, 0.0, 0.5, 1.0, 1.5, 2.0]);
-        let mut s = Sampler::new(&output);
+        let mut s = OutputSampler::new(&output);
         let mut sol = s.solution(1, 0);
         let mut buf = [0.0];
         s.start(&mut sol, 0.0, &[7.0]).unwrap();
@@ -233,7 +233,7 @@ mod tests {
     #[test]
     fn every_step_records_each_step() {
         let output = Output::EveryStep;
-        let mut s = Sampler::new(&output);
+        let mut s = OutputSampler::new(&output);
         let mut sol = s.solution(1, 4);
         s.start(&mut sol, 0.0, &[1.0]).unwrap();
         assert!(!s.needs_interpolant(1.0));
@@ -253,7 +253,7 @@ mod tests {
         };
         let output = Output::Times(times);
         let ends = [(0.5, [5.0, 6.0]), (1.0, [7.0, 8.0]), (2.0, [9.0, 10.0])];
-        let (mut a, mut b) = (Sampler::new(&output), Sampler::new(&output));
+        let (mut a, mut b) = (OutputSampler::new(&output), OutputSampler::new(&output));
         let (mut sa, mut sb) = (a.solution(2, 0), b.solution(2, 0));
         a.start(&mut sa, 0.0, &[1.0, 2.0]).unwrap();
         b.start(&mut sb, 0.0, &[1.0, 2.0]).unwrap();
@@ -294,7 +294,7 @@ mod tests {
     #[test]
     fn a_non_finite_interpolant_is_refused() {
         let output = Output::Times(vec![0.5, 0.7, 1.0]);
-        let mut s = Sampler::new(&output);
+        let mut s = OutputSampler::new(&output);
         let mut sol = s.solution(1, 0);
         s.start(&mut sol, 0.0, &[0.0]).unwrap();
         let got = s.record(&mut sol, 1.0, &[1.0], &mut [0.0], |t, out| out[0] = if t > 0.6 { f64::NAN } else { t });

@@ -8,7 +8,7 @@
 //! v_{n+1}   = v_{n+1/2} + dt/2 a(q_{n+1})  (kick)
 //! ```
 //!
-//! on the uniform grid of [`super::grid::Grid`] ([`super::fixed`]). `a(q_{n+1})` is reused as `a(q_n)` of the next step,
+//! on the uniform grid of [`super::grid::TimeGrid`] ([`super::fixed`]). `a(q_{n+1})` is reused as `a(q_n)` of the next step,
 //! so a solve costs one evaluation of `a` per step plus one at the start
 //! (`Stats::nfev = steps + 1`). Being symplectic and symmetric, the scheme keeps the
 //! energy error of a Hamiltonian system bounded, `O(dt^2)`, with no secular drift over
@@ -17,7 +17,7 @@
 //! derivative `a(q)`, exactly as for central differences.
 
 use super::fixed::{FixedScheme, SecondOrderEnds, SecondOrderScheme};
-use super::sampling::{Recorded, Sampler};
+use super::sampling::{OutputSampler, Recorded};
 use super::Method;
 use crate::solution::{Solution, Stats};
 use crate::system::SecondOrderSystem;
@@ -69,7 +69,7 @@ impl<S: SecondOrderSystem + ?Sized> FixedScheme for Verlet<'_, S> {
         &self.ends.state_new
     }
 
-    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut Sampler, sol: &mut Solution) -> Recorded {
+    fn record(&mut self, t: f64, t_new: f64, h: f64, sampler: &mut OutputSampler, sol: &mut Solution) -> Recorded {
         self.ends.record(t, t_new, h, sampler, sol)
     }
 

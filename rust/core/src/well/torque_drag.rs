@@ -115,7 +115,7 @@ impl Operation {
 
 /// How the profile is computed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Scheme {
+pub enum ProfileMethod {
     /// Johancsik's elements, stepped from the bit up with the tension at each element's bottom.
     Stepwise,
     /// The continuous equations by the classical Runge-Kutta method between the nodes.
@@ -297,14 +297,21 @@ impl Setup {
     }
 
     /// The profile of `op` along `traj` with the bit at the string's depth.
-    pub fn solve(&self, traj: &Trajectory, op: Operation, scheme: Scheme) -> Profile {
+    pub fn solve(&self, traj: &Trajectory, op: Operation, scheme: ProfileMethod) -> Profile {
         self.solve_at(traj, op, scheme, self.depth(), None)
     }
 
     /// The profile with the bit at `bit_md` (`<=` the string's length: the string's top pieces
     /// out of the hole; the bottom `bit_md` metres of it in), with the friction factor `mu`
     /// everywhere if given.
-    pub fn solve_at(&self, traj: &Trajectory, op: Operation, scheme: Scheme, bit_md: f64, mu: Option<f64>) -> Profile {
+    pub fn solve_at(
+        &self,
+        traj: &Trajectory,
+        op: Operation,
+        scheme: ProfileMethod,
+        bit_md: f64,
+        mu: Option<f64>,
+    ) -> Profile {
         let on_bottom = op == Operation::RotatingOnBottom;
         let bit = if on_bottom { (-self.weight_on_bit, self.bit_torque) } else { (0.0, 0.0) };
         self.profile(traj, op, scheme, bit_md, mu, bit)
@@ -315,7 +322,7 @@ impl Setup {
         &self,
         traj: &Trajectory,
         op: Operation,
-        scheme: Scheme,
+        scheme: ProfileMethod,
         bit_md: f64,
         mu: Option<f64>,
         bit: (f64, f64),
@@ -341,7 +348,7 @@ impl Setup {
             let length = md[j + 1] - md[j];
             let (ta, tb) = (upper.tangent, lower.tangent);
             match scheme {
-                Scheme::Stepwise => {
+                ProfileMethod::Stepwise => {
                     let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
                     let m = dot(mean, mean).sqrt();
                     mean.iter_mut().for_each(|x| *x /= m);
@@ -358,7 +365,7 @@ impl Setup {
                     torque[j] = torque[j + 1] + if rotating { mu * p.contact_radius * nf } else { 0.0 };
                     normal[j] = nf / length;
                 }
-                Scheme::Continuous => {
+                ProfileMethod::Continuous => {
                     // y = (T, M) against the depth going up, s = md[j + 1] -> md[j]
                     let arc = traj.interval(mid);
                     let rhs = |s: f64, t: f64| -> (f64, f64, f64) {
@@ -442,14 +449,14 @@ fn by_operation<S: serde::Serializer>(profiles: &[Profile], s: S) -> std::result
 }
 
 /// All four operations; the survey must reach the bit ([`Setup::validate`]).
-pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> Result<TorqueDrag> {
+pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod) -> Result<TorqueDrag> {
     setup.validate(traj)?;
     Ok(analyse_unchecked(traj, setup, scheme))
 }
 
 /// [`analyse`] of a setup already checked ([`Setup::validate_string`]; the trajectory
 /// continues straight on below its last station).
-pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> TorqueDrag {
+pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod) -> TorqueDrag {
     let profiles: Vec<Profile> = Operation::ALL.iter().map(|&op| setup.solve(traj, op, scheme)).collect();
     let hook = |k: usize| profiles[k].surface_tension() + setup.block_weight;
     let (mut best, mut at, mut which) = (0.0, 0.0, Operation::ALL[0].name());
@@ -500,7 +507,8 @@ pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64])
                 .iter()
                 .map(|&d| {
                     let hook = |op| {
-                        setup.solve_at(traj, op, Scheme::Stepwise, d, Some(mu)).surface_tension() + setup.block_weight
+                        setup.solve_at(traj, op, ProfileMethod::Stepwise, d, Some(mu)).surface_tension()
+                            + setup.block_weight
                     };
                     [hook(Operation::PickUp), hook(Operation::SlackOff), hook(Operation::RotatingOffBottom)]
                 })
@@ -536,7 +544,7 @@ mod tests {
         let t = traj(&[0.0, l], &[inc, inc], &[10.0, 10.0]);
         let s = setup(l, w, mu);
         let i = inc.to_radians();
-        for scheme in [Scheme::Stepwise, Scheme::Continuous] {
+        for scheme in [ProfileMethod::Stepwise, ProfileMethod::Continuous] {
             let td = analyse(&t, &s, scheme).unwrap();
             let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
             assert!(rel(td.hook_load_pickup_n, w * l * (i.cos() + mu * i.sin())) < 1e-12);
@@ -564,10 +572,10 @@ mod tests {
             (p.surface_tension() - exact).abs() / exact
         };
         for op in [Operation::PickUp, Operation::SlackOff] {
-            let (e1, e2) = (err(Scheme::Stepwise, 10.0, op), err(Scheme::Stepwise, 5.0, op));
+            let (e1, e2) = (err(ProfileMethod::Stepwise, 10.0, op), err(ProfileMethod::Stepwise, 5.0, op));
             let order = (e1 / e2).log2();
             assert!((order - 1.0).abs() < 0.1, "stepwise order {order} ({e1}, {e2})");
-            let (c1, c2) = (err(Scheme::Continuous, 40.0, op), err(Scheme::Continuous, 20.0, op));
+            let (c1, c2) = (err(ProfileMethod::Continuous, 40.0, op), err(ProfileMethod::Continuous, 20.0, op));
             let order = (c1 / c2).log2();
             assert!(c1 < 1e-6 && (order - 4.0).abs() < 0.3, "continuous order {order} ({c1}, {c2})");
         }
@@ -584,7 +592,7 @@ mod tests {
         let drop = traj(&[0.0, 100.0, 100.0 + l, 3000.0], &[60.0, 60.0, 30.0, 30.0], &[0.0; 4]);
         let s = setup(3000.0, w, 0.0);
         for (t, sign) in [(&build, -1.0), (&drop, 1.0)] {
-            let p = s.solve(t, Operation::RotatingOffBottom, Scheme::Continuous);
+            let p = s.solve(t, Operation::RotatingOffBottom, ProfileMethod::Continuous);
             let k = p.md.iter().position(|&d| d >= 100.0 + l / 2.0).unwrap();
             let q = t.at(p.md[k]);
             let expect = (p.tension[k] / r + sign * w * q.inc.sin()).abs();
@@ -608,11 +616,11 @@ mod tests {
         s.weight_on_bit = 1e5;
         s.bit_torque = 5e3;
         s.step = 0.25;
-        let fine = s.solve(&t, Operation::PickUp, Scheme::Continuous).surface_tension();
+        let fine = s.solve(&t, Operation::PickUp, ProfileMethod::Continuous).surface_tension();
         let mut errs = Vec::new();
         for step in [20.0, 10.0] {
             s.step = step;
-            errs.push((s.solve(&t, Operation::PickUp, Scheme::Stepwise).surface_tension() - fine).abs() / fine);
+            errs.push((s.solve(&t, Operation::PickUp, ProfileMethod::Stepwise).surface_tension() - fine).abs() / fine);
         }
         let order = (errs[0] / errs[1]).log2();
         assert!((order - 1.0).abs() < 0.2, "order {order} {errs:?}");
@@ -623,12 +631,12 @@ mod tests {
         let t = traj(&[0.0, 1000.0], &[50.0, 50.0], &[0.0, 0.0]);
         let mut s = setup(1000.0, 100.0, 0.2);
         s.friction.intervals.push(SlidingInterval { top_md: 0.0, bottom_md: 600.0, mu: 0.1 });
-        let td = analyse(&t, &s, Scheme::Stepwise).unwrap();
+        let td = analyse(&t, &s, ProfileMethod::Stepwise).unwrap();
         let sin = 50f64.to_radians().sin();
         let expect = 0.1 * 100.0 * sin * (0.1 * 600.0 + 0.2 * 400.0);
         assert!((td.surface_torque_off_bottom_nm - expect).abs() / expect < 1e-12);
         s.pieces[0].length = 1200.0;
-        assert_eq!(analyse(&t, &s, Scheme::Stepwise).unwrap_err().field(), "well.survey");
+        assert_eq!(analyse(&t, &s, ProfileMethod::Stepwise).unwrap_err().field(), "well.survey");
     }
 
     #[test]

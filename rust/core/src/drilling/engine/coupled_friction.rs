@@ -15,7 +15,7 @@
 //! The law, [`slide`] (the one place of the convention), is the implicit (Moreau) Coulomb step
 //! on the speeds after the transport and the other sources, `u = (v, r omega)`, `v` the axial
 //! speed at the middle of the step's gravity kick (the stored speed less half of it,
-//! [`super::axial::Axial::half_kick`]: the speed the string moves at, so that gravity and
+//! [`super::axial_field::Axial::half_kick`]: the speed the string moves at, so that gravity and
 //! friction enter the step together and a slow direction never flips however large the kick):
 //!
 //! * stick, decided by the step's impulse balance and by no speed threshold: if the force that
@@ -48,7 +48,7 @@
 //! the mean speed of that part of the step, `v_m = (v* + v') / 2` (`v*` the speed after the
 //! transport, before the kick, `v'` after the friction): the friction's work `m h d v_m`, the
 //! weight's `m h g dt v_m` (the kick's own work at the middle of the kick,
-//! [`super::axial::Axial::cells`], corrected here by `m h d g dt / 2`). Their sum is the
+//! [`super::axial_field::Axial::cells`], corrected here by `m h d g dt / 2`). Their sum is the
 //! kinetic energy the two changes make, exactly, so the split leaves nothing to the numerical
 //! loss, and in a steady slide (where `v_m` is the speed the string moves at: the transport
 //! takes away what the sources add) it books `mu_k N v` per length and the weight's `w v cos i`
@@ -60,7 +60,7 @@
 //! force anywhere (a straight vertical stretch) change nothing and count as moving: they are
 //! left out of the pass and counted once.
 
-use crate::drilling::config::{Contact as ContactModel, DrillConfig, FrictionModel};
+use crate::drilling::config::{Contact, DrillConfig, FrictionModel};
 use crate::drilling::grid::Grid;
 use crate::drilling::well;
 use crate::error::Result;
@@ -105,7 +105,7 @@ pub struct Slide {
 /// A contact's constants for [`slide`]: its radius and the speed changes `la`, `lt` (axial,
 /// torsional) of the static limit over a step, with their inverses and kinetic parts.
 #[derive(Debug, Clone, Copy)]
-pub struct Contact {
+pub struct ContactStep {
     inv_radius: f64,
     la: f64,
     lt: f64,
@@ -118,10 +118,10 @@ pub struct Contact {
     touching: bool,
 }
 
-impl Contact {
+impl ContactStep {
     pub fn new(radius: f64, la: f64, lt: f64, law: &Law) -> Self {
         let touching = la > 0.0 && lt > 0.0;
-        Contact {
+        ContactStep {
             inv_radius: 1.0 / radius,
             la,
             lt,
@@ -137,7 +137,7 @@ impl Contact {
 /// The coupled wall friction of a contact `c` moving at the axial speed `v` and the angular
 /// speed `w` (after the step's transport and other sources): see the module.
 #[inline]
-pub fn slide(v: f64, w: f64, c: &Contact, law: &Law) -> Slide {
+pub fn slide(v: f64, w: f64, c: &ContactStep, law: &Law) -> Slide {
     let none = Slide { dv: 0.0, dw: 0.0, stuck_axial: false, stuck_torsional: false };
     if !c.touching {
         return none;
@@ -170,7 +170,7 @@ pub fn slide(v: f64, w: f64, c: &Contact, law: &Law) -> Slide {
 }
 
 /// [`slide`] of a touching contact (`inv_radius`, `inv_la`, `inv_lt`, `kla`, `klt` of its
-/// [`Contact`]) under the Coulomb law (not `regularised`), written without branches (the
+/// [`ContactStep`]) under the Coulomb law (not `regularised`), written without branches (the
 /// branches computed and one selected) so that a loop over contacts vectorises, with the same
 /// operations as [`slide`]'s: the same bits. Returns `(dv, dw, stuck_axial, stuck_torsional)`.
 #[inline(always)]
@@ -194,7 +194,7 @@ fn slide_coulomb(v: f64, w: f64, [inv_radius, inv_la, inv_lt, kla, klt]: [f64; 5
 /// The touching segments' contacts and weights, a vector per constant (the operands of
 /// [`SlideMany`]), and the constants their static limits are made of each step.
 #[derive(Debug, Clone, Default)]
-struct Contacts {
+struct ContactSteps {
     inv_radius: Vec<f64>,
     inv_la: Vec<f64>,
     inv_lt: Vec<f64>,
@@ -204,9 +204,9 @@ struct Contacts {
     wa: Vec<f64>,
 }
 
-impl Contacts {
+impl ContactSteps {
     fn new(segments: &[Segment]) -> Self {
-        let mut out = Contacts::default();
+        let mut out = ContactSteps::default();
         for g in segments {
             let c = &g.contact;
             out.inv_radius.push(c.inv_radius);
@@ -229,7 +229,7 @@ impl Contacts {
 /// changes weighted by its shares of its cells, `pt[i] = wt[i] dw`, `pa[i] = wa[i] dv`, and
 /// whether it moves (1, or 0 stuck) in each field, `free_t[i]`, `free_a[i]`.
 struct SlideMany<'a> {
-    contacts: &'a Contacts,
+    contacts: &'a ContactSteps,
     v: &'a [f64],
     w: &'a [f64],
     out: &'a mut Shares,
@@ -288,7 +288,7 @@ struct Segment {
     axial: usize,
     wt: f64,
     wa: f64,
-    contact: Contact,
+    contact: ContactStep,
     geometry: Geometry,
 }
 
@@ -365,7 +365,7 @@ pub struct CoupledFriction {
     /// The segments with contact force (the others are counted in [`Slots::untouched`]).
     segments: Vec<Segment>,
     /// Their contacts, for the vector pass.
-    contacts: Contacts,
+    contacts: ContactSteps,
     law: Law,
     /// The step's speeds at the segments and their contributions to their cells.
     v: Vec<f64>,
@@ -426,8 +426,8 @@ impl CoupledFriction {
                 let q = traj.at(zc);
                 let t = q.tangent;
                 let kappa = match cfg.friction.contact {
-                    ContactModel::SoftString => traj.curvature_vector_on(zc, traj.interval(zc)),
-                    ContactModel::Weight => [0.0; 3],
+                    Contact::SoftString => traj.curvature_vector_on(zc, traj.interval(zc)),
+                    Contact::Weight => [0.0; 3],
                 };
                 let wz = [-w * t[2] * t[0], -w * t[2] * t[1], w * (1.0 - t[2] * t[2])];
                 let geometry = Geometry {
@@ -443,9 +443,9 @@ impl CoupledFriction {
                 let contact = if touches {
                     let tension = -0.5 * sa.impedance * (axial.alpha[ja] - axial.beta[ja]);
                     let n = geometry.normal_force(tension);
-                    Contact::new(p.contact_radius, geometry.ca * n, geometry.ct * n, &law)
+                    ContactStep::new(p.contact_radius, geometry.ca * n, geometry.ct * n, &law)
                 } else {
-                    Contact::new(p.contact_radius, 0.0, 0.0, &law)
+                    ContactStep::new(p.contact_radius, 0.0, 0.0, &law)
                 };
                 if end > pos {
                     let l = end - pos;
@@ -484,7 +484,7 @@ impl CoupledFriction {
             }
         }
         let mut cf = CoupledFriction {
-            contacts: Contacts::new(&segments),
+            contacts: ContactSteps::new(&segments),
             torsional: Slots::new(lt, &cells_t, idle_t.into_iter()),
             axial: Slots::new(la, &cells_a, idle_a.into_iter()),
             segments,
@@ -507,7 +507,7 @@ impl CoupledFriction {
 
     /// The static limit of the wall friction on the half of the last axial cell below its
     /// centre (`mu_s N h / 2` at the last cell's tension), N: it holds the free end of a stuck
-    /// string at rest ([`super::axial::Axial::end_hold`]).
+    /// string at rest ([`super::axial_field::Axial::end_hold`]).
     pub fn end_hold(&self) -> f64 {
         self.end_hold
     }
@@ -537,7 +537,7 @@ impl CoupledFriction {
             let tension = -self.half_impedance[k] * (axial.alpha[k] - axial.beta[k]);
             let n = g.geometry.normal_force(tension);
             let (la, lt) = (g.geometry.ca * n, g.geometry.ct * n);
-            g.contact = Contact::new(g.geometry.radius, la, lt, &self.law);
+            g.contact = ContactStep::new(g.geometry.radius, la, lt, &self.law);
             c.inv_la[i] = g.contact.inv_la;
             c.inv_lt[i] = g.contact.inv_lt;
             c.kla[i] = g.contact.kla;

@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use super::{slide, Contact, Contacts, CoupledFriction, Law, Segment, Shares, SlideMany};
+use super::{slide, ContactStep, ContactSteps, CoupledFriction, Law, Segment, Shares, SlideMany};
 use crate::drilling::config::DrillConfig;
 use crate::drilling::engine::field::Field;
 use crate::drilling::solver::solve;
@@ -22,7 +22,7 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
     let (dt, mu, n, rho_a, rho_j, r) = (1e-3, 0.3, 275.0, 28.0, 0.1, 0.0635);
     let (la, lt) = (dt * mu * n / rho_a, dt * mu * n * r / rho_j);
     for (v, w) in [(0.01, 2.0 * PI), (-0.01, 2.0 * PI), (0.3, -4.0), (2.0, 0.5), (-0.2, 0.0)] {
-        let f = slide(v, w, &Contact::new(r, la, lt, &LAW), &LAW);
+        let f = slide(v, w, &ContactStep::new(r, la, lt, &LAW), &LAW);
         let u = (v * v + r * w * r * w).sqrt();
         let fa = -0.65 * mu * n * v / u;
         let ft = -0.65 * mu * n * r * w / u;
@@ -33,11 +33,11 @@ fn sliding_friction_is_the_kinetic_force_against_the_sliding_velocity() {
     }
     // Without axial speed: the torsional law's kinetic change, bit for bit.
     for w in [2.0, -7.5] {
-        let f = slide(0.0, w, &Contact::new(r, la, lt, &LAW), &LAW);
+        let f = slide(0.0, w, &ContactStep::new(r, la, lt, &LAW), &LAW);
         assert_eq!((f.dv, f.dw), (0.0, -(0.65 * lt) * w.signum()), "{w}");
     }
     // A change that would reverse a speed stops it.
-    let f = slide(1e-6, 2.0 * PI, &Contact::new(r, 1.0, lt, &LAW), &LAW);
+    let f = slide(1e-6, 2.0 * PI, &ContactStep::new(r, 1.0, lt, &LAW), &LAW);
     assert!(f.stuck_axial && !f.stuck_torsional && f.dv == -1e-6);
 }
 
@@ -54,18 +54,18 @@ fn the_vector_pass_is_slide_bit_for_bit() {
         let (la, lt, r) = (log(-7.0, 0.0), log(-6.0, 0.0), log(-1.5, -0.5));
         let sv = if i % 2 == 0 { 1.0 } else { -1.0 };
         let sw = if i % 3 == 0 { 1.0 } else { -1.0 };
-        let contact = Contact::new(r, la, lt, &LAW);
+        let contact = ContactStep::new(r, la, lt, &LAW);
         segments.push(Segment { torsional: 0, axial: 0, wt: 1.0, wa: 1.0, contact, geometry: Default::default() });
         v.push(if i % 7 == 0 { 0.0 } else { sv * log(-7.0, 1.0) });
         w.push(if i % 11 == 0 { 0.0 } else { sw * log(-6.0, 1.5) });
     }
     // at the stick edge: (v / la)^2 + (w / lt)^2 = 1 + 2^-52, whose root rounds to 1 (stick)
-    let contact = Contact::new(1.0, 1.0, 1.0, &LAW);
+    let contact = ContactStep::new(1.0, 1.0, 1.0, &LAW);
     segments[0] = Segment { torsional: 0, axial: 0, wt: 1.0, wa: 1.0, contact, geometry: Default::default() };
     (v[0], w[0]) = (1.0, 2f64.powi(-26));
     assert!(slide(v[0], w[0], &contact, &LAW).stuck_torsional);
     let mut shares = Shares::new(n);
-    crate::simd::dispatch(SlideMany { contacts: &Contacts::new(&segments), v: &v, w: &w, out: &mut shares });
+    crate::simd::dispatch(SlideMany { contacts: &ContactSteps::new(&segments), v: &v, w: &w, out: &mut shares });
     let (mut stuck, mut clipped, mut sliding) = (0, 0, 0);
     for i in 0..n {
         let f = slide(v[i], w[i], &segments[i].contact, &LAW);
@@ -142,7 +142,7 @@ fn direct_step(cf: &CoupledFriction, torsion: &mut Field, axial: &mut Field) -> 
 /// cells: the Coulomb law and the regularised one, linear and consistent torsion.
 #[test]
 fn the_friction_pass_is_the_direct_form_bit_for_bit() {
-    use crate::drilling::engine::axial::Axial;
+    use crate::drilling::engine::axial_field::Axial;
     use crate::drilling::grid::Grid;
     let pipe = r#""outer_diameter": 0.127, "inner_diameter": 0.108, "shear_modulus": 7.7e10, "density": 8000.0"#;
     for (model, nonlinearity) in [("set_valued", "linear"), ("set_valued", "consistent"), ("regularised", "linear")] {
@@ -214,7 +214,7 @@ fn the_friction_pass_is_the_direct_form_bit_for_bit() {
 #[test]
 fn a_contact_sticks_by_its_impulse_balance_else_slides_kinetically() {
     let (la, lt, r) = (1e-3, 2e-3, 0.05);
-    let c = Contact::new(r, la, lt, &LAW);
+    let c = ContactStep::new(r, la, lt, &LAW);
     let f = slide(0.6e-3, 1.5e-3, &c, &LAW);
     assert_eq!((f.dv, f.dw, f.stuck_axial, f.stuck_torsional), (-0.6e-3, -1.5e-3, true, true));
     // slow (far below any stick speed) but over the static limit: the kinetic force
@@ -228,7 +228,7 @@ fn a_contact_sticks_by_its_impulse_balance_else_slides_kinetically() {
     let f = slide(-1.001 * la, 0.0, &c, &LAW);
     assert!(!f.stuck_axial && f.stuck_torsional && (f.dv - 0.65 * la).abs() < 1e-18, "{f:?}");
     // No contact force: nothing.
-    let f = slide(3e-3, 1.0, &Contact::new(r, 0.0, 0.0, &LAW), &LAW);
+    let f = slide(3e-3, 1.0, &ContactStep::new(r, 0.0, 0.0, &LAW), &LAW);
     assert_eq!((f.dv, f.dw), (0.0, 0.0));
 }
 

@@ -15,7 +15,7 @@
 //!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDriveEnd`]) carrying out a
 //!   controller's command, the bit ([`boundary::BitEnd`]) with its law ([`boundary::BitLaw`]:
 //!   free end or the velocity-weakening torque with a stick phase);
-//! * [`axial`]: a coupled run's axial field (`[hoist]` with `bit.law` `detournay` or `rgd`): the
+//! * [`axial_field`]: a coupled run's axial field (`[hoist]` with `bit.law` `detournay` or `rgd`): the
 //!   same [`field::Field`] and [`kernel`] with the axial sections' speeds and impedances, the
 //!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
 //!   the bit on bottom as the set-valued boundary of both fields
@@ -162,14 +162,14 @@
 //! per cell), and `numerical` the upwind dissipation `e C (1 - C) (d alpha^2 + d beta^2)` (0 at
 //! `C = 1`) plus the implicit-Euler dissipation `I (Omega' - Omega)^2 / 2` of the top drive and
 //! BHA (in a step where the bit sticks, the BHA's term counts as bit loss: the bit torque stops
-//! it). The motor work is `sum dt tau_m Omega'`. A coupled run ([`axial`]) adds the axial field's
+//! it). The motor work is `sum dt tau_m Omega'`. A coupled run ([`axial_field`]) adds the axial field's
 //! energies (`e (alpha^2 + beta^2)` with `e = rho A h / 4`), the hoist's work `dt F v` at the top
 //! and the buoyed weight's work as inputs, and the bit's `dt (W v' + T w')` as its loss; the
 //! coupled wall friction's work on each cell of both fields, `m h delta (w + delta / 2)`, goes
 //! to `friction_loss` (its axial part also to `axial_friction_loss`), a BHA mass's kinetic
 //! energy to `bha`, its weight's work to `gravity_work`.
 
-pub mod axial;
+pub mod axial_field;
 pub mod boundary;
 pub mod controller;
 pub mod coupled_friction;

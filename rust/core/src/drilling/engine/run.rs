@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use super::axial::Axial;
+use super::axial_field::Axial;
 use super::boundary::{BitEnd, TopDriveEnd};
 use super::controller::{Command, ControllerState, Setpoint, SpeedSeries, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;

@@ -2,7 +2,7 @@
 //! ends around each sample time, and the field snapshots at the step nearest to
 //! `k field_interval`; storage reserved up front ([`crate::solution::reserve_outputs`]).
 
-use super::axial::Axial;
+use super::axial_field::Axial;
 use super::controller::RPM_PER_RAD_S;
 use super::field::Field;
 use super::run::DrillRun;

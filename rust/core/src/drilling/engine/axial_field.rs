@@ -443,12 +443,12 @@ pub fn rate_depth(law: &DetournayBit, axial: Port, torsion: Port, omega: f64, la
 }
 
 #[cfg(test)]
-#[path = "axial_tests.rs"]
+#[path = "axial_field_tests.rs"]
 mod tests;
 
 #[cfg(test)]
-#[path = "axial_bha_tests.rs"]
+#[path = "axial_field_bha_tests.rs"]
 mod bha_tests;
 
-#[path = "axial_steady.rs"]
+#[path = "axial_field_steady.rs"]
 mod steady;
