@@ -24,8 +24,8 @@ smoothed series whose prominence is at least :data:`PROMINENCE` of its range and
 =================  ==============================================================
 
 Uncertainty of each measured feature (standard deviation): the sensor noise (``noise_level``:
-the standard deviation of the differences of successive samples over sqrt 2, by the median
-absolute deviation, so that the signal's own slope does not count) through the smoothing and the
+from the differences of successive samples taken twice, by the median absolute deviation, so
+that the signal's own slope does not count) through the smoothing and the
 number of cycles averaged, the scatter of the cycles (a mean over few cycles of a record whose
 cycles differ is uncertain by their spread), the sampling interval for times, and the model error: a share
 :data:`MODEL_ERROR` of the feature (the spread of these features between two independent
@@ -51,21 +51,23 @@ PROMINENCE = 0.3
 #: Peaks at least this far apart, s.
 MIN_SEPARATION = 1.0
 #: The model error of each feature, as a share of the feature (times: of the period).
-MODEL_ERROR: Mapping[str, float] = {"first_peak": 0.01, "peak_mean": 0.03, "trough_mean": 0.05,
+MODEL_ERROR: Mapping[str, float] = {"first_peak": 0.015, "peak_mean": 0.03, "trough_mean": 0.05,
                                     "period": 0.01, "cycle_mean": 0.02, "level": 0.02}
 #: The features in the order of the residual vector.
 FEATURES: tuple[str, ...] = ("first_peak", "peak_mean", "trough_mean", "period", "cycle_mean", "level")
 
 
 def noise_level(values: NDArray[np.float64]) -> float:
-    """The standard deviation of the series' noise from the differences of successive samples
-    (median absolute deviation, scaled to a normal distribution's standard deviation, over
-    sqrt 2): the signal's slope between samples, small against the noise, barely counts."""
-    d = np.diff(np.asarray(values, dtype=np.float64))
+    """The standard deviation of the series' noise from the differences of successive samples,
+    taken twice (independent noise of standard deviation ``s`` gives second differences of
+    ``s sqrt 6``; a signal's slope gives none and its curvature between samples little), by the
+    median absolute deviation scaled to a normal distribution's (a stick-slip cycle's corners,
+    a few samples each, do not count)."""
+    d = np.diff(np.asarray(values, dtype=np.float64), n=2)
     if d.size < 2:
         return 0.0
     mad = float(np.median(np.abs(d - np.median(d))))
-    return mad / 0.6744897501960817 / math.sqrt(2.0)
+    return mad / 0.6744897501960817 / math.sqrt(6.0)
 
 
 def smoothed(values: NDArray[np.float64], width: int) -> NDArray[np.float64]:

@@ -471,8 +471,10 @@ def _refine(problem: _Problem, u0: NDArray[np.float64], free: list[int], step: f
 
     cached = _Cached(problem, u0.copy(), free, step)
     r0 = cached.fun(u0[free])
+    # the features' chi-square needs its minimum to a hundredth of a standard deviation, no finer
+    tol = {"ftol": 1e-3, "xtol": 1e-4} if problem.misfit == "features" else {}
     res = least_squares(cached.fun, u0[free], jac=cached.jac, bounds=(0.0, 1.0), method="trf",
-                        max_nfev=max_iterations, x_scale=1.0)
+                        max_nfev=max_iterations, x_scale=1.0, **tol)
     u, ssr = (cached.full(res.x), float(res.fun @ res.fun)) if res.fun @ res.fun < r0 @ r0 else (u0, float(r0 @ r0))
     return u, ssr, {"status": int(res.status), "message": str(res.message), "evaluations": int(res.nfev)}
 
