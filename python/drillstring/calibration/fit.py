@@ -734,7 +734,7 @@ def fit(
     warnings_ += _identifiability_warnings(estimates, opts.level)
     landscapes = _landscapes(problem, u_opt, columns, opts)
     fitted_configs, fitted, failures = _fitted_runs(problem, events, u_opt)
-    series_checks, feature_rows = _checks(problem, u_opt, grid_error)
+    series_checks, feature_rows = _checks(problem, fitted, grid_error)
     corr = checks.correlation(spread.cov)
     warnings_ += _result_warnings(estimates, series_checks, feature_rows, corr, ssr, r.size, opts)
     return FitResult(
@@ -1164,22 +1164,21 @@ def _grid_error(problem: _Problem, u_opt: NDArray[np.float64]) -> list[dict[str,
     return errors
 
 
-def _checks(problem: _Problem, u_opt: NDArray[np.float64], grid_error: list[dict[str, dict[str, float]]]
-            ) -> tuple[list[checks.SeriesCheck], list[dict[str, Any]]]:
+def _checks(problem: _Problem, fitted: list[dict[str, NDArray[np.float64]]],
+            grid_error: list[dict[str, dict[str, float]]]) -> tuple[list[checks.SeriesCheck], list[dict[str, Any]]]:
     """The fitted series against the data, per event and target (sample by sample), and with
     ``misfit="features"`` the features' table of ``fit.json`` (with each feature's
     discretisation error, ``grid_error``)."""
-    runs = problem.run([u_opt])[0]
     found, rows = [], []
-    for e, run in enumerate(runs):
+    for e, run in enumerate(fitted):
         for s in problem.targets:
             data = problem.measured[e][s]
-            model = run[s] if isinstance(run, dict) else np.full(data.size, np.nan)
+            model = np.asarray(run[s])[problem.index[e]] if s in run else np.full(data.size, np.nan)
             found.append(checks.series_check(e, s, model, data))
             if problem.misfit != "features":
                 continue
             names, ref, sd = problem.reference[e][s]
-            got = cycle_features(problem.times[e], model).values if isinstance(run, dict) else {}
+            got = cycle_features(problem.times[e], model).values if s in run else {}
             rows += [{"event": e, "series": s, "feature": n, "data": float(v), "std": float(d),
                       "fitted": got.get(n, math.nan), "grid_error": grid_error[e][s].get(n, 0.0)}
                      for n, v, d in zip(names, ref, sd)]
