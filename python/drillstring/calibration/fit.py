@@ -14,7 +14,10 @@ Residuals: for each event, each target series ``s`` and each model output time `
 a measured sample inside a window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the
 measured series linearly interpolated at ``t_k`` and ``scale_s`` its standard deviation over the
 windows (so that series of different units combine). The misfit is the sum of their squares
-(``ssr``). A run that fails or is refused gets residuals :data:`FAILED_RESIDUAL`.
+(``ssr``). A run that fails or is refused gets residuals :data:`FAILED_RESIDUAL`. With
+``misfit="features"`` the residuals are instead the cycle features of each target series
+(:mod:`~drillstring.calibration.features`) against the data's, in their standard deviations,
+over the whole windows at once (no horizons: the features do not depend on the cycles' phase).
 
 Stages:
 
@@ -41,7 +44,9 @@ Stages:
    at each of ``profile_points`` values) gives the interval instead. A parameter whose interval
    spans its whole box is reported not identifiable (a warning), and a near-singular Jacobian
    names the parameters of its weakest direction (a ridge);
-4. **landscape**: the misfit over a ``landscape_points`` x ``landscape_points`` grid of each pair
+4. **checks** (:mod:`~drillstring.calibration.checks`): warnings for a value at its bound, a
+   residual far above the data's noise or correlated, implausible units, a ridge;
+5. **landscape**: the misfit over a ``landscape_points`` x ``landscape_points`` grid of each pair
    of parameters, the others at the optimum (a ridge of equally good fits shows there).
 
 Several events (start-ups, each its data and optionally its own configuration) are fitted
