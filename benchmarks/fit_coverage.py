@@ -23,6 +23,7 @@ relative error.
 
     python benchmarks/fit_coverage.py [--misfit features|least_squares] [--top controller|measured]
                                       [--draws 20] [--cells 700] [--cache DIR] [--threads 2]
+                                      [--starts N] [--carry K]
 
 ``--cache DIR`` keeps the noiseless runs of the other codes in DIR (the published port on 4000
 cells takes minutes).
@@ -136,6 +137,8 @@ def main() -> None:
     parser.add_argument("--cells", type=int, default=700)
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--cache", type=Path, default=None)
+    parser.add_argument("--starts", type=int, default=None, help="fit's starts (default: the fit's)")
+    parser.add_argument("--carry", type=int, default=None, help="fit's carry: starts past the first horizon")
     parser.add_argument("--skip-published", action="store_true", help="leave out the published port (4000 cells)")
     args = parser.parse_args()
     cfg = ds.load_drill_config(ROOT / "examples" / "aarsnes-shor-well-b.toml").with_overrides(
@@ -156,7 +159,7 @@ def main() -> None:
         start = time.perf_counter()
         model = cfg.with_overrides({"damping_rate": damping_rate(cells)})
         res = ds.fit(model, noisy(run, seed), BOUNDS, threads=args.threads, landscape=False, misfit=args.misfit,
-                     top=args.top)
+                     top=args.top, starts=args.starts, carry=args.carry)
         seconds.append(time.perf_counter() - start)
         row = []
         for key, true in TRUTH.items():
