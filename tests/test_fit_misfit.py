@@ -211,3 +211,22 @@ def test_a_noisy_measured_speed_is_smoothed_before_it_is_imposed(short_config: d
     for key, true in (("friction.static", 0.3), ("friction.kinetic_ratio", 0.65)):
         assert res.parameters[key].value == pytest.approx(true, rel=0.03), res.parameters[key]
     assert math.isfinite(res.ssr)
+
+
+@pytest.mark.parametrize("rho", [0.6, 0.8, 0.9])
+def test_the_sandwich_widens_by_the_long_run_variance_of_correlated_residuals(rho: float) -> None:
+    """Estimating a mean (a Jacobian of ones) from AR(1) residuals: the sandwich covariance
+    exceeds the independent one by the long-run variance factor (1 + rho) / (1 - rho), closed
+    form, to the Bartlett taper's loss; white residuals leave it near 1."""
+    from drillstring.calibration.fit import _hac_inflation
+
+    rng = np.random.default_rng(11)
+    n = 40000
+    e = rng.normal(size=n)
+    r = np.empty(n)
+    r[0] = e[0]
+    for k in range(1, n):
+        r[k] = rho * r[k - 1] + math.sqrt(1 - rho ** 2) * e[k]
+    ones = np.ones((n, 1))
+    assert _hac_inflation(ones, r, n - 1) == pytest.approx((1 + rho) / (1 - rho), rel=0.25)
+    assert _hac_inflation(ones, e, n - 1) == pytest.approx(1.0, abs=0.15)

@@ -102,6 +102,10 @@ ZOOM_LOG2 = 5
 SPEED_NOISE = 1e-3
 #: ... over this long, s.
 SPEED_SMOOTH_TIME = 0.5
+#: The sandwich covariance's bandwidth: the lag at which the residuals' autocorrelation falls below this.
+HAC_CUTOFF = 0.05
+#: ... times this many.
+HAC_LENGTHS = 3
 #: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
 PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
@@ -982,8 +986,11 @@ class _Spread:
             rho = float(np.corrcoef(r[:-1], r[1:])[0, 1]) if r.size > 3 and np.std(r) > 0 else 0.0
             rho = rho if math.isfinite(rho) else 0.0
             inflation = (1 + rho) / (1 - rho) if 0 < rho < 0.999 else (1e3 if rho >= 0.999 else 1.0)
-            s2 = ssr / dof * inflation
         J = _jacobian(problem, u_opt, opts.diff_step)
+        if problem.misfit != "features":
+            if rho > checks.AUTOCORRELATION_LIMIT:
+                inflation = max(inflation, _hac_inflation(J, r, dof))
+            s2 = ssr / dof * inflation
         span = problem.upper - problem.lower
         sing = np.linalg.svd(J, compute_uv=False)
         condition = float(sing[0] / sing[-1]) if sing[-1] > 0 else math.inf
@@ -992,6 +999,39 @@ class _Spread:
         profile = opts.profile is True or (opts.profile == "auto" and condition > CONDITION_LIMIT)
         return cls(J, condition, rho, s2, cov, se, span, s2 * float(stats.chi2.ppf(opts.level, 1)),
                    list(range(p)) if profile else [])
+
+
+def _hac_inflation(J: NDArray[np.float64], r: NDArray[np.float64], dof: int) -> float:
+    """Residuals correlated beyond :data:`~drillstring.calibration.checks.AUTOCORRELATION_LIMIT`
+    (a model error with structure, not sensor noise): the factor by which the Newey-West
+    (heteroscedasticity and autocorrelation consistent, Bartlett weights) sandwich covariance
+    ``B S B`` (``B = (J^T J)^-1``, ``S`` the long-run covariance of the scores ``J_t r_t``) exceeds
+    the independent-residual covariance ``ssr / dof B``, the largest over the parameters. Its
+    bandwidth is :data:`HAC_LENGTHS` times the residuals' correlation length, the first lag at
+    which their autocorrelation falls below :data:`HAC_CUTOFF` (at most half the samples). The AR(1) factor
+    ``(1 + rho) / (1 - rho)`` assumes one exponential decay; a stick-slip misfit's residual
+    correlation follows the cycles instead."""
+    n = r.size
+    if n < 8 or not np.any(r):
+        return 1.0
+    centred = r - r.mean()
+    spectrum = np.fft.rfft(centred, 2 * n)
+    acf = np.fft.irfft(spectrum * np.conj(spectrum))[:n]
+    acf = acf / acf[0]
+    below = np.flatnonzero(acf < HAC_CUTOFF)
+    # three correlation lengths: the Bartlett weights' taper then loses a tenth of an AR(1)'s
+    # long-run variance instead of a third
+    bandwidth = int(min(HAC_LENGTHS * below[0] if below.size else n // 2, n // 2))
+    g = J * r[:, None]
+    S = g.T @ g
+    for lag in range(1, bandwidth + 1):
+        c = g[lag:].T @ g[:-lag]
+        S += (1.0 - lag / (bandwidth + 1)) * (c + c.T)
+    B = np.linalg.pinv(J.T @ J)
+    hac = np.diag(B @ S @ B)
+    plain = float(r @ r) / dof * np.diag(B)
+    ratios = [h / q for h, q in zip(hac, plain) if q > 0 and math.isfinite(h)]
+    return max([1.0, *ratios])
 
 
 def _jacobian_intervals(problem: _Problem, u_opt: NDArray[np.float64], ssr: float, spread: _Spread,
