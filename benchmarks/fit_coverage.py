@@ -134,6 +134,7 @@ def main() -> None:
     parser.add_argument("--misfit", choices=("features", "least_squares"), default="features")
     parser.add_argument("--top", choices=("controller", "measured"), default="controller")
     parser.add_argument("--draws", type=int, default=20)
+    parser.add_argument("--first-seed", type=int, default=0, help="the first noise draw's seed")
     parser.add_argument("--cells", type=int, default=700)
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--cache", type=Path, default=None)
@@ -144,7 +145,7 @@ def main() -> None:
     cfg = ds.load_drill_config(ROOT / "examples" / "aarsnes-shor-well-b.toml").with_overrides(
         {"numerics.duration": DURATION, "numerics.field_interval": 0.0})
     cases = [(f"numpy port, {args.cells} cells", f"numpy-{args.cells}", lambda: numpy_port(args.cells), seed,
-              args.cells) for seed in range(args.draws)]
+              args.cells) for seed in range(args.first_seed, args.first_seed + args.draws)]
     cases.append(("numpy port, 1500 cells", "numpy-1500", lambda: numpy_port(1500), 100, 1500))
     if not args.skip_published:
         cases.append(("published port, 4000 cells", "published-4000", lambda: published_port(4000), 200, 4000))
