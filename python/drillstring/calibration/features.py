@@ -25,12 +25,13 @@ smoothed series whose prominence is at least :data:`PROMINENCE` of its range and
 
 Uncertainty of each measured feature (standard deviation): the sensor noise (``noise_level``:
 from the differences of successive samples taken twice, by the median absolute deviation, so
-that the signal's own slope does not count) through the smoothing and the
-number of cycles averaged, the scatter of the cycles (a mean over few cycles of a record whose
-cycles differ is uncertain by their spread), the sampling interval for times, and the model error: a share
-:data:`MODEL_ERROR` of the feature (the spread of these features between two independent
-schemes of the same physics and grids of 700 to 4000 cells, measured by
-``benchmarks/fit_coverage.py``; see the calibration guide).
+that the signal's own slope does not count) through the smoothing and the number of cycles
+averaged, the scatter of the cycles (a mean over few cycles of a record whose cycles differ is
+uncertain by their spread), the sampling interval for times, and the model error: a share
+:data:`MODEL_ERROR` of the feature (the spread of these features measured between the numpy port
+of Aarsnes & Shor's scheme on 700 and 1500 cells and this solver on 700 to 2000 cells at the same
+friction; the coverage this gives is measured by ``benchmarks/fit_coverage.py``, see the
+calibration guide).
 """
 
 from __future__ import annotations
