@@ -267,10 +267,26 @@ def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
               f"- sum of squared normalised residuals {result.ssr:.5g} (mean square {result.misfit:.4g}); "
               f"global stage best {result.global_stage['best_ssr']:.5g} over {result.global_stage['points']} points",
               f"- condition number of the box-scaled Jacobian {result.condition:.3g}; residual lag-one "
-              f"autocorrelation {result.residual_autocorrelation:.3g}"]
+              f"autocorrelation {result.residual_autocorrelation:.3g}",
+              f"- misfit: {'cycle features' if result.objective == 'features' else 'least squares, sample by sample'}"]
     for e, row in enumerate(result.rms):
         lines.append(f"- event {e} ({_md(os.path.basename(result.events[e].data.source))}): RMS error "
                      + ", ".join(f"{k} {v:.4g}" for k, v in row.items()))
+    for c in result.series_checks:
+        lines.append(f"- event {c.event}, {c.series}: the data's noise level {c.noise:.4g} (from successive "
+                     f"differences), residual autocorrelation {c.autocorrelation:.3g}")
+    if len(result.parameters) > 1 and result.correlation:
+        names = list(result.parameters)
+        pairs = [f"`{_md(names[i])}` / `{_md(names[j])}` {result.correlation[i][j]:+.3f}"
+                 for i in range(len(names)) for j in range(i + 1, len(names))]
+        lines.append("- correlation of the estimates: " + ", ".join(pairs))
+    if result.features:
+        lines += ["", "## Features", "", "| event | series | feature | data | std | fitted | (fitted - data) / std |",
+                  "|---:|---|---|---:|---:|---:|---:|"]
+        for row in result.features:
+            z = (row["fitted"] - row["data"]) / row["std"] if math.isfinite(row["fitted"]) else math.nan
+            lines.append(f"| {row['event']} | {row['series']} | {row['feature']} | {_fmt(row['data'])} | "
+                         f"{_fmt(row['std'])} | {_fmt(row['fitted'])} | {_fmt(z)} |")
     if result.warnings:
         lines += ["", "## Warnings", ""] + [f"- {_md(annotate(w, system))}" for w in result.warnings]
     lines += ["", "## What the data must contain", "",

@@ -58,6 +58,11 @@ def add_parser(subparsers: Any) -> None:
     p.add_argument("--top", choices=("controller", "measured"), default="controller",
                    help="the model's top boundary: the configuration's controller and setpoint (default), or the "
                    "data's surface_rpm imposed as the top speed (the controller's gains need not be known)")
+    p.add_argument("--misfit", choices=("least_squares", "features"), default="least_squares",
+                   help="what is minimised: the residuals sample by sample (default), or the cycle features (break-off "
+                   "torque, each cycle's maximum and minimum, period, mean) with their uncertainties, which a period "
+                   "differing slightly from the well's, a phase shift or a sensor's lag leave unchanged: for field "
+                   "data and data of another model")
     p.set_defaults(func=run)
 
 
@@ -115,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
         result = fit(config, data, params, targets=targets, windows=windows or None, per_event=args.per_event,
                      samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
                      landscape_points=args.landscape_points, progress=lambda msg: say(f"fit: {msg}"),
-                     top=args.top)
+                     top=args.top, misfit=args.misfit)
         system = config.units
         for key, p in result.parameters.items():
             low, high = field_value(key, p.ci_low, system), field_value(key, p.ci_high, system)
