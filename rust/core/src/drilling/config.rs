@@ -83,6 +83,32 @@ pub struct Section {
     /// `M = 2 G (1 - nu) / (1 - 2 nu)` of the `consistent` nonlinearity (unused by `linear`).
     #[schemars(extend("unit" = "", "label" = "Poisson's ratio"))]
     pub poisson_ratio: f64,
+    /// API drill-pipe grade (`E-75`, `X-95`, `G-105`, `S-135`), for the torque and drag's
+    /// utilisation; or `yield_strength`. Null: no utilisation.
+    #[schemars(extend("label" = "grade"))]
+    pub grade: Option<super::pipe::Grade>,
+    /// Minimum yield strength, > 0, in place of `grade`.
+    #[schemars(extend("unit" = "Pa", "label" = "yield strength"))]
+    pub yield_strength: Option<f64>,
+    /// Adjusted weight in air per length with the tool joints (as pipe tables give it), > 0,
+    /// for the torque and drag. Null: from the tool joints, else the body.
+    #[schemars(extend("unit" = "N/m", "label" = "nominal weight"))]
+    pub nominal_weight: Option<f64>,
+    /// Outer diameter of the tool joints, at least the body's.
+    #[schemars(extend("unit" = "m", "label" = "tool-joint outer diameter"))]
+    pub tool_joint_outer_diameter: Option<f64>,
+    /// Inner diameter of the tool joints, below their outer diameter.
+    #[schemars(extend("unit" = "m", "label" = "tool-joint inner diameter"))]
+    pub tool_joint_inner_diameter: Option<f64>,
+    /// Length of one tool joint (pin and box), below the joint length.
+    #[schemars(extend("unit" = "m", "label" = "tool-joint length"))]
+    pub tool_joint_length: Option<f64>,
+    /// Length of one joint, > 0 (null: 9.144 m, API range 2).
+    #[schemars(extend("unit" = "m", "label" = "joint length"))]
+    pub joint_length: Option<f64>,
+    /// Make-up torque of the tool joints, > 0 (null: not checked).
+    #[schemars(extend("unit" = "N*m", "label" = "make-up torque"))]
+    pub makeup_torque: Option<f64>,
 }
 
 impl Default for Section {
@@ -101,6 +127,14 @@ impl Default for Section {
             area: None,
             quartic_moment: None,
             poisson_ratio: 0.3,
+            grade: None,
+            yield_strength: None,
+            nominal_weight: None,
+            tool_joint_outer_diameter: None,
+            tool_joint_inner_diameter: None,
+            tool_joint_length: None,
+            joint_length: None,
+            makeup_torque: None,
         }
     }
 }
@@ -166,6 +200,13 @@ pub struct Well {
     /// is true: then the hole goes straight on in the last station's direction.
     #[schemars(extend("label" = "extend the survey"))]
     pub extend: bool,
+    /// Diameter of the open hole (below `hole_sections`), larger than every pipe and tool
+    /// joint: the torque and drag's buckling. Null: no buckling evaluated.
+    #[schemars(extend("unit" = "m", "label" = "hole diameter"))]
+    pub hole_diameter: Option<f64>,
+    /// Casing and hole sections from the surface down, each to its `bottom_md` (needs `hole_diameter`).
+    #[schemars(extend("label" = "hole sections"))]
+    pub hole_sections: Vec<super::pipe::HoleSection>,
     /// The stations read from `survey` when the configuration was parsed (md m, inclination
     /// and azimuth degrees).
     #[serde(skip)]
@@ -184,6 +225,8 @@ impl Default for Well {
             survey: None,
             plan: None,
             extend: false,
+            hole_diameter: None,
+            hole_sections: Vec::new(),
             survey_stations: None,
         }
     }
@@ -1385,6 +1428,7 @@ impl DrillConfig {
             nonneg(f("static"), iv.static_coefficient, "-")?;
         }
         super::limits::validate_torque_drag(self)?;
+        super::pipe::validate(self)?;
         let fr = &self.friction;
         nonneg("friction.static", fr.static_coefficient, "-")?;
         within("friction.kinetic_ratio", fr.kinetic_ratio, 0.0, 1.0, "-")?;

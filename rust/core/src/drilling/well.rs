@@ -247,20 +247,16 @@ pub fn friction_factor(cfg: &DrillConfig, md: f64) -> f64 {
 
 /// The friction factors of a configuration times `ratio` (1: the static ones;
 /// `friction.kinetic_ratio`: the sliding ones).
+/// `friction.intervals` come first, then the hole sections' factors.
 fn friction(cfg: &DrillConfig, ratio: f64) -> Friction {
-    Friction {
-        mu: ratio * cfg.friction.static_coefficient,
-        intervals: cfg
-            .friction
-            .intervals
-            .iter()
-            .map(|iv| FrictionInterval {
-                top_md: iv.top_md,
-                bottom_md: iv.bottom_md,
-                mu: ratio * iv.static_coefficient,
-            })
-            .collect(),
-    }
+    let mut intervals: Vec<FrictionInterval> = cfg
+        .friction
+        .intervals
+        .iter()
+        .map(|iv| FrictionInterval { top_md: iv.top_md, bottom_md: iv.bottom_md, mu: ratio * iv.static_coefficient })
+        .collect();
+    intervals.extend(super::pipe::hole_friction(cfg, ratio));
+    Friction { mu: ratio * cfg.friction.static_coefficient, intervals }
 }
 
 /// The torque-and-drag setup of a configuration: its sections (buoyed weight, contact radius),
@@ -283,7 +279,12 @@ fn setup_with(cfg: &DrillConfig, ratio: f64) -> Setup {
             .iter()
             .map(|s| {
                 let p = SectionProps::new(s, cfg.well.mud_density);
-                Piece { length: s.length, weight: p.buoyed_mass_per_length * g, contact_radius: p.contact_radius }
+                Piece {
+                    length: s.length,
+                    weight: super::pipe::buoyed_weight(s, cfg.well.mud_density, g),
+                    contact_radius: p.contact_radius,
+                    body: super::pipe::body(s),
+                }
             })
             .collect(),
         friction: friction(cfg, ratio),
@@ -291,10 +292,12 @@ fn setup_with(cfg: &DrillConfig, ratio: f64) -> Setup {
         bit_torque: cfg.torque_drag.bit_torque,
         block_weight: cfg.torque_drag.block_weight,
         step: cfg.torque_drag.step,
+        hole: super::pipe::hole(cfg),
+        pressure_gradient: cfg.well.mud_density * g,
     }
 }
 
-/// The four operations' torque and drag of a configuration (stepped, Johancsik).
+/// The five operations' torque and drag of a configuration (stepped, Johancsik).
 pub fn torque_drag(cfg: &DrillConfig) -> Result<TorqueDrag> {
     let traj = trajectory(cfg)?;
     let s = setup(cfg);
