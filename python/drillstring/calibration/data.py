@@ -50,7 +50,7 @@ from numpy.typing import NDArray
 
 from ..errors import ValidationError
 
-__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "MeasuredData", "read_measured"]
+__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "MeasuredData", "dimension_factor", "read_measured"]
 
 #: The columns a data file may have, each with its dimension (the model's SI unit in :data:`UNITS`).
 COLUMNS: dict[str, str] = {
@@ -99,11 +99,17 @@ def unit_factor(name: str, unit: str, field_name: str = "units") -> float:
     """The factor that takes ``name``'s values in ``unit`` to the model's SI unit; a unit of
     another dimension or unknown raises :class:`~drillstring.errors.ValidationError` listing the
     units known for the column."""
-    dimension = COLUMNS[name]
+    return dimension_factor(COLUMNS[name], unit, f"{field_name}[{name}]")
+
+
+def dimension_factor(dimension: str, unit: str, field_name: str) -> float:
+    """The factor that takes values in ``unit`` to the SI unit of ``dimension`` (a key of
+    :data:`UNITS`); an unknown unit raises :class:`~drillstring.errors.ValidationError` naming
+    ``field_name`` and listing the known units."""
     known = UNITS[dimension]
     key = _unit_key(unit)
     if key not in known:
-        raise ValidationError(f"{field_name}[{name}]", unit, f"a {dimension} unit: one of {', '.join(known)}")
+        raise ValidationError(field_name, unit, f"a {dimension} unit: one of {', '.join(known)}")
     return known[key]
 
 

@@ -602,8 +602,9 @@ pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: Scheme) -> To
 
 /// Hook loads against bit depth while tripping (the broomstick plot): for each friction factor
 /// in `mus` and each bit depth in `depths` (each within `(0, string length]`), the pick-up,
-/// slack-off and rotating hook loads, N, as `[mu][depth]` rows of `(pickup, slackoff, rotating)`.
-pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64]) -> Result<Vec<Vec<[f64; 3]>>> {
+/// slack-off and rotating hook loads, N, and the rotating surface torque, N m, as `[mu][depth]`
+/// rows of `(pickup, slackoff, rotating, torque)`.
+pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64]) -> Result<Vec<Vec<[f64; 4]>>> {
     setup.validate_string()?;
     let length = setup.depth();
     for (j, &d) in depths.iter().enumerate() {
@@ -629,7 +630,13 @@ pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64])
                     let hook = |op| {
                         setup.solve_at(traj, op, Scheme::Stepwise, d, Some(mu)).surface_tension() + setup.block_weight
                     };
-                    [hook(Operation::PickUp), hook(Operation::SlackOff), hook(Operation::RotatingOffBottom)]
+                    let rotating = setup.solve_at(traj, Operation::RotatingOffBottom, Scheme::Stepwise, d, Some(mu));
+                    [
+                        hook(Operation::PickUp),
+                        hook(Operation::SlackOff),
+                        rotating.surface_tension() + setup.block_weight,
+                        rotating.surface_torque(),
+                    ]
                 })
                 .collect()
         })
