@@ -54,8 +54,10 @@ def run(args: argparse.Namespace) -> int:
          "broomstick sweep)")
     say(f"hook load: pick-up {s['hook_load_pickup_N'] * force:.1f} {force_unit}, slack-off "
          f"{s['hook_load_slackoff_N'] * force:.1f} {force_unit}, rotating {s['hook_load_rotating_N'] * force:.1f} "
-         f"{force_unit}, rotating on bottom {s['hook_load_rotating_on_bottom_N'] * force:.1f} {force_unit}, sliding "
-         f"{s['hook_load_sliding_N'] * force:.1f} {force_unit} (with the block weight; effective tension)")
+         f"{force_unit}, rotating on bottom {s['hook_load_rotating_on_bottom_N'] * force:.1f} {force_unit} (with the "
+         "block weight; effective tension)")
+    say(f"sliding (lowering, not rotating, the weight on bit on the bit): hook load "
+        f"{s['hook_load_sliding_N'] * force:.1f} {force_unit}")
     say(f"surface torque: off bottom {s['surface_torque_off_bottom_Nm'] * torque:.2f} {torque_unit}, on bottom "
          f"{s['surface_torque_on_bottom_Nm'] * torque:.2f} {torque_unit}; largest normal force "
          f"{s['max_normal_force_N_per_m'] * normal:.0f} {normal_unit} at {s['max_normal_force_md'] * depth:.0f} "
