@@ -351,12 +351,13 @@ def profiles_figure(result: TorqueDragResult, *, units: str = "si") -> Figure:
         md = np.asarray(first["md"]) * depth
         fs = -np.asarray(first["sinusoidal_buckling_load_N"]) * force
         fh = -np.asarray(first["helical_buckling_load_N"]) * force
-        axes[0].fill_betweenx(md, fh, fs, color="tab:orange", alpha=0.18, lw=0, label="sinusoidal buckling")
-        lowest = min(float(np.nanmin(fh)), *(float(np.nanmin(np.where(np.isfinite(t), t, np.nan))) * force
-                                             for t in (np.asarray(result.profiles[op]["tension_N"])
-                                                       for op in OPERATIONS)))
-        axes[0].fill_betweenx(md, np.minimum(fh, 1.2 * lowest), fh, color="tab:red", alpha=0.12, lw=0,
+        tensions = np.concatenate([np.asarray(result.profiles[op]["tension_N"]) for op in OPERATIONS]) * force
+        tensions = tensions[np.isfinite(tensions)]
+        left = min(1.1 * float(tensions.min()), -0.3 * float(tensions.max()))
+        axes[0].fill_betweenx(md, fh, fs, color="tab:orange", alpha=0.25, lw=0, label="sinusoidal buckling")
+        axes[0].fill_betweenx(md, np.minimum(fh, left), fh, color="tab:red", alpha=0.12, lw=0,
                               label="helical buckling")
+        axes[0].set_xlim(left, 1.05 * float(tensions.max()))
     for op in OPERATIONS:
         p = result.profiles[op]
         md = np.asarray(p["md"]) * depth
