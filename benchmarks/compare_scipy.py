@@ -24,6 +24,13 @@ separately, the whole ``ds.simulate`` call (projection, validation and result in
 best of the repeats, and the mean of 50 calls in a row (what a loop of simulations pays,
 memory effects included).
 
+The output path: each method's core solve is also timed with 11 output samples (the integration
+alone: the same steps, nine interpolated samples) and with ``--samples``; their difference is what
+the samples cost (for DOP853 the three extra stages of its dense output in every step that holds a
+sample, building and evaluating the interpolant, storing the values; the values reach numpy
+without a copy), printed per output value next to one copy of the output array (``np.copyto``
+of its samples x 2m values) and as a share of the integration alone.
+
 A last row times RKN12 at scipy's achieved accuracy: the loosest tolerance of a grid at which
 both its errors are at most scipy's (scipy's DOP853 misses the requested 1e-12 by far more).
 
@@ -116,8 +123,8 @@ def main() -> None:
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"numpy {np.__version__}, python {platform.python_version()}, core kernels {ds.simd_path()}")
 
-    def core(method: str, rtol: float, atol: float) -> dict[str, Any]:
-        return _core.solve_modal(system, q0, v0, 1.0, t_eval, method, rtol, atol)
+    def core(method: str, rtol: float, atol: float, times: np.ndarray = t_eval) -> dict[str, Any]:
+        return _core.solve_modal(system, q0, v0, 1.0, times, method, rtol, atol)
 
     if args.crossover:
         crossover(core, args.repeat)
@@ -172,6 +179,7 @@ def main() -> None:
               f"{ev:10.1e}{floor * 1e3:10.3f}{ratio}{t_scipy / t_core:10.0f}x")
         print(f"{'  (whole ds.simulate)':<24}{t_sim * 1e3:10.3f}{'':>8}{'':>7}{'':>10}{'':>10}{'':>10}"
               f"{'':>12}{t_scipy / t_sim:10.0f}x")
+        output_path(core, method, out, args)
         start, calls = time.perf_counter(), 50
         for _ in range(calls):
             ds.simulate(params, modes=3, t_eval=t_eval, method=method, rtol=RTOL, atol=args.atol)
@@ -180,6 +188,25 @@ def main() -> None:
               f"{'':>12}{t_scipy / t_loop:10.0f}x")
     if "rkn12" in args.method:
         matched_accuracy(core, ref, m, (eq_sp, ev_sp), t_scipy, cost_ds, args)
+
+
+def output_path(core: Callable[..., dict[str, Any]], method: str, out: dict[str, Any],
+                args: argparse.Namespace) -> None:
+    """Prints what the output samples cost: the core solve with ``--samples`` output times minus
+    the same solve with 11, per output value, against one memory copy per value."""
+    few = np.linspace(0.0, 1.0, 11)
+    t_many, _ = best_of(args.repeat * 4, lambda: core(method, RTOL, args.atol))
+    t_few, alone = best_of(args.repeat * 4, lambda: core(method, RTOL, args.atol, few))
+    y = np.asarray(out["y"])
+    target = np.empty_like(y)
+    t_copy, _ = best_of(args.repeat * 4, lambda: np.copyto(target, y))
+    values = y.size
+    overhead = t_many - t_few
+    print(f"{'  (output path)':<24}integration alone (11 samples, {alone['nfev']} evaluations) {t_few * 1e3:.3f} ms; "
+          f"{y.shape[0]} samples add {overhead * 1e3:.3f} ms = {overhead / values * 1e9:.1f} ns per value "
+          f"({overhead / t_few:.0%} of the integration; one copy of the values {t_copy / values * 1e9:.2f} ns "
+          f"per value, {t_copy * 1e3:.3f} ms); total / (integration + one copy) "
+          f"{t_many / (t_few + t_copy):.2f}")
 
 
 def matched_accuracy(

@@ -31,6 +31,20 @@ def test_pde_bar_on_stderr_reaches_t_end(capsys):
     assert capsys.readouterr().err == ""  # off by default
 
 
+def test_a_bar_leaves_no_thread_behind():
+    # tqdm's monitor thread would outlive the bar; a command forks its figure processes after a
+    # solve with a bar only while no other thread runs (drillstring.io.figures.FigureJobs)
+    import subprocess
+
+    code = ("import sys, threading, drillstring as ds\n"
+            "ds.simulate(ds.preset('aluminum'), modes=3, t_end=0.05, samples=11, progress=True)\n"
+            "from tqdm import tqdm\n"
+            "print(threading.active_count(), tqdm.monitor_interval)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert "simulate: 100%" in done.stderr
+    assert done.stdout.split() == ["1", "10"]  # no thread left, tqdm's own setting kept
+
+
 def test_a_stopped_solve_reports_where_it_stopped():
     calls = []
     res = ds.simulate(ALUMINUM, t_end=1.0, max_steps=20, check=False, progress=lambda t, end: calls.append(t))

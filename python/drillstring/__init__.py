@@ -21,10 +21,12 @@ the package as well: ``model`` (the paper's model: ``parameters``, ``cross_secti
 (``analysis``, ``stability``, ``convergence``, ``sweeps``, ``sweep_axes``, ``table2``),
 ``drilling`` (the drilling system, its stick-slip ``metrics``, torque and drag, the lumped
 model), ``io`` (files, figures, TOML, progress, the sweep store), and the modules ``limits`` and
-``plots``; ``report`` (the reproduction report, ``drillstring paper``) is loaded on first use.
+``plots``. ``report`` (the reproduction report, ``drillstring paper``), ``drilling``,
+``calibration``, ``plots`` and the names of the drilling system, the calibration and sweeps load
+their modules on first use: ``import drillstring`` itself loads numpy and the core, not matplotlib,
+pandas or scipy.
 ``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps``.
-``ds.table2`` is the function; its module is ``drillstring.studies.table2``. The modules' old
-paths (``drillstring.analysis``, ``drillstring.paper``, ...) work for one release and warn.
+``ds.table2`` is the function; its module is ``drillstring.studies.table2``.
 
 The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
 ``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
@@ -38,26 +40,12 @@ import importlib as _importlib
 from typing import TYPE_CHECKING
 
 # The modules, re-exported as attributes (``x as x``), not part of ``__all__``.
-from . import drilling as drilling
 from . import io as io
 from . import limits as limits
 from . import model as model
-from . import plots as plots
 from . import solvers as solvers
 from . import studies as studies
 from ._core import __version__, simd_path
-from .calibration.fit import FitResult, fit
-from .drilling import (
-    DrillConfig,
-    DrillMetrics,
-    DrillResult,
-    TorqueDragResult,
-    drill,
-    drill_map,
-    load_drill_config,
-    recommend_controllers,
-    torque_drag,
-)
 from .errors import DrillstringError, SolveError, ValidationError
 from .model.coefficients import PDECoefficients
 from .model.galerkin import ModalCoefficients, project
@@ -65,8 +53,27 @@ from .model.parameters import PRESETS, Parameters, load, preset
 from .solvers.modal import METHODS, Method, Simulation, SolverStats, simulate
 from .solvers.pde import PdeSolution, solve_pde
 from .studies.sweep_axes import linspace, logspace
-from .studies.sweeps import SweepTrajectories
 from .studies.table2 import Table2Row, table2
+
+#: The names loaded on first use (PEP 562, ``__getattr__`` below), each -> its module (the module
+#: itself for a name of a module): the drilling system, the calibration, the sweeps and the
+#: figures import the configuration schema, tqdm, pandas or matplotlib, which ``import drillstring``
+#: and ``ds.simulate`` need none of.
+_LAZY = {
+    "drilling": "drillstring.drilling",
+    "calibration": "drillstring.calibration",
+    "plots": "drillstring.plots",
+    "report": "drillstring.report",
+    **dict.fromkeys(
+        ("DrillConfig", "DrillMetrics", "DrillResult", "TorqueDragResult", "drill", "drill_map",
+         "load_drill_config", "recommend_controllers", "torque_drag"), "drillstring.drilling"),
+    "FitResult": "drillstring.calibration.fit",
+    "fit": "drillstring.calibration.fit",
+    "RigLogResult": "drillstring.calibration.rig_log",
+    "rig_log": "drillstring.calibration.rig_log",
+    "SweepTrajectories": "drillstring.studies.sweeps",
+    "sweep": "drillstring.studies.sweeps",
+}
 
 if TYPE_CHECKING:  # pragma: no cover
     # The return type of sweep() follows ``trajectories`` (the runtime function is sweeps.sweep;
@@ -76,7 +83,23 @@ if TYPE_CHECKING:  # pragma: no cover
 
     import pandas as pd
 
+    from . import calibration as calibration
+    from . import drilling as drilling
+    from . import plots as plots
     from . import report as report
+    from .calibration.fit import FitResult, fit
+    from .calibration.rig_log import RigLogResult, rig_log
+    from .drilling import (
+        DrillConfig,
+        DrillMetrics,
+        DrillResult,
+        drill,
+        drill_map,
+        load_drill_config,
+        recommend_controllers,
+    )
+    from .drilling.torque_drag import TorqueDragResult, torque_drag
+    from .studies.sweeps import SweepTrajectories
 
     @overload
     def sweep(
@@ -100,7 +123,6 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[False] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
     ) -> pd.DataFrame: ...
 
     @overload
@@ -125,7 +147,6 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[True],
-        grid: Optional[Mapping[str, Any]] = ...,
     ) -> tuple[pd.DataFrame, SweepTrajectories]: ...
 
     @overload
@@ -150,12 +171,9 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: bool = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
     ) -> Union[pd.DataFrame, tuple[pd.DataFrame, SweepTrajectories]]: ...
 
     def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only
-else:
-    from .studies.sweeps import sweep
 
 __all__ = [
     "__version__",
@@ -194,6 +212,8 @@ __all__ = [
     # calibration from measured data
     "fit",
     "FitResult",
+    "rig_log",
+    "RigLogResult",
     # the paper
     "table2",
     "Table2Row",
@@ -204,62 +224,28 @@ __all__ = [
 ]
 
 
-# The modules that were attributes of the package before its layout by subject are loaded with
-# it as before, so that ``ds.studies.stability``, ``ds.model.cross_section``, ... need no import.
+# Loaded with the package, so that ``ds.studies.stability``, ``ds.model.cross_section``, ... need
+# no import of their own.
 for _name in ("model.cross_section", "studies.analysis", "studies.convergence", "studies.stability"):
     _importlib.import_module(f"{__name__}.{_name}")
-
-# An old module path named like a function of the package (``drillstring.simulate``) is loaded
-# now, as it was when it was the function's module: importing it later would rebind the package's
-# attribute (``ds.simulate``) to the module.
-for _name in ("simulate",):
-    _function = globals()[_name]
-    _importlib.import_module(f"{__name__}.{_name}")
-    globals()[_name] = _function
-del _name, _function
-
-#: The package's modules before its layout by subject, each attribute name -> its new module:
-#: ``ds.<old>`` works for one release and warns.
-_MOVED_MODULES = {
-    "parameters": "model.parameters",
-    "section": "model.cross_section",
-    "coefficients": "model.coefficients",
-    "galerkin": "model.galerkin",
-    "simulate": "solvers.modal",
-    "pde": "solvers.pde",
-    "result": "solvers.trajectory",
-    "analysis": "studies.analysis",
-    "stability": "studies.stability",
-    "convergence": "studies.convergence",
-    "sweeps": "studies.sweeps",
-    "grid": "studies.sweep_axes",
-    "_output": "io.output",
-    "_atomic": "io.atomic",
-    "_progress": "io.progress",
-    "sweep_store": "io.sweep_store",
-    "paper": "report",
-}
+del _name
 
 if not TYPE_CHECKING:
 
     def __getattr__(name: str) -> object:
-        """PEP 562: the reproduction report loads on first use (``ds.report``), as scipy's
-        submodules do; the old module attributes warn and give their new modules."""
+        """PEP 562: the names of ``_LAZY`` load their modules on first use (the reproduction
+        report, the drilling system, the calibration, sweeps and figures, as scipy's submodules
+        do) and are attributes from then on."""
         import importlib
 
-        if name == "report":
-            return importlib.import_module("drillstring.report")
-        if name in _MOVED_MODULES:
-            import warnings
-
-            new = _MOVED_MODULES[name]
-            message = f"drillstring.{name} is deprecated: use drillstring.{new} (the old name works for one release)"
-            warnings.warn(message, DeprecationWarning, stacklevel=2)
-            # a module split in two keeps its old path (a forwarding shim) as the attribute
-            old = name in ("analysis", "sweeps",)
-            return importlib.import_module(f"drillstring.{name}" if old else f"drillstring.{new}")
+        if name in _LAZY:
+            module = importlib.import_module(_LAZY[name])
+            value = module if module.__name__ == f"{__name__}.{name}" else getattr(module, name)
+            globals()[name] = value
+            return value
         raise AttributeError(f"module 'drillstring' has no attribute {name!r}")
 
     def __dir__() -> list[str]:
-        # the API, the modules and the report; not the names this file needs for itself
-        return sorted((set(globals()) | {"report"}) - {"TYPE_CHECKING", "annotations"})
+        # the API, the modules and the names loaded on first use; not the names this file needs
+        # for itself
+        return sorted((set(globals()) | set(_LAZY)) - {"TYPE_CHECKING", "annotations"})

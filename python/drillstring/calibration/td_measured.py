@@ -25,7 +25,7 @@ import numpy as np
 from .. import _core
 from ..drilling.torque_drag import MEASURED_OPERATIONS
 from ..errors import ValidationError
-from .data import _SUFFIX, dimension_factor
+from .data import _SUFFIX, unit_factor
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -72,7 +72,8 @@ def read_td_measured(path: Union[str, os.PathLike[str]], field: str = "--measure
         elif bare in _COLUMNS:
             index[bare] = j
             default = {"length": "m", "force": "n", "torque": "n m"}[_COLUMNS[bare]]
-            factor[bare] = dimension_factor(_COLUMNS[bare], unit or default, f"{field} ({name}), column {header!r}")
+            factor[bare] = unit_factor(bare, unit or default, f"{field} ({name}), columns",
+                                       dimension=_COLUMNS[bare])
     missing = [c for c in ("depth", "operation") if c not in index]
     if missing or not ({"hook_load", "surface_torque"} & set(index)):
         raise ValidationError(f"{field} ({name}), row 1", ", ".join(rows[0]),

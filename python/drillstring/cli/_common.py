@@ -94,6 +94,15 @@ def show_progress(args: argparse.Namespace) -> bool:
     return on_terminal() if args.progress is None else bool(args.progress)
 
 
+def figure_workers() -> int:
+    """How many forked processes draw a command's figures beside the command's own: one fewer
+    than the cores this process may run on (none on one core)."""
+    import os
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return max(cores - 1, 0)
+
+
 def plot_target(args: argparse.Namespace) -> Any:
     """The file ``--plot`` writes (an extension appended as matplotlib does), or ``None``."""
     if not args.plot:

@@ -6,7 +6,15 @@ import argparse
 import os
 from typing import Any, Optional
 
-from ._common import add_drilling_config_arguments, add_progress, add_units, drilling_config, say, show_progress
+from ._common import (
+    add_drilling_config_arguments,
+    add_progress,
+    add_units,
+    drilling_config,
+    figure_workers,
+    say,
+    show_progress,
+)
 
 
 def add_parser(subparsers: Any) -> None:
@@ -109,6 +117,6 @@ def run(args: argparse.Namespace) -> int:
                 else f"{r.metric} {_change(r.kind, r.change)}" for r in moved) + ")"))
         for warning in result.warnings:
             say(f"warning: {annotate(warning, system)}")
-        written = _write_files(result, folder.directory, plots, system)
+        written = _write_files(result, folder.directory, plots, system, workers=figure_workers())
     say(f"wrote {len(written)} files to {args.out} (report: {os.path.join(args.out, 'report.md')})")
     return 0

@@ -18,21 +18,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from .._deprecated import renamed
-from .config import (
-    Bit,
-    Controller,
-    DrillConfig,
-    Friction,
-    MetricsConfig,
-    Numerics,
-    StringSection,
-    TopDrive,
-    TorqueDragConfig,
-    Well,
-    defaults,
-    load_drill_config,
-)
+# Bound now: the functions ``lumped`` and ``torque_drag`` share their modules' names, and a module
+# loaded after its package's attribute was set would replace the function by the module.
 from .lumped import (
     LumpedEquilibria,
     LumpedParams,
@@ -45,13 +32,64 @@ from .lumped import (
     lumped_sweep,
     lumped_sweep_figure,
 )
-from .map_plots import controller_maps, regime_map, ssi_lines, ssi_map
-from .maps import drill_map
-from .output import FILES
-from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
-from .solve import drill, friction_profile
 from .torque_drag import TorqueDragResult, torque_drag, write_torque_drag
-from .tuning import ControllerRecommendations, PresetRecommendation, StringNumbers, recommend_controllers
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .config import (
+        Bit,
+        Controller,
+        DrillConfig,
+        Friction,
+        MetricsConfig,
+        Numerics,
+        StringSection,
+        TopDrive,
+        TorqueDragConfig,
+        Well,
+        defaults,
+        load_drill_config,
+    )
+    from .map_plots import controller_maps, regime_map, ssi_lines, ssi_map
+    from .maps import drill_map
+    from .output import FILES
+    from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
+    from .solve import drill, friction_profile
+    from .tuning import ControllerRecommendations, PresetRecommendation, StringNumbers, recommend_controllers
+
+#: The names of the package, each -> its module, loaded on first use (PEP 562, ``__getattr__``
+#: below): a run needs its configuration, solve and result, not the maps and their figures
+#: (matplotlib, pandas), and the command line imports only what its verb uses.
+_LAZY = {
+    "Bit": "config",
+    "Controller": "config",
+    "DrillConfig": "config",
+    "Friction": "config",
+    "MetricsConfig": "config",
+    "Numerics": "config",
+    "StringSection": "config",
+    "TopDrive": "config",
+    "TorqueDragConfig": "config",
+    "Well": "config",
+    "defaults": "config",
+    "load_drill_config": "config",
+    "controller_maps": "map_plots",
+    "regime_map": "map_plots",
+    "ssi_lines": "map_plots",
+    "ssi_map": "map_plots",
+    "drill_map": "maps",
+    "FILES": "output",
+    "SERIES": "result",
+    "UNITS": "result",
+    "DrillMetrics": "result",
+    "DrillProfile": "result",
+    "DrillResult": "result",
+    "drill": "solve",
+    "friction_profile": "solve",
+    "ControllerRecommendations": "tuning",
+    "PresetRecommendation": "tuning",
+    "StringNumbers": "tuning",
+    "recommend_controllers": "tuning",
+}
 
 __all__ = [
     "FILES",
@@ -99,11 +137,16 @@ __all__ = [
 ]
 
 
-#: Old names, for one release: ``Section`` is :class:`~.config.StringSection` (a length of pipe;
-#: ``drillstring.model.cross_section.CrossSection`` is the paper model's cross-section).
-_RENAMED = {"Section": "StringSection"}
-
 if not TYPE_CHECKING:
 
     def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())
+        if name in _LAZY:
+            import importlib
+
+            value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+            globals()[name] = value
+            return value
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+    def __dir__() -> list[str]:
+        return sorted(set(globals()) | set(_LAZY))

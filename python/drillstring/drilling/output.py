@@ -41,6 +41,7 @@ from ..io.output import (
     write_text,
     writing_folder,
 )
+from ..io.table import csv_text, write_parquet
 from .metrics import STICK_SLIP_CRITERION
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -132,9 +133,12 @@ def write_outputs(result: DrillResult, out_dir: Union[str, os.PathLike[str]], *,
     return [folder.shown(path) for path in written]
 
 
-def _write_files(result: DrillResult, directory: Path, plots: bool, output_units: str = "si") -> list[Path]:
+def _write_files(result: DrillResult, directory: Path, plots: bool, output_units: str = "si", *,
+                 workers: int = 0) -> list[Path]:
     """The files of :func:`write_outputs` into ``directory`` (the ``directory`` of
-    :func:`output_folder`); returns their paths there."""
+    :func:`output_folder`); returns their paths there. ``workers`` forked processes draw the
+    figures while this one writes the data files (:class:`~drillstring.io.figures.FigureJobs`;
+    the command line's choice, 0: all here, in turn)."""
     written: list[Path] = []
 
     def path(name: str) -> str:
@@ -149,45 +153,62 @@ def _write_files(result: DrillResult, directory: Path, plots: bool, output_units
         if (name not in names or (name in COUPLED_PLOT_FILES and not (plots and coupled))) \
                 and os.path.lexists(path(name)) and not os.path.isdir(path(name)):
             os.unlink(path(name))  # a file of an earlier run (a figure, with plots=False now)
-    frame = result.to_pandas()
-    frame.attrs = {}  # parquet keeps attrs as JSON metadata; the config and metrics have their own files
-    written.append(atomic_write(path("series.parquet"), lambda tmp: frame.to_parquet(tmp), suffix=".parquet"))
-    written.append(atomic_write(path("series.csv"), lambda tmp: frame.to_csv(tmp, float_format="%.10g"),
-                                suffix=".csv"))
-    text = json.dumps(_json_ready(result.summary(output_units)), indent=2, allow_nan=False) + "\n"
-    written.append(write_text(path("metrics.json"), text))
-    profile = result.profile
+    figures = _figure_jobs(result, path, coupled, output_units, workers) if plots else None
+    try:
+        # the frame of DrillResult.to_pandas without its attrs (the config and metrics have their own
+        # files), written without pandas, whose import alone would cost a command line 0.3 s
+        index, columns = ("t", result.t), result.series_columns()
+        written.append(atomic_write(path("series.parquet"), lambda tmp: write_parquet(tmp, index, columns),
+                                    suffix=".parquet"))
+        written.append(write_text(path("series.csv"), csv_text(index, columns)))
+        text = json.dumps(_json_ready(result.summary(output_units)), indent=2, allow_nan=False) + "\n"
+        written.append(write_text(path("metrics.json"), text))
+        profile = result.profile
 
-    axial: dict[str, Any] = ({"axial_z": result.axial_z, "axial_speed_m_s": result.axial_speed_field,
-                              "axial_force_N": result.axial_force_field} if coupled else {})
+        axial: dict[str, Any] = ({"axial_z": result.axial_z, "axial_speed_m_s": result.axial_speed_field,
+                                  "axial_force_N": result.axial_force_field} if coupled else {})
 
-    def save_fields(tmp: str) -> None:
-        with open(tmp, "wb") as handle:
-            np.savez_compressed(
-                handle, t=result.field_t, z=result.z, omega_rpm=result.omega_field, torque_Nm=result.torque_field,
-                profile_z=profile.z, limit_per_m=profile.limit_per_m, cumulative_Nm=profile.cumulative,
-                breakoff_torque_Nm=np.float64(profile.breakoff_torque), inclination_deg=profile.inclination_deg,
-                azimuth_deg=profile.azimuth_deg, tvd_m=profile.tvd, dls_deg_per_30m=profile.dls_deg_per_30m,
-                friction_factor=profile.friction_factor, **axial,
-            )
+        def save_fields(tmp: str) -> None:
+            with open(tmp, "wb") as handle:
+                np.savez_compressed(
+                    handle, t=result.field_t, z=result.z, omega_rpm=result.omega_field, torque_Nm=result.torque_field,
+                    profile_z=profile.z, limit_per_m=profile.limit_per_m, cumulative_Nm=profile.cumulative,
+                    breakoff_torque_Nm=np.float64(profile.breakoff_torque), inclination_deg=profile.inclination_deg,
+                    azimuth_deg=profile.azimuth_deg, tvd_m=profile.tvd, dls_deg_per_30m=profile.dls_deg_per_30m,
+                    friction_factor=profile.friction_factor, **axial,
+                )
 
-    written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
-    written.append(write_text(path("config.toml"), result.config.to_toml()))
-    if plots:
-        from ..io.figures import save
-        from .plots import space_time_maps, time_histories, torque_depth
-
-        figures: list[Any] = [time_histories, space_time_maps, torque_depth]
-        if coupled:
-            from .plots import axial_histories, axial_space_time
-
-            figures += [axial_histories, axial_space_time]
-        for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), figures):
-            written.append(Path(os.fsdecode(os.fspath(save(make(result, units=output_units), path(name))))))
+        written.append(atomic_write(path("fields.npz"), save_fields, suffix=".npz"))
+        written.append(write_text(path("config.toml"), result.config.to_toml()))
+    except BaseException:
+        if figures is not None:
+            figures.cancel()
+        raise
+    if figures is not None:
+        written += [Path(os.fsdecode(os.fspath(p))) for p in figures.finish()]
     report = report_markdown(result, plots=plots, units=output_units)
     written.append(write_bytes(path("report.md"), report.encode("utf-8")))
     os.unlink(marker)
     return written
+
+
+def _figure_jobs(result: DrillResult, path: Callable[[str], str], coupled: bool, output_units: str,
+                 workers: int) -> Any:
+    """The run's figures (a coupled run's too) as :class:`~drillstring.io.figures.FigureJobs`,
+    started."""
+    from functools import partial
+
+    from ..io.figures import FigureJobs
+    from .plots import space_time_maps, time_histories, torque_depth
+
+    makers: list[Any] = [time_histories, space_time_maps, torque_depth]
+    if coupled:
+        from .plots import axial_histories, axial_space_time
+
+        makers += [axial_histories, axial_space_time]
+    jobs = [(partial(make, result, units=output_units), path(name))
+            for name, make in zip((*PLOT_FILES, *COUPLED_PLOT_FILES), makers)]
+    return FigureJobs(jobs, workers)
 
 
 _MD_SPECIAL = frozenset("\\`*_[]<>|!~&$")

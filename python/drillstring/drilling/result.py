@@ -477,6 +477,13 @@ class DrillResult:
         """``{"t": ..., "surface_rpm": ..., ...}``: the time series by name."""
         return {"t": self.t, **{name: getattr(self, name) for name in SERIES}}
 
+    def series_columns(self) -> dict[str, NDArray[np.float64]]:
+        """The columns of :meth:`to_pandas` (and of ``series.csv``), each a series over :attr:`t`:
+        :data:`SERIES`, then a coupled run's :attr:`axial` series."""
+        columns = {name: getattr(self, name) for name in SERIES}
+        columns.update(self.axial)
+        return columns
+
     def to_pandas(self) -> pd.DataFrame:
         """The time series as a :class:`pandas.DataFrame` indexed by ``t`` (s), with the columns
         ``surface_rpm``, ``bit_rpm`` (rpm), ``motor_torque``, ``bit_torque`` (N m) and, for a
@@ -486,8 +493,7 @@ class DrillResult:
         ``metrics`` and the ``config`` (:meth:`DrillConfig.to_dict`)."""
         import pandas as pd
 
-        columns = {name: getattr(self, name) for name in SERIES}
-        columns.update(self.axial)
+        columns = self.series_columns()
         frame = pd.DataFrame(columns, index=pd.Index(self.t, name="t"))
         frame.attrs.update(
             units={key: UNITS[key] for key in ("t", *columns)}, status=self.status,

@@ -12,8 +12,6 @@ from __future__ import annotations
 import sys
 from typing import Any, Callable, Optional, Union
 
-from tqdm import tqdm
-
 from ..errors import ValidationError
 
 __all__ = ["ProgressOption", "SolveProgress", "check_progress", "on_terminal", "bar"]
@@ -33,9 +31,18 @@ def bar(
 ) -> Any:
     """A tqdm bar on stderr (disabled: a bar that prints nothing); ``every_update`` redraws on
     every update (for coarse units such as sweep chunks) instead of at most every 0.1 s."""
+    from tqdm import tqdm  # on first use: ``import drillstring`` does not load it
+
     extra: dict[str, Any] = {"mininterval": 0.0, "miniters": 1} if every_update else {}
-    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not enabled, bar_format=bar_format,
-                dynamic_ncols=True, **extra)
+    # Without tqdm's monitor thread (it only tunes the redraw rate of bars updated by their
+    # iteration; ours are updated when the work reports), which would outlive the bar and keep a
+    # command from forking the processes that draw its figures.
+    interval, tqdm.monitor_interval = tqdm.monitor_interval, 0
+    try:
+        return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, disable=not enabled,
+                    bar_format=bar_format, dynamic_ncols=True, **extra)
+    finally:
+        tqdm.monitor_interval = interval
 
 
 def check_progress(value: Any) -> ProgressOption:

@@ -16,7 +16,7 @@ use std::f64::consts::PI;
 use crate::error::{Error, Num, Result};
 use crate::model::youngs_modulus;
 use crate::well::buckling::{Body, Hole};
-use crate::well::torque_drag::FrictionInterval;
+use crate::well::torque_drag::SlidingInterval;
 
 use super::config::{DrillConfig, Section, MAX_DIAMETER};
 use super::grid::SectionProps;
@@ -121,12 +121,12 @@ pub fn hole(cfg: &DrillConfig) -> Option<Hole> {
 }
 
 /// The friction factors of the hole sections that give one, times `ratio`.
-pub fn hole_friction(cfg: &DrillConfig, ratio: f64) -> Vec<FrictionInterval> {
+pub fn hole_friction(cfg: &DrillConfig, ratio: f64) -> Vec<SlidingInterval> {
     let mut top = 0.0;
     let mut out = Vec::new();
     for h in &cfg.well.hole_sections {
         if let Some(mu) = h.friction {
-            out.push(FrictionInterval { top_md: top, bottom_md: h.bottom_md, mu: ratio * mu });
+            out.push(SlidingInterval { top_md: top, bottom_md: h.bottom_md, mu: ratio * mu });
         }
         top = h.bottom_md;
     }

@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::error::{Error, Num, Result};
 use crate::well::plan;
 use crate::well::torque_drag::{
-    self, Friction, FrictionInterval, Operation, Piece, Profile, Scheme, Setup, TorqueDrag,
+    self, Operation, Piece, Profile, Scheme, Setup, SlidingFriction, SlidingInterval, TorqueDrag,
 };
 use crate::well::{Survey, Trajectory};
 
@@ -248,15 +248,15 @@ pub fn friction_factor(cfg: &DrillConfig, md: f64) -> f64 {
 /// The friction factors of a configuration times `ratio` (1: the static ones;
 /// `friction.kinetic_ratio`: the sliding ones).
 /// `friction.intervals` come first, then the hole sections' factors.
-fn friction(cfg: &DrillConfig, ratio: f64) -> Friction {
-    let mut intervals: Vec<FrictionInterval> = cfg
+fn friction(cfg: &DrillConfig, ratio: f64) -> SlidingFriction {
+    let mut intervals: Vec<SlidingInterval> = cfg
         .friction
         .intervals
         .iter()
-        .map(|iv| FrictionInterval { top_md: iv.top_md, bottom_md: iv.bottom_md, mu: ratio * iv.static_coefficient })
+        .map(|iv| SlidingInterval { top_md: iv.top_md, bottom_md: iv.bottom_md, mu: ratio * iv.static_coefficient })
         .collect();
     intervals.extend(super::pipe::hole_friction(cfg, ratio));
-    Friction { mu: ratio * cfg.friction.static_coefficient, intervals }
+    SlidingFriction { mu: ratio * cfg.friction.static_coefficient, intervals }
 }
 
 /// The torque-and-drag setup of a configuration: its sections (buoyed weight, contact radius),

@@ -12,14 +12,14 @@
 //! * [`sources`]: wall friction with its stick phase and viscous damping, per cell, one place
 //!   each;
 //! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
-//!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDrive`]) carrying out a
-//!   controller's command, the bit ([`boundary::Bit`]) with its law ([`boundary::BitLaw`]:
+//!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDriveEnd`]) carrying out a
+//!   controller's command, the bit ([`boundary::BitEnd`]) with its law ([`boundary::BitLaw`]:
 //!   free end or the velocity-weakening torque with a stick phase);
 //! * [`axial`]: a coupled run's axial field (`[hoist]` with `bit.law` `detournay` or `rgd`): the
 //!   same [`field::Field`] and [`kernel`] with the axial sections' speeds and impedances, the
 //!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
 //!   the bit on bottom as the set-valued boundary of both fields
-//!   ([`crate::drilling::axial::bit_boundary::solve_bit`]) in place of [`boundary::Bit`];
+//!   ([`crate::drilling::axial::bit_boundary::solve_bit`]) in place of [`boundary::BitEnd`];
 //! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
 //!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
 //! * [`controller`]: the controllers and the setpoint;
@@ -56,7 +56,7 @@
 //! with `End { speed, load }`. The phases are set-valued as in [`boundary::BitLaw`]: contact
 //! (cutting plus frictional contact), torsional stick (`w' = 0`, `T` the torque that holds it
 //! within the static limit) and lift-off (`W = 0`, `T = 0`, the bit free on both lines). The
-//! run resolves it where it now calls [`boundary::Bit::step`], sets each field's bottom ghost
+//! run resolves it where it now calls [`boundary::BitEnd::step`], sets each field's bottom ghost
 //! from its `End` ([`field::Field::set_bottom`]) and books `dt (W v' + T w')` as bit work. A
 //! second field is a second [`field::Field`] advanced by the same [`kernel`] and its own
 //! sources; a coupled wall friction a source over both fields' transported speeds.
