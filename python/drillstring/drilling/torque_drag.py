@@ -312,7 +312,8 @@ def _report(result: TorqueDragResult, units: str) -> str:
     s = result.summary
     force, force_unit = axis_unit("N", units, kilo=True)
     torque, torque_unit = axis_unit("N*m", units, kilo=True)
-    hook = ", ".join(f"{op} {s[f'hook_load_{op}_N'] * force:.1f} {force_unit}" for op in OPERATIONS)
+    hook = ", ".join(f"{op} {s[f'hook_load_{op}_N'] * force:.1f} {force_unit}" if math.isfinite(s[f"hook_load_{op}_N"])
+                     else f"{op} locked up" for op in OPERATIONS)
     lines = ["# Torque and drag", "", f"- hook load: {hook}",
              f"- surface torque: off bottom {s['surface_torque_off_bottom_Nm'] * torque:.2f} {torque_unit}, on bottom "
              f"{s['surface_torque_on_bottom_Nm'] * torque:.2f} {torque_unit}"]

@@ -165,7 +165,7 @@ pub fn validate(cfg: &DrillConfig) -> Result<()> {
             ));
         }
         if let (Some(od), Some(id), Some(l)) = (tj[0], tj[1], tj[2]) {
-            if !(od >= s.outer_diameter) {
+            if od.is_nan() || od < s.outer_diameter {
                 return Err(Error::invalid(
                     f("tool_joint_outer_diameter"),
                     Num(od),

@@ -415,7 +415,8 @@ pub fn implied_friction(
     };
     let (lo, hi) = (load(0.0), load(1.0));
     let unit = if is_torque { "N m" } else { "N" };
-    if !((lo - measured) * (hi - measured) <= 0.0) {
+    let product = (lo - measured) * (hi - measured);
+    if product.is_nan() || product > 0.0 {
         return Err(format!(
             "no friction factor in [0, 1] reproduces {} {unit} (the model gives {} at 0 and {} at 1)",
             Num(measured),

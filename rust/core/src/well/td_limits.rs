@@ -75,13 +75,14 @@ fn set_down_tension(traj: &Trajectory, setup: &Setup, scheme: Scheme, f: f64) ->
 
 /// The bit load at which the slack-off's surface tension reaches 0, N (doubling then bisection).
 fn max_weight_on_bit(traj: &Trajectory, setup: &Setup, scheme: Scheme, free: f64) -> Option<f64> {
-    if !(free >= 0.0) {
+    if free.is_nan() || free < 0.0 {
         return Some(0.0);
     }
     let (mut lo, mut hi) = (0.0, free.max(1.0));
     let mut found = false;
     for _ in 0..64 {
-        if !(set_down_tension(traj, setup, scheme, hi) >= 0.0) {
+        let t = set_down_tension(traj, setup, scheme, hi);
+        if t.is_nan() || t < 0.0 {
             found = true;
             break;
         }

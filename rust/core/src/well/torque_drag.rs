@@ -208,7 +208,8 @@ impl Profile {
     /// Whether the bit's load needs the surface to push (the surface tension below 0, or a
     /// compression diverging in a helically buckled string): the string locks up.
     pub fn locked_up(&self) -> bool {
-        !(self.surface_tension() >= 0.0)
+        let t = self.surface_tension();
+        t.is_nan() || t < 0.0
     }
 
     /// The first (shallowest) depth of buckling `mode` or worse.
@@ -470,7 +471,7 @@ impl Setup {
                     normal[j] = (k1.2 + 2.0 * k2.2 + 2.0 * k3.2 + k4.2) / 6.0;
                 }
             }
-            if buckles && !(tension[j] > -DIVERGED) {
+            if buckles && (tension[j].is_nan() || tension[j] <= -DIVERGED) {
                 // the compression of a helically buckled string diverges: locked up above
                 tension[..=j].fill(f64::NEG_INFINITY);
                 normal[..=j].fill(f64::INFINITY);
