@@ -225,9 +225,9 @@ def test_ssi_lines_and_panel_titles_in_field_units() -> None:
 
 def test_torque_drag_figures_in_field_units(td: ds.TorqueDragResult) -> None:
     fig = profiles_figure(td, units="field")
-    tension, torque, normal = fig.axes
+    tension, torque, normal, side = fig.axes
     assert [ax.get_xlabel() for ax in fig.axes] == ["effective tension, klbf", "torque, kft-lbf",
-                                                    "normal force, lbf/ft"]
+                                                    "normal force, lbf/ft", "side force per joint, klbf"]
     assert tension.get_ylabel() == "measured depth, ft"
     p = td.profiles["pickup"]
     line = tension.get_lines()[0]
@@ -235,11 +235,14 @@ def test_torque_drag_figures_in_field_units(td: ds.TorqueDragResult) -> None:
     _close(line.get_ydata(), np.asarray(p["md"]) / FT)
     _close(torque.get_lines()[0].get_xdata(), np.asarray(td.profiles["rotating"]["torque_Nm"]) / FT_LBF / 1e3)
     _close(normal.get_lines()[0].get_xdata(), np.asarray(p["normal_force_N_per_m"]) * FT / LBF)
+    _close(side.get_lines()[0].get_xdata(), np.asarray(p["side_force_per_joint_N"]) / LBF / 1e3)
     assert f"pick-up {td.hook_load_pickup_N / LBF / 1e3:.0f} klbf" in fig._suptitle.get_text()  # type: ignore
 
     fig = broomstick_figure(td, units="field")
-    (ax,) = fig.axes
+    ax, ax_torque = fig.axes
     assert ax.get_xlabel() == "hook load, klbf (with the block weight)"
+    assert ax_torque.get_xlabel() == "surface torque, kft-lbf"
+    _close(ax_torque.get_lines()[0].get_xdata(), np.asarray(td.broomstick["torque_rotating"][0]) / FT_LBF / 1e3)
     assert ax.get_ylabel() == "bit depth, ft (measured)"
     rotating = ax.get_lines()[0]
     _close(rotating.get_xdata(), np.asarray(td.broomstick["rotating"][0]) / LBF / 1e3)
@@ -253,7 +256,8 @@ def test_torque_drag_figures_in_field_units(td: ds.TorqueDragResult) -> None:
     _close(dls.get_lines()[0].get_ydata(), np.asarray(td.trajectory["dls_deg_per_30m"]) * 100 * FT / 30)
 
     si = profiles_figure(td)
-    assert [ax.get_xlabel() for ax in si.axes] == ["effective tension, kN", "torque, kN m", "normal force, N/m"]
+    assert [ax.get_xlabel() for ax in si.axes] == ["effective tension, kN", "torque, kN m", "normal force, N/m",
+                                                   "side force per joint, kN"]
 
 
 # --------------------------------------------------------------------------- the command line

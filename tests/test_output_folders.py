@@ -165,7 +165,7 @@ def test_a_full_disk_mid_write_leaves_the_old_torque_drag_folder_whole(
     assert snapshot(out) == old and beside(out) == []
     assert run_cli(capsys, "torque-drag", str(well), "--out", str(out), "--no-plots")[0] == 0
     assert sorted(p.name for p in out.iterdir()) == sorted(["torque_drag.json", "profiles.csv", "broomstick.csv",
-                                                            "survey.csv", "config.toml"])
+                                                            "survey.csv", "config.toml", "report.md"])
 
 
 # --------------------------------------------------------------------------- drill-map's final files

@@ -146,7 +146,7 @@ def test_cli_writes_the_contract_files(tmp_path: Path) -> None:
     assert profiles["md_m"].iloc[-1] == 4000.0
     assert profiles["pickup_tension_N"].iloc[0] + 300e3 == pytest.approx(doc["hook_load_pickup_N"], rel=1e-9)
     assert sorted(os.listdir(out)) == sorted(["torque_drag.json", "profiles.csv", "broomstick.csv", "survey.csv",
-                                              "config.toml"])
+                                              "config.toml", "report.md"])
 
 
 @pytest.mark.parametrize("text, where", [

@@ -209,6 +209,8 @@ def test_the_bits_small_lengths_are_inches_and_every_other_length_feet() -> None
     lengths = {k for k, v in config_schema().items() if v["unit"] == "m"}
     inches = {k for k in lengths if field_unit(k) == "in"}
     assert inches == {"sections[].outer_diameter", "sections[].inner_diameter", "sections[].contact_diameter",
+                      "sections[].tool_joint_outer_diameter", "sections[].tool_joint_inner_diameter",
+                      "sections[].tool_joint_length", "well.hole_diameter", "well.hole_sections[].diameter",
                       "bit.radius", "bit.diameter", "bit.detournay.wear_flat_length"}
     assert {field_unit(k) for k in lengths - inches} == {"ft"}
     assert all(k in lengths for k in FIELD_UNITS_BY_KEY)

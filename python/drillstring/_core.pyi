@@ -697,15 +697,33 @@ def well_torque_drag(config_json: str) -> dict[str, Any]:
     ``hook_load_pickup_N``, ``hook_load_slackoff_N``, ``hook_load_rotating_N``,
     ``hook_load_rotating_on_bottom_N``, ``surface_torque_off_bottom_Nm``,
     ``surface_torque_on_bottom_Nm``, ``max_normal_force_N_per_m``, ``max_normal_force_md``,
-    ``max_normal_force_operation``; ``profiles`` (per operation ``pickup``, ``slackoff``,
-    ``rotating``, ``rotating_on_bottom``: ``md``, ``tension_N``, ``torque_Nm``,
-    ``normal_force_N_per_m``) and ``broomstick`` (``depth_m``, ``friction_factors``, and the
-    hook loads ``pickup``, ``slackoff``, ``rotating`` as arrays ``[factor, depth]``, N).
+    ``max_normal_force_operation``, ``hook_load_sliding_N``, the buckling, lock-up and limits
+    (``buckling_evaluated``, ``first_buckling``, ``lockup``, ``max_set_down_N``,
+    ``max_weight_on_bit_N``, ``max_utilisation``, ..., ``closest_limit``); ``profiles`` (per
+    operation ``pickup``, ``slackoff``, ``rotating``, ``rotating_on_bottom``, ``sliding``:
+    ``md``, ``tension_N``, ``torque_Nm``, ``normal_force_N_per_m``, ``side_force_per_joint_N``,
+    ``sinusoidal_buckling_load_N``, ``helical_buckling_load_N``, ``buckling``, ``utilisation``)
+    and ``broomstick`` (``depth_m``, ``friction_factors``, and the hook loads ``pickup``,
+    ``slackoff``, ``rotating`` (N) and the surface torque ``torque_rotating`` (N m) as arrays
+    ``[factor, depth]``).
 
     Raises
     ------
     ValidationError
         naming the field of an invalid configuration or survey.
+    """
+
+def well_implied_friction(config_json: str, depths: list[float], operations: list[str], hook_loads: list[float],
+                          torques: list[float]) -> dict[str, Any]:
+    """For each measured point (bit depth m, operation name of the profiles, hook load N and
+    surface torque N m, NaN where not measured), the uniform friction factor in [0, 1] that
+    reproduces it: ``friction_factor`` (array, NaN where none does) and ``reason`` (list of
+    str, empty where one does).
+
+    Raises
+    ------
+    ValidationError
+        naming the field of an invalid configuration or an unknown operation.
     """
 
 class DrillProfile(TypedDict):

@@ -21,6 +21,10 @@ def add_parser(subparsers: Any) -> None:
     )
     add_drilling_config_arguments(p)
     add_units(p)
+    p.add_argument("--measured", metavar="FILE", default=None,
+                   help="measured points (CSV: depth, operation, hook_load and/or surface_torque, units in the "
+                   "header as 'hook_load [klbf]'): drawn on the broomstick figures, each with the friction factor "
+                   "that reproduces it in measured.csv")
     p.set_defaults(func=run)
 
 
@@ -32,6 +36,11 @@ def run(args: argparse.Namespace) -> int:
     from ..drilling.units import axis_unit
 
     config = drilling_config(args)
+    points = None
+    if args.measured is not None:
+        from ..calibration.td_measured import read_td_measured
+
+        points = read_td_measured(args.measured)
     start = time.perf_counter()
     result = torque_drag(config)
     seconds = time.perf_counter() - start
@@ -47,10 +56,23 @@ def run(args: argparse.Namespace) -> int:
          f"{s['hook_load_slackoff_N'] * force:.1f} {force_unit}, rotating {s['hook_load_rotating_N'] * force:.1f} "
          f"{force_unit}, rotating on bottom {s['hook_load_rotating_on_bottom_N'] * force:.1f} {force_unit} (with the "
          "block weight; effective tension)")
+    say(f"sliding (lowering, not rotating, the weight on bit on the bit): hook load "
+        f"{s['hook_load_sliding_N'] * force:.1f} {force_unit}")
     say(f"surface torque: off bottom {s['surface_torque_off_bottom_Nm'] * torque:.2f} {torque_unit}, on bottom "
          f"{s['surface_torque_on_bottom_Nm'] * torque:.2f} {torque_unit}; largest normal force "
          f"{s['max_normal_force_N_per_m'] * normal:.0f} {normal_unit} at {s['max_normal_force_md'] * depth:.0f} "
          f"{depth_unit} ({s['max_normal_force_operation']})")
-    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=units)
+    for line in result.report_lines(units):
+        say(line)
+    measured = None
+    if points is not None:
+        from ..calibration.td_measured import implied_friction
+
+        measured = implied_friction(config, points)
+        found = int(measured["friction_factor"].notna().sum())
+        say(f"measured: {len(measured)} points, {found} with an implied friction factor, {points.skipped} rows "
+            "skipped (no known operation)")
+    written = write_torque_drag(result, args.out, plots=not args.no_plots, field="--out", units=units,
+                                measured=measured)
     say(f"wrote {len(written)} files to {args.out}")
     return 0

@@ -201,6 +201,26 @@ class StringSection:
     poisson_ratio: float = _default("sections", "poisson_ratio", unit="", kind="float")
     """Poisson's ratio nu, ``0 < nu < 0.5``: with ``shear_modulus`` the P-wave modulus
     ``M = 2 G (1 - nu) / (1 - 2 nu)`` of the ``"consistent"`` nonlinearity (unused by ``"linear"``)."""
+    grade: Optional[str] = _default("sections", "grade", unit="", kind="str?")
+    """API drill-pipe grade, ``"E-75"``, ``"X-95"``, ``"G-105"`` or ``"S-135"`` (the torque and
+    drag's utilisation; None: none)."""
+    yield_strength: Optional[float] = _default("sections", "yield_strength", unit="Pa", kind="float?")
+    """Minimum yield strength, Pa, in place of ``grade``."""
+    nominal_weight: Optional[float] = _default("sections", "nominal_weight", unit="N/m", kind="float?")
+    """Adjusted weight in air with the tool joints, N/m (field: lb/ft); None: from the tool joints
+    or the body."""
+    tool_joint_outer_diameter: Optional[float] = _default("sections", "tool_joint_outer_diameter", unit="m",
+                                                          kind="float?")
+    """Tool-joint outer diameter, m."""
+    tool_joint_inner_diameter: Optional[float] = _default("sections", "tool_joint_inner_diameter", unit="m",
+                                                          kind="float?")
+    """Tool-joint inner diameter, m."""
+    tool_joint_length: Optional[float] = _default("sections", "tool_joint_length", unit="m", kind="float?")
+    """Length of one tool joint (pin and box), m."""
+    joint_length: Optional[float] = _default("sections", "joint_length", unit="m", kind="float?")
+    """Length of one joint, m (None: 9.144 m, API range 2)."""
+    makeup_torque: Optional[float] = _default("sections", "makeup_torque", unit="N*m", kind="float?")
+    """Make-up torque of the tool joints, N m (None: not checked)."""
 
 
 @dataclass(frozen=True)
@@ -234,6 +254,12 @@ class Well:
     extend: bool = _default("well", "extend", unit="", kind="bool")
     """Continue a survey shorter than the string straight on from its last station (default:
     refuse it)."""
+    hole_diameter: Optional[float] = _default("well", "hole_diameter", unit="m", kind="float?")
+    """Open-hole diameter, m (field: in), below ``hole_sections``: the torque and drag's
+    buckling (None: buckling not evaluated)."""
+    hole_sections: tuple[Mapping[str, float], ...] = _default("well", "hole_sections", unit="", kind="tables")
+    """Casing and hole sections from the surface, ``{bottom_md, diameter, friction}`` (friction
+    optional). In TOML: ``[[well.hole_sections]]`` tables."""
 
 
 @dataclass(frozen=True)

@@ -68,13 +68,19 @@ FIELD_UNITS: dict[str, str] = {
     "m/(N*s^2)": "ft/h/klbf/s",
 }
 
-#: Keys whose field unit is not their SI unit's in :data:`FIELD_UNITS`: diameters and the bit's
-#: lengths (its size, the wear flats) in inches; every other length of the reference (section
+#: Keys whose field unit is not their SI unit's in :data:`FIELD_UNITS`: diameters (of the pipe, its
+#: tool joints and the hole), the tool joints' length and the bit's lengths (its size, the wear
+#: flats) in inches; every other length of the reference (section
 #: lengths, depths, plan holds, the torque-and-drag element) is in ft.
 FIELD_UNITS_BY_KEY: dict[str, str] = {
     "sections[].outer_diameter": "in",
     "sections[].inner_diameter": "in",
     "sections[].contact_diameter": "in",
+    "sections[].tool_joint_outer_diameter": "in",
+    "sections[].tool_joint_inner_diameter": "in",
+    "sections[].tool_joint_length": "in",
+    "well.hole_diameter": "in",
+    "well.hole_sections[].diameter": "in",
     "bit.radius": "in",
     "bit.diameter": "in",
     "bit.detournay.wear_flat_length": "in",

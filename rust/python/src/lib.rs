@@ -97,6 +97,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(lumped::min_cycle_torque, m)?)?;
     m.add_function(wrap_pyfunction!(well::well_trajectory, m)?)?;
     m.add_function(wrap_pyfunction!(well::well_torque_drag, m)?)?;
+    m.add_function(wrap_pyfunction!(well::well_implied_friction, m)?)?;
     m.add_function(wrap_pyfunction!(signal::crossing_phase, m)?)?;
     m.add_function(wrap_pyfunction!(signal::phase_shift, m)?)?;
     m.add_function(wrap_pyfunction!(signal::amplitude_growth, m)?)?;

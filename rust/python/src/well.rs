@@ -35,3 +35,59 @@ pub(crate) fn well_torque_drag<'py>(py: Python<'py>, config_json: &str) -> PyRes
     let report = py.detach(|| no_panic(|| well::report(&cfg)))?.map_err(|e| validation_error(py, e))?;
     to_python(py, &report)
 }
+
+/// The implied friction factors of measured points.
+#[derive(serde::Serialize)]
+struct Implied {
+    friction_factor: Vec<f64>,
+    #[serde(serialize_with = "drillstring_core::solution::serialize_list")]
+    reason: Vec<String>,
+}
+
+/// For each measured point (bit depth `depths[k]`, m; operation `operations[k]`, a name of
+/// the torque and drag's profiles; the hook load `hook_loads[k]`, N, and the surface torque
+/// `torques[k]`, N m, NaN where not measured), the friction factor in [0, 1] that reproduces
+/// it (`friction_factor`, NaN where none does) and why none does (`reason`, empty otherwise).
+#[pyfunction]
+pub(crate) fn well_implied_friction<'py>(
+    py: Python<'py>,
+    config_json: &str,
+    depths: Vec<f64>,
+    operations: Vec<String>,
+    hook_loads: Vec<f64>,
+    torques: Vec<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    use drillstring_core::well::torque_drag::Operation;
+    let cfg = parse(py, config_json)?;
+    let given = |x: f64| if x.is_nan() { None } else { Some(x) };
+    let out = py
+        .detach(|| {
+            no_panic(|| -> drillstring_core::Result<Implied> {
+                let traj = well::trajectory(&cfg)?;
+                let mut out = Implied { friction_factor: Vec::new(), reason: Vec::new() };
+                for (k, name) in operations.iter().enumerate() {
+                    let op = Operation::ALL.iter().copied().find(|o| o.name() == name).ok_or_else(|| {
+                        drillstring_core::Error::invalid(
+                            format!("operations[{k}]"),
+                            format!("{name:?}"),
+                            "one of pickup, slackoff, rotating, rotating_on_bottom, sliding",
+                        )
+                    })?;
+                    let (h, t) = (hook_loads.get(k).copied().and_then(given), torques.get(k).copied().and_then(given));
+                    match well::implied_friction(&cfg, &traj, depths.get(k).copied().unwrap_or(f64::NAN), op, h, t) {
+                        Ok(mu) => {
+                            out.friction_factor.push(mu);
+                            out.reason.push(String::new());
+                        }
+                        Err(why) => {
+                            out.friction_factor.push(f64::NAN);
+                            out.reason.push(why);
+                        }
+                    }
+                }
+                Ok(out)
+            })
+        })?
+        .map_err(|e| validation_error(py, e))?;
+    to_python(py, &out)
+}

@@ -53,6 +53,7 @@ pub mod grid;
 pub mod limits;
 pub mod lumped;
 pub mod map;
+pub mod pipe;
 pub mod plausibility;
 pub mod schema_doc;
 pub mod solver;

@@ -197,6 +197,8 @@ mod tests {
         }]);
         cfg.well.survey = Some("survey.csv".into());
         cfg.friction.intervals = vec![FrictionInterval { top_md: 0.0, bottom_md: 1.0, static_coefficient: 0.2 }];
+        cfg.well.hole_sections =
+            vec![super::super::pipe::HoleSection { bottom_md: 1.0, diameter: 0.3, friction: Some(0.2) }];
         cfg.top_drive.steps = vec![[10.0, 60.0]];
         cfg.top_drive.speed_series = vec![[0.0, 0.0]];
         cfg.hoist = Some(super::super::config::Hoist { steps: vec![[10.0, 0.01]], ..Default::default() });
@@ -219,7 +221,7 @@ mod tests {
     fn every_entry_has_its_type_unit_label_and_description() {
         // the units a pint registry parses, as the Python edge converts to them
         let si: Vec<&str> =
-            "|m|m^2|m^4|m^6|Pa|kg|kg/m^3|m/s|m/s^2|deg|deg/(30 m)|rad/s|s/rad|rpm|s|1/s|Hz|N|N*m|kg*m^2|N*m*s/rad|N*m/rad"
+            "|m|m^2|m^4|m^6|Pa|kg|kg/m^3|m/s|m/s^2|deg|deg/(30 m)|rad/s|s/rad|rpm|s|1/s|Hz|N|N/m|N*m|kg*m^2|N*m*s/rad|N*m/rad"
                 .split('|')
                 .collect();
         let schema = config_schema();

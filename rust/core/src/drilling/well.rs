@@ -247,16 +247,16 @@ pub fn friction_factor(cfg: &DrillConfig, md: f64) -> f64 {
 
 /// The friction factors of a configuration times `ratio` (1: the static ones;
 /// `friction.kinetic_ratio`: the sliding ones).
+/// `friction.intervals` come first, then the hole sections' factors.
 fn friction(cfg: &DrillConfig, ratio: f64) -> SlidingFriction {
-    SlidingFriction {
-        mu: ratio * cfg.friction.static_coefficient,
-        intervals: cfg
-            .friction
-            .intervals
-            .iter()
-            .map(|iv| SlidingInterval { top_md: iv.top_md, bottom_md: iv.bottom_md, mu: ratio * iv.static_coefficient })
-            .collect(),
-    }
+    let mut intervals: Vec<SlidingInterval> = cfg
+        .friction
+        .intervals
+        .iter()
+        .map(|iv| SlidingInterval { top_md: iv.top_md, bottom_md: iv.bottom_md, mu: ratio * iv.static_coefficient })
+        .collect();
+    intervals.extend(super::pipe::hole_friction(cfg, ratio));
+    SlidingFriction { mu: ratio * cfg.friction.static_coefficient, intervals }
 }
 
 /// The torque-and-drag setup of a configuration: its sections (buoyed weight, contact radius),
@@ -279,7 +279,12 @@ fn setup_with(cfg: &DrillConfig, ratio: f64) -> Setup {
             .iter()
             .map(|s| {
                 let p = SectionProps::new(s, cfg.well.mud_density);
-                Piece { length: s.length, weight: p.buoyed_mass_per_length * g, contact_radius: p.contact_radius }
+                Piece {
+                    length: s.length,
+                    weight: super::pipe::buoyed_weight(s, cfg.well.mud_density, g),
+                    contact_radius: p.contact_radius,
+                    body: super::pipe::body(s),
+                }
             })
             .collect(),
         friction: friction(cfg, ratio),
@@ -287,10 +292,12 @@ fn setup_with(cfg: &DrillConfig, ratio: f64) -> Setup {
         bit_torque: cfg.torque_drag.bit_torque,
         block_weight: cfg.torque_drag.block_weight,
         step: cfg.torque_drag.step,
+        hole: super::pipe::hole(cfg),
+        pressure_gradient: cfg.well.mud_density * g,
     }
 }
 
-/// The four operations' torque and drag of a configuration (stepped, Johancsik).
+/// The five operations' torque and drag of a configuration (stepped, Johancsik).
 pub fn torque_drag(cfg: &DrillConfig) -> Result<TorqueDrag> {
     let traj = trajectory(cfg)?;
     let s = setup(cfg);
@@ -309,6 +316,9 @@ pub struct Broomstick {
     pub pickup: Vec<Vec<f64>>,
     pub slackoff: Vec<Vec<f64>>,
     pub rotating: Vec<Vec<f64>>,
+    /// The rotating off-bottom surface torque, N m, like the hook loads.
+    #[serde(rename = "torque_rotating")]
+    pub torque: Vec<Vec<f64>>,
 }
 
 /// The torque and drag of a configuration with its broomstick (what `torque-drag` reports).
@@ -363,7 +373,67 @@ pub fn broomstick(cfg: &DrillConfig) -> Result<Broomstick> {
     let mus = cfg.torque_drag.friction_factors.clone();
     let rows = torque_drag::broomstick(&traj, &s, &depths, &mus)?;
     let column = |k: usize| rows.iter().map(|row| row.iter().map(|r| r[k]).collect()).collect();
-    Ok(Broomstick { depths, friction_factors: mus, pickup: column(0), slackoff: column(1), rotating: column(2) })
+    Ok(Broomstick {
+        depths,
+        friction_factors: mus,
+        pickup: column(0),
+        slackoff: column(1),
+        rotating: column(2),
+        torque: column(3),
+    })
+}
+
+/// The friction factor in `[0, 1]`, uniform along the hole, that reproduces a measured load
+/// with the bit at `depth` (m, within the string's length) in `op`: the hook load (N, with the
+/// block weight) or, rotating, the surface torque (N m) when given. Err: why none does (the
+/// load at 0 and at 1 on the same side of the measured one), with the model's two loads.
+pub fn implied_friction(
+    cfg: &DrillConfig,
+    traj: &Trajectory,
+    depth: f64,
+    op: Operation,
+    hook_load: Option<f64>,
+    torque: Option<f64>,
+) -> std::result::Result<f64, String> {
+    let s = setup(cfg);
+    if !(depth.is_finite() && depth > 0.0 && depth <= s.depth()) {
+        return Err(format!("bit depth {} m outside (0, {}] m, the string's length", Num(depth), Num(s.depth())));
+    }
+    let rotating = matches!(op, Operation::RotatingOffBottom | Operation::RotatingOnBottom);
+    let (measured, is_torque) = match (hook_load, torque) {
+        (_, Some(m)) if rotating => (m, true),
+        (Some(h), _) if !rotating => (h, false),
+        _ => return Err(format!("no {} for {}", if rotating { "surface torque" } else { "hook load" }, op.name())),
+    };
+    let load = |mu: f64| {
+        let p = s.solve_at(traj, op, ProfileMethod::Stepwise, depth, Some(mu));
+        if is_torque {
+            p.surface_torque()
+        } else {
+            p.surface_tension() + s.block_weight
+        }
+    };
+    let (lo, hi) = (load(0.0), load(1.0));
+    let unit = if is_torque { "N m" } else { "N" };
+    let product = (lo - measured) * (hi - measured);
+    if product.is_nan() || product > 0.0 {
+        return Err(format!(
+            "no friction factor in [0, 1] reproduces {} {unit} (the model gives {} at 0 and {} at 1)",
+            Num(measured),
+            Num(lo),
+            Num(hi)
+        ));
+    }
+    let (mut a, mut b, rising) = (0.0, 1.0, hi > lo);
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        if (load(m) < measured) == rising {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    Ok(0.5 * (a + b))
 }
 
 /// The soft-string profile the dynamic model takes its wall contact from: rotating on bottom

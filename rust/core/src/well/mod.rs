@@ -13,7 +13,9 @@
 //! `RF = tan(beta / 2) / (beta / 2)` (1 for a straight interval). The direction along the arc
 //! is the spherical interpolation of `t1` and `t2`; the curvature is `beta / dmd`.
 
+pub mod buckling;
 pub mod plan;
+pub mod td_limits;
 pub mod torque_drag;
 
 use crate::error::{Error, Num, Result};

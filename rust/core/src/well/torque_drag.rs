@@ -23,6 +23,7 @@
 
 use serde::Serialize;
 
+use super::buckling::{self, Body, Hole, Mode};
 use super::{dot, Trajectory};
 use crate::error::{Error, Num, Result};
 
@@ -34,6 +35,10 @@ pub const DEFAULT_STEP: f64 = 1.0;
 /// 200 MB) before it is allocated.
 pub const MAX_ELEMENTS: usize = 1_000_000;
 
+/// A compression beyond any string's strength, N: a helically buckled string's compression
+/// past it has diverged (its wall contact grows with the square of it), the string locked up.
+pub const DIVERGED: f64 = 1e12;
+
 /// A piece of the string of uniform properties, from the bit up (the order is from the top,
 /// like the configuration's sections).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,6 +48,15 @@ pub struct Piece {
     pub weight: f64,
     /// The radius the wall's friction acts at, m.
     pub contact_radius: f64,
+    /// The pipe body: buckling (with a hole) and the limits.
+    pub body: Body,
+}
+
+impl Piece {
+    /// A piece without a pipe body's properties (no buckling, no limits).
+    pub fn new(length: f64, weight: f64, contact_radius: f64) -> Piece {
+        Piece { length, weight, contact_radius, body: Body::default() }
+    }
 }
 
 /// A sliding friction factor over a depth interval `[top_md, bottom_md)`.
@@ -72,7 +86,7 @@ impl SlidingFriction {
     }
 }
 
-/// The four operations of a torque-and-drag analysis.
+/// The five operations of a torque-and-drag analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Operation {
@@ -84,11 +98,19 @@ pub enum Operation {
     RotatingOffBottom,
     /// Rotating on bottom: the bit carries `-WOB` and the torque on bit.
     RotatingOnBottom,
+    /// Sliding (oriented drilling with a motor): lowering without rotation with the bit
+    /// carrying `-WOB`.
+    Sliding,
 }
 
 impl Operation {
-    pub const ALL: [Operation; 4] =
-        [Operation::PickUp, Operation::SlackOff, Operation::RotatingOffBottom, Operation::RotatingOnBottom];
+    pub const ALL: [Operation; 5] = [
+        Operation::PickUp,
+        Operation::SlackOff,
+        Operation::RotatingOffBottom,
+        Operation::RotatingOnBottom,
+        Operation::Sliding,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -96,6 +118,7 @@ impl Operation {
             Operation::SlackOff => "slackoff",
             Operation::RotatingOffBottom => "rotating",
             Operation::RotatingOnBottom => "rotating_on_bottom",
+            Operation::Sliding => "sliding",
         }
     }
 
@@ -103,7 +126,7 @@ impl Operation {
     fn drag_sign(self) -> f64 {
         match self {
             Operation::PickUp => 1.0,
-            Operation::SlackOff => -1.0,
+            Operation::SlackOff | Operation::Sliding => -1.0,
             _ => 0.0,
         }
     }
@@ -136,6 +159,11 @@ pub struct Setup {
     pub block_weight: f64,
     /// The longest element, m.
     pub step: f64,
+    /// The hole (None: no buckling).
+    pub hole: Option<Hole>,
+    /// The mud's hydrostatic pressure gradient `rho_mud g`, Pa/m: the true axial force is the
+    /// effective tension less the pressure at the depth times the body's area.
+    pub pressure_gradient: f64,
 }
 
 /// The profile of one operation, at nodes from the surface (md 0) to the bit.
@@ -151,6 +179,20 @@ pub struct Profile {
     /// Normal force per length of the element below each node (the bit's: the element above), N/m.
     #[serde(rename = "normal_force_N_per_m")]
     pub normal_force: Vec<f64>,
+    /// The normal force times the joint length, N (like `normal_force`).
+    #[serde(rename = "side_force_per_joint_N")]
+    pub side_force_per_joint: Vec<f64>,
+    /// Sinusoidal critical load of the element below each node, N (compressive; empty without a hole).
+    #[serde(rename = "sinusoidal_buckling_load_N")]
+    pub sinusoidal_load: Vec<f64>,
+    /// Helical critical load, N (like `sinusoidal_load`).
+    #[serde(rename = "helical_buckling_load_N")]
+    pub helical_load: Vec<f64>,
+    /// The buckled state at each node (empty without a hole).
+    pub buckling: Vec<Mode>,
+    /// Von Mises stress of the true axial force and the torque over the yield strength (NaN
+    /// in a piece without one; empty when none has one).
+    pub utilisation: Vec<f64>,
 }
 
 impl Profile {
@@ -161,6 +203,19 @@ impl Profile {
 
     pub fn surface_torque(&self) -> f64 {
         self.torque.first().copied().unwrap_or(0.0)
+    }
+
+    /// Whether the bit's load needs the surface to push (the surface tension below 0, or a
+    /// compression diverging in a helically buckled string): the string locks up.
+    pub fn locked_up(&self) -> bool {
+        let t = self.surface_tension();
+        t.is_nan() || t < 0.0
+    }
+
+    /// The first (shallowest) depth of buckling `mode` or worse.
+    pub fn first_buckled(&self, mode: Mode) -> Option<f64> {
+        let worse = |m: &Mode| *m == mode || (mode == Mode::Sinusoidal && *m == Mode::Helical);
+        self.buckling.iter().position(worse).map(|k| self.md[k])
     }
 
     /// The largest normal force per length and its depth.
@@ -199,7 +254,7 @@ fn nodes(traj: &Trajectory, setup: &Setup, bit_md: f64) -> Vec<f64> {
 }
 
 /// The piece at `md` from the top (the last one at and below its end).
-fn piece_at(pieces: &[Piece], md: f64) -> &Piece {
+pub(crate) fn piece_at(pieces: &[Piece], md: f64) -> &Piece {
     let mut d = 0.0;
     for p in pieces {
         d += p.length;
@@ -312,13 +367,16 @@ impl Setup {
         bit_md: f64,
         mu: Option<f64>,
     ) -> Profile {
-        let on_bottom = op == Operation::RotatingOnBottom;
-        let bit = if on_bottom { (-self.weight_on_bit, self.bit_torque) } else { (0.0, 0.0) };
+        let bit = match op {
+            Operation::RotatingOnBottom => (-self.weight_on_bit, self.bit_torque),
+            Operation::Sliding => (-self.weight_on_bit, 0.0),
+            _ => (0.0, 0.0),
+        };
         self.profile(traj, op, scheme, bit_md, mu, bit)
     }
 
     /// The profile from the bit's tension and torque `bit`, N and N m.
-    fn profile(
+    pub(crate) fn profile(
         &self,
         traj: &Trajectory,
         op: Operation,
@@ -336,6 +394,8 @@ impl Setup {
         let mut tension = vec![0.0; n];
         let mut torque = vec![0.0; n];
         let mut normal = vec![0.0; n];
+        let buckles = self.hole.is_some();
+        let mut loads = if buckles { vec![(0.0, 0.0); n] } else { Vec::new() };
         (tension[n - 1], torque[n - 1]) = bit;
         let sign = op.drag_sign();
         let rotating = op.rotating();
@@ -347,6 +407,23 @@ impl Setup {
             let mu = friction(mid);
             let length = md[j + 1] - md[j];
             let (ta, tb) = (upper.tangent, lower.tangent);
+            // the element's clearance and bending stiffness, and its critical loads
+            let buckling = self.hole.as_ref().map(|h| {
+                let (ei, rc) = (p.body.bending_stiffness(), buckling::clearance(h.at(mid), p.body.outer_diameter));
+                let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
+                let m = dot(mean, mean).sqrt();
+                mean.iter_mut().for_each(|x| *x /= m);
+                let kappa = [(tb[0] - ta[0]) / length, (tb[1] - ta[1]) / length, (tb[2] - ta[2]) / length];
+                (ei, rc, buckling::critical_loads(ei, p.weight, rc, mean, kappa))
+            });
+            // Mitchell's contact of a helically buckled string under the compression -t
+            let helical = |t: f64| match buckling {
+                Some((ei, rc, (_, fh))) if -t >= fh => buckling::helical_contact(ei, -t, rc),
+                _ => 0.0,
+            };
+            if let Some((_, _, l)) = buckling {
+                loads[j] = l;
+            }
             match scheme {
                 ProfileMethod::Stepwise => {
                     let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
@@ -360,7 +437,10 @@ impl Setup {
                         t * (tb[1] - ta[1]) - w * cos_i * mean[1],
                         t * (tb[2] - ta[2]) + w * (1.0 - cos_i * mean[2]),
                     ];
-                    let nf = dot(v, v).sqrt();
+                    let mut nf = dot(v, v).sqrt();
+                    if buckles {
+                        nf += helical(t) * length;
+                    }
                     tension[j] = t + w * cos_i + sign * mu * nf;
                     torque[j] = torque[j + 1] + if rotating { mu * p.contact_radius * nf } else { 0.0 };
                     normal[j] = nf / length;
@@ -376,7 +456,10 @@ impl Setup {
                             -q.tangent[2] * q.tangent[1],
                             1.0 - q.tangent[2] * q.tangent[2],
                         ];
-                        let nf = normal_force(t, k, [p.weight * z[0], p.weight * z[1], p.weight * z[2]]);
+                        let mut nf = normal_force(t, k, [p.weight * z[0], p.weight * z[1], p.weight * z[2]]);
+                        if buckles {
+                            nf += helical(t);
+                        }
                         // d/d(-s): tension and torque grow going up
                         (
                             p.weight * q.tangent[2] + sign * mu * nf,
@@ -395,10 +478,48 @@ impl Setup {
                     normal[j] = (k1.2 + 2.0 * k2.2 + 2.0 * k3.2 + k4.2) / 6.0;
                 }
             }
+            if buckles && (tension[j].is_nan() || tension[j] <= -DIVERGED) {
+                // the compression of a helically buckled string diverges: locked up above
+                tension[..=j].fill(f64::NEG_INFINITY);
+                normal[..=j].fill(f64::INFINITY);
+                break;
+            }
             lower = upper;
         }
         normal[n - 1] = if n > 1 { normal[n - 2] } else { 0.0 };
-        Profile { md, tension, torque, normal_force: normal }
+        let mut profile = Profile { md, tension, torque, normal_force: normal, ..Profile::default() };
+        if buckles {
+            loads[n - 1] = if n > 1 { loads[n - 2] } else { loads[n - 1] };
+            profile.buckling = loads.iter().zip(&profile.tension).map(|(l, t)| Mode::of(-t, l.0, l.1)).collect();
+            (profile.sinusoidal_load, profile.helical_load) = loads.into_iter().unzip();
+        }
+        self.limits(traj, &mut profile, offset);
+        profile
+    }
+
+    /// The side force per joint and the utilisation of a profile (`offset`: the string's
+    /// length above the surface).
+    fn limits(&self, traj: &Trajectory, profile: &mut Profile, offset: f64) {
+        let n = profile.md.len();
+        let body = |k: usize| {
+            // the element below each node, the bit's the one above
+            let at = if k + 1 < n { 0.5 * (profile.md[k] + profile.md[k + 1]) } else { profile.md[k] };
+            piece_at(&self.pieces, at + offset).body
+        };
+        profile.side_force_per_joint = (0..n).map(|k| profile.normal_force[k] * body(k).joint_length).collect();
+        if self.pieces.iter().all(|p| p.body.yield_strength.is_none()) {
+            return;
+        }
+        profile.utilisation = (0..n)
+            .map(|k| {
+                let b = body(k);
+                b.yield_strength.map_or(f64::NAN, |y| {
+                    let tvd = traj.at(profile.md[k]).position[2];
+                    let f = profile.tension[k] - self.pressure_gradient * tvd * b.area;
+                    buckling::von_mises(f, profile.torque[k], b.area, b.polar_moment, b.outer_diameter / 2.0) / y
+                })
+            })
+            .collect();
     }
 }
 
@@ -414,8 +535,9 @@ pub fn normal_force(tension: f64, kappa: [f64; 3], wz: [f64; 3]) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
-/// The summary of the four operations (serialised under the names of `torque_drag.json`,
-/// `hook_load_pickup_N`, ..., and the profiles by operation name).
+/// The summary of the five operations (serialised under the names of `torque_drag.json`,
+/// `hook_load_pickup_N`, ..., and the profiles by operation name). The largest normal force
+/// is that of the four operations other than sliding.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct TorqueDrag {
     #[serde(rename = "hook_load_pickup_N")]
@@ -426,6 +548,8 @@ pub struct TorqueDrag {
     pub hook_load_rotating_n: f64,
     #[serde(rename = "hook_load_rotating_on_bottom_N")]
     pub hook_load_rotating_on_bottom_n: f64,
+    #[serde(rename = "hook_load_sliding_N")]
+    pub hook_load_sliding_n: f64,
     #[serde(rename = "surface_torque_off_bottom_Nm")]
     pub surface_torque_off_bottom_nm: f64,
     #[serde(rename = "surface_torque_on_bottom_Nm")]
@@ -434,6 +558,8 @@ pub struct TorqueDrag {
     pub max_normal_force_n_per_m: f64,
     pub max_normal_force_md: f64,
     pub max_normal_force_operation: &'static str,
+    #[serde(flatten)]
+    pub limits: super::td_limits::Limits,
     /// In the order of [`Operation::ALL`].
     #[serde(serialize_with = "by_operation")]
     pub profiles: Vec<Profile>,
@@ -460,7 +586,7 @@ pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod
     let profiles: Vec<Profile> = Operation::ALL.iter().map(|&op| setup.solve(traj, op, scheme)).collect();
     let hook = |k: usize| profiles[k].surface_tension() + setup.block_weight;
     let (mut best, mut at, mut which) = (0.0, 0.0, Operation::ALL[0].name());
-    for (op, p) in Operation::ALL.iter().zip(&profiles) {
+    for (op, p) in Operation::ALL[..4].iter().zip(&profiles) {
         let (n, d) = p.max_normal_force();
         if n > best {
             (best, at, which) = (n, d, op.name());
@@ -471,19 +597,22 @@ pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod
         hook_load_slackoff_n: hook(1),
         hook_load_rotating_n: hook(2),
         hook_load_rotating_on_bottom_n: hook(3),
+        hook_load_sliding_n: hook(4),
         surface_torque_off_bottom_nm: profiles[2].surface_torque(),
         surface_torque_on_bottom_nm: profiles[3].surface_torque(),
         max_normal_force_n_per_m: best,
         max_normal_force_md: at,
         max_normal_force_operation: which,
+        limits: super::td_limits::limits(traj, setup, scheme, &profiles),
         profiles,
     }
 }
 
 /// Hook loads against bit depth while tripping (the broomstick plot): for each friction factor
 /// in `mus` and each bit depth in `depths` (each within `(0, string length]`), the pick-up,
-/// slack-off and rotating hook loads, N, as `[mu][depth]` rows of `(pickup, slackoff, rotating)`.
-pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64]) -> Result<Vec<Vec<[f64; 3]>>> {
+/// slack-off and rotating hook loads, N, and the rotating surface torque, N m, as `[mu][depth]`
+/// rows of `(pickup, slackoff, rotating, torque)`.
+pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64]) -> Result<Vec<Vec<[f64; 4]>>> {
     setup.validate_string()?;
     let length = setup.depth();
     for (j, &d) in depths.iter().enumerate() {
@@ -510,7 +639,14 @@ pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64])
                         setup.solve_at(traj, op, ProfileMethod::Stepwise, d, Some(mu)).surface_tension()
                             + setup.block_weight
                     };
-                    [hook(Operation::PickUp), hook(Operation::SlackOff), hook(Operation::RotatingOffBottom)]
+                    let rotating =
+                        setup.solve_at(traj, Operation::RotatingOffBottom, ProfileMethod::Stepwise, d, Some(mu));
+                    [
+                        hook(Operation::PickUp),
+                        hook(Operation::SlackOff),
+                        rotating.surface_tension() + setup.block_weight,
+                        rotating.surface_torque(),
+                    ]
                 })
                 .collect()
         })
@@ -528,12 +664,14 @@ mod tests {
 
     fn setup(length: f64, weight: f64, mu: f64) -> Setup {
         Setup {
-            pieces: vec![Piece { length, weight, contact_radius: 0.1 }],
+            pieces: vec![Piece::new(length, weight, 0.1)],
             friction: SlidingFriction::uniform(mu),
             weight_on_bit: 0.0,
             bit_torque: 0.0,
             block_weight: 0.0,
             step: 1.0,
+            hole: None,
+            pressure_gradient: 0.0,
         }
     }
 
@@ -609,10 +747,7 @@ mod tests {
             &[0.0, 0.0, 30.0, 80.0, 120.0, 120.0],
         );
         let mut s = setup(4000.0, 250.0, 0.3);
-        s.pieces = vec![
-            Piece { length: 3700.0, weight: 250.0, contact_radius: 0.08 },
-            Piece { length: 300.0, weight: 1200.0, contact_radius: 0.1 },
-        ];
+        s.pieces = vec![Piece::new(3700.0, 250.0, 0.08), Piece::new(300.0, 1200.0, 0.1)];
         s.weight_on_bit = 1e5;
         s.bit_torque = 5e3;
         s.step = 0.25;

@@ -124,6 +124,7 @@ impl DrillConfig {
         self.validate_well()?;
         self.validate_friction_intervals()?;
         super::limits::validate_torque_drag(self)?;
+        super::pipe::validate(self)?;
         self.validate_friction()?;
         nonneg("damping_rate", self.damping_rate, "1/s")?;
         self.validate_coupled()?;

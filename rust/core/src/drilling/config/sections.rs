@@ -48,6 +48,32 @@ pub struct Section {
     /// `M = 2 G (1 - nu) / (1 - 2 nu)` of the `consistent` nonlinearity (unused by `linear`).
     #[schemars(extend("unit" = "", "label" = "Poisson's ratio"))]
     pub poisson_ratio: f64,
+    /// API drill-pipe grade (`E-75`, `X-95`, `G-105`, `S-135`), for the torque and drag's
+    /// utilisation; or `yield_strength`. Null: no utilisation.
+    #[schemars(extend("label" = "grade"))]
+    pub grade: Option<super::super::pipe::Grade>,
+    /// Minimum yield strength, > 0, in place of `grade`.
+    #[schemars(extend("unit" = "Pa", "label" = "yield strength"))]
+    pub yield_strength: Option<f64>,
+    /// Adjusted weight in air per length with the tool joints (as pipe tables give it), > 0,
+    /// for the torque and drag. Null: from the tool joints, else the body.
+    #[schemars(extend("unit" = "N/m", "label" = "nominal weight"))]
+    pub nominal_weight: Option<f64>,
+    /// Outer diameter of the tool joints, at least the body's.
+    #[schemars(extend("unit" = "m", "label" = "tool-joint outer diameter"))]
+    pub tool_joint_outer_diameter: Option<f64>,
+    /// Inner diameter of the tool joints, below their outer diameter.
+    #[schemars(extend("unit" = "m", "label" = "tool-joint inner diameter"))]
+    pub tool_joint_inner_diameter: Option<f64>,
+    /// Length of one tool joint (pin and box), below the joint length.
+    #[schemars(extend("unit" = "m", "label" = "tool-joint length"))]
+    pub tool_joint_length: Option<f64>,
+    /// Length of one joint, > 0 (null: 9.144 m, API range 2).
+    #[schemars(extend("unit" = "m", "label" = "joint length"))]
+    pub joint_length: Option<f64>,
+    /// Make-up torque of the tool joints, > 0 (null: not checked).
+    #[schemars(extend("unit" = "N*m", "label" = "make-up torque"))]
+    pub makeup_torque: Option<f64>,
 }
 
 impl Default for Section {
@@ -66,6 +92,14 @@ impl Default for Section {
             area: None,
             quartic_moment: None,
             poisson_ratio: 0.3,
+            grade: None,
+            yield_strength: None,
+            nominal_weight: None,
+            tool_joint_outer_diameter: None,
+            tool_joint_inner_diameter: None,
+            tool_joint_length: None,
+            joint_length: None,
+            makeup_torque: None,
         }
     }
 }

@@ -54,6 +54,13 @@ pub struct Well {
     /// is true: then the hole goes straight on in the last station's direction.
     #[schemars(extend("label" = "extend the survey"))]
     pub extend: bool,
+    /// Diameter of the open hole (below `hole_sections`), larger than every pipe and tool
+    /// joint: the torque and drag's buckling. Null: no buckling evaluated.
+    #[schemars(extend("unit" = "m", "label" = "hole diameter"))]
+    pub hole_diameter: Option<f64>,
+    /// Casing and hole sections from the surface down, each to its `bottom_md` (needs `hole_diameter`).
+    #[schemars(extend("label" = "hole sections"))]
+    pub hole_sections: Vec<super::super::pipe::HoleSection>,
     /// The stations read from `survey` when the configuration was parsed (md m, inclination
     /// and azimuth degrees).
     #[serde(skip)]
@@ -72,6 +79,8 @@ impl Default for Well {
             survey: None,
             plan: None,
             extend: false,
+            hole_diameter: None,
+            hole_sections: Vec::new(),
             survey_stations: None,
         }
     }

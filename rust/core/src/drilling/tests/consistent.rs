@@ -271,7 +271,9 @@ fn well_b_with_the_consistent_law_changes_little() {
     sim.zero_quartic();
     let quadratic = sim.run(&Never, &mut |_| {});
     let (a, b, q) = (base.metrics.unwrap(), run.metrics.unwrap(), quadratic.metrics.unwrap());
-    let metrics = |m: &crate::metrics::StickSlip| [m.motor_torque_min_nm, m.motor_torque_max_nm, m.period_s, m.bit_rpm_max, m.bit_rpm_mean];
+    let metrics = |m: &crate::metrics::StickSlip| {
+        [m.motor_torque_min_nm, m.motor_torque_max_nm, m.period_s, m.bit_rpm_max, m.bit_rpm_mean]
+    };
     let changes = |x: [f64; 5], y: [f64; 5]| -> [f64; 5] { std::array::from_fn(|i| y[i] / x[i] - 1.0) };
     let law = changes(metrics(&q), metrics(&b));
     let scheme = changes(metrics(&a), metrics(&q));

@@ -129,11 +129,18 @@ fn well_b_agrees_with_the_published_model() {
     eprintln!(
         "Well B: motor torque {:.0}..{:.0} N m (Octave {torque_min:.0}..{torque_max:.0}), period {:.3} s ({period}), \
          bit rpm max {:.1} ({rpm_max}), mean {:.2} ({rpm_mean}), balance {:.1e}",
-        m.motor_torque_min_nm, m.motor_torque_max_nm, m.period_s, m.bit_rpm_max, m.bit_rpm_mean, run.energy.balance_error
+        m.motor_torque_min_nm,
+        m.motor_torque_max_nm,
+        m.period_s,
+        m.bit_rpm_max,
+        m.bit_rpm_mean,
+        run.energy.balance_error
     );
     let rel = |a: f64, b: f64| (a / b - 1.0).abs();
     assert!(rel(m.motor_torque_min_nm, torque_min) < 0.05 && rel(m.motor_torque_max_nm, torque_max) < 0.02);
-    assert!(rel(m.period_s, period) < 0.02 && rel(m.bit_rpm_max, rpm_max) < 0.02 && rel(m.bit_rpm_mean, rpm_mean) < 0.01);
+    assert!(
+        rel(m.period_s, period) < 0.02 && rel(m.bit_rpm_max, rpm_max) < 0.02 && rel(m.bit_rpm_mean, rpm_mean) < 0.01
+    );
 }
 
 #[test]
