@@ -17,6 +17,7 @@ use crate::schema::{self, join, kind, shown};
 
 use super::axial::bitrock::DetournayBit;
 use super::axial::hoist::{Autodriller, HoistMode, HoistParams};
+use super::engine::bit_law;
 use super::grid::Grid;
 use crate::well::plan::SegmentSpec;
 
@@ -587,6 +588,13 @@ pub enum BitRockLaw {
     Detournay,
     /// The Detournay law with the regenerative depth of cut (Richard, Germay & Detournay 2007).
     Rgd,
+}
+
+impl BitRockLaw {
+    /// The law's name in the configuration (`bit.law`).
+    pub fn name(self) -> String {
+        serde_json::to_value(self).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default()
+    }
 }
 
 /// The Detournay cutting + frictional-contact law (`bit.law` `detournay` or `rgd`; Richard,
@@ -1167,12 +1175,13 @@ impl DrillConfig {
     /// The coupled run's keys: `bit.law` `detournay` or `rgd` with a `[hoist]` table and the
     /// reverse, the Detournay law's and the hoist's ranges.
     fn validate_coupled(&self) -> Result<()> {
-        let coupled = self.bit.law != BitRockLaw::VelocityWeakening;
+        // (whether the law needs the axial field, as the law declares it)
+        let coupled = bit_law::axial_need(self.bit.law) == bit_law::AxialNeed::DepthOfCut;
         match (&self.hoist, coupled) {
             (None, true) => {
                 return Err(Error::invalid(
                     "bit.law",
-                    if self.bit.law == BitRockLaw::Rgd { "rgd" } else { "detournay" },
+                    self.bit.law.name(),
                     "velocity_weakening without a [hoist] table (detournay and rgd need the hoist's axial field)",
                 ))
             }
@@ -1189,7 +1198,7 @@ impl DrillConfig {
             // the velocity-weakening law's keys: a coupled bit meets the rock through the hoist
             return Err(Error::invalid(
                 "bit.on_bottom",
-                format!("true with bit.law = {}", if self.bit.law == BitRockLaw::Rgd { "rgd" } else { "detournay" }),
+                format!("true with bit.law = {}", self.bit.law.name()),
                 "false (a coupled run's bit reaches the rock through the [hoist] table: hoist.weight_on_bit, \
                  hoist.speed or hoist.hook_load; bit.on_bottom and bit.weight_on_bit belong to the velocity-weakening law)",
             ));
@@ -1200,7 +1209,7 @@ impl DrillConfig {
             nonneg("hoist.weight_on_bit", h.weight_on_bit, "N")?;
             nonneg("hoist.ramp_time", h.ramp_time, "s")?;
             h.params().validate("hoist")?;
-            self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
+            bit_law::validate(self)?;
             let cells = self.bit.detournay.cut_surface_cells;
             if !(1..=MAX_CUT_SURFACE_CELLS).contains(&cells) {
                 return Err(Error::invalid(

@@ -26,6 +26,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::axial::bitrock::{DetournayBit, SteadyDrilling};
+use super::engine::bit_law::Law;
 use super::axial::hoist::{AutodrillerTarget, HoistMode};
 use super::axial::section::AxialSection;
 use super::config::DrillConfig;
@@ -222,7 +223,10 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
             ),
         ));
     }
-    Ok(SteadyPoint { omega, rop, bit: law.steady_state(rop, omega) })
+    let Some((bit, _)) = Law::new(cfg).steady(rop, omega) else {
+        return Err(Error::invalid(FIELD, "\"steady\"", "\"rest\" for a bit law without a steady drilling state"));
+    };
+    Ok(SteadyPoint { omega, rop, bit })
 }
 
 #[cfg(test)]
