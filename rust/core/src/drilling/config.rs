@@ -18,6 +18,7 @@ use crate::schema::{self, join, kind, shown};
 use super::axial::bitrock::DetournayBit;
 use super::axial::hoist::{Autodriller, HoistMode, HoistParams};
 use super::engine::bit_law;
+pub use super::engine::bit_law::weakening::Weakening;
 use super::grid::Grid;
 use crate::well::plan::SegmentSpec;
 
@@ -566,11 +567,15 @@ pub struct Bit {
     /// on bit `weight_on_bit`, torsion only), `detournay` (the Detournay cutting + contact law of
     /// `bit.detournay` with the depth of cut per revolution `2 pi v / omega` of the bit's speeds)
     /// or `rgd` (the same law with the regenerative depth of cut, the bit's position one blade
-    /// pass back). `detournay` and `rgd` need a `[hoist]` table and the reverse.
+    /// pass back), or `detournay_weakening` (the `detournay` law with the wear flats' friction
+    /// falling with the bit's speed, `bit.weakening`). The laws but `velocity_weakening` need a
+    /// `[hoist]` table and the reverse.
     #[schemars(extend("label" = "bit-rock law"))]
     pub law: BitRockLaw,
     #[schemars(extend("label" = "Detournay bit law"))]
     pub detournay: Detournay,
+    #[schemars(extend("label" = "wear-flat friction weakening"))]
+    pub weakening: Weakening,
     /// Lumped mass at the bit on the axial field of a coupled run (`[hoist]`), >= 0 (0: none,
     /// the string's end alone): its inertia and its buoyed weight along the hole (the density of
     /// the last section), which the string carries in the initial static tension.
@@ -588,6 +593,8 @@ pub enum BitRockLaw {
     Detournay,
     /// The Detournay law with the regenerative depth of cut (Richard, Germay & Detournay 2007).
     Rgd,
+    /// The Detournay law (rate form) with the wear flats' friction falling with the bit's speed.
+    DetournayWeakening,
 }
 
 impl BitRockLaw {
@@ -787,6 +794,7 @@ impl Default for Bit {
             bha_inertia: 0.0,
             law: BitRockLaw::VelocityWeakening,
             detournay: Detournay::default(),
+            weakening: Weakening::default(),
             bha_mass: 0.0,
         }
     }

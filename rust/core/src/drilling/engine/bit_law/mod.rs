@@ -34,6 +34,10 @@ use crate::drilling::config::{BitRockLaw, DrillConfig};
 use crate::drilling::engine::boundary::EndLine;
 use crate::error::Result;
 
+pub mod weakening;
+
+use weakening::DetournayWeakening;
+
 /// What a bit law needs from the axial field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AxialNeed {
@@ -86,6 +90,8 @@ pub enum Law {
     VelocityWeakening(VelocityWeakening),
     /// `detournay` and `rgd` ([`crate::drilling::axial::bitrock`]).
     Detournay(DetournayBit),
+    /// `detournay_weakening` ([`weakening`]).
+    DetournayWeakening(DetournayWeakening),
 }
 
 /// Whether the law `law` needs the axial field of a coupled run (`[hoist]`), as the law
@@ -94,6 +100,7 @@ pub fn axial_need(law: BitRockLaw) -> AxialNeed {
     match law {
         BitRockLaw::VelocityWeakening => VelocityWeakening::AXIAL,
         BitRockLaw::Detournay | BitRockLaw::Rgd => DetournayBit::AXIAL,
+        BitRockLaw::DetournayWeakening => DetournayWeakening::AXIAL,
     }
 }
 
@@ -102,6 +109,10 @@ pub fn validate(cfg: &DrillConfig) -> Result<()> {
     match cfg.bit.law {
         BitRockLaw::VelocityWeakening => Ok(()),
         BitRockLaw::Detournay | BitRockLaw::Rgd => cfg.bit.detournay.law(cfg.bit.radius).validate("bit.detournay"),
+        BitRockLaw::DetournayWeakening => {
+            cfg.bit.detournay.law(cfg.bit.radius).validate("bit.detournay")?;
+            cfg.bit.weakening.validate(cfg.bit.detournay.friction)
+        }
     }
 }
 
@@ -121,6 +132,9 @@ impl Law {
             }
             BitRockLaw::VelocityWeakening => Law::Free,
             BitRockLaw::Detournay | BitRockLaw::Rgd => Law::Detournay(b.detournay.law(b.radius)),
+            BitRockLaw::DetournayWeakening => {
+                Law::DetournayWeakening(DetournayWeakening { cut: b.detournay.law(b.radius), weakening: b.weakening })
+            }
         }
     }
 
@@ -130,6 +144,7 @@ impl Law {
             Law::Free => AxialNeed::None,
             Law::VelocityWeakening(_) => VelocityWeakening::AXIAL,
             Law::Detournay(_) => DetournayBit::AXIAL,
+            Law::DetournayWeakening(_) => DetournayWeakening::AXIAL,
         }
     }
 
@@ -144,6 +159,7 @@ impl Law {
             ),
             Law::VelocityWeakening(l) => l.resolve(ends),
             Law::Detournay(l) => l.resolve(ends),
+            Law::DetournayWeakening(l) => l.resolve(ends),
         }
     }
 
@@ -153,6 +169,7 @@ impl Law {
             Law::Free => None,
             Law::VelocityWeakening(l) => l.steady(rop, omega),
             Law::Detournay(l) => l.steady(rop, omega),
+            Law::DetournayWeakening(l) => l.steady(rop, omega),
         }
     }
 
@@ -162,6 +179,7 @@ impl Law {
         match self {
             Law::Free | Law::VelocityWeakening(_) => None,
             Law::Detournay(l) => Some(l),
+            Law::DetournayWeakening(l) => Some(&l.cut),
         }
     }
 }
