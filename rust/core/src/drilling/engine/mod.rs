@@ -36,20 +36,21 @@
 //!
 //! # The seams
 //!
-//! Each role the run composes is one interface, dispatched once per step outside the cell
-//! loops (the kernels are plain functions over slices, generic over nothing at run time):
+//! What the run composes, and where a new one plugs in (dispatched once per step, outside the
+//! cell loops; the kernels are plain functions over slices):
 //!
-//! * the bit law, [`bit_law::BitRock`] (torsion-only and coupled laws alike; what a law needs
-//!   from the axial field it declares, [`bit_law::BitRock::AXIAL`]), the laws registered in
-//!   [`bit_law::Law`];
-//! * the top boundary, [`boundary::TopDrive`] carrying out a [`controller::Command`] (a
-//!   controller's, or the measured surface speed's [`controller::SpeedSeries`]);
-//! * the hoist, [`crate::drilling::axial::hoist::Hoist`] giving the axial field's top its
-//!   [`crate::drilling::axial::hoist::HoistCommand`];
-//! * the sources per cell, [`sources::Sources`] (damping, the torsional wall friction with its
-//!   stick phase) inside the kernels, the buoyed weight in [`axial`], a wall friction on both
-//!   fields in [`coupled_friction`] after both transports;
-//! * the output series, named channels ([`sampler::Channel`]) each part declares where it is
+//! * the bit law: the trait [`bit_law::BitRock`], one interface for the laws of the torsional
+//!   field alone and those meeting the axial field too (what a law needs from the axial field
+//!   it declares, [`bit_law::BitRock::AXIAL`]), the laws registered in [`bit_law::Law`];
+//! * the top boundary: [`boundary::TopDrive`] carries out a [`controller::Command`] (a
+//!   controller's, [`controller::Controller::command`], or the measured surface speed's
+//!   [`controller::SpeedSeries`]): a new controller is a new command source;
+//! * the hoist: [`crate::drilling::axial::hoist::Hoist`] gives the axial field's top its
+//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial::Axial::top`]);
+//! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
+//!   stick phase) inside the kernels, the buoyed weight in [`axial`] after the axial transport,
+//!   a wall friction on both fields in [`coupled_friction`] after both transports;
+//! * the output series: named channels ([`sampler::Channel`]) each part declares where it is
 //!   ([`sampler::TORSIONAL`], [`axial::CHANNELS`]).
 //!
 //! # The scheme
