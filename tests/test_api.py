@@ -10,6 +10,7 @@ import sys
 import types
 import typing
 from pathlib import Path
+from typing import Any
 
 import _docs
 import numpy as np
@@ -142,18 +143,42 @@ def test_nfev_counts_as_the_readme_says():
     assert "17004 with `samples=2` and 20652 with the default 1868 samples" in DOCS.replace("\n  ", " ")
 
 
-def test_plain_install_has_what_the_readme_uses():
+def _pyproject() -> dict[str, Any]:
     try:
         import tomllib
     except ImportError:  # Python < 3.11
         import tomli as tomllib
-    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
-    names = {re.split(r"[<>=;\[ ]", d)[0] for d in project["dependencies"]}
-    assert {"numpy", "matplotlib", "pandas", "pyarrow", "xarray", "h5netcdf", "h5py", "tqdm"} <= names
-    assert project["optional-dependencies"]["sweep"] == []
-    sources = "".join(p.read_text(encoding="utf-8") for p in (ROOT / "python/drillstring").glob("*.py"))
+    return tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+
+
+def _names(requirements: list[str]) -> set[str]:
+    return {re.split(r"[<>=;\[ ]", d)[0] for d in requirements}
+
+
+def test_plain_install_has_what_the_readme_uses():
+    project = _pyproject()
+    names = _names(project["dependencies"])
+    # drill's series.parquet and the sweep store (pyarrow), progress bars, the paper's report (jinja2)
+    assert {"numpy", "matplotlib", "pandas", "pyarrow", "tqdm", "jinja2"} <= names
+    # netCDF output is an extra; h5py was never imported (h5netcdf brings it)
+    assert not names & {"xarray", "h5netcdf", "h5py"}
+    assert "sweep" not in project["optional-dependencies"]
+    sources = "".join(p.read_text(encoding="utf-8") for p in (ROOT / "python/drillstring").rglob("*.py"))
     assert "drillstring[" not in sources and "drillstring[" not in README
-    assert "pip install '.[dask]'" in README
+    assert "import h5py" not in sources
+    assert "pip install '.[dask]'" in README and "'.[netcdf]'" in README
+
+
+def test_the_extras_of_optional_outputs_are_the_modules_the_package_checks():
+    from drillstring.io.extras import EXTRAS
+
+    extras = {name: _names(reqs) for name, reqs in _pyproject()["optional-dependencies"].items()}
+    for extra, modules in EXTRAS.items():
+        assert extras[extra] == set(modules), extra
+    # `all` is every optional output; the tests have all of them
+    optional = set().union(*(extras[e] for e in ("netcdf", "dask", "las")))
+    assert extras["all"] == optional
+    assert optional <= extras["test"]
 
 
 def test_dir_lists_the_api_and_no_import_machinery() -> None:

@@ -1,6 +1,6 @@
-"""The size of the package's units: no function longer than :data:`MAX_FUNCTION_LINES`, and the
-command line one module per verb, each with ``add_parser`` and ``run`` and listed in the
-registry."""
+"""The size of the package's units: no function longer than :data:`MAX_FUNCTION_LINES`, no Rust
+source file longer than :data:`MAX_RUST_FILE_LINES`, and the command line one module per verb,
+each with ``add_parser`` and ``run`` and listed in the registry."""
 
 from __future__ import annotations
 
@@ -12,9 +12,12 @@ from drillstring import cli
 
 PACKAGE = Path(ds.__file__).parent
 CLI = PACKAGE / "cli"
+RUST = Path(__file__).resolve().parent.parent / "rust"
 
 #: The longest function (or method) of the package, lines from ``def`` to its last line.
 MAX_FUNCTION_LINES = 150
+#: The longest Rust source file under ``rust/``, lines.
+MAX_RUST_FILE_LINES = 1000
 
 
 def _long_functions(root: Path, limit: int) -> list[str]:
@@ -41,6 +44,35 @@ def test_the_size_check_finds_a_long_function(tmp_path: Path) -> None:
     (package / "long.py").write_text(f"def short():\n    pass\n\n\nasync def too_long():\n{body}")
     assert _long_functions(package, MAX_FUNCTION_LINES) == [
         f"pkg/long.py:5: too_long is {MAX_FUNCTION_LINES + 1} lines (at most {MAX_FUNCTION_LINES})"]
+
+
+def _long_files(root: Path, limit: int) -> list[str]:
+    """``file is N lines`` of every Rust source file under ``root`` (build output aside) longer
+    than ``limit``."""
+    found = []
+    for path in sorted(root.rglob("*.rs")):
+        if "target" in path.relative_to(root).parts:
+            continue
+        length = len(path.read_text(encoding="utf-8").splitlines())
+        if length > limit:
+            found.append(f"{path.relative_to(root.parent)} is {length} lines (at most {limit})")
+    return found
+
+
+def test_no_rust_file_is_longer_than_the_limit() -> None:
+    assert RUST.is_dir(), f"no Rust sources at {RUST}"
+    assert _long_files(RUST, MAX_RUST_FILE_LINES) == []
+
+
+def test_the_size_check_finds_a_long_rust_file(tmp_path: Path) -> None:
+    rust = tmp_path / "rust"
+    (rust / "src").mkdir(parents=True)
+    (rust / "target").mkdir()
+    (rust / "src" / "short.rs").write_text("fn f() {}\n" * MAX_RUST_FILE_LINES)
+    (rust / "src" / "long.rs").write_text("fn f() {}\n" * (MAX_RUST_FILE_LINES + 1))
+    (rust / "target" / "generated.rs").write_text("fn f() {}\n" * (MAX_RUST_FILE_LINES + 1))
+    assert _long_files(rust, MAX_RUST_FILE_LINES) == [
+        f"rust/src/long.rs is {MAX_RUST_FILE_LINES + 1} lines (at most {MAX_RUST_FILE_LINES})"]
 
 
 def _verb_modules() -> list[str]:

@@ -249,19 +249,6 @@ def test_core_force_and_potential_are_the_dense_tensor_contractions() -> None:
         assert model.potential(q) == pytest.approx(np.einsum("abcd,a,b,c,d", t, q, q, q, q) / 4)
 
 
-def test_cubic_tensor_is_deprecated_and_still_the_oracle_tensor() -> None:
-    model = ModalCoefficients.from_coefficients(_random_coefficients(np.random.default_rng(2)), 3, True)
-    with pytest.warns(DeprecationWarning, match="cubic_tensor"):
-        tensor = model.cubic_tensor()
-    expected = oracles.cubic_tensor(model.quartic_index, model.quartic_coef, model.n_modes)
-    assert np.array_equal(tensor, expected)
-    with pytest.warns(DeprecationWarning, match="MAX_TENSOR_MODES"):
-        assert galerkin.MAX_TENSOR_MODES == 64
-    big = project(Parameters(), modes=64, rigid_mode=True)
-    with pytest.warns(DeprecationWarning), pytest.raises(ValidationError, match="modes"):
-        big.cubic_tensor()
-
-
 def test_gradient_matches_finite_differences() -> None:
     rng = np.random.default_rng(RNG_SEED + 1)
     model = ModalCoefficients.from_coefficients(_random_coefficients(rng), 5, rigid_mode=True)

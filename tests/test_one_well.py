@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
 import drillstring as ds
@@ -53,6 +53,15 @@ def _config(well: dict, sections: list[dict], *, mu: float, ratio: float, speed:
         "numerics": {"cells": cells, "duration": duration},
         "metrics": {"window": list(window)},
     })
+
+
+def _stretch(cfg: DrillConfig, force: float) -> float:
+    """How much longer the string is under ``force`` more tension (an upper bound: the whole
+    string at the pipe's axial stiffness, ``E = 2 G (1 + nu)``), m."""
+    pipe = cfg.sections[0]
+    area = math.pi / 4 * (pipe.outer_diameter ** 2 - pipe.inner_diameter ** 2)
+    young = 2.0 * pipe.shear_modulus * (1.0 + pipe.poisson_ratio)
+    return abs(force) * sum(s.length for s in cfg.sections) / (young * area)
 
 
 def _viscous_drag(cfg: DrillConfig, speed: float) -> float:
@@ -140,6 +149,9 @@ def test_a_plan_is_its_stations(tmp_path):
 @settings(max_examples=10, deadline=None, derandomize=True)
 @given(well=wells(), mu=st.floats(0.1, 0.3), ratio=st.floats(0.6, 1.0),
        cells=st.sampled_from([12, 30, 60, 100, 250, 400]))
+# a long string in a 60 deg hole: a slack-off window must wait for the top to take up 0.66 m of stretch
+@example(well=([0.0, 125.0, 825.0, 1446.0, 1746.0, 2120.0], [0.0, 0.0, 30.0, 60.0, 60.0, 60.0],
+               [0.0, 0.0, 40.0, 68.0, 68.0, 68.0], 2100.0), mu=0.25, ratio=1.0, cells=250)
 def test_the_steady_hook_loads_are_torque_and_drags(well, mu, ratio, cells):
     """Pick-up, slack-off (lowered after a pick-up, the bit above bottom) and rotating off bottom:
     the dynamic model's mean hook load over a late window within 0.5 % of torque and drag's
@@ -157,9 +169,14 @@ def test_the_steady_hook_loads_are_torque_and_drags(well, mu, ratio, cells):
     sections = _string(length, 150.0, 0.127)
     common = dict(mu=mu, ratio=ratio, cells=cells)
     tol = 5e-3 if cells >= 100 else 1e-2 if cells >= 60 else None
-    pick = _config(w, sections, speed=-0.05, rpm=0.0, duration=25.0, window=(15.0, 25.0), **common)
-    td = ds.torque_drag(pick).summary
+    probe = _config(w, sections, speed=-0.05, rpm=0.0, duration=25.0, window=(15.0, 25.0), **common)
+    td = ds.torque_drag(probe).summary
     rotating_load = td["hook_load_rotating_N"]
+    # The top takes up the string's stretch between two loads before the bit moves: the windows
+    # start after it (a long string in a 60 deg hole takes 13 s of a 0.05 m/s slack-off).
+    take_up = _stretch(probe, td["hook_load_pickup_N"] - rotating_load)
+    pick_end = max(25.0, 2.0 + take_up / 0.05 + 14.0)
+    pick = probe.with_overrides({"numerics.duration": pick_end, "metrics.window": [pick_end - 10.0, pick_end]})
     try:
         run = ds.drill(pick)
     except ValidationError as exc:  # a grid the solver does not accept (a section under one axial cell)
@@ -171,15 +188,19 @@ def test_the_steady_hook_loads_are_torque_and_drags(well, mu, ratio, cells):
     spread = td["hook_load_pickup_N"] - td["hook_load_slackoff_N"]
     if spread > 0.02 * rotating_load:  # (a near-vertical well has no drag to point either way)
         assert got > rotating_load, "pick-up on the slack-off side"
-    slack = _config(w, sections, speed=-0.1, rpm=0.0, duration=28.0, window=(22.0, 28.0), steps=[[12.0, 0.05]],
-                    **common)
+    # up at 0.1 m/s until the bit is 0.8 m off bottom, then down at 0.05 m/s: steady once the top
+    # has taken up the stretch between the pick-up and the slack-off load, 0.5 m at most after
+    lower = max(12.0, 1.0 + (take_up + 0.8) / 0.1)
+    start = lower + _stretch(probe, td["hook_load_pickup_N"] - td["hook_load_slackoff_N"]) / 0.05 + 4.0
+    slack = _config(w, sections, speed=-0.1, rpm=0.0, duration=start + 6.0, window=(start, start + 6.0),
+                    steps=[[lower, 0.05]], **common)
     run = ds.drill(slack)
     got = run.coupled_metrics["hook_load_mean_N"]
     if tol:
         assert got == pytest.approx(td["hook_load_slackoff_N"] - _viscous_drag(slack, 0.05), rel=tol), "slack-off"
     if spread > 0.02 * rotating_load:
         assert got < rotating_load, "slack-off on the pick-up side"
-    in_window = np.asarray(run.t) >= 22.0
+    in_window = np.asarray(run.t) >= start
     assert np.all(np.asarray(run.axial["weight_on_bit"])[in_window] == 0.0), "the bit stays off bottom"
     rotating = _config(w, sections, speed=0.0, rpm=60.0, duration=20.0, window=(12.0, 20.0), **common)
     run = ds.drill(rotating)
@@ -237,6 +258,23 @@ def test_a_steady_pick_up_books_the_kinetic_friction_work():
         split.append((friction, gravity))
     for friction, gravity in split[1:]:
         assert friction == pytest.approx(split[0][0], rel=1e-4) and gravity == pytest.approx(split[0][1], rel=1e-4)
+
+
+def test_a_coarse_axial_section_is_warned_about_and_its_error_is_real():
+    """A 150 m collar section in one axial cell below the exact shift gets the warning naming it,
+    and its pick-up load is measurably off the fine grid's (the warning is not noise); on the
+    grid where each section has three cells or more the warning is gone."""
+    w = {"md": [0.0, 500.0, 1500.0], "inclination_deg": [0.0, 2.0, 6.0]}
+    sections = _string(1350.0, 150.0, 0.127)
+    common = dict(mu=0.25, ratio=1.0, speed=-0.05, rpm=0.0, duration=20.0, window=(12.0, 20.0))
+    loads, warned = {}, {}
+    for cells in (18, 400):
+        run = ds.drill(_config(w, sections, cells=cells, **common))
+        loads[cells] = run.coupled_metrics["hook_load_mean_N"]
+        warned[cells] = [x for x in run.warnings if x.startswith("the axial field resolves")]
+    assert len(warned[18]) == 1 and "sections[1] (150 m) in 1 axial cell" in warned[18][0], warned[18]
+    assert warned[400] == []
+    assert abs(loads[18] / loads[400] - 1.0) > 1e-3, loads
 
 
 FIELD_EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "directional-10000ft-field.toml"

@@ -147,8 +147,9 @@ def test_every_drillstring_command_of_the_documentation_is_one_the_cli_accepts()
 
 
 #: Examples that other tests run and check (tests/test_api.py, test_lumped.py, test_stickslip_metrics.py,
-#: test_docs_claims.py).
-RUN_ELSEWHERE = ("res.to_xarray()", "ds.sweep(", "lumped_equilibria", "stick_slip_metrics", "ds.fit(")
+#: test_docs_claims.py, test_rig_log.py: the rig-log example reads the shared log beside the repository).
+RUN_ELSEWHERE = ("res.to_xarray()", "ds.sweep(", "lumped_equilibria", "stick_slip_metrics", "ds.fit(",
+                 "ds.rig_log(")
 
 
 def test_every_python_example_of_the_documentation_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

@@ -1,12 +1,15 @@
-"""Results as pandas DataFrames, xarray Datasets and netCDF files."""
+"""Results as pandas DataFrames, xarray Datasets and netCDF files (the extra ``netcdf``)."""
 
 import os
+import sys
 
 import numpy as np
 import pytest
 import xarray as xr
+from _cli import one_line_error, run_cli
 
 import drillstring as ds
+from drillstring.errors import MissingExtraError
 
 ALUMINUM = ds.preset("aluminum")
 
@@ -98,3 +101,43 @@ def test_save_replaces_a_file_atomically_and_refuses_a_directory(modal, tmp_path
     with pytest.raises(ds.ValidationError, match="path"):
         modal.save(tmp_path)
 
+
+
+# --------------------------------------------------------------------------- the extra `netcdf`
+
+
+@pytest.mark.parametrize("module", ["xarray", "h5netcdf"])
+def test_netcdf_without_its_extra_names_the_extra_and_writes_nothing(modal, tmp_path, monkeypatch, module):
+    monkeypatch.setitem(sys.modules, module, None)  # `import module` raises ImportError
+    path = tmp_path / "run.nc"
+    message = r"extra 'netcdf' \(" + module + r" not installed\).*'\.\[netcdf\]'"
+    with pytest.raises(MissingExtraError, match=message) as e:
+        modal.save(path)
+    assert isinstance(e.value, ImportError) and e.value.extra == "netcdf" and e.value.missing == (module,)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_xarray_dataset_without_xarray_names_the_extra(modal, monkeypatch):
+    monkeypatch.setitem(sys.modules, "xarray", None)
+    with pytest.raises(MissingExtraError, match=r"\.\[netcdf\]"):
+        modal.to_xarray()
+
+
+def test_cli_writes_the_run_as_netcdf_for_a_name_ending_in_nc(capsys, tmp_path):
+    path = tmp_path / "run.nc"
+    code, out, _ = run_cli(capsys, "simulate", "--modes", "2", "--t-end", "0.05", "--samples", "11", "--out",
+                           str(path), "--no-progress")
+    assert code == 0 and f"wrote {path}" in out
+    expected = ds.simulate(ALUMINUM, modes=2, t_end=0.05, samples=11)
+    with xr.open_dataset(path, engine="h5netcdf") as back:
+        np.testing.assert_array_equal(back["q"].values, expected.q)
+        np.testing.assert_array_equal(back["energy"].values, expected.energy)
+
+
+@pytest.mark.parametrize("verb", ["simulate", "pde"])
+def test_cli_netcdf_without_its_extra_is_one_line_and_exit_2_before_any_work(capsys, tmp_path, monkeypatch, verb):
+    monkeypatch.setitem(sys.modules, "h5netcdf", None)
+    code, out, err = run_cli(capsys, verb, "--t-end", "0.05", "--out", str(tmp_path / "run.nc"))
+    assert code == 2 and out == ""  # refused before the solve: no summary line
+    one_line_error(err, "--out as netCDF", "h5netcdf not installed", "pip install '.[netcdf]'")
+    assert list(tmp_path.iterdir()) == []

@@ -47,12 +47,6 @@ def test_core_eigenvalues_are_lapacks(rigid, damping):
     assert oracles.classify_eigenvalues(lapack) == st.classification
 
 
-def test_classify_is_deprecated():
-    st = analyse(ds.preset("aluminum").replace(omega=0.0), modes=1, rigid_mode=True)
-    with pytest.warns(DeprecationWarning, match="classify"):
-        assert ds.studies.stability.classify(st.eigenvalues) == oracles.classify_eigenvalues(st.eigenvalues)
-
-
 def test_critical_speeds_match_the_formula():
     params = ds.preset("aluminum").replace(length=500.0)
     st = analyse(params, modes=3)

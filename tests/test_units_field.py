@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import sys
 from fractions import Fraction
 from pathlib import Path
@@ -119,6 +120,23 @@ def test_drill_map_axis_in_a_field_file(tmp_path: Path, capsys: pytest.CaptureFi
     assert code == 0, err
     frame = pd.read_parquet(tmp_path / "map" / "map.parquet")
     assert all(_close(v, w * 1e3 * LBF, 1e-15) for v, w in zip(frame["bit.weight_on_bit"], (10, 20, 30, 40)))
+
+
+def test_an_invalid_map_row_of_a_field_file_speaks_field_units() -> None:
+    """A run the core refuses keeps its row (``status = "invalid"``) with the core's message, the
+    SI quantities in it followed by their field values."""
+    field = load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml").with_overrides(
+        {"numerics.duration": 0.2, "numerics.cells": 40})
+    frame = ds.drilling.drill_map(field, {"bit.weight_on_bit": [10.0, 1e5]}, threads=1)
+    assert list(frame["status"]) == ["success", "invalid"]
+    message = frame["message"][1]
+    assert "bit.weight_on_bit" in message
+    limit = re.search(r"at most ([0-9.]+) N \(([0-9.]+) klbf\)", message)
+    assert limit is not None, message
+    assert math.isclose(float(limit.group(2)), float(limit.group(1)) / LBF / 1e3, rel_tol=1e-5)
+    si = ds.drilling.drill_map(load_drill_config(EXAMPLES / "on-bottom-3000m.toml").with_overrides(
+        {"numerics.duration": 0.2, "numerics.cells": 40}), {"bit.weight_on_bit": [1e9]}, threads=1)
+    assert "klbf" not in si["message"][0] and "bit.weight_on_bit" in si["message"][0]
 
 
 def test_fit_bounds_of_a_field_file_are_field_units() -> None:

@@ -23,8 +23,7 @@ the package as well: ``model`` (the paper's model: ``parameters``, ``cross_secti
 model), ``io`` (files, figures, TOML, progress, the sweep store), and the modules ``limits`` and
 ``plots``; ``report`` (the reproduction report, ``drillstring paper``) is loaded on first use.
 ``ds.sweep`` is the function; its module is ``drillstring.studies.sweeps``.
-``ds.table2`` is the function; its module is ``drillstring.studies.table2``. The modules' old
-paths (``drillstring.analysis``, ``drillstring.paper``, ...) work for one release and warn.
+``ds.table2`` is the function; its module is ``drillstring.studies.table2``.
 
 The drilling system (stick-slip of a string in a well with a top drive, wall friction and a bit):
 ``ds.load_drill_config("examples/on-bottom-3000m.toml")``, ``ds.drill(config)`` returns a
@@ -47,6 +46,7 @@ from . import solvers as solvers
 from . import studies as studies
 from ._core import __version__, simd_path
 from .calibration.fit import FitResult, fit
+from .calibration.rig_log import RigLogResult, rig_log
 from .drilling import (
     DrillConfig,
     DrillMetrics,
@@ -100,7 +100,6 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[False] = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
     ) -> pd.DataFrame: ...
 
     @overload
@@ -125,7 +124,6 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: Literal[True],
-        grid: Optional[Mapping[str, Any]] = ...,
     ) -> tuple[pd.DataFrame, SweepTrajectories]: ...
 
     @overload
@@ -150,7 +148,6 @@ if TYPE_CHECKING:  # pragma: no cover
         client: Any = ...,
         progress: Optional[bool] = ...,
         trajectories: bool = ...,
-        grid: Optional[Mapping[str, Any]] = ...,
     ) -> Union[pd.DataFrame, tuple[pd.DataFrame, SweepTrajectories]]: ...
 
     def sweep(*args: Any, **kwargs: Any) -> Any: ...  # seen by type checkers only
@@ -194,6 +191,8 @@ __all__ = [
     # calibration from measured data
     "fit",
     "FitResult",
+    "rig_log",
+    "RigLogResult",
     # the paper
     "table2",
     "Table2Row",
@@ -204,60 +203,19 @@ __all__ = [
 ]
 
 
-# The modules that were attributes of the package before its layout by subject are loaded with
-# it as before, so that ``ds.studies.stability``, ``ds.model.cross_section``, ... need no import.
+# Loaded with the package, so that ``ds.studies.stability``, ``ds.model.cross_section``, ... need
+# no import of their own.
 for _name in ("model.cross_section", "studies.analysis", "studies.convergence", "studies.stability"):
     _importlib.import_module(f"{__name__}.{_name}")
-
-# An old module path named like a function of the package (``drillstring.simulate``) is loaded
-# now, as it was when it was the function's module: importing it later would rebind the package's
-# attribute (``ds.simulate``) to the module.
-for _name in ("simulate",):
-    _function = globals()[_name]
-    _importlib.import_module(f"{__name__}.{_name}")
-    globals()[_name] = _function
-del _name, _function
-
-#: The package's modules before its layout by subject, each attribute name -> its new module:
-#: ``ds.<old>`` works for one release and warns.
-_MOVED_MODULES = {
-    "parameters": "model.parameters",
-    "section": "model.cross_section",
-    "coefficients": "model.coefficients",
-    "galerkin": "model.galerkin",
-    "simulate": "solvers.modal",
-    "pde": "solvers.pde",
-    "result": "solvers.trajectory",
-    "analysis": "studies.analysis",
-    "stability": "studies.stability",
-    "convergence": "studies.convergence",
-    "sweeps": "studies.sweeps",
-    "grid": "studies.sweep_axes",
-    "_output": "io.output",
-    "_atomic": "io.atomic",
-    "_progress": "io.progress",
-    "sweep_store": "io.sweep_store",
-    "paper": "report",
-}
+del _name
 
 if not TYPE_CHECKING:
 
     def __getattr__(name: str) -> object:
         """PEP 562: the reproduction report loads on first use (``ds.report``), as scipy's
-        submodules do; the old module attributes warn and give their new modules."""
-        import importlib
-
+        submodules do."""
         if name == "report":
-            return importlib.import_module("drillstring.report")
-        if name in _MOVED_MODULES:
-            import warnings
-
-            new = _MOVED_MODULES[name]
-            message = f"drillstring.{name} is deprecated: use drillstring.{new} (the old name works for one release)"
-            warnings.warn(message, DeprecationWarning, stacklevel=2)
-            # a module split in two keeps its old path (a forwarding shim) as the attribute
-            old = name in ("analysis", "sweeps",)
-            return importlib.import_module(f"drillstring.{name}" if old else f"drillstring.{new}")
+            return _importlib.import_module("drillstring.report")
         raise AttributeError(f"module 'drillstring' has no attribute {name!r}")
 
     def __dir__() -> list[str]:

@@ -364,7 +364,7 @@ class IntegralArrays(TypedDict):
 
 def galerkin_integrals(modes: int, rigid_mode: bool) -> IntegralArrays:
     """The exact dimensionless quartic integrals of the free-end basis ``cos(i pi s)``
-    (``drillstring.galerkin.GalerkinIntegrals``), generated in the core.
+    (``drillstring.model.galerkin.GalerkinIntegrals``), generated in the core.
 
     Raises
     ------
@@ -419,7 +419,7 @@ def scale_integrals(
     mixed: NDArray[np.float64],
     sin4: NDArray[np.float64],
 ) -> ScaledSystem:
-    """The modal system of a Galerkin model (a sweep run, or :func:`drillstring.galerkin.project`):
+    """The modal system of a Galerkin model (a sweep run, or :func:`drillstring.model.galerkin.project`):
     the dimensionless integrals scaled by k1..k6 and l.
 
     Raises

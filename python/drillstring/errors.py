@@ -5,6 +5,8 @@
 * :class:`SolveError` (a :class:`RuntimeError`): a solve ended early (step limit, step-size
   underflow, non-finite state). ``status`` is the short status name; ``result`` holds what was
   computed before the failure.
+* :class:`MissingExtraError` (an :class:`ImportError`): an optional output was asked for without
+  the optional dependencies (the extra) it needs; the message names the extra to install.
 
 Ctrl-C during a solve raises :class:`KeyboardInterrupt` within a few milliseconds (the Rust core
 polls Python's signal handlers while it runs without the GIL).
@@ -15,7 +17,8 @@ from __future__ import annotations
 from typing import Any
 
 __all__ = [
-    "DrillstringError", "ValidationError", "SolveError", "DrillstringWarning", "ResumeWarning", "SamplingWarning",
+    "DrillstringError", "ValidationError", "SolveError", "MissingExtraError", "DrillstringWarning", "ResumeWarning",
+    "SamplingWarning",
 ]
 
 
@@ -68,6 +71,27 @@ class SolveError(DrillstringError, RuntimeError):
         self.status = status
         self.result = result
         super().__init__(f"solve failed ({status}): {message}")
+
+
+class MissingExtraError(DrillstringError, ImportError):
+    """An optional output needs modules that are not installed: those of an extra of the package.
+
+    Attributes
+    ----------
+    extra:
+        The extra that brings them (``"netcdf"``).
+    missing:
+        The modules that could not be imported.
+    """
+
+    def __init__(self, extra: str, purpose: str, missing: tuple[str, ...]) -> None:
+        self.extra = extra
+        self.missing = missing
+        super().__init__(
+            f"{purpose} needs the optional dependencies of the extra '{extra}' ({', '.join(missing)} not installed):"
+            f" pip install '.[{extra}]' (or '.[all]') in the drillstring checkout",
+            name=missing[0] if missing else None,
+        )
 
 
 class DrillstringWarning(UserWarning):

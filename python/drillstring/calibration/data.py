@@ -50,7 +50,8 @@ from numpy.typing import NDArray
 
 from ..errors import ValidationError
 
-__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "MeasuredData", "read_measured"]
+__all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "Columns", "MeasuredData", "read_columns",
+           "read_measured"]
 
 #: The columns a data file may have, each with its dimension (the model's SI unit in :data:`UNITS`).
 COLUMNS: dict[str, str] = {
@@ -79,7 +80,12 @@ UNITS: dict[str, dict[str, float]] = {
     "force": {"n": 1.0, "kn": 1e3, "lbf": 4.4482216152605, "klbf": 4448.2216152605, "kgf": 9.80665,
               "tf": 9806.65},
     "length": {"m": 1.0, "ft": 0.3048},
+    "pressure": {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "bar": 1e5, "psi": 6894.757293168361},
+    "percent": {"%": 1.0, "percent": 1.0, "pct": 1.0},
 }
+#: Each dimension's model unit as pint writes it, for units outside :data:`UNITS`.
+_PINT_UNITS: dict[str, str] = {"time": "s", "speed": "rpm", "torque": "N*m", "force": "N", "length": "m",
+                               "pressure": "Pa", "percent": "percent"}
 
 _SUFFIX = re.compile(r"^\s*(?P<name>[^\[\(]*?)\s*[\[\(]\s*(?P<unit>[^\]\)]*?)\s*[\]\)]\s*$")
 
@@ -95,16 +101,24 @@ def _unit_key(unit: str) -> str:
     return text
 
 
-def unit_factor(name: str, unit: str, field_name: str = "units") -> float:
-    """The factor that takes ``name``'s values in ``unit`` to the model's SI unit; a unit of
-    another dimension or unknown raises :class:`~drillstring.errors.ValidationError` listing the
-    units known for the column."""
-    dimension = COLUMNS[name]
+def unit_factor(name: str, unit: str, field_name: str = "units", dimension: Optional[str] = None) -> float:
+    """The factor that takes ``name``'s values in ``unit`` to the model's SI unit (the first of
+    its dimension's in :data:`UNITS`): the table's factor, else pint's (through
+    :func:`drillstring.drilling.units.factor`, so that ``daN``, ``MPa`` or ``kip`` read too); a
+    unit of another dimension or unknown raises :class:`~drillstring.errors.ValidationError`
+    listing the units known for the column. ``dimension``: the column's, default
+    :data:`COLUMNS`'s."""
+    dimension = COLUMNS[name] if dimension is None else dimension
     known = UNITS[dimension]
     key = _unit_key(unit)
-    if key not in known:
+    if key in known:
+        return known[key]
+    from ..drilling.units import factor
+
+    value = factor(unit, _PINT_UNITS[dimension])
+    if value is None:
         raise ValidationError(f"{field_name}[{name}]", unit, f"a {dimension} unit: one of {', '.join(known)}")
-    return known[key]
+    return value
 
 
 @dataclass(frozen=True)
@@ -228,29 +242,82 @@ def read_measured(source: Any, *, columns: Optional[Mapping[str, str]] = None,
         A NaN in a column read: refused where a fit uses it (:meth:`MeasuredData.check_windows`),
         or its rows dropped here.
     """
-    import pandas as pd
-
     if nan not in ("error", "drop"):
         raise ValidationError("nan", nan, "'error' or 'drop'")
-    mapping = dict(columns or {})
-    for name in mapping:
-        if name not in COLUMNS:
-            raise ValidationError("columns", name, f"a model name: one of {', '.join(COLUMNS)}")
-    label = "data"
+    table = read_columns(source, COLUMNS, columns=columns, units=units)
+    values = dict(table.values)
+    t = values.pop("t")
+    if nan == "drop":
+        keep = np.isfinite(t)
+        for v in values.values():
+            keep &= np.isfinite(v)
+        t = t[keep]
+        values = {k: v[keep] for k, v in values.items()}
+    data = MeasuredData(t, values, source=table.source, units=table.units)
+    if start != 0.0 or end is not None:
+        data = data.window(float(start), end)
+    return data
+
+
+@dataclass(frozen=True)
+class Columns:
+    """The columns of a table read by :func:`read_columns`, in SI, not yet checked: ``values``
+    (name -> values), ``units`` (name -> the unit each was read in), ``headers`` (name -> the
+    file's column it came from), ``nulls`` (name -> how many values were the null value),
+    ``origin`` (the date and time of ``t = 0`` when the time column holds dates)."""
+
+    source: str
+    values: Mapping[str, NDArray[np.float64]]
+    units: Mapping[str, str]
+    headers: Mapping[str, str]
+    nulls: Mapping[str, int]
+    #: The first time of a time column of dates and times (ISO 8601, UTC), whose rows are then
+    #: seconds from it; None for a numeric time column.
+    origin: Optional[str] = None
+
+
+def _frame(source: Any) -> tuple[str, Any]:
+    """``(label, DataFrame)`` of a CSV or Parquet path, a DataFrame or a mapping."""
+    import pandas as pd
+
     if isinstance(source, pd.DataFrame):
-        frame = source.copy()
-    elif isinstance(source, Mapping):
-        frame = pd.DataFrame({k: np.asarray(v) for k, v in source.items()})
-    elif isinstance(source, (str, os.PathLike)):
+        return "data", source.copy()
+    if isinstance(source, Mapping):
+        return "data", pd.DataFrame({k: np.asarray(v) for k, v in source.items()})
+    if isinstance(source, (str, os.PathLike)):
         label = os.fsdecode(os.fspath(source))
         if not os.path.isfile(label):
             raise ValidationError("data", label, "an existing CSV or Parquet file")
         if label.lower().endswith((".parquet", ".pq")):
-            frame = pd.read_parquet(label)
-        else:
-            frame = pd.read_csv(label, dtype=str, skipinitialspace=True)
-    else:
-        raise ValidationError("data", type(source).__name__, "a CSV or Parquet path, a pandas DataFrame or a mapping")
+            return label, pd.read_parquet(label)
+        return label, pd.read_csv(label, dtype=str, skipinitialspace=True)
+    raise ValidationError("data", type(source).__name__, "a CSV or Parquet path, a pandas DataFrame or a mapping")
+
+
+def _normal(text: str) -> str:
+    """A column name compared without case, spaces or punctuation (``Hook Load`` is ``HOOKLOAD``)."""
+    return re.sub(r"[^0-9a-z]", "", text.lower())
+
+
+def read_columns(source: Any, known: Mapping[str, str], *, columns: Optional[Mapping[str, str]] = None,
+                 units: Optional[Mapping[str, str]] = None,
+                 aliases: Optional[Mapping[str, Sequence[str]]] = None, null: Optional[float] = None,
+                 field: str = "columns", units_field: str = "units") -> Columns:
+    """The columns ``known`` (name -> dimension of :data:`UNITS`) of a CSV or Parquet file, a
+    :class:`pandas.DataFrame` or a mapping, converted to SI: by the names of ``known``, a
+    mapping ``columns`` (name -> the file's column), else the first of the name's ``aliases``
+    the file has (compared without case and punctuation); units as :func:`read_measured` reads
+    them. ``null``: a value meaning "missing" (the LAS null ``-999.25``), read as NaN and counted.
+    Unknown columns are ignored; a time column ``t`` is required: numbers (in its unit), or
+    dates and times, read as seconds from the first (:attr:`Columns.origin`). ``field`` and
+    ``units_field`` name the options in messages."""
+    import pandas as pd
+
+    mapping = dict(columns or {})
+    for name in mapping:
+        if name not in known:
+            raise ValidationError(field, name, f"a channel name: one of {', '.join(known)}")
+    label, frame = _frame(source)
     if "t" not in frame.columns and frame.index.name is not None:
         frame = frame.reset_index()  # drill's series.parquet: time as the index
     header_units: dict[str, str] = {}
@@ -265,14 +332,23 @@ def read_measured(source: Any, *, columns: Optional[Mapping[str, str]] = None,
     frame.columns = [renamed[str(c)] for c in frame.columns]
     for name, col in mapping.items():
         if col not in frame.columns:
-            raise ValidationError(f"columns[{name}]", col, f"a column of {label}: {', '.join(map(str, frame.columns))}")
-    wanted = {name: mapping.get(name, name) for name in COLUMNS if mapping.get(name, name) in frame.columns}
+            raise ValidationError(f"{field}[{name}]", col, f"a column of {label}: {', '.join(map(str, frame.columns))}")
+    wanted = {name: mapping.get(name, name) for name in known if mapping.get(name, name) in frame.columns}
+    by_normal = {_normal(str(c)): str(c) for c in reversed(list(frame.columns))}
+    taken = set(wanted.values())
+    for name, names in (aliases or {}).items():
+        if name in wanted or name not in known:
+            continue
+        found = next((by_normal[_normal(a)] for a in names if _normal(a) in by_normal), None)
+        if found is not None and found not in taken:
+            wanted[name] = found
+            taken.add(found)
     if "t" not in wanted:
         raise ValidationError(f"{label}: columns", ", ".join(map(str, frame.columns)),
-                              "a time column 't' (s; map another name with columns={'t': NAME}, --column t=NAME)")
+                              f"a time column 't' (s; map another name with {field}={{'t': NAME}}, --column t=NAME)")
     row_units: dict[str, str] = {}
     first = frame[wanted["t"]].iloc[0] if len(frame) else None
-    if isinstance(first, str) and not _is_number(first):  # a units row
+    if isinstance(first, str) and not _is_number(first) and _datetimes(pd.Series([first])) is None:  # a units row
         for name, col in wanted.items():
             value = frame[col].iloc[0]
             if isinstance(value, str) and value.strip():
@@ -280,30 +356,52 @@ def read_measured(source: Any, *, columns: Optional[Mapping[str, str]] = None,
         frame = frame.iloc[1:]
     given = {**row_units, **header_units_by_model(header_units, wanted), **dict(units or {})}
     for name in given:
-        if name not in COLUMNS:
-            raise ValidationError("units", name, f"a model name: one of {', '.join(COLUMNS)}")
+        if name not in known:
+            raise ValidationError(units_field, name, f"a channel name: one of {', '.join(known)}")
     values: dict[str, NDArray[np.float64]] = {}
     used_units: dict[str, str] = {}
+    nulls: dict[str, int] = {}
+    origin: Optional[str] = None
     for name, col in wanted.items():
         try:
             raw = pd.to_numeric(frame[col], errors="raise").to_numpy(dtype=np.float64)
         except (ValueError, TypeError) as exc:
-            raise ValidationError(f"{label}: column {col}", str(exc), "numbers") from None
+            stamps = _datetimes(frame[col]) if name == "t" else None
+            if stamps is None:
+                raise ValidationError(f"{label}: column {col}", str(exc), "numbers") from None
+            raw, origin = stamps
+            given[name] = "s"
+        if null is not None:
+            missing = raw == null
+            nulls[name] = int(missing.sum())
+            raw = np.where(missing, np.nan, raw)
         unit = given.get(name)
-        factor = 1.0 if unit is None else unit_factor(name, unit)
-        used_units[name] = unit if unit is not None else next(iter(UNITS[COLUMNS[name]]))
+        factor = 1.0 if unit is None else unit_factor(name, unit, units_field, dimension=known[name])
+        used_units[name] = unit if unit is not None else next(iter(UNITS[known[name]]))
         values[name] = raw * factor
-    t = values.pop("t")
-    if nan == "drop":
-        keep = np.isfinite(t)
-        for v in values.values():
-            keep &= np.isfinite(v)
-        t = t[keep]
-        values = {k: v[keep] for k, v in values.items()}
-    data = MeasuredData(t, values, source=label, units=used_units)
-    if start != 0.0 or end is not None:
-        data = data.window(float(start), end)
-    return data
+    return Columns(label, values, used_units, dict(wanted), nulls, origin)
+
+
+def _datetimes(column: Any) -> Optional[tuple[NDArray[np.float64], str]]:
+    """A time column of dates and times (``2016-03-01 12:00:00``, ISO 8601 with or without a
+    zone) as seconds from its first, and that first time (ISO); None if it holds other text."""
+    import pandas as pd
+
+    stamps = None
+    for form in ("mixed", None):  # "mixed": each stamp its own form (pandas >= 2)
+        try:
+            stamps = pd.to_datetime(column, errors="raise", utc=True, format=form)
+            break
+        except (ValueError, TypeError, OverflowError):
+            continue
+    if stamps is None:
+        return None
+    valid = stamps.notna().to_numpy()
+    if not valid.any():
+        return None
+    first = stamps[valid].iloc[0]
+    seconds = (stamps - first).dt.total_seconds().to_numpy(dtype=np.float64)
+    return seconds, first.isoformat()
 
 
 def header_units_by_model(header_units: Mapping[str, str], wanted: Mapping[str, str]) -> dict[str, str]:

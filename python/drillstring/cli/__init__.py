@@ -5,6 +5,7 @@
     drillstring drill CONFIG.toml --out DIR [--set key=value ...] [--no-plots]
     drillstring drill-map CONFIG.toml --axis key=start:stop:count --axis key=v1,v2 --out DIR [--set ...]
     drillstring tune CONFIG.toml [--set key=value ...]
+    drillstring rig-log LOG.csv --start-depth "3000 ft" --out DIR
 
 One module per verb (``simulate.py`` for ``drillstring simulate``, ``torque_drag.py`` for
 ``drillstring torque-drag``, ...), each with ``add_parser(subparsers)`` (its arguments, help and
@@ -53,6 +54,7 @@ VERBS = (
     "lumped",
     "tune",
     "fit",
+    "rig_log",
 )
 
 

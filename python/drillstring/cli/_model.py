@@ -9,10 +9,11 @@ from collections.abc import Sequence
 from typing import Any, TextIO
 
 from ..errors import ValidationError
-from ..io.toml import load_toml, toml_key_line, with_toml_line
+from ..io.extras import require
+from ..io.toml import load_toml, toml_line, with_toml_line
 from ..limits import as_float
 from ..model.parameters import MODELS, PRESETS, Parameters, load, preset
-from ..solvers.trajectory import default_section
+from ..solvers.trajectory import TrajectoryResult, default_section
 from ._common import say
 
 #: Keys of a config file's [solver] table and their types.
@@ -45,7 +46,7 @@ def solver_table(path: str) -> dict[str, Any]:
         if key not in SOLVER_KEYS:
             raise ValidationError(
                 f"solver.{key}", value, "one of the keys " + ", ".join(SOLVER_KEYS), source=path,
-                line=toml_key_line(path, "solver", key),
+                line=toml_line(path, f"solver.{key}"),
             )
         kind = SOLVER_KEYS[key]
         ok = isinstance(value, kind) and not (kind is not bool and isinstance(value, bool))
@@ -54,7 +55,7 @@ def solver_table(path: str) -> dict[str, Any]:
         if not ok:
             kinds = {int: "an integer", float: "a number", bool: "true or false", str: "a string"}
             raise ValidationError(
-                f"solver.{key}", value, kinds[kind], source=path, line=toml_key_line(path, "solver", key)
+                f"solver.{key}", value, kinds[kind], source=path, line=toml_line(path, f"solver.{key}")
             )
         out[key] = value
     return out
@@ -88,7 +89,24 @@ def add_model_arguments(p: argparse.ArgumentParser, methods: Sequence[str]) -> N
     p.add_argument("--samples", type=int, help="number of uniform output times (default: 20 per period of the "
                    "fastest retained mode, at least 1001)")
     p.add_argument("--z", type=float, help="section z, m (default 2l/3)")
-    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,... ('-': standard output)")
+    p.add_argument("--out", help="write CSV with columns t,theta,theta_dot,... ('-': standard output); a name "
+                   "ending in .nc: the whole run as netCDF-4 (the extra netcdf)")
+
+
+def check_run_output(out: Any) -> None:
+    """Before any work: a netCDF ``--out`` (``.nc``) needs the extra ``netcdf``."""
+    if _netcdf(out):
+        require("netcdf", "--out as netCDF (.nc)")
+
+
+def write_run(result: TrajectoryResult, out: Any, z: float) -> Any:
+    """Writes ``--out``: the whole run as netCDF-4 for a name ending in ``.nc``, else the CSV of
+    section ``z``; returns the path written."""
+    return result.save(out) if _netcdf(out) else result.to_csv(out, z)
+
+
+def _netcdf(out: Any) -> bool:
+    return out is not None and str(out).lower().endswith(".nc")
 
 
 def model_inputs(args: argparse.Namespace, keys: Sequence[str]) -> tuple[Parameters, dict[str, Any], float]:

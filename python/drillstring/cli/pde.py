@@ -8,7 +8,7 @@ from typing import Any
 from ..errors import ValidationError
 from ..solvers.modal import PDE_METHODS
 from ._common import add_progress, check_outputs, plot_target, show_progress, wrote
-from ._model import add_model_arguments, from_config, model_inputs, summary
+from ._model import add_model_arguments, check_run_output, from_config, model_inputs, summary, write_run
 
 
 def add_parser(subparsers: Any) -> None:
@@ -42,6 +42,7 @@ def run(args: argparse.Namespace) -> int:
     field = field_path(args.field) if args.field else None
     plot = plot_target(args)
     info = check_outputs({"--out": args.out, "--field": field, "--plot": plot})
+    check_run_output(args.out)
     every = args.save_field_every if args.save_field_every is not None else (1 if args.field or args.plot else None)
     try:
         result = solve_pde(params, save_field_every=every, progress=show_progress(args), **solver)
@@ -49,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
         raise from_config(exc, args) from exc
     summary(result, z, f"{result.nodes} nodes", info)
     if args.out:
-        wrote(result.to_csv(args.out, z), info)
+        wrote(write_run(result, args.out, z), info)
     if field:
         wrote(result.save_field(field), info)
     if plot:

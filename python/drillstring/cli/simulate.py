@@ -8,7 +8,7 @@ from typing import Any
 from ..errors import ValidationError
 from ..solvers.modal import METHODS, simulate
 from ._common import add_progress, check_outputs, plot_target, show_progress, wrote
-from ._model import add_model_arguments, from_config, model_inputs, summary
+from ._model import add_model_arguments, check_run_output, from_config, model_inputs, summary, write_run
 
 
 def add_parser(subparsers: Any) -> None:
@@ -36,13 +36,14 @@ def run(args: argparse.Namespace) -> int:
     params, solver, z = model_inputs(args, SIMULATE_KEYS)
     plot = plot_target(args)
     info = check_outputs({"--out": args.out, "--plot": plot})
+    check_run_output(args.out)
     try:
         result = simulate(params, progress=show_progress(args), **solver)
     except ValidationError as exc:
         raise from_config(exc, args) from exc
     summary(result, z, f"modes {', '.join(map(str, result.indices))}", info)
     if args.out:
-        wrote(result.to_csv(args.out, z), info)
+        wrote(write_run(result, args.out, z), info)
     if plot:
         from ..io.figures import save
         from ..plots import time_history_and_phase

@@ -16,9 +16,6 @@ of Navarro-Lopez & Cortes (2007) with its equilibria and their stability.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
-
-from .._deprecated import renamed
 from .config import (
     Bit,
     Controller,
@@ -98,12 +95,3 @@ __all__ = [
     "load_drill_config",
 ]
 
-
-#: Old names, for one release: ``Section`` is :class:`~.config.StringSection` (a length of pipe;
-#: ``drillstring.model.cross_section.CrossSection`` is the paper model's cross-section).
-_RENAMED = {"Section": "StringSection"}
-
-if not TYPE_CHECKING:
-
-    def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())

@@ -53,11 +53,13 @@ import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional, Union
+from typing import Any, Optional, Union
+
+import tomlkit
 
 from .. import _core
-from .._deprecated import renamed
 from ..errors import ValidationError
+from ..io.toml import toml_line, toml_string
 from ..limits import json_ready
 from . import units as _units
 
@@ -648,24 +650,29 @@ class DrillConfig:
             if source is None or exc.source is not None:
                 raise
             raise ValidationError(exc.field, exc.value, exc.allowed, source=source,
-                                  line=_toml_line(source, exc.field)) from exc
+                                  line=toml_line(source, exc.field)) from exc
 
     # ------------------------------------------------------------------ TOML
 
     def to_toml(self) -> str:
-        """The configuration as a TOML document (:func:`load_drill_config` reads it back equal;
-        floats are written with ``repr``, so bit for bit). Unset optional fields are left out."""
-        lines = ["# drillstring drilling-system configuration (SI units; angles in degrees, speeds in rpm)"]
+        """The configuration as a TOML document, written by tomlkit (:func:`load_drill_config`
+        reads it back equal; floats in their shortest exact form, so bit for bit). Unset optional
+        fields are left out."""
+        document = tomlkit.document()
+        document.add(tomlkit.comment(
+            "drillstring drilling-system configuration (SI units; angles in degrees, speeds in rpm)"))
         plain = self.to_dict()
         for key, value in plain.items():
             if not isinstance(value, (dict, list)) and value is not None:
-                lines.append(f"{key} = {_toml_value(value)}")
+                document.add(key, _toml_item(value))
+        sections = tomlkit.aot()
         for section in plain["sections"]:
-            lines += ["", "[[sections]]", *_toml_pairs(section)]
+            sections.append(_toml_table(section))
+        document.add("sections", sections)
         for key, value in plain.items():
             if isinstance(value, dict):
-                lines += _toml_table(key, value)
-        return "\n".join(lines) + "\n"
+                document.add(key, _toml_table(value))
+        return document.as_string()
 
     def save(self, path: Any) -> Path:
         """Writes :meth:`to_toml` to ``path`` and returns the path written (atomic replacement,
@@ -794,55 +801,32 @@ _TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Cont
 # --------------------------------------------------------------------------- TOML writing
 
 
-_TOML_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
-
-
-def _toml_string(text: str) -> str:
-    """``text`` as a TOML basic string: quotes, backslashes and every control character (C0,
-    DEL and C1, which TOML refuses raw or which editors mangle) escaped; other characters as
-    they are. A lone surrogate (no Unicode scalar value, so no TOML form) is refused."""
-    out = ['"']
-    for ch in text:
-        code = ord(ch)
-        if ch in _TOML_ESCAPES:
-            out.append(_TOML_ESCAPES[ch])
-        elif code < 0x20 or 0x7F <= code <= 0x9F:
-            out.append(f"\\u{code:04X}")
-        elif 0xD800 <= code <= 0xDFFF:
-            raise ValidationError("string", text, "text without lone surrogates (it has no TOML form)")
-        else:
-            out.append(ch)
-    out.append('"')
-    return "".join(out)
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return repr(value)  # shortest exact round trip; finite (validated)
+def _toml_item(value: Any) -> Any:
+    """A plain value as a tomlkit item: strings escaped (:func:`drillstring.io.toml.toml_string`),
+    a list as an array, a dict as an inline table (a plan's segment, a friction interval)."""
     if isinstance(value, str):
-        return _toml_string(value)
+        return toml_string(value)
     if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):  # an inline table (a plan's segment, a friction interval)
-        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items() if v is not None) + "}"
-    raise TypeError(f"no TOML form for {value!r}")  # pragma: no cover
+        array = tomlkit.array()
+        array.extend(_toml_item(v) for v in value)
+        return array
+    if isinstance(value, dict):
+        inline = tomlkit.inline_table()
+        inline.update({k: _toml_item(v) for k, v in value.items() if v is not None})
+        return inline
+    return value  # bool, int, float (finite: validated)
 
 
-def _toml_pairs(table: Mapping[str, Any]) -> list[str]:
-    keys = sorted(table, key=lambda k: k != "name")  # a section's name first
-    return [f"{k} = {_toml_value(table[k])}" for k in keys if table[k] is not None and not isinstance(table[k], dict)]
-
-
-def _toml_table(name: str, table: Mapping[str, Any]) -> list[str]:
-    lines = ["", f"[{name}]", *_toml_pairs(table)]
+def _toml_table(table: Mapping[str, Any]) -> Any:
+    """A table of the configuration: its values (a section's name first), then its subtables."""
+    out = tomlkit.table()
+    for key in sorted(table, key=lambda k: k != "name"):
+        if table[key] is not None and not isinstance(table[key], dict):
+            out.add(key, _toml_item(table[key]))
     for key, value in table.items():
         if isinstance(value, dict):
-            lines += _toml_table(f"{name}.{key}", value)
-    return lines
+            out.add(key, _toml_table(value))
+    return out
 
 
 # --------------------------------------------------------------------------- TOML reading
@@ -874,49 +858,6 @@ def load_drill_config(path: PathLike) -> DrillConfig:
     """
     source = os.fspath(path)
     return DrillConfig.from_dict(_load_document(source), source=source)
-
-
-_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\[\]#]+?)\s*\]\]?\s*(#.*)?$")
-_NAME = r"""(?:"[^"]*"|'[^']*'|[A-Za-z0-9_-]+)"""
-_KEY_LINE = re.compile(rf"^\s*({_NAME}(?:\s*\.\s*{_NAME})*)\s*=")
-_TOKEN = re.compile(r"([^.\[\]]+)|\[(\d+)\]")
-
-
-def _toml_line(path: PathLike, dotted: str) -> Optional[int]:
-    """The 1-based line of the TOML file ``path`` that sets the field ``dotted``
-    (``sections[1].length``, ``top_drive.controller.kp``, ``well.md[2]``), or of its table; None
-    when not found (or unreadable)."""
-    try:
-        with open(path, encoding="utf-8") as handle:
-            lines = handle.read().splitlines()
-    except (OSError, UnicodeDecodeError):
-        return None
-    target = [int(index) if index else name for name, index in _TOKEN.findall(dotted)]
-    counts: dict[tuple[Union[str, int], ...], int] = {}
-    table: list[Union[str, int]] = []
-    best: tuple[int, Optional[int]] = (0, None)
-
-    def consider(full: list[Union[str, int]], number: int) -> tuple[int, Optional[int]]:
-        if full and target[: len(full)] == full and len(full) > best[0]:
-            return len(full), number
-        return best
-
-    for number, line in enumerate(lines, 1):
-        header = _HEADER.match(line)
-        if header:
-            names = [re.sub(r"""["'\s]""", "", part) for part in header.group(2).split(".")]
-            table = list(names)
-            if header.group(1) == "[[":
-                key = tuple(names)
-                counts[key] = counts.get(key, -1) + 1
-                table.append(counts[key])
-            best = consider(table, number)
-            continue
-        match = _KEY_LINE.match(line)
-        if match:
-            names = [re.sub(r"""["'\s]""", "", part) for part in match.group(1).split(".")]
-            best = consider([*table, *names], number)
-    return best[1]
 
 
 # --------------------------------------------------------------------------- overrides
@@ -995,12 +936,3 @@ def parse_values(raw: str, field: str, text: str) -> list[Any]:
         values.append(_parse_value(item, field, text))
     return values
 
-
-#: Old names, for one release: ``Section`` is :class:`StringSection` (a length of pipe;
-#: ``drillstring.model.cross_section.CrossSection`` is the paper model's cross-section).
-_RENAMED = {"Section": "StringSection"}
-
-if not TYPE_CHECKING:
-
-    def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())

@@ -16,6 +16,7 @@ import numpy as np
 from .config import DrillConfig
 from .metrics import core_value
 from .result import COUPLED_METRICS, METRICS, TEXT_METRICS
+from .units import annotate
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -67,7 +68,8 @@ def map_frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw
 
     columns = _axis_columns(named, combos)
     columns["status"] = list(raw["status"])
-    columns["message"] = list(raw["message"])
+    # a field-units map speaks its file's units in its messages too (the SI value first, as the core wrote it)
+    columns["message"] = [annotate(m, cfg.units) if m else m for m in raw["message"]]
     metrics = raw["metrics"]
     for name in METRIC_COLUMNS:
         value = core_value(metrics, name)

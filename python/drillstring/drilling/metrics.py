@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Optional, TypeVar
@@ -29,8 +28,7 @@ STICK_SPEED: float = _core.STICK_SPEED
 
 #: The core's names of the metrics (``drillstring_core::metrics::stickslip`` and the dicts of
 #: ``_core.drill_solve``, ``_core.drill_map``, ``_core.lumped_solve``) by their names here, the
-#: drilling names of ``metrics.json`` and a map's columns. The core's names of the stick-slip
-#: metrics were this package's names before, and work for one release as properties that warn.
+#: drilling names of ``metrics.json`` and a map's columns.
 CORE_NAMES: dict[str, str] = {
     "window_start": "t_start",
     "window_end": "t_end",
@@ -65,25 +63,6 @@ def core_value(d: Mapping[str, Any], name: str) -> Any:
 
 
 _M = TypeVar("_M", bound="StickSlipMetrics")
-
-
-class _OldName:
-    """A metric under its old name (read-only): the value of ``new``, with a DeprecationWarning at
-    the caller's line."""
-
-    def __init__(self, new: str) -> None:
-        self.new = new
-        self.old = new
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.old = name
-
-    def __get__(self, instance: Any, owner: Optional[type] = None) -> Any:
-        if instance is None:
-            return self
-        warnings.warn(f"{type(instance).__name__}.{self.old} is deprecated: use .{self.new} (the old name works "
-                      "for one release)", DeprecationWarning, stacklevel=2)
-        return getattr(instance, self.new)
 
 
 @dataclass(frozen=True)
@@ -161,17 +140,6 @@ class StickSlipMetrics:
         """``(window_start, window_end)``, s."""
         return (self.window_start, self.window_end)
 
-    # The names before the drilling names (the core's), for one release: each warns.
-    t_start = _OldName("window_start")
-    t_end = _OldName("window_end")
-    severity = _OldName("ssi")
-    rpm_min = _OldName("bit_rpm_min")
-    rpm_max = _OldName("bit_rpm_max")
-    rpm_mean = _OldName("bit_rpm_mean")
-    torque_min = _OldName("motor_torque_min_Nm")
-    torque_max = _OldName("motor_torque_max_Nm")
-    cycle_period = _OldName("period_s")
-    slip_period = _OldName("slip_period_s")
 
 
 def _series(name: str, x: ArrayLike) -> NDArray[np.float64]:

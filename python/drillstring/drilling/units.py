@@ -30,7 +30,7 @@ from ..errors import ValidationError
 
 __all__ = [
     "FIELD_UNITS", "FIELD_UNITS_BY_KEY", "SYSTEMS", "UNIT_SUFFIXES", "annotate", "axis_unit", "chosen_units",
-    "convert", "field_error", "field_unit", "field_value", "hoist_after", "in_field_units", "override_to_si",
+    "convert", "factor", "field_error", "field_unit", "field_value", "hoist_after", "in_field_units", "override_to_si",
     "quantity", "shown", "shown_unit", "system_of", "to_si", "unit_key",
 ]
 
@@ -341,6 +341,16 @@ def convert(value: Optional[float], unit: str, system: str, *, key: Optional[str
     if target is None or value is None or (isinstance(value, float) and math.isnan(value)):
         return value, unit
     return _magnitude(_in(value, unit), target), target
+
+
+def factor(unit: str, target: str) -> Optional[float]:
+    """The value of one ``unit`` (as people write it: ``"kft-lbf"``, ``"daN"``) in ``target``
+    (pint's form, ``"N*m"``), or None when pint does not know ``unit`` or it is of another
+    dimension."""
+    try:
+        return _magnitude(_in(1, unit), target)
+    except Exception:  # pint's parse and dimensionality errors have no common base
+        return None
 
 
 #: The suffix a key's name gives its unit by (``motor_torque_max_Nm``, ``rop_mean_m_per_h``).

@@ -486,6 +486,7 @@ FOLDER_SIGNS: dict[str, tuple[str, ...]] = {
     "sweep": ("results.parquet", "results.csv"),
     "torque-drag": ("torque_drag.json", "broomstick.csv"),
     "fit": ("fit.json",),
+    "rig-log": ("states.csv", "events.csv"),
 }
 
 

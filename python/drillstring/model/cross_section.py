@@ -11,17 +11,16 @@ For a hollow circular section (annulus) with outer radius ``R = D/2`` and inner 
 
 The last three follow from ``int_0^{2 pi} cos^4 = 3 pi/4`` and
 ``int_0^{2 pi} cos^2 sin^2 = pi/4`` with ``int_r^R rho^5 d rho = (R^6 - r^6)/6``. The formulas
-are evaluated in the Rust core (``drillstring_core::model::Section``); this module validates
+are evaluated in the Rust core (``drillstring_core::model::CrossSection``); this module validates
 the diameters and holds the values.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Optional
+from typing import Any, Optional
 
 from .. import _core
-from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import as_float
 
@@ -99,12 +98,3 @@ class CrossSection:
             raise ValidationError("inner_diameter", inner_diameter, allowed)
         return cls(**_core.section(big, small))
 
-
-#: Old names of this module's classes, for one release: ``Section`` is :class:`CrossSection`
-#: (``drillstring.drilling.StringSection`` is a length of pipe).
-_RENAMED = {"Section": "CrossSection"}
-
-if not TYPE_CHECKING:
-
-    def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())

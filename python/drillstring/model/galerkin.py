@@ -58,8 +58,6 @@ Consequences: ``theta -> -theta`` symmetry (only quartic terms) and the selectio
 from __future__ import annotations
 
 import functools
-import itertools
-import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal, NamedTuple, Union
 
@@ -91,25 +89,9 @@ Evaluation = Literal["auto", "terms", "spectral"]
 #: Largest accepted number of elastic modes ``n`` (the core's limit).
 MAX_MODES: int = _core.GALERKIN_MAX_MODES
 
-# Largest number of retained modes for which the deprecated ModalCoefficients.cubic_tensor
-# builds the dense (m, m, m, m) tensor (public as MAX_TENSOR_MODES, deprecated with it).
-_MAX_TENSOR_MODES = 64
-
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 FloatOrArray = Union[float, FloatArray]
-
-
-def __getattr__(name: str) -> Any:
-    if name == "MAX_TENSOR_MODES":
-        warnings.warn(
-            "drillstring.model.galerkin.MAX_TENSOR_MODES is deprecated with ModalCoefficients.cubic_tensor"
-            " and will be removed in the next release",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return _MAX_TENSOR_MODES
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # --------------------------------------------------------------------------- validation
@@ -458,35 +440,6 @@ class ModalCoefficients:
         """
         qa = _as_state("q", q, self.n_modes)
         return self._per_state(qa, self.core_system().quartic_gradient)
-
-    def cubic_tensor(self) -> FloatArray:
-        """Dense symmetric ``T`` (m, m, m, m) with ``grad V_j = sum T_jbcd q_b q_c q_d``.
-
-        ``V = 1/4 sum T_abcd q_a q_b q_c q_d``; at most 64 retained modes.
-
-        .. deprecated::
-            Removed in the next release: the core evaluates the force and the potential
-            (:meth:`cubic_force`, :meth:`potential`) from :attr:`quartic_index` and
-            :attr:`quartic_coef`.
-        """
-        warnings.warn(
-            "ModalCoefficients.cubic_tensor is deprecated and will be removed in the next release;"
-            " use cubic_force, potential or quartic_index and quartic_coef",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        m = self.n_modes
-        if m > _MAX_TENSOR_MODES:
-            raise ValidationError(
-                "modes", m, f"at most {_MAX_TENSOR_MODES} retained modes for a dense tensor"
-            )
-        tensor = np.zeros((m, m, m, m))
-        # each distinct ordering of term t is visited 24/mult_t times: 4 C_t / 24 each time
-        # gives 4 C_t / mult_t = 4 S_t per ordering, where V = sum_ordered S q q q q
-        value = self.quartic_coef / 6.0
-        for perm in itertools.permutations(range(4)):
-            np.add.at(tensor, tuple(self.quartic_index[:, p] for p in perm), value)
-        return tensor
 
     def acceleration(self, q: ArrayLike) -> FloatArray:
         """``q'' = -M^{-1} (K q + grad V(q))`` (undamped); same shape as ``q``. Evaluated by the

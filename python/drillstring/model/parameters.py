@@ -31,9 +31,11 @@ from dataclasses import dataclass, field
 from numbers import Real
 from typing import Any, Union
 
+import tomlkit
+
 from .. import _core
 from ..errors import ValidationError
-from ..io.toml import load_toml, toml_key_line, with_toml_line
+from ..io.toml import load_toml, toml_string, with_toml_line
 from ..limits import _shown, json_ready
 
 __all__ = [
@@ -42,10 +44,7 @@ __all__ = [
     "PRESETS",
     "Parameters",
     "load",
-    "load_toml",
     "preset",
-    "toml_key_line",
-    "with_toml_line",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -64,7 +63,7 @@ CHOICE_FIELDS: dict[str, tuple[str, ...]] = {"k5_variant": K5_VARIANTS, "model":
 
 _PRESET_ALIASES = {"aluminium": "aluminum"}
 
-_TOML_HEADER = "# drillstring parameters: Table 1 of the paper (aluminium reference), SI units"
+_TOML_HEADER = "drillstring parameters: Table 1 of the paper (aluminium reference), SI units"
 
 
 @dataclass(frozen=True)
@@ -233,21 +232,22 @@ class Parameters:
     # ------------------------------------------------------------------ TOML
 
     def to_toml(self) -> str:
-        """Format as a TOML document with a ``[parameters]`` table.
+        """Format as a TOML document with a ``[parameters]`` table (written by tomlkit).
 
-        Floats are written with ``repr`` so that :func:`load` reproduces them bit-for-bit.
+        Floats are written in their shortest exact form (``repr``) so that :func:`load`
+        reproduces them bit-for-bit.
         """
-        lines = [_TOML_HEADER, "[parameters]"]
+        document = tomlkit.parse(f"# {_TOML_HEADER}\n[parameters]\n")
+        table = document["parameters"]
         for name in self.field_names():
             value = getattr(self, name)
             if name == "initial_velocities":
-                text = "[" + ", ".join(_toml_float(v) for v in value) + "]"
+                table.add(name, [float(v) for v in value])
             elif name in CHOICE_FIELDS:
-                text = f'"{value}"'
+                table.add(name, toml_string(value))
             else:
-                text = _toml_float(value)
-            lines.append(f"{name} = {text}")
-        return "\n".join(lines) + "\n"
+                table.add(name, float(value))
+        return document.as_string()
 
     def save(self, path: PathLike) -> os.PathLike[str]:
         """Write :meth:`to_toml` to ``path`` (UTF-8) and return the path written: an existing file
@@ -284,12 +284,6 @@ def _value_at(plain: Mapping[str, Any], field: str, default: Any) -> Any:
         except (TypeError, ValueError, IndexError, KeyError):
             return default
     return value
-
-
-def _toml_float(value: float) -> str:
-    # repr is the shortest exact round-trip form; '1e-05', '1e+16', '0.1', '100.0' are all
-    # valid TOML floats (finite values only: validation refuses inf and nan).
-    return repr(float(value))
 
 
 def preset(name: str) -> Parameters:

@@ -258,7 +258,7 @@ def build(rep: ReproductionReport, ctx: dict[str, Any], command: str) -> list[Bl
     doc.append(h2("How to regenerate"))
     extra = "" if rep.samples_per_second == SAMPLES_PER_SECOND else f", samples_per_second={rep.samples_per_second}"
     doc.append(code(f"{command}\n\n# Python\nimport drillstring as ds\n"
-                        f"report = ds.paper.reproduce(\"{rep.out_dir}\", t_end_scale={scale:g}{extra})"))
+                        f"report = ds.report.reproduce(\"{rep.out_dir}\", t_end_scale={scale:g}{extra})"))
     timing = [[name, f"{sec:.2f}"] for name, sec in rep.timings.items()]
     doc.append(table(["step", "seconds"], timing))
     return doc
@@ -365,7 +365,7 @@ def _convergence_section(study: Any) -> list[Block]:
                      "`ds.simulate(..., rigid_mode=True, modes=6)` or `ds.solve_pde` give the PDE's."))
     doc.append(p("Data: [convergence.csv](convergence.csv), [grids.csv](grids.csv), "
                      "[reference.csv](reference.csv). `drillstring convergence --out DIR` or "
-                     "`ds.convergence.study()`."))
+                     "`ds.studies.convergence.study()`."))
     return doc
 
 

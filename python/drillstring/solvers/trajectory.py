@@ -16,6 +16,7 @@ import numpy as np
 
 from .. import _core
 from ..errors import ValidationError
+from ..io.extras import require
 from ..io.output import atomic_write, write_to
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -224,8 +225,10 @@ class TrajectoryResult:
         ``theta_dot``), ``energy(t)`` and with damping ``dissipated(t)``, each with its ``units``;
         the attributes are the run's parameters (``initial_velocities`` as an array), the method,
         status, message, work counters and the drillstring version. The arrays are copies of the
-        result's.
+        result's. Needs the extra ``netcdf`` (xarray); without it raises
+        :class:`~drillstring.errors.MissingExtraError`.
         """
+        require("netcdf", "an xarray Dataset of a run")
         import xarray as xr
 
         dim, coord, coord_attrs, q_name, qdot_name = self._state_dimension()
@@ -246,6 +249,9 @@ class TrajectoryResult:
         """Writes :meth:`to_xarray` to ``path`` as netCDF-4 (HDF5, through h5netcdf) and returns
         the path. Read it back with ``xarray.open_dataset(path)``. A file is replaced atomically
         (an interrupted write leaves the old one), a symlink is written through, a device, FIFO
-        or ``"-"`` is streamed into (see :mod:`drillstring.io.output`)."""
+        or ``"-"`` is streamed into (see :mod:`drillstring.io.output`). Needs the extra ``netcdf``
+        (xarray and h5netcdf); without it raises :class:`~drillstring.errors.MissingExtraError`
+        before anything is written."""
+        require("netcdf", "writing netCDF")
         dataset = self.to_xarray()
         return atomic_write(path, lambda tmp: dataset.to_netcdf(tmp, engine="h5netcdf"), suffix=".nc")

@@ -44,7 +44,6 @@ and the critical speeds); this module arranges its answers.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Optional, Union
 
@@ -59,7 +58,7 @@ from ..model.parameters import Parameters, check_damping_rate
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import NDArray
 
-__all__ = ["CLASSIFICATIONS", "Stability", "jacobian", "classify", "analyse"]
+__all__ = ["CLASSIFICATIONS", "Stability", "jacobian", "analyse"]
 
 #: Possible values of :attr:`Stability.classification`.
 CLASSIFICATIONS = ("centre", "stable focus", "stable node", "saddle", "degenerate")
@@ -76,37 +75,6 @@ def _complex(real: NDArray[np.float64], imag: NDArray[np.float64]) -> NDArray[np
     out = np.empty(real.size, dtype=complex)
     out.real, out.imag = real, imag
     return out
-
-
-def classify(eigenvalues: NDArray[np.complex128], rtol: float = 1e-9) -> str:
-    """Classification of an equilibrium from the eigenvalues of its Jacobian.
-
-    Real parts with ``|Re| <= rtol * max |lambda|`` count as zero (round-off of the eigen
-    solver). ``"saddle"`` if some real part is positive, ``"degenerate"`` if some eigenvalue
-    is zero (below the same tolerance); if every real part is negative (damping) ``"stable
-    focus"`` when some eigenvalue is complex, else ``"stable node"``; otherwise ``"centre"``.
-    Meant for the Jacobians of this module (:func:`jacobian`).
-
-    .. deprecated::
-        Removed in the next release: :func:`analyse` returns the classification the core
-        computes (:attr:`Stability.classification`, :attr:`Stability.mode_classification`).
-    """
-    warnings.warn(
-        "drillstring.studies.stability.classify is deprecated and will be removed in the next release;"
-        " use analyse(...).classification",
-        DeprecationWarning,
-        stacklevel=2,
-    )
-    lam = np.asarray(eigenvalues, dtype=complex)
-    scale = float(np.max(np.abs(lam))) if lam.size else 0.0
-    tol = rtol * scale
-    if np.any(lam.real > tol):
-        return "saddle"
-    if np.any(np.abs(lam) <= tol):
-        return "degenerate"
-    if lam.size and np.all(lam.real < -tol):
-        return "stable focus" if np.any(np.abs(lam.imag) > tol) else "stable node"
-    return "centre"
 
 
 @dataclass(frozen=True, eq=False)

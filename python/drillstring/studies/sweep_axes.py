@@ -24,11 +24,10 @@ import itertools
 import math
 import re
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Union
+from typing import Any, Union
 
 import numpy as np
 
-from .._deprecated import renamed
 from ..errors import ValidationError
 from ..limits import as_float, as_int, check_run_count
 from ..model.galerkin import MAX_MODES
@@ -184,12 +183,3 @@ def apply_overrides(base: dict[str, Any], overrides: Mapping[str, Any]) -> dict[
         full["initial_velocities"] = velocities
     return full
 
-
-#: Old names, for one release: ``expand_grid`` is :func:`expand_axes`, ``Grid`` is ``Axes``
-#: ("grid" names the cells of a model only; a sweep file keeps its ``[grid]`` table).
-_RENAMED = {"expand_grid": "expand_axes", "Grid": "Axes"}
-
-if not TYPE_CHECKING:
-
-    def __getattr__(name: str) -> Any:
-        return renamed(__name__, name, globals())

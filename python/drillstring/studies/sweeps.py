@@ -440,7 +440,6 @@ def sweep(
     client: Any = None,
     progress: Optional[bool] = None,
     trajectories: bool = False,
-    grid: Optional[Mapping[str, Any]] = None,
 ) -> Any:
     """Solve the Galerkin model for every parameter set of the product of axes (or a list); one row per run.
 
@@ -479,8 +478,6 @@ def sweep(
     trajectories : bool
         Also return every run's samples: the result is ``(table, SweepTrajectories)``. Only
         without ``out_dir`` and ``client``.
-    grid : mapping, optional
-        Deprecated name of ``axes`` (warns; works for one release).
 
     Returns
     -------
@@ -496,12 +493,6 @@ def sweep(
     ImportError
         Without dask for ``client`` (``pip install '.[dask]'`` in the drillstring checkout).
     """
-    if grid is not None:
-        warnings.warn("sweep(grid=...) is deprecated: use sweep(axes=...) (the old keyword works for one release)",
-                      DeprecationWarning, stacklevel=2)
-        if axes is not None:
-            raise ValidationError("grid", "both axes and grid", "axes only (grid is its deprecated name)")
-        axes = grid
     base = _base(base_params)
     named, fulls = _plan(base, axes, runs)
     solver, integrals, z, size, threads_i = _checked_options(

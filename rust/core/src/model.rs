@@ -93,7 +93,7 @@ impl K5Variant {
 
 /// Section properties of an annulus (eq. 8 and the fourth polar moment of the consistent model).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Section {
+pub struct CrossSection {
     /// `A = pi (R^2 - r^2)`, m^2.
     pub area: f64,
     /// `I_p = int (x^2 + y^2) dA = pi (R^4 - r^4) / 2`, m^4.
@@ -106,16 +106,16 @@ pub struct Section {
     pub j4: f64,
 }
 
-impl Section {
+impl CrossSection {
     /// The annulus of outer diameter `D > 0` and inner diameter `0 <= d < D` (m), `R = D/2`,
     /// `r = d/2`. Powers are evaluated as `powf` (the C library's `pow`), the way the
     /// Python reference evaluated them, so that values are reproduced bit for bit.
-    pub fn annulus(outer_diameter: f64, inner_diameter: f64) -> Result<Section> {
+    pub fn annulus(outer_diameter: f64, inner_diameter: f64) -> Result<CrossSection> {
         check_diameters(outer_diameter, inner_diameter)?;
         let r_out = outer_diameter / 2.0;
         let r_in = inner_diameter / 2.0;
         let r6 = r_out.powf(6.0) - r_in.powf(6.0);
-        let section = Section {
+        let section = CrossSection {
             area: PI * (r_out.powf(2.0) - r_in.powf(2.0)),
             polar_moment: PI * (r_out.powf(4.0) - r_in.powf(4.0)) / 2.0,
             i_r: PI * r6 / 4.0,
@@ -382,7 +382,7 @@ impl Parameters {
 /// coefficients are not finite or whose `k1`, `k2` are not `> 0` (overflow, underflow).
 pub fn coefficients(p: &Physical, model: Model, k5: K5Variant) -> Result<Coefficients> {
     check_physical(p)?;
-    let section = Section::annulus(p.outer_diameter, p.inner_diameter)?;
+    let section = CrossSection::annulus(p.outer_diameter, p.inner_diameter)?;
     let nu = p.poisson_ratio;
     let g = shear_modulus(p.youngs_modulus, nu);
     let ip = section.polar_moment;
@@ -460,7 +460,7 @@ mod tests {
 
     #[test]
     fn model_annulus_table_1() {
-        let s = Section::annulus(0.20, 0.12).unwrap();
+        let s = CrossSection::annulus(0.20, 0.12).unwrap();
         assert!(close(s.area, PI * (0.01 - 0.0036), 1e-14));
         assert!(close(s.polar_moment, PI * 8.704e-5 / 2.0, 1e-13));
         assert!(close(s.i_r, PI * (1e-6 - 4.6656e-8) / 4.0, 1e-13));
@@ -468,7 +468,7 @@ mod tests {
         // int r^4 dA = int (x^2 + y^2)^2 dA = I_r + 2 I_x2y2
         assert!(close(s.j4, s.i_r + 2.0 * s.i_x2y2, 1e-15));
         // solid shaft: I_p = pi R^4 / 2, J4 = pi R^6 / 3
-        let solid = Section::annulus(0.3, 0.0).unwrap();
+        let solid = CrossSection::annulus(0.3, 0.0).unwrap();
         assert!(close(solid.polar_moment, PI * 0.15f64.powi(4) / 2.0, 1e-14));
         assert!(close(solid.j4, PI * 0.15f64.powi(6) / 3.0, 1e-14));
     }
@@ -485,7 +485,7 @@ mod tests {
             (1e-200, 0.0, "outer_diameter"),
             (1e100, 0.0, "outer_diameter"),
         ] {
-            assert_eq!(Section::annulus(outer, inner).unwrap_err().field(), field, "{outer} {inner}");
+            assert_eq!(CrossSection::annulus(outer, inner).unwrap_err().field(), field, "{outer} {inner}");
         }
     }
 

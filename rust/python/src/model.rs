@@ -1,6 +1,6 @@
 //! Bindings of the physical model: section properties and the coefficients `k1 .. k6`.
 
-use drillstring_core::model::{self, K5Variant, Model, Physical, Section};
+use drillstring_core::model::{self, CrossSection, K5Variant, Model, Physical};
 use pyo3::prelude::*;
 
 use crate::convert::{to_python, validation_error};
@@ -8,7 +8,7 @@ use crate::convert::{to_python, validation_error};
 /// Section properties of the annulus `D`, `d` (m): `area`, `polar_moment`, `i_r`, `i_x2y2`, `j4`.
 #[pyfunction]
 pub(crate) fn section<'py>(py: Python<'py>, outer_diameter: f64, inner_diameter: f64) -> PyResult<Bound<'py, PyAny>> {
-    let s = Section::annulus(outer_diameter, inner_diameter).map_err(|e| validation_error(py, e))?;
+    let s = CrossSection::annulus(outer_diameter, inner_diameter).map_err(|e| validation_error(py, e))?;
     to_python(py, &s)
 }
 

@@ -19,9 +19,9 @@
 //! assert!(no_effect(&cfg, "top_drive.rpm").unwrap().contains("measured_speed"));
 //! ```
 
-use super::axial::hoist::AutodrillerTarget;
+use super::config::AutodrillerTarget;
 use super::config::{
-    BitRockLaw, Contact, ControllerKind, CutSurfaceScheme, DrillConfig, FrictionModel, HoistKind, TopMode,
+    BitRockLaw, Contact, ControllerKind, CutSurfaceScheme, DrillConfig, FrictionModel, HoistMode, TopMode,
 };
 
 /// The key without its indices: `top_drive.steps[0][1]` -> `top_drive.steps`.
@@ -95,16 +95,16 @@ pub fn no_effect(cfg: &DrillConfig, key: &str) -> Option<String> {
         None => {}
         Some(h) => {
             let mode = match h.mode {
-                HoistKind::Velocity => "velocity",
-                HoistKind::HookLoad => "hook_load",
-                HoistKind::WeightOnBit => "weight_on_bit",
-                HoistKind::Autodriller => "autodriller",
+                HoistMode::Velocity => "velocity",
+                HoistMode::HookLoad => "hook_load",
+                HoistMode::WeightOnBit => "weight_on_bit",
+                HoistMode::Autodriller => "autodriller",
             };
             let owner = match k {
-                "hoist.speed" => Some(HoistKind::Velocity),
-                "hoist.hook_load" => Some(HoistKind::HookLoad),
-                "hoist.weight_on_bit" => Some(HoistKind::WeightOnBit),
-                _ if under("hoist.autodriller") => Some(HoistKind::Autodriller),
+                "hoist.speed" => Some(HoistMode::Velocity),
+                "hoist.hook_load" => Some(HoistMode::HookLoad),
+                "hoist.weight_on_bit" => Some(HoistMode::WeightOnBit),
+                _ if under("hoist.autodriller") => Some(HoistMode::Autodriller),
                 _ => None,
             };
             if owner.is_some_and(|o| o != h.mode) {
@@ -112,13 +112,13 @@ pub fn no_effect(cfg: &DrillConfig, key: &str) -> Option<String> {
             }
             if one_of(&["bit.weight_on_bit", "bit.mu_static", "bit.mu_kinetic", "bit.decay"]) {
                 let by = match h.mode {
-                    HoistKind::Velocity => "the block velocity hoist.speed",
-                    HoistKind::HookLoad => "the hook load hoist.hook_load",
-                    HoistKind::WeightOnBit => "hoist.weight_on_bit",
-                    HoistKind::Autodriller if h.autodriller.target == AutodrillerTarget::WeightOnBit => {
+                    HoistMode::Velocity => "the block velocity hoist.speed",
+                    HoistMode::HookLoad => "the hook load hoist.hook_load",
+                    HoistMode::WeightOnBit => "hoist.weight_on_bit",
+                    HoistMode::Autodriller if h.autodriller.target == AutodrillerTarget::WeightOnBit => {
                         "the autodriller's setpoint"
                     }
-                    HoistKind::Autodriller => "the autodriller",
+                    HoistMode::Autodriller => "the autodriller",
                 };
                 return Some(format!(
                     "a coupled run (a [hoist] table, hoist.mode = \"{mode}\") sets the weight on bit by {by} and the \
@@ -194,7 +194,7 @@ mod tests {
         cfg.top_drive.mode = TopMode::Controller;
         cfg.bit.on_bottom = false;
         cfg.bit.law = BitRockLaw::Rgd;
-        cfg.hoist = Some(Hoist { mode: HoistKind::WeightOnBit, ..Hoist::default() });
+        cfg.hoist = Some(Hoist { mode: HoistMode::WeightOnBit, ..Hoist::default() });
         assert!(no_effect(&cfg, "bit.weight_on_bit").unwrap().contains("hoist.weight_on_bit"));
         assert!(no_effect(&cfg, "hoist.speed").unwrap().contains("weight_on_bit"));
         assert_eq!(no_effect(&cfg, "hoist.weight_on_bit"), None);

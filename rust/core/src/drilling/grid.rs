@@ -47,7 +47,8 @@ impl SectionProps {
         let j = s.polar_moment.unwrap_or(PI / 32.0 * (od.powi(4) - id.powi(4)));
         let a = s.area.unwrap_or(PI / 4.0 * (od * od - id * id));
         let (g, rho) = (s.shear_modulus, s.density);
-        let j4 = s.quartic_moment.unwrap_or_else(|| crate::model::Section::annulus(od, id).map_or(f64::NAN, |a| a.j4));
+        let j4 =
+            s.quartic_moment.unwrap_or_else(|| crate::model::CrossSection::annulus(od, id).map_or(f64::NAN, |a| a.j4));
         let nu = s.poisson_ratio;
         SectionProps {
             length: s.length,

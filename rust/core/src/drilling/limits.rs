@@ -23,9 +23,9 @@ use crate::error::{Error, Num, Result, Short};
 use crate::well::torque_drag::MAX_ELEMENTS;
 use crate::well::Trajectory;
 
-use super::axial::hoist::AutodrillerTarget;
 use super::axial::section::{static_tension, AxialSection};
-use super::config::{nonneg, within, BitRockLaw, CutSurfaceScheme, DrillConfig, HoistKind, TopMode, MAX_CELL_STEPS};
+use super::config::AutodrillerTarget;
+use super::config::{nonneg, within, BitRockLaw, CutSurfaceScheme, DrillConfig, HoistMode, TopMode, MAX_CELL_STEPS};
 use super::grid::Grid;
 
 /// The largest dogleg within one survey interval, degrees: at 180 degrees the two directions
@@ -81,11 +81,11 @@ fn asked_weights(cfg: &DrillConfig) -> Vec<(String, f64)> {
         out.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
     };
     match h.mode {
-        HoistKind::WeightOnBit => {
+        HoistMode::WeightOnBit => {
             out.push(("hoist.weight_on_bit".into(), h.weight_on_bit));
             steps(&mut out);
         }
-        HoistKind::Autodriller if h.autodriller.target == AutodrillerTarget::WeightOnBit => {
+        HoistMode::Autodriller if h.autodriller.target == AutodrillerTarget::WeightOnBit => {
             out.push(("hoist.autodriller.setpoint".into(), h.autodriller.setpoint));
             steps(&mut out);
         }
@@ -101,16 +101,16 @@ fn asked_weights(cfg: &DrillConfig) -> Vec<(String, f64)> {
 pub fn validate_loads(cfg: &DrillConfig) -> Result<()> {
     if let Some(h) = &cfg.hoist {
         let unit = match h.mode {
-            HoistKind::Velocity => None,
-            HoistKind::HookLoad => Some("N, a hook load as hoist.hook_load"),
-            HoistKind::WeightOnBit => Some("N, a weight on bit as hoist.weight_on_bit"),
-            HoistKind::Autodriller => Some(match h.autodriller.target {
+            HoistMode::Velocity => None,
+            HoistMode::HookLoad => Some("N, a hook load as hoist.hook_load"),
+            HoistMode::WeightOnBit => Some("N, a weight on bit as hoist.weight_on_bit"),
+            HoistMode::Autodriller => Some(match h.autodriller.target {
                 AutodrillerTarget::WeightOnBit => "N, a weight on bit as hoist.autodriller.setpoint",
                 AutodrillerTarget::Rop => "m/s, a rate of penetration as hoist.autodriller.setpoint",
             }),
         };
         if let Some(unit) = unit {
-            if h.mode == HoistKind::Autodriller {
+            if h.mode == HoistMode::Autodriller {
                 nonneg("hoist.autodriller.setpoint", h.autodriller.setpoint, unit)?;
             }
             for (i, s) in h.steps.iter().enumerate() {
@@ -164,7 +164,7 @@ pub fn load_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
     if cfg.bit.law == BitRockLaw::VelocityWeakening || cfg.top_drive.mode == TopMode::MeasuredSpeed {
         return out;
     }
-    if h.mode == HoistKind::HookLoad {
+    if h.mode == HoistMode::HookLoad {
         // (a hook load as the weight indicator reads it, the block's weight with it)
         let hanging = hanging_hook_load(cfg) + cfg.torque_drag.block_weight;
         weights.push(("hoist.hook_load".into(), hanging - h.hook_load));
@@ -179,7 +179,7 @@ pub fn load_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
         .max_by(|a, b| a.2.total_cmp(&b.2));
     worst
         .map(|(field, w, t)| {
-            let weight = if field.starts_with("hoist.hook_load") || h.mode == HoistKind::HookLoad {
+            let weight = if field.starts_with("hoist.hook_load") || h.mode == HoistMode::HookLoad {
                 format!("{field} gives a weight on bit of {} N", Short(w))
             } else {
                 format!("{field} = {} N", Num(w))

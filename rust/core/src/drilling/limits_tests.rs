@@ -30,7 +30,7 @@ fn refused(cfg: &DrillConfig) -> Error {
 
 #[test]
 fn hoist_steps_and_setpoints_take_their_modes_range() {
-    for mode in [HoistKind::HookLoad, HoistKind::WeightOnBit] {
+    for mode in [HoistMode::HookLoad, HoistMode::WeightOnBit] {
         let mut cfg = coupled("rgd", "");
         let h = cfg.hoist.as_mut().unwrap();
         h.mode = mode;
@@ -43,7 +43,7 @@ fn hoist_steps_and_setpoints_take_their_modes_range() {
     }
     let mut cfg = coupled("rgd", "");
     let h = cfg.hoist.as_mut().unwrap();
-    h.mode = HoistKind::Autodriller;
+    h.mode = HoistMode::Autodriller;
     h.autodriller.kp = 1e-7;
     h.autodriller.setpoint = -10e3;
     assert_eq!(refused(&cfg).field(), "hoist.autodriller.setpoint");
@@ -67,7 +67,7 @@ fn a_weight_on_bit_above_the_buoyed_weight_is_refused_or_warned_with_the_number(
     cfg.bit.weight_on_bit = 0.0;
     // the hoist's weight above it: warned (the coupled model's hoist then pushes)
     let h = cfg.hoist.as_mut().unwrap();
-    h.mode = HoistKind::WeightOnBit;
+    h.mode = HoistMode::WeightOnBit;
     h.weight_on_bit = 50e3;
     h.steps = vec![[10.0, 100e6]];
     cfg.validate().unwrap();
@@ -91,7 +91,7 @@ fn a_weight_the_bit_cannot_turn_at_is_warned() {
     cfg.top_drive.controller.kind = crate::drilling::config::ControllerKind::Pi;
     cfg.top_drive.torque_limit = 10e3;
     let h = cfg.hoist.as_mut().unwrap();
-    h.mode = HoistKind::WeightOnBit;
+    h.mode = HoistMode::WeightOnBit;
     h.weight_on_bit = 20e3;
     h.steps = vec![[10.0, 250e3]];
     cfg.validate().unwrap();

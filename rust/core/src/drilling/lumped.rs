@@ -52,9 +52,9 @@
 //! motor torque, `Tm <= Wob Rb mu_sb`: with `wr = 0` the applied torque is `kt phi = Tm`
 //! (started there it stays; started from rest untwisted, the top's inertia winds the string
 //! past `Tm` and the bit can break free all the same). So the
-//! regimes: a stable root -> [`Regime::StableRotation`] (with `Tm <= Wob Rb mu_sb` the stuck
+//! regimes: a stable root -> [`LumpedRegime::StableRotation`] (with `Tm <= Wob Rb mu_sb` the stuck
 //! state coexists with it); roots but none stable ->
-//! [`Regime::Unstable`] (stick-slip or a growing oscillation); no root -> [`Regime::Stuck`]
+//! [`LumpedRegime::Unstable`] (stick-slip or a growing oscillation); no root -> [`LumpedRegime::Stuck`]
 //! (then necessarily `Tm <= Wob Rb mu_sb`: above it `f(0) < 0` and a root exists).
 
 use serde::{Deserialize, Serialize};
@@ -614,18 +614,18 @@ pub struct Equilibrium {
 /// What the equilibria imply (see the module).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Regime {
+pub enum LumpedRegime {
     StableRotation,
     Unstable,
     Stuck,
 }
 
-impl Regime {
+impl LumpedRegime {
     pub fn name(self) -> &'static str {
         match self {
-            Regime::StableRotation => "stable_rotation",
-            Regime::Unstable => "unstable",
-            Regime::Stuck => "stuck",
+            LumpedRegime::StableRotation => "stable_rotation",
+            LumpedRegime::Unstable => "unstable",
+            LumpedRegime::Stuck => "stuck",
         }
     }
 }
@@ -637,7 +637,7 @@ pub struct Equilibria {
     pub rotations: Vec<Equilibrium>,
     /// `Tm <= Wob Rb mu_sb`: the bit at rest (`wr = 0`, `kt phi = Tm`) is an equilibrium.
     pub stuck_possible: bool,
-    pub regime: Regime,
+    pub regime: LumpedRegime,
 }
 
 /// The steady rotations (roots of `(cr + cb) w + Wob Rb mu(w) = Tm`, `w > 0`), their
@@ -691,11 +691,11 @@ pub fn equilibria(p: &LumpedParams) -> Result<Equilibria> {
         })
         .collect();
     let regime = if rotations.iter().any(|e| e.stable) {
-        Regime::StableRotation
+        LumpedRegime::StableRotation
     } else if rotations.is_empty() {
-        Regime::Stuck
+        LumpedRegime::Stuck
     } else {
-        Regime::Unstable
+        LumpedRegime::Unstable
     };
     Ok(Equilibria { rotations, stuck_possible: p.tm <= p.static_limit(), regime })
 }
@@ -759,10 +759,10 @@ mod tests {
         // Light weight: one root, stable; heavy: none, stuck.
         let light = equilibria(&LumpedParams { wob: 10e3, ..p.clone() }).unwrap();
         assert_eq!(light.rotations.len(), 1);
-        assert_eq!(light.regime, Regime::StableRotation);
+        assert_eq!(light.regime, LumpedRegime::StableRotation);
         assert!(!light.stuck_possible);
         let heavy = equilibria(&LumpedParams { wob: 200e3, ..p.clone() }).unwrap();
-        assert!(heavy.rotations.is_empty() && heavy.stuck_possible && heavy.regime == Regime::Stuck);
+        assert!(heavy.rotations.is_empty() && heavy.stuck_possible && heavy.regime == LumpedRegime::Stuck);
         // No weight: w = Tm / (cr + cb) exactly as the bisection resolves it.
         let free = equilibria(&LumpedParams { wob: 0.0, ..p.clone() }).unwrap();
         assert!((free.rotations[0].speed - p.tm / (p.cr + p.cb)).abs() < 1e-12 * p.tm / (p.cr + p.cb));

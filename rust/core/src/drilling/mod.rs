@@ -68,4 +68,6 @@ pub use config::{
     DrillConfig, DEFAULT_TORQUE_LIMIT, MAX_CELLS, MAX_CELL_STEPS, MAX_DURATION, MAX_OUTPUT_BYTES, MAX_SECTIONS,
 };
 pub use grid::{breakoff_torque, min_cycle_torque, min_cycle_torque_from, Grid};
-pub use solver::{friction_profile, solve, DrillRun, DrillStats, EnergyBalance, Profile, Simulation, RUNAWAY_FACTOR};
+pub use solver::{
+    friction_profile, solve, DrillRun, DrillStats, EnergyBalance, FrictionProfile, Simulation, RUNAWAY_FACTOR,
+};

@@ -6,7 +6,7 @@
 use crate::error::{Num, Short};
 use crate::metrics::StickSlip;
 
-use super::config::{DrillConfig, HoistKind};
+use super::config::{DrillConfig, HoistMode};
 use super::grid::static_torque;
 
 /// The warnings of a configuration with the wall break-off torque `breakoff` (see
@@ -16,6 +16,42 @@ pub fn run_warnings(cfg: &DrillConfig, breakoff: f64) -> Vec<String> {
     out.extend(plausibility_warnings(cfg));
     out.extend(super::limits::load_warnings(cfg, breakoff));
     out
+}
+
+/// A section of the axial field with at most this many cells at a Courant number below
+/// [`AXIAL_EXACT_COURANT`] gets [`axial_resolution_warning`].
+pub const AXIAL_FEW_CELLS: usize = 2;
+/// At or above this Courant number the axial transport is (near) the exact shift, whatever the
+/// number of cells.
+pub const AXIAL_EXACT_COURANT: f64 = 0.9;
+
+/// The axial sections, each `(length m, cells, Courant number)`, resolved by
+/// [`AXIAL_FEW_CELLS`] cells or fewer at a Courant number below [`AXIAL_EXACT_COURANT`]: the
+/// first-order upwind transport smears a wave across such a section, so the loads at its ends
+/// (hook load, drag of a short section in a build) carry an error of the order of its weight.
+/// Measured: 150 m of collars in one cell at Courant number 0.54 moved a coarse pick-up's hook
+/// load by about 3 kN (a 1.5 % error that `--check-grid` flags); more cells remove it.
+pub fn axial_resolution_warning(sections: &[(f64, usize, f64)]) -> Option<String> {
+    let coarse: Vec<String> = sections
+        .iter()
+        .enumerate()
+        .filter(|(_, &(_, cells, courant))| cells <= AXIAL_FEW_CELLS && courant < AXIAL_EXACT_COURANT)
+        .map(|(i, &(length, cells, courant))| {
+            format!(
+                "sections[{i}] ({} m) in {cells} axial cell{} at Courant number {courant:.2}",
+                Num(length),
+                if cells == 1 { "" } else { "s" }
+            )
+        })
+        .collect();
+    (!coarse.is_empty()).then(|| {
+        format!(
+            "the axial field resolves {}: the first-order transport smears waves across a section this coarse, \
+             so the loads at its ends (hook load, weight on bit) may be off by a share of its weight; \
+             more numerics.cells (or check with --check-grid)",
+            coarse.join(", ")
+        )
+    })
 }
 
 /// A top-drive torque limit below the break-off torque of the string,
@@ -103,15 +139,15 @@ pub fn plausibility_warnings(cfg: &DrillConfig) -> Vec<String> {
     }
     if let Some(h) = &cfg.hoist {
         let mut speeds: Vec<(String, f64)> = Vec::new();
-        if h.mode == HoistKind::Velocity {
+        if h.mode == HoistMode::Velocity {
             speeds.push(("hoist.speed".into(), h.speed));
             speeds.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
         }
-        if h.mode == HoistKind::Autodriller {
+        if h.mode == HoistMode::Autodriller {
             let a = &h.autodriller;
             speeds.push(("hoist.autodriller.max_speed".into(), a.max_speed));
             speeds.push(("hoist.autodriller.min_speed".into(), a.min_speed));
-            if a.target == super::axial::hoist::AutodrillerTarget::Rop {
+            if a.target == super::config::AutodrillerTarget::Rop {
                 speeds.push(("hoist.autodriller.setpoint".into(), a.setpoint));
                 speeds.extend(h.steps.iter().enumerate().map(|(i, s)| (format!("hoist.steps[{i}][1]"), s[1])));
             }
@@ -352,7 +388,7 @@ pub const NO_ROTATION: &str = "no rotation: top_drive.rpm is 0, so the torsional
 /// Whether the hoist only lifts the string (`velocity` mode, every block velocity upward): without
 /// rotation a pick-up, its bit off bottom on purpose, and [`off_bottom_warning`] does not apply.
 pub fn lifting(hoist: &super::config::Hoist) -> bool {
-    hoist.mode == HoistKind::Velocity && hoist.speed < 0.0 && hoist.steps.iter().all(|s| s[1] < 0.0)
+    hoist.mode == HoistMode::Velocity && hoist.speed < 0.0 && hoist.steps.iter().all(|s| s[1] < 0.0)
 }
 
 /// A coupled run whose bit never touched bottom in the metrics window `[a, b]` s: every sample
@@ -360,15 +396,15 @@ pub fn lifting(hoist: &super::config::Hoist) -> bool {
 /// bit are 0 and its MSE is undefined. Says what to change for the hoist's mode `mode`: the bit
 /// is lowered by a larger downward block velocity, a smaller hook load, or an autodriller
 /// allowed to move down; or the window comes later in a longer run.
-pub fn off_bottom_warning(bounce_fraction: f64, window: [f64; 2], mode: HoistKind) -> Option<String> {
+pub fn off_bottom_warning(bounce_fraction: f64, window: [f64; 2], mode: HoistMode) -> Option<String> {
     if bounce_fraction < 1.0 {
         return None;
     }
     let change = match mode {
-        HoistKind::Velocity => "a larger downward hoist.speed (down is positive)",
-        HoistKind::HookLoad => "a smaller hoist.hook_load (below the static hook load of the hanging string)",
-        HoistKind::Autodriller => "a positive hoist.autodriller.max_speed and a larger setpoint",
-        HoistKind::WeightOnBit => "a positive hoist.weight_on_bit",
+        HoistMode::Velocity => "a larger downward hoist.speed (down is positive)",
+        HoistMode::HookLoad => "a smaller hoist.hook_load (below the static hook load of the hanging string)",
+        HoistMode::Autodriller => "a positive hoist.autodriller.max_speed and a larger setpoint",
+        HoistMode::WeightOnBit => "a positive hoist.weight_on_bit",
     };
     Some(format!(
         "the bit never touched bottom in the metrics window [{}, {}] s (no weight on bit in any sample): its ROP, \
@@ -448,6 +484,19 @@ mod tests {
         // an imposed speed does not use the limit
         cfg.top_drive.mode = super::super::config::TopMode::MeasuredSpeed;
         assert_eq!(torque_limit_verdict(&cfg, 0.5), None);
+    }
+
+    #[test]
+    fn a_section_of_one_or_two_axial_cells_below_the_exact_shift_is_warned_about() {
+        // one cell at 0.54: warned; two cells at 0.95 (near the exact shift) and many cells: not
+        let w = axial_resolution_warning(&[(2800.0, 60, 0.7), (150.0, 1, 0.54), (100.0, 2, 0.95)]).unwrap();
+        assert!(w.contains("sections[1] (150 m) in 1 axial cell at Courant number 0.54"), "{w}");
+        assert!(!w.contains("sections[0]") && !w.contains("sections[2]"), "{w}");
+        assert!(axial_resolution_warning(&[(2800.0, 60, 0.7), (100.0, 3, 0.5), (100.0, 2, 0.9)]).is_none());
+        let two = axial_resolution_warning(&[(90.0, 2, 0.3), (10.0, 1, 0.2)]).unwrap();
+        assert!(
+            two.contains("sections[0] (90 m) in 2 axial cells") && two.contains("sections[1] (10 m) in 1 axial cell ")
+        );
     }
 
     #[test]

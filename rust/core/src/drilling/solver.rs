@@ -14,7 +14,7 @@ pub use super::engine::{DrillRun, DrillStats, EnergyBalance, Simulation, RUNAWAY
 
 /// The friction profile of a configuration.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Profile {
+pub struct FrictionProfile {
     /// Cell centres, m.
     pub z: Vec<f64>,
     /// Static friction limit per metre, N m/m.
@@ -42,7 +42,7 @@ pub struct Profile {
 }
 
 /// The friction profile at the cell centres and the break-off torque of a valid configuration.
-pub fn friction_profile(cfg: &DrillConfig) -> Result<Profile> {
+pub fn friction_profile(cfg: &DrillConfig) -> Result<FrictionProfile> {
     cfg.validate()?;
     let grid = Grid::new(cfg)?;
     let n = grid.cells();
@@ -57,7 +57,7 @@ pub fn friction_profile(cfg: &DrillConfig) -> Result<Profile> {
     let points: Vec<_> = grid.z.iter().map(|&z| traj.at(z)).collect();
     let breakoff = breakoff_torque(cfg)?;
     let bit = super::grid::bit_static_torque(cfg);
-    Ok(Profile {
+    Ok(FrictionProfile {
         inclination_deg: points.iter().map(|p| p.inc.to_degrees()).collect(),
         azimuth_deg: points.iter().map(|p| p.azi.to_degrees()).collect(),
         tvd: points.iter().map(|p| p.position[2]).collect(),

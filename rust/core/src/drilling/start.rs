@@ -27,9 +27,9 @@ use serde::{Deserialize, Serialize};
 
 use super::axial::bitrock::{DetournayBit, SteadyDrilling};
 use super::engine::bit_law::Law;
-use super::axial::hoist::{AutodrillerTarget, HoistMode};
 use super::axial::section::AxialSection;
 use super::config::DrillConfig;
+use super::config::{AutodrillerTarget, HoistMode};
 use super::grid::Grid;
 use crate::error::{Error, Num, Result};
 
@@ -171,7 +171,7 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
         ));
     }
     let law: DetournayBit = cfg.bit.detournay.law(cfg.bit.radius);
-    let p = hoist.params();
+    let p = hoist;
     let target = p.target(0.0);
     let wf = law.contact_weight();
     let slope = law.cutting_weight(1.0);

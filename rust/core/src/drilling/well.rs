@@ -11,7 +11,7 @@ use serde::Serialize;
 use crate::error::{Error, Num, Result};
 use crate::well::plan;
 use crate::well::torque_drag::{
-    self, Friction, FrictionInterval, Operation, Piece, Profile, Scheme, Setup, TorqueDrag,
+    self, Operation, Piece, Profile, Scheme, Setup, SlidingFriction, SlidingInterval, TorqueDrag,
 };
 use crate::well::{Survey, Trajectory};
 
@@ -247,18 +247,14 @@ pub fn friction_factor(cfg: &DrillConfig, md: f64) -> f64 {
 
 /// The friction factors of a configuration times `ratio` (1: the static ones;
 /// `friction.kinetic_ratio`: the sliding ones).
-fn friction(cfg: &DrillConfig, ratio: f64) -> Friction {
-    Friction {
+fn friction(cfg: &DrillConfig, ratio: f64) -> SlidingFriction {
+    SlidingFriction {
         mu: ratio * cfg.friction.static_coefficient,
         intervals: cfg
             .friction
             .intervals
             .iter()
-            .map(|iv| FrictionInterval {
-                top_md: iv.top_md,
-                bottom_md: iv.bottom_md,
-                mu: ratio * iv.static_coefficient,
-            })
+            .map(|iv| SlidingInterval { top_md: iv.top_md, bottom_md: iv.bottom_md, mu: ratio * iv.static_coefficient })
             .collect(),
     }
 }

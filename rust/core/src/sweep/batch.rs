@@ -191,7 +191,7 @@ impl RunStatus {
 
 /// The samples of one run (kept when [`SweepOptions::keep_trajectories`] is set).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Trajectory {
+pub struct RunSamples {
     /// Row-major `[q, qdot]` per sample (`2 m` values each); fewer samples than requested
     /// when the solve stopped early.
     pub y: Vec<f64>,
@@ -216,7 +216,7 @@ pub struct RunRecord {
     pub nfev: u64,
     /// Largest energy share of each retained mode (`m` values, NaN unless successful).
     pub max_share: Vec<f64>,
-    pub trajectory: Option<Trajectory>,
+    pub trajectory: Option<RunSamples>,
 }
 
 /// The records of a batch as the columns of its table, one entry per run: the metrics (NaN for
@@ -467,7 +467,7 @@ fn run_one(shared: &Shared<'_>, spec: &RunSpec, buf: &mut FftBuffers) -> RunReco
         record.max_share = metrics.max_share;
     }
     if shared.opts.keep_trajectories {
-        record.trajectory = Some(Trajectory { y: sol.y, theta });
+        record.trajectory = Some(RunSamples { y: sol.y, theta });
     }
     record
 }

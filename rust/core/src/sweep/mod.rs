@@ -11,7 +11,7 @@ pub mod batch;
 pub mod integrals;
 
 pub use batch::{
-    batch_solve, batch_solve_with, resolve_threads, RunRecord, RunSpec, RunStatus, SweepOptions, Trajectory,
+    batch_solve, batch_solve_with, resolve_threads, RunRecord, RunSamples, RunSpec, RunStatus, SweepOptions,
     MAX_THREADS,
 };
 pub use integrals::{discretise_spectral, mode_shape, mode_slope, GalerkinIntegrals};

@@ -45,24 +45,24 @@ pub struct Piece {
     pub contact_radius: f64,
 }
 
-/// A friction factor over a depth interval `[top_md, bottom_md)`.
+/// A sliding friction factor over a depth interval `[top_md, bottom_md)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FrictionInterval {
+pub struct SlidingInterval {
     pub top_md: f64,
     pub bottom_md: f64,
     pub mu: f64,
 }
 
-/// The friction factor along the hole: `mu` where no interval covers a depth.
+/// The sliding (kinetic) friction factor along the hole: `mu` where no interval covers a depth.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Friction {
+pub struct SlidingFriction {
     pub mu: f64,
-    pub intervals: Vec<FrictionInterval>,
+    pub intervals: Vec<SlidingInterval>,
 }
 
-impl Friction {
-    pub fn uniform(mu: f64) -> Friction {
-        Friction { mu, intervals: Vec::new() }
+impl SlidingFriction {
+    pub fn uniform(mu: f64) -> SlidingFriction {
+        SlidingFriction { mu, intervals: Vec::new() }
     }
 
     /// The factor at `md` (the first interval holding it; intervals are half-open, top
@@ -127,7 +127,7 @@ pub enum Scheme {
 pub struct Setup {
     /// From the top of the string; their lengths sum to the bit's depth.
     pub pieces: Vec<Piece>,
-    pub friction: Friction,
+    pub friction: SlidingFriction,
     /// N (on bottom).
     pub weight_on_bit: f64,
     /// N m (on bottom).
@@ -521,7 +521,7 @@ mod tests {
     fn setup(length: f64, weight: f64, mu: f64) -> Setup {
         Setup {
             pieces: vec![Piece { length, weight, contact_radius: 0.1 }],
-            friction: Friction::uniform(mu),
+            friction: SlidingFriction::uniform(mu),
             weight_on_bit: 0.0,
             bit_torque: 0.0,
             block_weight: 0.0,
@@ -622,7 +622,7 @@ mod tests {
     fn friction_intervals_and_short_surveys() {
         let t = traj(&[0.0, 1000.0], &[50.0, 50.0], &[0.0, 0.0]);
         let mut s = setup(1000.0, 100.0, 0.2);
-        s.friction.intervals.push(FrictionInterval { top_md: 0.0, bottom_md: 600.0, mu: 0.1 });
+        s.friction.intervals.push(SlidingInterval { top_md: 0.0, bottom_md: 600.0, mu: 0.1 });
         let td = analyse(&t, &s, Scheme::Stepwise).unwrap();
         let sin = 50f64.to_radians().sin();
         let expect = 0.1 * 100.0 * sin * (0.1 * 600.0 + 0.2 * 400.0);

@@ -14,170 +14,11 @@
 //! `weight_on_bit` mode): in steady drilling the block moves at the rate of penetration.
 //! Speeds are down positive (m/s), forces in N.
 
-use schemars::JsonSchema;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::error::{Error, Num, Result};
+use crate::drilling::config::{AutodrillerTarget, Hoist, HoistMode};
 
-/// What the hoist imposes at the top of the string.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum HoistMode {
-    /// The block velocity `speed`, m/s.
-    Velocity,
-    /// The hook load `hook_load`, N (the force holding the string up).
-    HookLoad,
-    /// The autodriller's block velocity.
-    Autodriller,
-    /// The weight on bit `weight_on_bit`, N, as a rig's weight indicator imposes it: the hook
-    /// load held at the static hook load of the string hanging off bottom less the weight.
-    WeightOnBit,
-}
-
-/// The autodriller's controlled quantity.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
-#[serde(rename_all = "snake_case")]
-pub enum AutodrillerTarget {
-    /// Weight on bit, N.
-    WeightOnBit,
-    /// Rate of penetration, m/s.
-    Rop,
-}
-
-/// The autodriller (`hoist.mode = "autodriller"`): a PI on the weight on bit or the rate of
-/// penetration giving the block velocity, `u = u_ff + kp e + ki int e` within
-/// `[min_speed, max_speed]` (no integration while saturated in the error's direction), `e` the
-/// setpoint less the measured value, `u_ff` the setpoint itself with `target = "rop"` (0 with
-/// `weight_on_bit`). `kp` and `ki` are not both 0 in autodriller mode.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields, default)]
-pub struct Autodriller {
-    /// The controlled quantity: `weight_on_bit` (default) or `rop` (the rate of penetration).
-    #[schemars(extend("label" = "autodriller target"))]
-    pub target: AutodrillerTarget,
-    /// The target's setpoint: N with `weight_on_bit`, m/s with `rop` (finite; approached with
-    /// `hoist.ramp_time`, changed by `hoist.steps`). A plain number is SI in either unit system.
-    #[schemars(extend("unit" = "N or m/s", "label" = "autodriller setpoint"))]
-    pub setpoint: f64,
-    /// Proportional gain, >= 0: block velocity per unit of error, (m/s)/N with
-    /// `weight_on_bit`, dimensionless with `rop`.
-    #[schemars(extend("unit" = "m/(N*s) or 1", "label" = "autodriller proportional gain"))]
-    pub kp: f64,
-    /// Integral gain, >= 0: block velocity per unit of integrated error, (m/s)/(N s) with
-    /// `weight_on_bit`, 1/s with `rop`.
-    #[schemars(extend("unit" = "m/(N*s^2) or 1/s", "label" = "autodriller integral gain"))]
-    pub ki: f64,
-    /// The least block velocity, down positive (negative: the block may pull up).
-    #[schemars(extend("unit" = "m/s", "label" = "autodriller least block velocity"))]
-    pub min_speed: f64,
-    /// The largest block velocity, >= `min_speed` (default 100 m/h).
-    #[schemars(extend("unit" = "m/s", "label" = "autodriller largest block velocity"))]
-    pub max_speed: f64,
-}
-
-impl Default for Autodriller {
-    /// Weight on bit 80 kN, limits 0 to 100 m/h; gains set by the user for the string.
-    fn default() -> Self {
-        Autodriller {
-            target: AutodrillerTarget::WeightOnBit,
-            setpoint: 80e3,
-            kp: 0.0,
-            ki: 0.0,
-            min_speed: 0.0,
-            max_speed: 100.0 / 3600.0,
-        }
-    }
-}
-
-/// The hoist's parameters (SI).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct HoistParams {
-    pub mode: HoistMode,
-    /// Block velocity of `velocity` mode, m/s, down positive.
-    pub speed: f64,
-    /// Hook load of `hook_load` mode, N.
-    pub hook_load: f64,
-    /// Weight on bit of `weight_on_bit` mode, N.
-    pub weight_on_bit: f64,
-    /// Time constant of the setpoint's approach to its target, s (0: steps).
-    pub ramp_time: f64,
-    /// `[time s, value]` changes of the mode's target (m/s, N, or the autodriller's setpoint).
-    pub steps: Vec<[f64; 2]>,
-    pub autodriller: Autodriller,
-}
-
-impl Default for HoistParams {
-    fn default() -> Self {
-        HoistParams {
-            mode: HoistMode::Velocity,
-            speed: 30.0 / 3600.0,
-            hook_load: 0.0,
-            weight_on_bit: 0.0,
-            ramp_time: 1.0,
-            steps: Vec::new(),
-            autodriller: Autodriller::default(),
-        }
-    }
-}
-
-impl HoistParams {
-    /// Refuses non-finite values, a negative ramp time or gain, limits out of order, or steps
-    /// out of time order, naming `<prefix>.<field>`.
-    pub fn validate(&self, prefix: &str) -> Result<()> {
-        let finite = [
-            ("speed", self.speed),
-            ("hook_load", self.hook_load),
-            ("weight_on_bit", self.weight_on_bit),
-            ("autodriller.setpoint", self.autodriller.setpoint),
-            ("autodriller.min_speed", self.autodriller.min_speed),
-            ("autodriller.max_speed", self.autodriller.max_speed),
-        ];
-        for (name, value) in finite {
-            if !value.is_finite() {
-                return Err(Error::invalid(format!("{prefix}.{name}"), Num(value), "a finite number"));
-            }
-        }
-        let non_negative = [
-            ("ramp_time", self.ramp_time),
-            ("autodriller.kp", self.autodriller.kp),
-            ("autodriller.ki", self.autodriller.ki),
-        ];
-        for (name, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(Error::invalid(format!("{prefix}.{name}"), Num(value), "a finite number >= 0"));
-            }
-        }
-        let a = &self.autodriller;
-        if self.mode == HoistMode::Autodriller && a.kp == 0.0 && a.ki == 0.0 {
-            return Err(Error::invalid(
-                format!("{prefix}.autodriller.kp"),
-                "kp = ki = 0",
-                "kp > 0 or ki > 0 in autodriller mode (with no gain the block never answers the weight on bit \
-                 or ROP); (m/s)/N and (m/s)/(N s) on weight_on_bit, 1 and 1/s on rop",
-            ));
-        }
-        if a.max_speed < a.min_speed {
-            return Err(Error::invalid(
-                format!("{prefix}.autodriller.max_speed"),
-                Num(a.max_speed),
-                format!("a number >= autodriller.min_speed ({})", Num(a.min_speed)),
-            ));
-        }
-        let mut last = f64::NEG_INFINITY;
-        for (i, s) in self.steps.iter().enumerate() {
-            if !(s[0].is_finite() && s[1].is_finite() && s[0] >= last) {
-                return Err(Error::invalid(
-                    format!("{prefix}.steps[{i}]"),
-                    format!("[{}, {}]", Num(s[0]), Num(s[1])),
-                    "[time, value], finite, in increasing time",
-                ));
-            }
-            last = s[0];
-        }
-        Ok(())
-    }
-
+impl Hoist {
     /// The mode's target before any step: `speed`, `hook_load`, the autodriller's setpoint or
     /// `weight_on_bit`.
     fn base(&self) -> f64 {
@@ -243,8 +84,9 @@ pub struct HoistMeasurement {
 
 /// The hoist's state: time, the ramped setpoint and the autodriller's integral.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Hoist {
-    pub params: HoistParams,
+pub struct HoistState {
+    /// The `[hoist]` table.
+    pub params: Hoist,
     /// Time of the state, s.
     pub time: f64,
     /// The ramped setpoint (mode's unit).
@@ -256,17 +98,17 @@ pub struct Hoist {
     pub hanging: f64,
 }
 
-impl Hoist {
+impl HoistState {
     /// A hoist at time 0 whose setpoint starts at `initial` (the mode's unit: a block at rest
     /// starts at 0 m/s, a hook at its static load, a weight on bit at 0 N).
-    pub fn new(params: HoistParams, initial: f64) -> Self {
-        Hoist { params, time: 0.0, setpoint: initial, integral: 0.0, hanging: 0.0 }
+    pub fn new(params: Hoist, initial: f64) -> Self {
+        HoistState { params, time: 0.0, setpoint: initial, integral: 0.0, hanging: 0.0 }
     }
 
     /// The same hoist with the static hook load `hanging` (N) of the string hanging off bottom
     /// (`weight_on_bit` mode's reference: `section::static_tension` at the top, no weight on bit).
     pub fn hanging(self, hanging: f64) -> Self {
-        Hoist { hanging, ..self }
+        HoistState { hanging, ..self }
     }
 
     /// Advances by `dt` (s): the setpoint towards the target at the step's end, then the command
@@ -300,6 +142,7 @@ impl Hoist {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::drilling::config::Autodriller;
 
     fn speed(c: HoistCommand) -> f64 {
         match c {
@@ -310,14 +153,14 @@ mod tests {
 
     #[test]
     fn velocity_ramps_and_steps_as_a_first_order_lag() {
-        let params = HoistParams {
+        let params = Hoist {
             mode: HoistMode::Velocity,
             speed: 0.01,
             ramp_time: 2.0,
             steps: vec![[10.0, 0.02]],
-            ..HoistParams::default()
+            ..Hoist::default()
         };
-        let mut h = Hoist::new(params, 0.0);
+        let mut h = HoistState::new(params, 0.0);
         let dt = 1.0 / 128.0;
         // The step ending at 10 s already heads for the new target (as the top drive's).
         let ts = 10.0 - dt;
@@ -333,8 +176,7 @@ mod tests {
             assert!((v - exact).abs() < 1e-14, "t {t}: {v} vs {exact}");
         }
         // Without a ramp the steps are taken at once.
-        let mut h =
-            Hoist::new(HoistParams { ramp_time: 0.0, steps: vec![[0.5, -0.003]], ..HoistParams::default() }, 0.0);
+        let mut h = HoistState::new(Hoist { ramp_time: 0.0, steps: vec![[0.5, -0.003]], ..Hoist::default() }, 0.0);
         assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), 30.0 / 3600.0);
         assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), -0.003);
     }
@@ -357,9 +199,8 @@ mod tests {
 
     #[test]
     fn hook_load_mode_commands_the_load() {
-        let params =
-            HoistParams { mode: HoistMode::HookLoad, hook_load: 900e3, ramp_time: 0.0, ..HoistParams::default() };
-        let mut h = Hoist::new(params, 950e3);
+        let params = Hoist { mode: HoistMode::HookLoad, hook_load: 900e3, ramp_time: 0.0, ..Hoist::default() };
+        let mut h = HoistState::new(params, 950e3);
         assert_eq!(h.step(0.1, HoistMeasurement::default()), HoistCommand::HookLoad(900e3));
     }
 
@@ -367,19 +208,18 @@ mod tests {
     fn weight_on_bit_mode_commands_the_hanging_load_less_the_weight() {
         // A string hanging at 900 kN: 60 kN on the bit is a hook load of 840 kN, reached as the
         // first-order lag of the weight from 0 (the hook from the hanging load).
-        let params =
-            HoistParams { mode: HoistMode::WeightOnBit, weight_on_bit: 60e3, ramp_time: 2.0, ..HoistParams::default() };
-        let mut h = Hoist::new(params, 0.0).hanging(900e3);
+        let params = Hoist { mode: HoistMode::WeightOnBit, weight_on_bit: 60e3, ramp_time: 2.0, ..Hoist::default() };
+        let mut h = HoistState::new(params, 0.0).hanging(900e3);
         let HoistCommand::HookLoad(first) = h.step(1.0, HoistMeasurement::default()) else { panic!("a hook load") };
         assert!((first - (900e3 - 60e3 * (1.0 - (-0.5f64).exp()))).abs() < 1e-6, "{first}");
         let HoistCommand::HookLoad(last) = h.step(1e3, HoistMeasurement::default()) else { panic!("a hook load") };
         assert!((last - 840e3).abs() < 1e-6, "{last}");
-        let p = HoistParams { weight_on_bit: f64::NAN, ..HoistParams::default() };
+        let p = Hoist { weight_on_bit: f64::NAN, ..Hoist::default() };
         assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.weight_on_bit");
     }
 
     /// The plant of a drilling string in a few lines (see [`drill_from`]), from no weight.
-    fn drill(h: &mut Hoist, k: f64, r: f64, seconds: f64) -> ((f64, f64, f64), (f64, f64)) {
+    fn drill(h: &mut HoistState, k: f64, r: f64, seconds: f64) -> ((f64, f64, f64), (f64, f64)) {
         drill_from(h, k, r, 0.0, seconds)
     }
 
@@ -395,9 +235,8 @@ mod tests {
             min_speed: 0.0,
             max_speed: 0.05,
         };
-        let params =
-            HoistParams { mode: HoistMode::Autodriller, ramp_time: 5.0, autodriller: ad, ..HoistParams::default() };
-        let mut h = Hoist::new(params, 0.0);
+        let params = Hoist { mode: HoistMode::Autodriller, ramp_time: 5.0, autodriller: ad, ..Hoist::default() };
+        let mut h = HoistState::new(params, 0.0);
         let ((w, rop, v), _) = drill(&mut h, k, r, 600.0);
         // Steady state: W = 60 kN, ROP = W / r = 15 m/h, block speed = ROP.
         assert!((w - 60e3).abs() < 1e-3 * 60e3, "{w}");
@@ -405,9 +244,8 @@ mod tests {
         assert!((v - rop).abs() < 1e-3 * rop);
         // On ROP: 10 m/h.
         let ad = Autodriller { target: AutodrillerTarget::Rop, setpoint: 10.0 / 3600.0, kp: 5.0, ki: 0.5, ..ad };
-        let params =
-            HoistParams { mode: HoistMode::Autodriller, ramp_time: 0.0, autodriller: ad, ..HoistParams::default() };
-        let mut h = Hoist::new(params, 0.0);
+        let params = Hoist { mode: HoistMode::Autodriller, ramp_time: 0.0, autodriller: ad, ..Hoist::default() };
+        let mut h = HoistState::new(params, 0.0);
         let ((w, rop, _), _) = drill(&mut h, k, r, 600.0);
         assert!((rop - 10.0 / 3600.0).abs() < 1e-3 * rop, "{}", rop * 3600.0);
         assert!((w - r * 10.0 / 3600.0).abs() < 1e-3 * w);
@@ -425,9 +263,8 @@ mod tests {
             min_speed: 0.0,
             max_speed: 0.06,
         };
-        let params =
-            HoistParams { mode: HoistMode::Autodriller, ramp_time: 0.0, autodriller: ad, ..HoistParams::default() };
-        let mut h = Hoist::new(params, 0.0);
+        let params = Hoist { mode: HoistMode::Autodriller, ramp_time: 0.0, autodriller: ad, ..Hoist::default() };
+        let mut h = HoistState::new(params, 0.0);
         let w = |weight_on_bit: f64| HoistMeasurement { weight_on_bit, rop: 0.0 };
         // W 0: e 5e4, u = 0.05 + 0, int 25e3.
         assert!((speed(h.step(0.5, w(0.0))) - 0.05).abs() < 1e-15);
@@ -449,14 +286,14 @@ mod tests {
         assert!((h.integral - 120e3).abs() < 1e-9);
         // On ROP with a setpoint step at 1 s (no ramp): u = setpoint + kp e + ki int e.
         let ad = Autodriller { target: AutodrillerTarget::Rop, setpoint: 0.01, kp: 2.0, ki: 0.5, ..ad };
-        let params = HoistParams {
+        let params = Hoist {
             mode: HoistMode::Autodriller,
             ramp_time: 0.0,
             steps: vec![[1.0, 0.004]],
             autodriller: ad,
-            ..HoistParams::default()
+            ..Hoist::default()
         };
-        let mut h = Hoist::new(params, 0.0);
+        let mut h = HoistState::new(params, 0.0);
         let r = |rop: f64| HoistMeasurement { weight_on_bit: 0.0, rop };
         // ROP 0.008: e 0.002, u = 0.01 + 0.004 = 0.014, int 0.001.
         assert!((speed(h.step(0.5, r(0.008))) - 0.014).abs() < 1e-15);
@@ -481,14 +318,14 @@ mod tests {
             min_speed: 0.0,
             max_speed,
         };
-        let params = HoistParams {
+        let params = Hoist {
             mode: HoistMode::Autodriller,
             ramp_time: 0.0,
             steps: vec![[1000.0, 60e3]],
             autodriller: ad,
-            ..HoistParams::default()
+            ..Hoist::default()
         };
-        let mut h = Hoist::new(params, 0.0);
+        let mut h = HoistState::new(params, 0.0);
         let ((w, _, v), range) = drill(&mut h, k, r, 1000.0);
         assert!(range.0 >= 0.0 && range.1 <= max_speed);
         assert_eq!(v, max_speed);
@@ -507,7 +344,7 @@ mod tests {
     /// between block and bit, `W' = k (v_block - ROP)`, and the rock `ROP = W / r` (steady
     /// drilling, linear in the weight on bit at a fixed rotary speed), from the weight `w0`.
     /// Returns the last `(weight, rop, block speed)` and the range of the block speed.
-    fn drill_from(h: &mut Hoist, k: f64, r: f64, w0: f64, seconds: f64) -> ((f64, f64, f64), (f64, f64)) {
+    fn drill_from(h: &mut HoistState, k: f64, r: f64, w0: f64, seconds: f64) -> ((f64, f64, f64), (f64, f64)) {
         let dt = 1e-3;
         let mut w: f64 = w0;
         let mut range = (f64::INFINITY, f64::NEG_INFINITY);
@@ -524,16 +361,15 @@ mod tests {
 
     #[test]
     fn validation_names_the_field() {
-        assert!(HoistParams::default().validate("hoist").is_ok());
-        let mut p = HoistParams::default();
+        assert!(Hoist::default().validate("hoist").is_ok());
+        let mut p = Hoist::default();
         p.autodriller.max_speed = -1.0;
         assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.autodriller.max_speed");
-        let p = HoistParams { ramp_time: -1.0, ..HoistParams::default() };
+        let p = Hoist { ramp_time: -1.0, ..Hoist::default() };
         assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.ramp_time");
-        let p = HoistParams { steps: vec![[2.0, 0.0], [1.0, 0.0]], ..HoistParams::default() };
+        let p = Hoist { steps: vec![[2.0, 0.0], [1.0, 0.0]], ..Hoist::default() };
         assert_eq!(p.validate("hoist").unwrap_err().field(), "hoist.steps[1]");
-        let p: HoistParams =
-            serde_json::from_str(r#"{"mode": "autodriller", "autodriller": {"target": "rop"}}"#).unwrap();
+        let p: Hoist = serde_json::from_str(r#"{"mode": "autodriller", "autodriller": {"target": "rop"}}"#).unwrap();
         assert_eq!((p.mode, p.autodriller.target), (HoistMode::Autodriller, AutodrillerTarget::Rop));
     }
 }

@@ -1,6 +1,6 @@
 //! The coupled run's axial field and its ends: the string's axial waves `(v, F)` (speed down
 //! positive, `F` the compression carried down) on the same [`Field`] type and [`transport`]
-//! kernel as the torsion, the hoist at the top ([`Hoist`], [`HoistCommand::incoming`]) and the
+//! kernel as the torsion, the hoist at the top ([`HoistState`], [`HoistCommand::incoming`]) and the
 //! bit on bottom as the set-valued boundary of both fields ([`solve_bit`]) with the Detournay law.
 //!
 //! * Cells: each section gets `floor(L / (c_a dt)) >= 1` cells of the torsional step `dt`
@@ -38,14 +38,15 @@ use std::f64::consts::TAU;
 use super::bit_law::{AxialEnd, BitEnds, Law};
 use super::boundary::{Arriving, EndLine};
 use super::energy::Ledger;
-use super::field::{Field, Section};
+use super::field::{Field, FieldSection};
 use super::kernel::transport;
 use super::sampler::{Channel, Point};
 use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{BitContact, BitPhase, Port};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
-use crate::drilling::axial::hoist::{Hoist, HoistCommand, HoistMeasurement, HoistMode};
+use crate::drilling::axial::hoist::{HoistCommand, HoistMeasurement, HoistState};
 use crate::drilling::axial::section::{static_tension, AxialSection};
+use crate::drilling::config::HoistMode;
 use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
 use crate::drilling::grid::Grid;
 use crate::drilling::well;
@@ -101,7 +102,7 @@ pub struct Axial {
     gravity: Vec<f64>,
     /// Each cell's work of the buoyed weight in a step (summed in lanes).
     gravity_work: Vec<f64>,
-    hoist: Hoist,
+    hoist: HoistState,
     /// The bit law ([`super::bit_law`], one that needs the axial field) and its blades (the
     /// depth of cut of one blade pass, `bit.detournay.blades`).
     law: Law,
@@ -165,7 +166,7 @@ impl Axial {
             let n = cells as usize;
             let h = p.length / cells;
             courant.push((c * dt / h).min(1.0));
-            sections.push(Section::new(offset, n, courant[i], h, p.mass_per_length(), p.impedance()));
+            sections.push(FieldSection::new(offset, n, courant[i], h, p.mass_per_length(), p.impedance()));
             gravity.push(0.0);
             for j in 0..n {
                 let z = top + (j as f64 + 0.5) * h;
@@ -196,7 +197,7 @@ impl Axial {
                 k += 1;
             }
         }
-        let params = hoist.params();
+        let params = hoist.clone();
         let hanging = crate::drilling::limits::hanging_hook_load(cfg);
         // The hook load of `hook_load` mode as the weight indicator reads it: the string's
         // tension at the top and the travelling block's weight (`torque_drag.block_weight`).
@@ -219,7 +220,7 @@ impl Axial {
             gravity_work: vec![0.0; len],
             sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
             gravity,
-            hoist: Hoist::new(params, initial).hanging(hanging),
+            hoist: HoistState::new(params, initial).hanging(hanging),
             law,
             blades,
             rule,

@@ -4,7 +4,7 @@
 
 use std::f64::consts::PI;
 
-use crate::drilling::config::{DrillConfig, HoistKind};
+use crate::drilling::config::{DrillConfig, HoistMode};
 use crate::drilling::solver::solve;
 use crate::interrupt::Never;
 use crate::solution::Status;
@@ -18,7 +18,7 @@ fn hanging(mass: f64, hook: f64) -> DrillConfig {
     cfg.damping_rate = 0.0;
     cfg.bit.bha_mass = mass;
     let h = cfg.hoist.as_mut().expect("a hoist");
-    (h.mode, h.hook_load, h.ramp_time) = (HoistKind::HookLoad, hook, 0.0);
+    (h.mode, h.hook_load, h.ramp_time) = (HoistMode::HookLoad, hook, 0.0);
     cfg.numerics.duration = 20.0;
     cfg.metrics.window = Some([10.0, 20.0]);
     cfg

@@ -2,9 +2,9 @@
 
 use super::{Axial, DepthOfCut};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
-use crate::drilling::axial::hoist::{AutodrillerTarget, HoistMode};
 use crate::drilling::axial::section::{static_tension, AxialSection};
 use crate::drilling::config::DrillConfig;
+use crate::drilling::config::{AutodrillerTarget, HoistMode};
 use crate::drilling::start::{SteadyPoint, Wall};
 use crate::error::{Error, Result};
 

@@ -144,7 +144,7 @@ fn the_weight_on_bit_mode_drills_at_the_imposed_weight() {
     // string's velocity damping, which takes rho A L k_d ROP (~0.1 % here) off the weight.
     let mut cfg = settling("detournay");
     let h = cfg.hoist.as_mut().unwrap();
-    h.mode = crate::drilling::config::HoistKind::WeightOnBit;
+    h.mode = crate::drilling::config::HoistMode::WeightOnBit;
     h.weight_on_bit = 80e3;
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
     assert_eq!(run.status, crate::solution::Status::Success, "{}", run.message);

@@ -6,11 +6,11 @@
 //! `(I / dt + Z) w' = I w / dt + Z value - load`, and a law at the end is a (set-valued)
 //! relation between `w'` and `load` that meets it.
 //!
-//! * top: [`TopDrive`], an inertia driven by the motor, which carries out a controller's
+//! * top: [`TopDriveEnd`], an inertia driven by the motor, which carries out a controller's
 //!   [`Command`] within its torque limit and speed-loop lag, or is given its speed
 //!   ([`Command::Imposed`], a measured surface speed) with the torque that imposes it
 //!   ([`imposing_torque`]);
-//! * bottom: [`Bit`], the BHA inertia with a bit law of the torsional field alone
+//! * bottom: [`BitEnd`], the BHA inertia with a bit law of the torsional field alone
 //!   ([`super::bit_law`]: a free end, or the velocity-weakening bit torque of
 //!   [`crate::drilling::bit`] with its stick phase); a law that needs the axial field meets
 //!   both fields' lines at once in [`super::axial`].
@@ -64,7 +64,7 @@ pub fn imposing_torque(inertia: f64, omega: f64, omega1: f64, dt: f64, arriving:
 
 /// The top drive: its inertia and speed, the motor's torque limit and speed-loop lag.
 #[derive(Debug, Clone, Copy)]
-pub struct TopDrive {
+pub struct TopDriveEnd {
     /// rad/s.
     pub omega: f64,
     pub inertia: f64,
@@ -74,10 +74,10 @@ pub struct TopDrive {
     motor_lag: f64,
 }
 
-impl TopDrive {
+impl TopDriveEnd {
     pub fn new(cfg: &DrillConfig, dt: f64) -> Self {
         let td = &cfg.top_drive;
-        TopDrive {
+        TopDriveEnd {
             omega: 0.0,
             inertia: td.inertia,
             limit: td.torque_limit,
@@ -117,16 +117,16 @@ impl TopDrive {
 
 /// The bit: the BHA inertia and its law.
 #[derive(Debug, Clone, Copy)]
-pub struct Bit {
+pub struct BitEnd {
     /// rad/s.
     pub omega: f64,
     pub inertia: f64,
     pub law: Law,
 }
 
-impl Bit {
+impl BitEnd {
     pub fn new(cfg: &DrillConfig) -> Self {
-        Bit { omega: 0.0, inertia: cfg.bit.bha_inertia, law: Law::new(cfg) }
+        BitEnd { omega: 0.0, inertia: cfg.bit.bha_inertia, law: Law::new(cfg) }
     }
 
     /// One step against `arriving`: returns the new bit speed and the bit torque, and books

@@ -1,7 +1,7 @@
 //! The top drive's controllers and setpoint (see [`super`], "Controllers"): a controller reads
 //! the top speed and the characteristic arriving at the top and asks the motor for a torque
 //! ([`Command::Torque`]: `pi`, `soft_torque`) or a speed ([`Command::Speed`]: `speed`,
-//! `z_torque`); the top drive ([`super::boundary::TopDrive`]) carries it out. With
+//! `z_torque`); the top drive ([`super::boundary::TopDriveEnd`]) carries it out. With
 //! `top_drive.mode = "measured_speed"` the top speed is a given series instead ([`SpeedSeries`],
 //! [`Command::Imposed`]).
 
@@ -29,7 +29,7 @@ pub enum Command {
 
 /// The state of the controller.
 #[derive(Debug, Clone, Copy)]
-pub struct Controller {
+pub struct ControllerState {
     pub kind: ControllerKind,
     pub kp: f64,
     pub ki: f64,
@@ -43,7 +43,7 @@ pub struct Controller {
     slow_factor: f64,
 }
 
-impl Controller {
+impl ControllerState {
     /// The controller of a configuration (gains tuned for `soft_torque` with the string's
     /// first natural frequency `first_mode`, rad/s), refused when the sampled loop is unstable
     /// on this grid ([`check_control_loop`]).
@@ -60,7 +60,7 @@ impl Controller {
         if td.mode == TopMode::Controller {
             check_control_loop(cfg, grid, kp)?;
         }
-        Ok(Controller {
+        Ok(ControllerState {
             kind: c.kind,
             kp,
             ki,

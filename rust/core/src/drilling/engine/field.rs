@@ -3,7 +3,7 @@
 //!
 //! The torsional field is `(omega, tau)` with inertia per length `rho J` and impedance
 //! `J sqrt(G rho)`; an axial field is the same type with `(v, N)`, `rho A` and `A sqrt(E rho)`
-//! (wave speed `sqrt(E / rho)`): [`Section::new`] takes the inertia per length and the
+//! (wave speed `sqrt(E / rho)`): [`FieldSection::new`] takes the inertia per length and the
 //! impedance, nothing torsional. The state is padded per section, `[ghost, cells..., ghost]`;
 //! the boundaries and junctions set the ghosts ([`Field::set_top`], [`Field::set_bottom`],
 //! [`Field::junctions`]) and [`super::kernel`] advances the cells.
@@ -17,7 +17,7 @@ use crate::drilling::grid::{Grid, SectionProps};
 
 /// One section's slice of the padded state: `[ghost alpha, cells..., ghost beta]`.
 #[derive(Debug, Clone, Copy)]
-pub struct Section {
+pub struct FieldSection {
     /// Index of the top ghost.
     pub offset: usize,
     pub cells: usize,
@@ -34,10 +34,10 @@ pub struct Section {
     pub inertia_per_length: f64,
 }
 
-impl Section {
+impl FieldSection {
     /// A section of `cells` cells of length `h` at padded index `offset`.
     pub fn new(offset: usize, cells: usize, courant: f64, h: f64, inertia_per_length: f64, impedance: f64) -> Self {
-        Section { offset, cells, courant, e: 0.25 * inertia_per_length * h, impedance, h, inertia_per_length }
+        FieldSection { offset, cells, courant, e: 0.25 * inertia_per_length * h, impedance, h, inertia_per_length }
     }
 
     /// The padded range `[ghost, cells, ghost]`.
@@ -71,7 +71,7 @@ pub struct Nonlinear {
 /// A field: its sections and its state.
 #[derive(Clone)]
 pub struct Field {
-    pub sections: Vec<Section>,
+    pub sections: Vec<FieldSection>,
     /// The invariants `alpha = w + s / Z` (down) and `beta = w - s / Z` (up), padded, and the
     /// next step's.
     pub alpha: Vec<f64>,
@@ -89,7 +89,14 @@ impl Field {
         let mut offset = 0;
         for (s, p) in grid.props.iter().enumerate() {
             let n = grid.counts[s];
-            sections.push(Section::new(offset, n, grid.courant[s], grid.spacing[s], p.inertia_per_length, p.impedance));
+            sections.push(FieldSection::new(
+                offset,
+                n,
+                grid.courant[s],
+                grid.spacing[s],
+                p.inertia_per_length,
+                p.impedance,
+            ));
             offset += n + 2;
         }
         let len = offset;
@@ -127,12 +134,12 @@ impl Field {
 
     /// The first and the last section.
     #[inline]
-    pub fn first(&self) -> Section {
+    pub fn first(&self) -> FieldSection {
         self.sections[0]
     }
 
     #[inline]
-    pub fn last(&self) -> Section {
+    pub fn last(&self) -> FieldSection {
         *self.sections.last().expect("at least one section")
     }
 

@@ -6,7 +6,7 @@
 //! path gives the same bits) and return the step's energy terms ([`Sums`]) for the ledger;
 //! [`transport_unbooked`] is the same update without them (about a quarter faster).
 
-use super::field::{Nonlinear, Section};
+use super::field::{FieldSection, Nonlinear};
 use super::sources::{source, Consts, Sources};
 use crate::drilling::grid::SectionProps;
 
@@ -283,7 +283,7 @@ fn update<const REGULARISED: bool, const UPWIND: bool>(
 /// the work of the sources (J, negative).
 pub fn godunov(
     nl: &mut Nonlinear,
-    sp: &Section,
+    sp: &FieldSection,
     law: SectionProps,
     (stop, slip): (&[f64], &[f64]),
     dt: f64,
@@ -295,7 +295,7 @@ pub fn godunov(
 /// [`godunov`] as a [`crate::simd::Kernel`] (AVX2 code when available; no fused multiply-adds).
 struct Godunov<'a> {
     nl: &'a mut Nonlinear,
-    sp: &'a Section,
+    sp: &'a FieldSection,
     law: SectionProps,
     stop: &'a [f64],
     slip: &'a [f64],

@@ -12,15 +12,15 @@
 //! * [`sources`]: wall friction with its stick phase and viscous damping, per cell, one place
 //!   each;
 //! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
-//!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDrive`]) carrying out a
-//!   controller's command, the bit ([`boundary::Bit`]) with a law of the torsional field alone;
+//!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDriveEnd`]) carrying out a
+//!   controller's command, the bit ([`boundary::BitEnd`]) with a law of the torsional field alone;
 //! * [`bit_law`]: the bit law's interface, [`bit_law::BitRock`], one for the laws of the
 //!   torsional field alone and those that meet the axial field too, and the laws registered;
 //! * [`axial`]: a coupled run's axial field (`[hoist]` with `bit.law` `detournay` or `rgd`): the
 //!   same [`field::Field`] and [`kernel`] with the axial sections' speeds and impedances, the
 //!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
 //!   the bit on bottom as the set-valued boundary of both fields (the run's
-//!   [`bit_law::Law`] at the step's depth of cut) in place of [`boundary::Bit`];
+//!   [`bit_law::Law`] at the step's depth of cut) in place of [`boundary::BitEnd`];
 //! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
 //!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
 //! * [`controller`]: the controllers and the setpoint;
@@ -42,7 +42,7 @@
 //! * the bit law: the trait [`bit_law::BitRock`], one interface for the laws of the torsional
 //!   field alone and those meeting the axial field too (what a law needs from the axial field
 //!   it declares, [`bit_law::BitRock::AXIAL`]), the laws registered in [`bit_law::Law`];
-//! * the top boundary: [`boundary::TopDrive`] carries out a [`controller::Command`] (a
+//! * the top boundary: [`boundary::TopDriveEnd`] carries out a [`controller::Command`] (a
 //!   controller's, [`controller::Controller::command`], or the measured surface speed's
 //!   [`controller::SpeedSeries`]): a new controller is a new command source;
 //! * the hoist: [`crate::drilling::axial::hoist::Hoist`] gives the axial field's top its

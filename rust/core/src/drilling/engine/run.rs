@@ -7,8 +7,8 @@ use std::f64::consts::PI;
 use serde::Serialize;
 
 use super::axial::Axial;
-use super::boundary::{Bit, TopDrive};
-use super::controller::{Command, Controller, Setpoint, SpeedSeries, RPM_PER_RAD_S};
+use super::boundary::{BitEnd, TopDriveEnd};
+use super::controller::{Command, ControllerState, Setpoint, SpeedSeries, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
 use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
@@ -21,8 +21,8 @@ use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
 use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{
-    lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded, run_warnings, torque_limit_share,
-    torque_limit_verdict, torque_limit_warning, transient_warning, NO_ROTATION,
+    axial_resolution_warning, lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded,
+    run_warnings, torque_limit_share, torque_limit_verdict, torque_limit_warning, transient_warning, NO_ROTATION,
 };
 use crate::drilling::start::{steady_point, InitialState, Wall};
 use crate::error::{Error, Num, Result};
@@ -151,10 +151,10 @@ pub struct Simulation<'c> {
     field: Field,
     wall: WallFriction,
     sources: Sources,
-    top: TopDrive,
-    bit: Bit,
+    top: TopDriveEnd,
+    bit: BitEnd,
     setpoint: Setpoint,
-    control: Controller,
+    control: ControllerState,
     /// `top_drive.mode = "measured_speed"`: the top speed imposed in place of the controller's.
     measured: Option<SpeedSeries>,
     ledger: Ledger,
@@ -182,7 +182,7 @@ impl<'c> Simulation<'c> {
         let field = Field::torsional(&grid, cfg.nonlinearity == Nonlinearity::Consistent);
         let mut wall = WallFriction::torsional(cfg, &grid, &field);
         let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
-        let control = Controller::new(cfg, &grid, first_mode)?;
+        let control = ControllerState::new(cfg, &grid, first_mode)?;
         let mut axial = match &cfg.hoist {
             Some(h) => Some(Axial::new(cfg, &grid, h)?),
             None => None,
@@ -208,8 +208,8 @@ impl<'c> Simulation<'c> {
             coupled_friction,
             cfg,
             sources: Sources::new(cfg, dt),
-            top: TopDrive::new(cfg, dt),
-            bit: Bit::new(cfg),
+            top: TopDriveEnd::new(cfg, dt),
+            bit: BitEnd::new(cfg),
             grid,
             field,
             wall,
@@ -539,7 +539,10 @@ impl<'c> Simulation<'c> {
                 m.verdict_reason = reason.into();
             }
         }
-        if self.axial.is_some() {
+        if let Some(ax) = &self.axial {
+            let sections: Vec<(f64, usize, f64)> =
+                ax.field.sections.iter().map(|s| (s.h * s.cells as f64, s.cells, s.courant)).collect();
+            run.warnings.extend(axial_resolution_warning(&sections));
             run.coupled = coupled_metrics(&run, cfg.bit.radius);
             if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
                 if c.regime == Regime::Undetermined && run.metrics.as_ref().is_some_and(|m| m.verdict == Verdict::No) {
