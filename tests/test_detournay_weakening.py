@@ -35,10 +35,11 @@ def _closed_form(cfg: DrillConfig, rop: float, omega: float) -> tuple[float, flo
     return weight, torque
 
 
-def test_the_example_drills_at_the_closed_form() -> None:
-    cfg = load_drill_config(EXAMPLE).with_overrides(SHORT)
-    weakening = (cfg.bit.weakening.static_friction, cfg.bit.weakening.decay)
-    assert (cfg.bit.law, weakening) == ("detournay_weakening", (0.9, 0.5))
+def test_steady_drilling_is_the_closed_form() -> None:
+    # decay = 1 s/rad: at 30 rpm mu = 0.6 + 0.3 exp(-pi) = 0.613, the steady state holds (the
+    # example's 0.5 s/rad, a steeper fall of the torque with the speed, stick-slips instead)
+    cfg = load_drill_config(EXAMPLE).with_overrides({**SHORT, "bit.weakening.decay": 1.0})
+    assert (cfg.bit.law, cfg.bit.weakening.static_friction) == ("detournay_weakening", 0.9)
     result = drill(cfg)
     assert result.success, result.message
     m = result.coupled_metrics
@@ -48,11 +49,11 @@ def test_the_example_drills_at_the_closed_form() -> None:
     rop = m["rop_mean_m_per_h"] / 3600.0
     weight, torque = _closed_form(cfg, rop, omega)
     assert omega == pytest.approx(math.pi, rel=1e-3)  # the top drive's 30 rpm
-    assert m["wob_mean_N"] == pytest.approx(weight, rel=1e-3)
-    assert m["tob_mean_Nm"] == pytest.approx(torque, rel=1e-3)
-    # the weakened friction at 30 rpm is above the fast one: more torque than the Detournay law's
+    assert m["wob_mean_N"] == pytest.approx(weight, rel=1e-5)
+    assert m["tob_mean_Nm"] == pytest.approx(torque, rel=1e-5)
+    # the weakened friction at 30 rpm is above the fast one: 1 % more torque than the Detournay law's
     plain = drill(cfg.with_overrides({"bit.law": "detournay"}))
-    assert m["tob_mean_Nm"] > plain.coupled_metrics["tob_mean_Nm"] * 1.05
+    assert m["tob_mean_Nm"] > plain.coupled_metrics["tob_mean_Nm"] * 1.005
     assert abs(result.energy["balance_error"]) < 1e-12
 
 
