@@ -81,6 +81,7 @@ __all__ = [
     "StringSection",
     "TopDrive",
     "TorqueDragConfig",
+    "Weakening",
     "Well",
     "config_schema",
     "defaults",
@@ -385,11 +386,16 @@ class Bit:
     """The bit-rock law: ``"velocity_weakening"`` (the default, the torque above at
     ``weight_on_bit``, torsion only), ``"detournay"`` (the Detournay law of ``detournay`` with the
     depth of cut per revolution ``2 pi v / omega`` of the bit's speeds) or ``"rgd"`` (the same law
-    with the regenerative depth of cut, one blade pass back). ``detournay`` and ``rgd`` need a
-    :class:`Hoist` (the coupled axial-torsional run) and the reverse."""
+    with the regenerative depth of cut, one blade pass back) or ``"detournay_weakening"`` (the
+    Detournay law of the rate form with the wear flats' friction falling with the bit's speed,
+    :class:`Weakening`). The laws but ``velocity_weakening`` need a :class:`Hoist` (the coupled
+    axial-torsional run) and the reverse."""
     detournay: Detournay = field(default_factory=lambda: Detournay(),
                                  metadata={"kind": "table", "unit": "", "doc": ""})
     """The Detournay law's rock and bit parameters (the radius is ``radius``)."""
+    weakening: Weakening = field(default_factory=lambda: Weakening(),
+                                 metadata={"kind": "table", "unit": "", "doc": ""})
+    """The wear flats' velocity weakening of ``law = "detournay_weakening"``."""
     bha_mass: float = _default("bit", "bha_mass", unit="kg", kind="float")
     """Lumped mass at the bit on the axial field of a coupled run, kg (0: none): its inertia and
     its buoyed weight along the hole, carried by the string's initial static tension."""
@@ -422,6 +428,19 @@ class Detournay:
     ``cut_surface_cells`` cells)."""
     cut_surface_cells: int = _default("bit.detournay", "cut_surface_cells", unit="", kind="int")
     """Cells of the ``upwind`` cut surface over one blade angle."""
+
+
+@dataclass(frozen=True)
+class Weakening:
+    """The wear flats' friction of ``bit.law = "detournay_weakening"``, falling with the bit's
+    speed ``w``: ``mu(w) = mu + (mu_0 - mu) exp(-decay |w|)``, ``mu`` the kinetic
+    ``bit.detournay.friction`` (Detournay & Defourny 1992 with the velocity weakening of
+    Navarro-Lopez & Cortes 2007)."""
+
+    static_friction: float = _default("bit.weakening", "static_friction", unit="", kind="float")
+    """Friction coefficient mu_0 of a bit at rest, at least ``bit.detournay.friction``."""
+    decay: float = _default("bit.weakening", "decay", unit="s/rad", kind="float")
+    """Rate of the friction's fall with the bit's speed, s/rad."""
 
 
 @dataclass(frozen=True)
@@ -799,7 +818,7 @@ def _plain(value: Any) -> Any:
     return value
 
 
-_TABLES.update(detournay=Detournay, hoist=Hoist)
+_TABLES.update(detournay=Detournay, weakening=Weakening, hoist=Hoist)
 _TABLES.update(autodriller=Autodriller)
 _TABLES.update(well=Well, friction=Friction, top_drive=TopDrive, controller=Controller, bit=Bit, numerics=Numerics,
                metrics=MetricsConfig, torque_drag=TorqueDragConfig)

@@ -18,8 +18,9 @@
 //! * [`config`]: [`DrillConfig`] (JSON, defaults, validation with dotted field names, limits);
 //! * [`grid`]: section properties, the time step and cells, the friction limit, the string's
 //!   first natural frequency, the break-off torque and the minimum cycle torque it implies;
-//! * [`bit`]: the bit-rock torque law (Navarro-Lopez & Cortes 2007), shared by the string's bit
-//!   and the lumped model;
+//! * [`bit`]: the velocity-weakening bit-rock torque law (Navarro-Lopez & Cortes 2007), shared
+//!   by the string's bit and the lumped model (the bit laws' interface and registry:
+//!   [`engine::bit_law`]);
 //! * [`engine`]: the time stepping as composable parts: the field, the transport kernel, the
 //!   boundaries (top drive, bit), the sources, the controllers, the output sampler, the energy
 //!   ledger and the run loop;
@@ -41,7 +42,7 @@
 //!   with a true stick phase, its steady rotations and their stability.
 //! * [`axial`]: the bit on bottom as parts (axial section properties and statics, the Detournay
 //!   bit-rock law and MSE, the regenerative cut surface, the set-valued bit boundary, the hoist
-//!   and autodriller), not yet wired into [`solver`].
+//!   and autodriller), assembled by [`engine::axial_field`] into a coupled run (`[hoist]`).
 
 pub mod axial;
 pub mod bit;

@@ -29,6 +29,7 @@ use super::axial::bitrock::{DetournayBit, SteadyDrilling};
 use super::axial::section::AxialSection;
 use super::config::DrillConfig;
 use super::config::{AutodrillerTarget, HoistMode};
+use super::engine::bit_law::Law;
 use super::grid::Grid;
 use crate::error::{Error, Num, Result};
 
@@ -222,7 +223,10 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
             ),
         ));
     }
-    Ok(SteadyPoint { omega, rop, bit: law.steady_state(rop, omega) })
+    let Some((bit, _)) = Law::new(cfg).steady(rop, omega) else {
+        return Err(Error::invalid(FIELD, "\"steady\"", "\"rest\" for a bit law without a steady drilling state"));
+    };
+    Ok(SteadyPoint { omega, rop, bit })
 }
 
 #[cfg(test)]

@@ -52,7 +52,9 @@
 
 use serde::Serialize;
 
-use super::bitrock::DetournayBit;
+use super::bitrock::{DetournayBit, SteadyDrilling};
+use crate::drilling::engine::bit_law::{AxialNeed, BitEnds, BitRock};
+use crate::drilling::engine::boundary::EndLine;
 
 /// One field's end at the bit: `speed = free_speed - load / impedance`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,6 +80,13 @@ impl Port {
     pub fn lumped(incoming: f64, impedance: f64, inertia: f64, previous_speed: f64, dt: f64, applied: f64) -> Port {
         let z = impedance + inertia / dt;
         Port { free_speed: (inertia * previous_speed / dt + impedance * incoming + applied) / z, impedance: z }
+    }
+
+    /// The end of a momentum balance's line [`EndLine`] (`(I / dt + Z) w' = I w / dt + Z alpha -
+    /// load`): [`Port::lumped`] with no applied load, to the same bits.
+    #[inline]
+    pub fn of_line(line: EndLine) -> Port {
+        Port { free_speed: (line.drive + 0.0) / line.denom, impedance: line.denom }
     }
 
     /// The speed under the load `load`.
@@ -124,6 +133,21 @@ pub struct BitContact {
 }
 
 impl BitContact {
+    /// A law of the torsional field alone: the angular speed and torque in `phase`, no axial
+    /// speed nor weight.
+    #[inline]
+    pub fn torsional(angular_speed: f64, torque_on_bit: f64, phase: BitPhase) -> Self {
+        BitContact {
+            axial_speed: 0.0,
+            angular_speed,
+            weight_on_bit: 0.0,
+            torque_on_bit,
+            contact_weight: 0.0,
+            contact_torque: 0.0,
+            phase,
+        }
+    }
+
     /// The power into the rock, `W v + T omega`, W.
     pub fn power(&self) -> f64 {
         self.weight_on_bit * self.axial_speed + self.torque_on_bit * self.angular_speed
@@ -177,6 +201,36 @@ pub fn solve_bit(law: &DetournayBit, axial: Port, torsion: Port, depth: f64) -> 
             contact_torque: 0.0,
             phase: BitPhase::Stick,
         }
+    }
+}
+
+impl BitRock for DetournayBit {
+    const AXIAL: AxialNeed = AxialNeed::DepthOfCut;
+
+    /// [`solve_bit`] at the ends' depth of cut (lift-off without an axial end).
+    #[inline]
+    fn resolve(&self, ends: &BitEnds) -> BitContact {
+        let torsion = Port::of_line(ends.torsion);
+        match ends.axial {
+            Some(a) => solve_bit(self, a.port, torsion, a.depth),
+            None => solve_bit(self, Port::string(0.0, 1.0), torsion, f64::NAN),
+        }
+    }
+
+    /// [`DetournayBit::steady_state`], the wear flats' contact fully mobilised.
+    fn steady(&self, rop: f64, omega: f64) -> Option<(SteadyDrilling, BitContact)> {
+        let s = self.steady_state(rop, omega);
+        let wf = self.contact_weight();
+        let contact = BitContact {
+            axial_speed: rop,
+            angular_speed: omega,
+            weight_on_bit: s.weight_on_bit,
+            torque_on_bit: s.torque_on_bit,
+            contact_weight: wf,
+            contact_torque: self.contact_torque(wf),
+            phase: BitPhase::Cutting,
+        };
+        Some((s, contact))
     }
 }
 

@@ -7,6 +7,7 @@ use crate::error::Result;
 use crate::metrics::STICK_SPEED;
 
 use super::super::axial::bitrock::DetournayBit;
+pub use super::super::engine::bit_law::weakening::Weakening;
 use super::{bit_size_conflict, nonneg, pos, within, DrillConfig};
 
 /// The bit: off bottom (free end or a lumped BHA inertia) or on bottom (Navarro-Lopez torque).
@@ -44,11 +45,15 @@ pub struct Bit {
     /// on bit `weight_on_bit`, torsion only), `detournay` (the Detournay cutting + contact law of
     /// `bit.detournay` with the depth of cut per revolution `2 pi v / omega` of the bit's speeds)
     /// or `rgd` (the same law with the regenerative depth of cut, the bit's position one blade
-    /// pass back). `detournay` and `rgd` need a `[hoist]` table and the reverse.
+    /// pass back), or `detournay_weakening` (the `detournay` law with the wear flats' friction
+    /// falling with the bit's speed, `bit.weakening`). The laws but `velocity_weakening` need a
+    /// `[hoist]` table and the reverse.
     #[schemars(extend("label" = "bit-rock law"))]
     pub law: BitRockLaw,
     #[schemars(extend("label" = "Detournay bit law"))]
     pub detournay: Detournay,
+    #[schemars(extend("label" = "wear-flat friction weakening"))]
+    pub weakening: Weakening,
     /// Lumped mass at the bit on the axial field of a coupled run (`[hoist]`), >= 0 (0: none,
     /// the string's end alone): its inertia and its buoyed weight along the hole (the density of
     /// the last section), which the string carries in the initial static tension.
@@ -66,6 +71,15 @@ pub enum BitRockLaw {
     Detournay,
     /// The Detournay law with the regenerative depth of cut (Richard, Germay & Detournay 2007).
     Rgd,
+    /// The Detournay law (rate form) with the wear flats' friction falling with the bit's speed.
+    DetournayWeakening,
+}
+
+impl BitRockLaw {
+    /// The law's name in the configuration (`bit.law`).
+    pub fn name(self) -> String {
+        serde_json::to_value(self).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default()
+    }
 }
 
 /// The Detournay cutting + frictional-contact law (`bit.law` `detournay` or `rgd`; Richard,
@@ -171,6 +185,7 @@ impl Default for Bit {
             bha_inertia: 0.0,
             law: BitRockLaw::VelocityWeakening,
             detournay: Detournay::default(),
+            weakening: Weakening::default(),
             bha_mass: 0.0,
         }
     }

@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Num, Result};
 
-use super::{finite, nonneg, BitRockLaw, DrillConfig, MAX_CUT_SURFACE_CELLS};
+use super::super::engine::bit_law;
+use super::{finite, nonneg, DrillConfig, MAX_CUT_SURFACE_CELLS};
 
 /// What the hoist imposes at the top of the axial field (`hoist.mode`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -190,12 +191,13 @@ impl DrillConfig {
     /// The coupled run's keys: `bit.law` `detournay` or `rgd` with a `[hoist]` table and the
     /// reverse, the Detournay law's and the hoist's ranges.
     pub(super) fn validate_coupled(&self) -> Result<()> {
-        let coupled = self.bit.law != BitRockLaw::VelocityWeakening;
+        // (whether the law needs the axial field, as the law declares it)
+        let coupled = bit_law::axial_need(self.bit.law) == bit_law::AxialNeed::DepthOfCut;
         match (&self.hoist, coupled) {
             (None, true) => {
                 return Err(Error::invalid(
                     "bit.law",
-                    if self.bit.law == BitRockLaw::Rgd { "rgd" } else { "detournay" },
+                    self.bit.law.name(),
                     "velocity_weakening without a [hoist] table (detournay and rgd need the hoist's axial field)",
                 ))
             }
@@ -212,7 +214,7 @@ impl DrillConfig {
             // the velocity-weakening law's keys: a coupled bit meets the rock through the hoist
             return Err(Error::invalid(
                 "bit.on_bottom",
-                format!("true with bit.law = {}", if self.bit.law == BitRockLaw::Rgd { "rgd" } else { "detournay" }),
+                format!("true with bit.law = {}", self.bit.law.name()),
                 "false (a coupled run's bit reaches the rock through the [hoist] table: hoist.weight_on_bit, \
                  hoist.speed or hoist.hook_load; bit.on_bottom and bit.weight_on_bit belong to the velocity-weakening law)",
             ));
@@ -223,7 +225,7 @@ impl DrillConfig {
             nonneg("hoist.weight_on_bit", h.weight_on_bit, "N")?;
             nonneg("hoist.ramp_time", h.ramp_time, "s")?;
             h.validate("hoist")?;
-            self.bit.detournay.law(self.bit.radius).validate("bit.detournay")?;
+            bit_law::validate(self)?;
             let cells = self.bit.detournay.cut_surface_cells;
             if !(1..=MAX_CUT_SURFACE_CELLS).contains(&cells) {
                 return Err(Error::invalid(

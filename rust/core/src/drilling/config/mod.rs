@@ -29,7 +29,7 @@ use crate::error::{Error, Num, Result};
 
 use super::grid::Grid;
 
-pub use bit::{Bit, BitRockLaw, CutSurfaceScheme, Detournay, MAX_CUT_SURFACE_CELLS};
+pub use bit::{Bit, BitRockLaw, CutSurfaceScheme, Detournay, Weakening, MAX_CUT_SURFACE_CELLS};
 pub use friction::{Contact, Friction, FrictionCoupling, FrictionInterval, FrictionModel};
 pub use hoist::{Autodriller, AutodrillerTarget, Hoist, HoistMode};
 pub use metrics::MetricsConfig;

@@ -35,13 +35,14 @@
 
 use std::f64::consts::TAU;
 
-use super::boundary::Arriving;
+use super::bit_law::{AxialEnd, BitEnds, Law};
+use super::boundary::{Arriving, EndLine};
 use super::energy::Ledger;
 use super::field::{Field, FieldSection};
 use super::kernel::transport;
+use super::sampler::{Channel, Point};
 use super::sources::Sources;
-use crate::drilling::axial::bit_boundary::{solve_bit, BitContact, BitPhase, Port};
-use crate::drilling::axial::bitrock::DetournayBit;
+use crate::drilling::axial::bit_boundary::{BitContact, BitPhase, Port};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
 use crate::drilling::axial::hoist::{HoistCommand, HoistMeasurement, HoistState};
 use crate::drilling::axial::section::{static_tension, AxialSection};
@@ -50,6 +51,21 @@ use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
 use crate::drilling::grid::Grid;
 use crate::drilling::well;
 use crate::error::{Error, Num, Result};
+
+/// The bit's axial speed, m/s (down positive).
+pub const BIT_AXIAL_SPEED: Channel = Channel { column: 5, held: false };
+/// The rate of penetration, m/h.
+pub const ROP: Channel = Channel { column: 6, held: false };
+/// The weight on bit of the step, N.
+pub const WEIGHT_ON_BIT: Channel = Channel { column: 7, held: true };
+/// The hook load, N.
+pub const HOOK_LOAD: Channel = Channel { column: 8, held: false };
+/// The bit's depth below its start, m.
+pub const BIT_DEPTH: Channel = Channel { column: 9, held: false };
+/// The depth of cut per revolution the bit law used in the step, m (0 when infinite).
+pub const DEPTH_OF_CUT: Channel = Channel { column: 10, held: true };
+/// A coupled run's channels of the series ([`super::sampler`]; 0 without a hoist).
+pub const CHANNELS: [Channel; 6] = [BIT_AXIAL_SPEED, ROP, WEIGHT_ON_BIT, HOOK_LOAD, BIT_DEPTH, DEPTH_OF_CUT];
 
 /// How the depth of cut of a step is found.
 enum DepthOfCut {
@@ -87,7 +103,10 @@ pub struct Axial {
     /// Each cell's work of the buoyed weight in a step (summed in lanes).
     gravity_work: Vec<f64>,
     hoist: HoistState,
-    law: DetournayBit,
+    /// The bit law ([`super::bit_law`], one that needs the axial field) and its blades (the
+    /// depth of cut of one blade pass, `bit.detournay.blades`).
+    law: Law,
+    blades: u32,
     rule: DepthOfCut,
     angle: f64,
     /// The rate form's depth of cut in the last step that began with the bit turning (0 at the
@@ -184,13 +203,14 @@ impl Axial {
         // tension at the top and the travelling block's weight (`torque_drag.block_weight`).
         let block_weight = cfg.torque_drag.block_weight;
         let initial = if params.mode == HoistMode::HookLoad { hanging + block_weight } else { 0.0 };
-        let law = cfg.bit.detournay.law(cfg.bit.radius);
+        let law = Law::new(cfg);
+        let blades = cfg.bit.detournay.blades;
         let rule = match (cfg.bit.law, cfg.bit.detournay.cut_surface) {
             (BitRockLaw::Rgd, CutSurfaceScheme::ExactDelay) => {
-                DepthOfCut::Regenerative(CutSurface::steady(law.blades, SurfaceRule::Deepest, 0.0, 0.0, 0.0))
+                DepthOfCut::Regenerative(CutSurface::steady(blades, SurfaceRule::Deepest, 0.0, 0.0, 0.0))
             }
             (BitRockLaw::Rgd, CutSurfaceScheme::Upwind) => {
-                DepthOfCut::Upwind(UpwindCutSurface::new(law.blades, cfg.bit.detournay.cut_surface_cells as usize, 0.0))
+                DepthOfCut::Upwind(UpwindCutSurface::new(blades, cfg.bit.detournay.cut_surface_cells as usize, 0.0))
             }
             _ => DepthOfCut::Rate,
         };
@@ -202,6 +222,7 @@ impl Axial {
             gravity,
             hoist: HoistState::new(params, initial).hanging(hanging),
             law,
+            blades,
             rule,
             angle: 0.0,
             turning_depth: 0.0,
@@ -282,11 +303,6 @@ impl Axial {
         }
     }
 
-    /// The Detournay law of the run.
-    pub fn law(&self) -> &DetournayBit {
-        &self.law
-    }
-
     /// The hoist's end for a step of `dt`: sets the top ghost, books the hoist's work.
     pub fn top(&mut self, dt: f64, ledger: &mut Ledger) {
         let arriving = self.field.arriving_top();
@@ -318,15 +334,14 @@ impl Axial {
         } else {
             Port::string(arriving.value, arriving.impedance)
         };
-        let turning = Port::lumped(torsion.value, torsion.impedance, inertia, omega, dt, 0.0);
+        let turning = EndLine::new(inertia, omega, dt, torsion);
         let depth = match &self.rule {
             DepthOfCut::Rate => rate_depth(&self.law, axial, turning, omega, self.turning_depth),
-            DepthOfCut::Regenerative(s) => {
-                f64::from(self.law.blades) * s.depth_per_blade(self.angle, self.state.position)
-            }
-            DepthOfCut::Upwind(s) => f64::from(self.law.blades) * s.depth_per_blade(),
+            DepthOfCut::Regenerative(s) => f64::from(self.blades) * s.depth_per_blade(self.angle, self.state.position),
+            DepthOfCut::Upwind(s) => f64::from(self.blades) * s.depth_per_blade(),
         };
-        let mut c = solve_bit(&self.law, axial, turning, depth);
+        let mut c =
+            self.law.resolve(&BitEnds { torsion: turning, omega, axial: Some(AxialEnd { port: axial, depth }) });
         ledger.bit += dt * c.power();
         let w1 = c.angular_speed;
         let stop = 0.5 * inertia * (w1 - omega) * (w1 - omega);
@@ -375,6 +390,17 @@ impl Axial {
         (w1, c.torque_on_bit)
     }
 
+    /// Sets the axial channels of `point` ([`CHANNELS`]) after a step.
+    pub fn sample(&self, point: &mut Point) {
+        let s = &self.state;
+        point[BIT_AXIAL_SPEED] = s.contact.axial_speed;
+        point[ROP] = s.rop * 3600.0;
+        point[WEIGHT_ON_BIT] = s.contact.weight_on_bit;
+        point[HOOK_LOAD] = s.hook_load;
+        point[BIT_DEPTH] = s.position;
+        point[DEPTH_OF_CUT] = if s.depth.is_finite() { s.depth } else { 0.0 };
+    }
+
     /// The cells over a step: the transport with damping, then the buoyed weight.
     pub fn cells(&mut self, ledger: &mut Ledger) {
         let Field { sections, alpha, beta, alpha_next, beta_next, .. } = &mut self.field;
@@ -408,14 +434,14 @@ impl Axial {
 }
 
 /// The depth of cut per revolution of the rate form, m: for a bit turning at `omega > 0` at the
-/// step start, the root of `d = 2 pi v'(d) / omega` with `v'(d)` the axial speed [`solve_bit`]
-/// gives at `d` (implicit in the axial speed: the law's `dW/dv = 2 pi a zeta eps / omega` is far
+/// step start, the root of `d = 2 pi v'(d) / omega` with `v'(d)` the axial speed the law `law`
+/// gives at `d` on the ends `axial` and `torsion` (implicit in the axial speed: the law's `dW/dv = 2 pi a zeta eps / omega` is far
 /// stiffer than the string's impedance, and an explicit `v` diverges), found by bisection
 /// between `0+` and `2 pi v_free / omega` (`v'` falls as `d` grows); a bit pressed but held at
 /// `v' = 0` by the contact gets the least positive depth (contact, no cutting). A bit rising
 /// unloaded (`v_free < 0`) is off the rock (`-inf`). A bit not turning: the depth of the last
 /// step it turned in, `last` (at least `0+`: the torque that breaks it free is the law's there).
-pub fn rate_depth(law: &DetournayBit, axial: Port, torsion: Port, omega: f64, last: f64) -> f64 {
+pub fn rate_depth(law: &Law, axial: Port, torsion: EndLine, omega: f64, last: f64) -> f64 {
     if axial.free_speed < 0.0 {
         return f64::NEG_INFINITY;
     }
@@ -423,7 +449,8 @@ pub fn rate_depth(law: &DetournayBit, axial: Port, torsion: Port, omega: f64, la
     if omega <= 0.0 {
         return last.max(least);
     }
-    let speed = |d: f64| solve_bit(law, axial, torsion, d).axial_speed;
+    let speed =
+        |d: f64| law.resolve(&BitEnds { torsion, omega, axial: Some(AxialEnd { port: axial, depth: d }) }).axial_speed;
     let (mut lo, mut hi) = (least, TAU * axial.free_speed / omega);
     if hi <= lo || TAU * speed(lo) / omega <= lo {
         return least;

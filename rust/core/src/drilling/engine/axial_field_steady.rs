@@ -1,13 +1,12 @@
 //! The axial field in steady drilling ([`crate::drilling::start`]): `Axial::set_steady`.
 
 use super::{Axial, DepthOfCut};
-use crate::drilling::axial::bit_boundary::{BitContact, BitPhase};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
 use crate::drilling::axial::section::{static_tension, AxialSection};
 use crate::drilling::config::DrillConfig;
 use crate::drilling::config::{AutodrillerTarget, HoistMode};
 use crate::drilling::start::{SteadyPoint, Wall};
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 impl Axial {
     /// Sets the field, the bit and the hoist in the steady drilling state `s` of `cfg` with the
@@ -34,21 +33,19 @@ impl Axial {
             }
         }
         let top = static_tension(&parts, mud, g, &inc, w, &[0.0])[0] - wall.axial_resistance_below(0.0, s.rop, s.omega);
-        let wf = self.law.contact_weight();
-        self.state.contact = BitContact {
-            axial_speed: s.rop,
-            angular_speed: s.omega,
-            weight_on_bit: s.bit.weight_on_bit,
-            torque_on_bit: s.bit.torque_on_bit,
-            contact_weight: wf,
-            contact_torque: self.law.contact_torque(wf),
-            phase: BitPhase::Cutting,
+        let Some((_, contact)) = self.law.steady(s.rop, s.omega) else {
+            return Err(Error::invalid(
+                "numerics.initial_state",
+                "\"steady\"",
+                "\"rest\" for a bit law without a steady drilling state",
+            ));
         };
+        self.state.contact = contact;
         self.state.depth = s.bit.depth;
         self.state.rop = s.rop;
         self.state.hook_load = top + self.block_weight;
         self.turning_depth = s.bit.depth;
-        let blades = self.law.blades;
+        let blades = self.blades;
         match &mut self.rule {
             DepthOfCut::Regenerative(c) => *c = CutSurface::steady(blades, SurfaceRule::Deepest, 0.0, 0.0, s.bit.depth),
             DepthOfCut::Upwind(u) => *u = UpwindCutSurface::new(blades, u.cells(), s.bit.depth),

@@ -10,15 +10,14 @@
 //!   [`Command`] within its torque limit and speed-loop lag, or is given its speed
 //!   ([`Command::Imposed`], a measured surface speed) with the torque that imposes it
 //!   ([`imposing_torque`]);
-//! * bottom: [`BitEnd`], the BHA inertia with a [`BitLaw`]: a free end, or the velocity-weakening
-//!   bit torque of [`crate::drilling::bit`] with its stick phase.
-//!
-//! A law coupling two fields at the bit meets two lines at once (see [`super`], "A coupled bit
-//! law").
+//! * bottom: [`BitEnd`], the BHA inertia with a bit law of the torsional field alone
+//!   ([`super::bit_law`]: a free end, or the velocity-weakening bit torque of
+//!   [`crate::drilling::bit`] with its stick phase); a law that needs the axial field meets
+//!   both fields' lines at once in [`super::axial`].
 
+use super::bit_law::{BitEnds, Law};
 use super::controller::Command;
 use super::energy::Ledger;
-use crate::drilling::bit::slip_torque;
 use crate::drilling::config::DrillConfig;
 
 /// The characteristic arriving at an end and the impedance it travels with.
@@ -116,79 +115,18 @@ impl TopDriveEnd {
     }
 }
 
-/// The law at the bit of the torsional field.
-#[derive(Debug, Clone, Copy)]
-pub enum BitLaw {
-    /// No torque (off bottom, or no weight on bit).
-    Free,
-    /// The Navarro-Lopez velocity-weakening torque `W r mu(|w|) sign(w)` ([`slip_torque`])
-    /// with a stick phase: below `stick_speed`, or when the slip torque would reverse the bit,
-    /// the torque that stops it in this step if within `W r mu_s`, else `W r mu_s`.
-    VelocityWeakening { weight_radius: f64, mu_static: f64, mu_kinetic: f64, decay: f64, stick_speed: f64 },
-}
-
-impl BitLaw {
-    /// The law of a configuration's bit.
-    pub fn new(cfg: &DrillConfig) -> Self {
-        let b = &cfg.bit;
-        if b.on_bottom && b.weight_on_bit > 0.0 {
-            BitLaw::VelocityWeakening {
-                weight_radius: b.weight_on_bit * b.radius,
-                mu_static: b.mu_static,
-                mu_kinetic: b.mu_kinetic,
-                decay: b.decay,
-                stick_speed: b.stick_speed,
-            }
-        } else {
-            BitLaw::Free
-        }
-    }
-
-    /// The bit's new speed and torque on the line `line`, from the speed `w` at the step start.
-    #[inline]
-    pub fn resolve(&self, line: EndLine, w: f64) -> (f64, f64) {
-        match *self {
-            BitLaw::Free => (line.drive / line.denom, 0.0),
-            BitLaw::VelocityWeakening { weight_radius: wr, mu_static, mu_kinetic, decay, stick_speed } => {
-                // Stick: the torque that stops the bit in this step, if within the static limit.
-                let stick = || {
-                    let hold = wr * mu_static;
-                    if line.drive.abs() <= hold {
-                        (0.0, line.drive)
-                    } else {
-                        let tb = hold.copysign(line.drive);
-                        (line.speed(tb), tb)
-                    }
-                };
-                if w.abs() < stick_speed {
-                    stick()
-                } else {
-                    let tb = slip_torque(wr, mu_static, mu_kinetic, decay, w);
-                    let w1 = line.speed(tb);
-                    // A slip torque that would reverse the bit stops it instead (set-valued at 0).
-                    if w1 * w < 0.0 {
-                        stick()
-                    } else {
-                        (w1, tb)
-                    }
-                }
-            }
-        }
-    }
-}
-
 /// The bit: the BHA inertia and its law.
 #[derive(Debug, Clone, Copy)]
 pub struct BitEnd {
     /// rad/s.
     pub omega: f64,
     pub inertia: f64,
-    pub law: BitLaw,
+    pub law: Law,
 }
 
 impl BitEnd {
     pub fn new(cfg: &DrillConfig) -> Self {
-        BitEnd { omega: 0.0, inertia: cfg.bit.bha_inertia, law: BitLaw::new(cfg) }
+        BitEnd { omega: 0.0, inertia: cfg.bit.bha_inertia, law: Law::new(cfg) }
     }
 
     /// One step against `arriving`: returns the new bit speed and the bit torque, and books
@@ -197,7 +135,9 @@ impl BitEnd {
     #[inline]
     pub fn step(&mut self, arriving: Arriving, dt: f64, ledger: &mut Ledger) -> (f64, f64) {
         let (ib, wb) = (self.inertia, self.omega);
-        let (wb1, tbit) = self.law.resolve(EndLine::new(ib, wb, dt, arriving), wb);
+        let ends = BitEnds { torsion: EndLine::new(ib, wb, dt, arriving), omega: wb, axial: None };
+        let c = self.law.resolve(&ends);
+        let (wb1, tbit) = (c.angular_speed, c.torque_on_bit);
         ledger.bit += dt * tbit * wb1;
         let stop = 0.5 * ib * (wb1 - wb) * (wb1 - wb);
         if wb1 == 0.0 && tbit != 0.0 {

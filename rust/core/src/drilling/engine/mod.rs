@@ -13,13 +13,14 @@
 //!   each;
 //! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
 //!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDriveEnd`]) carrying out a
-//!   controller's command, the bit ([`boundary::BitEnd`]) with its law ([`boundary::BitLaw`]:
-//!   free end or the velocity-weakening torque with a stick phase);
+//!   controller's command, the bit ([`boundary::BitEnd`]) with a law of the torsional field alone;
+//! * [`bit_law`]: the bit law's interface, [`bit_law::BitRock`], one for the laws of the
+//!   torsional field alone and those that meet the axial field too, and the laws registered;
 //! * [`axial_field`]: a coupled run's axial field (`[hoist]` with `bit.law` `detournay` or `rgd`): the
 //!   same [`field::Field`] and [`kernel`] with the axial sections' speeds and impedances, the
 //!   buoyed weight as a source, the static tension as the initial state, the hoist at the top and
-//!   the bit on bottom as the set-valued boundary of both fields
-//!   ([`crate::drilling::axial::bit_boundary::solve_bit`]) in place of [`boundary::BitEnd`];
+//!   the bit on bottom as the set-valued boundary of both fields (the run's
+//!   [`bit_law::Law`] at the step's depth of cut) in place of [`boundary::BitEnd`];
 //! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
 //!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
 //! * [`controller`]: the controllers and the setpoint;
@@ -33,33 +34,24 @@
 //! neighbouring cells), then the kernel over every section's cells, whose energy terms go to
 //! the ledger.
 //!
-//! # A coupled bit law (the interface to come)
+//! # The seams
 //!
-//! Every end is a (set-valued) law between the end's speed `w'` and the load it takes,
-//! meeting the end's momentum balance with the arriving characteristic folded in,
-//! [`boundary::EndLine`]: `(I / dt + Z) w' = I w / dt + Z value - load`. A bit-rock law that
-//! couples the axial and the torsional field (depth of cut: weight and torque on bit from both
-//! fields) meets two such lines at once:
+//! What the run composes, and where a new one plugs in (dispatched once per step, outside the
+//! cell loops; the kernels are plain functions over slices):
 //!
-//! ```text
-//! trait CoupledBitLaw {
-//!     /// The bit's axial speed v' and weight on bit W, its angular speed w' and torque T for
-//!     /// the step, from the axial line (I_a / dt + Z_a) v' = drive_a - W and the torsional
-//!     /// line (I_t / dt + Z_t) w' = drive_t - T, at the state at the step start.
-//!     fn resolve(&mut self, axial: EndLine, torsional: EndLine, state: &BitState) -> [End; 2];
-//!     /// After the step: the law's own state (the cut surface or the delayed bit position,
-//!     /// the depth of cut), advanced with the resolved speeds.
-//!     fn advance(&mut self, ends: &[End; 2], dt: f64);
-//! }
-//! ```
-//!
-//! with `End { speed, load }`. The phases are set-valued as in [`boundary::BitLaw`]: contact
-//! (cutting plus frictional contact), torsional stick (`w' = 0`, `T` the torque that holds it
-//! within the static limit) and lift-off (`W = 0`, `T = 0`, the bit free on both lines). The
-//! run resolves it where it now calls [`boundary::BitEnd::step`], sets each field's bottom ghost
-//! from its `End` ([`field::Field::set_bottom`]) and books `dt (W v' + T w')` as bit work. A
-//! second field is a second [`field::Field`] advanced by the same [`kernel`] and its own
-//! sources; a coupled wall friction a source over both fields' transported speeds.
+//! * the bit law: the trait [`bit_law::BitRock`], one interface for the laws of the torsional
+//!   field alone and those meeting the axial field too (what a law needs from the axial field
+//!   it declares, [`bit_law::BitRock::AXIAL`]), the laws registered in [`bit_law::Law`];
+//! * the top boundary: [`boundary::TopDriveEnd`] carries out a [`controller::Command`] (a
+//!   controller's, [`controller::Controller::command`], or the measured surface speed's
+//!   [`controller::SpeedSeries`]): a new controller is a new command source;
+//! * the hoist: [`crate::drilling::axial::hoist::Hoist`] gives the axial field's top its
+//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial::Axial::top`]);
+//! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
+//!   stick phase) inside the kernels, the buoyed weight in [`axial_field`] after the axial transport,
+//!   a wall friction on both fields in [`coupled_friction`] after both transports;
+//! * the output series: named channels ([`sampler::Channel`]) each part declares where it is
+//!   ([`sampler::TORSIONAL`], [`axial_field::CHANNELS`]).
 //!
 //! # The scheme
 //!
@@ -170,6 +162,7 @@
 //! energy to `bha`, its weight's work to `gravity_work`.
 
 pub mod axial_field;
+pub mod bit_law;
 pub mod boundary;
 pub mod controller;
 pub mod coupled_friction;

@@ -14,7 +14,7 @@ use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
 use super::kernel::{godunov, transport};
 use super::kernel_published::transport as published;
-use super::sampler::Sampler;
+use super::sampler::{Point, Sampler, BIT_SPEED, BIT_TORQUE, MOTOR_TORQUE, TIME, TOP_SPEED};
 use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
@@ -480,14 +480,7 @@ impl<'c> Simulation<'c> {
             run.message = oom.outputs_message();
             return run;
         }
-        if !sampler.start(
-            &self.field,
-            self.axial.as_ref(),
-            &mut run,
-            self.top.omega,
-            self.bit_speed(),
-            self.axial_point(),
-        ) {
+        if !sampler.start(&self.field, self.axial.as_ref(), &mut run, self.sample(0.0, f64::NAN, f64::NAN)) {
             run.status = Status::NonFinite;
             run.message = "the initial state is not finite".into();
             return run;
@@ -518,8 +511,7 @@ impl<'c> Simulation<'c> {
                 break;
             }
             run.stats.steps = n + 1;
-            let [a0, a1, a2, a3, a4, a5] = self.axial_point();
-            let point = [t, top, self.bit_speed(), motor, bit, a0, a1, a2, a3, a4, a5];
+            let point = self.sample(t, motor, bit);
             if !sampler.record(n, point, &self.field, self.axial.as_ref(), &mut run, dt) {
                 run.status = Status::NonFinite;
                 run.message = format!("the state became non-finite before t = {} s", Num(t));
@@ -551,7 +543,7 @@ impl<'c> Simulation<'c> {
             let sections: Vec<(f64, usize, f64)> =
                 ax.field.sections.iter().map(|s| (s.h * s.cells as f64, s.cells, s.courant)).collect();
             run.warnings.extend(axial_resolution_warning(&sections));
-            run.coupled = coupled_metrics(&run, ax.law().radius);
+            run.coupled = coupled_metrics(&run, cfg.bit.radius);
             if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
                 if c.regime == Regime::Undetermined
                     && run.metrics.as_ref().is_some_and(|m| m.stick_slip_verdict == Verdict::No)
@@ -583,13 +575,20 @@ impl<'c> Simulation<'c> {
         run
     }
 
-    /// The axial series' values after a step (zeros without a hoist): bit axial speed m/s, ROP
-    /// m/h, WOB N, hook load N, bit depth m, depth of cut m (0 when infinite).
-    fn axial_point(&self) -> [f64; 6] {
-        let Some(ax) = &self.axial else { return [0.0; 6] };
-        let s = &ax.state;
-        let depth = if s.depth.is_finite() { s.depth } else { 0.0 };
-        [s.contact.axial_speed, s.rop * 3600.0, s.contact.weight_on_bit, s.hook_load, s.position, depth]
+    /// The series' values at `t` after a step with the motor and bit torques `motor` and `bit`
+    /// ([`super::sampler`]'s channels; a coupled run's from [`Axial::sample`], zeros without a
+    /// hoist).
+    fn sample(&self, t: f64, motor: f64, bit: f64) -> Point {
+        let mut point = Point::default();
+        point[TIME] = t;
+        point[TOP_SPEED] = self.top.omega;
+        point[BIT_SPEED] = self.bit_speed();
+        point[MOTOR_TORQUE] = motor;
+        point[BIT_TORQUE] = bit;
+        if let Some(ax) = &self.axial {
+            ax.sample(&mut point);
+        }
+        point
     }
 
     /// `consistent`: the largest tangent Courant number met, with a note when above 1.

@@ -2,17 +2,64 @@
 //! ends around each sample time, and the field snapshots at the step nearest to
 //! `k field_interval`; storage reserved up front ([`crate::solution::reserve_outputs`]).
 
-use super::axial_field::Axial;
+use super::axial_field::{self, Axial, CHANNELS as AXIAL};
 use super::controller::RPM_PER_RAD_S;
 use super::field::Field;
 use super::run::DrillRun;
 use crate::drilling::config::DrillConfig;
 use crate::solution::OutOfMemory;
 
-/// The series' values at a step end: `[t, omega_top, omega_bit, motor, bit]` (rad/s, N m) and
-/// a coupled run's `[v_bit m/s, rop m/h, WOB N, hook load N, bit depth m, depth of cut m]`
-/// (0 without a hoist).
-pub type Point = [f64; 11];
+/// A channel of the series: its column in a sample [`Point`], and whether it is a load over a
+/// step (held: the point at `t = 0` takes the first step's value, the state at rest having none).
+/// Each part declares its channels where it is (the torsional ones here, a coupled run's in
+/// [`super::axial`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Channel {
+    pub column: usize,
+    pub held: bool,
+}
+
+/// Time, s.
+pub const TIME: Channel = Channel { column: 0, held: false };
+/// The top drive's speed, rad/s.
+pub const TOP_SPEED: Channel = Channel { column: 1, held: false };
+/// The bit's speed (as reported, [`super::run`]), rad/s.
+pub const BIT_SPEED: Channel = Channel { column: 2, held: false };
+/// The motor torque of the step, N m.
+pub const MOTOR_TORQUE: Channel = Channel { column: 3, held: true };
+/// The torque on bit of the step, N m.
+pub const BIT_TORQUE: Channel = Channel { column: 4, held: true };
+/// The torsional channels.
+pub const TORSIONAL: [Channel; 5] = [TIME, TOP_SPEED, BIT_SPEED, MOTOR_TORQUE, BIT_TORQUE];
+
+/// Columns of a sample point: the torsional channels and a coupled run's
+/// ([`super::axial_field::CHANNELS`], 0 without a hoist).
+pub const COLUMNS: usize = TORSIONAL.len() + super::axial_field::CHANNELS.len();
+
+/// The series' values at a step end, by [`Channel`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point([f64; COLUMNS]);
+
+impl Default for Point {
+    fn default() -> Self {
+        Point([0.0; COLUMNS])
+    }
+}
+
+impl std::ops::Index<Channel> for Point {
+    type Output = f64;
+    #[inline]
+    fn index(&self, c: Channel) -> &f64 {
+        &self.0[c.column]
+    }
+}
+
+impl std::ops::IndexMut<Channel> for Point {
+    #[inline]
+    fn index_mut(&mut self, c: Channel) -> &mut f64 {
+        &mut self.0[c.column]
+    }
+}
 
 /// Where the sampling stands.
 pub struct Sampler {
@@ -38,7 +85,7 @@ impl Sampler {
             next_series: 0,
             next_field: 1,
             coupled: cfg.hoist.is_some(),
-            prev: [0.0; 11],
+            prev: Point::default(),
         }
     }
 
@@ -67,18 +114,10 @@ impl Sampler {
         ])
     }
 
-    /// The initial snapshot (if any are asked for) and state; `false` when not finite.
-    pub fn start(
-        &mut self,
-        field: &Field,
-        axial: Option<&Axial>,
-        run: &mut DrillRun,
-        omega_top: f64,
-        omega_bit: f64,
-        point: [f64; 6],
-    ) -> bool {
-        self.prev = [0.0, omega_top, omega_bit, f64::NAN, f64::NAN, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-        self.prev[5..].copy_from_slice(&point);
+    /// The initial snapshot (if any are asked for) and state `point` at `t = 0` (its held
+    /// channels are the first step's); `false` when not finite.
+    pub fn start(&mut self, field: &Field, axial: Option<&Axial>, run: &mut DrillRun, point: Point) -> bool {
+        self.prev = point;
         self.n_fields == 0 || snapshot(field, axial, run, 0.0)
     }
 
@@ -94,33 +133,36 @@ impl Sampler {
         run: &mut DrillRun,
         dt: f64,
     ) -> bool {
-        let t = cur[0];
+        let t = cur[TIME];
         let prev = &mut self.prev;
         if n == 0 {
-            prev[3] = cur[3];
-            prev[4] = cur[4];
-            prev[7] = cur[7];
-            prev[10] = cur[10];
+            for c in TORSIONAL.into_iter().chain(AXIAL).filter(|c| c.held) {
+                prev[c] = cur[c];
+            }
         }
         while self.next_series < self.n_series {
             let ts = self.next_series as f64 * self.out_dt;
             if ts > t * (1.0 + 1e-12) {
                 break;
             }
-            let w = if cur[0] > prev[0] { ((ts - prev[0]) / (cur[0] - prev[0])).clamp(0.0, 1.0) } else { 1.0 };
-            let at = |k: usize| prev[k] + w * (cur[k] - prev[k]);
-            let sample = [ts, at(1) * RPM_PER_RAD_S, at(2) * RPM_PER_RAD_S, at(3), at(4)];
-            let axial = [at(5), at(6), at(7), at(8), at(9), at(10)];
-            if sample.iter().chain(&axial).any(|v| !v.is_finite()) {
+            let w = if cur[TIME] > prev[TIME] {
+                ((ts - prev[TIME]) / (cur[TIME] - prev[TIME])).clamp(0.0, 1.0)
+            } else {
+                1.0
+            };
+            let at = |c: Channel| prev[c] + w * (cur[c] - prev[c]);
+            let sample =
+                [ts, at(TOP_SPEED) * RPM_PER_RAD_S, at(BIT_SPEED) * RPM_PER_RAD_S, at(MOTOR_TORQUE), at(BIT_TORQUE)];
+            if sample.iter().any(|v| !v.is_finite()) || AXIAL.iter().any(|&c| !at(c).is_finite()) {
                 return false;
             }
             if self.coupled {
-                run.bit_axial_speed.push(axial[0]);
-                run.rop.push(axial[1]);
-                run.weight_on_bit.push(axial[2]);
-                run.hook_load.push(axial[3]);
-                run.bit_depth.push(axial[4]);
-                run.depth_of_cut.push(axial[5]);
+                run.bit_axial_speed.push(at(axial_field::BIT_AXIAL_SPEED));
+                run.rop.push(at(axial_field::ROP));
+                run.weight_on_bit.push(at(axial_field::WEIGHT_ON_BIT));
+                run.hook_load.push(at(axial_field::HOOK_LOAD));
+                run.bit_depth.push(at(axial_field::BIT_DEPTH));
+                run.depth_of_cut.push(at(axial_field::DEPTH_OF_CUT));
             }
             run.t.push(sample[0]);
             run.surface_rpm.push(sample[1]);
