@@ -37,6 +37,7 @@ def test_every_key_of_the_configuration_has_one_entry_and_no_other() -> None:
     # the lists that are empty by default, with one item of every key
     config["well"]["plan"] = [{k: 1.0 for k in ("hold", "build", "drop", "turn", "inclination", "azimuth")}]
     config["friction"]["intervals"] = [{"top_md": 0.0, "bottom_md": 1.0, "static": 0.2}]
+    config["well"]["hole_sections"] = [{"bottom_md": 1.0, "diameter": 0.2, "friction": 0.2}]
     config["top_drive"]["steps"] = [[10.0, 60.0]]
     config["top_drive"]["speed_series"] = [[0.0, 0.0]]
     config["hoist"] = {k: 0.0 for k in ("mode", "speed", "hook_load", "weight_on_bit", "ramp_time")}  # null by default
