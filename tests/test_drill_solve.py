@@ -150,7 +150,7 @@ def synthetic(cfg: DrillConfig, fields: bool = True) -> DrillResult:
         "omega_field": 40.0 + np.sin(ft[:, None] - z[None, :] / 300.0),
         "torque_field": 1e4 * np.cos(ft[:, None] - z[None, :] / 300.0),
         "status": "success", "message": "",
-        "metrics": {**dataclasses.asdict(m), "window_start": 5.0, "window_end": 10.0, "breakoff_torque": 9.9e3},
+        "metrics": {**dataclasses.asdict(m), "window_start": 5.0, "window_end": 10.0, "breakoff_torque_Nm": 9.9e3},
         "energy": {"motor_work": 5.0, "kinetic": 1.0, "elastic": 2.0, "friction_loss": 2.0, "balance_error": 0.0},
         "stats": {"cells": 100, "substeps": 10, "dt": 1e-3},
     }
@@ -176,6 +176,7 @@ def test_outputs_and_figures_of_a_result_built_from_arrays(tmp_path: Path) -> No
     # without snapshots: the maps say so, the torque plot shows the profile, NaN metrics are null
     empty = synthetic(cfg, fields=False)
     object.__setattr__(empty.metrics, "period_s", math.nan)
+    empty.metrics.values["period_s"] = math.nan  # (the metrics by name, which the files read)
     empty.save(tmp_path / "empty", plots=True)
     assert json.loads((tmp_path / "empty" / "metrics.json").read_text())["period_s"] is None
     # a destination that cannot be written is refused before any file is

@@ -188,11 +188,12 @@ def test_metrics_from_the_cores_dict() -> None:
 def test_metrics_json_and_map_columns_keep_their_names_and_order() -> None:
     contract = ["window_start", "window_end", "ssi", "stuck_fraction", "period_s", "bit_rpm_min", "bit_rpm_max",
                 "bit_rpm_mean", "motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "period_cycles",
-                "periodicity", "slip_period_s", "stick_slip", "settled", "min_cycle_torque_Nm", "stick_slip_verdict"]
+                "periodicity", "slip_period_s", "stick_slip", "settled", "min_cycle_torque_Nm", "stick_slip_verdict",
+                "stick_duration_mean_s"]
     from drillstring.drilling.map_table import METRIC_COLUMNS
 
     assert list(METRICS) == contract and list(METRIC_COLUMNS) == contract
     fields: dict[str, Any] = {**{f: 1.0 for f in contract}, "stick_slip": True, "settled": True, "slip_onsets": 3,
                               "stick_slip_verdict": "yes"}
-    m = DrillMetrics(**fields)
+    m = DrillMetrics.from_core(fields)  # as the core's dict gives them, every metric by its name
     assert list(m.to_dict()) == contract
