@@ -374,7 +374,8 @@ pub static OUTPUTS: &[Output] = &[
     metric(
         "stick_duration_mean_s",
         "s",
-        "mean duration of the bit's stick phases (|bit speed| <= metrics.stick_speed) that begin and end within the \
+        "mean duration of the bit's stick phases (its time at |bit speed| <= metrics.stick_speed between two slips \
+         that carry it above its mean speed, so a partial slip does not split a phase) that begin and end within the \
          window, s; null without a complete one",
         Source::StickSlip(|m| Cell::Number(m.stick_duration_mean_s)),
     ),

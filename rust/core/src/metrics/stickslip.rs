@@ -22,8 +22,9 @@
 //!     interpolated, for a slip that carries it above its mean speed), NaN with fewer than
 //!     three;
 //!   - `stick_duration_mean_s` ([`stick_duration_mean`]): the mean duration of the bit's stick
-//!     phases (the maximal intervals with `|omega_bit| <= stick_speed` of the piecewise-linear
-//!     series) that begin and end inside the window, NaN without a complete one;
+//!     phases (its time with `|omega_bit| <= stick_speed` between two full slips, as the slip
+//!     onsets count them: a partial slip inside a stick phase does not end it) that begin and
+//!     end inside the window, NaN without a complete one;
 //!   - the verdict `stick_slip`: the bit stops (`|omega_bit| <= stick_speed`) during part of
 //!     the window, neither never nor always (stuck fraction strictly between 0 and 1);
 //!   - the three-way verdict [`Verdict`] with its reason ([`verdict`], the criterion stated by
@@ -266,58 +267,55 @@ fn time_mean(t: &[f64], x: &[f64]) -> f64 {
 
 /// Time during which the linear interpolant of `x` has `|x| <= s`.
 fn time_within(t: &[f64], x: &[f64], s: f64) -> f64 {
-    t.windows(2)
-        .zip(x.windows(2))
-        .map(|(t, x)| {
-            let (u, v, dt) = (x[0], x[1], t[1] - t[0]);
-            if u == v {
-                return if u.abs() <= s { dt } else { 0.0 };
-            }
-            let (a, b) = ((-s - u) / (v - u), (s - u) / (v - u));
-            let (lo, hi) = (a.min(b).max(0.0), a.max(b).min(1.0));
-            (hi - lo).max(0.0) * dt
-        })
-        .sum()
+    t.windows(2).zip(x.windows(2)).map(|(t, x)| stuck_time(x[0], x[1], s, t[1] - t[0])).sum()
 }
 
-/// The mean duration of the stick phases of `x` over `t` (the linear interpolant): the maximal
-/// intervals with `|x| <= s` that begin after the first sample and end before the last (a phase
-/// cut by the window's ends is not complete; a touch of no duration is no phase); NaN without
-/// one. Their durations and the cut phases' parts add up to [`time_within`].
-pub fn stick_duration_mean(t: &[f64], x: &[f64], s: f64) -> f64 {
+/// Time during which the linear interpolant of one segment from `u` to `v` over `dt` has
+/// `|x| <= s`.
+fn stuck_time(u: f64, v: f64, s: f64, dt: f64) -> f64 {
+    if u == v {
+        return if u.abs() <= s { dt } else { 0.0 };
+    }
+    let (a, b) = ((-s - u) / (v - u), (s - u) / (v - u));
+    let (lo, hi) = (a.min(b).max(0.0), a.max(b).min(1.0));
+    (hi - lo).max(0.0) * dt
+}
+
+/// The mean duration of the stick phases of `x` over `t` (the linear interpolant), as the slip
+/// onsets count cycles: a phase is the time with `|x| <= s` between two full slips, slips that
+/// carry the bit above its mean speed `|mean|` in the direction of `mean` (a partial slip, or
+/// a short reversal at re-stick, does not end a phase: on fine grids the bit chatters around
+/// the stick speed inside one stick phase). Only the phases between two full slips in the
+/// window count (one cut by the window's start or end does not); NaN without one. The
+/// complete phases and the cut phases' parts add up to the stuck time of [`time_within`].
+pub fn stick_duration_mean(t: &[f64], x: &[f64], s: f64, mean: f64) -> f64 {
+    let (sign, top) = (if mean < 0.0 { -1.0 } else { 1.0 }, mean.abs().max(s));
     let (mut total, mut count) = (0.0, 0usize);
-    // the current phase's start, and whether it began at the first sample (cut by the window)
-    let mut phase: Option<(f64, bool)> = None;
-    for (k, (t, x)) in t.windows(2).zip(x.windows(2)).enumerate() {
-        let (u, v, dt) = (x[0], x[1], t[1] - t[0]);
-        let (lo, hi) = if u == v {
-            if u.abs() <= s {
-                (0.0, 1.0)
-            } else {
-                (1.0, 0.0)
-            }
-        } else {
-            let (a, b) = ((-s - u) / (v - u), (s - u) / (v - u));
-            (a.min(b).max(0.0), a.max(b).min(1.0))
-        };
-        // slipping throughout the segment: a phase still open ended at its start
-        let (start, end) = if lo > hi {
-            match phase {
-                Some(start) => (start, t[0]),
-                None => continue,
-            }
-        } else {
-            let start = *phase.get_or_insert((t[0] + lo * dt, k == 0 && lo == 0.0));
-            if hi == 1.0 {
-                continue; // the phase goes on
-            }
-            (start, t[0] + hi * dt)
-        };
-        if !start.1 && end > start.0 {
-            total += end - start.0;
+    // a full slip seen (the next stuck time opens a complete phase), the open phase's stuck time
+    let (mut slipped, mut open): (bool, Option<f64>) = (false, None);
+    let mut full_slip = |open: &mut Option<f64>, slipped: &mut bool| {
+        if let Some(stuck) = open.take().filter(|&stuck| stuck > 0.0) {
+            total += stuck;
             count += 1;
         }
-        phase = None;
+        *slipped = true;
+    };
+    for (t, x) in t.windows(2).zip(x.windows(2)) {
+        let (u, v) = (sign * x[0], sign * x[1]);
+        if u > top {
+            full_slip(&mut open, &mut slipped);
+        }
+        let stuck = stuck_time(u, v, s, t[1] - t[0]);
+        if stuck > 0.0 {
+            match open.as_mut() {
+                Some(phase) => *phase += stuck,
+                None if slipped => open = Some(stuck),
+                None => {}
+            }
+        }
+        if v > top {
+            full_slip(&mut open, &mut slipped);
+        }
     }
     if count == 0 {
         f64::NAN
@@ -609,7 +607,7 @@ pub fn stick_slip(
         periodicity,
         slip_period_s: slip_period,
         slip_onsets,
-        stick_duration_mean_s: stick_duration_mean(tw, w, stick_speed),
+        stick_duration_mean_s: stick_duration_mean(tw, w, stick_speed, mean),
         stick_slip: stuck_fraction > 0.0 && stuck_fraction < 1.0,
         settled,
         stick_slip_verdict: verdict,
@@ -840,7 +838,22 @@ mod tests {
         // never stuck, stuck throughout, a touch of no duration: NaN
         assert!(stick_slip(&t, &vec![5.0; t.len()], None, None, s).unwrap().stick_duration_mean_s.is_nan());
         assert!(stick_slip(&t, &vec![0.0; t.len()], None, None, s).unwrap().stick_duration_mean_s.is_nan());
-        assert!(stick_duration_mean(&[0.0, 1.0, 2.0], &[1.0, s, 1.0], s).is_nan());
+        assert!(stick_duration_mean(&[0.0, 1.0, 2.0], &[1.0, s, 1.0], s, 0.5).is_nan());
+        // a partial slip inside the second rest (to 0.5 rad/s, below the mean speed, 0.83 rad/s)
+        // does not split it: still three phases, of all the stuck time (none is cut)
+        let k = t.iter().position(|&x| x > 0.9).unwrap();
+        let (mut tc, mut chatter) = (t.clone(), w.clone());
+        tc.insert(k, 0.5 * (t[k - 1] + t[k]));
+        chatter.insert(k, 0.5);
+        let mc = stick_slip(&tc, &chatter, None, None, s).unwrap();
+        assert!(mc.bit_rpm_mean / RPM_PER_RAD_S > 0.5, "{mc:?}");
+        let within = time_within(&tc, &chatter, s);
+        assert!(
+            (mc.stick_duration_mean_s - within / 3.0).abs() < 1e-12,
+            "{} vs {}",
+            mc.stick_duration_mean_s,
+            within / 3.0
+        );
     }
 
     /// The period estimator's memory is bounded: a long series is resampled.
