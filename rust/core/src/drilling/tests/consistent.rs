@@ -21,18 +21,7 @@ fn soft_rod(length: f64) -> Section {
 fn linear_runs_are_unchanged() {
     // Well B and the loaded case of `energy_balance_closes` with the default (linear) law:
     // numbers recorded before the consistent law was added, digit for digit.
-    let json = r#"{
-      "sections": [
-        {"length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
-         "shear_modulus": 61e9, "density": 7850.0},
-        {"length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.09285466808235807,
-         "shear_modulus": 67e9, "density": 8622.131147540984,
-         "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
-      "damping_rate": 0.08333333333333334,
-      "friction": {"contact": "weight"},
-      "numerics": {"cells": 1000, "duration": 20.0, "field_interval": 0}
-    }"#;
-    let cfg = DrillConfig::from_json(json).unwrap();
+    let cfg = well_b(20.0);
     assert_eq!(cfg.nonlinearity, Nonlinearity::Linear);
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
     let sum = |x: &[f64]| x.iter().sum::<f64>();
@@ -250,18 +239,7 @@ fn well_b_with_the_consistent_law_changes_little() {
     // ~1e-5. Three runs separate the two changes the option makes: the law (consistent against
     // the same scheme and grid with k5 = 0) and the discretisation (the Godunov scheme on the grid
     // of the hardened speed, Courant numbers just below 1, against the linear scheme at 1).
-    let json = r#"{
-      "sections": [
-        {"length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
-         "shear_modulus": 61e9, "density": 7850.0},
-        {"length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.09285466808235807,
-         "shear_modulus": 67e9, "density": 8622.131147540984,
-         "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
-      "damping_rate": 0.08333333333333334,
-      "friction": {"contact": "weight"},
-      "numerics": {"cells": 1000, "duration": 60.0, "field_interval": 0}
-    }"#;
-    let mut cfg = DrillConfig::from_json(json).unwrap();
+    let mut cfg = well_b(60.0);
     let base = solve(&cfg, &Never, &mut |_| {}).unwrap();
     cfg.nonlinearity = Nonlinearity::Consistent;
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();

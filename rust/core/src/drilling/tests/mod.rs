@@ -16,6 +16,25 @@ fn section(length: f64, od: f64, id: f64) -> Section {
     Section { name: String::new(), length, outer_diameter: od, inner_diameter: id, ..Section::default() }
 }
 
+/// Aarsnes & Shor's Well B (MD 2500 m, their collar's Jc with its extra pi, Ac and a density
+/// giving the pipe's wave speed, damping rate `2 kt dt_sub`) on 1000 cells for `duration` s.
+fn well_b(duration: f64) -> DrillConfig {
+    let json = format!(
+        r#"{{
+      "sections": [
+        {{"length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
+         "shear_modulus": 61e9, "density": 7850.0}},
+        {{"length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.09285466808235807,
+         "shear_modulus": 67e9, "density": 8622.131147540984,
+         "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}}],
+      "damping_rate": 0.08333333333333334,
+      "friction": {{"contact": "weight"}},
+      "numerics": {{"cells": 1000, "duration": {duration:?}, "field_interval": 0}}
+    }}"#
+    );
+    DrillConfig::from_json(&json).unwrap()
+}
+
 fn polar(od: f64, id: f64) -> f64 {
     PI / 32.0 * (od.powi(4) - id.powi(4))
 }

@@ -111,18 +111,7 @@ fn well_b_agrees_with_the_published_model() {
     // Ac, Gc = 67 GPa, density rho Gc / Gp so that its wave speed is the pipe's; damping rate
     // 2 kt dt_sub). Reference: their code run in GNU Octave 7.3 (tests/data/aarsnes_shor/
     // reference.json), metrics over 30..60 s.
-    let json = r#"{
-      "sections": [
-        {"length": 2270.0, "outer_diameter": 0.146529, "inner_diameter": 0.123024,
-         "shear_modulus": 61e9, "density": 7850.0},
-        {"length": 230.0, "outer_diameter": 0.19425788212135248, "inner_diameter": 0.09285466808235807,
-         "shear_modulus": 67e9, "density": 8622.131147540984,
-         "polar_moment": 4.7067114136638673e-4, "area": 0.02286618845760419}],
-      "damping_rate": 0.08333333333333334,
-      "friction": {"contact": "weight"},
-      "numerics": {"cells": 1000, "duration": 60.0, "field_interval": 0}
-    }"#;
-    let cfg = DrillConfig::from_json(json).unwrap();
+    let cfg = well_b(60.0);
     let run = solve(&cfg, &Never, &mut |_| {}).unwrap();
     let m = run.metrics.unwrap();
     let (torque_min, torque_max, period, rpm_max, rpm_mean) = (6132.67, 24925.16, 10.0047, 120.325, 39.735);
