@@ -6,6 +6,7 @@
     drillstring drill-map CONFIG.toml --axis key=start:stop:count --axis key=v1,v2 --out DIR [--set ...]
     drillstring tune CONFIG.toml [--set key=value ...]
     drillstring rig-log LOG.csv --start-depth "3000 ft" --out DIR
+    drillstring live CONFIG.toml [--port N] [--no-browser] [--speed X|max] [--set key=value ...]
 
 One module per verb (``simulate.py`` for ``drillstring simulate``, ``torque_drag.py`` for
 ``drillstring torque-drag``, ...), each with ``add_parser(subparsers)`` (its arguments, help and
@@ -55,6 +56,7 @@ VERBS = (
     "tune",
     "fit",
     "rig_log",
+    "live",
 )
 
 

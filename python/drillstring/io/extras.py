@@ -13,6 +13,7 @@ __all__ = ["EXTRAS", "require"]
 EXTRAS: dict[str, tuple[str, ...]] = {
     "netcdf": ("xarray", "h5netcdf"),  # TrajectoryResult.to_xarray / save, `simulate --out run.nc`
     "las": ("lasio",),  # LAS 2.0 rig logs of `drillstring rig-log` (calibration/rig_log.py)
+    "live": ("aiohttp",),  # the display of `drillstring live` (live/server.py)
 }
 
 
