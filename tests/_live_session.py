@@ -83,3 +83,13 @@ class StandInSession:
         steps = [[t, v] for t, key, v in self.changes if key == "top_drive.rpm"]
         overrides = [f"numerics.duration={self.t}"] + ([f"top_drive.steps={steps}"] if steps else [])
         return drill(self._base.with_overrides(overrides, units="si"))
+
+
+def session_class() -> Any:
+    """The session the live display's tests drive: ``DrillSession`` once the package has it, else
+    the stand-in."""
+    try:
+        from drillstring.drilling.session import DrillSession  # type: ignore[import-not-found]
+    except ImportError:
+        return StandInSession
+    return DrillSession

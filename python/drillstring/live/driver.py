@@ -151,6 +151,11 @@ class Driver:
             rows = {k: np.concatenate([p[k] for p in pending]) for k in pending[0]}
         return Update(rows, state, verdict, status, reset, events)
 
+    def take_status(self) -> dict[str, Any]:
+        """The status of the run now (time, step, status and message, paused, factors)."""
+        with self._lock:
+            return dict(self._status)
+
     # ----------------------------------------------------------------- the worker
 
     def _loop(self) -> None:

@@ -65,6 +65,7 @@ class LiveApp:
         self.clients: set[Any] = set()
         self._drawn = -math.inf
         self._bounce = False
+        self._history: list[dict[str, np.ndarray]] = []
         self.app = web.Application()
         self.app.router.add_get("/", self._index)
         self.app.router.add_get("/ws", self._socket)
@@ -94,6 +95,7 @@ class LiveApp:
         ws = web.WebSocketResponse(heartbeat=20.0)
         await ws.prepare(request)
         await ws.send_str(json.dumps(self.hello()))
+        await ws.send_str(self._past())
         self.clients.add(ws)
         try:
             async for message in ws:
@@ -129,6 +131,7 @@ class LiveApp:
         prefix = ""
         if update.reset:
             self._drawn = -math.inf
+            self._history = []
             prefix = json.dumps({"type": "reset", **self.hello()}) + "\n"
         rows = update.rows
         if rows and "t" in rows and rows["t"].size:
@@ -136,7 +139,9 @@ class LiveApp:
             if keep.size:
                 self._drawn = float(rows["t"][keep[-1]])
             names = ["t", *(c["name"] for c in describe(self.driver.coupled, self.system)["tracks"])]
-            parts["rows"] = _object({k: _numbers(rows[k][keep]) for k in names if k in rows})
+            drawn = {k: rows[k][keep] for k in names if k in rows}
+            self._remember(drawn)
+            parts["rows"] = _object({k: _numbers(v) for k, v in drawn.items()})
             if "weight_on_bit" in rows:
                 self._bounce = bool(rows["weight_on_bit"][-1] <= 0.0)
         if update.state is not None:
@@ -147,6 +152,22 @@ class LiveApp:
         if update.events:
             parts["events"] = json.dumps(update.events, default=str)
         return prefix + _object(parts)
+
+    def _remember(self, rows: dict[str, np.ndarray]) -> None:
+        """Keeps the rows drawn over the last window, for a page that connects later."""
+        if rows["t"].size:
+            self._history.append(rows)
+        end = self._drawn
+        while self._history and self._history[0]["t"][-1] < end - WINDOW_S:
+            self._history.pop(0)
+
+    def _past(self) -> str:
+        """A frame of the rows of the last window (what a page that connects now has missed)."""
+        parts = {"type": '"frame"', "status": json.dumps(self.driver.take_status())}
+        if self._history:
+            parts["rows"] = _object({k: _numbers(np.concatenate([h[k] for h in self._history]))
+                                     for k in self._history[0]})
+        return _object(parts)
 
     def _state(self, state: Mapping[str, Any]) -> str:
         """The along-string state (at most :data:`PROFILE_POINTS` cells of each grid) and the indicators."""

@@ -1,0 +1,196 @@
+"""The live display's server without a browser: a WebSocket client (aiohttp) gets the frames, the
+answers to its commands, the error message of a key that cannot change; the decimation of the
+series; the command line's errors and its Ctrl-C."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from collections.abc import Awaitable
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+import pytest
+from _cli import one_line_error, run_cli
+from _live_session import StandInSession, session_class
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from drillstring.drilling import load_drill_config
+from drillstring.drilling.units import axis_unit
+from drillstring.live.display import controls, decimate
+from drillstring.live.driver import Driver
+from drillstring.live.server import Background, LiveApp
+
+aiohttp = pytest.importorskip("aiohttp")
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLE = ROOT / "examples" / "on-bottom-3000m.toml"
+
+
+def _config() -> Any:
+    return load_drill_config(EXAMPLE).with_overrides(["numerics.cells=100"])
+
+
+Client = Callable[[Any], Awaitable[Any]]
+
+
+def _talk(tmp_path: Path, body: Client, *, speed: float = 1.0) -> Any:
+    """Runs ``body(ws)`` against a display of the example (100 cells) served on a free port."""
+    driver = Driver(_config(), speed=speed, record_dir=tmp_path, make_session=session_class())
+
+    async def client(url: str) -> Any:
+        async with aiohttp.ClientSession() as http, http.ws_connect(url + "ws") as ws:
+            return await body(ws)
+
+    with Background(LiveApp(driver, name="on-bottom")) as server:
+        return asyncio.run(asyncio.wait_for(client(server.url), 60))
+
+
+async def _next(ws: Any, kind: str) -> dict[str, Any]:
+    while True:
+        message = json.loads((await ws.receive()).data)
+        if message["type"] == kind:
+            return message  # type: ignore[no-any-return]
+
+
+async def _reply(ws: Any, command: dict[str, Any]) -> dict[str, Any]:
+    await ws.send_str(json.dumps(command))
+    while True:
+        message = await _next(ws, "reply")
+        if message["id"] == command["id"]:
+            return message
+
+
+def test_frames_arrive_with_the_tracks_of_the_run_and_time_advances(tmp_path: Path) -> None:
+    async def body(ws: Any) -> Any:
+        hello = await _next(ws, "hello")
+        frames = [await _next(ws, "frame") for _ in range(30)]
+        return hello, frames
+
+    hello, frames = _talk(tmp_path, body)
+    names = [c["name"] for c in hello["tracks"]]
+    assert names == ["surface_rpm", "motor_torque", "bit_rpm", "bit_torque"]  # torsion only: no hook load
+    assert {c["key"] for c in hello["controls"]} >= {"top_drive.rpm"}
+    times = [f["status"]["t"] for f in frames]
+    assert times[-1] > times[0] and all(b >= a for a, b in zip(times, times[1:]))
+    rows = [f["rows"] for f in frames if "rows" in f]
+    t = np.concatenate([r["t"] for r in rows])
+    assert np.all(np.diff(t) > 0)  # each row drawn once, in order
+    # at 1x, 30 frames of 50 ms are about 1.5 s of the run
+    assert 0.5 < times[-1] - times[0] < 3.0
+    state = next(f["state"] for f in frames if "state" in f)
+    assert len(state["z_m"]) == len(state["omega_rpm"]) == 100 and state["bit_stuck"] in (True, False)
+
+
+def test_a_set_is_answered_and_a_key_that_cannot_change_gets_its_message(tmp_path: Path) -> None:
+    async def body(ws: Any) -> Any:
+        await _next(ws, "frame")
+        good = await _reply(ws, {"type": "set", "id": 1, "key": "top_drive.rpm", "value": 80.0})
+        bad_key = await _reply(ws, {"type": "set", "id": 2, "key": "numerics.cells", "value": 80})
+        bad_value = await _reply(ws, {"type": "set", "id": 3, "key": "top_drive.rpm", "value": "fast"})
+        unknown = await _reply(ws, {"type": "jump", "id": 4})
+        events = []
+        while not events:
+            events = (await _next(ws, "frame")).get("events", [])
+        return good, bad_key, bad_value, unknown, events
+
+    good, bad_key, bad_value, unknown, events = _talk(tmp_path, body)
+    assert good["ok"] is True
+    assert bad_key["ok"] is False and "numerics.cells" in bad_key["message"]
+    assert bad_value["ok"] is False and "top_drive.rpm" in bad_value["message"]
+    assert unknown["ok"] is False and "jump" in unknown["message"]
+    assert events[0]["key"] == "top_drive.rpm" and events[0]["value"] == 80.0
+
+
+def test_pause_stops_the_clock_and_resume_starts_it(tmp_path: Path) -> None:
+    async def body(ws: Any) -> Any:
+        await _next(ws, "frame")
+        assert (await _reply(ws, {"type": "pause", "id": 1}))["ok"]
+        paused = [(await _next(ws, "frame"))["status"] for _ in range(10)]
+        assert (await _reply(ws, {"type": "resume", "id": 2}))["ok"]
+        running = [(await _next(ws, "frame"))["status"] for _ in range(10)]
+        return paused, running
+
+    paused, running = _talk(tmp_path, body)
+    assert all(s["paused"] for s in paused) and len({s["t"] for s in paused}) == 1
+    assert not running[-1]["paused"] and running[-1]["t"] > paused[-1]["t"]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.floats(0.0, 0.2), min_size=1, max_size=200), st.lists(st.integers(1, 40), max_size=10),
+       st.sampled_from([0.01, 0.05, 0.3]))
+def test_decimation_does_not_depend_on_how_the_rows_arrive(gaps: list[float], cuts: list[int], step: float) -> None:
+    # rows arriving in any chunks keep the same rows as all at once: one per interval of `step`
+    t = np.cumsum(np.asarray(gaps) + 1e-3)
+    whole = t[decimate(t, step, -np.inf)]
+    kept, last, start = [], -np.inf, 0
+    for end in [*np.cumsum(cuts), t.size]:
+        chunk = t[start:min(end, t.size)]
+        start = min(end, t.size)
+        picked = chunk[decimate(chunk, step, last)]
+        if picked.size:
+            last = float(picked[-1])
+        kept.append(picked)
+    np.testing.assert_array_equal(np.concatenate(kept), whole)
+    assert np.unique(np.floor(whole / step)).size == whole.size == np.unique(np.floor(t / step)).size
+
+
+def test_field_units_show_the_setpoints_in_klbf() -> None:
+    config = load_drill_config(EXAMPLE)
+    shown = {c["key"]: c for c in controls(("top_drive.rpm", "bit.weight_on_bit"), config, "field")}
+    wob = shown["bit.weight_on_bit"]
+    assert wob["unit"] == "klbf" and wob["value"] * wob["factor"] == pytest.approx(80e3 / 4448.2216152605)
+    assert shown["top_drive.rpm"]["factor"] == 1.0 and shown["top_drive.rpm"]["unit"] == "rpm"
+    assert axis_unit("N", "si", kilo=True) == (1e-3, "kN")
+
+
+@pytest.mark.parametrize(("args", "needles"), [(["--speed", "0"], ["--speed", "max"]),
+                                               (["--port", "70000"], ["--port", "65535"])])
+def test_bad_options_are_one_line_usage_errors(args: list[str], needles: list[str],
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_:
+        run_cli(capsys, "live", str(EXAMPLE), "--no-browser", *args)
+    err = capsys.readouterr().err
+    assert exit_.value.code == 2 and len(err.strip().splitlines()) == 1 and all(n in err for n in needles), err
+
+
+def test_a_bad_value_is_one_line_with_exit_status_2(capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run_cli(capsys, "live", str(EXAMPLE), "--no-browser", "--set", "top_drive.rpm=fast")
+    assert code == 2
+    one_line_error(err, "top_drive.rpm")
+
+
+@pytest.mark.skipif(session_class() is StandInSession, reason="the command needs drillstring's DrillSession")
+def test_the_command_prints_its_address_serves_the_page_and_stops_on_ctrl_c(tmp_path: Path) -> None:
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+    child = subprocess.Popen(
+        [sys.executable, "-m", "drillstring", "live", str(EXAMPLE), "--no-browser", "--port", "0",
+         "--set", "numerics.cells=60", "--record-dir", str(tmp_path)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=tmp_path)
+    try:
+        assert child.stdout is not None
+        line = child.stdout.readline()
+        assert line.startswith("drillstring live: http://127.0.0.1:"), line + (child.stderr.read() if child.stderr else "")
+        url = line.split()[2]
+
+        async def get() -> tuple[int, str]:
+            async with aiohttp.ClientSession() as http, http.get(url) as page:
+                return page.status, await page.text()
+
+        status, text = asyncio.run(get())
+        assert status == 200 and "dygraph.min.js" in text
+        time.sleep(0.5)
+        child.send_signal(signal.SIGINT)
+        out, err = child.communicate(timeout=30)
+    finally:
+        if child.poll() is None:
+            child.kill()
+    assert child.returncode == 0, err
+    assert "drillstring live: stopped" in out and "Traceback" not in err
