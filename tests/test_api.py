@@ -176,7 +176,7 @@ def test_the_extras_of_optional_outputs_are_the_modules_the_package_checks():
     for extra, modules in EXTRAS.items():
         assert extras[extra] == set(modules), extra
     # `all` is every optional output; the tests have all of them
-    optional = set().union(*(extras[e] for e in ("netcdf", "dask", "las")))
+    optional = set().union(*(extras[e] for e in ("netcdf", "dask", "las", "live")))
     assert extras["all"] == optional
     assert optional <= extras["test"]
 

@@ -175,9 +175,9 @@ def test_the_command_prints_its_address_serves_the_page_and_stops_on_ctrl_c(tmp_
          "--set", "numerics.cells=60", "--record-dir", str(tmp_path)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=tmp_path)
     try:
-        assert child.stdout is not None
+        assert child.stdout is not None and child.stderr is not None
         line = child.stdout.readline()
-        assert line.startswith("drillstring live: http://127.0.0.1:"), line + (child.stderr.read() if child.stderr else "")
+        assert line.startswith("drillstring live: http://127.0.0.1:"), line + (child.stderr.read() or "")
         url = line.split()[2]
 
         async def get() -> tuple[int, str]:
