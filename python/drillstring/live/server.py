@@ -190,8 +190,11 @@ class LiveApp:
         return _object(out)
 
     async def _broadcast(self) -> None:
+        loop = asyncio.get_running_loop()
+        due = loop.time()
         while True:
-            await asyncio.sleep(FRAME_EVERY)
+            due = max(due + FRAME_EVERY, loop.time())  # on a fixed beat; a late frame does not pile up
+            await asyncio.sleep(due - loop.time())
             text = self.frame()
             if text is None:
                 continue
