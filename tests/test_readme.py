@@ -103,6 +103,9 @@ def test_every_readme_command_and_example_runs_in_a_fresh_environment(fresh_env:
     where = subprocess.run(["python3", "-c", "import drillstring; print(drillstring.__file__)"], cwd=work,
                            env=environ, capture_output=True, text=True, check=True).stdout
     assert str(fresh_env) in where, where
+    # the live display's page and its vendored plotting library ship inside the installed package
+    static = Path(where.strip()).parent / "live" / "static"
+    assert all((static / name).is_file() for name in ("index.html", "app.js", "style.css", "vendor/dygraph.min.js"))
     assert (work / "paper-output" / "report.html").exists() and (work / "run.csv").exists()
     # Every Python example, as written, with the fresh environment's interpreter.
     for number, block in enumerate(_blocks("python")):

@@ -62,13 +62,20 @@ def run(args: argparse.Namespace) -> int:
     live = LiveApp(driver, system=args.units or config.units, name=Path(args.config).stem)
 
     async def serve() -> None:
+        stop = asyncio.Event()
+        loop = asyncio.get_running_loop()
+
+        def interrupted() -> None:
+            loop.call_soon_threadsafe(stop.set)
+
+        driver.on_interrupt = interrupted
         runner, url = await start(live, args.host, args.port)
         try:
             say(f"drillstring live: {url} (Ctrl-C stops)")
             sys.stdout.flush()
             if not args.no_browser:
                 webbrowser.open(url)
-            await asyncio.Event().wait()
+            await stop.wait()
         finally:
             await runner.cleanup()
 

@@ -85,6 +85,8 @@ class Driver:
         self._lock = threading.Lock()
         self._stopping = threading.Event()
         self._thread: Optional[threading.Thread] = None
+        self.on_interrupt: Optional[Callable[[], None]] = None
+        """Called (from the worker thread) when Ctrl-C stopped a step: the command then stops too."""
         self.session = self._make(config)
         self._begin(reset=False)
 
@@ -171,6 +173,11 @@ class Driver:
                 self.session.step(chunk)
             except DrillstringError:
                 self._failed = True
+            except KeyboardInterrupt:  # Ctrl-C seen by the engine while it stepped in this thread
+                self._stopping.set()
+                if self.on_interrupt is not None:
+                    self.on_interrupt()
+                return
             if math.isinf(self._speed):
                 took = max(time.monotonic() - began, 1e-4)
                 self._chunk = min(max(self._chunk * min(max(MAX_CHUNK_WALL / took, 0.5), 2.0), 1e-4), 10.0)
