@@ -112,5 +112,11 @@ def test_the_display_runs_takes_setpoints_pauses_and_records(browser: Any, tmp_p
         steps = load_drill_config(folder / "config.toml").top_drive.steps
         assert steps and all(v == 80.0 for _, v in steps)
         assert series["surface_rpm"][series.index > steps[0][0]].max() > 60.0
+
+        # a run longer than the tracks' window: the page keeps a fixed number of rows
+        page.select_option("#speed", "max")
+        until(lambda: stats()["t"] > 75.0, 120, "75 s of the run at full speed")
+        held = stats()
+        assert held["rows"] > held["capacity"] >= held["buffered"] and 0 < held["drawn"] <= held["capacity"]
         assert problems == []
         page.close()

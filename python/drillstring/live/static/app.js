@@ -5,7 +5,10 @@
 "use strict";
 
 (function () {
-  const stats = { renders: 0, frames: 0, bytes: 0, t: 0, rows: 0, replies: [], errors: [], connected: false };
+  const stats = {
+    renders: 0, frames: 0, bytes: 0, t: 0, rows: 0, drawn: 0, buffered: 0, capacity: 0, replies: [], errors: [],
+    connected: false,
+  };
   window.drillstringStats = stats;
 
   let hello = null;
@@ -234,6 +237,7 @@
       const c = tr.channel;
       const data = ring.series(c.name, c.factor, since);
       if (data.length) tr.graph.updateOptions({ file: data, dateWindow: [since, end] });
+      stats.drawn = data.length;
       tr.value.textContent = fmt(ring.last(c.name) * c.factor, 4);
     }
     if (state) {
@@ -246,6 +250,8 @@
       }
     }
     stats.renders += 1;
+    stats.buffered = ring.count;
+    stats.capacity = ring.capacity;
   }
 
   function connect() {
