@@ -15,7 +15,10 @@ from drillstring.errors import ValidationError
 
 #: The lag of the stand-in's top drive behind its setpoint, s.
 TAU = 0.5
-SETTABLE = ("top_drive.rpm", "top_drive.controller.type", "bit.weight_on_bit")
+SETTABLE = ("top_drive.rpm", "top_drive.torque_limit", "top_drive.controller.type", "top_drive.controller.kp",
+            "top_drive.controller.ki", "top_drive.controller.z_factor", "bit.weight_on_bit", "friction.static",
+            "friction.kinetic_ratio", "hoist.mode", "hoist.speed", "hoist.hook_load", "hoist.weight_on_bit",
+            "hoist.autodriller.setpoint", "hoist.autodriller.kp", "hoist.autodriller.ki")
 
 
 class StandInSession:
@@ -55,7 +58,7 @@ class StandInSession:
                 self._record()
 
     def set(self, key: str, value: Any) -> None:
-        if key not in self.settable:
+        if key not in self.settable or (key.startswith("hoist.") and self.config.hoist is None):
             raise ValidationError(key, value, f"a key that can change during a run: {', '.join(self.settable)}")
         self.config = self.config.with_overrides([f"{key}={value!r}" if isinstance(value, str) else f"{key}={value}"])
         self.changes.append((self.t + self.dt, key, value))

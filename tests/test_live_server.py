@@ -123,6 +123,41 @@ def test_pause_stops_the_clock_and_resume_starts_it(tmp_path: Path) -> None:
     assert not running[-1]["paused"] and running[-1]["t"] > paused[-1]["t"]
 
 
+def test_a_preset_sets_the_controller_type_and_gains_of_this_string(tmp_path: Path) -> None:
+    async def body(ws: Any) -> Any:
+        await _next(ws, "frame")
+        done = await _reply(ws, {"type": "preset", "id": 1, "value": "soft_torque"})
+        bad = await _reply(ws, {"type": "preset", "id": 2, "value": "gentle"})
+        events: list[dict[str, Any]] = []
+        while len(events) < 4:
+            events += (await _next(ws, "frame")).get("events", [])
+        return done, bad, events
+
+    done, bad, events = _talk(tmp_path, body)
+    assert done["ok"] and done["result"] == [f"top_drive.controller.{k}" for k in ("type", "kp", "ki", "z_factor")]
+    assert not bad["ok"] and "gentle" in bad["message"] and "soft_torque" in bad["message"]
+    changed = {e["key"].rsplit(".", 1)[1]: e["value"] for e in events}
+    # soft torque for this string (ARCHITECTURE.md, tuning.rs): kp = z_factor Z, ki = (2 pi f1)^2 I_TD
+    from drillstring.drilling import recommend_controllers
+
+    numbers = recommend_controllers(_config()).string
+    assert changed["type"] == "soft_torque"
+    assert changed["kp"] == pytest.approx(changed["z_factor"] * numbers.impedance, rel=1e-12)
+    assert changed["ki"] == pytest.approx((2 * np.pi * numbers.first_mode_hz) ** 2 * numbers.top_drive_inertia,
+                                          rel=1e-12)
+
+
+def test_the_controls_are_the_setpoints_of_the_run() -> None:
+    from _live_session import SETTABLE
+
+    torsion = {c["key"] for c in controls(SETTABLE, load_drill_config(EXAMPLE), "si")}
+    assert torsion == {"top_drive.rpm", "bit.weight_on_bit", "top_drive.controller.type", "top_drive.controller.preset"}
+    coupled = load_drill_config(ROOT / "examples" / "coupled-deviated-3200m.toml")
+    assert coupled.hoist is not None and coupled.hoist.mode == "weight_on_bit"
+    keys = {c["key"] for c in controls(SETTABLE, coupled, "si")}
+    assert keys == {"top_drive.rpm", "hoist.weight_on_bit", "top_drive.controller.type", "top_drive.controller.preset"}
+
+
 @settings(max_examples=60, deadline=None)
 @given(st.lists(st.floats(0.0, 0.2), min_size=1, max_size=200), st.lists(st.integers(1, 40), max_size=10),
        st.sampled_from([0.01, 0.05, 0.3]))

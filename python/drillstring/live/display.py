@@ -70,6 +70,8 @@ SETPOINTS: dict[str, tuple[str, str, float, float, bool]] = {
 #: The keys offered as a choice among the names the configuration reference lists.
 CHOICES: dict[str, str] = {"top_drive.controller.type": "controller type",
                            "top_drive.controller.preset": "controller preset (gains)"}
+#: The controller keys a preset sets during a run (its type and gains).
+PRESET_KEYS: tuple[str, ...] = ("type", "kp", "ki", "z_factor")
 
 
 def choices(key: str) -> list[str]:
@@ -88,12 +90,31 @@ def _current(config: Any, key: str) -> Any:
     return value
 
 
+#: The hoist's setpoint key of each hoist mode.
+HOIST_SETPOINT: dict[str, str] = {"velocity": "hoist.speed", "hook_load": "hoist.hook_load",
+                                  "weight_on_bit": "hoist.weight_on_bit"}
+
+
+def _relevant(key: str, config: Any) -> bool:
+    """Whether the page offers ``key`` for ``config``: the hoist's setpoint of its mode in a
+    coupled run, the velocity-weakening bit's weight in a torsion-only one."""
+    hoist = getattr(config, "hoist", None)
+    if key.startswith("hoist."):
+        return hoist is not None and HOIST_SETPOINT.get(str(hoist.mode)) == key
+    if key == "bit.weight_on_bit":
+        return hoist is None
+    return True
+
+
 def controls(settable: Sequence[str], config: Any, system: str) -> list[dict[str, Any]]:
     """The page's controls of the keys the session can change (``settable``): a slider with a number
     field for each setpoint (range, value and unit shown in ``system``), a choice for the
-    controller's type and preset."""
+    controller's type and, with its gains settable, of a preset (``kind = "preset"``, which the
+    driver applies as the preset's gains for this string)."""
     out: list[dict[str, Any]] = []
     for key in settable:
+        if not _relevant(key, config):
+            continue
         if key in SETPOINTS:
             label, unit, low, high, kilo = SETPOINTS[key]
             factor, shown = axis_unit(unit, system, kilo=kilo)
@@ -106,6 +127,9 @@ def controls(settable: Sequence[str], config: Any, system: str) -> list[dict[str
             names = choices(key)
             out.append({"key": key, "kind": "choice", "label": CHOICES[key],
                         "choices": names, "value": None if value is None else str(value)})
+    if {f"top_drive.controller.{k}" for k in PRESET_KEYS} <= set(settable):
+        key = "top_drive.controller.preset"
+        out.append({"key": key, "kind": "preset", "label": CHOICES[key], "choices": choices(key), "value": None})
     return out
 
 

@@ -36,7 +36,7 @@ VERDICT_EVERY = 3.0
 VERDICT_WINDOW = 15.0
 VERDICT_MIN = 4.0
 #: The commands the page can send.
-COMMANDS = ("set", "pause", "resume", "reset", "speed", "record")
+COMMANDS = ("set", "preset", "pause", "resume", "reset", "speed", "record")
 
 
 def parse_speed(value: Any, field: str = "speed") -> float:
@@ -224,6 +224,8 @@ class Driver:
             key, number = value
             self.session.set(str(key), number)
             self._event({"type": "set", "key": str(key), "value": number, "t": float(self.session.t)})
+        elif name == "preset":
+            return self._preset(str(value))
         elif name == "pause":
             self._paused = True
         elif name == "resume":
@@ -243,6 +245,26 @@ class Driver:
             return _LATER
         self._collect(force=True)
         return None
+
+    def _preset(self, name: str) -> list[str]:
+        """Sets the controller's type and gains of the preset ``name`` for this string (the core's
+        rules, :func:`~drillstring.drilling.tuning.recommend_controllers`); returns the keys set."""
+        from ..drilling.tuning import recommend_controllers
+        from .display import PRESET_KEYS
+
+        presets = {p.preset: p.controller for p in recommend_controllers(self.config).presets}
+        if name not in presets:
+            raise ValidationError("top_drive.controller.preset", name, f"one of {', '.join(presets)}")
+        done = []
+        for part in PRESET_KEYS:
+            value = presets[name].get(part)
+            if value is not None:
+                key = f"top_drive.controller.{part}"
+                self.session.set(key, value)
+                self._event({"type": "set", "key": key, "value": value, "t": float(self.session.t)})
+                done.append(key)
+        self._collect(force=True)
+        return done
 
     def _event(self, event: dict[str, Any]) -> None:
         with self._lock:

@@ -147,7 +147,11 @@
           option.selected = name === (c.value || "");
           select.appendChild(option);
         }
-        select.addEventListener("change", () => { if (select.value) command({ type: "set", key: c.key, value: select.value }); });
+        select.addEventListener("change", () => {
+          if (!select.value) return;
+          command(c.kind === "preset" ? { type: "preset", value: select.value }
+            : { type: "set", key: c.key, value: select.value });
+        });
         div.appendChild(select);
       }
       box.appendChild(div);
@@ -185,6 +189,7 @@
       if (!message.ok) show(message.message, true);
       else if (message.command === "record") show("recorded to " + message.result, false);
       else if (message.command === "set") show("set", false);
+      else if (message.command === "preset") show("set " + message.result.join(", "), false);
     }
   }
 
