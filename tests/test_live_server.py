@@ -41,9 +41,10 @@ def _config() -> Any:
 Client = Callable[[Any], Awaitable[Any]]
 
 
-def _talk(tmp_path: Path, body: Client, *, speed: float = 1.0) -> Any:
-    """Runs ``body(ws)`` against a display of the example (100 cells) served on a free port."""
-    driver = Driver(_config(), speed=speed, record_dir=tmp_path, make_session=session_class())
+def _talk(tmp_path: Path, body: Client, *, speed: float = 1.0, config: Any = None) -> Any:
+    """Runs ``body(ws)`` against a display of ``config`` (default: the example on 100 cells) served
+    on a free port."""
+    driver = Driver(config or _config(), speed=speed, record_dir=tmp_path, make_session=session_class())
 
     async def client(url: str) -> Any:
         async with aiohttp.ClientSession() as http, http.ws_connect(url + "ws") as ws:
@@ -87,6 +88,28 @@ def test_frames_arrive_with_the_tracks_of_the_run_and_time_advances(tmp_path: Pa
     assert 0.5 < times[-1] - times[0] < 3.0
     state = next(f["state"] for f in frames if "state" in f)
     assert len(state["z_m"]) == len(state["omega_rpm"]) == 100 and state["bit_stuck"] in (True, False)
+
+
+@pytest.mark.skipif(session_class() is StandInSession, reason="a coupled run needs drillstring's DrillSession")
+def test_a_coupled_run_shows_the_hoist_and_the_axial_field(tmp_path: Path) -> None:
+    config = load_drill_config(ROOT / "examples" / "coupled-deviated-3200m.toml").with_overrides(
+        ["numerics.cells=100"])
+
+    async def body(ws: Any) -> Any:
+        hello = await _next(ws, "hello")
+        frames = [await _next(ws, "frame") for _ in range(20)]
+        wob = await _reply(ws, {"type": "set", "id": 1, "key": "hoist.weight_on_bit", "value": 100e3})
+        return hello, frames, wob
+
+    hello, frames, wob = _talk(tmp_path, body, config=config, speed=4.0)
+    assert [c["name"] for c in hello["tracks"]] == ["surface_rpm", "motor_torque", "hook_load", "bit_depth",
+                                                    "weight_on_bit", "rop", "bit_rpm", "bit_torque"]
+    assert "hoist.weight_on_bit" in {c["key"] for c in hello["controls"]}
+    rows = [f["rows"] for f in frames if "rows" in f]
+    assert rows and all(set(r) == {"t", *(c["name"] for c in hello["tracks"])} for r in rows)
+    state = next(f["state"] for f in frames if "state" in f)
+    assert len(state["axial_z_m"]) == len(state["axial_force_N"]) > 0
+    assert wob["ok"], wob
 
 
 def test_a_set_is_answered_and_a_key_that_cannot_change_gets_its_message(tmp_path: Path) -> None:

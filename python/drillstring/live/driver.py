@@ -67,7 +67,12 @@ class Update:
 def _default_session(config: Any) -> Any:
     import importlib
 
-    return importlib.import_module("drillstring.drilling.session").DrillSession(config)
+    try:
+        module = importlib.import_module("drillstring.drilling.session")
+    except ImportError as exc:
+        raise DrillstringError("drillstring live needs the drilling session (drillstring.DrillSession), "
+                               "which this build of drillstring does not have") from exc
+    return module.DrillSession(config)
 
 
 class Driver:
