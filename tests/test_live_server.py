@@ -146,6 +146,28 @@ def test_pause_stops_the_clock_and_resume_starts_it(tmp_path: Path) -> None:
     assert not running[-1]["paused"] and running[-1]["t"] > paused[-1]["t"]
 
 
+def test_reset_starts_the_run_again_and_tells_the_page(tmp_path: Path) -> None:
+    async def body(ws: Any) -> Any:
+        before = await _next(ws, "frame")
+        while before["status"]["t"] < 1.0:
+            before = await _next(ws, "frame")
+        assert (await _reply(ws, {"type": "set", "id": 1, "key": "top_drive.rpm", "value": 60.0}))["ok"]
+        await ws.send_str(json.dumps({"type": "reset", "id": 2}))
+        seen: dict[str, Any] = {}
+        while not {"reply", "reset"} <= set(seen):  # the reply and the reset's message, in either order
+            message = json.loads((await ws.receive()).data)
+            seen.setdefault(message["type"], message)
+        assert seen["reply"]["ok"]
+        reset = seen["reset"]
+        after = await _next(ws, "frame")
+        return before, reset, after
+
+    before, reset, after = _talk(tmp_path, body)
+    assert after["status"]["t"] < 0.5 < before["status"]["t"]
+    rpm = next(c for c in reset["controls"] if c["key"] == "top_drive.rpm")
+    assert rpm["value"] == 40.0  # the configuration's setpoint again: the changes are dropped
+
+
 def test_a_preset_sets_the_controller_type_and_gains_of_this_string(tmp_path: Path) -> None:
     async def body(ws: Any) -> Any:
         await _next(ws, "frame")

@@ -132,7 +132,7 @@ class LiveApp:
         if update.reset:
             self._drawn = -math.inf
             self._history = []
-            prefix = json.dumps({"type": "reset", **self.hello()}) + "\n"
+            prefix = json.dumps({**self.hello(), "type": "reset"}) + "\n"
         rows = update.rows
         if rows and "t" in rows and rows["t"].size:
             keep = decimate(rows["t"], WINDOW_S / POINTS, self._drawn)
