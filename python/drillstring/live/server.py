@@ -66,6 +66,7 @@ class LiveApp:
         self._drawn = -math.inf
         self._bounce = False
         self._history: list[dict[str, np.ndarray]] = []
+        self._answering: set[asyncio.Future[None]] = set()
         self.app = web.Application()
         self.app.router.add_get("/", self._index)
         self.app.router.add_get("/ws", self._socket)
@@ -100,7 +101,9 @@ class LiveApp:
         try:
             async for message in ws:
                 if message.type == WSMsgType.TEXT:
-                    asyncio.ensure_future(self._answer(ws, message.data))
+                    task = asyncio.ensure_future(self._answer(ws, message.data))
+                    self._answering.add(task)  # held until done (the loop keeps weak references only)
+                    task.add_done_callback(self._answering.discard)
         finally:
             self.clients.discard(ws)
         return ws
