@@ -61,12 +61,16 @@ async def _next(ws: Any, kind: str) -> dict[str, Any]:
             return message  # type: ignore[no-any-return]
 
 
-async def _reply(ws: Any, command: dict[str, Any]) -> dict[str, Any]:
+async def _reply(ws: Any, command: dict[str, Any], events: list[dict[str, Any]] | None = None) -> dict[str, Any]:
+    """Sends ``command`` and returns its reply; the events of the frames passed on the way are
+    added to ``events``."""
     await ws.send_str(json.dumps(command))
     while True:
-        message = await _next(ws, "reply")
-        if message["id"] == command["id"]:
-            return message
+        message = json.loads((await ws.receive()).data)
+        if events is not None:
+            events += message.get("events", [])
+        if message["type"] == "reply" and message["id"] == command["id"]:
+            return message  # type: ignore[no-any-return]
 
 
 def test_frames_arrive_with_the_tracks_of_the_run_and_time_advances(tmp_path: Path) -> None:
@@ -115,13 +119,13 @@ def test_a_coupled_run_shows_the_hoist_and_the_axial_field(tmp_path: Path) -> No
 def test_a_set_is_answered_and_a_key_that_cannot_change_gets_its_message(tmp_path: Path) -> None:
     async def body(ws: Any) -> Any:
         await _next(ws, "frame")
-        good = await _reply(ws, {"type": "set", "id": 1, "key": "top_drive.rpm", "value": 80.0})
-        bad_key = await _reply(ws, {"type": "set", "id": 2, "key": "numerics.cells", "value": 80})
-        bad_value = await _reply(ws, {"type": "set", "id": 3, "key": "top_drive.rpm", "value": "fast"})
-        unknown = await _reply(ws, {"type": "jump", "id": 4})
-        events = []
+        events: list[dict[str, Any]] = []
+        good = await _reply(ws, {"type": "set", "id": 1, "key": "top_drive.rpm", "value": 80.0}, events)
+        bad_key = await _reply(ws, {"type": "set", "id": 2, "key": "numerics.cells", "value": 80}, events)
+        bad_value = await _reply(ws, {"type": "set", "id": 3, "key": "top_drive.rpm", "value": "fast"}, events)
+        unknown = await _reply(ws, {"type": "jump", "id": 4}, events)
         while not events:
-            events = (await _next(ws, "frame")).get("events", [])
+            events += (await _next(ws, "frame")).get("events", [])
         return good, bad_key, bad_value, unknown, events
 
     good, bad_key, bad_value, unknown, events = _talk(tmp_path, body)
@@ -171,12 +175,16 @@ def test_reset_starts_the_run_again_and_tells_the_page(tmp_path: Path) -> None:
 def test_a_preset_sets_the_controller_type_and_gains_of_this_string(tmp_path: Path) -> None:
     async def body(ws: Any) -> Any:
         await _next(ws, "frame")
-        done = await _reply(ws, {"type": "preset", "id": 1, "value": "soft_torque"})
-        bad = await _reply(ws, {"type": "preset", "id": 2, "value": "gentle"})
+        await ws.send_str(json.dumps({"type": "preset", "id": 1, "value": "soft_torque"}))
+        await ws.send_str(json.dumps({"type": "preset", "id": 2, "value": "gentle"}))
+        replies: dict[int, Any] = {}
         events: list[dict[str, Any]] = []
-        while len(events) < 4:
-            events += (await _next(ws, "frame")).get("events", [])
-        return done, bad, events
+        while len(replies) < 2 or len(events) < 4:  # replies and frames in any order
+            message = json.loads((await ws.receive()).data)
+            if message["type"] == "reply":
+                replies[message["id"]] = message
+            events += message.get("events", [])
+        return replies[1], replies[2], events
 
     done, bad, events = _talk(tmp_path, body)
     assert done["ok"] and done["result"] == [f"top_drive.controller.{k}" for k in ("type", "kp", "ki", "z_factor")]

@@ -227,8 +227,7 @@ class Driver:
     def _carry_out(self, name: str, value: Any, future: Future[Any]) -> Any:
         if name == "set":
             key, number = value
-            self.session.set(str(key), number)
-            self._event({"type": "set", "key": str(key), "value": number, "t": float(self.session.t)})
+            self._set(str(key), number)
         elif name == "preset":
             return self._preset(str(value))
         elif name == "pause":
@@ -265,11 +264,26 @@ class Driver:
             value = presets[name].get(part)
             if value is not None:
                 key = f"top_drive.controller.{part}"
-                self.session.set(key, value)
-                self._event({"type": "set", "key": key, "value": value, "t": float(self.session.t)})
+                self._set(key, value)
                 done.append(key)
         self._collect(force=True)
         return done
+
+    def _set(self, key: str, value: Any) -> None:
+        """Sets ``key`` to the SI ``value`` (the page's and the presets' values are SI; the session
+        reads plain numbers in the configuration's unit system, so a field configuration's get
+        theirs with the SI unit written out)."""
+        sent = value
+        system = getattr(self.config, "units", "si")
+        if system != "si" and isinstance(value, (int, float)) and not isinstance(value, bool):
+            from ..drilling.config import config_schema
+
+            entry: dict[str, Any] = dict(config_schema().get(key) or {})
+            unit = entry.get("unit")
+            if unit:
+                sent = f"{float(value)!r} {unit}"
+        self.session.set(key, sent)
+        self._event({"type": "set", "key": key, "value": value, "t": float(self.session.t)})
 
     def _event(self, event: dict[str, Any]) -> None:
         with self._lock:
