@@ -14,7 +14,6 @@ from typing import Any, Callable
 
 import pytest
 from _drill_folder import check_drill_folder
-from _live_session import session_class
 
 from drillstring.drilling import load_drill_config
 from drillstring.live.driver import Driver
@@ -65,7 +64,7 @@ def until(condition: Callable[[], Any], timeout: float, what: str) -> Any:
 @pytest.mark.slow
 def test_the_display_runs_takes_setpoints_pauses_and_records(browser: Any, tmp_path: Path) -> None:
     config = load_drill_config(EXAMPLE).with_overrides(["numerics.cells=100"])
-    driver = Driver(config, speed=1.0, record_dir=tmp_path, make_session=session_class())
+    driver = Driver(config, speed=1.0, record_dir=tmp_path)
     problems: list[str] = []
     with Background(LiveApp(driver, name="on-bottom")) as server:
         page = browser.new_page(viewport={"width": 1400, "height": 900})
@@ -109,9 +108,10 @@ def test_the_display_runs_takes_setpoints_pauses_and_records(browser: Any, tmp_p
         assert reply["ok"], reply
         folder = Path(reply["result"])
         series = check_drill_folder(folder)
-        steps = load_drill_config(folder / "config.toml").top_drive.steps
-        assert steps and all(v == 80.0 for _, v in steps)
-        assert series["surface_rpm"][series.index > steps[0][0]].max() > 60.0
+        changes = load_drill_config(folder / "config.toml").changes
+        assert changes and all(c.key == "top_drive.rpm" and c.value == 80.0 for c in changes)
+        assert series["surface_rpm"][series.index < changes[0].time].max() < 60.0
+        assert series["surface_rpm"][series.index > changes[0].time].max() > 70.0
 
         # a run longer than the tracks' window: the page keeps a fixed number of rows
         page.select_option("#speed", "max")

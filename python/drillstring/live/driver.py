@@ -65,14 +65,9 @@ class Update:
 
 
 def _default_session(config: Any) -> Any:
-    import importlib
+    from ..drilling.session import DrillSession
 
-    try:
-        module = importlib.import_module("drillstring.drilling.session")
-    except ImportError as exc:
-        raise DrillstringError("drillstring live needs the drilling session (drillstring.DrillSession), "
-                               "which this build of drillstring does not have") from exc
-    return module.DrillSession(config)
+    return DrillSession(config)
 
 
 class Driver:
