@@ -229,6 +229,23 @@ def test_decimation_does_not_depend_on_how_the_rows_arrive(gaps: list[float], cu
     assert np.unique(np.floor(whole / step)).size == whole.size == np.unique(np.floor(t / step)).size
 
 
+def test_a_field_configuration_gets_the_pages_si_values_as_they_are(tmp_path: Path) -> None:
+    # the page sends SI (its factor undone); a field file's session reads plain numbers in klbf
+    config = load_drill_config(ROOT / "examples" / "on-bottom-3000m-field.toml").with_overrides(
+        ["numerics.cells=60"], units="si")
+    assert config.units == "field"
+    driver = Driver(config, record_dir=tmp_path)
+    driver.start()
+    try:
+        driver.submit("set", ("bit.weight_on_bit", 100e3)).result(timeout=30)
+        driver.submit("set", ("top_drive.rpm", 80.0)).result(timeout=30)
+        driver.submit("pause").result(timeout=30)
+        changes = [(key, value) for _, key, value in driver.session.changes]
+    finally:
+        driver.stop()
+    assert changes == [("bit.weight_on_bit", pytest.approx(100e3, rel=1e-12)), ("top_drive.rpm", 80.0)]
+
+
 def test_field_units_show_the_setpoints_in_klbf() -> None:
     config = load_drill_config(EXAMPLE)
     shown = {c["key"]: c for c in controls(("top_drive.rpm", "bit.weight_on_bit"), config, "field")}
