@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import math
 import os
 import signal
 import subprocess
@@ -114,6 +115,20 @@ def test_a_coupled_run_shows_the_hoist_and_the_axial_field(tmp_path: Path) -> No
     state = next(f["state"] for f in frames if "state" in f)
     assert len(state["axial_z_m"]) == len(state["axial_force_N"]) > 0
     assert wob["ok"], wob
+
+
+def test_a_page_connecting_while_the_run_steps_flat_out_gets_its_hello_and_frames(tmp_path: Path) -> None:
+    # at --speed max the stepping thread is (almost) always inside a step: the server must not
+    # touch the session from its own thread
+    async def body(ws: Any) -> Any:
+        hello = await _next(ws, "hello")
+        frames = [await _next(ws, "frame") for _ in range(10)]
+        return hello, frames
+
+    time.sleep(0.3)
+    hello, frames = _talk(tmp_path, body, speed=math.inf)
+    assert hello["dt"] > 0 and frames[-1]["status"]["speed"] == "max"
+    assert frames[-1]["status"]["t"] > frames[0]["status"]["t"]
 
 
 def test_a_set_is_answered_and_a_key_that_cannot_change_gets_its_message(tmp_path: Path) -> None:

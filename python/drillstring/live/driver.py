@@ -93,6 +93,10 @@ class Driver:
     # ----------------------------------------------------------------- state kept by the worker
 
     def _begin(self, reset: bool) -> None:
+        # what the server reads from its own thread, taken while no step runs: the session
+        # itself is only ever touched by the thread stepping it
+        self.settable: tuple[str, ...] = tuple(self.session.settable)
+        self.dt = float(self.session.dt)
         self._row = 0
         self._paused = False
         self._failed = False

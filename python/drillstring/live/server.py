@@ -81,12 +81,12 @@ class LiveApp:
 
     def hello(self) -> dict[str, Any]:
         """What a page needs first: the tracks, views and controls in the run's units, the window."""
-        session = self.driver.session
+        driver = self.driver  # its copies: the session is the stepping thread's alone
         return {
-            "type": "hello", "name": self.name, "units": self.system, "coupled": self.driver.coupled,
-            **describe(self.driver.coupled, self.system),
-            "controls": controls(tuple(session.settable), self.driver.config, self.system),
-            "window_s": WINDOW_S, "points": POINTS, "dt": float(session.dt),
+            "type": "hello", "name": self.name, "units": self.system, "coupled": driver.coupled,
+            **describe(driver.coupled, self.system),
+            "controls": controls(driver.settable, driver.config, self.system),
+            "window_s": WINDOW_S, "points": POINTS, "dt": driver.dt,
             "record_dir": str(self.driver.record_dir),
         }
 
