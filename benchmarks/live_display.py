@@ -69,8 +69,9 @@ def main() -> None:
         before, wall0 = page.evaluate("({...window.drillstringStats})"), time.monotonic()
         time.sleep(args.seconds)
         after, wall1 = page.evaluate("({...window.drillstringStats})"), time.monotonic()
-        if args.screenshot:
-            page.screenshot(path=args.screenshot)
+        if args.screenshot:  # the page down to the end of its panels
+            bottom = page.evaluate("document.querySelector('main').getBoundingClientRect().bottom")
+            page.screenshot(path=args.screenshot, clip={"x": 0, "y": 0, "width": 1440, "height": bottom + 8})
         browser.close()
     wall = wall1 - wall0
     frames = after["frames"] - before["frames"]

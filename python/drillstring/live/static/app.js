@@ -199,6 +199,11 @@
     stats.t = status.t;
     $("time").textContent = status.t.toFixed(1);
     $("rtf").textContent = status.rtf === null ? "-" : status.rtf.toFixed(2) + " (asked " + status.speed + ")";
+    const speed = $("speed"), asked = String(status.speed);
+    if (speed.value !== asked && document.activeElement !== speed) {
+      if (![...speed.options].some((o) => o.value === asked)) speed.add(new Option(asked + "x", asked));
+      speed.value = asked;
+    }
     $("run-status").textContent = status.status !== "success" ? status.status + ": " + status.message
       : (status.paused ? "paused" : "running");
     if (message.rows && message.rows.t) {
