@@ -119,12 +119,12 @@
       label.textContent = c.label + (c.unit ? " (" + c.unit + ")" : "");
       div.appendChild(label);
       if (c.kind === "slider") {
-        const lo = c.min * c.factor, hi = c.max * c.factor, step = (hi - lo) / 500;
+        const lo = c.min * c.factor, hi = c.max * c.factor;
         const slider = document.createElement("input");
         const number = document.createElement("input");
         slider.type = "range"; number.type = "number";
         for (const input of [slider, number]) {
-          input.min = lo; input.max = hi; input.step = step; input.value = c.value * c.factor;
+          input.min = lo; input.max = hi; input.step = "any"; input.value = Number((c.value * c.factor).toPrecision(5));
           input.dataset.key = c.key;
           div.appendChild(input);
         }
