@@ -286,6 +286,14 @@ def test_a_bad_value_is_one_line_with_exit_status_2(capsys: pytest.CaptureFixtur
     one_line_error(err, "top_drive.rpm")
 
 
+def test_without_the_extra_the_command_names_it(capsys: pytest.CaptureFixture[str],
+                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "aiohttp", None)  # as if not installed: its import fails
+    code, _, err = run_cli(capsys, "live", str(EXAMPLE), "--no-browser")
+    assert code == 2
+    one_line_error(err, "live", "aiohttp")
+
+
 def test_the_command_prints_its_address_serves_the_page_and_stops_on_ctrl_c(tmp_path: Path) -> None:
     env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
     child = subprocess.Popen(
