@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-from ._common import add_units, drilling_config, int_in, say
+from ._common import drilling_config, int_in, say
 
 
 def _speed(text: str) -> float:
@@ -40,7 +40,9 @@ def add_parser(subparsers: Any) -> None:
                    help="change a field before the run starts, e.g. top_drive.rpm=60 (repeatable)")
     p.add_argument("--record-dir", default=".", metavar="DIR",
                    help="where Record writes its folders (live-DATE-TIME-tNs, drill's outputs; default: here)")
-    add_units(p)
+    p.add_argument("--units", choices=("si", "field"), default=None,
+                   help="the unit system of the page (field: ft, klbf, kft-lbf, ft/h; default: the configuration's "
+                   "units key, si without one); a recording's data files are SI either way")
     p.set_defaults(func=run)
 
 
