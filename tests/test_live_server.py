@@ -7,9 +7,6 @@ from __future__ import annotations
 import asyncio
 import json
 import math
-import os
-import signal
-import subprocess
 import sys
 import time
 from collections.abc import Awaitable
@@ -18,6 +15,7 @@ from typing import Any, Callable
 
 import numpy as np
 import pytest
+from _children import python_child
 from _cli import one_line_error, run_cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -295,28 +293,28 @@ def test_without_the_extra_the_command_names_it(capsys: pytest.CaptureFixture[st
 
 
 def test_the_command_prints_its_address_serves_the_page_and_stops_on_ctrl_c(tmp_path: Path) -> None:
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
-    child = subprocess.Popen(
-        [sys.executable, "-m", "drillstring", "live", str(EXAMPLE), "--no-browser", "--port", "0",
-         "--set", "numerics.cells=60", "--record-dir", str(tmp_path)],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env, cwd=tmp_path)
-    try:
-        assert child.stdout is not None and child.stderr is not None
-        line = child.stdout.readline()
-        assert line.startswith("drillstring live: http://127.0.0.1:"), line + (child.stderr.read() or "")
+    script = f"""
+        import sys
+        from drillstring.cli import main
+        sys.exit(main(["live", {str(EXAMPLE)!r}, "--no-browser", "--port", "0", "--set", "numerics.cells=60",
+                       "--record-dir", {str(tmp_path)!r}]))
+    """
+    with python_child(script, cwd=tmp_path, ready=None) as child:
+        line = child.read_line()
+        assert line.startswith("drillstring live: http://127.0.0.1:"), line
         url = line.split()[2]
 
-        async def get() -> tuple[int, str]:
-            async with aiohttp.ClientSession() as http, http.get(url) as page:
-                return page.status, await page.text()
+        async def get() -> tuple[int, str, int]:
+            async with aiohttp.ClientSession() as http:
+                async with http.get(url) as page:
+                    text = await page.text()
+                async with http.get(url + "static/vendor/dygraph.min.js") as script:
+                    return page.status, text, len(await script.read())
 
-        status, text = asyncio.run(get())
-        assert status == 200 and "dygraph.min.js" in text
-        time.sleep(0.5)
-        child.send_signal(signal.SIGINT)
-        out, err = child.communicate(timeout=30)
-    finally:
-        if child.poll() is None:
-            child.kill()
-    assert child.returncode == 0, err
+        status, text, size = asyncio.run(get())
+        assert status == 200 and "dygraph.min.js" in text and size > 100_000
+        child.wait_cpu(0.2)  # the run under way
+        child.interrupt()
+        out, err = child.communicate(timeout=60)
+        assert child.proc.returncode == 0, err
     assert "drillstring live: stopped" in out and "Traceback" not in err
