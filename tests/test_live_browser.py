@@ -1,7 +1,7 @@
 """The live display in a real headless Chromium (the system's, driven by Playwright): the page loads
-with no console error, its tracks advance, a moved rpm setpoint moves the surface rpm, pause stops
-the clock, Record writes a drill output folder. Skipped without Chromium or Playwright, except in
-CI (``CI`` set), where a missing browser is a failure."""
+with no console error, its tracks advance, a moved rpm setpoint moves the surface rpm, a preset
+sets the controller, pause stops the clock, Record writes a drill output folder. Skipped without
+Chromium or Playwright, except in CI (``CI`` set), where a missing browser is a failure."""
 
 from __future__ import annotations
 
@@ -88,6 +88,11 @@ def test_the_display_runs_takes_setpoints_pauses_and_records(browser: Any, tmp_p
         until(lambda: any(r.get("command") == "set" and r["ok"] for r in stats()["replies"]), 10, "the set's reply")
         until(lambda: float(last("surface_rpm")) > 70.0, 20, "the surface rpm to reach the new setpoint")
 
+        # a preset: the controller type and gains of this string, the type shown on the page
+        page.select_option('select[data-key="top_drive.controller.preset"]', "soft_torque")
+        until(lambda: page.locator('select[data-key="top_drive.controller.type"]').input_value() == "soft_torque",
+              10, "the preset's controller type on the page")
+
         # a key that cannot change during a run: the server's message on the page
         page.evaluate("window.drillstringCommand({type: 'set', key: 'numerics.cells', value: 50})")
         until(lambda: "numerics.cells" in page.locator("#message").text_content(), 10, "the error message")
@@ -109,9 +114,11 @@ def test_the_display_runs_takes_setpoints_pauses_and_records(browser: Any, tmp_p
         folder = Path(reply["result"])
         series = check_drill_folder(folder)
         changes = load_drill_config(folder / "config.toml").changes
-        assert changes and all(c.key == "top_drive.rpm" and c.value == 80.0 for c in changes)
-        assert series["surface_rpm"][series.index < changes[0].time].max() < 60.0
-        assert series["surface_rpm"][series.index > changes[0].time].max() > 70.0
+        rpm = [c for c in changes if c.key == "top_drive.rpm"]
+        assert rpm and all(c.value == 80.0 for c in rpm)
+        assert {c.key: c.value for c in changes}["top_drive.controller.type"] == "soft_torque"
+        assert series["surface_rpm"][series.index < rpm[0].time].max() < 60.0
+        assert series["surface_rpm"][series.index > rpm[0].time].max() > 70.0
 
         # a run longer than the tracks' window: the page keeps a fixed number of rows
         page.select_option("#speed", "max")

@@ -223,6 +223,8 @@
         const line = document.createElement("div");
         line.textContent = "t = " + e.t.toFixed(2) + " s: " + e.key + " = " + e.value;
         $("changes").prepend(line);
+        const choice = document.querySelector('select[data-key="' + e.key + '"]');
+        if (choice && typeof e.value === "string") choice.value = e.value;  // a preset's type
       }
     }
   }
