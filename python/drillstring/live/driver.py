@@ -128,9 +128,16 @@ class Driver:
         self._thread.start()
 
     def stop(self) -> None:
+        """Stops the worker after its step; commands not carried out fail with a message."""
         self._stopping.set()
         if self._thread is not None:
             self._thread.join()
+        while True:
+            try:
+                _, _, future = self._commands.get_nowait()
+            except queue.Empty:
+                return
+            future.set_exception(DrillstringError("the display stopped before the command was carried out"))
 
     def submit(self, command: str, value: Any = None) -> Future[Any]:
         """Queues a command of :data:`COMMANDS` for the worker: its future is done once it took
