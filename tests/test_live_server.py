@@ -163,6 +163,28 @@ def test_pause_stops_the_clock_and_resume_starts_it(tmp_path: Path) -> None:
     assert not running[-1]["paused"] and running[-1]["t"] > paused[-1]["t"]
 
 
+def test_a_page_opened_later_shows_the_setpoints_changed_and_another_site_is_refused(tmp_path: Path) -> None:
+    driver = Driver(_config(), record_dir=tmp_path)
+
+    async def pages(url: str) -> tuple[dict[str, Any], int]:
+        async with aiohttp.ClientSession() as http:
+            async with http.ws_connect(url + "ws") as first:
+                assert (await _reply(first, {"type": "set", "id": 1, "key": "top_drive.rpm", "value": 70.0}))["ok"]
+            async with http.ws_connect(url + "ws") as second:
+                hello = await _next(second, "hello")
+            try:
+                async with http.ws_connect(url + "ws", origin="http://elsewhere.example"):
+                    status = 101
+            except aiohttp.WSServerHandshakeError as exc:
+                status = exc.status
+        return hello, status
+
+    with Background(LiveApp(driver)) as server:
+        hello, status = asyncio.run(asyncio.wait_for(pages(server.url), 60))
+    assert next(c for c in hello["controls"] if c["key"] == "top_drive.rpm")["value"] == 70.0
+    assert status == 403
+
+
 def test_reset_starts_the_run_again_and_tells_the_page(tmp_path: Path) -> None:
     async def body(ws: Any) -> Any:
         before = await _next(ws, "frame")

@@ -106,11 +106,14 @@ def _relevant(key: str, config: Any) -> bool:
     return True
 
 
-def controls(settable: Sequence[str], config: Any, system: str) -> list[dict[str, Any]]:
+def controls(settable: Sequence[str], config: Any, system: str,
+             values: Optional[Mapping[str, Any]] = None) -> list[dict[str, Any]]:
     """The page's controls of the keys the session can change (``settable``): a slider with a number
     field for each setpoint (range, value and unit shown in ``system``), a choice for the
     controller's type and, with its gains settable, of a preset (``kind = "preset"``, which the
-    driver applies as the preset's gains for this string)."""
+    driver applies as the preset's gains for this string). ``values``: the keys changed so far
+    (SI), shown in place of the configuration's."""
+    values = values or {}
     out: list[dict[str, Any]] = []
     for key in settable:
         if not _relevant(key, config):
@@ -118,12 +121,12 @@ def controls(settable: Sequence[str], config: Any, system: str) -> list[dict[str
         if key in SETPOINTS:
             label, unit, low, high, kilo = SETPOINTS[key]
             factor, shown = axis_unit(unit, system, kilo=kilo)
-            value = _current(config, key)
+            value = values[key] if key in values else _current(config, key)
             value = float(value) if isinstance(value, (int, float)) and math.isfinite(value) else low
             out.append({"key": key, "kind": "slider", "label": label, "unit": shown, "factor": factor,
                         "min": min(low, value), "max": max(high, value), "value": value})
         elif key in CHOICES:
-            value = _current(config, key)
+            value = values[key] if key in values else _current(config, key)
             names = choices(key)
             out.append({"key": key, "kind": "choice", "label": CHOICES[key],
                         "choices": names, "value": None if value is None else str(value)})

@@ -97,6 +97,8 @@ class Driver:
         # itself is only ever touched by the thread stepping it
         self.settable: tuple[str, ...] = tuple(self.session.settable)
         self.dt = float(self.session.dt)
+        self.values: dict[str, Any] = {}
+        """The keys changed so far and their SI values (what a page that connects later shows)."""
         self._row = 0
         self._paused = False
         self._failed = False
@@ -289,6 +291,7 @@ class Driver:
             if unit:
                 sent = f"{float(value)!r} {unit}"
         self.session.set(key, sent)
+        self.values = {**self.values, key: value}  # a new dict: the server's thread reads it whole
         self._event({"type": "set", "key": key, "value": value, "t": float(self.session.t)})
 
     def _event(self, event: dict[str, Any]) -> None:

@@ -19,6 +19,7 @@ import threading
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Optional
+from urllib.parse import urlsplit
 
 import numpy as np
 
@@ -85,7 +86,7 @@ class LiveApp:
         return {
             "type": "hello", "name": self.name, "units": self.system, "coupled": driver.coupled,
             **describe(driver.coupled, self.system),
-            "controls": controls(driver.settable, driver.config, self.system),
+            "controls": controls(driver.settable, driver.config, self.system, driver.values),
             "window_s": WINDOW_S, "points": POINTS, "dt": driver.dt,
             "record_dir": str(self.driver.record_dir),
         }
@@ -93,6 +94,10 @@ class LiveApp:
     async def _socket(self, request: Any) -> Any:
         from aiohttp import WSMsgType, web
 
+        origin = request.headers.get("Origin")
+        if origin is not None and urlsplit(origin).netloc != request.host:
+            # another site's page in the same browser may not drive the run
+            raise web.HTTPForbidden(text=f"WebSocket from another origin ({origin}) refused")
         ws = web.WebSocketResponse(heartbeat=20.0)
         await ws.prepare(request)
         await ws.send_str(json.dumps(self.hello()))
