@@ -15,6 +15,7 @@ import pandas as pd
 import pytest
 from _children import python_child
 from _cli import one_line_error, run_cli
+from _drill_folder import METRIC_KEYS
 
 from drillstring import _core
 from drillstring.drilling import FILES, load_drill_config
@@ -24,10 +25,6 @@ ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "on-bottom-3000m.toml"
 #: A short run of the example: a few seconds of a coarse grid.
 SHORT = ["--set", "numerics.duration=3", "--set", "numerics.cells=60", "--set", "numerics.field_interval=0.5"]
-
-METRIC_KEYS = {"period_s", "ssi", "stuck_fraction", "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean",
-               "motor_torque_min_Nm", "motor_torque_max_Nm", "breakoff_torque_Nm", "min_cycle_torque_Nm",
-               "window_start", "window_end", "window", "status", "message", "energy"}
 
 
 def test_drill_writes_the_output_folder(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
