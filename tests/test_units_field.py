@@ -371,8 +371,8 @@ def test_a_coupled_runs_field_copy_has_field_named_keys() -> None:
     result = drill(config)
     summary = result.summary("field")
     report = report_markdown(result, units="field")  # and the report's coupled table in field units
-    assert "| mean hook load, klbf |" in report and "| mean rate of penetration, ft/h |" in report
-    assert "| mechanical specific energy of the means, psi |" in report and "kN" not in report
+    assert "| hook load, klbf |" in report and "| ROP, ft/h |" in report
+    assert "| MSE, psi |" in report and "kN" not in report
     copy = summary["output_units"]
     coupled = summary["coupled"]
     assert copy["units"]["hook_load_mean_klbf"] == "klbf" and copy["units"]["rop_mean_ft_per_h"] == "ft/h"

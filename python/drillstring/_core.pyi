@@ -930,6 +930,8 @@ class OutputDict(TypedDict):
     """One output of a run in the core's registry (``drillstring_core::outputs``)."""
 
     name: str
+    #: The few words the console, report.md and the figures name it by, without its unit.
+    label: str
     #: SI unit as pint parses it ("" dimensionless); None for a verdict, a count or a text.
     unit: Optional[str]
     definition: str
@@ -942,7 +944,7 @@ class OutputDict(TypedDict):
     tolerance: Optional[tuple[str, float, float]]
     headline: bool
     #: A metric of stick_slip_metrics (of any series).
-    stick_slip: bool
+    of_any_series: bool
 
 def drill_outputs() -> list[OutputDict]:
     """Every metric and series channel of a run, declared once in the core, in order."""

@@ -54,8 +54,10 @@ def run(args: argparse.Namespace) -> int:
     import time
 
     from ..drilling import drill
+    from ..drilling.metrics import HOOK_LOAD_MEAN, OUTPUTS, REGIME
     from ..drilling.output import _write_files, output_folder
-    from ..drilling.units import annotate, convert, shown
+    from ..drilling.result import COUPLED_METRIC_UNITS
+    from ..drilling.units import annotate, convert, metric_texts, shown
 
     config = drilling_config(args)
     plots = not args.no_plots
@@ -87,19 +89,15 @@ def run(args: argparse.Namespace) -> int:
              f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
              f"(mean {m.bit_rpm_mean:.4g}), motor torque {low:.4g}..{torque(m.motor_torque_max_Nm)}, "
              f"wall break-off {torque(m.breakoff_torque_Nm)}, implied cycle minimum {torque(m.min_cycle_torque_Nm)}")
-        say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
-             f"{'settled' if m.settled else 'not settled'}")
+        say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); {'' if m.settled else 'not '}settled")
         if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
-            c = result.coupled_metrics
-            mse = f"{c['mse_mean_Pa'] / 1e6:.4g} MPa" if system == "si" else shown(c["mse_mean_Pa"], "Pa", system)
-            wob = shown(c["wob_mean_N"], "N", system, kilo=system == "si")
-            hook = shown(c["hook_load_mean_N"], "N", system, kilo=system == "si")
-            if c["bounce_fraction"] >= 1.0:  # a pick-up or slack-off: the hook load is the number
-                say(f"off bottom: hook load {hook} (mean over the window); regime: {result.coupled_regime}")
+            regime = f"{OUTPUTS[REGIME].label}: {result.coupled_regime}"
+            if result.coupled_regime == "off bottom":  # a pick-up or slack-off: the hook load is the number
+                say(f"off bottom: {metric_texts(result.coupled_metrics, (HOOK_LOAD_MEAN,), system)[0]} (mean over "
+                     f"the window); {regime}")
             else:
-                say(f"on bottom: ROP {shown(c['rop_mean_m_per_h'], 'm/h', system)}, weight on bit {wob}, "
-                     f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
-                     f"MSE {mse}, hook load {hook}; regime: {result.coupled_regime}")
+                say(f"on bottom: {', '.join(metric_texts(result.coupled_metrics, COUPLED_METRIC_UNITS, system))}; "
+                     f"{regime}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
             say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "

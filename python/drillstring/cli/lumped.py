@@ -71,8 +71,7 @@ def run(args: argparse.Namespace) -> int:
          f"SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.period_s:.4g} s, "
          f"bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), energy balance "
          f"{res.energy['balance_error']:.2g}")
-    say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
-         f"{'settled' if m.settled else 'not settled'}")
+    say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); {'' if m.settled else 'not '}settled")
     for warning in m.warnings:
         say(f"warning: {warning}")
     if args.out is not None:
@@ -100,6 +99,7 @@ LUMPED_SWEEP_FILES = ("lumped_sweep.csv", "lumped_sweep.png")
 
 def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
     from ..drilling.lumped import RPM_PER_RAD_S, lumped_defaults, lumped_sweep, lumped_sweep_figure
+    from ..drilling.metrics import BIT_RPM_MAX, BIT_RPM_MIN, SSI, STUCK_FRACTION
 
     name, values = map_axis(args.sweep, field="--sweep")
     if name not in lumped_defaults():
@@ -112,8 +112,8 @@ def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
         speeds = ", ".join(f"{row[f'rotation_{k}'] * rpm:.4g} rpm {'stable' if row[f'stable_{k}'] else 'unstable'}"
                            for k in (1, 2) if row[f"stable_{k}"] is not None) or "none"
         say(f"{name} = {row[name]:.6g}: steady rotations {speeds}; regime {row['regime']}; run {row['status']}: "
-             f"SSI {row['ssi']:.3g}, stuck fraction {row['stuck_fraction']:.3g}, "
-             f"bit {row['bit_rpm_min']:.4g}..{row['bit_rpm_max']:.4g} rpm")
+             f"SSI {row[SSI]:.3g}, stuck fraction {row[STUCK_FRACTION]:.3g}, "
+             f"bit {row[BIT_RPM_MIN]:.4g}..{row[BIT_RPM_MAX]:.4g} rpm")
     if args.out is not None:
         from ..io.figures import save
         from ..io.output import make_directory, write_text

@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 from .. import _core
 from ..errors import SolveError, ValidationError
 from ..limits import as_float, json_ready
-from .metrics import StickSlipMetrics
+from .metrics import BIT_RPM_MAX, BIT_RPM_MEAN, BIT_RPM_MIN, OUTPUTS, PERIOD, SSI, STUCK_FRACTION, StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -310,11 +310,13 @@ def lumped_figure(result: LumpedResult, title: Optional[str] = None) -> Figure:
     return fig
 
 
+#: The run's stick-slip metrics in a :func:`lumped_sweep` row, by the registry's names.
+SWEEP_METRICS: tuple[str, ...] = (SSI, STUCK_FRACTION, PERIOD, BIT_RPM_MIN, BIT_RPM_MAX, BIT_RPM_MEAN)
+
 #: The columns of :func:`lumped_sweep` after the parameter's own.
 SWEEP_COLUMNS: tuple[str, ...] = (
     "regime", "stuck_possible", "static_limit_Nm", "rotation_1", "stable_1", "rotation_2", "stable_2",
-    "status", "ssi", "stuck_fraction", "period_s", "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean",
-    "spring_torque_min_Nm", "spring_torque_max_Nm", "balance_error",
+    "status", *SWEEP_METRICS, "spring_torque_min_Nm", "spring_torque_max_Nm", "balance_error",
 )
 
 
@@ -347,7 +349,7 @@ def lumped_sweep(
     Examples
     --------
     >>> frame = lumped_sweep("wob", [30e3, 55e3], duration=100.0)
-    >>> list(frame["regime"]), [bool(f > 0) for f in frame["stuck_fraction"]]
+    >>> list(frame.regime), [bool(f > 0) for f in frame.stuck_fraction]
     (['stable_rotation', 'stable_rotation'], [False, True])
     """
     import pandas as pd
@@ -373,9 +375,8 @@ def lumped_sweep(
         rows.append({
             name: float(value), "regime": eq.regime, "stuck_possible": eq.stuck_possible,
             "static_limit_Nm": eq.static_limit, "rotation_1": speeds[0], "stable_1": stable[0],
-            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status, "ssi": m.ssi,
-            "stuck_fraction": m.stuck_fraction, "period_s": m.period_s, "bit_rpm_min": m.bit_rpm_min,
-            "bit_rpm_max": m.bit_rpm_max, "bit_rpm_mean": m.bit_rpm_mean, "spring_torque_min_Nm": m.motor_torque_min_Nm,
+            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status,
+            **{metric: m[metric] for metric in SWEEP_METRICS}, "spring_torque_min_Nm": m.motor_torque_min_Nm,
             "spring_torque_max_Nm": m.motor_torque_max_Nm, "balance_error": res.energy.get("balance_error", math.nan),
         })
         if progress is not None:
@@ -398,9 +399,9 @@ def lumped_sweep_figure(frame: pd.DataFrame, title: Optional[str] = None) -> Fig
     rpm = RPM_PER_RAD_S
     fig = Figure(figsize=(7.0, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
-    top.fill_between(x, frame["bit_rpm_min"], frame["bit_rpm_max"], color="tab:orange", alpha=0.25, lw=0,
+    top.fill_between(x, frame[BIT_RPM_MIN], frame[BIT_RPM_MAX], color="tab:orange", alpha=0.25, lw=0,
                      label="bit speed of the run, min to max")
-    top.plot(x, frame["bit_rpm_mean"], color="tab:orange", lw=1.2, label="bit speed of the run, mean")
+    top.plot(x, frame[BIT_RPM_MEAN], color="tab:orange", lw=1.2, label="bit speed of the run, mean")
     for k in (1, 2):
         speed = frame[f"rotation_{k}"].to_numpy(dtype=float) * rpm
         stable = frame[f"stable_{k}"].to_numpy(dtype=object)
@@ -412,8 +413,8 @@ def lumped_sweep_figure(frame: pd.DataFrame, title: Optional[str] = None) -> Fig
                  label="steady rotation, unstable" if k == 1 else None)
     top.set_ylabel("speed (rpm)")
     top.legend(fontsize="small")
-    bottom.plot(x, frame["ssi"], color="tab:red", label="SSI")
-    bottom.plot(x, frame["stuck_fraction"], color="tab:gray", label="stuck fraction")
+    bottom.plot(x, frame[SSI], color="tab:red", label=OUTPUTS[SSI].label)
+    bottom.plot(x, frame[STUCK_FRACTION], color="tab:gray", label=OUTPUTS[STUCK_FRACTION].label)
     bottom.axhline(1.0, color="tab:red", lw=0.8, ls="--")
     bottom.set_ylabel("severity")
     bottom.set_xlabel(f"{name} ({unit})" if unit else name)

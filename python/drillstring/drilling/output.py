@@ -313,7 +313,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
         f"## Stick-slip (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)",
         "",
         f"**Stick-slip: {m.stick_slip_verdict}** ({_md(m.stick_slip_reason)}); the window is "
-        f"{'settled' if m.settled else '**not settled** (a transient)'}.",
+        f"{'' if m.settled else '**not** '}settled{'' if m.settled else ' (a transient)'}.",
         "",
         f"Criterion: {_md(STICK_SLIP_CRITERION)}.",
         "",
@@ -336,22 +336,20 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
         f"{num(m.min_cycle_torque_Nm, 'N*m', kilo=True)} |",
     ]
     if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
-        from .result import COUPLED_REGIME_CRITERION
+        from .metrics import OUTPUTS
+        from .result import COUPLED_METRIC_UNITS, COUPLED_REGIME_CRITERION
+        from .units import reported_unit
 
         c = result.coupled_metrics
-        force_unit = unit("N", kilo=kilo("N"))
-        mse = (f"| mechanical specific energy of the means, MPa | {_fmt(c['mse_mean_Pa'] / 1e6)} |" if system == "si"
-               else f"| mechanical specific energy of the means, {unit('Pa')} | {num(c['mse_mean_Pa'], 'Pa')} |")
+        rows = []
+        for name in COUPLED_METRIC_UNITS:  # the registry's numeric coupled metrics, in its order
+            o = OUTPUTS[name]
+            scale, written = reported_unit(o.unit, system) if o.unit else (1.0, "")
+            rows.append(f"| {o.label}{', ' + written if written else ''} | {_fmt(c[name] * scale, 4 if written else 3)} |")
         lines += ["", f"## Coupled axial-torsional run (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)", "",
                   f"**Regime: {result.coupled_regime}**.", "",
                   f"Criterion: {_md(COUPLED_REGIME_CRITERION)}.", "",
-                  "| metric | value |", "|---|---:|",
-                  f"| mean rate of penetration, {unit('m/h')} | {num(c['rop_mean_m_per_h'], 'm/h')} |",
-                  f"| mean weight on bit, {force_unit} | {num(c['wob_mean_N'], 'N', kilo=kilo('N'))} |",
-                  f"| mean torque on bit, {torque_unit} | {num(c['tob_mean_Nm'], 'N*m', kilo=True)} |",
-                  f"| bit bounce (share of the window with no weight on bit) | {_fmt(c['bounce_fraction'], 3)} |",
-                  f"| mean hook load, {force_unit} | {num(c['hook_load_mean_N'], 'N', kilo=kilo('N'))} |",
-                  mse]
+                  "| metric (over the window) | value |", "|---|---:|", *rows]
     if result.energy:
         energy = "J" if system == "si" else unit("N*m")
         lines += ["", f"## Energy balance, {energy}", "",
