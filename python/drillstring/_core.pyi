@@ -1077,7 +1077,7 @@ class LumpedEquilibriaDict(TypedDict):
     #: Tm <= Wob Rb mu_sb.
     stuck_possible: bool
     #: "stable_rotation", "unstable" or "stuck".
-    regime: str
+    equilibrium: str
     #: Wob Rb mu_sb, N m.
     static_limit: float
 

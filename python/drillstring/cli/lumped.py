@@ -18,7 +18,8 @@ def add_parser(subparsers: Any) -> None:
     p = subparsers.add_parser(
         "lumped",
         help="the lumped two-inertia stick-slip model (Navarro-Lopez & Cortes 2007): equilibria and a run",
-        description="Print the steady rotations of the lumped two-inertia model, their stability and the regime, "
+        description="Print the steady rotations of the lumped two-inertia model, their stability and what they "
+        "predict (equilibrium), "
         "then run it from the initial state and print the stick-slip metrics over the last half of the run. "
         "Parameters default to the published ones (tm = 6000 N m, wob = 50 kN). With --sweep, do both at each "
         "value of one parameter and print one line per value; with --out DIR also write the table "
@@ -63,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
         growth = max(e.real for e in r.eigenvalues)
         say(f"steady rotation {r.speed:.6g} rad/s: {'stable' if r.stable else 'unstable'} "
              f"(largest eigenvalue real part {growth:.4g} 1/s)")
-    say(f"regime: {eq.regime}; bit at rest an equilibrium: {'yes' if eq.stuck_possible else 'no'} "
+    say(f"equilibrium: {eq.equilibrium}; bit at rest an equilibrium: {'yes' if eq.stuck_possible else 'no'} "
          f"(static limit {eq.static_limit:.6g} N m)")
     res = lumped(params, duration=args.duration, initial=args.initial)
     m = res.metrics
@@ -111,7 +112,8 @@ def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
     for _, row in frame.iterrows():
         speeds = ", ".join(f"{row[f'rotation_{k}'] * rpm:.4g} rpm {'stable' if row[f'stable_{k}'] else 'unstable'}"
                            for k in (1, 2) if row[f"stable_{k}"] is not None) or "none"
-        say(f"{name} = {row[name]:.6g}: steady rotations {speeds}; regime {row['regime']}; run {row['status']}: "
+        say(f"{name} = {row[name]:.6g}: steady rotations {speeds}; equilibrium {row['equilibrium']}; "
+             f"run {row['status']}: "
              f"SSI {row[SSI]:.3g}, stuck fraction {row[STUCK_FRACTION]:.3g}, "
              f"bit {row[BIT_RPM_MIN]:.4g}..{row[BIT_RPM_MAX]:.4g} rpm")
     if args.out is not None:

@@ -345,7 +345,8 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
         for name in COUPLED_METRIC_UNITS:  # the registry's numeric coupled metrics, in its order
             o = OUTPUTS[name]
             scale, written = reported_unit(o.unit, system) if o.unit else (1.0, "")
-            rows.append(f"| {o.label}{', ' + written if written else ''} | {_fmt(c[name] * scale, 4 if written else 3)} |")
+            value = _fmt(c[name] * scale, 4 if written else 3)
+            rows.append(f"| {o.label}{', ' + written if written else ''} | {value} |")
         lines += ["", f"## Coupled axial-torsional run (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)", "",
                   f"**Regime: {result.coupled_regime}**.", "",
                   f"Criterion: {_md(COUPLED_REGIME_CRITERION)}.", "",
