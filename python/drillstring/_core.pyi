@@ -943,6 +943,8 @@ class OutputDict(TypedDict):
     #: (kind, tolerance, floor) of the grid and start checks, or None.
     tolerance: Optional[tuple[str, float, float]]
     headline: bool
+    #: On the console's summary of a run (drillstring drill), by its label, in this order.
+    console: bool
     #: A metric of stick_slip_metrics (of any series).
     of_any_series: bool
 

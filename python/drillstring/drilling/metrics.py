@@ -46,6 +46,8 @@ class Output:
     """``(kind, tolerance, floor)`` of the grid and start checks, or None."""
     headline: bool
     """Finite in every run that has metrics, or the run is not a result."""
+    console: bool
+    """On the console's summary of a run (``drillstring drill``), by its label, in the registry's order."""
     of_any_series: bool
     """A metric of :func:`stick_slip_metrics` (of any series)."""
 
@@ -68,7 +70,8 @@ OUTPUTS: dict[str, Output] = {
                            runs=tuple(d["runs"]), map_column=bool(d["map_column"]), kind=str(d["kind"]),
                            tolerance=None if d["tolerance"] is None else (
                                str(d["tolerance"][0]), float(d["tolerance"][1]), float(d["tolerance"][2])),
-                           headline=bool(d["headline"]), of_any_series=bool(d["of_any_series"]))
+                           headline=bool(d["headline"]), console=bool(d["console"]),
+                           of_any_series=bool(d["of_any_series"]))
     for d in _core.drill_outputs()}
 
 #: The metrics the package reads in particular (a map's figures and console summary, the lumped

@@ -152,6 +152,8 @@ pub struct Output {
     pub tolerance: Option<Tolerance>,
     /// A headline metric: finite in every run that has metrics, or the run is not a result.
     pub headline: bool,
+    /// On the console's summary of a run (`drillstring drill`), by its label, in this order.
+    pub console: bool,
 }
 
 impl Output {
@@ -188,6 +190,7 @@ const fn metric(
         source,
         tolerance: None,
         headline: false,
+        console: false,
     }
 }
 
@@ -197,6 +200,10 @@ const fn tolerance(output: Output, judge: Judge, tolerance: f64, floor: f64) -> 
 
 const fn headline(output: Output) -> Output {
     Output { headline: true, ..output }
+}
+
+const fn console(output: Output) -> Output {
+    Output { console: true, ..output }
 }
 
 const fn of_kind(output: Output, kind: Kind) -> Output {
@@ -218,7 +225,12 @@ const fn coupled(
     definition: &'static str,
     tol: Tolerance,
 ) -> Output {
-    Output { runs: COUPLED, tolerance: Some(tol), ..metric(name, label, unit, definition, Source::Series) }
+    Output {
+        runs: COUPLED,
+        tolerance: Some(tol),
+        console: true,
+        ..metric(name, label, unit, definition, Source::Series)
+    }
 }
 
 const fn series(
@@ -241,45 +253,45 @@ pub static OUTPUTS: &[Output] = &[
     metric("window_start", "window start", "s", "start of the metrics window, s", Source::Run(|r| r.window[0])),
     metric("window_end", "window end", "s", "end of the metrics window, s", Source::Run(|r| r.window[1])),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "ssi",
             "SSI",
             "",
             "stick-slip severity (max - min) / (2 |mean|) of the bit speed over the window",
             Source::StickSlip(|m| Cell::Number(m.ssi)),
-        )),
+        ))),
         Judge::Rel,
         0.05,
         0.01,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "stuck_fraction",
             "stuck fraction",
             "",
             "fraction of the window's time with |bit speed| <= metrics.stick_speed; the bit is at rest while the \
              string above it is stuck (converges with the grid)",
             Source::StickSlip(|m| Cell::Number(m.stuck_fraction)),
-        )),
+        ))),
         Judge::Abs,
         0.03,
         0.0,
     ),
     tolerance(
-        metric(
+        console(metric(
             "period_s",
             "period",
             "s",
             "stick-slip period from the autocorrelation of the motor torque, s; null with fewer than two cycles in \
              the window",
             Source::StickSlip(|m| Cell::Number(m.period_s)),
-        ),
+        )),
         Judge::Rel,
         0.02,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "bit_rpm_min",
             "lowest bit speed",
             "rpm",
@@ -287,67 +299,67 @@ pub static OUTPUTS: &[Output] = &[
              bit back by a few rpm for some tens of ms, an amount that varies from cycle to cycle and between grids \
              (not converged: check it with check_grid)",
             Source::StickSlip(|m| Cell::Number(m.bit_rpm_min)),
-        )),
+        ))),
         Judge::Abs,
         1.0,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "bit_rpm_max",
             "highest bit speed",
             "rpm",
             "highest bit speed, rpm",
             Source::StickSlip(|m| Cell::Number(m.bit_rpm_max)),
-        )),
+        ))),
         Judge::Rel,
         0.05,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "bit_rpm_mean",
             "mean bit speed",
             "rpm",
             "time-weighted mean bit speed, rpm",
             Source::StickSlip(|m| Cell::Number(m.bit_rpm_mean)),
-        )),
+        ))),
         Judge::Rel,
         0.02,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "motor_torque_min_Nm",
             "lowest motor torque",
             "N*m",
             "lowest motor torque, N m (the lumped model: its spring torque)",
             Source::StickSlip(|m| Cell::Number(m.motor_torque_min_nm)),
-        )),
+        ))),
         Judge::Rel,
         0.03,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "motor_torque_max_Nm",
             "highest motor torque",
             "N*m",
             "highest motor torque, N m",
             Source::StickSlip(|m| Cell::Number(m.motor_torque_max_nm)),
-        )),
+        ))),
         Judge::Rel,
         0.03,
         0.0,
     ),
     tolerance(
-        string_only(metric(
+        string_only(console(metric(
             "breakoff_torque_Nm",
             "break-off torque",
             "N*m",
             "static break-off torque of the string in the well, N m",
             Source::Run(|r| r.breakoff_torque),
-        )),
+        ))),
         Judge::Rel,
         0.001,
         0.0,
@@ -399,13 +411,13 @@ pub static OUTPUTS: &[Output] = &[
         0.0,
         0.0,
     ),
-    string_only(metric(
+    string_only(console(metric(
         "min_cycle_torque_Nm",
         "minimum cycle torque",
         "N*m",
         "minimum motor torque of a stick-slip cycle that break-off implies, N m",
         Source::Run(|r| r.min_cycle_torque),
-    )),
+    ))),
     of_kind(
         metric(
             "stick_slip_verdict",
@@ -503,6 +515,7 @@ pub static OUTPUTS: &[Output] = &[
     Output {
         source: Source::Coupled(|c| Cell::Text(c.regime.name())),
         kind: Kind::Text,
+        console: false,
         unit: None,
         ..coupled(
             "regime",
@@ -701,6 +714,8 @@ pub struct Description {
     /// `(kind, tolerance, floor)` of the grid and start checks.
     pub tolerance: Option<Tolerance>,
     pub headline: bool,
+    /// On the console's summary of a run.
+    pub console: bool,
     /// Computed by the stick-slip metrics of any series (`stick_slip_metrics`).
     pub of_any_series: bool,
 }
@@ -722,6 +737,7 @@ pub fn describe() -> Vec<Description> {
             kind: o.kind,
             tolerance: o.tolerance,
             headline: o.headline,
+            console: o.console,
             of_any_series: Report::Series.has(o),
         })
         .collect()
