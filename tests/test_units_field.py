@@ -399,7 +399,7 @@ def test_a_field_files_report_and_console_are_in_field_units(tmp_path: Path,
     report = (tmp_path / "field" / "report.md").read_text()
     assert "| section | length, ft | OD, in | ID, in | G, psi | density, ppg |" in report
     assert "| drill pipe 5 in 19.5 lb/ft | 9842.52 | 5 | 4.27559 |" in report
-    assert "WOB 17.98 klbf, r 4.25197 in" in report and "motor torque min / max, kft-lbf" in report
+    assert "WOB 17.98 klbf, r 4.25197 in" in report and "| highest motor torque, kft-lbf |" in report
     assert "kN" not in report and "| 3000 |" not in report
     # a warning's SI quantities are followed by their field values, on the console and in the report
     warned = [line for line in out.splitlines() if line.startswith("warning:") and " N m" in line]
