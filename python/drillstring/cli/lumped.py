@@ -44,6 +44,8 @@ def add_parser(subparsers: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     """Runs ``drillstring lumped``; returns its exit status."""
     from ..drilling.lumped import lumped, lumped_equilibria
+    from ..drilling.metrics import OUTPUTS
+    from ..drilling.units import metric_texts
 
     params: dict[str, Any] = {}
     for item in args.overrides:
@@ -68,10 +70,9 @@ def run(args: argparse.Namespace) -> int:
          f"(static limit {eq.static_limit:.6g} N m)")
     res = lumped(params, duration=args.duration, initial=args.initial)
     m = res.metrics
+    shown = [n for n, o in OUTPUTS.items() if o.console and "lumped" in o.runs]  # the registry's, by label
     say(f"run from ({', '.join(f'{x:g}' for x in args.initial)}), window {res.window[0]:g}-{res.window[1]:g} s: "
-         f"SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.period_s:.4g} s, "
-         f"bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), energy balance "
-         f"{res.energy['balance_error']:.2g}")
+         f"{', '.join(metric_texts(m.values, shown, 'si'))}, energy balance {res.energy['balance_error']:.2g}")
     say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); {'' if m.settled else 'not '}settled")
     for warning in m.warnings:
         say(f"warning: {warning}")
