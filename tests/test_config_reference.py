@@ -43,6 +43,7 @@ def test_every_key_of_the_configuration_has_one_entry_and_no_other() -> None:
     config["hoist"] = {k: 0.0 for k in ("mode", "speed", "hook_load", "weight_on_bit", "ramp_time")}  # null by default
     config["hoist"].update(steps=[[10.0, 0.01]], autodriller={k: 0.0 for k in (
         "target", "setpoint", "kp", "ki", "min_speed", "max_speed")})
+    config["changes"] = [{"time": 1.0, "key": "top_drive.rpm", "value": 60.0}]
     schema = config_schema()
     assert set(schema) == _keys(config) | {"units"}  # units: read by the Python edge
     assert list(schema) == sorted(schema)

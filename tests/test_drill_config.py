@@ -63,7 +63,7 @@ def test_defaults_are_the_cores() -> None:
                 else:
                     assert json.loads(json.dumps(ours)) == value, (table, key)
         else:
-            assert getattr(cfg, table) == values
+            assert json.loads(json.dumps(getattr(cfg, table))) == values, table
     # and the dataclass defaults are those values too
     assert TopDrive().rpm == core["top_drive"]["rpm"] and Numerics().cells == core["numerics"]["cells"]
     assert ds.drilling.defaults() == core

@@ -65,7 +65,8 @@ _LAZY = {
     "plots": "drillstring.plots",
     "report": "drillstring.report",
     **dict.fromkeys(
-        ("DrillConfig", "DrillMetrics", "DrillResult", "TorqueDragResult", "drill", "drill_map",
+        ("DrillConfig", "DrillMetrics", "DrillResult", "DrillSession", "DrillSnapshot", "TorqueDragResult", "drill",
+         "drill_map",
          "load_drill_config", "recommend_controllers", "torque_drag"), "drillstring.drilling"),
     "FitResult": "drillstring.calibration.fit",
     "fit": "drillstring.calibration.fit",
@@ -93,6 +94,8 @@ if TYPE_CHECKING:  # pragma: no cover
         DrillConfig,
         DrillMetrics,
         DrillResult,
+        DrillSession,
+        DrillSnapshot,
         drill,
         drill_map,
         load_drill_config,
@@ -201,6 +204,8 @@ __all__ = [
     "logspace",
     # the drilling system (stick-slip)
     "drill",
+    "DrillSession",
+    "DrillSnapshot",
     "drill_map",
     "torque_drag",
     "TorqueDragResult",

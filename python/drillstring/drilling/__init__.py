@@ -53,6 +53,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from .maps import drill_map
     from .output import FILES
     from .result import SERIES, UNITS, DrillMetrics, DrillProfile, DrillResult
+    from .session import DrillSession, DrillSnapshot
     from .solve import drill, friction_profile
     from .tuning import ControllerRecommendations, PresetRecommendation, StringNumbers, recommend_controllers
 
@@ -85,6 +86,8 @@ _LAZY = {
     "DrillResult": "result",
     "drill": "solve",
     "friction_profile": "solve",
+    "DrillSession": "session",
+    "DrillSnapshot": "session",
     "ControllerRecommendations": "tuning",
     "PresetRecommendation": "tuning",
     "StringNumbers": "tuning",
@@ -109,6 +112,8 @@ __all__ = [
     "DrillProfile",
     "DrillResult",
     "drill",
+    "DrillSession",
+    "DrillSnapshot",
     "drill_map",
     "torque_drag",
     "TorqueDragResult",

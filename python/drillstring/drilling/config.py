@@ -71,6 +71,7 @@ else:  # pragma: no cover - exercised on Python < 3.11 only
 __all__ = [
     "Autodriller",
     "Bit",
+    "Change",
     "Controller",
     "Detournay",
     "DrillConfig",
@@ -564,6 +565,20 @@ def _table(cls: type) -> Any:
 
 
 @dataclass(frozen=True)
+class Change:
+    """A value changed during a run (``[[changes]]``, what a :class:`~drillstring.drilling.session.DrillSession`'s
+    changes replay as): from the step starting at the step boundary nearest ``time`` on, ``key``
+    (one of the keys that may change during a run, ``DrillSession.settable``) is ``value`` (SI)."""
+
+    time: float
+    """Time the change takes effect from, s, in [0, numerics.duration]."""
+    key: str
+    """The dotted key changed (``top_drive.rpm``, ``friction.static``, ``hoist.weight_on_bit``, ...)."""
+    value: Any
+    """The new value, as the key takes it in the configuration."""
+
+
+@dataclass(frozen=True)
 class DrillConfig:
     """A whole drilling system: string, well, friction, top drive, bit and numerics.
 
@@ -593,6 +608,8 @@ class DrillConfig:
     torque_drag: TorqueDragConfig = _table(TorqueDragConfig)
     hoist: Optional[Hoist] = field(default=None, metadata={"kind": "table?"})
     """The hoist: None (the default) for a torsion-only run, else the coupled axial-torsional run."""
+    changes: tuple[Change, ...] = field(default=(), metadata={"kind": "changes", "unit": "", "doc": ""})
+    """Values changed during the run (``[[changes]]``), in time order of effect."""
 
     #: The unit system of plain numbers given to this configuration after it was read (see :attr:`units`).
     _units = "si"
@@ -697,6 +714,11 @@ class DrillConfig:
         for section in plain["sections"]:
             sections.append(_toml_table(section))
         document.add("sections", sections)
+        if plain.get("changes"):
+            changes = tomlkit.aot()
+            for change in plain["changes"]:
+                changes.append(_toml_table(change))
+            document.add("changes", changes)
         for key, value in plain.items():
             if isinstance(value, dict):
                 document.add(key, _toml_table(value))
@@ -784,6 +806,8 @@ def _from_core(cls: type, data: Mapping[str, Any]) -> dict[str, Any]:
         value = data[f.name]
         if f.name == "sections":
             out[f.name] = tuple(StringSection(**_from_core(StringSection, s)) for s in value)
+        elif f.name == "changes":
+            out[f.name] = tuple(Change(float(c["time"]), str(c["key"]), _frozen(c["value"])) for c in value)
         elif f.metadata.get("kind") == "table?" and value is None:
             out[f.name] = None
         elif f.metadata.get("kind") in ("table", "table?"):

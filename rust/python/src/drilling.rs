@@ -87,7 +87,7 @@ struct RunOutput<'a> {
     metrics: MetricsView<'a>,
 }
 
-fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
+pub(crate) fn run_dict(py: Python<'_>, run: DrillRun) -> PyResult<Bound<'_, PyDict>> {
     let values = RunValues {
         metrics: run.metrics.as_ref().unwrap_or(&StickSlip::UNDEFINED),
         window: run.window,

@@ -20,6 +20,7 @@ mod modal;
 mod model;
 mod options;
 mod pde;
+mod session;
 mod signal;
 mod stability;
 mod sweep;
@@ -81,6 +82,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drilling::drill_validate, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_profile, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_solve, m)?)?;
+    m.add_class::<session::DrillSession>()?;
     m.add_function(wrap_pyfunction!(drilling::drill_compare, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_compare_tolerances, m)?)?;
     m.add_function(wrap_pyfunction!(drilling::drill_outputs, m)?)?;

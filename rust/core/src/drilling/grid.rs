@@ -145,6 +145,10 @@ pub struct Grid {
     pub section_of: Vec<usize>,
     /// Static friction limit per metre at each cell centre, N m/m.
     pub limit: Vec<f64>,
+    /// The wall's normal force per metre at each cell centre, N/m (`friction.contact`'s: the
+    /// soft-string contact force, or the buoyed weight times sin(inclination)); `limit` is
+    /// `mu_s` times it times the contact radius.
+    pub normal: Vec<f64>,
 }
 
 impl Grid {
@@ -227,6 +231,7 @@ impl Grid {
         let mut z = Vec::with_capacity(total);
         let mut section_of = Vec::with_capacity(total);
         let mut limit = Vec::with_capacity(total);
+        let mut normal = Vec::with_capacity(total);
         let mut top = 0.0;
         let traj = well::trajectory(cfg)?;
         let contact = match cfg.friction.contact {
@@ -244,10 +249,14 @@ impl Grid {
                     None => p.friction_limit(mu, cfg.well.gravity, traj.at(zc).inc),
                     Some(profile) => (mu * p.contact_radius * well::normal_force_at(profile, zc)).max(0.0),
                 });
+                normal.push(match &contact {
+                    None => p.friction_limit(1.0, cfg.well.gravity, traj.at(zc).inc) / p.contact_radius,
+                    Some(profile) => well::normal_force_at(profile, zc).max(0.0),
+                });
             }
             top += p.length;
         }
-        Ok(Grid { props, dt, counts, courant, speed, strain_bound, spacing, z, section_of, limit })
+        Ok(Grid { props, dt, counts, courant, speed, strain_bound, spacing, z, section_of, limit, normal })
     }
 
     /// Total number of cells.

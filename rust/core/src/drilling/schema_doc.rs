@@ -202,6 +202,11 @@ mod tests {
         cfg.top_drive.steps = vec![[10.0, 60.0]];
         cfg.top_drive.speed_series = vec![[0.0, 0.0]];
         cfg.hoist = Some(super::super::config::Hoist { steps: vec![[10.0, 0.01]], ..Default::default() });
+        cfg.changes = vec![super::super::config::Change {
+            time: 10.0,
+            key: "top_drive.rpm".into(),
+            value: serde_json::json!(60.0),
+        }];
         serde_json::to_value(&cfg).unwrap()
     }
 

@@ -111,12 +111,13 @@ impl HoistState {
         HoistState { hanging, ..self }
     }
 
-    /// Advances by `dt` (s): the setpoint towards the target at the step's end, then the command
-    /// for the step (the autodriller's from `measured`).
+    /// Advances by `dt` (s): the setpoint towards the target at the step's middle (a step at
+    /// `T` takes effect from the step starting at the step boundary nearest `T`, as the top
+    /// drive's), then the command for the step (the autodriller's from `measured`).
     pub fn step(&mut self, dt: f64, measured: HoistMeasurement) -> HoistCommand {
         let t1 = self.time + dt;
         let p = &self.params;
-        self.setpoint = ramp(self.setpoint, p.target(t1), dt, p.ramp_time);
+        self.setpoint = ramp(self.setpoint, p.target(self.time + 0.5 * dt), dt, p.ramp_time);
         self.time = t1;
         match p.mode {
             HoistMode::Velocity => HoistCommand::Speed(self.setpoint),
@@ -162,8 +163,8 @@ mod tests {
         };
         let mut h = HoistState::new(params, 0.0);
         let dt = 1.0 / 128.0;
-        // The step ending at 10 s already heads for the new target (as the top drive's).
-        let ts = 10.0 - dt;
+        // The step starting at 10 s heads for the new target (as the top drive's).
+        let ts = 10.0;
         for k in 1..=2000 {
             let t = k as f64 * dt;
             let v = speed(h.step(dt, HoistMeasurement::default()));
@@ -176,7 +177,7 @@ mod tests {
             assert!((v - exact).abs() < 1e-14, "t {t}: {v} vs {exact}");
         }
         // Without a ramp the steps are taken at once.
-        let mut h = HoistState::new(Hoist { ramp_time: 0.0, steps: vec![[0.5, -0.003]], ..Hoist::default() }, 0.0);
+        let mut h = HoistState::new(Hoist { ramp_time: 0.0, steps: vec![[0.25, -0.003]], ..Hoist::default() }, 0.0);
         assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), 30.0 / 3600.0);
         assert_eq!(speed(h.step(0.25, HoistMeasurement::default())), -0.003);
     }
@@ -284,12 +285,12 @@ mod tests {
         assert!((speed(h.step(0.5, w(0.0))) - 0.0595).abs() < 1e-15);
         assert_eq!(speed(h.step(0.5, w(0.0))), 0.06);
         assert!((h.integral - 120e3).abs() < 1e-9);
-        // On ROP with a setpoint step at 1 s (no ramp): u = setpoint + kp e + ki int e.
+        // On ROP with a setpoint step at 0.5 s (no ramp): u = setpoint + kp e + ki int e.
         let ad = Autodriller { target: AutodrillerTarget::Rop, setpoint: 0.01, kp: 2.0, ki: 0.5, ..ad };
         let params = Hoist {
             mode: HoistMode::Autodriller,
             ramp_time: 0.0,
-            steps: vec![[1.0, 0.004]],
+            steps: vec![[0.5, 0.004]],
             autodriller: ad,
             ..Hoist::default()
         };
@@ -297,7 +298,7 @@ mod tests {
         let r = |rop: f64| HoistMeasurement { weight_on_bit: 0.0, rop };
         // ROP 0.008: e 0.002, u = 0.01 + 0.004 = 0.014, int 0.001.
         assert!((speed(h.step(0.5, r(0.008))) - 0.014).abs() < 1e-15);
-        // The step ending at 1 s takes the new setpoint 0.004: e = -0.004, u = 0.004 - 0.008
+        // The step starting at 0.5 s takes the new setpoint 0.004: e = -0.004, u = 0.004 - 0.008
         // + 0.5 0.001 = -0.0035 < 0: held at 0, the integral stays.
         assert_eq!(speed(h.step(0.5, r(0.008))), 0.0);
         assert!((h.integral - 0.001).abs() < 1e-15);

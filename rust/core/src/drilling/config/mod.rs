@@ -11,6 +11,7 @@
 //! `parse.rs` reads a configuration, `overrides.rs` sets dotted paths in one.
 
 mod bit;
+mod changes;
 mod friction;
 mod hoist;
 mod metrics;
@@ -30,6 +31,7 @@ use crate::error::{Error, Num, Result};
 use super::grid::Grid;
 
 pub use bit::{Bit, BitRockLaw, CutSurfaceScheme, Detournay, Weakening, MAX_CUT_SURFACE_CELLS};
+pub use changes::{settable_config, Change, SETTABLE};
 pub use friction::{Contact, Friction, FrictionCoupling, FrictionInterval, FrictionModel};
 pub use hoist::{Autodriller, AutodrillerTarget, Hoist, HoistMode};
 pub use metrics::MetricsConfig;
@@ -95,6 +97,11 @@ pub struct DrillConfig {
     /// The hoist: null (default) for a torsion-only run.
     #[schemars(extend("label" = "hoist"))]
     pub hoist: Option<Hoist>,
+    /// Values changed during the run, `[[changes]]` entries of `time`, `key` and `value`
+    /// (what a session's changes replay as): each from the step starting at the step boundary
+    /// nearest its time, in time order.
+    #[schemars(extend("label" = "changes"))]
+    pub changes: Vec<Change>,
 }
 
 impl Default for DrillConfig {
@@ -112,6 +119,7 @@ impl Default for DrillConfig {
             metrics: MetricsConfig::default(),
             torque_drag: TorqueDragConfig::default(),
             hoist: None,
+            changes: Vec::new(),
         }
     }
 }
@@ -120,6 +128,12 @@ impl DrillConfig {
     /// Checks every value's range, naming the dotted field; also the discretisation (cell
     /// count, time step) and the output size against [`MAX_OUTPUT_BYTES`].
     pub fn validate(&self) -> Result<()> {
+        self.validate_values()?;
+        self.validate_changes()
+    }
+
+    /// [`DrillConfig::validate`] but for `[[changes]]`.
+    pub fn validate_values(&self) -> Result<()> {
         self.validate_sections()?;
         self.validate_well()?;
         self.validate_friction_intervals()?;

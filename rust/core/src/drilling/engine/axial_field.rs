@@ -46,7 +46,7 @@ use crate::drilling::axial::bit_boundary::{BitContact, BitPhase, Port};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
 use crate::drilling::axial::hoist::{HoistCommand, HoistMeasurement, HoistState};
 use crate::drilling::axial::section::{static_tension, AxialSection};
-use crate::drilling::config::HoistMode;
+use crate::drilling::config::{AutodrillerTarget, Hoist, HoistMode};
 use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
 use crate::drilling::grid::Grid;
 use crate::drilling::well;
@@ -68,6 +68,7 @@ pub const DEPTH_OF_CUT: Channel = Channel { column: 10, held: true };
 pub const CHANNELS: [Channel; 6] = [BIT_AXIAL_SPEED, ROP, WEIGHT_ON_BIT, HOOK_LOAD, BIT_DEPTH, DEPTH_OF_CUT];
 
 /// How the depth of cut of a step is found.
+#[derive(Clone)]
 enum DepthOfCut {
     /// `2 pi v / omega` of the bit's speeds at the step start.
     Rate,
@@ -94,6 +95,7 @@ pub struct AxialState {
 }
 
 /// The axial field, its sources and ends.
+#[derive(Clone)]
 pub struct Axial {
     pub field: Field,
     zeros: Vec<f64>,
@@ -250,6 +252,32 @@ impl Axial {
             bha_weight,
             block_weight,
         })
+    }
+
+    /// Sets the hoist's table to `params` during a run (its state kept). A new mode starts
+    /// where the hoist is: its setpoint the present block velocity, hook load, weight on bit
+    /// (as the weight indicator reads it) or the autodriller's measurement, the autodriller's
+    /// integral the one that keeps the block velocity.
+    pub fn set_hoist(&mut self, params: Hoist) {
+        let h = &mut self.hoist;
+        if params.mode != h.params.mode {
+            let sp = &self.field.sections[0];
+            let block = self.field.cell(0, 1).0 - 0.5 * self.gravity[sp.offset + 1];
+            let wob = self.state.contact.weight_on_bit;
+            let a = &params.autodriller;
+            h.setpoint = match params.mode {
+                HoistMode::Velocity => block,
+                HoistMode::HookLoad => self.state.hook_load,
+                HoistMode::WeightOnBit => h.hanging + self.block_weight - self.state.hook_load,
+                HoistMode::Autodriller => match a.target {
+                    AutodrillerTarget::WeightOnBit => wob,
+                    AutodrillerTarget::Rop => self.state.rop,
+                },
+            };
+            let ff = if a.target == AutodrillerTarget::Rop { h.setpoint } else { 0.0 };
+            h.integral = if a.ki > 0.0 { (block - ff) / a.ki } else { 0.0 };
+        }
+        h.params = params;
     }
 
     /// Half the buoyed weight's speed change over a step at padded index `k`, `g cos(inc) dt / 2`,

@@ -129,6 +129,16 @@ impl ControllerState {
         }
     }
 
+    /// Takes over the running state of `old` (the integral, the torque held, the next sample
+    /// time, `z_torque`'s low-passed torque): the same controller with new gains or limit
+    /// continues where it was.
+    pub fn carry(&mut self, old: &ControllerState) {
+        self.integral = old.integral;
+        self.torque = old.torque.clamp(-self.limit, self.limit);
+        self.next = old.next;
+        self.slow_torque = old.slow_torque;
+    }
+
     /// Takes the string torque at the top after the step (`z_torque`'s low-pass).
     #[inline]
     pub fn observe(&mut self, tau_top: f64) {
@@ -139,7 +149,10 @@ impl ControllerState {
 }
 
 /// The speed setpoint: a first-order approach (time constant `ramp_time`, exact over each
-/// step) of the target, `rpm` then `steps`.
+/// step) of the target, `rpm` then `steps`. A step's target is the target at the step's
+/// middle ([`Setpoint::advance`]): a `steps` entry at `T` takes effect from the step starting
+/// at the step boundary nearest `T`, the step a change made at that time during a run
+/// ([`super::session::Session::set`], a `[[changes]]` entry) takes effect from.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Setpoint {
     /// rad/s.
@@ -162,10 +175,11 @@ impl Setpoint {
         Setpoint { value: 0.0, approach: (ramp > 0.0).then(|| 1.0 - (-dt / ramp).exp()) }
     }
 
-    /// Advances to the end `t1` of a step; returns the new value.
+    /// Advances over the step from `t` of length `dt` towards the target at its middle
+    /// `t + dt / 2`; returns the value at its end.
     #[inline]
-    pub fn advance(&mut self, td: &TopDrive, t1: f64) -> f64 {
-        let target = Self::target(td, t1);
+    pub fn advance(&mut self, td: &TopDrive, t: f64, dt: f64) -> f64 {
+        let target = Self::target(td, t + 0.5 * dt);
         self.value = match self.approach {
             Some(f) => self.value + (target - self.value) * f,
             None => target,

@@ -361,6 +361,7 @@ pub struct FrictionWork {
 }
 
 /// The coupled wall friction of a run: the overlay's segments and the law.
+#[derive(Clone)]
 pub struct CoupledFriction {
     /// The segments with contact force (the others are counted in [`Slots::untouched`]).
     segments: Vec<Segment>,

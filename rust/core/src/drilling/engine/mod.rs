@@ -172,7 +172,9 @@ pub mod kernel;
 pub mod kernel_published;
 pub mod run;
 pub mod sampler;
+pub mod session;
 pub mod sources;
 
 pub use energy::EnergyBalance;
 pub use run::{CoupledMetrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};
+pub use session::{duration_steps, Session, SessionState};

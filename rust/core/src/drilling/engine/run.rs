@@ -2,8 +2,6 @@
 //! its step (ends, junctions, cells) and its loop (step limit, interrupt polling, runaway
 //! guard, sampling, status), the energy balance and the metrics at the end.
 
-use std::f64::consts::PI;
-
 use serde::Serialize;
 
 use super::axial_field::Axial;
@@ -14,20 +12,17 @@ use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
 use super::kernel::{godunov, transport};
 use super::kernel_published::transport as published;
-use super::sampler::{Point, Sampler, BIT_SPEED, BIT_TORQUE, MOTOR_TORQUE, TIME, TOP_SPEED};
+use super::sampler::{Point, BIT_SPEED, BIT_TORQUE, MOTOR_TORQUE, TIME, TOP_SPEED};
+use super::session::Session;
 use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
 use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
-use crate::drilling::grid::{breakoff_torque, first_natural_frequency, min_cycle_torque, Grid};
-use crate::drilling::plausibility::{
-    axial_resolution_warning, lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded,
-    run_warnings, torque_limit_share, torque_limit_verdict, torque_limit_warning, transient_warning, NO_ROTATION,
-};
+use crate::drilling::grid::{first_natural_frequency, Grid};
 use crate::drilling::start::{steady_point, InitialState, Wall};
 use crate::error::{Error, Num, Result};
-use crate::interrupt::{Interrupt, Poller};
-use crate::metrics::{stick_slip, StickSlip, Verdict};
+use crate::interrupt::Interrupt;
+use crate::metrics::{stick_slip, StickSlip};
 use crate::solution::{serialize_list, Status};
 
 /// A run whose top-drive or bit speed exceeds this many times the largest setpoint (or 1 rad/s)
@@ -144,31 +139,33 @@ impl DrillRun {
     }
 }
 
-/// A drilling-system run being set up (initial state) and run.
-pub struct Simulation<'c> {
-    cfg: &'c DrillConfig,
-    grid: Grid,
-    field: Field,
-    wall: WallFriction,
-    sources: Sources,
-    top: TopDriveEnd,
-    bit: BitEnd,
-    setpoint: Setpoint,
-    control: ControllerState,
+/// A drilling-system run being set up (initial state) and stepped; it owns its configuration
+/// (a [`super::session::Session`] changes parts of it during a run).
+#[derive(Clone)]
+pub struct Simulation {
+    pub(super) cfg: DrillConfig,
+    pub(super) grid: Grid,
+    pub(super) field: Field,
+    pub(super) wall: WallFriction,
+    pub(super) sources: Sources,
+    pub(super) top: TopDriveEnd,
+    pub(super) bit: BitEnd,
+    pub(super) setpoint: Setpoint,
+    pub(super) control: ControllerState,
     /// `top_drive.mode = "measured_speed"`: the top speed imposed in place of the controller's.
-    measured: Option<SpeedSeries>,
-    ledger: Ledger,
-    first_mode: f64,
+    pub(super) measured: Option<SpeedSeries>,
+    pub(super) ledger: Ledger,
+    pub(super) first_mode: f64,
     /// The axial field of a coupled run (`[hoist]`).
-    axial: Option<Axial>,
+    pub(super) axial: Option<Axial>,
     /// A coupled run's wall friction on both fields (`friction.coupling = "axial_torsional"`;
     /// then `wall` is zero and the torsional kernel applies none).
-    coupled_friction: Option<CoupledFriction>,
+    pub(super) coupled_friction: Option<CoupledFriction>,
 }
 
-impl<'c> Simulation<'c> {
-    /// Validates `cfg` and sets the system at rest.
-    pub fn new(cfg: &'c DrillConfig) -> Result<Self> {
+impl Simulation {
+    /// Validates `cfg` and sets the system at rest (on a copy of `cfg`).
+    pub fn new(cfg: &DrillConfig) -> Result<Self> {
         cfg.validate()?;
         let grid = Grid::new(cfg)?;
         let dt = grid.dt;
@@ -206,7 +203,7 @@ impl<'c> Simulation<'c> {
         let mut sim = Simulation {
             axial,
             coupled_friction,
-            cfg,
+            cfg: cfg.clone(),
             sources: Sources::new(cfg, dt),
             top: TopDriveEnd::new(cfg, dt),
             bit: BitEnd::new(cfg),
@@ -230,7 +227,7 @@ impl<'c> Simulation<'c> {
     /// controller holding the top torque, the axial field, bit and hoist by
     /// [`Axial::set_steady`]. Refused without a hoist, rotation or a drilling hoist.
     fn start_steady(&mut self) -> Result<()> {
-        let cfg = self.cfg;
+        let cfg = &self.cfg;
         let td = &cfg.top_drive;
         let omega = match SpeedSeries::new(td) {
             Some(mut series) => series.at(0.0),
@@ -243,7 +240,7 @@ impl<'c> Simulation<'c> {
         self.setpoint.value = omega;
         self.control.hold(top);
         if let Some(ax) = &mut self.axial {
-            ax.set_steady(cfg, &point, &wall)?;
+            ax.set_steady(&self.cfg, &point, &wall)?;
         }
         Ok(())
     }
@@ -314,7 +311,7 @@ impl<'c> Simulation<'c> {
     /// In the continuum the string is at rest down to its end. The creep moves no state (the
     /// scheme keeps no angle), so reporting 0 changes nothing else; the published code of
     /// Aarsnes & Shor reports the last cell's speed for the same reason.
-    fn bit_speed(&self) -> f64 {
+    pub(super) fn bit_speed(&self) -> f64 {
         let s = self.field.sections.len() - 1;
         let (w, _) = self.field.cell(s, self.field.sections[s].cells);
         let fr = &self.cfg.friction;
@@ -327,7 +324,7 @@ impl<'c> Simulation<'c> {
     }
 
     /// The energies stored, J.
-    fn stored(&self) -> Stored {
+    pub(super) fn stored(&self) -> Stored {
         let (kinetic, elastic) = self.field.energies();
         let mut s = Stored {
             kinetic,
@@ -345,10 +342,10 @@ impl<'c> Simulation<'c> {
     }
 
     /// One step from `t` (start of the step); returns `(motor torque, bit torque)` applied.
-    fn step(&mut self, t: f64) -> (f64, f64) {
+    pub(super) fn step(&mut self, t: f64) -> (f64, f64) {
         let dt = self.grid.dt;
         let td = &self.cfg.top_drive;
-        let setpoint = self.setpoint.advance(td, t + dt);
+        let setpoint = self.setpoint.advance(td, t, dt);
 
         // Top drive.
         let arriving = self.field.arriving_top();
@@ -421,164 +418,16 @@ impl<'c> Simulation<'c> {
     }
 
     /// Runs to `numerics.duration` (or until `interrupt` asks to stop, or a non-finite value),
-    /// calling `progress` with the fraction done (every ~0.1 %).
-    pub fn run(mut self, interrupt: &dyn Interrupt, progress: &mut dyn FnMut(f64)) -> DrillRun {
-        let cfg = self.cfg;
-        let dt = self.grid.dt;
-        let duration = cfg.numerics.duration;
-        let steps = ((duration / dt) * (1.0 - 1e-12)).ceil().max(1.0) as u64;
-        let nz = self.grid.cells();
-        let initial = self.stored().total();
-
-        let breakoff = breakoff_torque(cfg).unwrap_or(f64::NAN);
-        let mut run = DrillRun {
-            t: Vec::new(),
-            surface_rpm: Vec::new(),
-            bit_rpm: Vec::new(),
-            motor_torque: Vec::new(),
-            bit_torque: Vec::new(),
-            field_t: Vec::new(),
-            z: self.grid.z.clone(),
-            omega_field: Vec::new(),
-            torque_field: Vec::new(),
-            bit_axial_speed: Vec::new(),
-            rop: Vec::new(),
-            weight_on_bit: Vec::new(),
-            hook_load: Vec::new(),
-            bit_depth: Vec::new(),
-            depth_of_cut: Vec::new(),
-            axial_z: self.axial.as_ref().map_or_else(Vec::new, |a| a.z.clone()),
-            axial_speed_field: Vec::new(),
-            axial_force_field: Vec::new(),
-            coupled: None,
-            energy: EnergyBalance::default(),
-            metrics: None,
-            window: cfg.metrics.window.unwrap_or([0.5 * duration, duration]),
-            breakoff_torque: breakoff,
-            min_cycle_torque: min_cycle_torque(cfg, breakoff),
-            status: Status::Success,
-            message: String::new(),
-            warnings: run_warnings(cfg, breakoff),
-            metrics_finite: true,
-            rotating: true,
-            stats: DrillStats {
-                cells: nz,
-                steps: 0,
-                dt,
-                courant_min: self.grid.courant.iter().copied().fold(f64::INFINITY, f64::min),
-                courant_max: self.grid.courant.iter().copied().fold(0.0, f64::max),
-                courant_peak: self.grid.courant.iter().copied().fold(0.0, f64::max),
-                kp: self.control.kp,
-                ki: self.control.ki,
-                first_mode_hz: self.first_mode / (2.0 * PI),
-            },
-        };
-        let mut sampler = Sampler::new(cfg);
-        let axial_cells = self.axial.as_ref().map_or(0, |a| a.z.len());
-        if let Err(oom) = sampler.reserve(&mut run, nz, axial_cells) {
-            run.status = Status::OutOfMemory;
-            run.message = oom.outputs_message();
-            return run;
-        }
-        if !sampler.start(&self.field, self.axial.as_ref(), &mut run, self.sample(0.0, f64::NAN, f64::NAN)) {
-            run.status = Status::NonFinite;
-            run.message = "the initial state is not finite".into();
-            return run;
-        }
-        let mut poller = Poller::new(interrupt);
-        let runaway = RUNAWAY_FACTOR * Setpoint::fastest(&cfg.top_drive).max(1.0);
-        let stride = (steps / 1000).max(1);
-        let mut t = 0.0;
-        for n in 0..steps {
-            if poller.poll(t) {
-                run.status = Status::Interrupted;
-                run.message = format!("interrupted at t = {} s", Num(t));
-                break;
-            }
-            let (motor, bit) = self.step(t);
-            t = (n + 1) as f64 * dt;
-            let (top, end) = (self.top.omega, self.bit.omega);
-            if top.abs().max(end.abs()) > runaway {
-                run.status = Status::NonFinite;
-                run.message = format!(
-                    "the solution diverged: the {} speed reached {} rpm, more than {} times the largest setpoint, \
-                     at t = {} s (a grid too coarse for the controller or the bit law: raise numerics.cells)",
-                    if top.abs() > runaway { "top-drive" } else { "bit" },
-                    Num(top.abs().max(end.abs()) * RPM_PER_RAD_S),
-                    RUNAWAY_FACTOR,
-                    Num(t)
-                );
-                break;
-            }
-            run.stats.steps = n + 1;
-            let point = self.sample(t, motor, bit);
-            if !sampler.record(n, point, &self.field, self.axial.as_ref(), &mut run, dt) {
-                run.status = Status::NonFinite;
-                run.message = format!("the state became non-finite before t = {} s", Num(t));
-                break;
-            }
-            if (n + 1) % stride == 0 {
-                progress((n + 1) as f64 / steps as f64);
-            }
-        }
-        self.courant_peak(&mut run);
-        let (energy, finite) = self.ledger.balance(initial, self.stored());
-        run.energy = energy;
-        if run.status == Status::Success && !finite {
-            run.status = Status::NonFinite;
-            run.message = format!("the energy became non-finite by t = {} s", Num(t));
-        }
-        metrics(cfg, &mut run);
-        let share = torque_limit_share(&run.t, &run.motor_torque, run.window, cfg.top_drive.torque_limit);
-        // (a limit below the static torque has its own warning: the motor may never break it free)
-        let verdict = torque_limit_warning(cfg, breakoff).is_none().then(|| torque_limit_verdict(cfg, share)).flatten();
-        if let Some((warning, reason)) = verdict {
-            run.warnings.push(warning);
-            if let Some(m) = &mut run.metrics {
-                m.stick_slip_verdict = Verdict::Undetermined;
-                m.stick_slip_reason = reason.into();
-            }
-        }
-        if let Some(ax) = &self.axial {
-            let sections: Vec<(f64, usize, f64)> =
-                ax.field.sections.iter().map(|s| (s.h * s.cells as f64, s.cells, s.courant)).collect();
-            run.warnings.extend(axial_resolution_warning(&sections));
-            run.coupled = coupled_metrics(&run, cfg.bit.radius);
-            if let (Some(c), Some(why)) = (&run.coupled, axial_transient(&run)) {
-                if c.regime == Regime::Undetermined
-                    && run.metrics.as_ref().is_some_and(|m| m.stick_slip_verdict == Verdict::No)
-                {
-                    run.warnings.push(format!(
-                        "regime undetermined, not smooth drilling: {why}; the string is still settling onto the bit \
-                         (lengthen numerics.duration, move metrics.window later, or start from \
-                         numerics.initial_state = \"steady\")"
-                    ));
-                }
-            }
-        }
-        run.rotating = rotation_commanded(cfg);
-        if let (Some(c), Some(h)) = (&run.coupled, &cfg.hoist) {
-            // (a string lifted without rotation is a pick-up, off bottom on purpose; lifted while
-            // turning, the sign of hoist.speed may be the mistake)
-            if run.rotating || !lifting(h) {
-                run.warnings.extend(off_bottom_warning(c.bounce_fraction, run.window, h.mode));
-            }
-        }
-        run.metrics_finite = run.metrics.as_ref().is_some_and(|m| non_finite_metrics_warning(m).is_none());
-        if run.rotating || cfg.hoist.is_none() {
-            run.warnings.extend(run.metrics.as_ref().and_then(non_finite_metrics_warning));
-        } else if !run.metrics_finite {
-            run.warnings.push(NO_ROTATION.to_string());
-        }
-        run.warnings.extend(transient_warning(&run.t, &run.surface_rpm, &run.motor_torque, run.window));
-        progress(1.0);
-        run
+    /// calling `progress` with the fraction done (every ~0.1 %): a [`Session`] stepped to the
+    /// duration and finished, the one loop of every run.
+    pub fn run(self, interrupt: &dyn Interrupt, progress: &mut dyn FnMut(f64)) -> DrillRun {
+        Session::batch(self).run_to_end(interrupt, progress)
     }
 
     /// The series' values at `t` after a step with the motor and bit torques `motor` and `bit`
     /// ([`super::sampler`]'s channels; a coupled run's from [`Axial::sample`], zeros without a
     /// hoist).
-    fn sample(&self, t: f64, motor: f64, bit: f64) -> Point {
+    pub(super) fn sample(&self, t: f64, motor: f64, bit: f64) -> Point {
         let mut point = Point::default();
         point[TIME] = t;
         point[TOP_SPEED] = self.top.omega;
@@ -592,7 +441,7 @@ impl<'c> Simulation<'c> {
     }
 
     /// `consistent`: the largest tangent Courant number met, with a note when above 1.
-    fn courant_peak(&self, run: &mut DrillRun) {
+    pub(super) fn courant_peak(&self, run: &mut DrillRun) {
         let Some(nl) = &self.field.nl else { return };
         let dt = self.grid.dt;
         let peak = (self.field.sections.iter().zip(&nl.laws).zip(&nl.peak_strain))
@@ -671,7 +520,7 @@ pub fn axial_transient(run: &DrillRun) -> Option<String> {
 }
 
 /// The stick-slip metrics of a run's series over its window, or a note why there are none.
-fn metrics(cfg: &DrillConfig, run: &mut DrillRun) {
+pub(super) fn metrics(cfg: &DrillConfig, run: &mut DrillRun) {
     let [a, b] = run.window;
     let stuck = cfg.metrics.stick_speed;
     let mut omega_bit = Vec::new();

@@ -62,6 +62,7 @@ impl std::ops::IndexMut<Channel> for Point {
 }
 
 /// Where the sampling stands.
+#[derive(Clone)]
 pub struct Sampler {
     n_series: usize,
     n_fields: usize,
@@ -87,6 +88,53 @@ impl Sampler {
             coupled: cfg.hoist.is_some(),
             prev: Point::default(),
         }
+    }
+
+    /// A session's sampler ([`super::session::Session`]): the series and, with `keep_fields`,
+    /// the snapshots without an end (their storage grown as the session is stepped,
+    /// [`Sampler::grow`]).
+    pub fn open(cfg: &DrillConfig, keep_fields: bool) -> Self {
+        let keep = keep_fields && cfg.numerics.field_interval > 0.0;
+        Sampler { n_series: usize::MAX, n_fields: if keep { usize::MAX } else { 0 }, ..Sampler::new(cfg) }
+    }
+
+    /// Makes room for `rows` more samples of the series and `snapshots` more field snapshots
+    /// of `cells` cells (and `axial_cells` of a coupled run), at least doubling storage that
+    /// must grow.
+    pub fn grow(
+        &self,
+        run: &mut DrillRun,
+        rows: usize,
+        snapshots: usize,
+        cells: usize,
+        axial_cells: usize,
+    ) -> Result<(), OutOfMemory> {
+        let snapshots = if self.n_fields == 0 { 0 } else { snapshots };
+        let n_axial = if self.coupled { rows } else { 0 };
+        let axial_cells = if self.coupled { axial_cells } else { 0 };
+        let mut outputs: [(&mut Vec<f64>, usize); 16] = [
+            (&mut run.bit_axial_speed, n_axial),
+            (&mut run.rop, n_axial),
+            (&mut run.weight_on_bit, n_axial),
+            (&mut run.hook_load, n_axial),
+            (&mut run.bit_depth, n_axial),
+            (&mut run.depth_of_cut, n_axial),
+            (&mut run.t, rows),
+            (&mut run.surface_rpm, rows),
+            (&mut run.bit_rpm, rows),
+            (&mut run.motor_torque, rows),
+            (&mut run.bit_torque, rows),
+            (&mut run.field_t, snapshots),
+            (&mut run.omega_field, snapshots * cells),
+            (&mut run.torque_field, snapshots * cells),
+            (&mut run.axial_speed_field, snapshots * axial_cells),
+            (&mut run.axial_force_field, snapshots * axial_cells),
+        ];
+        for (v, more) in &mut outputs {
+            let spare = v.capacity() - v.len();
+            *more = if spare >= *more { 0 } else { (*more).max(v.len()) };
+        }
+        crate::solution::reserve_outputs(&mut outputs)
     }
 
     /// Reserves the run's sample storage for `cells` cells (and `axial_cells` of a coupled run).

@@ -17,6 +17,7 @@ use super::field::Field;
 /// The wall's friction per cell of a field: the speed change that stops a cell in one step at
 /// the static limit, `dt limit / m` per padded index (0 at the ghosts), and the kinetic one
 /// `-kinetic_ratio dt limit / m`.
+#[derive(Clone)]
 pub struct WallFriction {
     pub stop: Vec<f64>,
     pub slip: Vec<f64>,
@@ -42,6 +43,7 @@ impl WallFriction {
 }
 
 /// The per-step constants of the sources.
+#[derive(Clone)]
 pub struct Sources {
     /// `dt d`.
     pub damping: f64,
