@@ -608,7 +608,7 @@ class DrillConfig:
     torque_drag: TorqueDragConfig = _table(TorqueDragConfig)
     hoist: Optional[Hoist] = field(default=None, metadata={"kind": "table?"})
     """The hoist: None (the default) for a torsion-only run, else the coupled axial-torsional run."""
-    changes: tuple[Change, ...] = field(default=(), metadata={"kind": "changes", "unit": "", "doc": ""})
+    changes: tuple[Change, ...] = field(default=(), metadata={"kind": "changes"})
     """Values changed during the run (``[[changes]]``), in time order of effect."""
 
     #: The unit system of plain numbers given to this configuration after it was read (see :attr:`units`).
