@@ -91,7 +91,8 @@ def test_the_console_names_the_on_bottom_numbers(tmp_path: Path, capsys: pytest.
                  "--set", "metrics.window=[10.0, 20.0]"]) == 0
     line = [x for x in capsys.readouterr().out.splitlines() if x.startswith("on bottom:")]
     c = json.loads((tmp_path / "run" / "metrics.json").read_text())["coupled"]
+    # the registry's coupled metrics in its order, each by its label
     assert line == [f"on bottom: ROP {c['rop_mean_m_per_h']:.4g} m/h, weight on bit {c['wob_mean_N'] / 1e3:.4g} kN, "
-                    f"torque on bit {c['tob_mean_Nm'] / 1e3:.4g} kN m, bit bounce {c['bounce_fraction']:.3g} of the "
-                    f"window, MSE {c['mse_mean_Pa'] / 1e6:.4g} MPa, hook load {c['hook_load_mean_N'] / 1e3:.4g} kN; "
+                    f"torque on bit {c['tob_mean_Nm'] / 1e3:.4g} kN m, bit bounce {c['bounce_fraction']:.3g}, "
+                    f"hook load {c['hook_load_mean_N'] / 1e3:.4g} kN, MSE {c['mse_mean_Pa'] / 1e6:.4g} MPa; "
                     f"regime: {c['regime']}"]

@@ -39,7 +39,7 @@ def test_stick_slip_warnings_are_a_list_even_when_empty() -> None:
 
 def test_lumped_forms() -> None:
     eq = _core.lumped_equilibria("{}")
-    assert type(eq["rotations"]) is list and eq["regime"] in ("stable_rotation", "unstable", "stuck")
+    assert type(eq["rotations"]) is list and eq["equilibrium"] in ("stable_rotation", "unstable", "stuck")
     for r in eq["rotations"]:
         assert type(r["eigenvalues"]) is list and len(r["eigenvalues"]) == 3
         assert all(type(e) is tuple and len(e) == 2 for e in r["eigenvalues"])

@@ -67,6 +67,26 @@ def test_every_dataclass_field_and_default_is_the_cores() -> None:
     assert (Numerics().cells, Numerics().duration) == (1000, 60.0)
 
 
+def test_the_dataclasses_take_units_from_the_schema_only() -> None:
+    """A field's unit is the core's schema's, read by the unit conversions; the dataclasses
+    declare none of their own (a second declaration could disagree with the core's)."""
+    from drillstring.drilling import config as config_module
+    from drillstring.drilling.units import _unit_of
+
+    schema = _core.drill_config_schema()
+    classes = [c for c in vars(config_module).values()
+               if isinstance(c, type) and dataclasses.is_dataclass(c) and c.__module__ == config_module.__name__]
+    assert len(classes) >= 10
+    for cls in classes:
+        for f in dataclasses.fields(cls):
+            assert set(f.metadata) <= {"kind"}, (cls.__name__, f.name, dict(f.metadata))
+    # every number of the schema has its unit there, and the conversions read that unit
+    numbers = [key for key, entry in schema.items() if entry["type"] == "number"]
+    assert len(numbers) > 50
+    for key in numbers:
+        assert isinstance(schema[key]["unit"], str) and _unit_of(key) == schema[key]["unit"], key
+
+
 def _base() -> DrillConfig:
     return DrillConfig.from_dict({
         "sections": [{"length": 800.0, "outer_diameter": 0.127, "inner_diameter": 0.108},

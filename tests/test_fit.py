@@ -333,7 +333,7 @@ def test_controller_recommendation_of_a_map():
     })
     ranking = controller_recommendation(frame)
     assert [r.controller for r in ranking] == ["soft_torque", "z_torque", "pi"]
-    assert (ranking[0].stick_slip, ranking[0].failed, ranking[0].runs) == (0, 0, 3)
+    assert (ranking[0].stick_slip_runs, ranking[0].failed, ranking[0].runs) == (0, 0, 3)
     assert ranking[0].worst_ssi == 0.9 and ranking[0].mean_ssi == pytest.approx(0.5)
     assert (ranking[1].failed, ranking[1].mean_ssi) == (1, pytest.approx(0.1))
     assert ranking[2].line() == "pi: stick-slip in 2 of 3 runs, SSI up to 1.4 (mean 0.967)"

@@ -99,7 +99,7 @@ def test_long_time_bit_speed_is_the_steady_root(wob: float) -> None:
     root = upper_root(wob)
     assert growth(wob) < -0.1  # stable, well inside
     eq = lumped_equilibria({"wob": wob})
-    assert eq.regime == "stable_rotation"
+    assert eq.equilibrium == "stable_rotation"
     assert eq.rotations[-1].speed == pytest.approx(root, rel=1e-12)
     res = lumped({"wob": wob}, duration=250.0, output_interval=0.05)
     # from rest: the slowest mode decays at >= 0.17 1/s, 250 s are e^-40
@@ -126,7 +126,7 @@ def test_equilibria_count_and_stability_match_numpy() -> None:
             assert r.stable == bool(np.all(want.real < 0))
         assert eq.stuck_possible == (P["tm"] <= wob * P["rb"] * P["mu_sb"])
         if not roots:
-            assert eq.regime == "stuck"
+            assert eq.equilibrium == "stuck"
 
 
 # --------------------------------------------------------------------------- onset of stick-slip
@@ -141,9 +141,9 @@ def test_onset_linear_boundary_and_subcritical_coexistence() -> None:
     above which the bit ends stuck."""
     hopf, fold = hopf_wob(), fold_wob()
     assert 58e3 < hopf < fold < 60e3
-    assert lumped_equilibria({"wob": hopf - 20.0}).regime == "stable_rotation"
-    assert lumped_equilibria({"wob": hopf + 20.0}).regime == "unstable"
-    assert lumped_equilibria({"wob": fold + 20.0}).regime == "stuck"
+    assert lumped_equilibria({"wob": hopf - 20.0}).equilibrium == "stable_rotation"
+    assert lumped_equilibria({"wob": hopf + 20.0}).equilibrium == "unstable"
+    assert lumped_equilibria({"wob": fold + 20.0}).equilibrium == "stuck"
 
     # below Wob_H, started near the rotation: settles
     below = lumped({"wob": hopf - 700.0}, duration=300.0, initial=near(hopf - 700.0, 1e-2))
@@ -265,7 +265,7 @@ def test_the_readme_example_says_what_it_prints() -> None:
     names: dict[str, object] = {}
     exec(compile(block, "the documentation's lumped example", "exec"), names)
     eq, m = names["eq"], names["m"]
-    assert eq.regime == "stable_rotation"  # type: ignore[attr-defined]
+    assert eq.equilibrium == "stable_rotation"  # type: ignore[attr-defined]
     assert [round(r.speed, 2) for r in eq.rotations] == [0.67, 3.36]  # type: ignore[attr-defined]
     assert [r.stable for r in eq.rotations] == [False, True]  # type: ignore[attr-defined]
     assert (round(m.ssi, 2), round(m.stuck_fraction, 2), round(m.period_s, 2)) == (1.22, 0.28, 4.63)  # type: ignore[attr-defined]
@@ -292,7 +292,7 @@ def test_command_line(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run_cli(capsys, "lumped", "--set", "wob=55e3", "--duration", "100")
     assert code == 0, err
     assert "steady rotation 0.67144 rad/s: unstable" in out and "steady rotation 3.36252 rad/s: stable" in out
-    assert "regime: stable_rotation" in out and "SSI 1.2" in out
+    assert "equilibrium: stable_rotation" in out and "SSI 1.2" in out
     code, out, err = run_cli(capsys, "lumped", "--set", "weight=1")
     assert code == 2
     one_line_error(err, "weight")
@@ -310,7 +310,7 @@ def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
     for _, row in frame.iterrows():
         p = {"tm": 6000.0, "wob": row["wob"]}
         eq, res = lumped_equilibria(p), lumped(p, duration=150.0)
-        assert row["regime"] == eq.regime and row["stuck_possible"] == eq.stuck_possible
+        assert row["equilibrium"] == eq.equilibrium and row["stuck_possible"] == eq.stuck_possible
         assert row["static_limit_Nm"] == eq.static_limit
         speeds = [r.speed for r in eq.rotations]
         got = [row[f"rotation_{k}"] for k in (1, 2) if row[f"stable_{k}"] is not None]
@@ -318,7 +318,7 @@ def test_sweep_rows_are_the_single_runs_and_equilibria() -> None:
         for column, value in [("ssi", res.metrics.ssi), ("stuck_fraction", res.metrics.stuck_fraction),
                               ("bit_rpm_max", res.metrics.bit_rpm_max), ("period_s", res.metrics.period_s)]:
             assert row[column] == value or (np.isnan(row[column]) and np.isnan(value)), column
-    assert list(frame["regime"]) == ["stable_rotation", "stable_rotation", "stuck"]
+    assert list(frame["equilibrium"]) == ["stable_rotation", "stable_rotation", "stuck"]
     assert frame["stuck_fraction"][0] == 0.0 and 0.1 < frame["stuck_fraction"][1] < 1.0
     assert frame["stuck_fraction"][2] == 1.0 and np.isnan(frame["rotation_1"][2])
     assert len(lumped_sweep_figure(frame).axes) == 2

@@ -961,6 +961,8 @@ class OutputDict(TypedDict):
     """One output of a run in the core's registry (``drillstring_core::outputs``)."""
 
     name: str
+    #: The few words the console, report.md and the figures name it by, without its unit.
+    label: str
     #: SI unit as pint parses it ("" dimensionless); None for a verdict, a count or a text.
     unit: Optional[str]
     definition: str
@@ -972,8 +974,10 @@ class OutputDict(TypedDict):
     #: (kind, tolerance, floor) of the grid and start checks, or None.
     tolerance: Optional[tuple[str, float, float]]
     headline: bool
+    #: On the console's summary of a run (drillstring drill), by its label, in this order.
+    console: bool
     #: A metric of stick_slip_metrics (of any series).
-    stick_slip: bool
+    of_any_series: bool
 
 def drill_outputs() -> list[OutputDict]:
     """Every metric and series channel of a run, declared once in the core, in order."""
@@ -1106,7 +1110,7 @@ class LumpedEquilibriaDict(TypedDict):
     #: Tm <= Wob Rb mu_sb.
     stuck_possible: bool
     #: "stable_rotation", "unstable" or "stuck".
-    regime: str
+    equilibrium: str
     #: Wob Rb mu_sb, N m.
     static_limit: float
 

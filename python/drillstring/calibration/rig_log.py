@@ -69,6 +69,7 @@ from typing import Any, Optional, Union
 import numpy as np
 from numpy.typing import NDArray
 
+from ..drilling.metrics import ROP_MEAN
 from ..errors import ValidationError
 from .data import read_columns
 
@@ -643,7 +644,7 @@ def _summary(table: Any, t: NDArray[np.float64], state: NDArray[np.int8], bit: N
         "depth_range_m": {"bit_min": float(np.nanmin(bit)), "bit_max": float(np.nanmax(bit)),
                           "hole_start": float(hole[0]), "hole_end": float(hole[-1]),
                           "drilled": float(hole[-1] - hole[0])},
-        "rop_mean_m_per_h": (float(3600.0 * (intervals["drilled [m]"].sum() / intervals["drilling_time [s]"].sum()))
+        ROP_MEAN: (float(3600.0 * (intervals["drilled [m]"].sum() / intervals["drilling_time [s]"].sum()))
                              if len(intervals) and intervals["drilling_time [s]"].sum() > 0 else None),
         "drilled_intervals": int(len(intervals)),
         "drilling_rows": int(drilling.sum()),

@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any, Union
 
 import numpy as np
 
+from ..drilling.metrics import ROP_MEAN
 from ..drilling.output import MARKER, _json_ready, _md, output_folder
 from ..io.output import atomic_write, write_text
 from .rig_log import STATES, RigStateRules
@@ -199,7 +200,7 @@ def report_markdown(result: RigLogResult, out_dir: str, *, plots: bool = True) -
         seconds = s["time_per_state_s"][name]
         lines.append(f"| {code} | {name.replace('_', ' ')} | {seconds / 3600:.3g} | {seconds / total:.1%} |")
     d = s["depth_range_m"]
-    rop = s["rop_mean_m_per_h"]
+    rop = s[ROP_MEAN]
     lines += ["", f"Hole depth {d['hole_start']:.2f} m to {d['hole_end']:.2f} m ({d['drilled']:.2f} m drilled"
               + (f", {rop:.3g} m/h mean rate of penetration" if rop is not None else "") + f"); bit depth "
               f"{d['bit_min']:.2f} m to {d['bit_max']:.2f} m. Block weight "

@@ -54,8 +54,9 @@ def run(args: argparse.Namespace) -> int:
     import time
 
     from ..drilling import drill
+    from ..drilling.metrics import HOOK_LOAD_MEAN, OUTPUTS, REGIME
     from ..drilling.output import _write_files, output_folder
-    from ..drilling.units import annotate, convert, shown
+    from ..drilling.units import annotate, metric_texts, shown
 
     config = drilling_config(args)
     plots = not args.no_plots
@@ -76,30 +77,24 @@ def run(args: argparse.Namespace) -> int:
         def torque(x: float) -> str:  # kN m, or kft-lbf in field units
             return shown(x, "N*m", system, kilo=True)
 
-        low = (convert(m.motor_torque_min_Nm, "N*m", system)[0] or 0.0) / 1e3
         say(f"drill: {shown(config.length, 'm', system, digits=6)} string, {config.numerics.cells} cells, "
              f"{config.numerics.duration:g} s simulated in {seconds:.2g} s ({status})")
         say(f"wall contact: {config.friction.contact} ("
              + ("soft-string normal force: buoyed weight and tension times curvature"
                 if config.friction.contact == "soft_string" else "buoyed weight times sin(inclination)")
              + f"), break-off torque {torque(result.metrics.breakoff_torque_Nm)}")
-        say(f"window {m.window_start:g}-{m.window_end:g} s: SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, "
-             f"period {m.period_s:.4g} s, bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm "
-             f"(mean {m.bit_rpm_mean:.4g}), motor torque {low:.4g}..{torque(m.motor_torque_max_Nm)}, "
-             f"wall break-off {torque(m.breakoff_torque_Nm)}, implied cycle minimum {torque(m.min_cycle_torque_Nm)}")
-        say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
-             f"{'settled' if m.settled else 'not settled'}")
+        # the registry's console metrics, by their labels, in its order
+        shown_here = [n for n, o in OUTPUTS.items() if o.console and "torsional" in o.runs]
+        say(f"window {m.window_start:g}-{m.window_end:g} s: {', '.join(metric_texts(m.values, shown_here, system))}")
+        say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); {'' if m.settled else 'not '}settled")
         if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
-            c = result.coupled_metrics
-            mse = f"{c['mse_mean_Pa'] / 1e6:.4g} MPa" if system == "si" else shown(c["mse_mean_Pa"], "Pa", system)
-            wob = shown(c["wob_mean_N"], "N", system, kilo=system == "si")
-            hook = shown(c["hook_load_mean_N"], "N", system, kilo=system == "si")
-            if c["bounce_fraction"] >= 1.0:  # a pick-up or slack-off: the hook load is the number
-                say(f"off bottom: hook load {hook} (mean over the window); regime: {result.coupled_regime}")
+            regime = f"{OUTPUTS[REGIME].label}: {result.coupled_regime}"
+            if result.coupled_regime == "off bottom":  # a pick-up or slack-off: the hook load is the number
+                say(f"off bottom: {metric_texts(result.coupled_metrics, (HOOK_LOAD_MEAN,), system)[0]} (mean over "
+                     f"the window); {regime}")
             else:
-                say(f"on bottom: ROP {shown(c['rop_mean_m_per_h'], 'm/h', system)}, weight on bit {wob}, "
-                     f"torque on bit {torque(c['tob_mean_Nm'])}, bit bounce {c['bounce_fraction']:.3g} of the window, "
-                     f"MSE {mse}, hook load {hook}; regime: {result.coupled_regime}")
+                on_bottom = [n for n, o in OUTPUTS.items() if o.console and "coupled" in o.runs]
+                say(f"on bottom: {', '.join(metric_texts(result.coupled_metrics, on_bottom, system))}; {regime}")
         if result.profile.bit_static_torque > 0:
             p = result.profile
             say(f"static torque to break free {torque(p.static_torque)} (wall {torque(p.breakoff_torque)} "

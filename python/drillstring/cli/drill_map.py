@@ -60,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
     import time
 
     from ..drilling.maps import _map_config, check_axis, drill_map
+    from ..drilling.metrics import MSE_MEAN, OUTPUTS, REGIME, ROP_MEAN, SETTLED, SSI, STICK_SLIP_VERDICT
     from ..io.output import refuse_foreign_folder
 
     config = drilling_config(args, _map_config, ["numerics.field_interval=0"])  # a map keeps no snapshots
@@ -108,19 +109,20 @@ def run(args: argparse.Namespace) -> int:
     say(f"drill-map: {len(frame)} runs ({', '.join(f'{n} {s}' for s, n in counts.items())}) in {seconds:.3g} s "
          f"({len(frame) / seconds:.3g} runs/s){f', {redone} stored chunk(s) recomputed' if redone else ''}")
     if len(ok):
-        verdicts = ok["stick_slip_verdict"].value_counts()
-        say(f"SSI {ok['ssi'].min():.3g}..{ok['ssi'].max():.3g}; stick-slip: yes in {int(verdicts.get('yes', 0))} "
+        verdicts = ok[STICK_SLIP_VERDICT].value_counts()
+        say(f"SSI {ok[SSI].min():.3g}..{ok[SSI].max():.3g}; stick-slip: yes in {int(verdicts.get('yes', 0))} "
              f"runs (the bit stops during part of the window), no in {int(verdicts.get('no', 0))}, undetermined in "
-             f"{int(verdicts.get('undetermined', 0))}; settled in {int((ok['settled'] == 1).sum())} of {len(ok)}")
-        if "regime" in ok.columns:  # a coupled map ([hoist])
-            from ..drilling.units import axis_unit
+             f"{int(verdicts.get('undetermined', 0))}; settled in {int((ok[SETTLED] == 1).sum())} of {len(ok)}")
+        if REGIME in ok.columns:  # a coupled map ([hoist])
+            from ..drilling.units import reported_unit
 
-            regimes = ok["regime"].value_counts()
-            rop, rop_unit = axis_unit("m/h", system)
-            mse, mse_unit = (1e-6, "MPa") if system == "si" else axis_unit("Pa", system)
-            say("regimes: " + ", ".join(f"{r} in {n} runs" for r, n in regimes.items())
-                 + f"; ROP {ok['rop_mean_m_per_h'].min() * rop:.3g}..{ok['rop_mean_m_per_h'].max() * rop:.3g} "
-                 f"{rop_unit}, MSE {ok['mse_mean_Pa'].min() * mse:.3g}..{ok['mse_mean_Pa'].max() * mse:.3g} {mse_unit}")
+            regimes = ok[REGIME].value_counts()
+            ranges = []
+            for name in (ROP_MEAN, MSE_MEAN):
+                scale, unit = reported_unit(str(OUTPUTS[name].unit), system)
+                low, high = ok[name].min() * scale, ok[name].max() * scale
+                ranges.append(f"{OUTPUTS[name].label} {low:.3g}..{high:.3g} {unit}")
+            say("regimes: " + ", ".join(f"{r} in {n} runs" for r, n in regimes.items()) + "; " + ", ".join(ranges))
     from ..drilling.map_table import controller_recommendation
 
     ranking = controller_recommendation(frame)

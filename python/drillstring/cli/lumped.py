@@ -18,7 +18,8 @@ def add_parser(subparsers: Any) -> None:
     p = subparsers.add_parser(
         "lumped",
         help="the lumped two-inertia stick-slip model (Navarro-Lopez & Cortes 2007): equilibria and a run",
-        description="Print the steady rotations of the lumped two-inertia model, their stability and the regime, "
+        description="Print the steady rotations of the lumped two-inertia model, their stability and what they "
+        "predict (equilibrium), "
         "then run it from the initial state and print the stick-slip metrics over the last half of the run. "
         "Parameters default to the published ones (tm = 6000 N m, wob = 50 kN). With --sweep, do both at each "
         "value of one parameter and print one line per value; with --out DIR also write the table "
@@ -43,6 +44,8 @@ def add_parser(subparsers: Any) -> None:
 def run(args: argparse.Namespace) -> int:
     """Runs ``drillstring lumped``; returns its exit status."""
     from ..drilling.lumped import lumped, lumped_equilibria
+    from ..drilling.metrics import OUTPUTS
+    from ..drilling.units import metric_texts
 
     params: dict[str, Any] = {}
     for item in args.overrides:
@@ -63,16 +66,14 @@ def run(args: argparse.Namespace) -> int:
         growth = max(e.real for e in r.eigenvalues)
         say(f"steady rotation {r.speed:.6g} rad/s: {'stable' if r.stable else 'unstable'} "
              f"(largest eigenvalue real part {growth:.4g} 1/s)")
-    say(f"regime: {eq.regime}; bit at rest an equilibrium: {'yes' if eq.stuck_possible else 'no'} "
+    say(f"equilibrium: {eq.equilibrium}; bit at rest an equilibrium: {'yes' if eq.stuck_possible else 'no'} "
          f"(static limit {eq.static_limit:.6g} N m)")
     res = lumped(params, duration=args.duration, initial=args.initial)
     m = res.metrics
+    shown = [n for n, o in OUTPUTS.items() if o.console and "lumped" in o.runs]  # the registry's, by label
     say(f"run from ({', '.join(f'{x:g}' for x in args.initial)}), window {res.window[0]:g}-{res.window[1]:g} s: "
-         f"SSI {m.ssi:.3g}, stuck fraction {m.stuck_fraction:.3g}, period {m.period_s:.4g} s, "
-         f"bit {m.bit_rpm_min:.4g}..{m.bit_rpm_max:.4g} rpm (mean {m.bit_rpm_mean:.4g}), energy balance "
-         f"{res.energy['balance_error']:.2g}")
-    say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); "
-         f"{'settled' if m.settled else 'not settled'}")
+         f"{', '.join(metric_texts(m.values, shown, 'si'))}, energy balance {res.energy['balance_error']:.2g}")
+    say(f"stick-slip: {m.stick_slip_verdict} ({m.stick_slip_reason}); {'' if m.settled else 'not '}settled")
     for warning in m.warnings:
         say(f"warning: {warning}")
     if args.out is not None:
@@ -100,6 +101,7 @@ LUMPED_SWEEP_FILES = ("lumped_sweep.csv", "lumped_sweep.png")
 
 def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
     from ..drilling.lumped import RPM_PER_RAD_S, lumped_defaults, lumped_sweep, lumped_sweep_figure
+    from ..drilling.metrics import BIT_RPM_MAX, BIT_RPM_MIN, SSI, STUCK_FRACTION
 
     name, values = map_axis(args.sweep, field="--sweep")
     if name not in lumped_defaults():
@@ -111,9 +113,10 @@ def _lumped_sweep(args: argparse.Namespace, params: dict[str, Any]) -> int:
     for _, row in frame.iterrows():
         speeds = ", ".join(f"{row[f'rotation_{k}'] * rpm:.4g} rpm {'stable' if row[f'stable_{k}'] else 'unstable'}"
                            for k in (1, 2) if row[f"stable_{k}"] is not None) or "none"
-        say(f"{name} = {row[name]:.6g}: steady rotations {speeds}; regime {row['regime']}; run {row['status']}: "
-             f"SSI {row['ssi']:.3g}, stuck fraction {row['stuck_fraction']:.3g}, "
-             f"bit {row['bit_rpm_min']:.4g}..{row['bit_rpm_max']:.4g} rpm")
+        say(f"{name} = {row[name]:.6g}: steady rotations {speeds}; equilibrium {row['equilibrium']}; "
+             f"run {row['status']}: "
+             f"SSI {row[SSI]:.3g}, stuck fraction {row[STUCK_FRACTION]:.3g}, "
+             f"bit {row[BIT_RPM_MIN]:.4g}..{row[BIT_RPM_MAX]:.4g} rpm")
     if args.out is not None:
         from ..io.figures import save
         from ..io.output import make_directory, write_text

@@ -65,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
 
     from ..calibration.rig_log import CHANNELS, RigStateRules, parse_quantity, rig_log
     from ..calibration.rig_log_output import next_commands
+    from ..drilling.metrics import ROP_MEAN
     from ..io.output import command_inputs
 
     columns = _pairs(args.columns, "--column", "NAME=HEADER (e.g. hook_load=HKLD)", list(CHANNELS))
@@ -89,7 +90,7 @@ def run(args: argparse.Namespace) -> int:
                        for name, seconds in s["time_per_state_s"].items() if seconds > 0)
     say(f"states: {states}")
     d = s["depth_range_m"]
-    rop = s["rop_mean_m_per_h"]
+    rop = s[ROP_MEAN]
     say(f"hole depth {d['hole_start']:.1f} m -> {d['hole_end']:.1f} m ({d['drilled']:.1f} m in "
         f"{s['drilled_intervals']} intervals" + (f", mean ROP {rop:.3g} m/h" if rop is not None else "") + ")")
     say("events: " + ", ".join(f"{n} {kind.replace('_', ' ')}" for kind, n in s["events"].items()))

@@ -146,9 +146,11 @@ def _section_defaults() -> Mapping[str, Any]:
     return sections[0] if isinstance(sections[0], Mapping) else {}
 
 
-def _default(table: Optional[str], key: str, *, unit: str, kind: str, doc: str = "") -> Any:
+def _default(table: Optional[str], key: str, *, kind: str) -> Any:
     """A dataclass field whose default is the core's (``table.key`` of :func:`defaults`; ``table``
-    ``"sections"`` reads the first default section; no default when the core has none)."""
+    ``"sections"`` reads the first default section; no default when the core has none). Its unit
+    and description are the core's schema's (:func:`config_schema`), never declared here;
+    ``kind`` is how :meth:`DrillConfig.from_dict` builds its value."""
     if table == "sections":
         source: Mapping[str, Any] = _section_defaults()
     elif table is None:
@@ -160,7 +162,7 @@ def _default(table: Optional[str], key: str, *, unit: str, kind: str, doc: str =
         if not source:  # an optional table unset by default (``hoist``): its keys' defaults
             source = {k[len(table) + 1:]: v["default"] for k, v in _core.drill_config_schema().items()
                       if k.startswith(table + ".") and "." not in k[len(table) + 1:]}
-    metadata = {"kind": kind, "unit": unit, "doc": doc}
+    metadata = {"kind": kind}
     if key not in source:
         return field(metadata=metadata)
     return field(default=_frozen(source[key]), metadata=metadata)
@@ -178,50 +180,50 @@ class StringSection:
     (default the outer diameter). Unset fields take the core's defaults.
     """
 
-    length: float = field(metadata={"kind": "float", "unit": "m"})
+    length: float = field(metadata={"kind": "float"})
     """Measured length of the section, m (required)."""
-    outer_diameter: float = field(metadata={"kind": "float", "unit": "m"})
+    outer_diameter: float = field(metadata={"kind": "float"})
     """Outer diameter, m (required)."""
-    inner_diameter: float = field(metadata={"kind": "float", "unit": "m"})
+    inner_diameter: float = field(metadata={"kind": "float"})
     """Inner diameter, m (required)."""
-    name: str = _default("sections", "name", unit="", kind="str")
+    name: str = _default("sections", "name", kind="str")
     """A label for tables and plots."""
-    shear_modulus: float = _default("sections", "shear_modulus", unit="Pa", kind="float")
+    shear_modulus: float = _default("sections", "shear_modulus", kind="float")
     """Shear modulus G, Pa."""
-    density: float = _default("sections", "density", unit="kg/m^3", kind="float")
+    density: float = _default("sections", "density", kind="float")
     """Density of the steel, kg/m^3."""
-    contact_diameter: Optional[float] = _default("sections", "contact_diameter", unit="m", kind="float?")
+    contact_diameter: Optional[float] = _default("sections", "contact_diameter", kind="float?")
     """Diameter at which the wall friction acts, m (None: the outer diameter)."""
-    polar_moment: Optional[float] = _default("sections", "polar_moment", unit="m^4", kind="float?")
+    polar_moment: Optional[float] = _default("sections", "polar_moment", kind="float?")
     """Override of the polar moment of area J, m^4 (None: from the diameters)."""
-    area: Optional[float] = _default("sections", "area", unit="m^2", kind="float?")
+    area: Optional[float] = _default("sections", "area", kind="float?")
     """Override of the cross-section area A, m^2 (None: from the diameters)."""
-    quartic_moment: Optional[float] = _default("sections", "quartic_moment", unit="m^6", kind="float?")
+    quartic_moment: Optional[float] = _default("sections", "quartic_moment", kind="float?")
     """Override of ``J4 = int r^4 dA``, m^6, which sets the ``"consistent"`` law's cubic torque
     ``k5 = M J4 / 2`` (None: ``pi/192 (OD^6 - ID^6)``, from the diameters; unused by
     ``"linear"``). A section with an overridden ``polar_moment`` needs it too."""
-    poisson_ratio: float = _default("sections", "poisson_ratio", unit="", kind="float")
+    poisson_ratio: float = _default("sections", "poisson_ratio", kind="float")
     """Poisson's ratio nu, ``0 < nu < 0.5``: with ``shear_modulus`` the P-wave modulus
     ``M = 2 G (1 - nu) / (1 - 2 nu)`` of the ``"consistent"`` nonlinearity (unused by ``"linear"``)."""
-    grade: Optional[str] = _default("sections", "grade", unit="", kind="str?")
+    grade: Optional[str] = _default("sections", "grade", kind="str?")
     """API drill-pipe grade, ``"E-75"``, ``"X-95"``, ``"G-105"`` or ``"S-135"`` (the torque and
     drag's utilisation; None: none)."""
-    yield_strength: Optional[float] = _default("sections", "yield_strength", unit="Pa", kind="float?")
+    yield_strength: Optional[float] = _default("sections", "yield_strength", kind="float?")
     """Minimum yield strength, Pa, in place of ``grade``."""
-    nominal_weight: Optional[float] = _default("sections", "nominal_weight", unit="N/m", kind="float?")
+    nominal_weight: Optional[float] = _default("sections", "nominal_weight", kind="float?")
     """Adjusted weight in air with the tool joints, N/m (field: lb/ft); None: from the tool joints
     or the body."""
-    tool_joint_outer_diameter: Optional[float] = _default("sections", "tool_joint_outer_diameter", unit="m",
+    tool_joint_outer_diameter: Optional[float] = _default("sections", "tool_joint_outer_diameter",
                                                           kind="float?")
     """Tool-joint outer diameter, m."""
-    tool_joint_inner_diameter: Optional[float] = _default("sections", "tool_joint_inner_diameter", unit="m",
+    tool_joint_inner_diameter: Optional[float] = _default("sections", "tool_joint_inner_diameter",
                                                           kind="float?")
     """Tool-joint inner diameter, m."""
-    tool_joint_length: Optional[float] = _default("sections", "tool_joint_length", unit="m", kind="float?")
+    tool_joint_length: Optional[float] = _default("sections", "tool_joint_length", kind="float?")
     """Length of one tool joint (pin and box), m."""
-    joint_length: Optional[float] = _default("sections", "joint_length", unit="m", kind="float?")
+    joint_length: Optional[float] = _default("sections", "joint_length", kind="float?")
     """Length of one joint, m (None: 9.144 m, API range 2)."""
-    makeup_torque: Optional[float] = _default("sections", "makeup_torque", unit="N*m", kind="float?")
+    makeup_torque: Optional[float] = _default("sections", "makeup_torque", kind="float?")
     """Make-up torque of the tool joints, N m (None: not checked)."""
 
 
@@ -234,32 +236,32 @@ class Well:
     default m and degrees); or a ``plan`` of segments. One inclination number without ``md`` is
     a straight hole. A survey shorter than the string is refused unless ``extend`` is true."""
 
-    md: Optional[tuple[float, ...]] = _default("well", "md", unit="m", kind="floats?")
+    md: Optional[tuple[float, ...]] = _default("well", "md", kind="floats?")
     """Measured depths of the survey stations, m (None with a constant inclination)."""
-    inclination_deg: Union[float, tuple[float, ...]] = _default("well", "inclination_deg", unit="deg",
+    inclination_deg: Union[float, tuple[float, ...]] = _default("well", "inclination_deg",
                                                                 kind="float|floats")
     """Inclination at each station, degrees (one number: constant, without ``md``)."""
-    mud_density: float = _default("well", "mud_density", unit="kg/m^3", kind="float")
+    mud_density: float = _default("well", "mud_density", kind="float")
     """Mud density for buoyancy, kg/m^3 (0: none)."""
-    gravity: float = _default("well", "gravity", unit="m/s^2", kind="float")
+    gravity: float = _default("well", "gravity", kind="float")
     """Acceleration of gravity, m/s^2."""
-    azimuth_deg: Union[float, tuple[float, ...]] = _default("well", "azimuth_deg", unit="deg", kind="float|floats")
+    azimuth_deg: Union[float, tuple[float, ...]] = _default("well", "azimuth_deg", kind="float|floats")
     """Azimuth, degrees clockwise from north: one number for every station, or one per ``md``
     station (with a plan: the azimuth of its first build)."""
-    survey: Optional[str] = _default("well", "survey", unit="", kind="str?")
+    survey: Optional[str] = _default("well", "survey", kind="str?")
     """A survey file (CSV) in place of the stations; in a TOML file, relative to that file."""
-    plan: Optional[tuple[Mapping[str, float], ...]] = _default("well", "plan", unit="", kind="tables?")
+    plan: Optional[tuple[Mapping[str, float], ...]] = _default("well", "plan", kind="tables?")
     """A plan in place of the stations, from the surface: ``{hold = m}``, ``{build = deg/30 m,
     inclination = deg}``, ``{drop = deg/30 m, inclination = deg}``, ``{turn = deg/30 m (positive
     clockwise), azimuth = deg}``; e.g. a J well ``[{hold = 500}, {build = 3, inclination = 60},
     {hold = 2000}]``."""
-    extend: bool = _default("well", "extend", unit="", kind="bool")
+    extend: bool = _default("well", "extend", kind="bool")
     """Continue a survey shorter than the string straight on from its last station (default:
     refuse it)."""
-    hole_diameter: Optional[float] = _default("well", "hole_diameter", unit="m", kind="float?")
+    hole_diameter: Optional[float] = _default("well", "hole_diameter", kind="float?")
     """Open-hole diameter, m (field: in), below ``hole_sections``: the torque and drag's
     buckling (None: buckling not evaluated)."""
-    hole_sections: tuple[Mapping[str, float], ...] = _default("well", "hole_sections", unit="", kind="tables")
+    hole_sections: tuple[Mapping[str, float], ...] = _default("well", "hole_sections", kind="tables")
     """Casing and hole sections from the surface, ``{bottom_md, diameter, friction}`` (friction
     optional). In TOML: ``[[well.hole_sections]]`` tables."""
 
@@ -271,23 +273,23 @@ class Friction:
     one of the torque-and-drag solution (``contact = "soft_string"``: buoyed weight and tension
     times curvature) or the buoyed weight times sin(inclination) (``"weight"``, Aarsnes & Shor)."""
 
-    static: float = _default("friction", "static", unit="", kind="float")
+    static: float = _default("friction", "static", kind="float")
     """Static friction coefficient."""
-    kinetic_ratio: float = _default("friction", "kinetic_ratio", unit="", kind="float")
+    kinetic_ratio: float = _default("friction", "kinetic_ratio", kind="float")
     """Kinetic over static friction."""
-    stick_speed: float = _default("friction", "stick_speed", unit="rad/s", kind="float")
+    stick_speed: float = _default("friction", "stick_speed", kind="float")
     """Speed below which a cell sticks (Aarsnes-Shor ``o_thres``), rad/s."""
-    model: str = _default("friction", "model", unit="", kind="str")
+    model: str = _default("friction", "model", kind="str")
     """``"set_valued"`` (stick / slip switch) or ``"regularised"`` (smooth, ``tanh``-like)."""
-    regularisation_speed: float = _default("friction", "regularisation_speed", unit="rad/s", kind="float")
+    regularisation_speed: float = _default("friction", "regularisation_speed", kind="float")
     """Speed scale of the regularised model, rad/s."""
-    contact: str = _default("friction", "contact", unit="", kind="str")
+    contact: str = _default("friction", "contact", kind="str")
     """The normal force of the friction limit: ``"soft_string"`` (default; rotating off bottom,
     or on bottom with the weight on bit) or ``"weight"`` (Aarsnes & Shor 2018, eq. 6)."""
-    intervals: tuple[Mapping[str, float], ...] = _default("friction", "intervals", unit="", kind="tables")
+    intervals: tuple[Mapping[str, float], ...] = _default("friction", "intervals", kind="tables")
     """Static friction factors over depth intervals, ``{top_md, bottom_md, static}`` (cased and
     open hole); ``static`` applies elsewhere. In TOML: ``[[friction.intervals]]`` tables."""
-    coupling: str = _default("friction", "coupling", unit="", kind="str")
+    coupling: str = _default("friction", "coupling", kind="str")
     """A coupled run's (``[hoist]``) wall friction: ``"axial_torsional"`` (default; against the
     sliding velocity, axial speed and contact radius times angular speed, on both fields with one
     stick phase: a rotating string slides axially with little drag) or ``"torsion_only"`` (the
@@ -298,26 +300,26 @@ class Friction:
 class Controller:
     """The top-drive speed controller."""
 
-    type: str = _default("top_drive.controller", "type", unit="", kind="str")
+    type: str = _default("top_drive.controller", "type", kind="str")
     """``"pi"``, ``"soft_torque"``, ``"z_torque"`` or ``"speed"`` (ideal speed source)."""
-    kp: float = _default("top_drive.controller", "kp", unit="N m s/rad", kind="float")
+    kp: float = _default("top_drive.controller", "kp", kind="float")
     """``pi``: proportional gain, N m s/rad: motor torque per rad/s of speed error, the damping the
     top drive presents to the string (``kp >> Z``, the pipe's impedance: a stiff top that reflects
     torque waves; ``kp = Z``: a matched one that absorbs them). ``soft_torque``: ``z_factor Z``."""
-    ki: float = _default("top_drive.controller", "ki", unit="N m/rad", kind="float")
+    ki: float = _default("top_drive.controller", "ki", kind="float")
     """``pi``: integral gain, N m/rad: motor torque per radian of accumulated speed error (a spring
     to the setpoint's angle). ``soft_torque``: ``(2 pi f)^2 I_TD``, cancelling the top-drive inertia
     at the tuning frequency ``f``."""
-    tuning_frequency: Optional[float] = _default("top_drive.controller", "tuning_frequency", unit="Hz",
+    tuning_frequency: Optional[float] = _default("top_drive.controller", "tuning_frequency",
                                                  kind="float?")
     """Soft-torque tuning frequency, Hz (None: the string's first mode)."""
-    z_factor: float = _default("top_drive.controller", "z_factor", unit="", kind="float")
+    z_factor: float = _default("top_drive.controller", "z_factor", kind="float")
     """Soft-torque / Z-torque damping as a multiple of the top section's impedance ``J sqrt(G rho)``
     (default 4: Simulator4nDOF's published SoftTorque gain ``4 Z`` and ZTorque factor ``0.25``)."""
-    torque_highpass_time: float = _default("top_drive.controller", "torque_highpass_time", unit="s", kind="float")
+    torque_highpass_time: float = _default("top_drive.controller", "torque_highpass_time", kind="float")
     """Z-torque: time constant of the low-pass that takes the mean string torque out of the
     impedance feedback, s."""
-    preset: Optional[str] = _default("top_drive.controller", "preset", unit="", kind="str?")
+    preset: Optional[str] = _default("top_drive.controller", "preset", kind="str?")
     """A named tuning, ``"stiff"``, ``"soft_torque"`` or ``"z_torque"``: fills in ``type`` and the
     gains from the string when the configuration is read (:func:`~drillstring.recommend_controllers`
     shows them); keys given beside it keep their values. None: the keys as given."""
@@ -327,33 +329,33 @@ class Controller:
 class TopDrive:
     """The top drive: its inertia, torque limit, speed setpoint and controller."""
 
-    inertia: float = _default("top_drive", "inertia", unit="kg m^2", kind="float")
+    inertia: float = _default("top_drive", "inertia", kind="float")
     """Rotor inertia, kg m^2."""
-    torque_limit: float = _default("top_drive", "torque_limit", unit="N m", kind="float")
+    torque_limit: float = _default("top_drive", "torque_limit", kind="float")
     """Largest motor torque, N m, for every controller. Default 60 kN m, the continuous rating of a
     large top drive; a run warns when the string's static torque exceeds it. A very large value
     (1e12) for no limit."""
-    rpm: float = _default("top_drive", "rpm", unit="rpm", kind="float")
+    rpm: float = _default("top_drive", "rpm", kind="float")
     """Speed setpoint, rpm."""
-    ramp_time: float = _default("top_drive", "ramp_time", unit="s", kind="float")
+    ramp_time: float = _default("top_drive", "ramp_time", kind="float")
     """Time constant of the first-order approach of the setpoint from 0, s (0: a step)."""
-    steps: tuple[tuple[float, float], ...] = _default("top_drive", "steps", unit="s, rpm", kind="pairs")
+    steps: tuple[tuple[float, float], ...] = _default("top_drive", "steps", kind="pairs")
     """Setpoint changes ``(time s, rpm)``."""
-    controller: Controller = field(default_factory=Controller, metadata={"kind": "table", "unit": "", "doc": ""})
+    controller: Controller = field(default_factory=Controller, metadata={"kind": "table"})
     """The speed controller."""
-    control_interval: float = _default("top_drive", "control_interval", unit="s", kind="float")
+    control_interval: float = _default("top_drive", "control_interval", kind="float")
     """Zero-order-hold period of the controller, s."""
-    motor_bandwidth: float = _default("top_drive", "motor_bandwidth", unit="Hz", kind="float")
+    motor_bandwidth: float = _default("top_drive", "motor_bandwidth", kind="float")
     """``speed`` and ``z_torque``: bandwidth of the motor's speed loop, Hz. The top speed follows
     the speed these controllers ask for as a first-order lag of time constant
     ``1 / (2 pi motor_bandwidth)``, so that the motor torque is a real drive's and converges as
     the grid is refined."""
-    mode: str = _default("top_drive", "mode", unit="", kind="str")
+    mode: str = _default("top_drive", "mode", kind="str")
     """What drives the top: ``"controller"`` (default; the controller follows the setpoint) or
     ``"measured_speed"`` (the top speed is ``speed_series``, imposed exactly; the motor torque is
     the torque that imposes it, the top-drive inertia's acceleration torque plus the string torque
     at the top; controller, setpoint and torque limit unused)."""
-    speed_series: tuple[tuple[float, float], ...] = _default("top_drive", "speed_series", unit="s, rpm",
+    speed_series: tuple[tuple[float, float], ...] = _default("top_drive", "speed_series",
                                                              kind="pairs")
     """``measured_speed``: the top-drive speed ``(time s, rpm)``, linearly interpolated; times
     strictly increasing, covering ``0 .. numerics.duration``."""
@@ -364,26 +366,26 @@ class Bit:
     """The bit: off bottom (free end) or on bottom with a velocity-weakening bit-rock torque
     ``T = W r (mu_k + (mu_s - mu_k) exp(-decay |w|)) sign(w)``."""
 
-    on_bottom: bool = _default("bit", "on_bottom", unit="", kind="bool")
+    on_bottom: bool = _default("bit", "on_bottom", kind="bool")
     """Whether the bit cuts (bit-rock torque) or hangs free."""
-    weight_on_bit: float = _default("bit", "weight_on_bit", unit="N", kind="float")
+    weight_on_bit: float = _default("bit", "weight_on_bit", kind="float")
     """Weight on bit W, N."""
-    radius: float = _default("bit", "radius", unit="m", kind="float")
+    radius: float = _default("bit", "radius", kind="float")
     """Bit radius r, m."""
-    mu_static: float = _default("bit", "mu_static", unit="", kind="float")
+    mu_static: float = _default("bit", "mu_static", kind="float")
     """Static bit-rock friction coefficient."""
-    mu_kinetic: float = _default("bit", "mu_kinetic", unit="", kind="float")
+    mu_kinetic: float = _default("bit", "mu_kinetic", kind="float")
     """Kinetic bit-rock friction coefficient."""
-    decay: float = _default("bit", "decay", unit="s/rad", kind="float")
+    decay: float = _default("bit", "decay", kind="float")
     """Velocity-weakening rate, 1/(rad/s)."""
-    stick_speed: float = _default("bit", "stick_speed", unit="rad/s", kind="float")
+    stick_speed: float = _default("bit", "stick_speed", kind="float")
     """Speed below which the bit sticks, rad/s."""
-    bha_inertia: float = _default("bit", "bha_inertia", unit="kg m^2", kind="float")
+    bha_inertia: float = _default("bit", "bha_inertia", kind="float")
     """Extra lumped inertia at the bit, kg m^2."""
-    diameter: Optional[float] = _default("bit", "diameter", unit="m", kind="float?")
+    diameter: Optional[float] = _default("bit", "diameter", kind="float?")
     """Bit diameter, m, in place of ``radius`` (giving both is refused). The configuration is
     normalised to the radius: after construction this is None and ``radius`` half the diameter."""
-    law: str = _default("bit", "law", unit="", kind="str")
+    law: str = _default("bit", "law", kind="str")
     """The bit-rock law: ``"velocity_weakening"`` (the default, the torque above at
     ``weight_on_bit``, torsion only), ``"detournay"`` (the Detournay law of ``detournay`` with the
     depth of cut per revolution ``2 pi v / omega`` of the bit's speeds) or ``"rgd"`` (the same law
@@ -392,12 +394,12 @@ class Bit:
     :class:`Weakening`). The laws but ``velocity_weakening`` need a :class:`Hoist` (the coupled
     axial-torsional run) and the reverse."""
     detournay: Detournay = field(default_factory=lambda: Detournay(),
-                                 metadata={"kind": "table", "unit": "", "doc": ""})
+                                 metadata={"kind": "table"})
     """The Detournay law's rock and bit parameters (the radius is ``radius``)."""
     weakening: Weakening = field(default_factory=lambda: Weakening(),
-                                 metadata={"kind": "table", "unit": "", "doc": ""})
+                                 metadata={"kind": "table"})
     """The wear flats' velocity weakening of ``law = "detournay_weakening"``."""
-    bha_mass: float = _default("bit", "bha_mass", unit="kg", kind="float")
+    bha_mass: float = _default("bit", "bha_mass", kind="float")
     """Lumped mass at the bit on the axial field of a coupled run, kg (0: none): its inertia and
     its buoyed weight along the hole, carried by the string's initial static tension."""
 
@@ -409,25 +411,25 @@ class Detournay:
     ``T_f = gamma mu a W_f / 2`` (``a`` the bit radius, ``d`` the depth of cut per revolution).
     Defaults: Aarsnes & van de Wouw (2019)."""
 
-    blades: int = _default("bit.detournay", "blades", unit="", kind="int")
+    blades: int = _default("bit.detournay", "blades", kind="int")
     """Number of blades n."""
-    intrinsic_specific_energy: float = _default("bit.detournay", "intrinsic_specific_energy", unit="Pa", kind="float")
+    intrinsic_specific_energy: float = _default("bit.detournay", "intrinsic_specific_energy", kind="float")
     """Intrinsic specific energy of the rock eps, Pa."""
-    cutting_ratio: float = _default("bit.detournay", "cutting_ratio", unit="", kind="float")
+    cutting_ratio: float = _default("bit.detournay", "cutting_ratio", kind="float")
     """Ratio zeta of the vertical to the horizontal cutting force."""
-    contact_strength: float = _default("bit.detournay", "contact_strength", unit="Pa", kind="float")
+    contact_strength: float = _default("bit.detournay", "contact_strength", kind="float")
     """Contact strength sigma under the wear flats, Pa."""
-    wear_flat_length: float = _default("bit.detournay", "wear_flat_length", unit="m", kind="float")
+    wear_flat_length: float = _default("bit.detournay", "wear_flat_length", kind="float")
     """Total wear-flat length l, m."""
-    friction: float = _default("bit.detournay", "friction", unit="", kind="float")
+    friction: float = _default("bit.detournay", "friction", kind="float")
     """Wear-flat/rock friction coefficient mu."""
-    geometry: float = _default("bit.detournay", "geometry", unit="", kind="float")
+    geometry: float = _default("bit.detournay", "geometry", kind="float")
     """Bit geometry factor gamma (1: flat profile)."""
-    cut_surface: str = _default("bit.detournay", "cut_surface", unit="", kind="str")
+    cut_surface: str = _default("bit.detournay", "cut_surface", kind="str")
     """The regenerative depth of cut of ``law = "rgd"``: ``"exact_delay"`` (the bit's position one
     blade angle back) or ``"upwind"`` (Aarsnes & van de Wouw's first-order upwind cut surface on
     ``cut_surface_cells`` cells)."""
-    cut_surface_cells: int = _default("bit.detournay", "cut_surface_cells", unit="", kind="int")
+    cut_surface_cells: int = _default("bit.detournay", "cut_surface_cells", kind="int")
     """Cells of the ``upwind`` cut surface over one blade angle."""
 
 
@@ -438,9 +440,9 @@ class Weakening:
     ``bit.detournay.friction`` (Detournay & Defourny 1992 with the velocity weakening of
     Navarro-Lopez & Cortes 2007)."""
 
-    static_friction: float = _default("bit.weakening", "static_friction", unit="", kind="float")
+    static_friction: float = _default("bit.weakening", "static_friction", kind="float")
     """Friction coefficient mu_0 of a bit at rest, at least ``bit.detournay.friction``."""
-    decay: float = _default("bit.weakening", "decay", unit="s/rad", kind="float")
+    decay: float = _default("bit.weakening", "decay", kind="float")
     """Rate of the friction's fall with the bit's speed, s/rad."""
 
 
@@ -449,27 +451,27 @@ class Hoist:
     """The hoist at the top of the string; with one, a run is coupled axial-torsional with the
     bit on bottom (``bit.law`` ``"detournay"`` or ``"rgd"``)."""
 
-    mode: str = _default("hoist", "mode", unit="", kind="str")
+    mode: str = _default("hoist", "mode", kind="str")
     """``"velocity"`` (the block velocity ``speed``), ``"hook_load"`` (the force ``hook_load``
     holding the string up), ``"weight_on_bit"`` (the hook load held at the static hook load of
     the string hanging off bottom less ``weight_on_bit``, as a rig's weight indicator reads it) or
     ``"autodriller"`` (the block velocity of the PI :class:`Autodriller`)."""
-    speed: float = _default("hoist", "speed", unit="m/s", kind="float")
+    speed: float = _default("hoist", "speed", kind="float")
     """Block velocity, m/s, down positive."""
-    hook_load: float = _default("hoist", "hook_load", unit="N", kind="float")
+    hook_load: float = _default("hoist", "hook_load", kind="float")
     """Hook load of ``hook_load`` mode, N."""
-    weight_on_bit: float = _default("hoist", "weight_on_bit", unit="N", kind="float")
+    weight_on_bit: float = _default("hoist", "weight_on_bit", kind="float")
     """Weight on bit of ``weight_on_bit`` mode, N (ramped from 0 with ``ramp_time``)."""
-    ramp_time: float = _default("hoist", "ramp_time", unit="s", kind="float")
+    ramp_time: float = _default("hoist", "ramp_time", kind="float")
     """Time constant of the setpoint's approach (the block velocity from 0, the hook load from the
     static hook load, the weight on bit from 0), s (0: a step)."""
-    steps: tuple[tuple[float, float], ...] = _default("hoist", "steps", unit="s, m/s or N", kind="pairs")
+    steps: tuple[tuple[float, float], ...] = _default("hoist", "steps", kind="pairs")
     """Changes of the mode's target ``(time s, value)`` at increasing times, approached with
     ``ramp_time`` like the top drive's ``steps``: the block velocity (m/s), the hook load (N) or
     the autodriller's setpoint (N or m/s) by ``mode``; plain numbers are in the document's unit
     system (field: ft/h, klbf), a string with a unit must be of the mode's dimension."""
     autodriller: Autodriller = field(default_factory=lambda: Autodriller(),
-                                     metadata={"kind": "table", "unit": "", "doc": ""})
+                                     metadata={"kind": "table"})
     """The autodriller of ``mode = "autodriller"``."""
 
 
@@ -481,19 +483,19 @@ class Autodriller:
     setpoint less the measured value, ``u_ff`` the setpoint itself with ``target = "rop"``.
     ``kp`` and ``ki`` are not both 0 (refused: the block would not answer)."""
 
-    target: str = _default("hoist.autodriller", "target", unit="", kind="str")
+    target: str = _default("hoist.autodriller", "target", kind="str")
     """``"weight_on_bit"`` (default) or ``"rop"``."""
-    setpoint: float = _default("hoist.autodriller", "setpoint", unit="N or m/s", kind="float")
+    setpoint: float = _default("hoist.autodriller", "setpoint", kind="float")
     """The target's setpoint: N (``weight_on_bit``) or m/s (``rop``); a plain number is in the
     document's unit system (field: klbf or ft/h), a string with a unit (``"18 klbf"``,
     ``"60 ft/h"``) of the target's dimension is converted."""
-    kp: float = _default("hoist.autodriller", "kp", unit="m/(N*s) or 1", kind="float")
+    kp: float = _default("hoist.autodriller", "kp", kind="float")
     """Proportional gain: (m/s)/N on the weight on bit, dimensionless on ROP."""
-    ki: float = _default("hoist.autodriller", "ki", unit="m/(N*s^2) or 1/s", kind="float")
+    ki: float = _default("hoist.autodriller", "ki", kind="float")
     """Integral gain: (m/s)/(N s) on the weight on bit, 1/s on ROP."""
-    min_speed: float = _default("hoist.autodriller", "min_speed", unit="m/s", kind="float")
+    min_speed: float = _default("hoist.autodriller", "min_speed", kind="float")
     """Least block velocity, m/s, down positive (negative: the block may pull up)."""
-    max_speed: float = _default("hoist.autodriller", "max_speed", unit="m/s", kind="float")
+    max_speed: float = _default("hoist.autodriller", "max_speed", kind="float")
     """Largest block velocity, m/s (default 100 m/h)."""
 
 
@@ -501,30 +503,30 @@ class Autodriller:
 class Numerics:
     """Grid, duration and output sampling."""
 
-    cells: int = _default("numerics", "cells", unit="", kind="int")
+    cells: int = _default("numerics", "cells", kind="int")
     """Cells along the whole string."""
-    duration: float = _default("numerics", "duration", unit="s", kind="float")
+    duration: float = _default("numerics", "duration", kind="float")
     """Simulated time, s."""
-    output_interval: float = _default("numerics", "output_interval", unit="s", kind="float")
+    output_interval: float = _default("numerics", "output_interval", kind="float")
     """Spacing of the time series, s."""
-    field_interval: float = _default("numerics", "field_interval", unit="s", kind="float")
+    field_interval: float = _default("numerics", "field_interval", kind="float")
     """Spacing of the space-time snapshots, s (0: none)."""
-    max_cells: int = _default("numerics", "max_cells", unit="", kind="int")
+    max_cells: int = _default("numerics", "max_cells", kind="int")
     """Largest ``cells`` accepted (a guard against typos)."""
-    max_shear_strain: float = _default("numerics", "max_shear_strain", unit="", kind="float")
+    max_shear_strain: float = _default("numerics", "max_shear_strain", kind="float")
     """``"consistent"`` only: the largest shear strain at the outer surface the time step is made
     for (Courant number <= 1 at the tangent wave speed of that strain); a run exceeding it says so
     in its message and ``stats["courant_peak"]`` > 1."""
-    courant: float = _default("numerics", "courant", unit="", kind="float")
+    courant: float = _default("numerics", "courant", kind="float")
     """The Courant number ``c dt / h`` the step is made for, in (0, 1]: the step is this fraction
     of the grid's Courant-1 step, the cells unchanged (1: the exact shift; below 1 the upwind
     transport diffuses, reported as ``upwind_loss``)."""
-    source_speed: str = _default("numerics", "source_speed", unit="", kind="str")
+    source_speed: str = _default("numerics", "source_speed", kind="str")
     """The speed of a cell its sources (friction threshold and direction, damping) are evaluated
     at: ``"after_transport"`` (default) or ``"before_transport"`` (the speed at the step start,
     the scheme of Aarsnes & Shor's torsionalWaveStep.m, to reproduce their published runs; both
     converge with the grid)."""
-    initial_state: str = _default("numerics", "initial_state", unit="", kind="str")
+    initial_state: str = _default("numerics", "initial_state", kind="str")
     """Where a coupled run starts: ``"rest"`` (default; the string at rest under its static
     tension, the setpoints ramping up) or ``"steady"`` (the bit law's steady drilling at the
     setpoints of t = 0, where Aarsnes & van de Wouw's code starts: the string turning at the
@@ -536,9 +538,9 @@ class Numerics:
 class MetricsConfig:
     """Where and how the stick-slip metrics are measured."""
 
-    window: Optional[tuple[float, float]] = _default("metrics", "window", unit="s", kind="pair?")
+    window: Optional[tuple[float, float]] = _default("metrics", "window", kind="pair?")
     """``(t_start, t_end)`` of the metrics window, s (None: the last half of the run)."""
-    stick_speed: float = _default("metrics", "stick_speed", unit="rad/s", kind="float")
+    stick_speed: float = _default("metrics", "stick_speed", kind="float")
     """The bit counts as stuck at or below this speed, rad/s."""
 
 
@@ -546,20 +548,20 @@ class MetricsConfig:
 class TorqueDragConfig:
     """The static torque-and-drag analysis (``drillstring torque-drag``)."""
 
-    bit_torque: float = _default("torque_drag", "bit_torque", unit="N m", kind="float")
+    bit_torque: float = _default("torque_drag", "bit_torque", kind="float")
     """Torque on bit when drilling (rotating on bottom), N m."""
-    block_weight: float = _default("torque_drag", "block_weight", unit="N", kind="float")
+    block_weight: float = _default("torque_drag", "block_weight", kind="float")
     """Travelling block, hook and top drive, added to every hook load, N."""
-    step: float = _default("torque_drag", "step", unit="m", kind="float")
+    step: float = _default("torque_drag", "step", kind="float")
     """The longest element of the stepped solution, m."""
-    friction_factors: tuple[float, ...] = _default("torque_drag", "friction_factors", unit="", kind="floats")
+    friction_factors: tuple[float, ...] = _default("torque_drag", "friction_factors", kind="floats")
     """The friction factors of the broomstick plot (each uniform along the hole)."""
-    broomstick_points: int = _default("torque_drag", "broomstick_points", unit="", kind="int")
+    broomstick_points: int = _default("torque_drag", "broomstick_points", kind="int")
     """Bit depths of the broomstick plot, evenly spaced to the string's length."""
 
 
 def _table(cls: type) -> Any:
-    return field(default_factory=cls, metadata={"kind": "table", "unit": "", "doc": ""})
+    return field(default_factory=cls, metadata={"kind": "table"})
 
 
 @dataclass(frozen=True)
@@ -594,9 +596,9 @@ class DrillConfig:
     """The string from the top (at least one section)."""
     well: Well = _table(Well)
     friction: Friction = _table(Friction)
-    damping_rate: float = _default(None, "damping_rate", unit="1/s", kind="float")
+    damping_rate: float = _default(None, "damping_rate", kind="float")
     """Viscous damping rate c, 1/s: force ``-rho J c omega`` per unit length."""
-    nonlinearity: str = _default(None, "nonlinearity", unit="", kind="str")
+    nonlinearity: str = _default(None, "nonlinearity", kind="str")
     """The torque-twist law: ``"linear"`` (``tau = G J eps``, the default) or ``"consistent"``
     (finite strain, ``tau = k2 eps + k5 eps^3``, ``k5 = M J4 / 2``; a first-order Godunov scheme)."""
     top_drive: TopDrive = _table(TopDrive)
@@ -604,9 +606,9 @@ class DrillConfig:
     numerics: Numerics = _table(Numerics)
     metrics: MetricsConfig = _table(MetricsConfig)
     torque_drag: TorqueDragConfig = _table(TorqueDragConfig)
-    hoist: Optional[Hoist] = field(default=None, metadata={"kind": "table?", "unit": "", "doc": ""})
+    hoist: Optional[Hoist] = field(default=None, metadata={"kind": "table?"})
     """The hoist: None (the default) for a torsion-only run, else the coupled axial-torsional run."""
-    changes: tuple[Change, ...] = field(default=(), metadata={"kind": "changes", "unit": "", "doc": ""})
+    changes: tuple[Change, ...] = field(default=(), metadata={"kind": "changes"})
     """Values changed during the run (``[[changes]]``), in time order of effect."""
 
     #: The unit system of plain numbers given to this configuration after it was read (see :attr:`units`).

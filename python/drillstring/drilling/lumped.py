@@ -13,7 +13,7 @@ bit-torque function as the distributed string's bit (its ``decay`` is ``gamma_b 
   the spring and bit torques, the stick-slip metrics (the same core function as every other
   run, with the spring torque as the torque series) and the energy balance;
 * :func:`lumped_equilibria` the steady rotations (roots of ``tm = (cr + cb) w + wob rb mu(w)``),
-  their linear stability (eigenvalues of the 3x3 Jacobian in ``(wr, phi, wb)``) and the regime:
+  their linear stability (eigenvalues of the 3x3 Jacobian in ``(wr, phi, wb)``) and what they predict, ``equilibrium``:
   ``"stable_rotation"``, ``"unstable"`` (stick-slip or a growing oscillation) or ``"stuck"``
   (no steady rotation; the bit at rest, ``wr = 0`` and ``kt phi = tm``, is an equilibrium whenever
   ``tm <= wob rb mu_sb``);
@@ -24,7 +24,7 @@ bit-torque function as the distributed string's bit (its ``decay`` is ``gamma_b 
   :func:`lumped_sweep_figure` draws them (the onset of stick-slip against the equilibria).
 
 >>> from drillstring.drilling import lumped, lumped_equilibria
->>> lumped_equilibria({"wob": 30e3}).regime
+>>> lumped_equilibria({"wob": 30e3}).equilibrium
 'stable_rotation'
 >>> res = lumped({"wob": 55e3}, duration=100.0)
 >>> res.metrics.stuck_fraction > 0
@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 from .. import _core
 from ..errors import SolveError, ValidationError
 from ..limits import as_float, json_ready
-from .metrics import StickSlipMetrics
+from .metrics import BIT_RPM_MAX, BIT_RPM_MEAN, BIT_RPM_MIN, OUTPUTS, PERIOD, SSI, STUCK_FRACTION, StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -191,15 +191,16 @@ class LumpedEquilibria:
     stuck_possible: bool
     """``tm <= wob rb mu_sb``: the bit at rest (``wr = 0``, ``kt phi = tm``) is an equilibrium (started
     there it stays; from rest untwisted the wind-up can overshoot and break it free)."""
-    regime: str
-    """``"stable_rotation"`` (a stable root), ``"unstable"`` (roots, none stable) or ``"stuck"``."""
+    equilibrium: str
+    """What the equilibria predict: ``"stable_rotation"`` (a stable root), ``"unstable"`` (roots,
+    none stable) or ``"stuck"``."""
     static_limit: float
     """``wob rb mu_sb``, N m."""
 
 
 def lumped_equilibria(params: Union[LumpedParams, Mapping[str, Any], None] = None) -> LumpedEquilibria:
     """The steady rotations of the lumped model with ``params`` (over :func:`lumped_defaults`),
-    their stability and the regime (computed by the core).
+    their stability and what they predict, ``equilibrium`` (computed by the core).
 
     >>> eq = lumped_equilibria({"wob": 50e3})
     >>> [round(r.speed, 3) for r in eq.rotations], eq.stuck_possible
@@ -212,7 +213,7 @@ def lumped_equilibria(params: Union[LumpedParams, Mapping[str, Any], None] = Non
                        stable=bool(r["stable"]))
         for r in raw["rotations"])
     return LumpedEquilibria(rotations=rotations, stuck_possible=bool(raw["stuck_possible"]),
-                            regime=str(raw["regime"]), static_limit=float(raw["static_limit"]))
+                            equilibrium=str(raw["equilibrium"]), static_limit=float(raw["static_limit"]))
 
 
 def lumped(
@@ -310,11 +311,13 @@ def lumped_figure(result: LumpedResult, title: Optional[str] = None) -> Figure:
     return fig
 
 
+#: The run's stick-slip metrics in a :func:`lumped_sweep` row, by the registry's names.
+SWEEP_METRICS: tuple[str, ...] = (SSI, STUCK_FRACTION, PERIOD, BIT_RPM_MIN, BIT_RPM_MAX, BIT_RPM_MEAN)
+
 #: The columns of :func:`lumped_sweep` after the parameter's own.
 SWEEP_COLUMNS: tuple[str, ...] = (
-    "regime", "stuck_possible", "static_limit_Nm", "rotation_1", "stable_1", "rotation_2", "stable_2",
-    "status", "ssi", "stuck_fraction", "period_s", "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean",
-    "spring_torque_min_Nm", "spring_torque_max_Nm", "balance_error",
+    "equilibrium", "stuck_possible", "static_limit_Nm", "rotation_1", "stable_1", "rotation_2", "stable_2",
+    "status", *SWEEP_METRICS, "spring_torque_min_Nm", "spring_torque_max_Nm", "balance_error",
 )
 
 
@@ -332,7 +335,7 @@ def lumped_sweep(
     :func:`lumped_defaults`): its equilibria (:func:`lumped_equilibria`) and a run from ``initial``
     (:func:`lumped`, metrics over the last half), one row per value.
 
-    Columns: ``name``; ``regime``, ``stuck_possible``, ``static_limit_Nm``; ``rotation_1``,
+    Columns: ``name``; ``equilibrium``, ``stuck_possible``, ``static_limit_Nm``; ``rotation_1``,
     ``rotation_2`` (the steady speeds by increasing value, rad/s, NaN where there are fewer) and
     ``stable_1``, ``stable_2`` (None where absent); the run's ``status``, ``ssi``,
     ``stuck_fraction``, ``period_s``, ``bit_rpm_min/max/mean``, ``spring_torque_min/max_Nm`` and
@@ -347,7 +350,7 @@ def lumped_sweep(
     Examples
     --------
     >>> frame = lumped_sweep("wob", [30e3, 55e3], duration=100.0)
-    >>> list(frame["regime"]), [bool(f > 0) for f in frame["stuck_fraction"]]
+    >>> list(frame.equilibrium), [bool(f > 0) for f in frame.stuck_fraction]
     (['stable_rotation', 'stable_rotation'], [False, True])
     """
     import pandas as pd
@@ -371,11 +374,10 @@ def lumped_sweep(
         stable: list[Optional[bool]] = [r.stable for r in eq.rotations] + [None] * (2 - len(eq.rotations))
         m = res.metrics
         rows.append({
-            name: float(value), "regime": eq.regime, "stuck_possible": eq.stuck_possible,
+            name: float(value), "equilibrium": eq.equilibrium, "stuck_possible": eq.stuck_possible,
             "static_limit_Nm": eq.static_limit, "rotation_1": speeds[0], "stable_1": stable[0],
-            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status, "ssi": m.ssi,
-            "stuck_fraction": m.stuck_fraction, "period_s": m.period_s, "bit_rpm_min": m.bit_rpm_min,
-            "bit_rpm_max": m.bit_rpm_max, "bit_rpm_mean": m.bit_rpm_mean, "spring_torque_min_Nm": m.motor_torque_min_Nm,
+            "rotation_2": speeds[1], "stable_2": stable[1], "status": res.status,
+            **{metric: m[metric] for metric in SWEEP_METRICS}, "spring_torque_min_Nm": m.motor_torque_min_Nm,
             "spring_torque_max_Nm": m.motor_torque_max_Nm, "balance_error": res.energy.get("balance_error", math.nan),
         })
         if progress is not None:
@@ -398,9 +400,9 @@ def lumped_sweep_figure(frame: pd.DataFrame, title: Optional[str] = None) -> Fig
     rpm = RPM_PER_RAD_S
     fig = Figure(figsize=(7.0, 6.0), layout="constrained")
     top, bottom = fig.subplots(2, 1, sharex=True)
-    top.fill_between(x, frame["bit_rpm_min"], frame["bit_rpm_max"], color="tab:orange", alpha=0.25, lw=0,
+    top.fill_between(x, frame[BIT_RPM_MIN], frame[BIT_RPM_MAX], color="tab:orange", alpha=0.25, lw=0,
                      label="bit speed of the run, min to max")
-    top.plot(x, frame["bit_rpm_mean"], color="tab:orange", lw=1.2, label="bit speed of the run, mean")
+    top.plot(x, frame[BIT_RPM_MEAN], color="tab:orange", lw=1.2, label="bit speed of the run, mean")
     for k in (1, 2):
         speed = frame[f"rotation_{k}"].to_numpy(dtype=float) * rpm
         stable = frame[f"stable_{k}"].to_numpy(dtype=object)
@@ -412,8 +414,8 @@ def lumped_sweep_figure(frame: pd.DataFrame, title: Optional[str] = None) -> Fig
                  label="steady rotation, unstable" if k == 1 else None)
     top.set_ylabel("speed (rpm)")
     top.legend(fontsize="small")
-    bottom.plot(x, frame["ssi"], color="tab:red", label="SSI")
-    bottom.plot(x, frame["stuck_fraction"], color="tab:gray", label="stuck fraction")
+    bottom.plot(x, frame[SSI], color="tab:red", label=OUTPUTS[SSI].label)
+    bottom.plot(x, frame[STUCK_FRACTION], color="tab:gray", label=OUTPUTS[STUCK_FRACTION].label)
     bottom.axhline(1.0, color="tab:red", lw=0.8, ls="--")
     bottom.set_ylabel("severity")
     bottom.set_xlabel(f"{name} ({unit})" if unit else name)

@@ -21,8 +21,9 @@ import numpy as np
 from ..errors import ValidationError
 from .map_labels import axis_label, map_title, value_text, well_name
 from .map_table import CONTROLLER_AXIS, is_numeric, numeric_axes
+from .metrics import MSE_MEAN, OUTPUTS, REGIME, ROP_MEAN, SSI, STUCK_FRACTION
 from .result import COUPLED_REGIMES
-from .units import axis_unit, system_of
+from .units import reported_unit, system_of
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -98,7 +99,7 @@ def _panel(ax: Any, frame: pd.DataFrame, x: str, y: str, value: str, vmax: float
     xs, ys, z = _grid(frame, x, y, value)
     xs, ys = xs * scales[0], ys * scales[1]
     mesh = ax.pcolormesh(xs, ys, z, shading="nearest", cmap="magma_r", vmin=0.0, vmax=vmax)
-    if value == "ssi":
+    if value == SSI:
         note = boundary_note(z.compressed())
         if note is None and (xs.size < 2 or ys.size < 2):
             note = "SSI = 1 in this range (one value of an axis: no contour)"
@@ -133,12 +134,12 @@ def _ssi_panels(frame: pd.DataFrame, x: str, y: str, first: Optional[str], title
     rows = -(-len(parts) // cols)
     fig = _figure(4.2 * cols + 1.4, 3.9 * rows + 0.6)
     axs = fig.subplots(rows, cols, sharex=True, sharey=True, squeeze=False).ravel()
-    vmax = _vmax(frame["ssi"])
+    vmax = _vmax(frame[SSI])
     (xlabel, xscale), (ylabel, yscale) = (axis_label(x, frame[x].tolist(), units),
                                           axis_label(y, frame[y].tolist(), units))
     mesh = None
     for ax, (name, part) in zip(axs, parts):
-        mesh = _panel(ax, part, x, y, "ssi", vmax, (xscale, yscale))
+        mesh = _panel(ax, part, x, y, SSI, vmax, (xscale, yscale))
         if name:
             ax.set_title(name, fontsize=10)
     for ax in axs[len(parts):]:
@@ -214,12 +215,12 @@ def ssi_lines(frame: pd.DataFrame, x: str, by: Optional[str] = None, *, title: O
     ax1, ax2 = fig.subplots(2, 1, sharex=True)
     parts = _split(frame, (x,), by or CONTROLLER_AXIS, units)
     for name, part in parts:
-        part = part.groupby(x, sort=True)[["ssi", "stuck_fraction"]].mean()  # repeated values: the same run
+        part = part.groupby(x, sort=True)[[SSI, STUCK_FRACTION]].mean()  # repeated values: the same run
         label = name or None
-        ax1.plot(part.index.to_numpy(dtype=float) * scale, part["ssi"], marker="o", label=label)
-        ax2.plot(part.index.to_numpy(dtype=float) * scale, part["stuck_fraction"], marker="o", label=label)
+        ax1.plot(part.index.to_numpy(dtype=float) * scale, part[SSI], marker="o", label=label)
+        ax2.plot(part.index.to_numpy(dtype=float) * scale, part[STUCK_FRACTION], marker="o", label=label)
     ax1.axhline(1.0, color="0.5", ls="--", lw=1)
-    note = boundary_note(frame["ssi"])
+    note = boundary_note(frame[SSI])
     if note is not None:
         _note(ax1, note)
     ax1.set_ylabel("SSI")
@@ -259,7 +260,7 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
     from .plots import _figure
 
     _check_axes(frame, (x, y))
-    if "regime" not in frame.columns:
+    if REGIME not in frame.columns:
         raise ValidationError("frame", "a map without a regime column", "a map of a coupled configuration ([hoist])")
     parts = _split(frame, (x, y), CONTROLLER_AXIS, units)
     fig = _figure(14.0, 3.9 * len(parts) + 0.9)
@@ -270,30 +271,30 @@ def regime_map(frame: pd.DataFrame, x: str, y: str, *, title: Optional[str] = No
     norm = BoundaryNorm(np.arange(len(COUPLED_REGIMES) + 1) - 0.5, cmap.N)
     seen: set[str] = set()
     meshes: list[Any] = [None, None]
-    rop_scale, rop_unit = axis_unit("m/h", units)
-    mse_scale, mse_unit = (1e-6, "MPa") if system_of(units, "units") == "si" else axis_unit("Pa", units)
-    rop_max = float(np.nanmax(frame["rop_mean_m_per_h"].to_numpy(dtype=float), initial=0.0)) * rop_scale
-    mse = frame["mse_mean_Pa"].to_numpy(dtype=float) * mse_scale
+    rop_scale, rop_unit = reported_unit(str(OUTPUTS[ROP_MEAN].unit), units)
+    mse_scale, mse_unit = reported_unit(str(OUTPUTS[MSE_MEAN].unit), units)
+    rop_max = float(np.nanmax(frame[ROP_MEAN].to_numpy(dtype=float), initial=0.0)) * rop_scale
+    mse = frame[MSE_MEAN].to_numpy(dtype=float) * mse_scale
     mse = mse[np.isfinite(mse)]
     mse_range = (float(mse.min()), float(mse.max())) if mse.size else (0.0, 1.0)
     for row, (name, part) in zip(axs, parts):
         ok = part["status"] == "success"
-        codes = part["regime"].map({r: i for i, r in enumerate(COUPLED_REGIMES)}).astype(float).where(ok)
-        seen.update(part["regime"][ok])
+        codes = part[REGIME].map({r: i for i, r in enumerate(COUPLED_REGIMES)}).astype(float).where(ok)
+        seen.update(part[REGIME][ok])
         xs, ys, z = _grid(part.assign(_regime=codes), x, y, "_regime")
         row[0].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap=cmap, norm=norm)
-        xs, ys, z = _grid(part.assign(_rop=(part["rop_mean_m_per_h"] * rop_scale).where(ok)), x, y, "_rop")
+        xs, ys, z = _grid(part.assign(_rop=(part[ROP_MEAN] * rop_scale).where(ok)), x, y, "_rop")
         meshes[0] = row[1].pcolormesh(xs * xscale, ys * yscale, z, shading="nearest", cmap="viridis", vmin=0.0,
                                       vmax=max(rop_max, 1e-9))
-        _, _, ssi = _grid(part.assign(_ssi=part["ssi"].where(ok)), x, y, "_ssi")
+        _, _, ssi = _grid(part.assign(_ssi=part[SSI].where(ok)), x, y, "_ssi")
         if boundary_note(ssi.compressed()) is None and xs.size > 1 and ys.size > 1:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 row[1].contour(xs * xscale, ys * yscale, ssi, levels=[1.0], colors="tab:cyan", linewidths=2.0)
-        xs, ys, z = _grid(part.assign(_mse=(part["mse_mean_Pa"] * mse_scale).where(ok)), x, y, "_mse")
+        xs, ys, z = _grid(part.assign(_mse=(part[MSE_MEAN] * mse_scale).where(ok)), x, y, "_mse")
         meshes[1] = row[2].pcolormesh(xs * xscale, ys * yscale, np.ma.masked_invalid(z), shading="nearest",
                                       cmap="magma_r", vmin=mse_range[0], vmax=max(mse_range[1], mse_range[0] + 1e-9))
-        for ax, what in zip(row, ("regime", "mean ROP", "mechanical specific energy")):
+        for ax, what in zip(row, (OUTPUTS[REGIME].label, "mean ROP", "mechanical specific energy")):
             ax.set_title(f"{what}{', ' + name if name else ''}", fontsize=10)
             ax.set_xlabel(xlabel)
             ax.set_ylabel(ylabel)
@@ -322,7 +323,7 @@ def map_figures(frame: pd.DataFrame, units: str = "si") -> dict[str, Figure]:
         if len(numeric) >= 2:
             x, y = numeric[0], numeric[1]
             out["ssi_map.png"] = ssi_map(frame, x, y, units=units)
-            if "regime" in frame.columns:
+            if REGIME in frame.columns:
                 out["regime_map.png"] = regime_map(frame, x, y, units=units)
             if CONTROLLER_AXIS in axes:
                 out["controllers.png"] = controller_maps(frame, x, y, units=units)

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .config import DrillConfig
+from .metrics import OUTPUTS, SSI, STICK_SLIP_VERDICT
 from .result import COUPLED_METRICS, METRICS, TEXT_METRICS
 from .units import annotate
 
@@ -79,7 +80,8 @@ def map_frame(named: Mapping[str, list[Any]], combos: list[tuple[Any, ...]], raw
     coupled = raw.get("coupled") or {}
     for name in coupled_columns(cfg):
         value = coupled.get(name, ())
-        columns[name] = np.asarray(list(value), dtype=object) if name == "regime" else np.asarray(value, dtype=float)
+        columns[name] = (np.asarray(list(value), dtype=object) if OUTPUTS[name].kind == "text"
+                         else np.asarray(value, dtype=float))
     for name in STAT_COLUMNS:
         columns[name] = np.asarray(raw["stats"].get(name, []))
     frame = pd.DataFrame(columns)
@@ -109,7 +111,7 @@ class ControllerScore:
     #: Runs that did not give a result (invalid, failed, interrupted).
     failed: int
     #: Runs with the stick-slip verdict ``yes`` (the bit stops during part of the window).
-    stick_slip: int
+    stick_slip_runs: int
     #: Largest and mean SSI over the runs that gave a result (NaN without any).
     worst_ssi: float
     mean_ssi: float
@@ -117,7 +119,7 @@ class ControllerScore:
     def line(self) -> str:
         ok = self.runs - self.failed
         failed = f", {self.failed} failed" if self.failed else ""
-        return (f"{self.controller}: stick-slip in {self.stick_slip} of {ok} runs{failed}, "
+        return (f"{self.controller}: stick-slip in {self.stick_slip_runs} of {ok} runs{failed}, "
                 f"SSI up to {self.worst_ssi:.3g} (mean {self.mean_ssi:.3g})")
 
 
@@ -130,13 +132,13 @@ def controller_recommendation(frame: pd.DataFrame) -> list[ControllerScore]:
     scores = []
     for name, part in frame.groupby(CONTROLLER_AXIS, sort=False):
         ok = part[part["status"] == "success"]
-        ssi = ok["ssi"].to_numpy(dtype=float)
+        ssi = ok[SSI].to_numpy(dtype=float)
         ssi = ssi[np.isfinite(ssi)]
         scores.append(ControllerScore(
             controller=str(name), runs=len(part), failed=len(part) - len(ok),
-            stick_slip=int((ok["stick_slip_verdict"] == "yes").sum()),
+            stick_slip_runs=int((ok[STICK_SLIP_VERDICT] == "yes").sum()),
             worst_ssi=float(ssi.max()) if ssi.size else math.nan,
             mean_ssi=float(ssi.mean()) if ssi.size else math.nan))
     inf = math.inf
-    return sorted(scores, key=lambda s: (s.stick_slip + s.failed, s.mean_ssi if math.isfinite(s.mean_ssi) else inf,
+    return sorted(scores, key=lambda s: (s.stick_slip_runs + s.failed, s.mean_ssi if math.isfinite(s.mean_ssi) else inf,
                                          s.worst_ssi if math.isfinite(s.worst_ssi) else inf))

@@ -31,6 +31,8 @@ class Output:
     """One output of a run as the core's registry declares it (``drillstring_core::outputs``)."""
 
     name: str
+    label: str
+    """The few words the console, ``report.md`` and the figures name it by (``"ROP"``), without its unit."""
     unit: Optional[str]
     """SI unit as pint parses it (``""`` dimensionless); None for a verdict, a count or a text."""
     definition: str
@@ -44,7 +46,9 @@ class Output:
     """``(kind, tolerance, floor)`` of the grid and start checks, or None."""
     headline: bool
     """Finite in every run that has metrics, or the run is not a result."""
-    stick_slip: bool
+    console: bool
+    """On the console's summary of a run (``drillstring drill``), by its label, in the registry's order."""
+    of_any_series: bool
     """A metric of :func:`stick_slip_metrics` (of any series)."""
 
     def value(self, raw: Any) -> Any:
@@ -62,12 +66,24 @@ class Output:
 #: the metrics and series channels that ``metrics.json``, a map's columns, the units and the
 #: documentation read.
 OUTPUTS: dict[str, Output] = {
-    str(d["name"]): Output(name=str(d["name"]), unit=d["unit"], definition=str(d["definition"]),
+    str(d["name"]): Output(name=str(d["name"]), label=str(d["label"]), unit=d["unit"], definition=str(d["definition"]),
                            runs=tuple(d["runs"]), map_column=bool(d["map_column"]), kind=str(d["kind"]),
                            tolerance=None if d["tolerance"] is None else (
                                str(d["tolerance"][0]), float(d["tolerance"][1]), float(d["tolerance"][2])),
-                           headline=bool(d["headline"]), stick_slip=bool(d["stick_slip"]))
+                           headline=bool(d["headline"]), console=bool(d["console"]),
+                           of_any_series=bool(d["of_any_series"]))
     for d in _core.drill_outputs()}
+
+#: The metrics the package reads in particular (a map's figures and console summary, the lumped
+#: model's table, the rig log's summary), each name spelled here once; every list of metrics is
+#: :data:`OUTPUTS`'s. The stick-slip severity, the stuck fraction, the period, the bit speed's
+#: range and mean, the verdicts; a coupled run's mean ROP, mean hook load, MSE and regime.
+SSI, STUCK_FRACTION, PERIOD = "ssi", "stuck_fraction", "period_s"
+BIT_RPM_MIN, BIT_RPM_MAX, BIT_RPM_MEAN = "bit_rpm_min", "bit_rpm_max", "bit_rpm_mean"
+STICK_SLIP_VERDICT, SETTLED = "stick_slip_verdict", "settled"
+ROP_MEAN, HOOK_LOAD_MEAN, MSE_MEAN, REGIME = "rop_mean_m_per_h", "hook_load_mean_N", "mse_mean_Pa", "regime"
+assert {SSI, STUCK_FRACTION, PERIOD, BIT_RPM_MIN, BIT_RPM_MAX, BIT_RPM_MEAN, STICK_SLIP_VERDICT, SETTLED, ROP_MEAN,
+        HOOK_LOAD_MEAN, MSE_MEAN, REGIME} <= set(OUTPUTS), "a metric the package reads is not in the core's registry"
 
 #: The criterion of the three-way verdict ``stick_slip_verdict`` (the core's
 #: ``metrics::stickslip::verdict``), as ``metrics.json`` and ``report.md`` state it.

@@ -24,7 +24,7 @@ import json
 import math
 import os
 import unicodedata
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Optional, Union
@@ -234,11 +234,28 @@ def _fmt(value: float, digits: int = 4) -> str:
     return "–" if not math.isfinite(value) else f"{value:.{digits}g}"
 
 
+def _metric_rows(values: Mapping[str, Any], names: Iterable[str], system: str) -> list[str]:
+    """``| label, unit | value |`` of each metric of ``names`` in ``values`` (SI, by the registry's
+    names) with the registry's label, in ``system``'s :func:`~drillstring.drilling.units.reported_unit`
+    (4 significant digits; a dimensionless number 3)."""
+    from .metrics import OUTPUTS
+    from .units import reported_unit
+
+    rows = []
+    for name in names:
+        o = OUTPUTS[name]
+        scale, unit = reported_unit(o.unit, system) if o.unit else (1.0, "")
+        value = math.nan if values[name] is None else values[name]  # (None: undefined, as metrics.json writes it)
+        rows.append(f"| {o.label}{', ' + unit if unit else ''} | {_fmt(value * scale, 4 if unit else 3)} |")
+    return rows
+
+
 def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si") -> str:
     """A short Markdown report of the run: the system, how the solve ended, the metrics, the
     energy balance and the files. ``units`` (``"si"`` or ``"field"``) is the unit system of its
     numbers (field: ft, in, klbf, kft-lbf, ppg, psi, ft/h; :mod:`drillstring.drilling.units`); the
     data files it lists are SI either way."""
+    from .result import METRIC_UNITS
     from .units import annotate, convert, shown_unit, system_of
 
     system = system_of(units, "units")
@@ -313,7 +330,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
         f"## Stick-slip (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)",
         "",
         f"**Stick-slip: {m.stick_slip_verdict}** ({_md(m.stick_slip_reason)}); the window is "
-        f"{'settled' if m.settled else '**not settled** (a transient)'}.",
+        f"{'' if m.settled else '**not** '}settled{'' if m.settled else ' (a transient)'}.",
         "",
         f"Criterion: {_md(STICK_SLIP_CRITERION)}.",
         "",
@@ -321,37 +338,20 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
         *([""] if result.warnings else []),
         "| metric | value |",
         "|---|---:|",
-        f"| severity SSI = (max − min) / (2 mean) | {_fmt(m.ssi, 3)} |",
-        f"| stuck fraction | {_fmt(m.stuck_fraction, 3)} |",
-        f"| period, s (autocorrelation of the motor torque) | {_fmt(m.period_s)} |",
-        f"| period from the bit's slip onsets, s | {_fmt(m.slip_period_s)} |",
-        f"| bit speed min / mean / max, rpm | {_fmt(m.bit_rpm_min)} / {_fmt(m.bit_rpm_mean)} / {_fmt(m.bit_rpm_max)} |",
-        f"| motor torque min / max, {torque_unit} | {num(m.motor_torque_min_Nm, 'N*m', kilo=True)} / "
-        f"{num(m.motor_torque_max_Nm, 'N*m', kilo=True)} |",
-        f"| break-off torque (wall friction), {torque_unit} | {num(m.breakoff_torque_Nm, 'N*m', kilo=True)} |",
+        # every numeric metric of metrics.json but the window's bounds, by the registry's labels, in its order
+        *_metric_rows(m.to_dict(), [n for n in METRIC_UNITS if not n.startswith("window_")], system),
         *([f"| static torque to break free (wall + bit {num(result.profile.bit_static_torque, 'N*m', kilo=True)}), "
            f"{torque_unit} | {num(result.profile.static_torque, 'N*m', kilo=True)} |"]
           if result.profile.bit_static_torque > 0 else []),
-        f"| minimum cycle torque implied by break-off, {torque_unit} | "
-        f"{num(m.min_cycle_torque_Nm, 'N*m', kilo=True)} |",
     ]
     if result.coupled_metrics is not None:  # a coupled axial-torsional run ([hoist])
-        from .result import COUPLED_REGIME_CRITERION
+        from .result import COUPLED_METRIC_UNITS, COUPLED_REGIME_CRITERION
 
-        c = result.coupled_metrics
-        force_unit = unit("N", kilo=kilo("N"))
-        mse = (f"| mechanical specific energy of the means, MPa | {_fmt(c['mse_mean_Pa'] / 1e6)} |" if system == "si"
-               else f"| mechanical specific energy of the means, {unit('Pa')} | {num(c['mse_mean_Pa'], 'Pa')} |")
+        rows = _metric_rows(result.coupled_metrics, COUPLED_METRIC_UNITS, system)
         lines += ["", f"## Coupled axial-torsional run (window {_fmt(m.window_start)}–{_fmt(m.window_end)} s)", "",
                   f"**Regime: {result.coupled_regime}**.", "",
                   f"Criterion: {_md(COUPLED_REGIME_CRITERION)}.", "",
-                  "| metric | value |", "|---|---:|",
-                  f"| mean rate of penetration, {unit('m/h')} | {num(c['rop_mean_m_per_h'], 'm/h')} |",
-                  f"| mean weight on bit, {force_unit} | {num(c['wob_mean_N'], 'N', kilo=kilo('N'))} |",
-                  f"| mean torque on bit, {torque_unit} | {num(c['tob_mean_Nm'], 'N*m', kilo=True)} |",
-                  f"| bit bounce (share of the window with no weight on bit) | {_fmt(c['bounce_fraction'], 3)} |",
-                  f"| mean hook load, {force_unit} | {num(c['hook_load_mean_N'], 'N', kilo=kilo('N'))} |",
-                  mse]
+                  "| metric (over the window) | value |", "|---|---:|", *rows]
     if result.energy:
         energy = "J" if system == "si" else unit("N*m")
         lines += ["", f"## Energy balance, {energy}", "",

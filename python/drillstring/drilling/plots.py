@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any, Callable, Optional, TypeVar
 
 import numpy as np
 
-from .units import axis_unit
+from .units import axis_unit, metric_texts
 
 if TYPE_CHECKING:  # pragma: no cover
     from typing import Union
@@ -307,10 +307,8 @@ def axial_histories(result: DrillResult, title: Optional[str] = None, *, fig: Op
     axes[3].set_xlabel("t, s")
     for ax in axes:
         ax.legend(loc="upper right", fontsize=9)
-    c = result.coupled_metrics or {}
-    summary = (f"ROP {c['rop_mean_m_per_h'] * speed:.4g} {speed_unit}, WOB {c['wob_mean_N'] * force:.4g} {force_unit}, "
-               f"TOB {c['tob_mean_Nm'] * torque:.4g} {torque_unit}, bounce {c['bounce_fraction']:.3g}"
-               if c else "no coupled metrics")
+    c = result.coupled_metrics  # (the registry's first four: the means of ROP, weight and torque on bit, the bounce)
+    summary = ", ".join(metric_texts(c, list(c)[:4], units)) if c else "no coupled metrics"
     fig.suptitle(title or f"{_title(result, units)}\non bottom: {summary} (shaded: metrics window)", fontsize=11)
     return _root(fig)
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from .. import _core
 from .config import DrillConfig
-from .metrics import OUTPUTS, STICK_SLIP_CRITERION, StickSlipMetrics
+from .metrics import OUTPUTS, REGIME, STICK_SLIP_CRITERION, StickSlipMetrics
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -132,7 +132,7 @@ def _check_metrics(result: DrillResult) -> dict[str, CheckValue]:
         out[name] = float(value) if isinstance(value, bool) else value
     if result.coupled_metrics is not None:
         out.update(result.coupled_metrics)
-        out["regime"] = result.coupled_regime
+        out[REGIME] = result.coupled_regime
     return out
 
 
@@ -396,12 +396,12 @@ class DrillResult:
         """A coupled run's axial force along the string at ``field_t``, N, compression positive
         (tension negative), shape ``(field_t.size, axial_z.size)``."""
         self.coupled_metrics: Optional[dict[str, float]] = (
-            {str(k): float(v) for k, v in coupled.items() if k != "regime"} if coupled else None)
+            {str(k): float(v) for k, v in coupled.items() if k != REGIME} if coupled else None)
         """A coupled run's metrics over the window (None without a hoist): ``rop_mean_m_per_h``,
         ``wob_mean_N``, ``tob_mean_Nm``, ``bounce_fraction`` (share of samples with no weight on
         bit), ``hook_load_mean_N`` and ``mse_mean_Pa`` (Teale's mechanical specific energy of the
         means)."""
-        self.coupled_regime: Optional[str] = str(coupled["regime"]) if "regime" in coupled else None
+        self.coupled_regime: Optional[str] = str(coupled[REGIME]) if REGIME in coupled else None
         """A coupled run's regime over the window (None without a hoist): ``"smooth drilling"``,
         ``"stick-slip"``, ``"bit bounce"``, ``"stick-slip and bit bounce"``, ``"off bottom"`` or
         ``"undetermined"``, decided in the core (``drilling::axial::regime``) by
@@ -475,7 +475,9 @@ class DrillResult:
         out: dict[str, Any] = {"status": self.status, "message": self.message, "metrics_finite": self.metrics_finite,
                                "rotating": self.rotating}
         out.update(self.metrics.to_dict())
-        out["stick_slip_reason"] = self.metrics.stick_slip_reason
+        # the texts beside the verdicts that a map has no column for (the verdict's reason)
+        out.update({o.name: self.metrics[o.name] for o in OUTPUTS.values()
+                    if o.kind == "text" and not o.map_column and "torsional" in o.runs})
         out["stick_slip_criterion"] = STICK_SLIP_CRITERION
         out["warnings"] = list(self.warnings)
         if self.grid_check is not None:
@@ -489,7 +491,7 @@ class DrillResult:
         if self.coupled_metrics is not None:
             out["coupled"] = dict(self.coupled_metrics)
             if self.coupled_regime is not None:
-                out["coupled"]["regime"] = self.coupled_regime
+                out["coupled"][REGIME] = self.coupled_regime
                 out["coupled"]["regime_criterion"] = COUPLED_REGIME_CRITERION
         if system != "si":
             values = dict(out)

@@ -21,6 +21,7 @@ from ..errors import SolveError, ValidationError
 from ..limits import json_ready
 from . import units as _units
 from .config import DrillConfig, _plain
+from .metrics import REGIME
 from .result import DrillProfile, DrillResult
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -248,7 +249,7 @@ class DrillSession:
         result = self.result(window)
         out: dict[str, Any] = result.metrics.to_dict()
         if result.coupled_metrics is not None:
-            out["coupled"] = {**result.coupled_metrics, "regime": result.coupled_regime}
+            out["coupled"] = {**result.coupled_metrics, REGIME: result.coupled_regime}
         return out
 
     # ------------------------------------------------------------------ snapshots

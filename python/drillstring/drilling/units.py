@@ -425,6 +425,34 @@ def axis_unit(unit: str, system: str, *, kilo: bool = False) -> tuple[float, str
     return (factor / 1e3 if kilo else factor), shown_unit(unit, system, kilo=kilo)
 
 
+def reported_unit(unit: str, system: str) -> tuple[float, str]:
+    """The factor and the unit text the console and ``report.md`` write an SI quantity in ``unit``
+    with in ``system``: forces and torques in thousands (``kN``, ``kN m``; ``klbf``, ``kft-lbf``),
+    a pressure in MPa (psi in field units), any other unit as :func:`axis_unit` writes it."""
+    if unit == "Pa" and system_of(system, "units") == "si":
+        return 1e-6, "MPa"
+    return axis_unit(unit, system, kilo=unit in ("N", "N*m"))
+
+
+def metric_texts(values: Mapping[str, Any], names: Any, system: str) -> list[str]:
+    """``"<label> <value> <unit>"`` of each metric of ``names`` in ``values`` (SI, by the names of
+    the core's registry of outputs), with its registry label, in ``system``'s
+    :func:`reported_unit` (4 significant digits; a dimensionless number 3, a text as it is)."""
+    from .metrics import OUTPUTS
+
+    out = []
+    for name in names:
+        o, value = OUTPUTS[name], values[name]
+        if o.kind != "number":
+            out.append(f"{o.label} {value}")
+        elif not o.unit:
+            out.append(f"{o.label} {value:.3g}")
+        else:
+            scale, unit = reported_unit(o.unit, system)
+            out.append(f"{o.label} {value * scale:.4g} {unit}")
+    return out
+
+
 # ---------------------------------------------------------------------- messages in field units
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"

@@ -136,6 +136,9 @@ pub type Tolerance = (Judge, f64, f64);
 #[derive(Clone, Copy)]
 pub struct Output {
     pub name: &'static str,
+    /// The few words the console, `report.md` and the figures name it by (`ROP`, `stuck
+    /// fraction`), without its unit.
+    pub label: &'static str,
     /// SI unit as pint parses it (`""` dimensionless); None for a verdict, a count or a text.
     pub unit: Option<&'static str>,
     pub definition: &'static str,
@@ -149,6 +152,8 @@ pub struct Output {
     pub tolerance: Option<Tolerance>,
     /// A headline metric: finite in every run that has metrics, or the run is not a result.
     pub headline: bool,
+    /// On the console's summary of a run (`drillstring drill`), by its label, in this order.
+    pub console: bool,
 }
 
 impl Output {
@@ -167,9 +172,16 @@ impl Output {
     }
 }
 
-const fn metric(name: &'static str, unit: &'static str, definition: &'static str, source: Source) -> Output {
+const fn metric(
+    name: &'static str,
+    label: &'static str,
+    unit: &'static str,
+    definition: &'static str,
+    source: Source,
+) -> Output {
     Output {
         name,
+        label,
         unit: Some(unit),
         definition,
         runs: STICK,
@@ -178,6 +190,7 @@ const fn metric(name: &'static str, unit: &'static str, definition: &'static str
         source,
         tolerance: None,
         headline: false,
+        console: false,
     }
 }
 
@@ -187,6 +200,10 @@ const fn tolerance(output: Output, judge: Judge, tolerance: f64, floor: f64) -> 
 
 const fn headline(output: Output) -> Output {
     Output { headline: true, ..output }
+}
+
+const fn console(output: Output) -> Output {
+    Output { console: true, ..output }
 }
 
 const fn of_kind(output: Output, kind: Kind) -> Output {
@@ -201,12 +218,29 @@ const fn not_a_column(output: Output) -> Output {
     Output { map_column: false, ..output }
 }
 
-const fn coupled(name: &'static str, unit: &'static str, definition: &'static str, tol: Tolerance) -> Output {
-    Output { runs: COUPLED, tolerance: Some(tol), ..metric(name, unit, definition, Source::Series) }
+const fn coupled(
+    name: &'static str,
+    label: &'static str,
+    unit: &'static str,
+    definition: &'static str,
+    tol: Tolerance,
+) -> Output {
+    Output {
+        runs: COUPLED,
+        tolerance: Some(tol),
+        console: true,
+        ..metric(name, label, unit, definition, Source::Series)
+    }
 }
 
-const fn series(name: &'static str, unit: &'static str, definition: &'static str, runs: Runs) -> Output {
-    Output { runs, map_column: false, kind: Kind::Series, ..metric(name, unit, definition, Source::Series) }
+const fn series(
+    name: &'static str,
+    label: &'static str,
+    unit: &'static str,
+    definition: &'static str,
+    runs: Runs,
+) -> Output {
+    Output { runs, map_column: false, kind: Kind::Series, ..metric(name, label, unit, definition, Source::Series) }
 }
 
 /// The criterion of the boolean `stick_slip`.
@@ -216,113 +250,129 @@ const STOPS: &str = "the verdict as true/false: the bit stops (|bit speed| <= me
 /// Every output of a run, in the order of `metrics.json`, a map's table and the documentation:
 /// the stick-slip metrics, the coupled metrics, the series channels.
 pub static OUTPUTS: &[Output] = &[
-    metric("window_start", "s", "start of the metrics window, s", Source::Run(|r| r.window[0])),
-    metric("window_end", "s", "end of the metrics window, s", Source::Run(|r| r.window[1])),
+    metric("window_start", "window start", "s", "start of the metrics window, s", Source::Run(|r| r.window[0])),
+    metric("window_end", "window end", "s", "end of the metrics window, s", Source::Run(|r| r.window[1])),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "ssi",
+            "SSI",
             "",
             "stick-slip severity (max - min) / (2 |mean|) of the bit speed over the window",
             Source::StickSlip(|m| Cell::Number(m.ssi)),
-        )),
+        ))),
         Judge::Rel,
         0.05,
         0.01,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "stuck_fraction",
+            "stuck fraction",
             "",
             "fraction of the window's time with |bit speed| <= metrics.stick_speed; the bit is at rest while the \
              string above it is stuck (converges with the grid)",
             Source::StickSlip(|m| Cell::Number(m.stuck_fraction)),
-        )),
+        ))),
         Judge::Abs,
         0.03,
         0.0,
     ),
     tolerance(
-        metric(
+        console(metric(
             "period_s",
+            "period",
             "s",
             "stick-slip period from the autocorrelation of the motor torque, s; null with fewer than two cycles in \
              the window",
             Source::StickSlip(|m| Cell::Number(m.period_s)),
-        ),
+        )),
         Judge::Rel,
         0.02,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "bit_rpm_min",
+            "lowest bit speed",
             "rpm",
             "lowest bit speed, rpm; off bottom the stopping front reflects at the free end at re-stick and turns the \
              bit back by a few rpm for some tens of ms, an amount that varies from cycle to cycle and between grids \
              (not converged: check it with check_grid)",
             Source::StickSlip(|m| Cell::Number(m.bit_rpm_min)),
-        )),
+        ))),
         Judge::Abs,
         1.0,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "bit_rpm_max",
+            "highest bit speed",
             "rpm",
             "highest bit speed, rpm",
             Source::StickSlip(|m| Cell::Number(m.bit_rpm_max)),
-        )),
+        ))),
         Judge::Rel,
         0.05,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "bit_rpm_mean",
+            "mean bit speed",
             "rpm",
             "time-weighted mean bit speed, rpm",
             Source::StickSlip(|m| Cell::Number(m.bit_rpm_mean)),
-        )),
+        ))),
         Judge::Rel,
         0.02,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "motor_torque_min_Nm",
+            "lowest motor torque",
             "N*m",
             "lowest motor torque, N m (the lumped model: its spring torque)",
             Source::StickSlip(|m| Cell::Number(m.motor_torque_min_nm)),
-        )),
+        ))),
         Judge::Rel,
         0.03,
         0.0,
     ),
     tolerance(
-        headline(metric(
+        console(headline(metric(
             "motor_torque_max_Nm",
+            "highest motor torque",
             "N*m",
             "highest motor torque, N m",
             Source::StickSlip(|m| Cell::Number(m.motor_torque_max_nm)),
-        )),
+        ))),
         Judge::Rel,
         0.03,
         0.0,
     ),
     tolerance(
-        string_only(metric(
+        string_only(console(metric(
             "breakoff_torque_Nm",
+            "break-off torque",
             "N*m",
             "static break-off torque of the string in the well, N m",
             Source::Run(|r| r.breakoff_torque),
-        )),
+        ))),
         Judge::Rel,
         0.001,
         0.0,
     ),
-    metric("period_cycles", "", "the window's length in periods", Source::StickSlip(|m| Cell::Number(m.period_cycles))),
     metric(
+        "period_cycles",
+        "periods in the window",
+        "",
+        "the window's length in periods",
+        Source::StickSlip(|m| Cell::Number(m.period_cycles)),
+    ),
+    metric(
+        "periodicity",
         "periodicity",
         "",
         "similarity of the motor torque with itself one period later (1: exactly periodic)",
@@ -330,13 +380,17 @@ pub static OUTPUTS: &[Output] = &[
     ),
     metric(
         "slip_period_s",
+        "period from the slip onsets",
         "s",
         "mean interval between the bit's slip onsets (slips that carry it above its mean speed), s (cross-check of \
          period_s)",
         Source::StickSlip(|m| Cell::Number(m.slip_period_s)),
     ),
     tolerance(
-        of_kind(metric("stick_slip", "", STOPS, Source::StickSlip(|m| Cell::Verdict(m.stick_slip))), Kind::Verdict),
+        of_kind(
+            metric("stick_slip", "stick-slip", "", STOPS, Source::StickSlip(|m| Cell::Verdict(m.stick_slip))),
+            Kind::Verdict,
+        ),
         Judge::Equal,
         0.0,
         0.0,
@@ -344,6 +398,7 @@ pub static OUTPUTS: &[Output] = &[
     tolerance(
         of_kind(
             metric(
+                "settled",
                 "settled",
                 "",
                 "the first and the last whole periods of the window (as many as half of it holds) agree in means and \
@@ -356,15 +411,17 @@ pub static OUTPUTS: &[Output] = &[
         0.0,
         0.0,
     ),
-    string_only(metric(
+    string_only(console(metric(
         "min_cycle_torque_Nm",
+        "minimum cycle torque",
         "N*m",
         "minimum motor torque of a stick-slip cycle that break-off implies, N m",
         Source::Run(|r| r.min_cycle_torque),
-    )),
+    ))),
     of_kind(
         metric(
             "stick_slip_verdict",
+            "stick-slip verdict",
             "",
             "the verdict yes / no / undetermined (stick_slip_criterion; stick_slip_reason says why)",
             Source::StickSlip(|m| Cell::Text(m.stick_slip_verdict.name())),
@@ -373,6 +430,7 @@ pub static OUTPUTS: &[Output] = &[
     ),
     metric(
         "stick_duration_mean_s",
+        "mean stick duration",
         "s",
         "mean duration of the bit's stick phases (its time at |bit speed| <= metrics.stick_speed between two slips \
          that carry it above its mean speed, so a partial slip does not split a phase) that begin and end within the \
@@ -382,6 +440,7 @@ pub static OUTPUTS: &[Output] = &[
     not_a_column(of_kind(
         metric(
             "slip_onsets",
+            "slip onsets",
             "",
             "slip onsets of the bit in the window",
             Source::StickSlip(|m| Cell::Count(m.slip_onsets)),
@@ -391,6 +450,7 @@ pub static OUTPUTS: &[Output] = &[
     not_a_column(of_kind(
         metric(
             "stick_slip_reason",
+            "reason",
             "",
             "why the verdict is what it is, in a few words",
             Source::StickSlip(|m| Cell::Text(&m.stick_slip_reason)),
@@ -399,20 +459,33 @@ pub static OUTPUTS: &[Output] = &[
     )),
     Output {
         source: Source::Coupled(|c| Cell::Number(c.rop_mean_m_per_h)),
-        ..coupled("rop_mean_m_per_h", "m/h", "mean rate of penetration over the window, m/h", (Judge::Rel, 0.02, 0.0))
+        ..coupled(
+            "rop_mean_m_per_h",
+            "ROP",
+            "m/h",
+            "mean rate of penetration over the window, m/h",
+            (Judge::Rel, 0.02, 0.0),
+        )
     },
     Output {
         source: Source::Coupled(|c| Cell::Number(c.wob_mean_n)),
-        ..coupled("wob_mean_N", "N", "mean weight on bit over the window, N", (Judge::Rel, 0.02, 0.0))
+        ..coupled("wob_mean_N", "weight on bit", "N", "mean weight on bit over the window, N", (Judge::Rel, 0.02, 0.0))
     },
     Output {
         source: Source::Coupled(|c| Cell::Number(c.tob_mean_nm)),
-        ..coupled("tob_mean_Nm", "N*m", "mean torque on bit over the window, N m", (Judge::Rel, 0.02, 0.0))
+        ..coupled(
+            "tob_mean_Nm",
+            "torque on bit",
+            "N*m",
+            "mean torque on bit over the window, N m",
+            (Judge::Rel, 0.02, 0.0),
+        )
     },
     Output {
         source: Source::Coupled(|c| Cell::Number(c.bounce_fraction)),
         ..coupled(
             "bounce_fraction",
+            "bit bounce",
             "",
             "fraction of the window's samples with no weight on bit (bit bounce, or off bottom)",
             (Judge::Abs, 0.02, 0.0),
@@ -422,6 +495,7 @@ pub static OUTPUTS: &[Output] = &[
         source: Source::Coupled(|c| Cell::Number(c.hook_load_mean_n)),
         ..coupled(
             "hook_load_mean_N",
+            "hook load",
             "N",
             "mean hook load over the window, N (a pick-up's or slack-off's load off bottom)",
             (Judge::Rel, 0.01, 0.0),
@@ -431,6 +505,7 @@ pub static OUTPUTS: &[Output] = &[
         source: Source::Coupled(|c| Cell::Number(c.mse_mean_pa)),
         ..coupled(
             "mse_mean_Pa",
+            "MSE",
             "Pa",
             "Teale's mechanical specific energy of the window's means (weight and torque on bit, bit speed, ROP), Pa; \
              inf when nothing was drilled while the bit turned",
@@ -440,24 +515,26 @@ pub static OUTPUTS: &[Output] = &[
     Output {
         source: Source::Coupled(|c| Cell::Text(c.regime.name())),
         kind: Kind::Text,
+        console: false,
         unit: None,
         ..coupled(
+            "regime",
             "regime",
             "",
             "the window's regime from the stick-slip verdict and the bounce fraction (coupled_regime_criterion)",
             (Judge::Equal, 0.0, 0.0),
         )
     },
-    series("surface_rpm", "rpm", "top drive (surface) speed", STRING),
-    series("bit_rpm", "rpm", "bit speed", STRING),
-    series("motor_torque", "N*m", "motor torque of the top drive", STRING),
-    series("bit_torque", "N*m", "torque on bit", STRING),
-    series("bit_axial_speed", "m/s", "axial speed of the bit, down positive", COUPLED),
-    series("rop", "m/h", "rate of penetration", COUPLED),
-    series("weight_on_bit", "N", "weight on bit", COUPLED),
-    series("hook_load", "N", "hook load", COUPLED),
-    series("bit_depth", "m", "bit depth drilled since the start", COUPLED),
-    series("depth_of_cut", "m", "depth of cut per revolution of the bit", COUPLED),
+    series("surface_rpm", "surface speed", "rpm", "top drive (surface) speed", STRING),
+    series("bit_rpm", "bit speed", "rpm", "bit speed", STRING),
+    series("motor_torque", "motor torque", "N*m", "motor torque of the top drive", STRING),
+    series("bit_torque", "torque on bit", "N*m", "torque on bit", STRING),
+    series("bit_axial_speed", "bit axial speed", "m/s", "axial speed of the bit, down positive", COUPLED),
+    series("rop", "ROP", "m/h", "rate of penetration", COUPLED),
+    series("weight_on_bit", "weight on bit", "N", "weight on bit", COUPLED),
+    series("hook_load", "hook load", "N", "hook load", COUPLED),
+    series("bit_depth", "bit depth", "m", "bit depth drilled since the start", COUPLED),
+    series("depth_of_cut", "depth of cut", "m", "depth of cut per revolution of the bit", COUPLED),
 ];
 
 /// The output named `name`.
@@ -628,6 +705,7 @@ pub fn coupled_values(c: &CoupledMetrics) -> Vec<(&'static str, Cell<'static>)> 
 #[derive(Debug, Clone, Serialize)]
 pub struct Description {
     pub name: &'static str,
+    pub label: &'static str,
     pub unit: Option<&'static str>,
     pub definition: &'static str,
     pub runs: Vec<&'static str>,
@@ -636,8 +714,10 @@ pub struct Description {
     /// `(kind, tolerance, floor)` of the grid and start checks.
     pub tolerance: Option<Tolerance>,
     pub headline: bool,
+    /// On the console's summary of a run.
+    pub console: bool,
     /// Computed by the stick-slip metrics of any series (`stick_slip_metrics`).
-    pub stick_slip: bool,
+    pub of_any_series: bool,
 }
 
 /// Every output as data, in order (`_core.drill_outputs()`).
@@ -646,6 +726,7 @@ pub fn describe() -> Vec<Description> {
         .iter()
         .map(|o| Description {
             name: o.name,
+            label: o.label,
             unit: o.unit,
             definition: o.definition,
             runs: [("torsional", o.runs.torsional), ("coupled", o.runs.coupled), ("lumped", o.runs.lumped)]
@@ -656,7 +737,8 @@ pub fn describe() -> Vec<Description> {
             kind: o.kind,
             tolerance: o.tolerance,
             headline: o.headline,
-            stick_slip: Report::Series.has(o),
+            console: o.console,
+            of_any_series: Report::Series.has(o),
         })
         .collect()
 }

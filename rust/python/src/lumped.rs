@@ -67,7 +67,7 @@ pub(crate) fn lumped_solve<'py>(
     to_python(py, &RunOutput { run: &run, metrics: stick_slip_report(run.metrics.as_ref(), Report::Lumped), stats })
 }
 
-/// The steady rotations of the lumped model, their eigenvalues and stability, and the regime.
+/// The steady rotations of the lumped model, their eigenvalues and stability, and what they predict (`equilibrium`).
 #[pyfunction]
 pub(crate) fn lumped_equilibria<'py>(py: Python<'py>, params_json: &str) -> PyResult<Bound<'py, PyAny>> {
     let p = parse(py, params_json)?;

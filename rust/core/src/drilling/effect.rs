@@ -7,7 +7,8 @@
 //! under another controller type; the hoist's keys of another `hoist.mode` (or without a
 //! `[hoist]` table); the velocity-weakening bit's keys in a coupled run (the hoist sets the
 //! weight on bit and the Detournay law the torque) or with the bit off bottom; the Detournay
-//! law's keys with the velocity-weakening law; the regularisation speed of set-valued
+//! law's keys with the velocity-weakening law; the wear flats' weakening (`bit.weakening`) under
+//! any law but `detournay_weakening`; the regularisation speed of set-valued
 //! friction; the torque-and-drag analysis's keys (but the element length of the soft-string
 //! contact).
 //!
@@ -129,6 +130,12 @@ pub fn no_effect(cfg: &DrillConfig, key: &str) -> Option<String> {
         }
     }
     let law = cfg.bit.law;
+    if under("bit.weakening") && law != BitRockLaw::DetournayWeakening {
+        return Some(format!(
+            "{k} is used by bit.law = \"detournay_weakening\" only (bit.law = \"{}\" here), so it changes nothing",
+            law.name()
+        ));
+    }
     if law == BitRockLaw::VelocityWeakening {
         if under("bit.detournay") || k == "bit.bha_mass" {
             return Some(format!(
@@ -200,5 +207,24 @@ mod tests {
         assert_eq!(no_effect(&cfg, "hoist.weight_on_bit"), None);
         assert_eq!(no_effect(&cfg, "bit.detournay.blades"), None);
         assert!(no_effect(&cfg, "bit.detournay.cut_surface_cells").is_some());
+    }
+
+    #[test]
+    fn the_wear_flat_weakening_acts_under_its_law_only() {
+        let mut cfg = DrillConfig::default();
+        for law in [BitRockLaw::VelocityWeakening, BitRockLaw::Detournay, BitRockLaw::Rgd] {
+            cfg.bit.law = law;
+            for k in ["bit.weakening", "bit.weakening.static_friction", "bit.weakening.decay"] {
+                let why = no_effect(&cfg, k).unwrap_or_else(|| panic!("{k} under {}", law.name()));
+                assert!(why.contains("detournay_weakening") && why.contains(&law.name()), "{why}");
+            }
+        }
+        cfg.bit.law = BitRockLaw::DetournayWeakening;
+        cfg.hoist = Some(Hoist::default());
+        for k in ["bit.weakening.static_friction", "bit.weakening.decay", "bit.detournay.friction"] {
+            assert_eq!(no_effect(&cfg, k), None, "{k}");
+        }
+        // (a key beside the table is not under it)
+        assert!(no_effect(&cfg, "bit.weakeningx").is_none());
     }
 }

@@ -637,11 +637,13 @@ pub struct Equilibria {
     pub rotations: Vec<Equilibrium>,
     /// `Tm <= Wob Rb mu_sb`: the bit at rest (`wr = 0`, `kt phi = Tm`) is an equilibrium.
     pub stuck_possible: bool,
-    pub regime: LumpedRegime,
+    /// What the equilibria predict: a stable rotation, an unstable one only, or the bit stuck
+    /// (a regime of its own, not a coupled run's `regime`).
+    pub equilibrium: LumpedRegime,
 }
 
 /// The steady rotations (roots of `(cr + cb) w + Wob Rb mu(w) = Tm`, `w > 0`), their
-/// stability and the regime; see the module.
+/// stability and what they predict (`equilibrium`); see the module.
 pub fn equilibria(p: &LumpedParams) -> Result<Equilibria> {
     p.validate()?;
     let c = p.cr + p.cb;
@@ -690,14 +692,14 @@ pub fn equilibria(p: &LumpedParams) -> Result<Equilibria> {
             }
         })
         .collect();
-    let regime = if rotations.iter().any(|e| e.stable) {
+    let equilibrium = if rotations.iter().any(|e| e.stable) {
         LumpedRegime::StableRotation
     } else if rotations.is_empty() {
         LumpedRegime::Stuck
     } else {
         LumpedRegime::Unstable
     };
-    Ok(Equilibria { rotations, stuck_possible: p.tm <= p.static_limit(), regime })
+    Ok(Equilibria { rotations, stuck_possible: p.tm <= p.static_limit(), equilibrium })
 }
 
 /// The eigenvalues of a real 3x3 matrix, `(re, im)` by increasing real part (then imaginary),
@@ -759,10 +761,10 @@ mod tests {
         // Light weight: one root, stable; heavy: none, stuck.
         let light = equilibria(&LumpedParams { wob: 10e3, ..p.clone() }).unwrap();
         assert_eq!(light.rotations.len(), 1);
-        assert_eq!(light.regime, LumpedRegime::StableRotation);
+        assert_eq!(light.equilibrium, LumpedRegime::StableRotation);
         assert!(!light.stuck_possible);
         let heavy = equilibria(&LumpedParams { wob: 200e3, ..p.clone() }).unwrap();
-        assert!(heavy.rotations.is_empty() && heavy.stuck_possible && heavy.regime == LumpedRegime::Stuck);
+        assert!(heavy.rotations.is_empty() && heavy.stuck_possible && heavy.equilibrium == LumpedRegime::Stuck);
         // No weight: w = Tm / (cr + cb) exactly as the bisection resolves it.
         let free = equilibria(&LumpedParams { wob: 0.0, ..p.clone() }).unwrap();
         assert!((free.rotations[0].speed - p.tm / (p.cr + p.cb)).abs() < 1e-12 * p.tm / (p.cr + p.cb));

@@ -382,7 +382,7 @@ mod tests {
     #[test]
     fn relations_hold_and_the_contact_dissipates_in_every_phase() {
         let (a0, t0) = ports(0.0, 0.0);
-        let (a_, zeta, eps) = (LAW.radius, LAW.cutting_ratio, LAW.intrinsic_specific_energy);
+        let (a_, zeta, eps) = (LAW.radius, LAW.detournay.cutting_ratio, LAW.detournay.intrinsic_specific_energy);
         let mut seen = [0usize; 3];
         for [x, y, z] in spread(20_000) {
             let a = Port { free_speed: -0.1 + x, ..a0 };

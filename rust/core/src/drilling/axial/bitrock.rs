@@ -28,38 +28,30 @@
 //!
 //! * the contact torque is `p.Tf * p.Wf` with `p.Tf = gamma mu a`, i.e. `T_f = gamma mu a W_f`,
 //!   twice Richard et al.'s `gamma mu a W_f / 2` (to reproduce it, pass `2 gamma` as
-//!   [`DetournayBit::geometry`]);
+//!   [`Detournay::geometry`]);
 //! * `waveStep_transportBRI.m` uses `d = N max(l, 0)`, per revolution as here;
 //!   `waveStep_delayBRI.m` uses the blade's `d_n` itself in `W_c = K_a d` (a factor `n` less)
 //!   and the first sample of the history more than a blade angle back (no interpolation);
 //! * the set-valued contact is decided with thresholds on the last cell's speeds
 //!   (`vb > 0.001`, `ob < 0.1`) instead of the exact phases of [`super::bit`].
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
+
+use crate::drilling::config::Detournay;
 
 use crate::error::{Error, Num, Result};
 
-/// The parameters of the Detournay cutting + frictional-contact law (SI units). Defaults: the
-/// dimensional case of Aarsnes & van de Wouw (2019), `Coupled/parameters.m`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+/// The Detournay cutting + frictional-contact law (SI units) of a bit of radius `radius`: the
+/// configuration's keys `bit.detournay` ([`Detournay`], the one type of the law's parameters)
+/// with the bit's radius `bit.radius`. Defaults: the dimensional case of Aarsnes & van de Wouw
+/// (2019), `Coupled/parameters.m`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DetournayBit {
     /// Bit radius `a`, m.
     pub radius: f64,
-    /// Number of blades `n` (cutters passing one place per revolution), >= 1.
-    pub blades: u32,
-    /// Intrinsic specific energy of the rock `eps`, Pa (J/m^3): the cutting energy per volume.
-    pub intrinsic_specific_energy: f64,
-    /// Ratio `zeta` of the vertical to the horizontal cutting force, dimensionless.
-    pub cutting_ratio: f64,
-    /// Contact strength `sigma` under the wear flats, Pa.
-    pub contact_strength: f64,
-    /// Total wear-flat length `l` (sum over the blades), m.
-    pub wear_flat_length: f64,
-    /// Friction coefficient `mu` at the wear-flat/rock contact, dimensionless.
-    pub friction: f64,
-    /// Bit geometry factor `gamma` (1 for a flat bit profile), dimensionless.
-    pub geometry: f64,
+    /// The law's parameters: blades `n`, intrinsic specific energy `eps`, cutting force ratio
+    /// `zeta`, contact strength `sigma`, wear-flat length `l`, friction `mu`, geometry `gamma`.
+    pub detournay: Detournay,
 }
 
 impl Default for DetournayBit {
@@ -69,41 +61,33 @@ impl Default for DetournayBit {
 }
 
 impl DetournayBit {
-    /// The dimensional case of Aarsnes & van de Wouw (2019), `Coupled/parameters.m` (their
-    /// `gamma = 1`; their code's contact torque is that of `geometry = 2` here, see the module).
-    pub const PUBLISHED: DetournayBit = DetournayBit {
-        radius: 0.108,
-        blades: 4,
-        intrinsic_specific_energy: 60e6,
-        cutting_ratio: 0.6,
-        contact_strength: 60e6,
-        wear_flat_length: 11e-3,
-        friction: 0.6,
-        geometry: 1.0,
-    };
+    /// The dimensional case of Aarsnes & van de Wouw (2019), `Coupled/parameters.m`: their bit
+    /// radius and [`Detournay::PUBLISHED`].
+    pub const PUBLISHED: DetournayBit = DetournayBit { radius: 0.108, detournay: Detournay::PUBLISHED };
 
     /// Refuses non-finite or out-of-range fields, naming `<prefix>.<field>` (e.g. `bit.radius`).
     pub fn validate(&self, prefix: &str) -> Result<()> {
-        let positive = [("radius", self.radius), ("intrinsic_specific_energy", self.intrinsic_specific_energy)];
+        let positive =
+            [("radius", self.radius), ("intrinsic_specific_energy", self.detournay.intrinsic_specific_energy)];
         for (name, value) in positive {
             if !(value.is_finite() && value > 0.0) {
                 return Err(Error::invalid(format!("{prefix}.{name}"), Num(value), "a finite number > 0"));
             }
         }
         let non_negative = [
-            ("cutting_ratio", self.cutting_ratio),
-            ("contact_strength", self.contact_strength),
-            ("wear_flat_length", self.wear_flat_length),
-            ("friction", self.friction),
-            ("geometry", self.geometry),
+            ("cutting_ratio", self.detournay.cutting_ratio),
+            ("contact_strength", self.detournay.contact_strength),
+            ("wear_flat_length", self.detournay.wear_flat_length),
+            ("friction", self.detournay.friction),
+            ("geometry", self.detournay.geometry),
         ];
         for (name, value) in non_negative {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(Error::invalid(format!("{prefix}.{name}"), Num(value), "a finite number >= 0"));
             }
         }
-        if self.blades == 0 {
-            return Err(Error::invalid(format!("{prefix}.blades"), self.blades, "an integer >= 1"));
+        if self.detournay.blades == 0 {
+            return Err(Error::invalid(format!("{prefix}.blades"), self.detournay.blades, "an integer >= 1"));
         }
         Ok(())
     }
@@ -112,7 +96,7 @@ impl DetournayBit {
     /// `> 0`; Richard et al. 2007).
     #[inline]
     pub fn cutting_weight(&self, depth: f64) -> f64 {
-        self.radius * self.cutting_ratio * self.intrinsic_specific_energy * depth
+        self.radius * self.detournay.cutting_ratio * self.detournay.intrinsic_specific_energy * depth
     }
 
     /// The cutting torque `T_c = a^2 eps d / 2`, N m, at the depth of cut per revolution `d`
@@ -120,21 +104,21 @@ impl DetournayBit {
     /// intrinsic specific energy times the volume drilled per second.
     #[inline]
     pub fn cutting_torque(&self, depth: f64) -> f64 {
-        0.5 * self.radius * self.radius * self.intrinsic_specific_energy * depth
+        0.5 * self.radius * self.radius * self.detournay.intrinsic_specific_energy * depth
     }
 
     /// The full contact weight `W_f = a l sigma`, N, of the wear flats pressed on the rock while
     /// the bit advances (Richard et al. 2007; at rest axially any value in `[0, W_f]`).
     #[inline]
     pub fn contact_weight(&self) -> f64 {
-        self.radius * self.wear_flat_length * self.contact_strength
+        self.radius * self.detournay.wear_flat_length * self.detournay.contact_strength
     }
 
     /// The contact torque `T_f = gamma mu a W_f / 2`, N m, of the contact weight `W_f` (N;
     /// Richard et al. 2007).
     #[inline]
     pub fn contact_torque(&self, contact_weight: f64) -> f64 {
-        0.5 * self.geometry * self.friction * self.radius * contact_weight
+        0.5 * self.detournay.geometry * self.detournay.friction * self.radius * contact_weight
     }
 
     /// The torque on bit, N m, of steady drilling at the weight on bit `w` (N, `>= 0`): below the
@@ -146,20 +130,20 @@ impl DetournayBit {
         if w <= wf {
             return self.contact_torque(w);
         }
-        let depth = (w - wf) / (self.radius * self.cutting_ratio * self.intrinsic_specific_energy);
+        let depth = (w - wf) / (self.radius * self.detournay.cutting_ratio * self.detournay.intrinsic_specific_energy);
         self.cutting_torque(depth) + self.contact_torque(wf)
     }
 
     /// The depth of cut per blade `d_n = d / n`, m, of the depth per revolution `d`.
     #[inline]
     pub fn per_blade(&self, depth: f64) -> f64 {
-        depth / f64::from(self.blades)
+        depth / f64::from(self.detournay.blades)
     }
 
     /// The bit's angle between two blades, `2 pi / n`, rad: the delay of the cut surface.
     #[inline]
     pub fn blade_angle(&self) -> f64 {
-        std::f64::consts::TAU / f64::from(self.blades)
+        std::f64::consts::TAU / f64::from(self.detournay.blades)
     }
 
     /// Steady drilling at the rate of penetration `rop` (m/s, `>= 0`) and the rotary speed
@@ -267,15 +251,11 @@ mod tests {
     #[test]
     fn validation_names_the_field() {
         assert!(DetournayBit::default().validate("bit").is_ok());
-        let bad = DetournayBit { blades: 0, ..DetournayBit::default() };
+        let bad = Detournay { blades: 0, ..Detournay::PUBLISHED }.law(0.108);
         assert_eq!(bad.validate("bit").unwrap_err().field(), "bit.blades");
-        let bad = DetournayBit { wear_flat_length: -1.0, ..DetournayBit::default() };
+        let bad = Detournay { wear_flat_length: -1.0, ..Detournay::PUBLISHED }.law(0.108);
         assert_eq!(bad.validate("bit").unwrap_err().field(), "bit.wear_flat_length");
         let bad = DetournayBit { radius: f64::NAN, ..DetournayBit::default() };
         assert_eq!(bad.validate("bit").unwrap_err().field(), "bit.radius");
-        // serde: SI fields by name, defaults for the rest, unknown keys refused.
-        let b: DetournayBit = serde_json::from_str(r#"{"radius": 0.1, "blades": 5}"#).unwrap();
-        assert_eq!((b.radius, b.blades, b.friction), (0.1, 5, 0.6));
-        assert!(serde_json::from_str::<DetournayBit>(r#"{"radius_m": 0.1}"#).is_err());
     }
 }

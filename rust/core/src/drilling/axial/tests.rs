@@ -23,12 +23,12 @@ fn steady_drilling_through_the_parts_is_the_analytic_steady_state() {
     // The strings' incoming invariants that carry this state: alpha = v + W / Z.
     let axial = Port::string(v + w / za, za);
     let torsion = Port::string(omega + t / zt, zt);
-    let mut surface = CutSurface::steady(law.blades, SurfaceRule::Deepest, 0.0, 0.0, d);
+    let mut surface = CutSurface::steady(law.detournay.blades, SurfaceRule::Deepest, 0.0, 0.0, d);
     let (mut phi, mut x) = (0.0, 0.0);
     let dt = 1.0 / 3000.0;
     let mut work = 0.0;
     for _ in 0..6000 {
-        let depth = f64::from(law.blades) * surface.depth_per_blade(phi, x);
+        let depth = f64::from(law.detournay.blades) * surface.depth_per_blade(phi, x);
         let s = solve_bit(&law, axial, torsion, depth);
         assert_eq!(s.phase, BitPhase::Cutting);
         assert!((depth - d).abs() < 1e-12 * d, "{depth}");

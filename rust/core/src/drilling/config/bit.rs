@@ -138,36 +138,30 @@ pub enum CutSurfaceScheme {
 pub const MAX_CUT_SURFACE_CELLS: u32 = 1_000_000;
 
 impl Default for Detournay {
-    /// The published case, [`DetournayBit::PUBLISHED`].
     fn default() -> Self {
-        let p = DetournayBit::PUBLISHED;
-        Detournay {
-            blades: p.blades,
-            intrinsic_specific_energy: p.intrinsic_specific_energy,
-            cutting_ratio: p.cutting_ratio,
-            contact_strength: p.contact_strength,
-            wear_flat_length: p.wear_flat_length,
-            friction: p.friction,
-            geometry: p.geometry,
-            cut_surface: CutSurfaceScheme::ExactDelay,
-            cut_surface_cells: 169,
-        }
+        Detournay::PUBLISHED
     }
 }
 
 impl Detournay {
+    /// The dimensional case of Aarsnes & van de Wouw (2019), `Coupled/parameters.m` (their
+    /// `gamma = 1`; their code's contact torque is that of `geometry = 2` here, see
+    /// [`crate::drilling::axial::bitrock`]), with the exact-delay cut surface.
+    pub const PUBLISHED: Detournay = Detournay {
+        blades: 4,
+        intrinsic_specific_energy: 60e6,
+        cutting_ratio: 0.6,
+        contact_strength: 60e6,
+        wear_flat_length: 11e-3,
+        friction: 0.6,
+        geometry: 1.0,
+        cut_surface: CutSurfaceScheme::ExactDelay,
+        cut_surface_cells: 169,
+    };
+
     /// The law with the bit radius `radius`.
     pub fn law(&self, radius: f64) -> DetournayBit {
-        DetournayBit {
-            radius,
-            blades: self.blades,
-            intrinsic_specific_energy: self.intrinsic_specific_energy,
-            cutting_ratio: self.cutting_ratio,
-            contact_strength: self.contact_strength,
-            wear_flat_length: self.wear_flat_length,
-            friction: self.friction,
-            geometry: self.geometry,
-        }
+        DetournayBit { radius, detournay: *self }
     }
 }
 

@@ -30,6 +30,7 @@ use super::{AxialNeed, BitEnds, BitRock};
 use crate::drilling::axial::bit_boundary::BitContact;
 use crate::drilling::axial::bitrock::{DetournayBit, SteadyDrilling};
 use crate::drilling::bit::friction_coefficient;
+use crate::drilling::config::Detournay;
 use crate::error::{Error, Num, Result};
 
 /// The velocity weakening of the wear flats' friction (`bit.law = "detournay_weakening"`):
@@ -50,7 +51,7 @@ pub struct Weakening {
 
 impl Default for Weakening {
     fn default() -> Self {
-        Weakening { static_friction: DetournayBit::PUBLISHED.friction, decay: 1.0 }
+        Weakening { static_friction: DetournayBit::PUBLISHED.detournay.friction, decay: 1.0 }
     }
 }
 
@@ -83,13 +84,13 @@ impl DetournayWeakening {
     /// The wear flats' friction coefficient `mu(w)` at the bit speed `omega`, rad/s.
     #[inline]
     pub fn friction(&self, omega: f64) -> f64 {
-        friction_coefficient(self.weakening.static_friction, self.cut.friction, self.weakening.decay, omega)
+        friction_coefficient(self.weakening.static_friction, self.cut.detournay.friction, self.weakening.decay, omega)
     }
 
     /// The Detournay law at the friction of the bit speed `omega`.
     #[inline]
     pub fn at(&self, omega: f64) -> DetournayBit {
-        DetournayBit { friction: self.friction(omega), ..self.cut }
+        DetournayBit { detournay: Detournay { friction: self.friction(omega), ..self.cut.detournay }, ..self.cut }
     }
 }
 
@@ -159,7 +160,7 @@ mod tests {
 
     #[test]
     fn without_weakening_it_is_the_detournay_law_to_the_bit() {
-        let l = law(CUT.friction, 3.0);
+        let l = law(CUT.detournay.friction, 3.0);
         for (w, t, omega, d) in [(2e5, 2e4, 2.0, 1e-3), (5e4, 1e3, 0.0, 2e-3), (-1e4, 3e3, 5.0, -1e-3)] {
             let e = ends(w, t, omega, d);
             assert_eq!(l.resolve(&e), CUT.resolve(&e));
