@@ -20,8 +20,9 @@ from _cli import one_line_error, run_cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from drillstring.drilling import DrillSession, load_drill_config
-from drillstring.drilling.units import axis_unit
+from drillstring.drilling import DrillSession, drill, load_drill_config
+from drillstring.drilling.metrics import OUTPUTS
+from drillstring.drilling.units import axis_unit, metric_texts
 from drillstring.live.display import controls, decimate
 from drillstring.live.driver import Driver
 from drillstring.live.server import Background, LiveApp
@@ -113,6 +114,23 @@ def test_a_coupled_run_shows_the_hoist_and_the_axial_field(tmp_path: Path) -> No
     state = next(f["state"] for f in frames if "state" in f)
     assert len(state["axial_z_m"]) == len(state["axial_force_N"]) > 0
     assert wob["ok"], wob
+
+
+def test_the_verdict_of_the_last_window_is_the_batch_runs_over_that_window(tmp_path: Path) -> None:
+    async def body(ws: Any) -> Any:
+        while True:
+            frame = await _next(ws, "frame")
+            if "verdict" in frame:
+                return frame["verdict"]
+
+    shown = _talk(tmp_path, body, speed=4.0)
+    start, end = shown["window"]
+    assert end - start == pytest.approx(15.0) or start == 0.0
+    # the same run by drill to the window's end, its metrics over the window, as drill's console says them
+    batch = drill(_config().with_overrides([f"numerics.duration={end!r}", f"metrics.window=[{start!r}, {end!r}]"]))
+    names = [n for n, o in OUTPUTS.items() if o.console and "torsional" in o.runs]
+    assert shown["texts"] == metric_texts(batch.metrics.values, names, "si")
+    assert shown["verdict"] == batch.metrics.stick_slip_verdict and "SSI" in shown["texts"][0]
 
 
 def test_a_page_connecting_while_the_run_steps_flat_out_gets_its_hello_and_frames(tmp_path: Path) -> None:

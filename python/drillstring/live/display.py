@@ -160,28 +160,25 @@ def decimate(t: np.ndarray, step: float, last: float) -> np.ndarray:
     return np.nonzero(bucket > previous)[0]
 
 
-def _number(value: Any) -> Optional[float]:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        return None
-    return number if math.isfinite(number) else None
+def verdict(metrics: Mapping[str, Any], window: tuple[float, float], coupled: bool, system: str) -> dict[str, Any]:
+    """What the page says of a window of the run, as ``drillstring drill`` says it on the console:
+    the stick-slip verdict and the registry's console metrics by their labels in ``system``
+    (:func:`~drillstring.drilling.units.metric_texts`), and a coupled run's on-bottom metrics and
+    regime."""
+    from ..drilling.metrics import OUTPUTS, REGIME, STICK_SLIP_VERDICT
+    from ..drilling.units import metric_texts
 
+    def texts(values: Mapping[str, Any], run: str) -> list[str]:
+        names = [n for n, o in OUTPUTS.items() if o.console and run in o.runs and n in values]
+        return metric_texts({n: math.nan if values[n] is None else values[n] for n in names}, names, system)
 
-def verdict(metrics: Mapping[str, Any], window: tuple[float, float], coupled: bool) -> dict[str, Any]:
-    """What the page says of a window of the run: the stick-slip verdict and its numbers (the core's
-    metrics), and a coupled run's regime."""
     out: dict[str, Any] = {
         "window": [float(window[0]), float(window[1])],
-        "stick_slip_verdict": str(metrics.get("stick_slip_verdict", "")),
-        "ssi": _number(metrics.get("ssi")),
-        "stuck_fraction": _number(metrics.get("stuck_fraction")),
-        "period_s": _number(metrics.get("period_s")),
-        "bit_rpm_min": _number(metrics.get("bit_rpm_min")),
-        "bit_rpm_max": _number(metrics.get("bit_rpm_max")),
+        "verdict": str(metrics.get(STICK_SLIP_VERDICT, "")),
+        "texts": texts(metrics, "torsional"),
     }
     if coupled:
-        coupled_metrics = metrics.get("coupled") or {}
-        out["regime"] = str(coupled_metrics.get("regime", ""))
-        out["bounce_fraction"] = _number(coupled_metrics.get("bounce_fraction"))
+        on_bottom = metrics.get("coupled") or {}
+        out["texts"] += texts(on_bottom, "coupled")
+        out["coupled"] = f"{OUTPUTS[REGIME].label}: {on_bottom.get(REGIME, '')}"
     return out

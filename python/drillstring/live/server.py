@@ -156,7 +156,7 @@ class LiveApp:
             parts["state"] = self._state(update.state)
         if update.verdict is not None:
             parts["verdict"] = json.dumps(verdict(update.verdict["metrics"], update.verdict["window"],
-                                                  self.driver.coupled))
+                                                  self.driver.coupled, self.system))
         if update.events:
             parts["events"] = json.dumps(update.events, default=str)
         return prefix + _object(parts)

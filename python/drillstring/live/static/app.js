@@ -232,11 +232,10 @@
   function verdict(v) {
     const box = $("verdict");
     let text = "last window " + v.window[0].toFixed(0) + "-" + v.window[1].toFixed(0) + " s: stick-slip " +
-      v.stick_slip_verdict + " (SSI " + fmt(v.ssi, 3) + ", stuck " + fmt(100 * v.stuck_fraction, 3) +
-      " %, period " + fmt(v.period_s, 3) + " s, bit " + fmt(v.bit_rpm_min, 3) + " to " + fmt(v.bit_rpm_max, 3) + " rpm)";
-    if (v.regime !== undefined) text += "; regime: " + v.regime + " (bounce " + fmt(100 * v.bounce_fraction, 3) + " %)";
+      v.verdict + "; " + v.texts.join(", ");
+    if (v.coupled !== undefined) text += "; " + v.coupled;
     box.textContent = text;
-    box.className = "verdict " + v.stick_slip_verdict;
+    box.className = "verdict " + v.verdict;
   }
 
   function render() {
