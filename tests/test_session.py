@@ -218,3 +218,16 @@ def test_series_columns_are_the_results() -> None:
     frame = session.series()
     assert list(frame.columns) == list(SERIES)
     assert len(frame) == len(session)
+
+
+def test_the_guides_example_prints_what_the_guide_says(monkeypatch: pytest.MonkeyPatch,
+                                                        capsys: pytest.CaptureFixture[str]) -> None:
+    """docs/guide/session.md's controller loop, run as written, prints its output block."""
+    import re
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "session.md").read_text(encoding="utf-8")
+    (block,) = re.findall(r"^```python\n(.*?)^```", page, flags=re.S | re.M)
+    printed = re.findall(r"^```text\n(.*?)^```", page, flags=re.S | re.M)[-1]
+    monkeypatch.chdir(EXAMPLES.parent)
+    exec(compile(block, "docs/guide/session.md", "exec"), {"__name__": "__example__"})
+    assert capsys.readouterr().out == printed

@@ -42,10 +42,9 @@ pub struct Change {
     /// Time the change takes effect from, in [0, numerics.duration].
     #[schemars(extend("unit" = "s", "label" = "change time"))]
     pub time: f64,
-    /// The dotted key changed: top_drive.rpm, top_drive.torque_limit, top_drive.controller.type,
-    /// .kp, .ki, .z_factor, bit.weight_on_bit, friction.static, friction.kinetic_ratio,
-    /// hoist.mode, hoist.speed, hoist.hook_load, hoist.weight_on_bit, hoist.autodriller.setpoint,
-    /// .kp, .ki.
+    /// The dotted key changed, one of those that may change during a run: the top drive's speed,
+    /// controller type, gains and torque limit, the bit's weight, the wall friction's factors,
+    /// the hoist's mode and targets (`DrillSession.settable` lists them).
     #[schemars(extend("label" = "changed key"))]
     pub key: String,
     /// The new value, as the key takes it in the configuration (SI).
