@@ -73,6 +73,7 @@ def test_a_session_stepped_through_the_duration_is_drill_bit_for_bit(kind: str) 
     rows = session.rows(len(session) - 5)
     assert rows["bit_rpm"].tobytes() == batch.bit_rpm[-5:].tobytes()
     assert list(session.series().columns) == list(batch.to_pandas().columns)
+    assert result.config == cfg  # stepped to the duration: the configuration that repeats it is the one given
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -106,6 +107,19 @@ def test_set_at_20_s_is_a_steps_entry_and_a_changes_entry_at_20_s(kind: str) -> 
     assert session.changes == [(pytest.approx(20.0, abs=session.dt), "top_drive.rpm", 80.0)]
     # the change did something: the top drive ends near 80 rpm
     assert by_set.surface_rpm[-1] > 60.0
+
+
+def test_a_hoist_set_is_a_hoist_steps_entry() -> None:
+    cfg = _coupled(12.0)
+    by_steps = ds.drill(cfg.with_overrides({"hoist.steps": [[8.0, 100e3]]}))
+    session = ds.DrillSession(cfg)
+    session.step(8.0)
+    session.set("hoist.weight_on_bit", 100e3)
+    _through(session, [])
+    _same_bits(by_steps, session.result())
+    # the driller's lower weight reaches the bit: less weight on bit than without the change
+    held = ds.drill(cfg)
+    assert by_steps.axial["weight_on_bit"][-200:].mean() < held.axial["weight_on_bit"][-200:].mean()
 
 
 def test_a_snapshot_continues_bit_for_bit() -> None:
@@ -158,15 +172,17 @@ def test_the_state_holds_the_fields_of_the_string() -> None:
     assert state["surface_rpm"] == pytest.approx(session.rows(len(session) - 1)["surface_rpm"][0], rel=0.05, abs=1.0)
 
 
-def test_a_diverging_session_ends_with_a_status_and_step_raises() -> None:
-    # a top-drive loop whose sampled gain the grid cannot hold is refused up front; a state the
-    # core cannot step is a status: a session of a run whose energy becomes non-finite
+def test_a_gain_the_sampled_loop_cannot_hold_is_refused_and_the_session_runs_on() -> None:
+    # (a run that diverges ends with a status, never a panic: the core's session tests step a
+    # state beyond the runaway bound)
     session = ds.DrillSession(_torsional())
     session.step(0.5)
-    assert session.status == "success"
-    with pytest.raises(ds.ValidationError):
+    with pytest.raises(ds.ValidationError) as err:
         session.set("top_drive.controller.kp", 1e12)
+    assert err.value.field in ("top_drive.controller.kp", "numerics.cells")
     assert session.status == "success"
+    session.step(0.5)
+    assert session.changes == []
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")

@@ -917,6 +917,9 @@ class DrillSession:
     @property
     def dt(self) -> float: ...
     @property
+    def replay_duration(self) -> float:
+        """The ``numerics.duration`` of the configuration that repeats what was stepped, s."""
+    @property
     def status(self) -> str: ...
     @property
     def message(self) -> str: ...

@@ -229,11 +229,12 @@ class DrillSession:
         cfg = self._config
         overrides: dict[str, Any] = {
             "changes": [{"time": t, "key": key, "value": value} for t, key, value in self.changes]}
-        if not math.isclose(self.t, cfg.numerics.duration, rel_tol=0.0, abs_tol=0.5 * self.dt):
-            overrides["numerics.duration"] = self.t
+        duration = float(self._core.replay_duration)
+        if duration != cfg.numerics.duration:
+            overrides["numerics.duration"] = duration
         if window is not None:
             overrides["metrics.window"] = list(window)
-        elif cfg.metrics.window is not None and cfg.metrics.window[1] > self.t:
+        elif cfg.metrics.window is not None and cfg.metrics.window[1] > duration:
             overrides["metrics.window"] = None
         return cfg.with_overrides(overrides, units="si")
 

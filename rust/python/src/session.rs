@@ -76,6 +76,12 @@ impl DrillSession {
         self.inner.t()
     }
 
+    /// The `numerics.duration` of the configuration that repeats what was stepped, s.
+    #[getter]
+    fn replay_duration(&self) -> f64 {
+        self.inner.replay_duration()
+    }
+
     /// The time step, s.
     #[getter]
     fn dt(&self) -> f64 {

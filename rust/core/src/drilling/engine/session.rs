@@ -238,6 +238,18 @@ impl Session {
         &self.applied
     }
 
+    /// The `numerics.duration` of the configuration whose batch run is what was stepped: the
+    /// configuration's own when the session stands at the batch run's last step
+    /// ([`duration_steps`]), else the time reached.
+    pub fn replay_duration(&self) -> f64 {
+        let duration = self.sim.cfg.numerics.duration;
+        if self.steps == duration_steps(duration, self.sim.grid.dt) {
+            duration
+        } else {
+            self.t()
+        }
+    }
+
     /// The steps that advance the session by `seconds`: to the step end nearest `t + seconds`,
     /// at least one; a time whose nearest step end is the duration's ends where the batch run
     /// does ([`duration_steps`]: the first step end at or after `numerics.duration`, which holds
@@ -322,8 +334,9 @@ impl Session {
     }
 
     /// Makes the configuration's changes due before the step from `t` (their time at most half
-    /// a step after it); whether any was made. A change the run refuses (the configuration's
-    /// check accepted it, but not at the state reached) ends the run with its message.
+    /// a step after it); whether any was made. A change the run refuses though the
+    /// configuration's check accepted it (a gain the sampled top-drive loop cannot hold on this
+    /// grid) is not made, and the run's message says so.
     fn changes_due(&mut self, t: f64) -> bool {
         let half = 0.5 * self.sim.grid.dt;
         let mut made = false;
@@ -382,11 +395,14 @@ impl Session {
         }
         if key.starts_with("friction.") {
             let grid = Grid::new(&cfg)?;
-            sim.sources = Sources::new(&cfg, dt);
             let mut wall = WallFriction::torsional(&cfg, &grid, &sim.field);
-            if let (Some(ax), Some(old)) = (&mut sim.axial, &sim.coupled_friction) {
-                let hold = old.end_hold();
-                let cf = CoupledFriction::new(&cfg, &grid, &sim.field, &ax.field, &ax.half_kicks())?;
+            let coupled = match (&sim.axial, &sim.coupled_friction) {
+                (Some(ax), Some(old)) => {
+                    Some((CoupledFriction::new(&cfg, &grid, &sim.field, &ax.field, &ax.half_kicks())?, old.end_hold()))
+                }
+                _ => None,
+            };
+            if let (Some((cf, hold)), Some(ax)) = (coupled, &mut sim.axial) {
                 if cf.is_some() {
                     wall.stop.fill(0.0);
                     wall.slip.fill(-0.0);
@@ -394,6 +410,7 @@ impl Session {
                 }
                 sim.coupled_friction = cf;
             }
+            sim.sources = Sources::new(&cfg, dt);
             sim.grid = grid;
             sim.wall = wall;
         }
