@@ -247,3 +247,14 @@ def test_the_guides_example_prints_what_the_guide_says(monkeypatch: pytest.Monke
     monkeypatch.chdir(EXAMPLES.parent)
     exec(compile(block, "docs/guide/session.md", "exec"), {"__name__": "__example__"})
     assert capsys.readouterr().out == printed
+
+
+def test_a_field_configurations_set_reads_plain_numbers_in_field_units() -> None:
+    session = ds.DrillSession(EXAMPLES / "on-bottom-3000m-field.toml")
+    session.set("bit.weight_on_bit", 18.0)        # klbf, as --set reads it in this file
+    session.set("bit.weight_on_bit", "80 kN")     # a quantity in its own unit
+    (_, _, first), (_, _, second) = [c for c in session.changes]
+    assert first == pytest.approx(18.0 * 4448.2216152605, rel=1e-12)
+    assert second == pytest.approx(80e3, rel=1e-12)
+    reference = ds.load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml").with_overrides(["bit.weight_on_bit=18"])
+    assert reference.bit.weight_on_bit == pytest.approx(first, rel=1e-12)
