@@ -137,6 +137,24 @@ def test_a_snapshot_continues_bit_for_bit() -> None:
         assert again.state()["axial_force_N"].tobytes() == session.state()["axial_force_N"].tobytes()
 
 
+def test_a_pickled_snapshot_continues_bit_for_bit() -> None:
+    import pickle
+
+    session = ds.DrillSession(_torsional(), keep_fields=True)
+    session.step(2.0)
+    session.set("top_drive.rpm", 70.0)
+    session.step(1.3)
+    session.set("friction.kinetic_ratio", 0.7)
+    session.step(0.4)
+    restored = ds.DrillSession.restore(pickle.loads(pickle.dumps(session.snapshot())))
+    assert restored.t == session.t and restored.changes == session.changes
+    for s in (session, restored):
+        s.set("top_drive.rpm", 90.0)
+        s.step(2.0)
+    _same_bits(restored.result(), session.result())
+    assert restored.result().omega_field.tobytes() == session.result().omega_field.tobytes()
+
+
 def test_a_key_that_cannot_change_is_refused_naming_the_key() -> None:
     session = ds.DrillSession(_torsional())
     with pytest.raises(ds.ValidationError, match="cannot change during a run") as err:

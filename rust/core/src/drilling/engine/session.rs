@@ -39,6 +39,12 @@ pub fn duration_steps(duration: f64, dt: f64) -> u64 {
     ((duration / dt) * (1.0 - 1e-12)).ceil().max(1.0) as u64
 }
 
+/// Whether a change at `time` is made before the step from `t` of length `dt`: the step
+/// starting at the step boundary nearest `time`, or a later one.
+fn due(time: f64, t: f64, dt: f64) -> bool {
+    time <= t + 0.5 * dt
+}
+
 /// The state of a session at its time: the along-string fields and the ends (SI; speeds in rpm).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SessionState {
@@ -109,6 +115,33 @@ impl Session {
     /// stepped, past `numerics.duration` if asked.
     pub fn new(cfg: &DrillConfig, keep_fields: bool) -> Result<Session> {
         Ok(Session::start(Simulation::new(cfg)?, false, keep_fields))
+    }
+
+    /// The session of `cfg` that `steps` steps with the changes `applied` (a session's
+    /// [`Session::applied`]) reach: `cfg` (validated first) with its `[[changes]]` not yet due
+    /// at that step kept and `applied` made at their times, stepped there; bit for bit the
+    /// session those changes and steps made (a snapshot rebuilt from its description).
+    pub fn resume(
+        cfg: &DrillConfig,
+        applied: &[Change],
+        steps: u64,
+        keep_fields: bool,
+        interrupt: &dyn Interrupt,
+    ) -> Result<Session> {
+        let mut cfg = cfg.clone();
+        let dt = Grid::new(&cfg)?.dt;
+        let last = steps.saturating_sub(1) as f64 * dt;
+        cfg.changes.retain(|c| steps == 0 || !due(c.time, last, dt));
+        cfg.changes.splice(0..0, applied.iter().cloned());
+        let t = steps as f64 * dt;
+        if t > cfg.numerics.duration {
+            cfg.numerics.duration = t;
+        }
+        let mut session = Session::new(&cfg, keep_fields)?;
+        if steps > 0 {
+            session.advance(steps, interrupt, &mut |_| {});
+        }
+        Ok(session)
     }
 
     /// The batch run's session of `sim` (see [`Simulation::run`]).
@@ -341,7 +374,7 @@ impl Session {
         let half = 0.5 * self.sim.grid.dt;
         let mut made = false;
         while let Some(c) = self.pending.get(self.next_change) {
-            if c.time > t + half {
+            if !due(c.time, t, 2.0 * half) {
                 break;
             }
             let c = c.clone();
