@@ -73,6 +73,7 @@ def test_a_session_stepped_through_the_duration_is_drill_bit_for_bit(kind: str) 
     rows = session.rows(len(session) - 5)
     assert rows["bit_rpm"].tobytes() == batch.bit_rpm[-5:].tobytes()
     assert list(session.series().columns) == list(batch.to_pandas().columns)
+    assert result.config == cfg  # stepped to the duration: the configuration that repeats it is the one given
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -108,6 +109,19 @@ def test_set_at_20_s_is_a_steps_entry_and_a_changes_entry_at_20_s(kind: str) -> 
     assert by_set.surface_rpm[-1] > 60.0
 
 
+def test_a_hoist_set_is_a_hoist_steps_entry() -> None:
+    cfg = _coupled(12.0)
+    by_steps = ds.drill(cfg.with_overrides({"hoist.steps": [[8.0, 100e3]]}))
+    session = ds.DrillSession(cfg)
+    session.step(8.0)
+    session.set("hoist.weight_on_bit", 100e3)
+    _through(session, [])
+    _same_bits(by_steps, session.result())
+    # the driller's lower weight reaches the bit: less weight on bit than without the change
+    held = ds.drill(cfg)
+    assert by_steps.axial["weight_on_bit"][-200:].mean() < held.axial["weight_on_bit"][-200:].mean()
+
+
 def test_a_snapshot_continues_bit_for_bit() -> None:
     session = ds.DrillSession(_coupled())
     session.step(3.0)
@@ -121,6 +135,24 @@ def test_a_snapshot_continues_bit_for_bit() -> None:
         again.step(2.0)
         _same_bits(again.result(), session.result())
         assert again.state()["axial_force_N"].tobytes() == session.state()["axial_force_N"].tobytes()
+
+
+def test_a_pickled_snapshot_continues_bit_for_bit() -> None:
+    import pickle
+
+    session = ds.DrillSession(_torsional(), keep_fields=True)
+    session.step(2.0)
+    session.set("top_drive.rpm", 70.0)
+    session.step(1.3)
+    session.set("friction.kinetic_ratio", 0.7)
+    session.step(0.4)
+    restored = ds.DrillSession.restore(pickle.loads(pickle.dumps(session.snapshot())))
+    assert restored.t == session.t and restored.changes == session.changes
+    for s in (session, restored):
+        s.set("top_drive.rpm", 90.0)
+        s.step(2.0)
+    _same_bits(restored.result(), session.result())
+    assert restored.result().omega_field.tobytes() == session.result().omega_field.tobytes()
 
 
 def test_a_key_that_cannot_change_is_refused_naming_the_key() -> None:
@@ -158,15 +190,17 @@ def test_the_state_holds_the_fields_of_the_string() -> None:
     assert state["surface_rpm"] == pytest.approx(session.rows(len(session) - 1)["surface_rpm"][0], rel=0.05, abs=1.0)
 
 
-def test_a_diverging_session_ends_with_a_status_and_step_raises() -> None:
-    # a top-drive loop whose sampled gain the grid cannot hold is refused up front; a state the
-    # core cannot step is a status: a session of a run whose energy becomes non-finite
+def test_a_gain_the_sampled_loop_cannot_hold_is_refused_and_the_session_runs_on() -> None:
+    # (a run that diverges ends with a status, never a panic: the core's session tests step a
+    # state beyond the runaway bound)
     session = ds.DrillSession(_torsional())
     session.step(0.5)
-    assert session.status == "success"
-    with pytest.raises(ds.ValidationError):
+    with pytest.raises(ds.ValidationError) as err:
         session.set("top_drive.controller.kp", 1e12)
+    assert err.value.field in ("top_drive.controller.kp", "numerics.cells")
     assert session.status == "success"
+    session.step(0.5)
+    assert session.changes == []
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
@@ -218,3 +252,27 @@ def test_series_columns_are_the_results() -> None:
     frame = session.series()
     assert list(frame.columns) == list(SERIES)
     assert len(frame) == len(session)
+
+
+def test_the_guides_example_prints_what_the_guide_says(monkeypatch: pytest.MonkeyPatch,
+                                                        capsys: pytest.CaptureFixture[str]) -> None:
+    """docs/guide/session.md's controller loop, run as written, prints its output block."""
+    import re
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "guide" / "session.md").read_text(encoding="utf-8")
+    (block,) = re.findall(r"^```python\n(.*?)^```", page, flags=re.S | re.M)
+    printed = re.findall(r"^```text\n(.*?)^```", page, flags=re.S | re.M)[-1]
+    monkeypatch.chdir(EXAMPLES.parent)
+    exec(compile(block, "docs/guide/session.md", "exec"), {"__name__": "__example__"})
+    assert capsys.readouterr().out == printed
+
+
+def test_a_field_configurations_set_reads_plain_numbers_in_field_units() -> None:
+    session = ds.DrillSession(EXAMPLES / "on-bottom-3000m-field.toml")
+    session.set("bit.weight_on_bit", 18.0)        # klbf, as --set reads it in this file
+    session.set("bit.weight_on_bit", "80 kN")     # a quantity in its own unit
+    (_, _, first), (_, _, second) = [c for c in session.changes]
+    assert first == pytest.approx(18.0 * 4448.2216152605, rel=1e-12)
+    assert second == pytest.approx(80e3, rel=1e-12)
+    reference = ds.load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml").with_overrides(["bit.weight_on_bit=18"])
+    assert reference.bit.weight_on_bit == pytest.approx(first, rel=1e-12)

@@ -906,6 +906,12 @@ class DrillSession:
     to ``numerics.duration``."""
 
     def __new__(cls, config_json: str, keep_fields: bool = False) -> DrillSession: ...
+    @staticmethod
+    def resume(config_json: str, changes_json: str, steps: int, keep_fields: bool = False) -> DrillSession:
+        """The session that ``steps`` steps of ``config_json`` with the changes ``changes_json``
+        (``[{"time", "key", "value"}, ...]``) reach, stepped there without the GIL."""
+    @property
+    def steps(self) -> int: ...
     def step(self, seconds: float, progress: Optional[Callable[[float], object]] = None) -> None:
         """Advances to the step end nearest ``t + seconds`` (at least one step) without the GIL;
         ``progress(t)`` every ~20 ms. Raises ``KeyboardInterrupt`` on Ctrl-C (the session stays
@@ -916,6 +922,9 @@ class DrillSession:
     def t(self) -> float: ...
     @property
     def dt(self) -> float: ...
+    @property
+    def replay_duration(self) -> float:
+        """The ``numerics.duration`` of the configuration that repeats what was stepped, s."""
     @property
     def status(self) -> str: ...
     @property

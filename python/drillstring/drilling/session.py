@@ -35,12 +35,19 @@ __all__ = ["DrillSession", "DrillSnapshot"]
 
 class DrillSnapshot:
     """A copy of a session's whole state (:meth:`DrillSession.snapshot`); :meth:`DrillSession.restore`
-    continues from it bit for bit, as often as asked."""
+    continues from it bit for bit, as often as asked. It pickles as its description (the
+    configuration, the changes made and the steps taken): unpickling steps a session there again."""
 
-    def __init__(self, core: Any, config: DrillConfig, name: Optional[str]) -> None:
+    def __init__(self, core: Any, config: DrillConfig, name: Optional[str], keep_fields: bool) -> None:
         self._core = core
         self._config = config
         self._name = name
+        self._keep_fields = keep_fields
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        changes = [{"time": t, "key": key, "value": json.loads(value)} for t, key, value in self._core.changes()]
+        return (_resumed, (self._config, json.dumps(changes, allow_nan=False), int(self._core.steps),
+                           self._keep_fields, self._name))
 
     @property
     def t(self) -> float:
@@ -49,6 +56,13 @@ class DrillSnapshot:
 
     def __repr__(self) -> str:
         return f"<DrillSnapshot at t = {self.t:g} s>"
+
+
+def _resumed(config: DrillConfig, changes_json: str, steps: int, keep_fields: bool,
+             name: Optional[str]) -> DrillSnapshot:
+    """A pickled snapshot: its session stepped there again (the core's ``Session::resume``)."""
+    core = _core.DrillSession.resume(config.to_json(), changes_json, steps, keep_fields)
+    return DrillSnapshot(core, config, name, keep_fields)
 
 
 class DrillSession:
@@ -79,6 +93,7 @@ class DrillSession:
         cfg = _config(config)
         self._config = cfg
         self._core = _core.DrillSession(cfg.to_json(), keep_fields)
+        self._keep_fields = keep_fields
         self._name: Optional[str] = (os.path.splitext(os.path.basename(os.fsdecode(os.fspath(config))))[0]
                                      if isinstance(config, (str, os.PathLike)) else None)
 
@@ -230,11 +245,12 @@ class DrillSession:
         cfg = self._config
         overrides: dict[str, Any] = {
             "changes": [{"time": t, "key": key, "value": value} for t, key, value in self.changes]}
-        if not math.isclose(self.t, cfg.numerics.duration, rel_tol=0.0, abs_tol=0.5 * self.dt):
-            overrides["numerics.duration"] = self.t
+        duration = float(self._core.replay_duration)
+        if duration != cfg.numerics.duration:
+            overrides["numerics.duration"] = duration
         if window is not None:
             overrides["metrics.window"] = list(window)
-        elif cfg.metrics.window is not None and cfg.metrics.window[1] > self.t:
+        elif cfg.metrics.window is not None and cfg.metrics.window[1] > duration:
             overrides["metrics.window"] = None
         return cfg.with_overrides(overrides, units="si")
 
@@ -256,8 +272,9 @@ class DrillSession:
 
     def snapshot(self) -> DrillSnapshot:
         """The whole state now (the run, its series, its changes): :meth:`restore` continues
-        from it bit for bit."""
-        return DrillSnapshot(self._core.copy(), self._config, self._name)
+        from it bit for bit (also after pickling, which stores how the state was reached and
+        steps there again when unpickled)."""
+        return DrillSnapshot(self._core.copy(), self._config, self._name, self._keep_fields)
 
     @classmethod
     def restore(cls, snapshot: DrillSnapshot) -> DrillSession:
@@ -268,4 +285,5 @@ class DrillSession:
         session._config = snapshot._config
         session._core = snapshot._core.copy()
         session._name = snapshot._name
+        session._keep_fields = snapshot._keep_fields
         return session

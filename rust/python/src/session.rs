@@ -2,7 +2,7 @@
 //! `DrillSession` pyclass that forwards each call; its step runs without the GIL and stops on
 //! Ctrl-C as `drill_solve` does.
 
-use drillstring_core::drilling::config::SETTABLE;
+use drillstring_core::drilling::config::{changes_from_json, SETTABLE};
 use drillstring_core::drilling::engine::Session;
 use drillstring_core::drilling::DrillConfig;
 use pyo3::prelude::*;
@@ -53,6 +53,25 @@ impl DrillSession {
         Ok(DrillSession { inner })
     }
 
+    /// The session of `config_json` that `steps` steps with the changes `changes_json` (JSON
+    /// `[{time, key, value}, ...]`, a session's `changes`) reach, stepped there without the GIL.
+    #[staticmethod]
+    #[pyo3(signature = (config_json, changes_json, steps, keep_fields=false))]
+    fn resume(py: Python<'_>, config_json: &str, changes_json: &str, steps: u64, keep_fields: bool) -> PyResult<Self> {
+        let cfg = DrillConfig::from_json(config_json).map_err(|e| validation_error(py, e))?;
+        let applied = changes_from_json(changes_json, "changes").map_err(|e| validation_error(py, e))?;
+        let signals = SignalCheck::new(py);
+        let resumed = py.detach(|| no_panic(|| Session::resume(&cfg, &applied, steps, keep_fields, &signals)))?;
+        signals.finish()?;
+        Ok(DrillSession { inner: resumed.map_err(|e| validation_error(py, e))? })
+    }
+
+    /// Steps taken.
+    #[getter]
+    fn steps(&self) -> u64 {
+        self.inner.steps()
+    }
+
     /// Advances by `seconds` (whole steps, to the step end nearest `t + seconds`, at least
     /// one) without the GIL; `progress(t)` is called with the time reached about every 20 ms.
     /// Ctrl-C stops it within ~20 ms at the step reached (raised as `KeyboardInterrupt`).
@@ -74,6 +93,12 @@ impl DrillSession {
     #[getter]
     fn t(&self) -> f64 {
         self.inner.t()
+    }
+
+    /// The `numerics.duration` of the configuration that repeats what was stepped, s.
+    #[getter]
+    fn replay_duration(&self) -> f64 {
+        self.inner.replay_duration()
     }
 
     /// The time step, s.

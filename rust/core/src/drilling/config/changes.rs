@@ -42,15 +42,20 @@ pub struct Change {
     /// Time the change takes effect from, in [0, numerics.duration].
     #[schemars(extend("unit" = "s", "label" = "change time"))]
     pub time: f64,
-    /// The dotted key changed: top_drive.rpm, top_drive.torque_limit, top_drive.controller.type,
-    /// .kp, .ki, .z_factor, bit.weight_on_bit, friction.static, friction.kinetic_ratio,
-    /// hoist.mode, hoist.speed, hoist.hook_load, hoist.weight_on_bit, hoist.autodriller.setpoint,
-    /// .kp, .ki.
+    /// The dotted key changed, one of those that may change during a run: the top drive's speed,
+    /// controller type, gains and torque limit, the bit's weight, the wall friction's factors,
+    /// the hoist's mode and targets (`DrillSession.settable` lists them).
     #[schemars(extend("label" = "changed key"))]
     pub key: String,
     /// The new value, as the key takes it in the configuration (SI).
     #[schemars(extend("label" = "new value"))]
     pub value: Value,
+}
+
+/// Changes from JSON text (a list of `{time, key, value}` tables), naming `field` in the error.
+pub fn changes_from_json(text: &str, field: &str) -> Result<Vec<Change>> {
+    serde_json::from_str(text)
+        .map_err(|e| Error::invalid(field, format!("text that is not a list of changes ({e})"), "[{time, key, value}, ...]"))
 }
 
 /// `cfg` with `key` set to `value`, checked as a whole ([`DrillConfig::validate_values`]);

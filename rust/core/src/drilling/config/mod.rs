@@ -31,7 +31,7 @@ use crate::error::{Error, Num, Result};
 use super::grid::Grid;
 
 pub use bit::{Bit, BitRockLaw, CutSurfaceScheme, Detournay, Weakening, MAX_CUT_SURFACE_CELLS};
-pub use changes::{settable_config, Change, SETTABLE};
+pub use changes::{changes_from_json, settable_config, Change, SETTABLE};
 pub use friction::{Contact, Friction, FrictionCoupling, FrictionInterval, FrictionModel};
 pub use hoist::{Autodriller, AutodrillerTarget, Hoist, HoistMode};
 pub use metrics::MetricsConfig;

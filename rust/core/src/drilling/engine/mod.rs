@@ -26,8 +26,10 @@
 //! * [`controller`]: the controllers and the setpoint;
 //! * [`sampler`]: the output series and field snapshots;
 //! * [`energy`]: the energy ledger and the balance;
-//! * [`run`]: the [`run::Simulation`], its step and run loop (step limit, interrupt, runaway
-//!   guard, status), the result [`run::DrillRun`].
+//! * [`run`]: the [`run::Simulation`] and its step, the result [`run::DrillRun`];
+//! * [`session`]: the one loop of every run, [`session::Session`] (interrupt, the configuration's
+//!   changes, runaway guard, sampling, status; values changed between chunks, the result of
+//!   what was stepped); the batch run is a session stepped to the duration.
 //!
 //! A step: the setpoint, the top drive against the characteristic arriving at the top, the bit
 //! against the one arriving at the bottom, the junctions (each sets the ghost invariant of its

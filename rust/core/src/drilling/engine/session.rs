@@ -39,6 +39,12 @@ pub fn duration_steps(duration: f64, dt: f64) -> u64 {
     ((duration / dt) * (1.0 - 1e-12)).ceil().max(1.0) as u64
 }
 
+/// Whether a change at `time` is made before the step from `t` of length `dt`: the step
+/// starting at the step boundary nearest `time`, or a later one.
+fn due(time: f64, t: f64, dt: f64) -> bool {
+    time <= t + 0.5 * dt
+}
+
 /// The state of a session at its time: the along-string fields and the ends (SI; speeds in rpm).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SessionState {
@@ -109,6 +115,33 @@ impl Session {
     /// stepped, past `numerics.duration` if asked.
     pub fn new(cfg: &DrillConfig, keep_fields: bool) -> Result<Session> {
         Ok(Session::start(Simulation::new(cfg)?, false, keep_fields))
+    }
+
+    /// The session of `cfg` that `steps` steps with the changes `applied` (a session's
+    /// [`Session::applied`]) reach: `cfg` (validated first) with its `[[changes]]` not yet due
+    /// at that step kept and `applied` made at their times, stepped there; bit for bit the
+    /// session those changes and steps made (a snapshot rebuilt from its description).
+    pub fn resume(
+        cfg: &DrillConfig,
+        applied: &[Change],
+        steps: u64,
+        keep_fields: bool,
+        interrupt: &dyn Interrupt,
+    ) -> Result<Session> {
+        let mut cfg = cfg.clone();
+        let dt = Grid::new(&cfg)?.dt;
+        let last = steps.saturating_sub(1) as f64 * dt;
+        cfg.changes.retain(|c| steps == 0 || !due(c.time, last, dt));
+        cfg.changes.splice(0..0, applied.iter().cloned());
+        let t = steps as f64 * dt;
+        if t > cfg.numerics.duration {
+            cfg.numerics.duration = t;
+        }
+        let mut session = Session::new(&cfg, keep_fields)?;
+        if steps > 0 {
+            session.advance(steps, interrupt, &mut |_| {});
+        }
+        Ok(session)
     }
 
     /// The batch run's session of `sim` (see [`Simulation::run`]).
@@ -238,6 +271,18 @@ impl Session {
         &self.applied
     }
 
+    /// The `numerics.duration` of the configuration whose batch run is what was stepped: the
+    /// configuration's own when the session stands at the batch run's last step
+    /// ([`duration_steps`]), else the time reached.
+    pub fn replay_duration(&self) -> f64 {
+        let duration = self.sim.cfg.numerics.duration;
+        if self.steps == duration_steps(duration, self.sim.grid.dt) {
+            duration
+        } else {
+            self.t()
+        }
+    }
+
     /// The steps that advance the session by `seconds`: to the step end nearest `t + seconds`,
     /// at least one; a time whose nearest step end is the duration's ends where the batch run
     /// does ([`duration_steps`]: the first step end at or after `numerics.duration`, which holds
@@ -322,13 +367,14 @@ impl Session {
     }
 
     /// Makes the configuration's changes due before the step from `t` (their time at most half
-    /// a step after it); whether any was made. A change the run refuses (the configuration's
-    /// check accepted it, but not at the state reached) ends the run with its message.
+    /// a step after it); whether any was made. A change the run refuses though the
+    /// configuration's check accepted it (a gain the sampled top-drive loop cannot hold on this
+    /// grid) is not made, and the run's message says so.
     fn changes_due(&mut self, t: f64) -> bool {
         let half = 0.5 * self.sim.grid.dt;
         let mut made = false;
         while let Some(c) = self.pending.get(self.next_change) {
-            if c.time > t + half {
+            if !due(c.time, t, 2.0 * half) {
                 break;
             }
             let c = c.clone();
@@ -382,11 +428,14 @@ impl Session {
         }
         if key.starts_with("friction.") {
             let grid = Grid::new(&cfg)?;
-            sim.sources = Sources::new(&cfg, dt);
             let mut wall = WallFriction::torsional(&cfg, &grid, &sim.field);
-            if let (Some(ax), Some(old)) = (&mut sim.axial, &sim.coupled_friction) {
-                let hold = old.end_hold();
-                let cf = CoupledFriction::new(&cfg, &grid, &sim.field, &ax.field, &ax.half_kicks())?;
+            let coupled = match (&sim.axial, &sim.coupled_friction) {
+                (Some(ax), Some(old)) => {
+                    Some((CoupledFriction::new(&cfg, &grid, &sim.field, &ax.field, &ax.half_kicks())?, old.end_hold()))
+                }
+                _ => None,
+            };
+            if let (Some((cf, hold)), Some(ax)) = (coupled, &mut sim.axial) {
                 if cf.is_some() {
                     wall.stop.fill(0.0);
                     wall.slip.fill(-0.0);
@@ -394,6 +443,7 @@ impl Session {
                 }
                 sim.coupled_friction = cf;
             }
+            sim.sources = Sources::new(&cfg, dt);
             sim.grid = grid;
             sim.wall = wall;
         }

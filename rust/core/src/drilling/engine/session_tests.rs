@@ -173,3 +173,26 @@ fn a_runaway_ends_the_session_with_a_status() {
     s.advance(10, &Never, &mut |_| {});
     assert_eq!(s.steps(), steps);
 }
+
+#[test]
+fn a_session_resumed_from_its_changes_and_steps_is_the_same_session() {
+    for mut cfg in [torsional(), coupled()] {
+        // a configuration change still to come when resumed is kept, one made is not made twice
+        cfg.changes = vec![
+            Change { time: 1.0, key: "friction.static".into(), value: json!(0.3) },
+            Change { time: 6.0, key: "top_drive.rpm".into(), value: json!(60.0) },
+        ];
+        let mut s = Session::new(&cfg, true).unwrap();
+        s.advance(s.steps_for(2.0), &Never, &mut |_| {});
+        s.set("top_drive.rpm", &json!(70.0)).unwrap();
+        s.advance(s.steps_for(1.7), &Never, &mut |_| {});
+        let mut again = Session::resume(&cfg, s.applied(), s.steps(), true, &Never).unwrap();
+        assert_eq!(again.applied(), s.applied());
+        for x in [&mut s, &mut again] {
+            step_through(x, &[]);
+        }
+        assert_eq!(s.applied().len(), 3);
+        same_series(&s.result(None), &again.result(None));
+        assert_eq!(s.state(), again.state());
+    }
+}
