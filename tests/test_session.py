@@ -276,3 +276,24 @@ def test_a_field_configurations_set_reads_plain_numbers_in_field_units() -> None
     assert second == pytest.approx(80e3, rel=1e-12)
     reference = ds.load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml").with_overrides(["bit.weight_on_bit=18"])
     assert reference.bit.weight_on_bit == pytest.approx(first, rel=1e-12)
+
+
+def test_a_field_files_changes_read_their_values_in_the_keys_field_units(tmp_path: Path) -> None:
+    """A ``[[changes]]`` value in a ``units = "field"`` file is in the field unit of the key it
+    changes (klbf for the weight on bit, as the key itself is read), or a quantity with a unit."""
+    text = (EXAMPLES / "on-bottom-3000m-field.toml").read_text(encoding="utf-8")
+    changes = ('\n[[changes]]\ntime = 4.0\nkey = "bit.weight_on_bit"\nvalue = 18.0\n'
+               '\n[[changes]]\ntime = 6.0\nkey = "top_drive.rpm"\nvalue = "7 rad/s"\n')
+    path = tmp_path / "field.toml"
+    path.write_text(text + changes, encoding="utf-8")
+    cfg = ds.load_drill_config(path)
+    assert [c.value for c in cfg.changes] == pytest.approx([18.0 * 4448.2216152605, 7.0 * 60.0 / (2.0 * np.pi)],
+                                                          rel=1e-12)
+    short = {"numerics.duration": 8.0, "numerics.cells": 100}
+    session = ds.DrillSession(ds.load_drill_config(EXAMPLES / "on-bottom-3000m-field.toml").with_overrides(short))
+    session.step(4.0)
+    session.set("bit.weight_on_bit", 18.0)
+    session.step(2.0)
+    session.set("top_drive.rpm", 7.0 * 60.0 / (2.0 * np.pi))
+    session.step(2.0)
+    _same_bits(session.result(), ds.drill(cfg.with_overrides(short), progress=False))

@@ -276,8 +276,16 @@ def _expected(key: str, unit: str, what: str) -> str:
     return f"{what}: a number (in {unit}) or a string with a unit of {_dimension(unit)}, e.g. \"1.5 {field or unit}\""
 
 
+#: The path of a ``[[changes]]`` entry.
+_CHANGE = re.compile(r"changes\[\d+\]")
+
+
 def _convert(path: str, value: Any, system: str, chosen: Mapping[str, tuple[str, str]]) -> Any:
-    """``value`` at ``path`` with every quantity in SI (tables and lists entry by entry)."""
+    """``value`` at ``path`` with every quantity in SI (tables and lists entry by entry; a
+    ``[[changes]]`` entry's ``value`` in the unit of the key it changes)."""
+    if isinstance(value, Mapping) and _CHANGE.fullmatch(path) and isinstance(value.get("key"), str):
+        return {k: quantity(value["key"].replace(" ", ""), v, system, chosen) if k == "value" and v is not None
+                else _convert(f"{path}.{k}", v, system, chosen) for k, v in value.items()}
     if isinstance(value, Mapping):
         return {k: _convert(f"{path}.{k}" if path else str(k), v, system, chosen) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
