@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 from _children import python_child
 from _cli import one_line_error, run_cli
+from _drill_folder import check_drill_folder
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -297,6 +298,23 @@ def test_a_field_configuration_gets_the_pages_si_values_as_they_are(tmp_path: Pa
     finally:
         driver.stop()
     assert changes == [("bit.weight_on_bit", pytest.approx(100e3, rel=1e-12)), ("top_drive.rpm", 80.0)]
+
+
+def test_a_recording_of_a_field_configuration_repeats_with_drill(tmp_path: Path) -> None:
+    config = load_drill_config(ROOT / "examples" / "on-bottom-3000m-field.toml").with_overrides(
+        ["numerics.cells=60"], units="si")
+    driver = Driver(config, speed=4.0, record_dir=tmp_path)
+    driver.start()
+    try:
+        time.sleep(0.5)
+        driver.submit("set", ("bit.weight_on_bit", 100e3)).result(timeout=30)
+        time.sleep(0.5)
+        folder = Path(driver.submit("record").result(timeout=120))
+    finally:
+        driver.stop()
+    check_drill_folder(folder)
+    (change,) = load_drill_config(folder / "config.toml").changes
+    assert change.key == "bit.weight_on_bit" and change.value == pytest.approx(100e3, rel=1e-12)
 
 
 def test_field_units_show_the_setpoints_in_klbf() -> None:
