@@ -104,7 +104,7 @@ def test_the_autodriller_settles_at_its_weight_and_follows_a_step(tmp_path: Path
     assert {"axial_time.png", "axial_space_time.png"} <= names
     frame = pd.read_csv(tmp_path / "run" / "series.csv", index_col="t")
     assert list(frame.columns) == ["surface_rpm", "bit_rpm", "motor_torque", "bit_torque", "bit_axial_speed",
-                                   "rop", "weight_on_bit", "hook_load", "bit_depth", "depth_of_cut"]
+                                   "rop", "weight_on_bit", "hook_load", "bit_depth", "depth_of_cut", "block_position"]
     np.testing.assert_allclose(frame["weight_on_bit"], wob, rtol=1e-9)
     fields = np.load(tmp_path / "run" / "fields.npz")
     assert fields["axial_speed_m_s"].shape == (result.field_t.size, result.axial_z.size) == (61, fields["axial_z"].size)

@@ -42,7 +42,8 @@ def test_the_coupled_run_settles_to_the_bit_law_steady_state() -> None:
     assert m["bounce_fraction"] == 0.0
     area = math.pi * a * a
     assert m["mse_mean_Pa"] == pytest.approx(w / area + 4 * math.pi * t / (area * 30 / 3600), rel=1e-6)
-    assert set(result.axial) == {"bit_axial_speed", "rop", "weight_on_bit", "hook_load", "bit_depth", "depth_of_cut"}
+    assert set(result.axial) == {"bit_axial_speed", "rop", "weight_on_bit", "hook_load", "bit_depth", "depth_of_cut",
+                                "block_position"}
     assert result.axial["depth_of_cut"][-1] == pytest.approx(d, rel=1e-9)
     # hook load: the string's weight (no mud) at rest; drilling, the weight less the weight on
     # bit and the viscous damping force rho A c V L of the string moving at V, approached from

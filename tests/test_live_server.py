@@ -107,8 +107,8 @@ def test_a_coupled_run_shows_the_hoist_and_the_axial_field(tmp_path: Path) -> No
         return hello, frames, wob
 
     hello, frames, wob = _talk(tmp_path, body, config=config, speed=4.0)
-    assert [c["name"] for c in hello["tracks"]] == ["surface_rpm", "motor_torque", "hook_load", "bit_depth",
-                                                    "weight_on_bit", "rop", "bit_rpm", "bit_torque"]
+    assert [c["name"] for c in hello["tracks"]] == ["surface_rpm", "motor_torque", "hook_load", "block_position",
+                                                    "bit_depth", "weight_on_bit", "rop", "bit_rpm", "bit_torque"]
     assert "hoist.weight_on_bit" in {c["key"] for c in hello["controls"]}
     rows = [f["rows"] for f in frames if "rows" in f]
     assert rows and all(set(r) == {"t", *(c["name"] for c in hello["tracks"])} for r in rows)

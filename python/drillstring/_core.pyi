@@ -855,13 +855,14 @@ class DrillCoupledOutput(TypedDict, total=False):
     """What a coupled run ([hoist]) adds to its :class:`DrillOutput` (absent without a hoist)."""
 
     #: Series at the times t: bit axial speed m/s (down positive), ROP m/h, weight on bit N,
-    #: hook load N, bit depth m, depth of cut per revolution m.
+    #: hook load N, bit depth m, depth of cut per revolution m, block position m (down positive).
     bit_axial_speed: NDArray[np.float64]
     rop: NDArray[np.float64]
     weight_on_bit: NDArray[np.float64]
     hook_load: NDArray[np.float64]
     bit_depth: NDArray[np.float64]
     depth_of_cut: NDArray[np.float64]
+    block_position: NDArray[np.float64]
     #: The coupled metrics over the window (rop_mean_m_per_h, wob_mean_N, tob_mean_Nm,
     #: bounce_fraction, hook_load_mean_N, mse_mean_Pa).
     coupled: dict[str, float]

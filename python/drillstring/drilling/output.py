@@ -362,7 +362,7 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
     lines += ["", "## Files", "",
               "- `series.parquet`, `series.csv`: t, surface_rpm, bit_rpm, motor_torque, bit_torque"
               + (" and the coupled run's bit_axial_speed (m/s), rop (m/h), weight_on_bit, hook_load (N), bit_depth, "
-                 "depth_of_cut (m)" if result.axial else ""),
+                 "depth_of_cut, block_position (m)" if result.axial else ""),
               "- `metrics.json`: the metrics above, window, status, energy balance",
               "- `fields.npz`: t, z, omega_rpm[t, z], torque_Nm[t, z] and the friction profile (with the well at "
               "the cells: inclination, azimuth, TVD, dogleg severity, friction factor)"

@@ -381,7 +381,8 @@ class DrillResult:
         """A coupled run's series at the times ``t`` (empty without a hoist): ``bit_axial_speed`` m/s
         (down positive), ``rop`` m/h (the rate the deepest bit position advances), ``weight_on_bit``
         N, ``hook_load`` N, ``bit_depth`` m (below the start), ``depth_of_cut`` m per revolution
-        (0 while the rate form's bit does not turn); the torque on bit is ``bit_torque``."""
+        (0 while the rate form's bit does not turn), ``block_position`` m (the top of the string's
+        position from the start, down positive: a rig's block travel); the torque on bit is ``bit_torque``."""
         coupled = dict(raw.get("coupled") or {})
         self.axial_z: NDArray[np.float64] = np.asarray(raw.get("axial_z", ()), dtype=np.float64)
         """A coupled run's axial cell centres, m (empty without a hoist)."""
@@ -445,7 +446,8 @@ class DrillResult:
         """The time series as a :class:`pandas.DataFrame` indexed by ``t`` (s), with the columns
         ``surface_rpm``, ``bit_rpm`` (rpm), ``motor_torque``, ``bit_torque`` (N m) and, for a
         coupled run, the series of :attr:`axial` by the core's names (``bit_axial_speed`` m/s,
-        ``rop`` m/h, ``weight_on_bit`` N, ``hook_load`` N, ``bit_depth`` m, ``depth_of_cut`` m;
+        ``rop`` m/h, ``weight_on_bit`` N, ``hook_load`` N, ``bit_depth`` m, ``depth_of_cut`` m,
+        ``block_position`` m;
         the torque on bit is ``bit_torque``); ``df.attrs`` holds ``units``, ``status``,
         ``metrics`` and the ``config`` (:meth:`DrillConfig.to_dict`)."""
         import pandas as pd

@@ -42,6 +42,7 @@ TRACKS: tuple[Channel, ...] = (
     Channel("surface_rpm", "surface rpm", "rpm"),
     Channel("motor_torque", "surface torque", "N*m", kilo=True),
     Channel("hook_load", "hook load", "N", kilo=True, coupled=True),
+    Channel("block_position", "block position (down)", "m", coupled=True),
     Channel("bit_depth", "bit depth drilled", "m", coupled=True),
     Channel("weight_on_bit", "WOB", "N", kilo=True, coupled=True),
     Channel("rop", "ROP", "m/h", coupled=True),

@@ -535,6 +535,13 @@ pub static OUTPUTS: &[Output] = &[
     series("hook_load", "hook load", "N", "hook load", COUPLED),
     series("bit_depth", "bit depth", "m", "bit depth drilled since the start", COUPLED),
     series("depth_of_cut", "depth of cut", "m", "depth of cut per revolution of the bit", COUPLED),
+    series(
+        "block_position",
+        "block position",
+        "m",
+        "the block's (the top of the string's) position from the start, down positive",
+        COUPLED,
+    ),
 ];
 
 /// The output named `name`.

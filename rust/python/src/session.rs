@@ -38,6 +38,8 @@ struct Rows<'a> {
     bit_depth: &'a [f64],
     #[serde(skip_serializing_if = "<[f64]>::is_empty")]
     depth_of_cut: &'a [f64],
+    #[serde(skip_serializing_if = "<[f64]>::is_empty")]
+    block_position: &'a [f64],
 }
 
 #[pymethods]
@@ -47,9 +49,7 @@ impl DrillSession {
     #[pyo3(signature = (config_json, keep_fields=false))]
     fn new(py: Python<'_>, config_json: &str, keep_fields: bool) -> PyResult<Self> {
         let cfg = DrillConfig::from_json(config_json).map_err(|e| validation_error(py, e))?;
-        let inner = py
-            .detach(|| no_panic(|| Session::new(&cfg, keep_fields)))?
-            .map_err(|e| validation_error(py, e))?;
+        let inner = py.detach(|| no_panic(|| Session::new(&cfg, keep_fields)))?.map_err(|e| validation_error(py, e))?;
         Ok(DrillSession { inner })
     }
 
@@ -158,6 +158,7 @@ impl DrillSession {
             hook_load: &r.hook_load[cut(&r.hook_load)..],
             bit_depth: &r.bit_depth[cut(&r.bit_depth)..],
             depth_of_cut: &r.depth_of_cut[cut(&r.depth_of_cut)..],
+            block_position: &r.block_position[cut(&r.block_position)..],
         };
         to_dict(py, &rows)
     }

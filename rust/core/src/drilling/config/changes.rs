@@ -54,8 +54,9 @@ pub struct Change {
 
 /// Changes from JSON text (a list of `{time, key, value}` tables), naming `field` in the error.
 pub fn changes_from_json(text: &str, field: &str) -> Result<Vec<Change>> {
-    serde_json::from_str(text)
-        .map_err(|e| Error::invalid(field, format!("text that is not a list of changes ({e})"), "[{time, key, value}, ...]"))
+    serde_json::from_str(text).map_err(|e| {
+        Error::invalid(field, format!("text that is not a list of changes ({e})"), "[{time, key, value}, ...]")
+    })
 }
 
 /// `cfg` with `key` set to `value`, checked as a whole ([`DrillConfig::validate_values`]);

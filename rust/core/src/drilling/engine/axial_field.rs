@@ -65,7 +65,10 @@ pub const BIT_DEPTH: Channel = Channel { column: 9, held: false };
 /// The depth of cut per revolution the bit law used in the step, m (0 when infinite).
 pub const DEPTH_OF_CUT: Channel = Channel { column: 10, held: true };
 /// A coupled run's channels of the series ([`super::sampler`]; 0 without a hoist).
-pub const CHANNELS: [Channel; 6] = [BIT_AXIAL_SPEED, ROP, WEIGHT_ON_BIT, HOOK_LOAD, BIT_DEPTH, DEPTH_OF_CUT];
+/// The block's position from its start, m, down positive (the top of the string's).
+pub const BLOCK_POSITION: Channel = Channel { column: 11, held: false };
+pub const CHANNELS: [Channel; 7] =
+    [BIT_AXIAL_SPEED, ROP, WEIGHT_ON_BIT, HOOK_LOAD, BIT_DEPTH, DEPTH_OF_CUT, BLOCK_POSITION];
 
 /// How the depth of cut of a step is found.
 #[derive(Clone)]
@@ -88,6 +91,8 @@ pub struct AxialState {
     pub hook_load: f64,
     /// The bit's axial position from its start, m, down positive.
     pub position: f64,
+    /// The top of the string's (the block's) axial position from its start, m, down positive.
+    pub block: f64,
     /// The deepest position reached (the hole's depth below the start), m.
     pub hole: f64,
     /// The rate the hole deepened over the step, m/s.
@@ -241,6 +246,7 @@ impl Axial {
                 depth: 0.0,
                 hook_load: hanging + block_weight,
                 position: 0.0,
+                block: 0.0,
                 hole: 0.0,
                 rop: 0.0,
             },
@@ -347,6 +353,7 @@ impl Axial {
         let force = arriving.impedance * (v - arriving.value);
         ledger.hoist += dt * force * v;
         self.state.hook_load = self.block_weight - force;
+        self.state.block += v * dt;
         self.field.set_top(arriving, v, force);
     }
 
@@ -426,6 +433,7 @@ impl Axial {
         point[WEIGHT_ON_BIT] = s.contact.weight_on_bit;
         point[HOOK_LOAD] = s.hook_load;
         point[BIT_DEPTH] = s.position;
+        point[BLOCK_POSITION] = s.block;
         point[DEPTH_OF_CUT] = if s.depth.is_finite() { s.depth } else { 0.0 };
     }
 

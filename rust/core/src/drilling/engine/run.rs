@@ -71,8 +71,8 @@ pub struct DrillRun {
     /// A coupled run's series at the same times (empty without a hoist): the bit's axial speed
     /// m/s (down positive), the rate of penetration m/h (the rate the deepest bit position
     /// advances), weight on bit N, hook load N, the bit's depth below its start m, and the depth
-    /// of cut per revolution m used by the bit law (0 while the rate form's bit does not turn).
-    /// The torque on bit is `bit_torque`.
+    /// of cut per revolution m used by the bit law (0 while the rate form's bit does not turn),
+    /// the block's position. The torque on bit is `bit_torque`.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub bit_axial_speed: Vec<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -85,6 +85,9 @@ pub struct DrillRun {
     pub bit_depth: Vec<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub depth_of_cut: Vec<f64>,
+    /// The block's (the top of the string's) position from the start, m, down positive.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub block_position: Vec<f64>,
     /// A coupled run's axial cells (empty without a hoist): their centres, m, and at the
     /// snapshot times `field_t` (`field_t.len() x axial_z.len()`, row-major) the axial speed m/s
     /// (down positive) and the axial force N (compression positive, tension negative).

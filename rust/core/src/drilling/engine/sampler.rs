@@ -112,13 +112,14 @@ impl Sampler {
         let snapshots = if self.n_fields == 0 { 0 } else { snapshots };
         let n_axial = if self.coupled { rows } else { 0 };
         let axial_cells = if self.coupled { axial_cells } else { 0 };
-        let mut outputs: [(&mut Vec<f64>, usize); 16] = [
+        let mut outputs: [(&mut Vec<f64>, usize); 17] = [
             (&mut run.bit_axial_speed, n_axial),
             (&mut run.rop, n_axial),
             (&mut run.weight_on_bit, n_axial),
             (&mut run.hook_load, n_axial),
             (&mut run.bit_depth, n_axial),
             (&mut run.depth_of_cut, n_axial),
+            (&mut run.block_position, n_axial),
             (&mut run.t, rows),
             (&mut run.surface_rpm, rows),
             (&mut run.bit_rpm, rows),
@@ -149,6 +150,7 @@ impl Sampler {
             (&mut run.hook_load, n_axial),
             (&mut run.bit_depth, n_axial),
             (&mut run.depth_of_cut, n_axial),
+            (&mut run.block_position, n_axial),
             (&mut run.t, n_series),
             (&mut run.surface_rpm, n_series),
             (&mut run.bit_rpm, n_series),
@@ -211,6 +213,7 @@ impl Sampler {
                 run.hook_load.push(at(axial_field::HOOK_LOAD));
                 run.bit_depth.push(at(axial_field::BIT_DEPTH));
                 run.depth_of_cut.push(at(axial_field::DEPTH_OF_CUT));
+                run.block_position.push(at(axial_field::BLOCK_POSITION));
             }
             run.t.push(sample[0]);
             run.surface_rpm.push(sample[1]);

@@ -170,6 +170,7 @@ impl Session {
             hook_load: Vec::new(),
             bit_depth: Vec::new(),
             depth_of_cut: Vec::new(),
+            block_position: Vec::new(),
             axial_z: sim.axial.as_ref().map_or_else(Vec::new, |a| a.z.clone()),
             axial_speed_field: Vec::new(),
             axial_force_field: Vec::new(),
@@ -531,6 +532,7 @@ fn truncate(run: &mut DrillRun, rows: usize, snapshots: usize) {
         &mut run.hook_load,
         &mut run.bit_depth,
         &mut run.depth_of_cut,
+        &mut run.block_position,
     ] {
         v.truncate(rows);
     }
@@ -560,6 +562,7 @@ fn empty_like() -> DrillRun {
         hook_load: Vec::new(),
         bit_depth: Vec::new(),
         depth_of_cut: Vec::new(),
+        block_position: Vec::new(),
         axial_z: Vec::new(),
         axial_speed_field: Vec::new(),
         axial_force_field: Vec::new(),
