@@ -23,7 +23,8 @@
 //!   [`bit_law::Law`] at the step's depth of cut) in place of [`boundary::BitEnd`];
 //! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
 //!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
-//! * [`controller`]: the controllers and the setpoint;
+//! * [`controller`]: what drives the top ([`controller::TopCommand`]: the controllers, the
+//!   measured surface speed) and the setpoint;
 //! * [`sampler`]: the output series and field snapshots;
 //! * [`energy`]: the energy ledger and the balance;
 //! * [`run`]: the [`run::Simulation`] and its step, the result [`run::DrillRun`];
@@ -44,9 +45,12 @@
 //! * the bit law: the trait [`bit_law::BitRock`], one interface for the laws of the torsional
 //!   field alone and those meeting the axial field too (what a law needs from the axial field
 //!   it declares, [`bit_law::BitRock::AXIAL`]), the laws registered in [`bit_law::Law`];
-//! * the top boundary: [`boundary::TopDriveEnd`] carries out a [`controller::Command`] (a
-//!   controller's, [`controller::Controller::command`], or the measured surface speed's
-//!   [`controller::SpeedSeries`]): a new controller is a new command source;
+//! * the top boundary: the trait [`controller::TopCommand`], what drives the top (a controller,
+//!   or the measured surface speed [`controller::SpeedSeries`]), giving a
+//!   [`controller::Command`] that [`boundary::TopDriveEnd`] carries out; the implementations
+//!   registered in [`controller::Top`], which the run holds (a new controller is one
+//!   implementation, its variant of [`controller::Top`] with its line in
+//!   [`controller::Top::new`], and its `top_drive.controller.type` name and keys);
 //! * the hoist: [`crate::drilling::axial::hoist::Hoist`] gives the axial field's top its
 //!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial::Axial::top`]);
 //! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
@@ -176,6 +180,8 @@ pub mod run;
 pub mod sampler;
 pub mod session;
 pub mod sources;
+#[cfg(test)]
+mod top_tests;
 
 pub use energy::EnergyBalance;
 pub use run::{CoupledMetrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};
