@@ -51,14 +51,34 @@
 //!   registered in [`controller::Top`], which the run holds (a new controller is one
 //!   implementation, its variant of [`controller::Top`] with its line in
 //!   [`controller::Top::new`], and its `top_drive.controller.type` name and keys);
-//! * the hoist: [`crate::drilling::axial::hoist::Hoist`] gives the axial field's top its
-//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial::Axial::top`]);
+//! * the hoist: [`crate::drilling::axial::hoist::HoistState`] gives the axial field's top its
+//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial_field::Axial::top`]); not a trait:
+//!   the modes are `match`es on `hoist.mode` in `axial/hoist.rs` (the target, the step's
+//!   command) and in [`axial_field`] (the starting setpoint in `Axial::new`, `Axial::set_hoist`,
+//!   `Axial::set_steady` of `axial_field_steady.rs`, the block's weight in `Axial::top`);
 //! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
 //!   stick phase) inside the kernels, the buoyed weight in [`axial_field`] after the axial transport,
-//!   a wall friction on both fields in [`coupled_friction`] after both transports;
+//!   a wall friction on both fields in [`coupled_friction`] after both transports; plain structs
+//!   and functions, not a trait;
+//! * the fields: one type, [`field::Field`], for the torsional and the axial field (no trait);
 //! * the output series: named channels ([`sampler::Channel`]) each part declares where it is
 //!   ([`sampler::TORSIONAL`], [`axial_field::CHANNELS`]).
 //!
+//! The files a new one touches:
+//!
+//! * a bit law: one file in `bit_law/` implementing [`bit_law::BitRock`], its registration in
+//!   `bit_law/mod.rs`, its name and keys in `config/bit.rs`;
+//! * a controller: one struct implementing [`controller::TopCommand`] and its registration in
+//!   [`controller::Top`] (`controller.rs`), its name and keys in `config/top_drive.rs`;
+//! * a source: `sources.rs` (the per-cell law, a field of [`sources::Sources`]), its limit per
+//!   cell in `drilling/grid.rs`, its work in `energy.rs`; one on the axial field alone in
+//!   `axial_field.rs`, one on both fields as `coupled_friction.rs`;
+//! * a field: a [`field::Field`] built beside its ends and sources as `axial_field.rs`, advanced
+//!   and sampled from `run.rs` (`Simulation::step`, `Simulation::sample`), its
+//!   energies in `energy.rs` ([`energy::Stored`]), its channels declared beside it;
+//! * a metric: `metrics/stickslip.rs` and its entry in the crate's `outputs.rs` (a coupled one a
+//!   field of [`run::CoupledMetrics`]).
+
 //! # The scheme
 //!
 //! With `tau` the torque carried down the string (`tau = -G J theta_z`) and `Z = J sqrt(G rho)`
