@@ -1,9 +1,11 @@
-//! The top drive's controllers and setpoint (see [`super`], "Controllers"): a controller reads
-//! the top speed and the characteristic arriving at the top and asks the motor for a torque
-//! ([`Command::Torque`]: `pi`, `soft_torque`) or a speed ([`Command::Speed`]: `speed`,
-//! `z_torque`); the top drive ([`super::boundary::TopDriveEnd`]) carries it out. With
-//! `top_drive.mode = "measured_speed"` the top speed is a given series instead ([`SpeedSeries`],
-//! [`Command::Imposed`]).
+//! What drives the top of the torsional field (see [`super`], "Controllers"): the trait
+//! [`TopCommand`], implemented by the controllers, which read the top speed and the
+//! characteristic arriving at the top and ask the motor for a torque ([`Command::Torque`]:
+//! [`Pi`] for `pi` and `soft_torque`) or a speed ([`Command::Speed`]: [`SpeedControl`] for
+//! `speed`, [`ZTorque`]), and by the measured surface speed of `top_drive.mode =
+//! "measured_speed"` ([`SpeedSeries`], [`Command::Imposed`]); registered in [`Top`], which the
+//! run holds and matches once per step. The top drive ([`super::boundary::TopDriveEnd`]) carries
+//! the command out. Also the setpoint and the stability check of the sampled loop.
 
 use std::f64::consts::PI;
 
@@ -27,123 +29,240 @@ pub enum Command {
     Imposed(f64),
 }
 
-/// The state of the controller.
+/// What a step's top command is computed from.
 #[derive(Debug, Clone, Copy)]
-pub struct ControllerState {
-    pub kind: ControllerKind,
+pub struct TopInput {
+    /// The step's start, s, and its length, s.
+    pub t: f64,
+    pub dt: f64,
+    /// The speed setpoint at the step's end, rad/s.
+    pub setpoint: f64,
+    /// The top speed at the step's start, rad/s.
+    pub omega: f64,
+    /// The characteristic arriving at the top.
+    pub arriving: Arriving,
+}
+
+/// What drives the top of the torsional field: it reads the top speed, the setpoint and the
+/// characteristic arriving at the top, and gives the top drive ([`super::boundary::TopDriveEnd`])
+/// its [`Command`] for the step. The controllers and the measured surface speed implement it;
+/// the run holds one [`Top`], matched once per step.
+pub trait TopCommand {
+    /// The command for the step `input`.
+    fn command(&mut self, td: &TopDrive, input: &TopInput) -> Command;
+
+    /// Takes the string torque at the top after the step, N m.
+    fn observe(&mut self, _tau_top: f64) {}
+
+    /// Sets the state that holds the top at its setpoint against the string torque `torque`
+    /// (N m) at the top: a run started in steady rotation
+    /// ([`crate::drilling::start::InitialState::Steady`]), or a controller taking over during a
+    /// run at the last motor torque.
+    fn hold(&mut self, _torque: f64) {}
+
+    /// Takes over the running state of `old`, the same kind with new gains or limit.
+    fn carry(&mut self, _old: &Self)
+    where
+        Self: Sized,
+    {
+    }
+}
+
+/// `pi` and `soft_torque`: a PI on the speed error sampled in a zero-order hold at
+/// `control_interval`, with anti-windup at the torque limit.
+#[derive(Debug, Clone, Copy)]
+pub struct Pi {
     pub kp: f64,
     pub ki: f64,
     limit: f64,
     integral: f64,
     torque: f64,
     next: f64,
+}
+
+impl TopCommand for Pi {
+    #[inline]
+    fn command(&mut self, td: &TopDrive, input: &TopInput) -> Command {
+        let (t, dt) = (input.t, input.dt);
+        if t + 0.5 * dt >= self.next {
+            let mut holds = 0.0;
+            while self.next <= t + 0.5 * dt {
+                self.next += td.control_interval;
+                holds += 1.0;
+            }
+            let e = input.setpoint - input.omega;
+            let raw = self.kp * e + self.ki * self.integral;
+            self.torque = raw.clamp(-self.limit, self.limit);
+            // Anti-windup: no integration while saturated in the error's direction.
+            if !((raw > self.limit && e > 0.0) || (raw < -self.limit && e < 0.0)) {
+                self.integral += holds * td.control_interval * e;
+            }
+        }
+        Command::Torque(self.torque)
+    }
+
+    /// The integral `torque / ki` (the command at zero speed error; without an integral gain
+    /// the command stays 0).
+    fn hold(&mut self, torque: f64) {
+        if self.ki > 0.0 {
+            self.integral = torque.clamp(-self.limit, self.limit) / self.ki;
+        }
+    }
+
+    /// The integral, the torque held and the next sample time.
+    fn carry(&mut self, old: &Self) {
+        self.integral = old.integral;
+        self.torque = old.torque.clamp(-self.limit, self.limit);
+        self.next = old.next;
+    }
+}
+
+/// `z_torque`: the top presents the damper `z Z` to torque waves,
+/// `Omega = w_ref - (tau - tau_slow) / (z Z)` with `tau = Z (Omega - beta_1)`.
+#[derive(Debug, Clone, Copy)]
+pub struct ZTorque {
     z_factor: f64,
-    /// `z_torque`: low-passed string torque at the top.
+    /// The low-passed string torque at the top, N m.
     slow_torque: f64,
     slow_factor: f64,
 }
 
-impl ControllerState {
-    /// The controller of a configuration (gains tuned for `soft_torque` with the string's
-    /// first natural frequency `first_mode`, rad/s), refused when the sampled loop is unstable
-    /// on this grid ([`check_control_loop`]).
+impl TopCommand for ZTorque {
+    #[inline]
+    fn command(&mut self, _td: &TopDrive, input: &TopInput) -> Command {
+        let (z, a) = (self.z_factor, input.arriving);
+        Command::Speed((z * input.setpoint + a.value + self.slow_torque / a.impedance) / (z + 1.0))
+    }
+
+    #[inline]
+    fn observe(&mut self, tau_top: f64) {
+        self.slow_torque += (tau_top - self.slow_torque) * self.slow_factor;
+    }
+
+    fn hold(&mut self, torque: f64) {
+        self.slow_torque = torque;
+    }
+
+    fn carry(&mut self, old: &Self) {
+        self.slow_torque = old.slow_torque;
+    }
+}
+
+/// `speed`: the top speed asked for is the setpoint.
+#[derive(Debug, Clone, Copy)]
+pub struct SpeedControl;
+
+impl TopCommand for SpeedControl {
+    #[inline]
+    fn command(&mut self, _td: &TopDrive, input: &TopInput) -> Command {
+        Command::Speed(input.setpoint)
+    }
+}
+
+impl TopCommand for SpeedSeries {
+    /// The series' speed at the step's end, imposed.
+    #[inline]
+    fn command(&mut self, _td: &TopDrive, input: &TopInput) -> Command {
+        Command::Imposed(self.at(input.t + input.dt))
+    }
+
+    /// The cursor (the series is the configuration's, which does not change during a run).
+    fn carry(&mut self, old: &Self) {
+        self.cursor = old.cursor;
+    }
+}
+
+/// What drives the top, registered (`top_drive.mode`, `top_drive.controller.type`).
+#[derive(Debug, Clone)]
+pub enum Top {
+    /// `pi`, `soft_torque`.
+    Pi(Pi),
+    ZTorque(ZTorque),
+    Speed(SpeedControl),
+    /// `top_drive.mode = "measured_speed"`.
+    Measured(SpeedSeries),
+    #[cfg(test)]
+    Test(super::top_tests::ConstantTorque),
+}
+
+/// Dispatches a call to the variant's [`TopCommand`] implementation.
+macro_rules! each_top {
+    ($top:expr, $c:ident => $call:expr) => {
+        match $top {
+            Top::Pi($c) => $call,
+            Top::ZTorque($c) => $call,
+            Top::Speed($c) => $call,
+            Top::Measured($c) => $call,
+            #[cfg(test)]
+            Top::Test($c) => $call,
+        }
+    };
+}
+
+/// The controller gains `(kp, ki)` of a configuration: `soft_torque`'s tuned with the string's
+/// first natural frequency `first_mode` (rad/s) unless `tuning_frequency` is given, else the
+/// configuration's `kp` and `ki`.
+pub fn gains(cfg: &DrillConfig, grid: &Grid, first_mode: f64) -> (f64, f64) {
+    let td = &cfg.top_drive;
+    let c = &td.controller;
+    match c.kind {
+        ControllerKind::SoftTorque => {
+            let w = c.tuning_frequency.map_or(first_mode, |f| 2.0 * PI * f);
+            crate::drilling::tuning::soft_torque_gains(c.z_factor, grid.props[0].impedance, w, td.inertia)
+        }
+        _ => (c.kp, c.ki),
+    }
+}
+
+impl Top {
+    /// What drives the top in a configuration (gains by [`gains`]), a controller refused when
+    /// the sampled loop is unstable on this grid ([`check_control_loop`]).
     pub fn new(cfg: &DrillConfig, grid: &Grid, first_mode: f64) -> Result<Self> {
         let td = &cfg.top_drive;
         let c = &td.controller;
-        let (kp, ki) = match c.kind {
-            ControllerKind::SoftTorque => {
-                let w = c.tuning_frequency.map_or(first_mode, |f| 2.0 * PI * f);
-                crate::drilling::tuning::soft_torque_gains(c.z_factor, grid.props[0].impedance, w, td.inertia)
-            }
-            _ => (c.kp, c.ki),
-        };
-        if td.mode == TopMode::Controller {
-            check_control_loop(cfg, grid, kp)?;
+        if let Some(series) = SpeedSeries::new(td) {
+            return Ok(Top::Measured(series));
         }
-        Ok(ControllerState {
-            kind: c.kind,
-            kp,
-            ki,
-            limit: td.torque_limit,
-            integral: 0.0,
-            torque: 0.0,
-            next: 0.0,
-            z_factor: c.z_factor,
-            slow_torque: 0.0,
-            slow_factor: 1.0 - (-grid.dt / c.torque_highpass_time).exp(),
+        let (kp, ki) = gains(cfg, grid, first_mode);
+        check_control_loop(cfg, grid, kp)?;
+        Ok(match c.kind {
+            ControllerKind::Pi | ControllerKind::SoftTorque => {
+                Top::Pi(Pi { kp, ki, limit: td.torque_limit, integral: 0.0, torque: 0.0, next: 0.0 })
+            }
+            ControllerKind::ZTorque => Top::ZTorque(ZTorque {
+                z_factor: c.z_factor,
+                slow_torque: 0.0,
+                slow_factor: 1.0 - (-grid.dt / c.torque_highpass_time).exp(),
+            }),
+            ControllerKind::Speed => Top::Speed(SpeedControl),
         })
     }
 
-    /// The command for the step from `t` (length `dt`), with the top speed `omega` at its
-    /// start and the characteristic arriving at the top.
+    /// [`TopCommand::command`] of the variant.
     #[inline]
-    pub fn command(
-        &mut self,
-        td: &TopDrive,
-        t: f64,
-        dt: f64,
-        setpoint: f64,
-        omega: f64,
-        arriving: Arriving,
-    ) -> Command {
-        match self.kind {
-            ControllerKind::Pi | ControllerKind::SoftTorque => {
-                if t + 0.5 * dt >= self.next {
-                    let mut holds = 0.0;
-                    while self.next <= t + 0.5 * dt {
-                        self.next += td.control_interval;
-                        holds += 1.0;
-                    }
-                    let e = setpoint - omega;
-                    let raw = self.kp * e + self.ki * self.integral;
-                    self.torque = raw.clamp(-self.limit, self.limit);
-                    // Anti-windup: no integration while saturated in the error's direction.
-                    if !((raw > self.limit && e > 0.0) || (raw < -self.limit && e < 0.0)) {
-                        self.integral += holds * td.control_interval * e;
-                    }
-                }
-                Command::Torque(self.torque)
-            }
-            ControllerKind::Speed => Command::Speed(setpoint),
-            ControllerKind::ZTorque => {
-                // The top presents the damper z Z to torque waves: Omega = w_ref - (tau - tau_slow) / (z Z)
-                // with tau = Z (Omega - beta_1).
-                let z = self.z_factor;
-                Command::Speed((z * setpoint + arriving.value + self.slow_torque / arriving.impedance) / (z + 1.0))
-            }
-        }
+    pub fn command(&mut self, td: &TopDrive, input: &TopInput) -> Command {
+        each_top!(self, c => c.command(td, input))
     }
 
-    /// Sets the state that holds the top at its setpoint against the string torque `torque`
-    /// (N m) at the top, for a run started in steady rotation
-    /// ([`crate::drilling::start::InitialState::Steady`]): a PI's integral `torque / ki` (its
-    /// command at zero speed error; without an integral gain the command stays 0), `z_torque`'s
-    /// low-passed torque.
-    pub fn hold(&mut self, torque: f64) {
-        match self.kind {
-            ControllerKind::Pi | ControllerKind::SoftTorque if self.ki > 0.0 => {
-                self.integral = torque.clamp(-self.limit, self.limit) / self.ki;
-            }
-            ControllerKind::ZTorque => self.slow_torque = torque,
-            _ => {}
-        }
-    }
-
-    /// Takes over the running state of `old` (the integral, the torque held, the next sample
-    /// time, `z_torque`'s low-passed torque): the same controller with new gains or limit
-    /// continues where it was.
-    pub fn carry(&mut self, old: &ControllerState) {
-        self.integral = old.integral;
-        self.torque = old.torque.clamp(-self.limit, self.limit);
-        self.next = old.next;
-        self.slow_torque = old.slow_torque;
-    }
-
-    /// Takes the string torque at the top after the step (`z_torque`'s low-pass).
+    /// [`TopCommand::observe`] of the variant.
     #[inline]
     pub fn observe(&mut self, tau_top: f64) {
-        if self.kind == ControllerKind::ZTorque {
-            self.slow_torque += (tau_top - self.slow_torque) * self.slow_factor;
+        each_top!(self, c => c.observe(tau_top))
+    }
+
+    /// [`TopCommand::hold`] of the variant.
+    pub fn hold(&mut self, torque: f64) {
+        each_top!(self, c => c.hold(torque))
+    }
+
+    /// [`TopCommand::carry`] from `old` of the same variant (nothing from another).
+    pub fn carry(&mut self, old: &Top) {
+        match (self, old) {
+            (Top::Pi(c), Top::Pi(o)) => c.carry(o),
+            (Top::ZTorque(c), Top::ZTorque(o)) => c.carry(o),
+            (Top::Speed(c), Top::Speed(o)) => c.carry(o),
+            (Top::Measured(c), Top::Measured(o)) => c.carry(o),
+            _ => {}
         }
     }
 }

@@ -23,7 +23,8 @@
 //!   [`bit_law::Law`] at the step's depth of cut) in place of [`boundary::BitEnd`];
 //! * [`coupled_friction`]: a coupled run's wall friction against the sliding velocity of both
 //!   fields (`friction.coupling = "axial_torsional"`, the default with a hoist), one stick phase;
-//! * [`controller`]: the controllers and the setpoint;
+//! * [`controller`]: what drives the top ([`controller::TopCommand`]: the controllers, the
+//!   measured surface speed) and the setpoint;
 //! * [`sampler`]: the output series and field snapshots;
 //! * [`energy`]: the energy ledger and the balance;
 //! * [`run`]: the [`run::Simulation`] and its step, the result [`run::DrillRun`];
@@ -44,17 +45,40 @@
 //! * the bit law: the trait [`bit_law::BitRock`], one interface for the laws of the torsional
 //!   field alone and those meeting the axial field too (what a law needs from the axial field
 //!   it declares, [`bit_law::BitRock::AXIAL`]), the laws registered in [`bit_law::Law`];
-//! * the top boundary: [`boundary::TopDriveEnd`] carries out a [`controller::Command`] (a
-//!   controller's, [`controller::Controller::command`], or the measured surface speed's
-//!   [`controller::SpeedSeries`]): a new controller is a new command source;
-//! * the hoist: [`crate::drilling::axial::hoist::Hoist`] gives the axial field's top its
-//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial::Axial::top`]);
+//! * the top boundary: the trait [`controller::TopCommand`], what drives the top (a controller,
+//!   or the measured surface speed [`controller::SpeedSeries`]), giving a
+//!   [`controller::Command`] that [`boundary::TopDriveEnd`] carries out; the implementations
+//!   registered in [`controller::Top`], which the run holds (a new controller is one
+//!   implementation, its variant of [`controller::Top`] with its line in
+//!   [`controller::Top::new`], and its `top_drive.controller.type` name and keys);
+//! * the hoist: [`crate::drilling::axial::hoist::HoistState`] gives the axial field's top its
+//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial_field::Axial::top`]); not a trait:
+//!   the modes are `match`es on `hoist.mode` in `axial/hoist.rs` (the target, the step's
+//!   command) and in [`axial_field`] (the starting setpoint in `Axial::new`, `Axial::set_hoist`,
+//!   `Axial::set_steady` of `axial_field_steady.rs`, the block's weight in `Axial::top`);
 //! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
 //!   stick phase) inside the kernels, the buoyed weight in [`axial_field`] after the axial transport,
-//!   a wall friction on both fields in [`coupled_friction`] after both transports;
+//!   a wall friction on both fields in [`coupled_friction`] after both transports; plain structs
+//!   and functions, not a trait;
+//! * the fields: one type, [`field::Field`], for the torsional and the axial field (no trait);
 //! * the output series: named channels ([`sampler::Channel`]) each part declares where it is
 //!   ([`sampler::TORSIONAL`], [`axial_field::CHANNELS`]).
 //!
+//! The files a new one touches:
+//!
+//! * a bit law: one file in `bit_law/` implementing [`bit_law::BitRock`], its registration in
+//!   `bit_law/mod.rs`, its name and keys in `config/bit.rs`;
+//! * a controller: one struct implementing [`controller::TopCommand`] and its registration in
+//!   [`controller::Top`] (`controller.rs`), its name and keys in `config/top_drive.rs`;
+//! * a source: `sources.rs` (the per-cell law, a field of [`sources::Sources`]), its limit per
+//!   cell in `drilling/grid.rs`, its work in `energy.rs`; one on the axial field alone in
+//!   `axial_field.rs`, one on both fields as `coupled_friction.rs`;
+//! * a field: a [`field::Field`] built beside its ends and sources as `axial_field.rs`, advanced
+//!   and sampled from `run.rs` (`Simulation::step`, `Simulation::sample`), its
+//!   energies in `energy.rs` ([`energy::Stored`]), its channels declared beside it;
+//! * a metric: `metrics/stickslip.rs` and its entry in the crate's `outputs.rs` (a coupled one a
+//!   field of [`run::CoupledMetrics`]).
+
 //! # The scheme
 //!
 //! With `tau` the torque carried down the string (`tau = -G J theta_z`) and `Z = J sqrt(G rho)`
@@ -176,6 +200,8 @@ pub mod run;
 pub mod sampler;
 pub mod session;
 pub mod sources;
+#[cfg(test)]
+mod top_tests;
 
 pub use energy::EnergyBalance;
 pub use run::{CoupledMetrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::axial_field::Axial;
 use super::boundary::{BitEnd, TopDriveEnd};
-use super::controller::{Command, ControllerState, Setpoint, SpeedSeries, RPM_PER_RAD_S};
+use super::controller::{Setpoint, SpeedSeries, Top, TopInput, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
 use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
@@ -154,9 +154,8 @@ pub struct Simulation {
     pub(super) top: TopDriveEnd,
     pub(super) bit: BitEnd,
     pub(super) setpoint: Setpoint,
-    pub(super) control: ControllerState,
-    /// `top_drive.mode = "measured_speed"`: the top speed imposed in place of the controller's.
-    pub(super) measured: Option<SpeedSeries>,
+    /// What drives the top: a controller, or the measured speed (`top_drive.mode`).
+    pub(super) drive: Top,
     pub(super) ledger: Ledger,
     pub(super) first_mode: f64,
     /// The axial field of a coupled run (`[hoist]`).
@@ -182,7 +181,7 @@ impl Simulation {
         let field = Field::torsional(&grid, cfg.nonlinearity == Nonlinearity::Consistent);
         let mut wall = WallFriction::torsional(cfg, &grid, &field);
         let first_mode = first_natural_frequency(&grid.props, cfg.bit.bha_inertia);
-        let control = ControllerState::new(cfg, &grid, first_mode)?;
+        let drive = Top::new(cfg, &grid, first_mode)?;
         let mut axial = match &cfg.hoist {
             Some(h) => Some(Axial::new(cfg, &grid, h)?),
             None => None,
@@ -214,8 +213,7 @@ impl Simulation {
             field,
             wall,
             setpoint: Setpoint::new(&cfg.top_drive, dt),
-            control,
-            measured: SpeedSeries::new(&cfg.top_drive),
+            drive,
             ledger: Ledger::default(),
             first_mode,
         };
@@ -241,7 +239,7 @@ impl Simulation {
         let (torque, top) = wall.torques(point.rop, omega, point.bit.torque_on_bit);
         self.set_state(&vec![omega; self.grid.cells()], &torque, omega, omega)?;
         self.setpoint.value = omega;
-        self.control.hold(top);
+        self.drive.hold(top);
         if let Some(ax) = &mut self.axial {
             ax.set_steady(&self.cfg, &point, &wall)?;
         }
@@ -352,12 +350,10 @@ impl Simulation {
 
         // Top drive.
         let arriving = self.field.arriving_top();
-        let command = match &mut self.measured {
-            Some(series) => Command::Imposed(series.at(t + dt)),
-            None => self.control.command(td, t, dt, setpoint, self.top.omega, arriving),
-        };
+        let input = TopInput { t, dt, setpoint, omega: self.top.omega, arriving };
+        let command = self.drive.command(td, &input);
         let (omega1, motor, tau_top) = self.top.step(command, arriving, dt, &mut self.ledger);
-        self.control.observe(tau_top);
+        self.drive.observe(tau_top);
         self.field.set_top(arriving, omega1, tau_top);
 
         // Bit.

@@ -15,7 +15,7 @@ use serde::Serialize;
 use serde_json::Value;
 
 use super::boundary::{BitEnd, TopDriveEnd};
-use super::controller::{ControllerState, Setpoint, RPM_PER_RAD_S};
+use super::controller::{gains, Setpoint, Top, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
 use super::energy::EnergyBalance;
 use super::run::{axial_transient, coupled_metrics, metrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};
@@ -154,6 +154,7 @@ impl Session {
         let nz = sim.grid.cells();
         let dt = sim.grid.dt;
         let courant = &sim.grid.courant;
+        let (kp, ki) = gains(cfg, &sim.grid, sim.first_mode);
         let mut run = DrillRun {
             t: Vec::new(),
             surface_rpm: Vec::new(),
@@ -192,8 +193,8 @@ impl Session {
                 courant_min: courant.iter().copied().fold(f64::INFINITY, f64::min),
                 courant_max: courant.iter().copied().fold(0.0, f64::max),
                 courant_peak: courant.iter().copied().fold(0.0, f64::max),
-                kp: sim.control.kp,
-                ki: sim.control.ki,
+                kp,
+                ki,
                 first_mode_hz: sim.first_mode / (2.0 * std::f64::consts::PI),
             },
         };
@@ -411,18 +412,17 @@ impl Session {
             }
         }
         if key.starts_with("top_drive.") {
-            let mut control = ControllerState::new(&cfg, &sim.grid, sim.first_mode)?;
-            if control.kind == sim.control.kind {
-                control.carry(&sim.control);
+            let mut drive = Top::new(&cfg, &sim.grid, sim.first_mode)?;
+            if cfg.top_drive.controller.kind == sim.cfg.top_drive.controller.kind {
+                drive.carry(&sim.drive);
             } else {
-                control.hold(self.last.0);
+                drive.hold(self.last.0);
             }
-            sim.control = control;
+            sim.drive = drive;
             let omega = sim.top.omega;
             sim.top = TopDriveEnd::new(&cfg, dt);
             sim.top.omega = omega;
-            self.run.stats.kp = control.kp;
-            self.run.stats.ki = control.ki;
+            (self.run.stats.kp, self.run.stats.ki) = gains(&cfg, &sim.grid, sim.first_mode);
         }
         if key.starts_with("bit.") {
             sim.bit = BitEnd { omega: sim.bit.omega, ..BitEnd::new(&cfg) };
