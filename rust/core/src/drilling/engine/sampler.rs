@@ -110,9 +110,33 @@ impl Sampler {
         axial_cells: usize,
     ) -> Result<(), OutOfMemory> {
         let snapshots = if self.n_fields == 0 { 0 } else { snapshots };
+        let mut outputs = self.outputs(run, rows, snapshots, cells, axial_cells);
+        for (v, more) in &mut outputs {
+            let spare = v.capacity() - v.len();
+            *more = if spare >= *more { 0 } else { (*more).max(v.len()) };
+        }
+        crate::solution::reserve_outputs(&mut outputs)
+    }
+
+    /// Reserves the run's sample storage for `cells` cells (and `axial_cells` of a coupled run).
+    pub fn reserve(&self, run: &mut DrillRun, cells: usize, axial_cells: usize) -> Result<(), OutOfMemory> {
+        crate::solution::reserve_outputs(&mut self.outputs(run, self.n_series, self.n_fields, cells, axial_cells))
+    }
+
+    /// Every output vector of `run` with the length it takes for `rows` series samples and
+    /// `snapshots` field snapshots of `cells` cells (`axial_cells` of a coupled run; the axial
+    /// ones 0 without a hoist).
+    fn outputs<'r>(
+        &self,
+        run: &'r mut DrillRun,
+        rows: usize,
+        snapshots: usize,
+        cells: usize,
+        axial_cells: usize,
+    ) -> [(&'r mut Vec<f64>, usize); 17] {
         let n_axial = if self.coupled { rows } else { 0 };
         let axial_cells = if self.coupled { axial_cells } else { 0 };
-        let mut outputs: [(&mut Vec<f64>, usize); 17] = [
+        [
             (&mut run.bit_axial_speed, n_axial),
             (&mut run.rop, n_axial),
             (&mut run.weight_on_bit, n_axial),
@@ -130,38 +154,7 @@ impl Sampler {
             (&mut run.torque_field, snapshots * cells),
             (&mut run.axial_speed_field, snapshots * axial_cells),
             (&mut run.axial_force_field, snapshots * axial_cells),
-        ];
-        for (v, more) in &mut outputs {
-            let spare = v.capacity() - v.len();
-            *more = if spare >= *more { 0 } else { (*more).max(v.len()) };
-        }
-        crate::solution::reserve_outputs(&mut outputs)
-    }
-
-    /// Reserves the run's sample storage for `cells` cells (and `axial_cells` of a coupled run).
-    pub fn reserve(&self, run: &mut DrillRun, cells: usize, axial_cells: usize) -> Result<(), OutOfMemory> {
-        let (n_series, n_fields) = (self.n_series, self.n_fields);
-        let n_axial = if self.coupled { n_series } else { 0 };
-        let axial_cells = if self.coupled { axial_cells } else { 0 };
-        crate::solution::reserve_outputs(&mut [
-            (&mut run.bit_axial_speed, n_axial),
-            (&mut run.rop, n_axial),
-            (&mut run.weight_on_bit, n_axial),
-            (&mut run.hook_load, n_axial),
-            (&mut run.bit_depth, n_axial),
-            (&mut run.depth_of_cut, n_axial),
-            (&mut run.block_position, n_axial),
-            (&mut run.t, n_series),
-            (&mut run.surface_rpm, n_series),
-            (&mut run.bit_rpm, n_series),
-            (&mut run.motor_torque, n_series),
-            (&mut run.bit_torque, n_series),
-            (&mut run.field_t, n_fields),
-            (&mut run.omega_field, n_fields * cells),
-            (&mut run.torque_field, n_fields * cells),
-            (&mut run.axial_speed_field, n_fields * axial_cells),
-            (&mut run.axial_force_field, n_fields * axial_cells),
-        ])
+        ]
     }
 
     /// The initial snapshot (if any are asked for) and state `point` at `t = 0` (its held

@@ -156,34 +156,8 @@ impl Session {
         let courant = &sim.grid.courant;
         let (kp, ki) = gains(cfg, &sim.grid, sim.first_mode);
         let mut run = DrillRun {
-            t: Vec::new(),
-            surface_rpm: Vec::new(),
-            bit_rpm: Vec::new(),
-            motor_torque: Vec::new(),
-            bit_torque: Vec::new(),
-            field_t: Vec::new(),
             z: sim.grid.z.clone(),
-            omega_field: Vec::new(),
-            torque_field: Vec::new(),
-            bit_axial_speed: Vec::new(),
-            rop: Vec::new(),
-            weight_on_bit: Vec::new(),
-            hook_load: Vec::new(),
-            bit_depth: Vec::new(),
-            depth_of_cut: Vec::new(),
-            block_position: Vec::new(),
             axial_z: sim.axial.as_ref().map_or_else(Vec::new, |a| a.z.clone()),
-            axial_speed_field: Vec::new(),
-            axial_force_field: Vec::new(),
-            coupled: None,
-            energy: EnergyBalance::default(),
-            metrics: None,
-            window: [f64::NAN; 2],
-            breakoff_torque: f64::NAN,
-            min_cycle_torque: f64::NAN,
-            status: Status::Success,
-            message: String::new(),
-            warnings: Vec::new(),
             metrics_finite: true,
             rotating: true,
             stats: DrillStats {
@@ -197,6 +171,7 @@ impl Session {
                 ki,
                 first_mode_hz: sim.first_mode / (2.0 * std::f64::consts::PI),
             },
+            ..empty_like()
         };
         let mut sampler = if batch { Sampler::new(cfg) } else { Sampler::open(cfg, keep_fields) };
         let mut pending = cfg.changes.clone();
@@ -544,7 +519,8 @@ fn truncate(run: &mut DrillRun, rows: usize, snapshots: usize) {
     run.axial_force_field.truncate(snapshots * axial_cells);
 }
 
-/// A placeholder run (what [`Session::run`] leaves behind when it moves the run out).
+/// An empty run: the base of a new one ([`Session::start`]), and what [`Session::run`] leaves
+/// behind when it moves the run out.
 fn empty_like() -> DrillRun {
     DrillRun {
         t: Vec::new(),
