@@ -104,22 +104,75 @@ pub(super) fn source<const REGULARISED: bool>(w1: f64, lim: f64, slip: f64, k: &
         let df = -k.kr * lim * (w1 * k.inv_vr).tanh();
         (if df.abs() > wd.abs() { -wd } else { df }, false)
     } else {
-        // Slow: |w1| < stick speed, or w1 = 0 (`slow_below`). Selects and bit operations
-        // only, so that the loop vectorises.
-        let slow = w1.abs() < k.slow_below;
-        let clipped = if wd > lim { lim } else { wd };
-        let clipped = if clipped < -lim { -lim } else { clipped };
-        // Kinetic: -min(kinetic_ratio lim, |wd|) copysign w1, i.e. the larger of `slip` (<= -0)
-        // and -|wd|, with its sign flipped when w1 is negative; at -|wd| it stops the cell.
-        let room = -wd.abs();
-        let stops = slip <= room;
-        let kinetic = if stops { room } else { slip };
-        let kinetic = f64::from_bits(kinetic.to_bits() ^ (w1.to_bits() & SIGN_BIT));
-        let df = if slow { -clipped } else { kinetic };
-        (df, (slow & (wd.abs() <= lim)) | (!slow & stops))
+        // One threshold for both phases: a slow cell (|w1| < stick speed, or w1 = 0,
+        // `slow_below`) is held by up to the static limit `lim`, a sliding one by up to the
+        // kinetic limit `-slip`. The change is the speed after damping clipped to it,
+        // `-min(|wd|, thr) copysign w1`, and the cell sticks where `|wd| <= thr`. Each
+        // comparison feeds one select directly, with no logic between flags, so that the
+        // flags stay full-width lane masks on every instruction set (a flag narrowed for
+        // such logic costs a pack and a widening per vector on AVX2).
+        let awd = wd.abs();
+        let thr = if w1.abs() < k.slow_below { lim } else { -slip };
+        let mag = if thr < awd { thr } else { awd };
+        (f64::from_bits((-mag).to_bits() ^ (w1.to_bits() & SIGN_BIT)), awd <= thr)
     };
     (dd, df, stuck)
 }
 
 /// The sign bit of an `f64`.
 const SIGN_BIT: u64 = 1 << 63;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stick phase written out phase by phase (the static limit's clip of `wd` for a slow
+    /// cell, the kinetic limit against the sign of `w1` for a sliding one, the stuck flag of
+    /// each), against [`source`]'s one threshold: the same change and flag on slow, stuck
+    /// and sliding cells, at signed zeros, at the limits exactly, with and without damping up
+    /// to `dt d = 1`. The bits of the change are the same wherever the cell does not stick;
+    /// a stuck cell's change may differ only in the sign of a zero (its speed is set to 0
+    /// and its work is a zero either way).
+    #[test]
+    fn one_threshold_gives_the_phases_written_out() {
+        let written_out = |w1: f64, lim: f64, slip: f64, k: &Consts| -> (f64, f64, bool) {
+            let dd = -k.damping * w1;
+            let wd = w1 + dd;
+            let slow = w1.abs() < k.slow_below;
+            let clipped = wd.clamp(-lim, lim);
+            let room = -wd.abs();
+            let stops = slip <= room;
+            let kinetic = if stops { room } else { slip };
+            let kinetic = if w1.is_sign_negative() { -kinetic } else { kinetic };
+            let df = if slow { -clipped } else { kinetic };
+            (dd, df, if slow { wd.abs() <= lim } else { stops })
+        };
+        let speeds = [0.0, -0.0, 1e-300, -1e-300, 0.3, -0.3, 0.65, -0.65, 1.0, -1.0, 1.4999, -1.5, 1.5, 2.0, -7.0];
+        let limits = [0.0, 1e-300, 0.3, 0.65, 1.0, 2.0, 1e3];
+        let mut seen = [0usize; 3];
+        for damping in [0.0, 1e-3, 0.5, 1.0 - f64::EPSILON, 1.0] {
+            for stick_speed in [0.0, 1.5] {
+                for kinetic_ratio in [0.0, 0.65, 1.0] {
+                    let src = Sources { damping, stick_speed, kinetic_ratio, regularised: None };
+                    let k = Consts::new(0.9, &src);
+                    for &w1 in &speeds {
+                        for &lim in &limits {
+                            let slip = -(kinetic_ratio * lim);
+                            let (dd, df, stuck) = source::<false>(w1, lim, slip, &k);
+                            let (dd0, df0, stuck0) = written_out(w1, lim, slip, &k);
+                            let case = format!("w1 {w1:e} lim {lim:e} damping {damping} stick {stick_speed} kr {kinetic_ratio}");
+                            assert_eq!(dd.to_bits(), dd0.to_bits(), "{case}");
+                            assert_eq!(stuck, stuck0, "{case}");
+                            assert_eq!(df, df0, "{case}");
+                            if !stuck {
+                                assert_eq!(df.to_bits(), df0.to_bits(), "{case}");
+                            }
+                            seen[usize::from(stuck) + usize::from(w1.abs() < k.slow_below)] += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s > 50), "{seen:?}");
+    }
+}
