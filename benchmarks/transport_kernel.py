@@ -170,15 +170,12 @@ def _numba_run(
                     lim = stop[i]
                     dd = -damping * w1
                     wd = w1 + dd
-                    slow = abs(w1) < slow_below
-                    clipped = lim if wd > lim else wd
-                    clipped = -lim if clipped < -lim else clipped
-                    room = -abs(wd)
-                    stops = slip[i] <= room
-                    kinetic = room if stops else slip[i]
-                    kinetic = -kinetic if math.copysign(1.0, w1) < 0.0 else kinetic
-                    df = -clipped if slow else kinetic
-                    stuck = (slow and abs(wd) <= lim) or ((not slow) and stops)
+                    # one threshold: the static limit when slow, the kinetic one when sliding
+                    awd = abs(wd)
+                    thr = lim if abs(w1) < slow_below else -slip[i]
+                    stuck = awd <= thr
+                    mag = thr if thr < awd else awd
+                    df = mag if math.copysign(1.0, w1) < 0.0 else -mag
                     d = dd + df
                     wbar = w1 + 0.5 * d
                     s1 = 0.5 * (a1 - b1)
@@ -253,15 +250,11 @@ def numpy_run(steps, g, damping, fr, td, approach, target, report_stick):
             lim, sl = g["stop"][v], g["slip"][v]
             dd = -damping * w1
             wd = w1 + dd
-            slow = np.abs(w1) < slow_below
-            clipped = np.where(wd > lim, lim, wd)
-            clipped = np.where(clipped < -lim, -lim, clipped)
-            room = -np.abs(wd)
-            stops = sl <= room
-            kinetic = np.where(stops, room, sl)
-            kinetic = np.where(np.signbit(w1), -kinetic, kinetic)
-            df = np.where(slow, -clipped, kinetic)
-            stuck = (slow & (np.abs(wd) <= lim)) | (~slow & stops)
+            awd = np.abs(wd)
+            thr = np.where(np.abs(w1) < slow_below, lim, -sl)
+            stuck = awd <= thr
+            mag = np.where(thr < awd, thr, awd)
+            df = np.where(np.signbit(w1), mag, -mag)
             d = dd + df
             s1 = 0.5 * (a1 - b1)
             new_a[v] = np.where(stuck, s1, a1 + d)

@@ -532,6 +532,10 @@ class Numerics:
     setpoints of t = 0, where Aarsnes & van de Wouw's code starts: the string turning at the
     top-drive speed with the torque of steady rotation, moving down at the hoist's rate,
     compressed to the steady weight on bit, the bit at its steady depth of cut)."""
+    energy_balance: bool = _default("numerics", "energy_balance", kind="bool")
+    """Whether the run keeps its energy ledger (default True). False gives a faster step and
+    every energy output NaN, with a warning saying so; the series, snapshots and metrics are bit
+    for bit those of the run with the ledger."""
 
 
 @dataclass(frozen=True)

@@ -352,7 +352,9 @@ def report_markdown(result: DrillResult, *, plots: bool = True, units: str = "si
                   f"**Regime: {result.coupled_regime}**.", "",
                   f"Criterion: {_md(COUPLED_REGIME_CRITERION)}.", "",
                   "| metric (over the window) | value |", "|---|---:|", *rows]
-    if result.energy:
+    if result.energy and all(math.isnan(v) for v in result.energy.values()):
+        lines += ["", "## Energy balance", "", "Not kept (`numerics.energy_balance = false`)."]
+    elif result.energy:
         energy = "J" if system == "si" else unit("N*m")
         lines += ["", f"## Energy balance, {energy}", "",
                   "Motor work and losses from the start; kinetic, elastic, top-drive and BHA energies at the end.",

@@ -334,7 +334,8 @@ class DrillResult:
         friction_loss`` (both fields in a coupled run; ``axial_friction_loss`` its axial part)
         ``damping_loss, bit_loss, numerical_loss`` (``upwind_loss`` of the transport
         plus ``inertia_loss`` of the implicit top-drive and BHA steps and of the coupled wall
-        friction's implicit step with the gravity kick) and ``balance_error``.
+        friction's implicit step with the gravity kick) and ``balance_error``. Every value NaN
+        with ``numerics.energy_balance = False`` (the ledger not kept; ``warnings`` says so).
     stats : dict
         ``cells``, ``steps``, ``dt`` of the solve, the Courant numbers ``courant_min``,
         ``courant_max`` of the sections (at the speed the step is made for) and ``courant_peak``

@@ -71,6 +71,15 @@ pub struct Numerics {
     /// steady depth of cut; [`super::start`]). `steady` needs a `[hoist]` that drills at t = 0.
     #[schemars(extend("label" = "initial state"))]
     pub initial_state: crate::drilling::start::InitialState,
+    /// Whether the run keeps its energy ledger (default `true`): the work of the motor, the
+    /// hoist, gravity and every loss as it is done, the stored energies at the end and
+    /// `balance_error`, the check that the discrete energy balance closes.
+    ///
+    /// `false` leaves the energy terms out of the cell updates (a faster step) and reports
+    /// every energy output as NaN, with a warning saying so; the series, snapshots and
+    /// metrics are bit for bit those of the run with the ledger.
+    #[schemars(extend("label" = "energy balance"))]
+    pub energy_balance: bool,
 }
 
 /// The speed of a cell its sources are evaluated at ([`Numerics::source_speed`]).
@@ -97,6 +106,7 @@ impl Default for Numerics {
             courant: 1.0,
             source_speed: SourceSpeed::AfterTransport,
             initial_state: crate::drilling::start::InitialState::Rest,
+            energy_balance: true,
         }
     }
 }

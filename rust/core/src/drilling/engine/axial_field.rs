@@ -39,7 +39,7 @@ use super::bit_law::{AxialEnd, BitEnds, Law};
 use super::boundary::{Arriving, EndLine};
 use super::energy::Ledger;
 use super::field::{Field, FieldSection};
-use super::kernel::transport;
+use super::kernel::{transport_kicked, Kick};
 use super::sampler::{Channel, Point};
 use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{BitContact, BitPhase, Port};
@@ -437,13 +437,16 @@ impl Axial {
         point[DEPTH_OF_CUT] = if s.depth.is_finite() { s.depth } else { 0.0 };
     }
 
-    /// The cells over a step: the transport with damping, then the buoyed weight.
-    pub fn cells(&mut self, ledger: &mut Ledger) {
+    /// The cells over a step: the transport with damping, then the buoyed weight, in one
+    /// pass ([`transport_kicked`]); the work booked in `ledger` when `booked`
+    /// (`numerics.energy_balance`).
+    pub fn cells(&mut self, ledger: &mut Ledger, booked: bool) {
         let Field { sections, alpha, beta, alpha_next, beta_next, .. } = &mut self.field;
         let z = &self.zeros[..];
         for sp in sections.iter() {
             let r = sp.padded();
-            let sums = transport(
+            let work = booked.then(|| &mut self.gravity_work[r.clone()]);
+            let sums = transport_kicked(
                 &alpha[r.clone()],
                 &beta[r.clone()],
                 &z[r.clone()],
@@ -452,18 +455,13 @@ impl Axial {
                 &mut beta_next[r.clone()],
                 sp.courant,
                 &self.sources,
+                Kick { dv: &self.gravity[r.clone()], work },
             );
-            ledger.transport(sp.e, sp.courant, &sums);
-            let cells = r.start + 1..r.end - 1;
-            let (an, bn) = (&mut alpha_next[cells.clone()], &mut beta_next[cells.clone()]);
-            let (g, work) = (&self.gravity[cells.clone()], &mut self.gravity_work[cells]);
-            for (((a, b), &dv), e) in an.iter_mut().zip(bn.iter_mut()).zip(g).zip(work.iter_mut()) {
-                let v = 0.5 * (*a + *b);
-                *e = dv * (v + 0.5 * dv);
-                *a += dv;
-                *b += dv;
+            if booked {
+                ledger.transport(sp.e, sp.courant, &sums);
+                let cells = r.start + 1..r.end - 1;
+                ledger.gravity += 4.0 * sp.e * super::kernel::lane_sum(&self.gravity_work[cells]);
             }
-            ledger.gravity += 4.0 * sp.e * super::kernel::lane_sum(work);
         }
         self.field.swap();
     }

@@ -45,6 +45,38 @@ pub struct EnergyBalance {
     pub balance_error: f64,
 }
 
+impl EnergyBalance {
+    /// The balance of a run without the ledger (`numerics.energy_balance = false`): every
+    /// term NaN.
+    pub fn not_kept() -> Self {
+        let n = f64::NAN;
+        EnergyBalance {
+            motor_work: n,
+            initial: n,
+            kinetic: n,
+            elastic: n,
+            top_drive: n,
+            bha: n,
+            friction_loss: n,
+            axial_friction_loss: n,
+            damping_loss: n,
+            bit_loss: n,
+            numerical_loss: n,
+            upwind_loss: n,
+            inertia_loss: n,
+            hoist_work: n,
+            gravity_work: n,
+            axial_kinetic: n,
+            axial_elastic: n,
+            balance_error: n,
+        }
+    }
+}
+
+/// The warning of a run without the ledger.
+pub const NOT_KEPT: &str =
+    "numerics.energy_balance = false: the energy balance was not kept (every energy output is NaN)";
+
 /// The work done so far, J: by the motor (in), and lost to each sink.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Ledger {

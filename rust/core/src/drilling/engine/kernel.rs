@@ -4,7 +4,9 @@
 //! first-order Godunov update of the `consistent` torsional law. Both run through
 //! [`crate::simd::dispatch`] (AVX-512 or AVX2 when available; no fused multiply-adds, so every
 //! path gives the same bits) and return the step's energy terms ([`Sums`]) for the ledger;
-//! [`transport_unbooked`] is the same update without them (about a quarter faster).
+//! [`transport_unbooked`] is the same update without them (a run with
+//! `numerics.energy_balance = false`), [`transport_kicked`] the update followed in the same
+//! pass by a speed change per cell (the axial field's buoyed weight).
 
 use super::field::{FieldSection, Nonlinear};
 use super::sources::{source, Consts, Sources};
@@ -57,6 +59,41 @@ pub fn transport_unbooked(
     crate::simd::dispatch(Transport::new(a, b, stop, slip, an, bn, c, src, false));
 }
 
+/// A speed change added to every cell after the transport and the other sources (the
+/// coupled run's buoyed weight, `dt g_eff` per padded index) and, with the ledger, its work
+/// per cell, `dv (v + dv / 2)` with `v` the speed before it, written to `work` (padded, the
+/// ghosts untouched).
+pub struct Kick<'a> {
+    pub dv: &'a [f64],
+    pub work: Option<&'a mut [f64]>,
+}
+
+/// [`transport`] (with the energy terms when `kick.work` is given, else none) followed by
+/// the speed change `kick` in the same pass over the cells: the bits of [`transport`] then
+/// `alpha += dv`, `beta += dv` cell by cell.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn transport_kicked(
+    a: &[f64],
+    b: &[f64],
+    stop: &[f64],
+    slip: &[f64],
+    an: &mut [f64],
+    bn: &mut [f64],
+    c: f64,
+    src: &Sources,
+    kick: Kick,
+) -> Sums {
+    let ledger = kick.work.is_some();
+    let mut transport = Transport::new(a, b, stop, slip, an, bn, c, src, ledger);
+    let n = transport.a.len();
+    transport.dv = &kick.dv[1..=n];
+    if let Some(work) = kick.work {
+        transport.work = &mut work[1..=n];
+    }
+    crate::simd::dispatch(transport)
+}
+
 struct Transport<'a> {
     a_prev: &'a [f64],
     a: &'a [f64],
@@ -70,6 +107,9 @@ struct Transport<'a> {
     src: &'a Sources,
     /// Whether the energy terms are summed ([`Sums`]; zero without).
     ledger: bool,
+    /// The cells' [`Kick`] (empty: none) and its work per cell (empty without the ledger).
+    dv: &'a [f64],
+    work: &'a mut [f64],
 }
 
 impl<'a> Transport<'a> {
@@ -101,6 +141,8 @@ impl<'a> Transport<'a> {
             c,
             src,
             ledger,
+            dv: &[],
+            work: &mut [],
         }
     }
 }
@@ -110,10 +152,11 @@ impl crate::simd::Kernel for Transport<'_> {
 
     #[inline(always)]
     fn run<M: crate::simd::MulAdd>(self) -> Sums {
-        if self.ledger {
-            self.specialised::<true>()
-        } else {
-            self.specialised::<false>()
+        match (self.ledger, self.dv.is_empty()) {
+            (true, true) => self.specialised::<true>(),
+            (false, true) => self.specialised::<false>(),
+            (true, false) => self.kicked::<true>(),
+            (false, false) => self.kicked::<false>(),
         }
     }
 }
@@ -124,14 +167,26 @@ impl Transport<'_> {
     #[inline(always)]
     fn specialised<const LEDGER: bool>(self) -> Sums {
         match (self.src.regularised.is_some(), self.c < 1.0, self.src.damping > 0.0) {
-            (false, false, false) => self.cells::<false, false, false, LEDGER>(),
-            (false, false, true) => self.cells::<false, false, true, LEDGER>(),
-            (false, true, false) => self.cells::<false, true, false, LEDGER>(),
-            (false, true, true) => self.cells::<false, true, true, LEDGER>(),
-            (true, false, false) => self.cells::<true, false, false, LEDGER>(),
-            (true, false, true) => self.cells::<true, false, true, LEDGER>(),
-            (true, true, false) => self.cells::<true, true, false, LEDGER>(),
-            (true, true, true) => self.cells::<true, true, true, LEDGER>(),
+            (false, false, false) => self.cells::<false, false, false, LEDGER, false>(),
+            (false, false, true) => self.cells::<false, false, true, LEDGER, false>(),
+            (false, true, false) => self.cells::<false, true, false, LEDGER, false>(),
+            (false, true, true) => self.cells::<false, true, true, LEDGER, false>(),
+            (true, false, false) => self.cells::<true, false, false, LEDGER, false>(),
+            (true, false, true) => self.cells::<true, false, true, LEDGER, false>(),
+            (true, true, false) => self.cells::<true, true, false, LEDGER, false>(),
+            (true, true, true) => self.cells::<true, true, true, LEDGER, false>(),
+        }
+    }
+
+    /// [`Transport::cells`] with a [`Kick`] (the axial field: set-valued friction only).
+    #[inline(always)]
+    fn kicked<const LEDGER: bool>(self) -> Sums {
+        assert!(self.src.regularised.is_none(), "a kick with the set-valued friction only");
+        match (self.c < 1.0, self.src.damping > 0.0) {
+            (false, false) => self.cells::<false, false, false, LEDGER, true>(),
+            (false, true) => self.cells::<false, false, true, LEDGER, true>(),
+            (true, false) => self.cells::<false, true, false, LEDGER, true>(),
+            (true, true) => self.cells::<false, true, true, LEDGER, true>(),
         }
     }
 }
@@ -159,41 +214,60 @@ impl Transport<'_> {
     /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
     /// Without `LEDGER` no energy term is computed and the sums are zero.
     #[inline(always)]
-    fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool>(self) -> Sums {
-        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, .. } = self;
+    fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
+        self,
+    ) -> Sums {
+        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, dv, work, .. } = self;
         let n = a.len();
         let k = Consts::new(c, src);
         let mut lanes = Lanes::default();
-        // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds.
+        // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds
+        // (the kick's and its work's only where they are used).
         let (a_prev, a, b, b_next, stop, slip) = (&a_prev[..n], &a[..n], &b[..n], &b_next[..n], &stop[..n], &slip[..n]);
         let (an, bn) = (&mut an[..n], &mut bn[..n]);
+        let dv = if KICK { &dv[..n] } else { dv };
+        let work = if KICK && LEDGER { &mut work[..n] } else { work };
         macro_rules! at {
             ($x:expr, $i:expr) => {
                 <&Chunk>::try_from(&$x[$i..$i + WIDTH]).expect("a whole chunk")
             };
         }
+        macro_rules! at_mut {
+            ($x:expr, $i:expr) => {
+                <&mut Chunk>::try_from(&mut $x[$i..$i + WIDTH]).expect("a whole chunk")
+            };
+        }
+        let (none, mut no_work) = ([0.0; WIDTH], [0.0; WIDTH]);
         let mut i = 0;
         while i + WIDTH <= n {
             let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
-            let na = <&mut Chunk>::try_from(&mut an[i..i + WIDTH]).expect("a whole chunk");
-            let nb = <&mut Chunk>::try_from(&mut bn[i..i + WIDTH]).expect("a whole chunk");
-            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER>(inputs, na, nb, &k, &mut lanes);
+            let kick = if KICK { at!(dv, i) } else { &none };
+            let w = if KICK && LEDGER { at_mut!(work, i) } else { &mut no_work };
+            let out = [at_mut!(an, i), at_mut!(bn, i), w];
+            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, out, &k, &mut lanes);
             i += WIDTH;
         }
         if i < n {
             // Copied element by element (no call out of the vector code).
-            let mut pad = [[0.0; WIDTH]; 6];
-            for (p, x) in pad.iter_mut().zip([a_prev, a, b, b_next, stop, slip]) {
-                for (y, &v) in p.iter_mut().zip(&x[i..]) {
+            let mut pad = [[0.0; WIDTH]; 7];
+            let dv = if KICK { &dv[i..] } else { dv };
+            for (p, x) in pad.iter_mut().zip([&a_prev[i..], &a[i..], &b[i..], &b_next[i..], &stop[i..], &slip[i..], dv]) {
+                for (y, &v) in p.iter_mut().zip(x) {
                     *y = v;
                 }
             }
-            let [ap, aa, bb, bx, st, sl] = &pad;
-            let (mut na, mut nb) = ([0.0; WIDTH], [0.0; WIDTH]);
-            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER>([ap, aa, bb, bx, st, sl], &mut na, &mut nb, &k, &mut lanes);
+            let [ap, aa, bb, bx, st, sl, kick] = &pad;
+            let (mut na, mut nb, mut w) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
+            let out = [&mut na, &mut nb, &mut w];
+            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER, KICK>([ap, aa, bb, bx, st, sl], kick, out, &k, &mut lanes);
             for (j, (x, y)) in an[i..].iter_mut().zip(&mut bn[i..]).enumerate() {
                 *x = na[j];
                 *y = nb[j];
+            }
+            if KICK && LEDGER {
+                for (j, e) in work[i..].iter_mut().enumerate() {
+                    *e = w[j];
+                }
             }
         }
         // The lanes in order, the three sums side by side (a lane's sum is never -0, so
@@ -208,20 +282,32 @@ impl Transport<'_> {
     }
 }
 
-/// One chunk: `[a_prev, a, b, b_next, stop, slip]` in, the new invariants out, the energy
-/// terms added to `lanes` (cell `l` of the chunk into lane `l`) with `LEDGER`.
+/// One chunk: `[a_prev, a, b, b_next, stop, slip]` and the kick in, `[alpha, beta, kick's
+/// work]` out, the energy terms added to `lanes` (cell `l` of the chunk into lane `l`) with
+/// `LEDGER`. With `KICK` the speed change `dv` follows the update, as a source after it:
+/// its work `dv (v + dv / 2)` at the speed `v` the update left.
 #[inline(always)]
-fn chunk<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool>(
+fn chunk<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
     [ap, aa, bb, bx, st, sl]: [&Chunk; 6],
-    na: &mut Chunk,
-    nb: &mut Chunk,
+    kick: &Chunk,
+    [na, nb, work]: [&mut Chunk; 3],
     k: &Consts,
     lanes: &mut Lanes,
 ) {
     for l in 0..WIDTH {
         let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], k);
-        na[l] = cell.an;
-        nb[l] = cell.bn;
+        if KICK {
+            let dv = kick[l];
+            if LEDGER {
+                let v = 0.5 * (cell.an + cell.bn);
+                work[l] = dv * (v + 0.5 * dv);
+            }
+            na[l] = cell.an + dv;
+            nb[l] = cell.bn + dv;
+        } else {
+            na[l] = cell.an;
+            nb[l] = cell.bn;
+        }
         if LEDGER {
             if UPWIND {
                 lanes.jump[l] += cell.jump;
@@ -484,6 +570,45 @@ mod tests {
                 if n >= 16 && regularised.is_none() {
                     assert!(stuck > 0 && stuck < n, "n {n}: {stuck} stuck cells (the case must hold both)");
                 }
+            }
+        }
+    }
+
+    /// [`transport_kicked`] against [`transport`] followed by the kick cell by cell (`v = (alpha
+    /// + beta) / 2`, work `dv (v + dv / 2)`, `alpha += dv`, `beta += dv`): the same bits, with
+    /// and without the ledger, below, at and above a chunk, upwind and at Courant number 1.
+    #[test]
+    fn the_kick_in_the_pass_gives_the_bits_of_the_kick_after_it() {
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        for n in [1, 5, 16, 17, 40, 91] {
+            let len = n + 2;
+            let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.77).sin() * 2.0).collect();
+            let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.31).cos() * 2.0 - 0.5).collect();
+            let zeros = vec![0.0; len];
+            let dv: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 1e-3 * (1.0 + (i % 5) as f64) }).collect();
+            for c in [0.93, 1.0] {
+                let src = Sources { damping: 1e-3, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None };
+                let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
+                let sums = transport(&a, &b, &zeros, &zeros, &mut an, &mut bn, c, &src);
+                let mut work = vec![0.0; len];
+                for i in 1..=n {
+                    let v = 0.5 * (an[i] + bn[i]);
+                    work[i] = dv[i] * (v + 0.5 * dv[i]);
+                    an[i] += dv[i];
+                    bn[i] += dv[i];
+                }
+                let (mut ak, mut bk, mut wk) = (vec![0.0; len], vec![0.0; len], vec![7.0; len]);
+                let kicked = transport_kicked(
+                    &a, &b, &zeros, &zeros, &mut ak, &mut bk, c, &src, Kick { dv: &dv, work: Some(&mut wk) },
+                );
+                assert_eq!((bits(&ak), bits(&bk)), (bits(&an), bits(&bn)), "n {n} c {c}");
+                assert_eq!(bits(&wk[1..=n]), bits(&work[1..=n]), "n {n} c {c}");
+                assert_eq!((wk[0], wk[n + 1]), (7.0, 7.0), "the ghosts untouched");
+                let pairs = [(kicked.jumps, sums.jumps), (kicked.friction, sums.friction), (kicked.damping, sums.damping)];
+                assert!(pairs.iter().all(|(x, y)| x.to_bits() == y.to_bits()), "n {n} c {c}");
+                let (mut au, mut bu) = (vec![0.0; len], vec![0.0; len]);
+                transport_kicked(&a, &b, &zeros, &zeros, &mut au, &mut bu, c, &src, Kick { dv: &dv, work: None });
+                assert_eq!((bits(&au), bits(&bu)), (bits(&an), bits(&bn)), "n {n} c {c} without the ledger");
             }
         }
     }

@@ -10,8 +10,8 @@ use super::controller::{Setpoint, SpeedSeries, Top, TopInput, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
 use super::energy::{EnergyBalance, Ledger, Stored};
 use super::field::Field;
-use super::kernel::{godunov, transport};
-use super::kernel_published::transport as published;
+use super::kernel::{godunov, transport, transport_unbooked};
+use super::kernel_published::transport as before_transport;
 use super::sampler::{Point, BIT_SPEED, BIT_TORQUE, MOTOR_TORQUE, TIME, TOP_SPEED};
 use super::session::Session;
 use super::sources::{Sources, WallFriction};
@@ -364,7 +364,7 @@ impl Simulation {
                 let (wb1, tbit) = ax.bit(arriving, self.bit.inertia, self.bit.omega, dt, &mut self.ledger);
                 self.bit.omega = wb1;
                 ax.field.junctions();
-                ax.cells(&mut self.ledger);
+                ax.cells(&mut self.ledger, self.cfg.numerics.energy_balance);
                 (wb1, tbit)
             }
             None => self.bit.step(arriving, dt, &mut self.ledger),
@@ -396,21 +396,23 @@ impl Simulation {
                 nl.peak_strain[s] = nl.peak_strain[s].max(sums.peak);
             }
         } else {
-            let transport =
-                if self.cfg.numerics.source_speed == SourceSpeed::BeforeTransport { published } else { transport };
+            let published = self.cfg.numerics.source_speed == SourceSpeed::BeforeTransport;
+            // (without the ledger, the kernel without the energy terms; the published scheme's
+            // is scalar and keeps them, unbooked)
+            let booked = self.cfg.numerics.energy_balance;
             for sp in sections.iter() {
                 let r = sp.padded();
-                let sums = transport(
-                    &alpha[r.clone()],
-                    &beta[r.clone()],
-                    &stop[r.clone()],
-                    &slip[r.clone()],
-                    &mut alpha_next[r.clone()],
-                    &mut beta_next[r],
-                    sp.courant,
-                    &self.sources,
-                );
-                self.ledger.transport(sp.e, sp.courant, &sums);
+                let (a, b, st, sl) = (&alpha[r.clone()], &beta[r.clone()], &stop[r.clone()], &slip[r.clone()]);
+                let (an, bn) = (&mut alpha_next[r.clone()], &mut beta_next[r]);
+                if !published && !booked {
+                    transport_unbooked(a, b, st, sl, an, bn, sp.courant, &self.sources);
+                    continue;
+                }
+                let kernel = if published { before_transport } else { transport };
+                let sums = kernel(a, b, st, sl, an, bn, sp.courant, &self.sources);
+                if booked {
+                    self.ledger.transport(sp.e, sp.courant, &sums);
+                }
             }
         }
         self.field.swap();

@@ -17,7 +17,7 @@ use serde_json::Value;
 use super::boundary::{BitEnd, TopDriveEnd};
 use super::controller::{gains, Setpoint, Top, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
-use super::energy::EnergyBalance;
+use super::energy::{EnergyBalance, NOT_KEPT};
 use super::run::{axial_transient, coupled_metrics, metrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};
 use super::sampler::Sampler;
 use super::sources::{Sources, WallFriction};
@@ -585,7 +585,12 @@ fn finished(
     run.min_cycle_torque = min_cycle_torque(cfg, breakoff);
     run.warnings = run_warnings(cfg, breakoff);
     sim.courant_peak(&mut run);
-    let (energy, finite) = sim.ledger.balance(initial, sim.stored());
+    let (energy, finite) = if cfg.numerics.energy_balance {
+        sim.ledger.balance(initial, sim.stored())
+    } else {
+        run.warnings.push(NOT_KEPT.to_string());
+        (EnergyBalance::not_kept(), sim.stored().total().is_finite())
+    };
     run.energy = energy;
     if run.status == Status::Success && !finite {
         run.status = Status::NonFinite;

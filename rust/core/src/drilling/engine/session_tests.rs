@@ -60,6 +60,44 @@ fn same_series(a: &DrillRun, b: &DrillRun) {
     }
 }
 
+/// `numerics.energy_balance = false`: every series and snapshot the run with the ledger's,
+/// bit for bit (torsion alone at Courant numbers 1 and below, coupled), every energy output
+/// NaN and a warning saying so.
+#[test]
+fn a_run_without_the_ledger_is_the_run_with_it_bit_for_bit() {
+    let slower = |cfg: DrillConfig| {
+        let mut value = serde_json::to_value(cfg).unwrap();
+        value["numerics"]["courant"] = json!(0.93);
+        DrillConfig::from_value(value).unwrap()
+    };
+    for cfg in [torsional(), coupled(), slower(torsional()), slower(coupled())] {
+        let kept = solve(&cfg, &Never, &mut |_| {}).unwrap();
+        assert_eq!(kept.status, Status::Success, "{}", kept.message);
+        assert!(kept.energy.balance_error.abs() < 1e-11, "{:?}", kept.energy);
+        let mut value = serde_json::to_value(&cfg).unwrap();
+        value["numerics"]["energy_balance"] = json!(false);
+        let off = solve(&DrillConfig::from_value(value).unwrap(), &Never, &mut |_| {}).unwrap();
+        same_series(&off, &kept);
+        for (x, y) in [
+            (&off.omega_field, &kept.omega_field),
+            (&off.torque_field, &kept.torque_field),
+            (&off.bit_axial_speed, &kept.bit_axial_speed),
+            (&off.bit_depth, &kept.bit_depth),
+        ] {
+            assert!(x.len() == y.len() && x.iter().zip(y).all(|(p, q)| p.to_bits() == q.to_bits()));
+        }
+        assert_eq!(format!("{:?}", off.metrics), format!("{:?}", kept.metrics));
+        assert_eq!(format!("{:?}", off.coupled), format!("{:?}", kept.coupled));
+        let e = serde_json::to_value(off.energy).unwrap();
+        assert!(e.as_object().unwrap().values().all(|v| v.as_f64().is_none_or(f64::is_nan)), "{e}");
+        assert!(off.energy.balance_error.is_nan() && off.energy.motor_work.is_nan());
+        assert_eq!(off.warnings.iter().filter(|w| w.as_str() == NOT_KEPT).count(), 1);
+        assert!(!kept.warnings.iter().any(|w| w.contains("energy_balance")));
+        let rest: Vec<_> = off.warnings.iter().filter(|w| w.as_str() != NOT_KEPT).collect();
+        assert_eq!(rest, kept.warnings.iter().collect::<Vec<_>>());
+    }
+}
+
 #[test]
 fn a_session_stepped_in_uneven_chunks_is_the_batch_run_bit_for_bit() {
     for cfg in [torsional(), coupled()] {
