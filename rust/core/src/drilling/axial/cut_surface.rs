@@ -206,10 +206,56 @@ impl UpwindCutSurface {
         let sub = courant.ceil().max(1.0);
         let (c, dv) = (courant / sub, dt * axial_speed / sub);
         for _ in 0..sub as usize {
-            for j in (1..self.depth.len()).rev() {
-                self.depth[j] += dv - c * (self.depth[j] - self.depth[j - 1]);
+            upwind_stage(&mut self.depth, c, dv);
+        }
+    }
+}
+
+/// Cells of [`upwind_stage`] updated side by side.
+const STAGE_BLOCK: usize = 8;
+
+/// One upwind stage of the cut surface in place, `l_j += dv - c (l_j - l_{j-1})` from the
+/// old values (`l_{-1} = 0`): from the last cell down, [`STAGE_BLOCK`] cells at a time from
+/// the old values below them (so that the block vectorises), the rest one by one.
+#[inline]
+fn upwind_stage(depth: &mut [f64], c: f64, dv: f64) {
+    let mut top = depth.len();
+    while top > STAGE_BLOCK {
+        let low = top - STAGE_BLOCK;
+        let mut new = [0.0; STAGE_BLOCK];
+        let (below, block) = (&depth[low - 1..top - 1], &depth[low..top]);
+        for k in 0..STAGE_BLOCK {
+            new[k] = block[k] + (dv - c * (block[k] - below[k]));
+        }
+        depth[low..top].copy_from_slice(&new);
+        top = low;
+    }
+    for j in (1..top).rev() {
+        depth[j] += dv - c * (depth[j] - depth[j - 1]);
+    }
+    depth[0] += dv - c * depth[0];
+}
+
+#[cfg(test)]
+mod stage_tests {
+    /// [`super::upwind_stage`] against the stage cell by cell from the last: the same bits on
+    /// surfaces below, at and above a block, at Courant numbers up to 1.
+    #[test]
+    fn the_blocked_stage_gives_the_bits_of_the_cell_by_cell_stage() {
+        for cells in [1, 2, 7, 8, 9, 16, 17, 169] {
+            for (c, dv) in [(0.13, 1e-6), (0.999, -3e-7), (1.0, 0.0)] {
+                let start: Vec<f64> = (0..cells).map(|j| 1e-3 * ((j as f64 * 0.37).sin() + 1.5)).collect();
+                let mut blocked = start.clone();
+                super::upwind_stage(&mut blocked, c, dv);
+                let mut serial = start.clone();
+                for j in (1..cells).rev() {
+                    serial[j] += dv - c * (serial[j] - serial[j - 1]);
+                }
+                serial[0] += dv - c * serial[0];
+                let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&blocked), bits(&serial), "cells {cells} c {c}");
+                assert_ne!(bits(&blocked), bits(&start));
             }
-            self.depth[0] += dv - c * self.depth[0];
         }
     }
 }
