@@ -40,9 +40,11 @@ def main() -> None:
     cells, steps = res.stats["cells"], res.stats["steps"]
     name = args.config.name
     settings = f" ({', '.join(args.set)})" if args.set else ""
-    print(f"{name}{settings}: {cells} torsional cells x {steps} steps, {duration:g} s simulated, {os.cpu_count()} cores")
+    print(f"{name}{settings}: {cells} torsional cells x {steps} steps, {duration:g} s simulated, "
+          f"{os.cpu_count()} cores")
     print(
-        f"  {best:.3f} s thread CPU (best of {args.repeat}; process CPU {process:.3f} s): {duration / best:.0f}x real time, "
+        f"  {best:.3f} s thread CPU (best of {args.repeat}; process CPU {process:.3f} s): "
+        f"{duration / best:.0f}x real time, "
         f"{best / steps * 1e6:.2f} us per step, {best / (cells * steps) * 1e9:.2f} ns per torsional cell and step"
     )
 

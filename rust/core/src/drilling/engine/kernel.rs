@@ -574,9 +574,10 @@ mod tests {
         }
     }
 
-    /// [`transport_kicked`] against [`transport`] followed by the kick cell by cell (`v = (alpha
-    /// + beta) / 2`, work `dv (v + dv / 2)`, `alpha += dv`, `beta += dv`): the same bits, with
-    /// and without the ledger, below, at and above a chunk, upwind and at Courant number 1.
+    /// [`transport_kicked`] against [`transport`] followed by the kick cell by cell (the speed
+    /// `v = (alpha + beta) / 2`, work `dv (v + dv / 2)`, `alpha += dv`, `beta += dv`): the same
+    /// bits, with and without the ledger, below, at and above a chunk, upwind and at Courant
+    /// number 1.
     #[test]
     fn the_kick_in_the_pass_gives_the_bits_of_the_kick_after_it() {
         let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
