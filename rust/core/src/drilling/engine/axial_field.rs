@@ -107,8 +107,6 @@ pub struct Axial {
     sources: Sources,
     /// `g dt` per padded index (0 at ghosts).
     gravity: Vec<f64>,
-    /// Each cell's work of the buoyed weight in a step (summed in lanes).
-    gravity_work: Vec<f64>,
     hoist: HoistState,
     /// The bit law ([`super::bit_law`], one that needs the axial field) and its blades (the
     /// depth of cut of one blade pass, `bit.detournay.blades`).
@@ -224,7 +222,6 @@ impl Axial {
         let src = Sources::new(cfg, dt);
         Ok(Axial {
             zeros: vec![0.0; len],
-            gravity_work: vec![0.0; len],
             sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
             gravity,
             hoist: HoistState::new(params, initial).hanging(hanging),
@@ -445,7 +442,6 @@ impl Axial {
         let z = &self.zeros[..];
         for sp in sections.iter() {
             let r = sp.padded();
-            let work = booked.then(|| &mut self.gravity_work[r.clone()]);
             let sums = transport_kicked(
                 &alpha[r.clone()],
                 &beta[r.clone()],
@@ -455,12 +451,11 @@ impl Axial {
                 &mut beta_next[r.clone()],
                 sp.courant,
                 &self.sources,
-                Kick { dv: &self.gravity[r.clone()], work },
+                Kick { dv: &self.gravity[r.clone()], booked },
             );
             if booked {
                 ledger.transport(sp.e, sp.courant, &sums);
-                let cells = r.start + 1..r.end - 1;
-                ledger.gravity += 4.0 * sp.e * super::kernel::lane_sum(&self.gravity_work[cells]);
+                ledger.gravity += 4.0 * sp.e * sums.kick;
             }
         }
         self.field.swap();

@@ -24,6 +24,8 @@ pub struct Sums {
     pub damping: f64,
     /// Largest `|eps|` (`consistent`).
     pub peak: f64,
+    /// `sum dv (v + dv / 2)` of a [`Kick`] with the ledger, summed as [`lane_sum`] sums.
+    pub kick: f64,
 }
 
 /// Upwind transport and sources of one section: `a`, `b`, `stop`, `slip` padded (`[ghost,
@@ -60,17 +62,18 @@ pub fn transport_unbooked(
 }
 
 /// A speed change added to every cell after the transport and the other sources (the
-/// coupled run's buoyed weight, `dt g_eff` per padded index) and, with the ledger, its work
-/// per cell, `dv (v + dv / 2)` with `v` the speed before it, written to `work` (padded, the
-/// ghosts untouched).
+/// coupled run's buoyed weight, `dt g_eff` per padded index) and, with the ledger (`booked`),
+/// the sum of its work per cell, `dv (v + dv / 2)` with `v` the speed before it
+/// ([`Sums::kick`]).
 pub struct Kick<'a> {
     pub dv: &'a [f64],
-    pub work: Option<&'a mut [f64]>,
+    pub booked: bool,
 }
 
-/// [`transport`] (with the energy terms when `kick.work` is given, else none) followed by
-/// the speed change `kick` in the same pass over the cells: the bits of [`transport`] then
-/// `alpha += dv`, `beta += dv` cell by cell.
+/// [`transport`] (with the energy terms when `kick.booked`, else none) followed by the speed
+/// change `kick` in the same pass over the cells: the bits of [`transport`] then `alpha +=
+/// dv`, `beta += dv` cell by cell, and the kick's work summed in four lanes in the order of
+/// [`lane_sum`] over the cells (the same bits).
 #[allow(clippy::too_many_arguments)]
 #[inline]
 pub fn transport_kicked(
@@ -84,13 +87,9 @@ pub fn transport_kicked(
     src: &Sources,
     kick: Kick,
 ) -> Sums {
-    let ledger = kick.work.is_some();
-    let mut transport = Transport::new(a, b, stop, slip, an, bn, c, src, ledger);
+    let mut transport = Transport::new(a, b, stop, slip, an, bn, c, src, kick.booked);
     let n = transport.a.len();
     transport.dv = &kick.dv[1..=n];
-    if let Some(work) = kick.work {
-        transport.work = &mut work[1..=n];
-    }
     crate::simd::dispatch(transport)
 }
 
@@ -107,9 +106,8 @@ struct Transport<'a> {
     src: &'a Sources,
     /// Whether the energy terms are summed ([`Sums`]; zero without).
     ledger: bool,
-    /// The cells' [`Kick`] (empty: none) and its work per cell (empty without the ledger).
+    /// The cells' [`Kick`] (empty: none).
     dv: &'a [f64],
-    work: &'a mut [f64],
 }
 
 impl<'a> Transport<'a> {
@@ -142,7 +140,6 @@ impl<'a> Transport<'a> {
             src,
             ledger,
             dv: &[],
-            work: &mut [],
         }
     }
 }
@@ -217,16 +214,15 @@ impl Transport<'_> {
     fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
         self,
     ) -> Sums {
-        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, dv, work, .. } = self;
+        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, dv, .. } = self;
         let n = a.len();
         let k = Consts::new(c, src);
         let mut lanes = Lanes::default();
         // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds
-        // (the kick's and its work's only where they are used).
+        // (the kick's only where it is used).
         let (a_prev, a, b, b_next, stop, slip) = (&a_prev[..n], &a[..n], &b[..n], &b_next[..n], &stop[..n], &slip[..n]);
         let (an, bn) = (&mut an[..n], &mut bn[..n]);
         let dv = if KICK { &dv[..n] } else { dv };
-        let work = if KICK && LEDGER { &mut work[..n] } else { work };
         macro_rules! at {
             ($x:expr, $i:expr) => {
                 <&Chunk>::try_from(&$x[$i..$i + WIDTH]).expect("a whole chunk")
@@ -237,16 +233,27 @@ impl Transport<'_> {
                 <&mut Chunk>::try_from(&mut $x[$i..$i + WIDTH]).expect("a whole chunk")
             };
         }
-        let (none, mut no_work) = ([0.0; WIDTH], [0.0; WIDTH]);
+        // The kick's work in the lanes of [`lane_sum`] (cell `i` into lane `i % LANES`; a chunk
+        // starts at a multiple of LANES).
+        let mut kick_lanes = [0.0; LANES];
+        let (none, mut w) = ([0.0; WIDTH], [0.0; WIDTH]);
         let mut i = 0;
         while i + WIDTH <= n {
             let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
             let kick = if KICK { at!(dv, i) } else { &none };
-            let w = if KICK && LEDGER { at_mut!(work, i) } else { &mut no_work };
             let (na, nb) = (at_mut!(an, i), at_mut!(bn, i));
-            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, na, nb, w, &k, &mut lanes);
+            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
+            if KICK && LEDGER {
+                for block in w.chunks_exact(LANES) {
+                    for l in 0..LANES {
+                        kick_lanes[l] += block[l];
+                    }
+                }
+            }
             i += WIDTH;
         }
+        // (the sum of the last `n % LANES` cells', empty unless a tail has them)
+        let mut kick_rest = [0.0_f64; 0].iter().sum::<f64>();
         if i < n {
             // Copied element by element (no call out of the vector code).
             let mut pad = [[0.0; WIDTH]; 7];
@@ -265,8 +272,12 @@ impl Transport<'_> {
                 *y = nb[j];
             }
             if KICK && LEDGER {
-                for (j, e) in work[i..].iter_mut().enumerate() {
-                    *e = w[j];
+                let blocks = w[..n - i].chunks_exact(LANES);
+                kick_rest = blocks.remainder().iter().sum::<f64>();
+                for block in blocks {
+                    for l in 0..LANES {
+                        kick_lanes[l] += block[l];
+                    }
                 }
             }
         }
@@ -277,6 +288,9 @@ impl Transport<'_> {
             sums.jumps += lanes.jump[l];
             sums.friction += lanes.fric[l];
             sums.damping += lanes.damp[l];
+        }
+        if KICK && LEDGER {
+            sums.kick = kick_lanes.iter().sum::<f64>() + kick_rest;
         }
         sums
     }
@@ -602,17 +616,15 @@ mod tests {
                     an[i] += dv[i];
                     bn[i] += dv[i];
                 }
-                let (mut ak, mut bk, mut wk) = (vec![0.0; len], vec![0.0; len], vec![7.0; len]);
-                let kicked = transport_kicked(
-                    &a, &b, &zeros, &zeros, &mut ak, &mut bk, c, &src, Kick { dv: &dv, work: Some(&mut wk) },
-                );
+                let (mut ak, mut bk) = (vec![0.0; len], vec![0.0; len]);
+                let kicked =
+                    transport_kicked(&a, &b, &zeros, &zeros, &mut ak, &mut bk, c, &src, Kick { dv: &dv, booked: true });
                 assert_eq!((bits(&ak), bits(&bk)), (bits(&an), bits(&bn)), "n {n} c {c}");
-                assert_eq!(bits(&wk[1..=n]), bits(&work[1..=n]), "n {n} c {c}");
-                assert_eq!((wk[0], wk[n + 1]), (7.0, 7.0), "the ghosts untouched");
+                assert_eq!(kicked.kick.to_bits(), lane_sum(&work[1..=n]).to_bits(), "n {n} c {c}");
                 let pairs = [(kicked.jumps, sums.jumps), (kicked.friction, sums.friction), (kicked.damping, sums.damping)];
                 assert!(pairs.iter().all(|(x, y)| x.to_bits() == y.to_bits()), "n {n} c {c}");
                 let (mut au, mut bu) = (vec![0.0; len], vec![0.0; len]);
-                transport_kicked(&a, &b, &zeros, &zeros, &mut au, &mut bu, c, &src, Kick { dv: &dv, work: None });
+                transport_kicked(&a, &b, &zeros, &zeros, &mut au, &mut bu, c, &src, Kick { dv: &dv, booked: false });
                 assert_eq!((bits(&au), bits(&bu)), (bits(&an), bits(&bn)), "n {n} c {c} without the ledger");
             }
         }
