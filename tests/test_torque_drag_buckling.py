@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import drillstring as ds
 from drillstring.drilling.config import DrillConfig
@@ -239,3 +241,53 @@ def test_a_hole_smaller_than_the_tool_joints_is_refused() -> None:
     with pytest.raises(ValidationError, match="tool_joint_outer_diameter") as err:
         ds.torque_drag(DrillConfig.from_dict(data))
     assert err.value.field == "well.hole_diameter"
+
+
+@settings(max_examples=8, deadline=None)
+@given(inc_deg=st.floats(5.0, 85.0), tool_joint_in=st.floats(5.0, 8.0), mu=st.floats(0.05, 0.6))
+def test_the_tool_joints_are_the_friction_lever_arm(inc_deg: float, tool_joint_in: float, mu: float) -> None:
+    """On a straight inclined hole the rotating off-bottom surface torque is the closed form
+    `mu w L sin(i) r`, `r` half the tool joints' outer diameter where a section has tool joints
+    (they touch the wall): `TJ OD / OD` times the torque of the same string (the same weight,
+    `nominal_weight`) without them; a `contact_diameter` overrides the tool joints."""
+    length, weight = 3000.0, 22.6 * 4.4482216152605 / 0.3048  # m, N/m in air
+    data = _config(inclination_deg=inc_deg, hole_diameter=None)
+    data["sections"][0].update(nominal_weight=weight)
+    data["friction"]["static"] = mu
+    data["bit"]["weight_on_bit"] = 10e3
+    data["torque_drag"].update(broomstick_points=2, friction_factors=[mu])
+    joints = {"tool_joint_outer_diameter": tool_joint_in * INCH, "tool_joint_inner_diameter": 2.75 * INCH,
+              "tool_joint_length": 21.0 * INCH}
+
+    def torque(**section: Any) -> float:
+        d = json.loads(json.dumps(data))
+        d["sections"][0].update(section)
+        return float(ds.torque_drag(DrillConfig.from_dict(d)).summary["surface_torque_off_bottom_Nm"])
+
+    w_buoyed = weight * (1.0 - MUD / RHO)
+    normal = w_buoyed * length * math.sin(math.radians(inc_deg))
+    plain, jointed = torque(), torque(**joints)
+    assert plain == pytest.approx(mu * normal * OD / 2.0, rel=1e-9)
+    assert jointed == pytest.approx(mu * normal * tool_joint_in * INCH / 2.0, rel=1e-9)
+    assert jointed / plain == pytest.approx(tool_joint_in / 5.0, rel=1e-12)
+    assert torque(**joints, contact_diameter=OD) == pytest.approx(plain, rel=1e-12)
+    assert torque(**joints, contact_diameter=6.0 * INCH) == pytest.approx(mu * normal * 3.0 * INCH, rel=1e-9)
+
+
+def test_the_example_measured_points_give_back_their_factors(tmp_path: Path) -> None:
+    """`examples/directional-10000ft-measured.csv` was read off the model's broomstick at the
+    factors below (hook loads to 0.1 klbf, torques to 1 ft-lbf): each point's implied friction
+    factor is its own within 0.002; the row of an unknown operation is skipped."""
+    import pandas as pd
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "drillstring", "torque-drag",
+                           str(examples / "directional-10000ft-td-field.toml"), "--out", str(out), "--no-plots",
+                           "--measured", str(examples / "directional-10000ft-measured.csv")],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert "12 points, 12 with an implied friction factor, 1 rows skipped" in proc.stdout
+    m = pd.read_csv(out / "measured.csv")
+    made = [0.3, 0.2, 0.2, 0.3, 0.2, 0.3, 0.3, 0.3, 0.3, 0.4, 0.3, 0.3]
+    np.testing.assert_allclose(m["friction_factor"], made, atol=0.002)
