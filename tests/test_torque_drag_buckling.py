@@ -142,6 +142,13 @@ def test_a_long_horizontal_slack_off_locks_up(tmp_path: Path) -> None:
     assert doc["lockup"]["slackoff"] and doc["lockup"]["sliding"]
     assert doc["hook_load_slackoff_N"] is None and doc["max_set_down_N"] == 0.0
     assert "lock-up: slackoff, sliding" in out
+    # the limits' maxima leave the locked-up operations out: the largest utilisation is the
+    # others' (their compression below the lock-up is no load the string reaches)
+    feasible = [f"{op}_utilisation" for op in ("pickup", "rotating", "rotating_on_bottom")
+                if f"{op}_utilisation" in p.columns]
+    assert feasible and doc["max_utilisation_operation"] not in ("slackoff", "sliding")
+    assert doc["max_utilisation"] == pytest.approx(float(np.nanmax(p[feasible].to_numpy())), rel=1e-8)
+    assert doc["max_utilisation"] < 1.0
     short = _config(plan=[{"hold": 1500.0}, {"build": 6.0, "inclination": 90.0}, {"hold": 400.0}],
                     inclination_deg=0.0)
     short["sections"][0]["length"] = 2300.0

@@ -129,9 +129,15 @@ pub fn limits(traj: &Trajectory, setup: &Setup, el: &Elements, scheme: ProfileMe
         let at = if k + 1 < p.md.len() { 0.5 * (p.md[k] + p.md[k + 1]) } else { p.md[k] };
         piece_at(&setup.pieces, at).body
     };
+    // a locked-up operation is not carried out as asked (the bit's load would need the surface
+    // to push, and its compression below the lock-up grows without bound): not a load the string
+    // reaches, so not in the limits' maxima
     let best = |value: &dyn Fn(&Profile, usize) -> f64| {
         let mut out: Option<(f64, f64, &'static str)> = None;
         for (op, p) in ops.iter().zip(profiles) {
+            if lockup[op.name()] {
+                continue;
+            }
             if let Some((v, k)) = largest((0..p.md.len()).map(|k| value(p, k))) {
                 if out.is_none_or(|o| v > o.0) {
                     out = Some((v, p.md[k], op.name()));
