@@ -162,6 +162,37 @@ def test_a_long_horizontal_slack_off_locks_up(tmp_path: Path) -> None:
     assert abs(at_limit.hook_load_sliding_N) < 1e-6 * wob
 
 
+def test_sliding_in_a_horizontal_hole_locks_up_where_the_closed_form_diverges(tmp_path: Path) -> None:
+    """Helically buckled pipe slid along a horizontal hole: the compression going up from the bit
+    obeys `dF/du = mu (w + r_c F^2 / (4 E I))` (Mitchell's contact), whose solution is
+    `F(u) = a tan(mu w u / a + atan(F_0 / a))` with `a = 2 sqrt(E I w / r_c)`: it diverges, and the
+    string locks up, a finite `u* = (pi/2 - atan(F_0 / a)) a / (mu w)` above the bit (the
+    horizontal-hole lock-up analysis of coiled tubing, e.g. He & Kyllingstad 1995). 250 kN on the bit, above the
+    helical load 2 sqrt(2) sqrt(E I w / r_c) = 221 kN from the bit up: u* = 1313 m."""
+    plan = [{"hold": 1000.0}, {"build": 6.0, "inclination": 90.0}, {"hold": 2000.0}]
+    data = _config(plan=plan, inclination_deg=0.0)
+    data["sections"][0]["length"] = 3450.0
+    f0, mu = 250e3, 0.3
+    data["bit"]["weight_on_bit"] = f0
+    doc, p, out = _run(tmp_path, data, "--no-plots")
+    a = 2.0 * math.sqrt(EI * W / RC)
+    assert f0 > math.sqrt(2.0) * a  # helical from the bit
+    u_star = (math.pi / 2.0 - math.atan(f0 / a)) * a / (mu * W)
+    assert u_star == pytest.approx(1313.0, abs=1.0)
+    md = p["md_m"].to_numpy()
+    u = md[-1] - md
+    compression = -p["sliding_tension_N"].to_numpy()
+    closed = a * np.tan(mu * W * np.minimum(u, 0.99 * u_star) / a + math.atan(f0 / a))
+    early = closed < 2.0 * f0  # a doubled compression, 1 m elements: to 0.1 %
+    assert early.sum() > 300
+    np.testing.assert_allclose(compression[early], closed[early], rtol=1e-3)
+    assert (p["sliding_buckling"].to_numpy()[u < 1000.0] == "helical").all()
+    # where the closed form diverges, the core's compression does, within 1 % of u*
+    diverged = u[~(compression < 1e3 * f0)]
+    assert diverged.size and diverged.min() == pytest.approx(u_star, rel=1e-2)
+    assert doc["lockup"]["sliding"] and doc["hook_load_sliding_N"] is None and "lock-up: sliding" in out
+
+
 def test_curved_hole_critical_load_is_the_lateral_balance_root(tmp_path: Path) -> None:
     """In a build the critical load solves `F = 2 sqrt(E I (w sin i + F / R) / r_c)` (the
     convention of the docs): a scipy root of it against the core's profile in the build."""
