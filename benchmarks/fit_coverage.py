@@ -23,7 +23,8 @@ relative error.
 
     python benchmarks/fit_coverage.py [--misfit features|least_squares] [--top controller|measured]
                                       [--draws 20] [--cells 700] [--cache DIR] [--threads 2]
-                                      [--starts N] [--carry K]
+                                      [--starts N] [--carry K] [--interval auto|jacobian|jackknife]
+                                      [--log FILE.jsonl] [--skip-fine] [--skip-published]
 
 ``--cache DIR`` keeps the noiseless runs of the other codes in DIR (the published port on 4000
 cells takes minutes).
@@ -32,6 +33,7 @@ cells takes minutes).
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 import time
@@ -141,12 +143,18 @@ def main() -> None:
     parser.add_argument("--starts", type=int, default=None, help="fit's starts (default: the fit's)")
     parser.add_argument("--carry", type=int, default=None, help="fit's carry: starts past the first horizon")
     parser.add_argument("--skip-published", action="store_true", help="leave out the published port (4000 cells)")
+    parser.add_argument("--interval", choices=("auto", "jacobian", "jackknife"), default="auto",
+                        help="fit's interval (default: the fit's)")
+    parser.add_argument("--skip-fine", action="store_true", help="leave out the numpy port on 1500 cells")
+    parser.add_argument("--log", type=Path, default=None,
+                        help="append each fit's values and every method's intervals to this JSON-lines file")
     args = parser.parse_args()
     cfg = ds.load_drill_config(ROOT / "examples" / "aarsnes-shor-well-b.toml").with_overrides(
         {"numerics.duration": DURATION, "numerics.field_interval": 0.0})
     cases = [(f"numpy port, {args.cells} cells", f"numpy-{args.cells}", lambda: numpy_port(args.cells), seed,
               args.cells) for seed in range(args.first_seed, args.first_seed + args.draws)]
-    cases.append(("numpy port, 1500 cells", "numpy-1500", lambda: numpy_port(1500), 100, 1500))
+    if not args.skip_fine:
+        cases.append(("numpy port, 1500 cells", "numpy-1500", lambda: numpy_port(1500), 100, 1500))
     if not args.skip_published:
         cases.append(("published port, 4000 cells", "published-4000", lambda: published_port(4000), 200, 4000))
     print(f"misfit {args.misfit}, top {args.top}; truth {TRUTH}")
@@ -154,14 +162,29 @@ def main() -> None:
     print("|---|---:|---:|---|---|---:|---|---|---:|---|")
     held = {k: 0 for k in TRUTH}
     worst = {k: 0.0 for k in TRUTH}
+    # where the jackknife applied: the share of each method's intervals holding the truth
+    methods: dict[str, dict[str, int]] = {}
     seconds = []
     for label, name, make, seed, cells in cases:
         run = cached(name, make, args.cache)
         start = time.perf_counter()
         model = cfg.with_overrides({"damping_rate": damping_rate(cells)})
         res = ds.fit(model, noisy(run, seed), BOUNDS, threads=args.threads, landscape=False, misfit=args.misfit,
-                     top=args.top, starts=args.starts, carry=args.carry)
+                     top=args.top, starts=args.starts, carry=args.carry, interval=args.interval)
         seconds.append(time.perf_counter() - start)
+        for method in ("jacobian", "jackknife_linear", "jackknife", "combined"):
+            for key, true in TRUTH.items():
+                ci = res.intervals.get(method, {}).get(key)
+                if ci is not None:
+                    count = methods.setdefault(f"{method} {key}", {"held": 0, "of": 0})
+                    count["held"] += ci["ci_low"] <= true <= ci["ci_high"]
+                    count["of"] += 1
+        if args.log is not None:
+            with open(args.log, "a", encoding="utf-8") as f:
+                f.write(json.dumps({"data": label, "seed": seed, "misfit": args.misfit, "top": args.top,
+                                    "seconds": seconds[-1], "warnings": res.warnings, "evaluations": res.evaluations,
+                                    "parameters": {k: p.to_dict() for k, p in res.parameters.items()},
+                                    "intervals": res.intervals}) + "\n")
         row = []
         for key, true in TRUTH.items():
             p = res.parameters[key]
@@ -174,6 +197,8 @@ def main() -> None:
     for key in TRUTH:
         print(f"{key}: {held[key]} of {n} intervals hold the truth ({held[key] / n:.0%}); largest error "
               f"{worst[key]:.1%}")
+    for name, count in methods.items():
+        print(f"{name} alone: {count['held']} of {count['of']} intervals hold the truth")
     print(f"fit time: median {np.median(seconds):.0f} s, largest {max(seconds):.0f} s ({args.threads} threads)")
 
 

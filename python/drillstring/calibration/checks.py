@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from .features import noise_level
 
 __all__ = ["AUTOCORRELATION_LIMIT", "BOUND_SHARE", "CHI2_RATIO", "NOISE_FLOOR", "NOISE_RATIO", "RIDGE_CORRELATION",
-           "UNIT_RATIO", "SeriesCheck", "series_check"]
+           "SERIES_UNITS", "UNIT_RATIO", "SeriesCheck", "series_check"]
 
 #: A value within this share of its box from a bound is "at its bound".
 BOUND_SHARE = 0.01
@@ -49,7 +49,8 @@ UNIT_RATIO = 20.0
 #: Estimates correlated beyond this: a ridge.
 RIDGE_CORRELATION = 0.95
 
-_UNITS = {"motor_torque": "N m", "bit_torque": "N m", "surface_rpm": "rpm", "bit_rpm": "rpm", "hook_load": "N",
+#: The SI unit of each fitted series, as messages name it.
+SERIES_UNITS = {"motor_torque": "N m", "bit_torque": "N m", "surface_rpm": "rpm", "bit_rpm": "rpm", "hook_load": "N",
           "weight_on_bit": "N"}
 _LARGER_UNITS = {"N m": "kN m", "N": "kN", "rpm": "rad/s"}
 
@@ -110,7 +111,7 @@ def residual_warnings(checks: Sequence[SeriesCheck], misfit: str) -> list[str]:
     """The residual far above the noise, correlated residuals and implausible units, per series."""
     out = []
     for c in checks:
-        unit = _UNITS.get(c.series, "")
+        unit = SERIES_UNITS.get(c.series, "")
         name = f"{c.series} (event {c.event})" if any(k.event for k in checks) else c.series
         if c.model_scale > 0 and c.data_scale > 0:
             ratio = c.data_scale / c.model_scale

@@ -78,7 +78,8 @@ from .data import AXIAL_SERIES, MODEL_SERIES, MeasuredData, read_measured
 from .features import features as cycle_features
 from .features import noise_level, uncertainties
 
-__all__ = ["CONDITION_LIMIT", "MISFITS", "Event", "FitResult", "Landscape", "ParameterEstimate", "Profile", "fit"]
+__all__ = ["CONDITION_LIMIT", "INTERVALS", "MISFITS", "OFFSETS", "Event", "FitResult", "Landscape", "ParameterEstimate",
+           "Profile", "fit"]
 
 #: Condition number of the box-scaled Jacobian above which the intervals come from profiles.
 CONDITION_LIMIT = 1e3
@@ -106,6 +107,16 @@ SPEED_SMOOTH_TIME = 0.5
 HAC_CUTOFF = 0.05
 #: ... times this many.
 HAC_LENGTHS = 3
+#: The offsets a fit can estimate per event and target series (``offset=``): none, a constant, or a
+#: constant plus a rate (linear in time), each profiled out in closed form at every evaluation.
+OFFSETS = ("none", "constant", "linear")
+#: The intervals a fit can give (``interval=``): the jackknife's where sample-by-sample residuals
+#: are correlated (``"auto"``), the Jacobian's alone, or the jackknife's always.
+INTERVALS = ("auto", "jacobian", "jackknife")
+#: The delete-a-group jackknife: the windows cut into this many contiguous groups of equal time ...
+JACKKNIFE_GROUPS = 8
+#: ... each left out in turn and the rest refitted from the optimum in at most this many evaluations.
+JACKKNIFE_EVALUATIONS = 12
 #: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
 PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
@@ -209,6 +220,14 @@ class FitResult:
     #: With ``misfit="features"``: per event, target and feature the data's value, its standard
     #: deviation and the fitted model's value.
     features: list[dict[str, Any]] = field(default_factory=list)
+    #: Where the jackknife applied (``interval=``): the intervals of each method (``jacobian``,
+    #: ``jackknife``, ``jackknife_linear``) per parameter, the groups and Student's t quantile.
+    intervals: dict[str, Any] = field(default_factory=dict)
+    #: The ``offset`` option: ``"none"``, ``"constant"`` or ``"linear"``.
+    offset: str = "none"
+    #: Per event and target the estimated offset ``measured - model`` (:meth:`_Problem.offsets`:
+    #: ``constant`` at ``t_ref``, ``rate_per_s``); the fitted series include it.
+    offsets: list[dict[str, dict[str, float]]] = field(default_factory=list)
 
     @property
     def config(self) -> DrillConfig:
@@ -240,6 +259,9 @@ class FitResult:
             "series_checks": [c.to_dict() for c in self.series_checks],
             "correlation": self.correlation,
             "features": self.features,
+            "intervals": self.intervals,
+            "offset": self.offset,
+            "offsets": self.offsets,
         }
 
     def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Any]:
@@ -267,9 +289,12 @@ class _Problem:
     """The residuals of the events as a function of the parameter vector scaled to ``[0, 1]``."""
 
     def __init__(self, events: list[Event], columns: list[_Column], targets: dict[str, float],
-                 threads: int, fraction: float = 1.0, top: str = "controller", misfit: str = "least_squares") -> None:
+                 threads: int, fraction: float = 1.0, top: str = "controller", misfit: str = "least_squares",
+                 offset: str = "none") -> None:
         self.events = events
         self.misfit = misfit
+        #: ``offset=``: the sensor offset profiled out of each event's and target's residuals.
+        self.offset = offset
         self.columns = columns
         self.targets = targets
         self.threads = threads
@@ -327,6 +352,8 @@ class _Problem:
             self.points = sum(len(ref[s][0]) for ref in self.reference for s in targets)
         else:
             self.points = sum(i.size * len(targets) for i in self.index)
+        #: The offsets' coefficients profiled out (degrees of freedom the residuals lose).
+        self.profiled = OFFSETS.index(offset) * len(targets) * len(events)
 
     def values(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
         return self.lower + np.clip(u, 0.0, 1.0) * (self.upper - self.lower)
@@ -371,8 +398,35 @@ class _Problem:
                 elif isinstance(run, str):
                     parts.append(np.full(self.index[e].size, FAILED_RESIDUAL))
                 else:
-                    parts.append(math.sqrt(w) * (run[s] - self.measured[e][s]) / self.scale[e][s])
+                    difference = run[s] - self.measured[e][s]
+                    if self.offset != "none":
+                        basis = self.offset_basis(e)
+                        difference = difference - basis @ np.linalg.lstsq(basis, difference, rcond=None)[0]
+                    parts.append(math.sqrt(w) * difference / self.scale[e][s])
         return np.concatenate(parts)
+
+    def offset_basis(self, e: int) -> NDArray[np.float64]:
+        """The offset's basis over event ``e``'s compared times: a constant, and with
+        ``offset="linear"`` the time from the times' mean (the two columns orthogonal)."""
+        t = self.times[e]
+        columns = [np.ones(t.size)] + ([t - t.mean()] if self.offset == "linear" else [])
+        return np.column_stack(columns)
+
+    def offsets(self, runs: list[Any]) -> list[dict[str, dict[str, float]]]:
+        """Per event and target the offset ``measured - model`` profiled out at a point's runs:
+        its value at the compared times' mean ``t_ref`` (``constant``, the series' unit) and its
+        ``rate`` per second (0 with ``offset="constant"``); empty without an offset."""
+        out: list[dict[str, dict[str, float]]] = []
+        for e, run in enumerate(runs):
+            out.append({})
+            if self.offset == "none" or isinstance(run, str):
+                continue
+            basis = self.offset_basis(e)
+            for s in self.targets:
+                c = np.linalg.lstsq(basis, self.measured[e][s] - run[s], rcond=None)[0]
+                out[e][s] = {"constant": float(c[0]), "rate_per_s": float(c[1]) if c.size > 1 else 0.0,
+                             "t_ref": float(self.times[e].mean())}
+        return out
 
     def coarse_features(self, u: NDArray[np.float64]) -> list[dict[str, dict[str, float]]]:
         """``misfit="features"``: per event and target the features of the run at ``u`` on half
@@ -404,10 +458,42 @@ class _Problem:
         r = math.sqrt(w) * (np.array([got.get(n, math.nan) for n in names]) - ref) / sd
         return np.where(np.isfinite(r), r, MISSING_FEATURE)
 
-    def residuals(self, points: Sequence[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
+    def residuals(self, points: Sequence[NDArray[np.float64]], keep: Optional[NDArray[np.bool_]] = None
+                  ) -> list[NDArray[np.float64]]:
+        """The residuals at each point; with ``keep`` only those rows (the jackknife's refits, whose
+        misfits do not enter :attr:`history`)."""
         out = [self.residual_of(r) for r in self.run(points)]
+        if keep is not None:
+            return [r[keep] for r in out]
         self.history += [(np.asarray(u, dtype=np.float64), float(r @ r)) for u, r in zip(points, out)]
         return out
+
+    def coarser(self) -> _Problem:
+        """The same problem on half the configuration's cells (at least :data:`MIN_GRID_CELLS`),
+        with its own history and count of runs: the model's discretisation error at a point."""
+        import copy
+
+        out = copy.copy(self)
+        out.history, out.evaluations = [], 0
+        bases = []
+        for base in self.bases:
+            cfg = json.loads(base)
+            cfg["numerics"]["cells"] = max(int(cfg["numerics"]["cells"]) // 2, MIN_GRID_CELLS)
+            bases.append(json.dumps(cfg))
+        out.bases = bases
+        return out
+
+    def groups(self, count: int) -> NDArray[np.int64]:
+        """The jackknife's group of each sample-by-sample residual: the windows' span (from the
+        first window's start, the same for every event) cut into ``count`` contiguous parts of
+        equal time."""
+        labels = []
+        for e, times in enumerate(self.times):
+            first = min(a for a, _ in self.events[e].windows)
+            span = max(float(times[-1] - first), 1e-300)
+            g = np.minimum(np.floor((times - first) / span * count), count - 1).astype(np.int64)
+            labels += [g] * len(self.targets)
+        return np.concatenate(labels)
 
 
 def _reference(times: NDArray[np.float64], values: NDArray[np.float64]
@@ -466,8 +552,10 @@ class _Cached:
     """The residual function and its batched forward-difference Jacobian for least_squares, over
     the coordinates ``free`` of the scaled vector (the others fixed at ``fixed``)."""
 
-    def __init__(self, problem: _Problem, fixed: NDArray[np.float64], free: list[int], step: float) -> None:
+    def __init__(self, problem: _Problem, fixed: NDArray[np.float64], free: list[int], step: float,
+                 keep: Optional[NDArray[np.bool_]] = None) -> None:
         self.problem = problem
+        self.keep = keep
         self.fixed = fixed
         self.free = free
         self.step = step
@@ -481,7 +569,7 @@ class _Cached:
     def fun(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
         key = np.asarray(v, dtype=np.float64).tobytes()
         if key not in self.cache:
-            self.cache[key] = self.problem.residuals([self.full(v)])[0]
+            self.cache[key] = self.problem.residuals([self.full(v)], self.keep)[0]
         return self.cache[key]
 
     def jac(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -495,18 +583,20 @@ class _Cached:
             w[i] += h
             steps.append(h)
             points.append(self.full(w))
-        cols = self.problem.residuals(points)
+        cols = self.problem.residuals(points, self.keep)
         return np.column_stack([(c - r0) / h for c, h in zip(cols, steps)])
 
 
 def _refine(problem: _Problem, u0: NDArray[np.float64], free: list[int], step: float,
-            max_iterations: int) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
+            max_iterations: int, keep: Optional[NDArray[np.bool_]] = None
+            ) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
     """:func:`scipy.optimize.least_squares` from ``u0`` over the coordinates ``free`` (forward
     differences of ``step`` in the scaled box, as one batch per Jacobian: larger than the scale at
-    which the set-valued friction makes the misfit jump); never worse than ``u0``."""
+    which the set-valued friction makes the misfit jump); never worse than ``u0``. ``keep``: the
+    residual rows compared (all by default)."""
     from scipy.optimize import least_squares
 
-    cached = _Cached(problem, u0.copy(), free, step)
+    cached = _Cached(problem, u0.copy(), free, step, keep)
     r0 = cached.fun(u0[free])
     # the features' chi-square needs its minimum to a hundredth of a standard deviation, no finer
     tol = {"ftol": 1e-3, "xtol": 1e-4} if problem.misfit == "features" else {}
@@ -644,6 +734,8 @@ def fit(
     top: str = "controller",
     carry: Optional[int] = None,
     misfit: str = "least_squares",
+    interval: str = "auto",
+    offset: str = "none",
 ) -> FitResult:
     """Fits configuration values to measured data (see the module docstring).
 
@@ -705,6 +797,17 @@ def fit(
         standard deviations (noise, cycle scatter, model error), over the whole windows: a
         model whose period differs slightly from the well's, a phase shift or a sensor's lag
         leave it unchanged. See the guide's section "Data a model did not make".
+    interval : ``"auto"``, ``"jacobian"`` or ``"jackknife"``
+        The intervals of a sample-by-sample fit: the Jacobian's (checked along its path, widened
+        to every solved point within the threshold), joined with the delete-a-group jackknife's
+        and the discretisation error's (the refit on half the cells) where the residuals are
+        correlated (``"auto"``, default: a model error), never (``"jacobian"``) or always
+        (``"jackknife"``). See the guide's section "The measured top".
+    offset : ``"none"``, ``"constant"`` or ``"linear"``
+        A sensor offset of each target series, ``measured = model + a + b (t - t_ref)``, estimated
+        per event and series by linear least squares at every evaluation and profiled out of the
+        residuals (``"constant"``: ``b = 0``); reported in :attr:`FitResult.offsets` and added to
+        the fitted series. Default ``"none"`` (sample-by-sample misfit only).
 
     Returns
     -------
@@ -725,7 +828,8 @@ def fit(
         starts=starts if starts is not None else (2 if misfit == "features" else 4),
         horizon=horizon, max_iterations=max_iterations, diff_step=diff_step, profile=profile,
         profile_points=profile_points, landscape=landscape, landscape_points=landscape_points, max_gap=max_gap,
-        say=progress or (lambda _msg: None), top=top, carry=carry, misfit=misfit,
+        say=progress or (lambda _msg: None), top=top, carry=carry, misfit=misfit, interval=interval,
+        offset=offset,
     )
     events = _events(configs, datasets, windows, opts)
     columns = _columns(bounds, events, opts.per_event)
@@ -740,9 +844,10 @@ def fit(
     estimates = _jacobian_intervals(problem, u_opt, ssr, spread, columns)
     warnings_ = _ridge_warnings(spread, columns)
     profiles = _profiles(problem, u_opt, ssr, spread, columns, estimates, opts)
+    intervals = _jackknife_intervals(problem, u_opt, r, spread, columns, estimates, opts)
     warnings_ += _identifiability_warnings(estimates, opts.level)
     landscapes = _landscapes(problem, u_opt, columns, opts)
-    fitted_configs, fitted, failures = _fitted_runs(problem, events, u_opt)
+    fitted_configs, fitted, failures, offsets = _fitted_runs(problem, events, u_opt)
     series_checks, feature_rows = _checks(problem, fitted, grid_error)
     corr = checks.correlation(spread.cov)
     warnings_ += _result_warnings(estimates, series_checks, feature_rows, corr, ssr, r.size, opts)
@@ -752,7 +857,8 @@ def fit(
         condition=spread.condition, residual_autocorrelation=_autocorrelation(series_checks, spread),
         global_stage=global_stage, refinement=refinement, rms=_rms(problem, series_checks), fitted=fitted,
         landscapes=landscapes, profiles=profiles, warnings=warnings_ + failures, top=opts.top, objective=opts.misfit,
-        series_checks=series_checks, correlation=corr.tolist(), features=feature_rows,
+        series_checks=series_checks, correlation=corr.tolist(), features=feature_rows, intervals=intervals,
+        offset=opts.offset, offsets=offsets,
     )
 
 
@@ -782,6 +888,8 @@ class _Options:
     top: str
     carry: Optional[int]
     misfit: str
+    interval: str
+    offset: str
 
     @classmethod
     def checked(cls, targets: dict[str, float], bounds: Mapping[str, tuple[float, float]], *, per_event: Sequence[str],
@@ -810,6 +918,13 @@ class _Options:
                                   "data's)")
         if kw["misfit"] not in MISFITS:
             raise ValidationError("misfit", kw["misfit"], " or ".join(repr(m) for m in MISFITS))
+        if kw["offset"] not in OFFSETS:
+            raise ValidationError("offset", kw["offset"], ", ".join(repr(m) for m in OFFSETS))
+        if kw["offset"] != "none" and kw["misfit"] != "least_squares":
+            raise ValidationError("offset", kw["offset"], "'none' with misfit='features' (the offset is estimated "
+                                  "sample by sample: misfit='least_squares')")
+        if kw["interval"] not in INTERVALS:
+            raise ValidationError("interval", kw["interval"], ", ".join(repr(m) for m in INTERVALS))
         if carry is not None and (isinstance(carry, bool) or not isinstance(carry, int) or carry < 1):
             raise ValidationError("carry", carry, "an integer >= 1, or None for every start")
         if threads is None:
@@ -871,7 +986,8 @@ def _problems(events: list[Event], columns: list[_Column], opts: _Options) -> li
     # the features do not depend on the cycles' phase: the whole windows at once
     while opts.misfit == "least_squares" and fractions[0] * longest / 2 >= horizon * (1 - 1e-9):
         fractions.insert(0, fractions[0] / 2)
-    problems = [_Problem(events, columns, opts.targets, opts.threads, f, opts.top, opts.misfit) for f in fractions]
+    problems = [_Problem(events, columns, opts.targets, opts.threads, f, opts.top, opts.misfit, opts.offset)
+                for f in fractions]
     if min(q.points for q in problems) <= len(columns):
         raise ValidationError("windows", [e.windows for e in events],
                               f"more compared samples ({min(q.points for q in problems)}, in the shortest horizon) "
@@ -976,7 +1092,7 @@ class _Spread:
         from scipy import stats
 
         p = u_opt.size
-        dof = max(r.size - p, 1)
+        dof = max(r.size - p - problem.profiled, 1)
         if problem.misfit == "features":
             # residuals in their standard deviations, nearly independent (one per feature): the
             # chi-square's scale is 1, widened by its excess (a model error beyond the assumed)
@@ -1092,6 +1208,86 @@ def _jacobian_estimate(problem: _Problem, c: _Column, i: int, best: float, ends:
                              "jacobian", not wide)
 
 
+def _jackknife_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArray[np.float64], spread: _Spread,
+                         columns: list[_Column], estimates: dict[str, ParameterEstimate], opts: _Options
+                         ) -> dict[str, Any]:
+    """The delete-a-group jackknife of a sample-by-sample fit (with ``interval="auto"`` where its
+    residuals are correlated beyond :data:`~drillstring.calibration.checks.AUTOCORRELATION_LIMIT`):
+    the windows cut into :data:`JACKKNIFE_GROUPS` contiguous groups of equal time
+    (:meth:`_Problem.groups`), each left out in turn and the rest refitted from the optimum (at
+    most :data:`JACKKNIFE_EVALUATIONS` evaluations); the standard error
+    ``sqrt((G - 1) / G sum (x_g - mean)^2)`` and the interval ``x +- t_{G-1} se`` (Student's t of
+    the groups' degrees of freedom), joined to the Jacobian's interval in ``estimates`` (the
+    interval reported is never narrower than the Jacobian's). The linearised jackknife (one
+    Gauss-Newton step of the optimum's Jacobian without the group, no runs) is reported beside it.
+
+    Why: a model error leaves residuals correlated over whole stick-slip cycles, and with the
+    measured top the imposed speed's noise moves the model's cycles too, so the estimate varies
+    from one noise draw to the next by more than the Jacobian's covariance says, however its
+    scale is corrected (the misfit is rough at the scale of the intervals: the set-valued friction).
+    Groups of several cycles are nearly independent and each refit meets that roughness itself.
+    Returns ``fit.json``'s ``intervals`` (per method and parameter ``ci_low``, ``ci_high``,
+    ``std_error``), empty where the jackknife does not apply."""
+    from scipy import stats
+
+    use = opts.interval == "jackknife" or (opts.interval == "auto" and spread.rho > checks.AUTOCORRELATION_LIMIT)
+    if problem.misfit != "least_squares" or not use:
+        return {}
+    groups = JACKKNIFE_GROUPS
+    labels = problem.groups(groups)
+    p = u_opt.size
+    opts.say(f"jackknife: {groups} groups of the windows, each left out and the rest refitted")
+    steps = u_opt + _linear_jackknife(spread.jacobian, r, labels, groups)
+    refits = [_refine(problem, u_opt.copy(), list(range(p)), opts.diff_step, JACKKNIFE_EVALUATIONS,
+                      labels != g)[0] for g in range(groups)]
+    # the model's discretisation error of the estimate: the refit on half the cells (as the
+    # features' deviations carry it, `_grid_error`)
+    coarse = problem.coarser()
+    u_half = _refine(coarse, u_opt.copy(), list(range(p)), opts.diff_step, JACKKNIFE_EVALUATIONS)[0]
+    problem.evaluations += coarse.evaluations
+    shift = np.abs(u_half - u_opt) * spread.span
+    quantile = float(stats.t.ppf(0.5 + opts.level / 2, groups - 1))
+    x_opt = problem.values(u_opt)
+    out: dict[str, Any] = {"groups": groups, "t_quantile": quantile, "jacobian": {
+        c.name: {"ci_low": e.ci_low, "ci_high": e.ci_high, "std_error": e.std_error}
+        for c, e in ((c, estimates[c.name]) for c in columns)}}
+    for name, points in (("jackknife_linear", steps), ("jackknife", refits)):
+        se = _jackknife_error(np.array(points)) * spread.span
+        out[name] = {c.name: {"ci_low": float(max(x_opt[i] - quantile * se[i], c.lower)),
+                              "ci_high": float(min(x_opt[i] + quantile * se[i], c.upper)),
+                              "std_error": float(se[i])} for i, c in enumerate(columns)}
+    out["grid"] = {c.name: {"half_cells": float(problem.values(u_half)[i]), "shift": float(shift[i])}
+                   for i, c in enumerate(columns)}
+    total = np.sqrt(np.array([out["jackknife"][c.name]["std_error"] for c in columns]) ** 2 + shift ** 2)
+    out["combined"] = {c.name: {"ci_low": float(max(x_opt[i] - quantile * total[i], c.lower)),
+                                "ci_high": float(min(x_opt[i] + quantile * total[i], c.upper)),
+                                "std_error": float(total[i])} for i, c in enumerate(columns)}
+    for c in columns:
+        est, jack = estimates[c.name], out["combined"][c.name]
+        low, high = min(est.ci_low, jack["ci_low"]), max(est.ci_high, jack["ci_high"])
+        if (low, high) != (est.ci_low, est.ci_high):
+            span = c.upper - c.lower
+            spans_box = low <= c.lower + 1e-12 * span and high >= c.upper - 1e-12 * span
+            estimates[c.name] = ParameterEstimate(c.name, est.value, low, high, c.lower, c.upper, est.std_error,
+                                                  "jackknife", est.identifiable and not spans_box)
+    return out
+
+
+def _linear_jackknife(J: NDArray[np.float64], r: NDArray[np.float64], labels: NDArray[np.int64], groups: int
+                      ) -> NDArray[np.float64]:
+    """The linearised delete-a-group jackknife: per group (row), the Gauss-Newton step of the
+    residuals ``r`` with Jacobian ``J`` without the group's rows (``labels == g``); for a linear
+    model at its least-squares optimum, the refit without the group exactly."""
+    return np.array([-np.linalg.lstsq(J[labels != g], r[labels != g], rcond=None)[0] for g in range(groups)])
+
+
+def _jackknife_error(estimates: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The delete-a-group jackknife's standard error of each column of ``estimates`` (one row
+    per group left out): ``sqrt((G - 1) / G sum_g (x_g - mean)^2)``."""
+    g = estimates.shape[0]
+    return np.asarray(np.sqrt((g - 1) / g * np.sum((estimates - estimates.mean(axis=0)) ** 2, axis=0)))
+
+
 def _ridge_warnings(spread: _Spread, columns: list[_Column]) -> list[str]:
     """A near-singular Jacobian's warning, naming the parameters of its weakest direction."""
     if not spread.condition > CONDITION_LIMIT:
@@ -1168,15 +1364,21 @@ def _landscapes(problem: _Problem, u_opt: NDArray[np.float64], columns: list[_Co
 
 
 def _fitted_runs(problem: _Problem, events: list[Event], u_opt: NDArray[np.float64]
-                 ) -> tuple[list[DrillConfig], list[dict[str, NDArray[np.float64]]], list[str]]:
-    """The fitted configuration of each event, its run over the whole span, and the warnings of
-    the runs that failed."""
+                 ) -> tuple[list[DrillConfig], list[dict[str, NDArray[np.float64]]], list[str],
+                            list[dict[str, dict[str, float]]]]:
+    """The fitted configuration of each event, its run over the whole span (each target with its
+    estimated offset added), the warnings of the runs that failed and the offsets."""
     configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e)), units="si")
                for e in range(len(events))]
     whole = problem.run([u_opt], whole=True)[0]
     fitted = [w if isinstance(w, dict) else {} for w in whole]
     failures = [f"the fitted configuration's run failed: {w}" for w in whole if isinstance(w, str)]
-    return configs, fitted, failures
+    offsets = problem.offsets([{s: w[s][problem.index[e]] for s in problem.targets} if w else "failed"
+                               for e, w in enumerate(fitted)])
+    for run, found in zip(fitted, offsets):
+        for s, o in found.items():
+            run[s] = run[s] + o["constant"] + o["rate_per_s"] * (run["t"] - o["t_ref"])
+    return configs, fitted, failures, offsets
 
 
 def _rms(problem: _Problem, series_checks: list[checks.SeriesCheck]) -> list[dict[str, float]]:
