@@ -296,3 +296,51 @@ def test_the_sandwich_widens_by_the_long_run_variance_of_correlated_residuals(rh
     ones = np.ones((n, 1))
     assert _hac_inflation(ones, r, n - 1) == pytest.approx((1 + rho) / (1 - rho), rel=0.25)
     assert _hac_inflation(ones, e, n - 1) == pytest.approx(1.0, abs=0.15)
+
+
+def _ar1(rng: np.random.Generator, n: int, rho: float) -> np.ndarray:
+    e = rng.normal(size=n)
+    r = np.empty(n)
+    r[0] = e[0]
+    for k in range(1, n):
+        r[k] = rho * r[k - 1] + math.sqrt(1 - rho ** 2) * e[k]
+    return r
+
+
+def _bootstrap_of_a_mean(rng: np.random.Generator, rho: float, n: int = 4000, groups: int = 20) -> float:
+    """The block bootstrap's standard deviation of a mean's estimate over its white-noise standard
+    error ``1 / sqrt(n)``: data ``y = AR(1) noise`` (unit variance), the misfit of each of
+    ``groups`` contiguous groups on a grid of candidate means, as the fit's bootstrap takes them."""
+    from drillstring.calibration.fit import _block_bootstrap
+
+    y = _ar1(rng, n, rho)
+    white = 1.0 / math.sqrt(n)
+    xs = y.mean() + np.linspace(-30.0, 30.0, 1201) * white
+    labels = np.arange(n) * groups // n
+    counts = np.bincount(labels, minlength=groups)
+    sums = np.bincount(labels, weights=y, minlength=groups)
+    squares = np.bincount(labels, weights=y * y, minlength=groups)
+    per_group = counts * xs[:, None] ** 2 - 2 * xs[:, None] * sums + squares
+    estimates = _block_bootstrap(per_group, xs[:, None], 2000, rng)
+    return float(np.std(estimates[:, 0]) / white)
+
+
+def test_the_block_bootstrap_is_the_white_noise_error_on_white_residuals() -> None:
+    """A linear model whose truth is known (a mean, the Jacobian a column of ones) with white
+    residuals: the bootstrap over 20 groups gives the white-noise standard error
+    ``sigma / sqrt(n)`` times ``sqrt((G - 1) / G)`` (0.975), on average over 40 data sets within
+    8 % (measured: 1.019; one data set's ratio scatters by about 1 / sqrt(2 (G - 1)), 16 %)."""
+    rng = np.random.default_rng(5)
+    ratios = [_bootstrap_of_a_mean(rng, 0.0) for _ in range(40)]
+    assert np.mean(ratios) == pytest.approx(math.sqrt(19 / 20), rel=0.08)
+
+
+def test_the_block_bootstrap_widens_by_the_long_run_variance_of_correlated_residuals() -> None:
+    """The same with AR(1) residuals of correlation 0.9 (a correlation length of 10 samples, the
+    groups 200 long): the bootstrap's variance exceeds the white-noise one by the long-run factor
+    ``(1 + rho) / (1 - rho) = 19`` (closed form) within 25 % on average over 20 data sets, and
+    every data set's interval is more than twice as wide as the white-noise one."""
+    rng = np.random.default_rng(6)
+    ratios = np.array([_bootstrap_of_a_mean(rng, 0.9) for _ in range(20)])
+    assert np.all(ratios > 2.0), ratios
+    assert np.mean(ratios ** 2) == pytest.approx(19 * 19 / 20, rel=0.25)

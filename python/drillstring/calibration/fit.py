@@ -110,13 +110,20 @@ HAC_LENGTHS = 3
 #: The offsets a fit can estimate per event and target series (``offset=``): none, a constant, or a
 #: constant plus a rate (linear in time), each profiled out in closed form at every evaluation.
 OFFSETS = ("none", "constant", "linear")
-#: The intervals a fit can give (``interval=``): the jackknife's where sample-by-sample residuals
-#: are correlated (``"auto"``), the Jacobian's alone, or the jackknife's always.
-INTERVALS = ("auto", "jacobian", "jackknife")
-#: The delete-a-group jackknife: the windows cut into this many contiguous groups of equal time ...
-JACKKNIFE_GROUPS = 8
-#: ... each left out in turn and the rest refitted from the optimum in at most this many evaluations.
-JACKKNIFE_EVALUATIONS = 12
+#: The intervals a fit can give (``interval=``): the block bootstrap's over the stick-slip cycles
+#: joined to the Jacobian's where sample-by-sample residuals are correlated (``"auto"``), the
+#: Jacobian's alone, or the bootstrap's always.
+INTERVALS = ("auto", "jacobian", "bootstrap")
+#: The block bootstrap: points per parameter scattered around the optimum ...
+BOOTSTRAP_POINTS = 64
+#: ... over the larger of this many standard errors of the Jacobian ...
+BOOTSTRAP_SE = 4.0
+#: ... and this share of each value;
+BOOTSTRAP_SHARE = 0.03
+#: the resamplings of the cycles;
+BOOTSTRAP_REPLICATES = 2000
+#: the fewest and the most cycles (groups) the windows are cut into.
+BOOTSTRAP_CYCLES = (6, 40)
 #: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
 PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
@@ -220,8 +227,8 @@ class FitResult:
     #: With ``misfit="features"``: per event, target and feature the data's value, its standard
     #: deviation and the fitted model's value.
     features: list[dict[str, Any]] = field(default_factory=list)
-    #: Where the jackknife applied (``interval=``): the intervals of each method (``jacobian``,
-    #: ``jackknife``, ``jackknife_linear``) per parameter, the groups and Student's t quantile.
+    #: Where the block bootstrap applied (``interval=``): the cycles, the points and per parameter
+    #: the Jacobian's and the bootstrap's intervals, the grid shift and the reported interval.
     intervals: dict[str, Any] = field(default_factory=dict)
     #: The ``offset`` option: ``"none"``, ``"constant"`` or ``"linear"``.
     offset: str = "none"
@@ -460,8 +467,8 @@ class _Problem:
 
     def residuals(self, points: Sequence[NDArray[np.float64]], keep: Optional[NDArray[np.bool_]] = None
                   ) -> list[NDArray[np.float64]]:
-        """The residuals at each point; with ``keep`` only those rows (the jackknife's refits, whose
-        misfits do not enter :attr:`history`)."""
+        """The residuals at each point; with ``keep`` only those rows, and the misfits do not enter
+        :attr:`history` (the bootstrap's points)."""
         out = [self.residual_of(r) for r in self.run(points)]
         if keep is not None:
             return [r[keep] for r in out]
@@ -484,7 +491,7 @@ class _Problem:
         return out
 
     def groups(self, count: int) -> NDArray[np.int64]:
-        """The jackknife's group of each sample-by-sample residual: the windows' span (from the
+        """The bootstrap's group of each sample-by-sample residual: the windows' span (from the
         first window's start, the same for every event) cut into ``count`` contiguous parts of
         equal time."""
         labels = []
@@ -797,12 +804,13 @@ def fit(
         standard deviations (noise, cycle scatter, model error), over the whole windows: a
         model whose period differs slightly from the well's, a phase shift or a sensor's lag
         leave it unchanged. See the guide's section "Data a model did not make".
-    interval : ``"auto"``, ``"jacobian"`` or ``"jackknife"``
+    interval : ``"auto"``, ``"jacobian"`` or ``"bootstrap"``
         The intervals of a sample-by-sample fit: the Jacobian's (checked along its path, widened
-        to every solved point within the threshold), joined with the delete-a-group jackknife's
-        and the discretisation error's (the refit on half the cells) where the residuals are
-        correlated (``"auto"``, default: a model error), never (``"jacobian"``) or always
-        (``"jackknife"``). See the guide's section "The measured top".
+        to every solved point within the threshold), joined with the block bootstrap's over the
+        stick-slip cycles widened by the discretisation error (the misfit on half the cells)
+        where the residuals show a model error (``"auto"``, default: far above the data's noise or
+        correlated), never (``"jacobian"``) or always (``"bootstrap"``). See the guide's section
+        "The measured top".
     offset : ``"none"``, ``"constant"`` or ``"linear"``
         A sensor offset of each target series, ``measured = model + a + b (t - t_ref)``, estimated
         per event and series by linear least squares at every evaluation and profiled out of the
@@ -844,7 +852,7 @@ def fit(
     estimates = _jacobian_intervals(problem, u_opt, ssr, spread, columns)
     warnings_ = _ridge_warnings(spread, columns)
     profiles = _profiles(problem, u_opt, ssr, spread, columns, estimates, opts)
-    intervals = _jackknife_intervals(problem, u_opt, r, spread, columns, estimates, opts)
+    intervals = _bootstrap_intervals(problem, u_opt, r, spread, columns, estimates, opts)
     warnings_ += _identifiability_warnings(estimates, opts.level)
     landscapes = _landscapes(problem, u_opt, columns, opts)
     fitted_configs, fitted, failures, offsets = _fitted_runs(problem, events, u_opt)
@@ -1208,84 +1216,112 @@ def _jacobian_estimate(problem: _Problem, c: _Column, i: int, best: float, ends:
                              "jacobian", not wide)
 
 
-def _jackknife_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArray[np.float64], spread: _Spread,
+def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArray[np.float64], spread: _Spread,
                          columns: list[_Column], estimates: dict[str, ParameterEstimate], opts: _Options
                          ) -> dict[str, Any]:
-    """The delete-a-group jackknife of a sample-by-sample fit (with ``interval="auto"`` where its
-    residuals are correlated beyond :data:`~drillstring.calibration.checks.AUTOCORRELATION_LIMIT`):
-    the windows cut into :data:`JACKKNIFE_GROUPS` contiguous groups of equal time
-    (:meth:`_Problem.groups`), each left out in turn and the rest refitted from the optimum (at
-    most :data:`JACKKNIFE_EVALUATIONS` evaluations); the standard error
-    ``sqrt((G - 1) / G sum (x_g - mean)^2)`` and the interval ``x +- t_{G-1} se`` (Student's t of
-    the groups' degrees of freedom), joined to the Jacobian's interval in ``estimates`` (the
-    interval reported is never narrower than the Jacobian's). The linearised jackknife (one
-    Gauss-Newton step of the optimum's Jacobian without the group, no runs) is reported beside it.
+    """The block bootstrap over stick-slip cycles of a sample-by-sample fit (with
+    ``interval="auto"`` where its residuals show a model error, :func:`_model_error`; see the
+    guide's "The measured top" for the coverage it gives), joined to the Jacobian's interval in ``estimates`` (never
+    narrower than it):
 
-    Why: a model error leaves residuals correlated over whole stick-slip cycles, and with the
-    measured top the imposed speed's noise moves the model's cycles too, so the estimate varies
-    from one noise draw to the next by more than the Jacobian's covariance says, however its
-    scale is corrected (the misfit is rough at the scale of the intervals: the set-valued friction).
-    Groups of several cycles are nearly independent and each refit meets that roughness itself.
-    Returns ``fit.json``'s ``intervals`` (per method and parameter ``ci_low``, ``ci_high``,
-    ``std_error``), empty where the jackknife does not apply."""
-    from scipy import stats
+    1. the misfit of each **cycle** (the windows cut into groups one period of the data's first
+       target long, :meth:`_Problem.groups`, :func:`_cycle_count`) at :data:`BOOTSTRAP_POINTS`
+       per parameter scattered (scrambled Sobol) around the optimum, over the larger of
+       :data:`BOOTSTRAP_SE` standard errors and :data:`BOOTSTRAP_SHARE` of each value;
+    2. :data:`BOOTSTRAP_REPLICATES` resamplings of the cycles with replacement, each replicate's
+       estimate the point of least misfit summed over its cycles; the interval the replicates'
+       central ``level`` share (percentiles);
+    3. widened on each side by the model's **discretisation error** at the optimum: the shift of
+       the point of least misfit when the same points are solved on half the cells (as the
+       features' deviations carry it, :func:`_grid_error`).
 
-    use = opts.interval == "jackknife" or (opts.interval == "auto" and spread.rho > checks.AUTOCORRELATION_LIMIT)
-    if problem.misfit != "least_squares" or not use:
+    Why: a model error leaves residuals correlated over whole cycles, and the set-valued friction
+    makes the misfit a staircase in the parameters (the stick and slip instants move by whole
+    steps), so the estimate jumps between the stairs from one noise draw to the next by more than
+    any covariance of the Jacobian says, however its scale is corrected. The cycles are nearly
+    independent, and each replicate meets the staircase itself. Returns ``fit.json``'s
+    ``intervals`` (``method``, ``cycles``, ``points``, and per parameter the ``jacobian``,
+    ``bootstrap`` and reported ``ci_low``, ``ci_high``, the grid shift), empty where it does not
+    apply."""
+    from scipy.stats import qmc
+
+    if problem.misfit != "least_squares" or opts.interval == "jacobian" or \
+            (opts.interval == "auto" and not _model_error(problem, r)):
         return {}
-    groups = JACKKNIFE_GROUPS
-    labels = problem.groups(groups)
     p = u_opt.size
-    opts.say(f"jackknife: {groups} groups of the windows, each left out and the rest refitted")
-    steps = u_opt + _linear_jackknife(spread.jacobian, r, labels, groups)
-    refits = [_refine(problem, u_opt.copy(), list(range(p)), opts.diff_step, JACKKNIFE_EVALUATIONS,
-                      labels != g)[0] for g in range(groups)]
-    # the model's discretisation error of the estimate: the refit on half the cells (as the
-    # features' deviations carry it, `_grid_error`)
-    coarse = problem.coarser()
-    u_half = _refine(coarse, u_opt.copy(), list(range(p)), opts.diff_step, JACKKNIFE_EVALUATIONS)[0]
-    problem.evaluations += coarse.evaluations
-    shift = np.abs(u_half - u_opt) * spread.span
-    quantile = float(stats.t.ppf(0.5 + opts.level / 2, groups - 1))
+    cycles = _cycle_count(problem)
+    labels = problem.groups(cycles)
     x_opt = problem.values(u_opt)
-    out: dict[str, Any] = {"groups": groups, "t_quantile": quantile, "jacobian": {
-        c.name: {"ci_low": e.ci_low, "ci_high": e.ci_high, "std_error": e.std_error}
-        for c, e in ((c, estimates[c.name]) for c in columns)}}
-    for name, points in (("jackknife_linear", steps), ("jackknife", refits)):
-        se = _jackknife_error(np.array(points)) * spread.span
-        out[name] = {c.name: {"ci_low": float(max(x_opt[i] - quantile * se[i], c.lower)),
-                              "ci_high": float(min(x_opt[i] + quantile * se[i], c.upper)),
-                              "std_error": float(se[i])} for i, c in enumerate(columns)}
-    out["grid"] = {c.name: {"half_cells": float(problem.values(u_half)[i]), "shift": float(shift[i])}
-                   for i, c in enumerate(columns)}
-    total = np.sqrt(np.array([out["jackknife"][c.name]["std_error"] for c in columns]) ** 2 + shift ** 2)
-    out["combined"] = {c.name: {"ci_low": float(max(x_opt[i] - quantile * total[i], c.lower)),
-                                "ci_high": float(min(x_opt[i] + quantile * total[i], c.upper)),
-                                "std_error": float(total[i])} for i, c in enumerate(columns)}
-    for c in columns:
-        est, jack = estimates[c.name], out["combined"][c.name]
-        low, high = min(est.ci_low, jack["ci_low"]), max(est.ci_high, jack["ci_high"])
-        if (low, high) != (est.ci_low, est.ci_high):
+    half = np.maximum(BOOTSTRAP_SE * spread.se, BOOTSTRAP_SHARE * np.abs(x_opt)) / spread.span
+    m = max(int(math.ceil(math.log2(BOOTSTRAP_POINTS * p))), 1)
+    unit = qmc.Sobol(d=p, scramble=True, seed=opts.seed).random_base2(m)
+    points = [u_opt.copy()] + [np.clip(u_opt + (2 * q - 1) * half, 0.0, 1.0) for q in unit]
+    opts.say(f"bootstrap: {len(points)} points around the optimum by {cycles} cycles, and on half the cells")
+    per_cycle = np.array([np.bincount(labels, weights=r * r, minlength=cycles)
+                          for r in problem.residuals(points, np.ones(labels.size, dtype=bool))])
+    coarse = problem.coarser()
+    coarse_ssr = np.array([float(r @ r) for r in coarse.residuals(points, np.ones(labels.size, dtype=bool))])
+    problem.evaluations += coarse.evaluations
+    xs = np.array([problem.values(u) for u in points])
+    replicates = _block_bootstrap(per_cycle, xs, BOOTSTRAP_REPLICATES, np.random.default_rng(opts.seed))
+    tail = (1 - opts.level) / 2
+    low, high = np.quantile(replicates, tail, axis=0), np.quantile(replicates, 1 - tail, axis=0)
+    shift = np.abs(xs[int(np.argmin(coarse_ssr))] - xs[int(np.argmin(per_cycle.sum(axis=1)))])
+    out: dict[str, Any] = {"method": "bootstrap", "cycles": cycles, "points": len(points),
+                           "replicates": BOOTSTRAP_REPLICATES, "parameters": {}}
+    for i, c in enumerate(columns):
+        est = estimates[c.name]
+        lo = max(min(est.ci_low, low[i] - shift[i]), c.lower)
+        hi = min(max(est.ci_high, high[i] + shift[i]), c.upper)
+        out["parameters"][c.name] = {
+            "jacobian": [est.ci_low, est.ci_high], "bootstrap": [float(low[i]), float(high[i])],
+            "grid_shift": float(shift[i]), "ci_low": float(lo), "ci_high": float(hi),
+            "std_error": float(np.std(replicates[:, i]))}
+        if (lo, hi) != (est.ci_low, est.ci_high):
             span = c.upper - c.lower
-            spans_box = low <= c.lower + 1e-12 * span and high >= c.upper - 1e-12 * span
-            estimates[c.name] = ParameterEstimate(c.name, est.value, low, high, c.lower, c.upper, est.std_error,
-                                                  "jackknife", est.identifiable and not spans_box)
+            spans_box = lo <= c.lower + 1e-12 * span and hi >= c.upper - 1e-12 * span
+            estimates[c.name] = ParameterEstimate(c.name, est.value, float(lo), float(hi), c.lower, c.upper,
+                                                  est.std_error, "bootstrap", est.identifiable and not spans_box)
     return out
 
 
-def _linear_jackknife(J: NDArray[np.float64], r: NDArray[np.float64], labels: NDArray[np.int64], groups: int
-                      ) -> NDArray[np.float64]:
-    """The linearised delete-a-group jackknife: per group (row), the Gauss-Newton step of the
-    residuals ``r`` with Jacobian ``J`` without the group's rows (``labels == g``); for a linear
-    model at its least-squares optimum, the refit without the group exactly."""
-    return np.array([-np.linalg.lstsq(J[labels != g], r[labels != g], rcond=None)[0] for g in range(groups)])
+def _model_error(problem: _Problem, r: NDArray[np.float64]) -> bool:
+    """Whether the residuals ``r`` (the order of :meth:`_Problem.residual_of`) of any event and
+    target show a model error: far above the data's noise or correlated
+    (:func:`~drillstring.calibration.checks.model_error`, the checks' own thresholds)."""
+    k = 0
+    for e, index in enumerate(problem.index):
+        for s, w in problem.targets.items():
+            data = problem.measured[e][s]
+            model = data + r[k:k + index.size] * problem.scale[e][s] / math.sqrt(w)
+            k += index.size
+            if checks.model_error(checks.series_check(e, s, model, data)):
+                return True
+    return False
 
 
-def _jackknife_error(estimates: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The delete-a-group jackknife's standard error of each column of ``estimates`` (one row
-    per group left out): ``sqrt((G - 1) / G sum_g (x_g - mean)^2)``."""
-    g = estimates.shape[0]
-    return np.asarray(np.sqrt((g - 1) / g * np.sum((estimates - estimates.mean(axis=0)) ** 2, axis=0)))
+def _cycle_count(problem: _Problem) -> int:
+    """The bootstrap's groups: the windows' span over the stick-slip period of the first event's
+    first target's data (its cycle features, :mod:`~drillstring.calibration.features`), within
+    :data:`BOOTSTRAP_CYCLES`; the range's lower end without a period."""
+    times = problem.times[0]
+    data = problem.measured[0][next(iter(problem.targets))]
+    period = cycle_features(times, data).values.get("period", math.nan)
+    lo, hi = BOOTSTRAP_CYCLES
+    if not (math.isfinite(period) and period > 0):
+        return lo
+    span = float(times[-1] - min(a for a, _ in problem.events[0].windows))
+    return int(min(max(round(span / period), lo), hi))
+
+
+def _block_bootstrap(per_group: NDArray[np.float64], xs: NDArray[np.float64], replicates: int,
+                     rng: np.random.Generator) -> NDArray[np.float64]:
+    """The block bootstrap's estimates: ``per_group[k, g]`` the misfit of group ``g`` at point
+    ``xs[k]``; each replicate draws the groups with replacement (multinomial counts) and takes the
+    point of least misfit summed over its draws. Returns ``(replicates, p)``."""
+    groups = per_group.shape[1]
+    counts = rng.multinomial(groups, np.full(groups, 1.0 / groups), size=replicates)
+    return np.asarray(xs[np.argmin(counts @ per_group.T, axis=1)])
 
 
 def _ridge_warnings(spread: _Spread, columns: list[_Column]) -> list[str]:

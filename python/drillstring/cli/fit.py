@@ -67,10 +67,10 @@ def add_parser(subparsers: Any) -> None:
                    help="a sensor offset of each target series estimated with the values (profiled out at every "
                    "run): a constant, or a constant and a rate (a drift linear in time); reported in fit.json and "
                    "the console (default none)")
-    p.add_argument("--interval", choices=("auto", "jacobian", "jackknife"), default="auto",
-                   help="the intervals of a sample-by-sample fit: the Jacobian's, joined with the delete-a-group "
-                   "jackknife's and the discretisation error's where the residuals are correlated (auto, default), "
-                   "never (jacobian) or always (jackknife)")
+    p.add_argument("--interval", choices=("auto", "jacobian", "bootstrap"), default="auto",
+                   help="the intervals of a sample-by-sample fit: the Jacobian's, joined with the block bootstrap's "
+                   "over the stick-slip cycles and the discretisation error's where the residuals show a model error "
+                   "(auto, default), never (jacobian) or always (bootstrap)")
     p.set_defaults(func=run)
 
 
