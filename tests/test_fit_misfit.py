@@ -213,7 +213,7 @@ def test_the_offset_and_interval_options_are_checked(short_config: ds.DrillConfi
     with pytest.raises(ValidationError, match="misfit='least_squares'"):
         ds.fit(short_config, data, BOUNDS, offset="linear", misfit="features")
     with pytest.raises(ValidationError, match="interval"):
-        ds.fit(short_config, data, BOUNDS, interval="bootstrap")
+        ds.fit(short_config, data, BOUNDS, interval="sandwich")
 
 
 def test_features_far_from_the_data_are_named(short_config: ds.DrillConfig, truth_run: ds.DrillResult) -> None:

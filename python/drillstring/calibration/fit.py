@@ -1229,10 +1229,12 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
        per parameter scattered (scrambled Sobol) around the optimum, over the larger of
        :data:`BOOTSTRAP_SE` standard errors and :data:`BOOTSTRAP_SHARE` of each value;
     2. :data:`BOOTSTRAP_REPLICATES` resamplings of the cycles with replacement, each replicate's
-       estimate the point of least misfit summed over its cycles; the interval the replicates'
-       central ``level`` share (percentiles);
+       estimate the minimum of the quadratic fitted to its misfit summed over its cycles
+       (:func:`_quadratic_minima`); the interval the value plus and minus the replicates'
+       standard deviation times Student's t of the cycles' ``G - 1`` degrees of freedom (and
+       ``sqrt(G / (G - 1))``: the jackknife's divisor; few cycles, a wide quantile);
     3. widened on each side by the model's **discretisation error** at the optimum: the shift of
-       the point of least misfit when the same points are solved on half the cells (as the
+       the fitted quadratic's minimum when the same points are solved on half the cells (as the
        features' deviations carry it, :func:`_grid_error`).
 
     Why: a model error leaves residuals correlated over whole cycles, and the set-valued friction
@@ -1243,6 +1245,7 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
     ``intervals`` (``method``, ``cycles``, ``points``, and per parameter the ``jacobian``,
     ``bootstrap`` and reported ``ci_low``, ``ci_high``, the grid shift), empty where it does not
     apply."""
+    from scipy import stats
     from scipy.stats import qmc
 
     if problem.misfit != "least_squares" or opts.interval == "jacobian" or \
@@ -1255,7 +1258,7 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
     half = np.maximum(BOOTSTRAP_SE * spread.se, BOOTSTRAP_SHARE * np.abs(x_opt)) / spread.span
     m = max(int(math.ceil(math.log2(BOOTSTRAP_POINTS * p))), 1)
     unit = qmc.Sobol(d=p, scramble=True, seed=opts.seed).random_base2(m)
-    points = [u_opt.copy()] + [np.clip(u_opt + (2 * q - 1) * half, 0.0, 1.0) for q in unit]
+    points = [np.clip(u_opt + (2 * q - 1) * half, 0.0, 1.0) for q in unit]
     opts.say(f"bootstrap: {len(points)} points around the optimum by {cycles} cycles, and on half the cells")
     per_cycle = np.array([np.bincount(labels, weights=r * r, minlength=cycles)
                           for r in problem.residuals(points, np.ones(labels.size, dtype=bool))])
@@ -1264,9 +1267,13 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
     problem.evaluations += coarse.evaluations
     xs = np.array([problem.values(u) for u in points])
     replicates = _block_bootstrap(per_cycle, xs, BOOTSTRAP_REPLICATES, np.random.default_rng(opts.seed))
-    tail = (1 - opts.level) / 2
-    low, high = np.quantile(replicates, tail, axis=0), np.quantile(replicates, 1 - tail, axis=0)
-    shift = np.abs(xs[int(np.argmin(coarse_ssr))] - xs[int(np.argmin(per_cycle.sum(axis=1)))])
+    # Student's t of the cycles' degrees of freedom, the bootstrap's spread of G groups scaled to
+    # the jackknife's (G - 1) divisor
+    quantile = float(stats.t.ppf(0.5 + opts.level / 2, cycles - 1)) * math.sqrt(cycles / (cycles - 1))
+    spread_x = np.std(replicates, axis=0)
+    low, high = x_opt - quantile * spread_x, x_opt + quantile * spread_x
+    both = _quadratic_minima(np.vstack([per_cycle.sum(axis=1), coarse_ssr]), xs)
+    shift = np.abs(both[1] - both[0])
     out: dict[str, Any] = {"method": "bootstrap", "cycles": cycles, "points": len(points),
                            "replicates": BOOTSTRAP_REPLICATES, "parameters": {}}
     for i, c in enumerate(columns):
@@ -1276,7 +1283,7 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
         out["parameters"][c.name] = {
             "jacobian": [est.ci_low, est.ci_high], "bootstrap": [float(low[i]), float(high[i])],
             "grid_shift": float(shift[i]), "ci_low": float(lo), "ci_high": float(hi),
-            "std_error": float(np.std(replicates[:, i]))}
+            "std_error": float(spread_x[i])}
         if (lo, hi) != (est.ci_low, est.ci_high):
             span = c.upper - c.lower
             spans_box = lo <= c.lower + 1e-12 * span and hi >= c.upper - 1e-12 * span
@@ -1318,10 +1325,38 @@ def _block_bootstrap(per_group: NDArray[np.float64], xs: NDArray[np.float64], re
                      rng: np.random.Generator) -> NDArray[np.float64]:
     """The block bootstrap's estimates: ``per_group[k, g]`` the misfit of group ``g`` at point
     ``xs[k]``; each replicate draws the groups with replacement (multinomial counts) and takes the
-    point of least misfit summed over its draws. Returns ``(replicates, p)``."""
+    minimum of the quadratic fitted to its misfit summed over its draws (:func:`_quadratic_minima`).
+    Returns ``(replicates, p)``."""
     groups = per_group.shape[1]
     counts = rng.multinomial(groups, np.full(groups, 1.0 / groups), size=replicates)
-    return np.asarray(xs[np.argmin(counts @ per_group.T, axis=1)])
+    return _quadratic_minima(counts @ per_group.T, xs)
+
+
+def _quadratic_minima(misfits: NDArray[np.float64], xs: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Per row of ``misfits`` (its values at the points ``xs``, ``(N, p)``), the minimum of the
+    quadratic in ``p`` variables fitted to it by least squares, within the points' box; the
+    point of least misfit where the quadratic has no minimum. The quadratic averages the steps of
+    a staircase misfit (the set-valued friction) where the point of least misfit would jump
+    between them."""
+    n, p = xs.shape
+    centre, scale = xs.mean(axis=0), np.maximum(np.ptp(xs, axis=0) / 2, 1e-300)
+    z = (xs - centre) / scale
+    pairs = [(i, j) for i in range(p) for j in range(i, p)]
+    design = np.column_stack([np.ones(n), z] + [z[:, i] * z[:, j] for i, j in pairs])
+    coef = np.linalg.lstsq(design, misfits.T, rcond=None)[0]  # (1 + p + pairs, rows)
+    out = np.empty((misfits.shape[0], p))
+    for k in range(misfits.shape[0]):
+        g = coef[1:1 + p, k]
+        H = np.zeros((p, p))
+        for (i, j), c in zip(pairs, coef[1 + p:, k]):
+            H[i, j] += c if i != j else 2 * c
+            H[j, i] = H[i, j]
+        eig = np.linalg.eigvalsh(H)
+        if eig[0] > 0:
+            out[k] = np.clip(np.linalg.solve(H, -g), -1.0, 1.0)
+        else:
+            out[k] = z[int(np.argmin(misfits[k]))]
+    return np.asarray(centre + out * scale)
 
 
 def _ridge_warnings(spread: _Spread, columns: list[_Column]) -> list[str]:
