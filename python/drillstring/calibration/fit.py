@@ -805,17 +805,13 @@ def fit(
         model whose period differs slightly from the well's, a phase shift or a sensor's lag
         leave it unchanged. See the guide's section "Data a model did not make".
     interval : ``"auto"``, ``"jacobian"`` or ``"bootstrap"``
-        The intervals of a sample-by-sample fit: the Jacobian's (checked along its path, widened
-        to every solved point within the threshold), joined with the block bootstrap's over the
-        stick-slip cycles widened by the discretisation error (the misfit on half the cells)
-        where the residuals show a model error (``"auto"``, default: far above the data's noise or
-        correlated), never (``"jacobian"``) or always (``"bootstrap"``). See the guide's section
-        "The measured top".
+        A sample-by-sample fit's intervals: the Jacobian's, joined with the block bootstrap's
+        over the stick-slip cycles (:func:`_bootstrap_intervals`) where the residuals show a
+        model error (``"auto"``), never (``"jacobian"``) or always (``"bootstrap"``).
     offset : ``"none"``, ``"constant"`` or ``"linear"``
-        A sensor offset of each target series, ``measured = model + a + b (t - t_ref)``, estimated
-        per event and series by linear least squares at every evaluation and profiled out of the
-        residuals (``"constant"``: ``b = 0``); reported in :attr:`FitResult.offsets` and added to
-        the fitted series. Default ``"none"`` (sample-by-sample misfit only).
+        A sensor offset per event and target, ``measured = model + a + b (t - t_ref)``, by linear
+        least squares at every run, profiled out of the residuals (``"constant"``: ``b = 0``);
+        in :attr:`FitResult.offsets` and the fitted series. Sample-by-sample misfit only.
 
     Returns
     -------
