@@ -1226,9 +1226,12 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
        :data:`BOOTSTRAP_SE` standard errors and :data:`BOOTSTRAP_SHARE` of each value;
     2. :data:`BOOTSTRAP_REPLICATES` resamplings of the cycles with replacement, each replicate's
        estimate the minimum of the quadratic fitted to its misfit summed over its cycles
-       (:func:`_quadratic_minima`); the interval the value plus and minus the replicates'
-       standard deviation times Student's t of the cycles' ``G - 1`` degrees of freedom (and
-       ``sqrt(G / (G - 1))``: the jackknife's divisor; few cycles, a wide quantile);
+       (:func:`_quadratic_minima`); the interval from the lesser of the value and the quadratic's
+       minimum over all cycles (the **smoothed** estimate: the value is a minimum of the
+       staircase, which the optimiser may meet a stair away from the smooth one) to the greater,
+       extended on each side by the replicates' standard deviation times Student's t of the
+       cycles' ``G - 1`` degrees of freedom (and ``sqrt(G / (G - 1))``, the jackknife's divisor:
+       few cycles, a wide quantile);
     3. widened on each side by the model's **discretisation error** at the optimum: the shift of
        the fitted quadratic's minimum when the same points are solved on half the cells (as the
        features' deviations carry it, :func:`_grid_error`).
@@ -1239,8 +1242,8 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
     any covariance of the Jacobian says, however its scale is corrected. The cycles are nearly
     independent, and each replicate meets the staircase itself. Returns ``fit.json``'s
     ``intervals`` (``method``, ``cycles``, ``points``, and per parameter the ``jacobian``,
-    ``bootstrap`` and reported ``ci_low``, ``ci_high``, the grid shift), empty where it does not
-    apply."""
+    ``bootstrap`` and reported ``ci_low``, ``ci_high``, the ``smoothed`` estimate, the grid shift),
+    empty where it does not apply."""
     from scipy import stats
     from scipy.stats import qmc
 
@@ -1267,9 +1270,10 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
     # the jackknife's (G - 1) divisor
     quantile = float(stats.t.ppf(0.5 + opts.level / 2, cycles - 1)) * math.sqrt(cycles / (cycles - 1))
     spread_x = np.std(replicates, axis=0)
-    low, high = x_opt - quantile * spread_x, x_opt + quantile * spread_x
-    both = _quadratic_minima(np.vstack([per_cycle.sum(axis=1), coarse_ssr]), xs)
-    shift = np.abs(both[1] - both[0])
+    smooth, smooth_coarse = _quadratic_minima(np.vstack([per_cycle.sum(axis=1), coarse_ssr]), xs)
+    low = np.minimum(x_opt, smooth) - quantile * spread_x
+    high = np.maximum(x_opt, smooth) + quantile * spread_x
+    shift = np.abs(smooth_coarse - smooth)
     out: dict[str, Any] = {"method": "bootstrap", "cycles": cycles, "points": len(points),
                            "replicates": BOOTSTRAP_REPLICATES, "parameters": {}}
     for i, c in enumerate(columns):
@@ -1278,6 +1282,7 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
         hi = min(max(est.ci_high, high[i] + shift[i]), c.upper)
         out["parameters"][c.name] = {
             "jacobian": [est.ci_low, est.ci_high], "bootstrap": [float(low[i]), float(high[i])],
+            "smoothed": float(smooth[i]),
             "grid_shift": float(shift[i]), "ci_low": float(lo), "ci_high": float(hi),
             "std_error": float(spread_x[i])}
         if (lo, hi) != (est.ci_low, est.ci_high):
