@@ -19,7 +19,8 @@ on 700, 0.0588 on 1500, 0.0217 on 4000), a physical difference, not a numerical 
 Each data set is fitted for ``friction.static`` in 0.2..0.5 and
 ``friction.kinetic_ratio`` in 0.5..0.9 (``--misfit``, ``--top``), 2 threads; the table gives the
 values, the 95 % intervals, whether they hold the truth, the share that do and the largest
-relative error.
+relative error; where the fit's block bootstrap applied (``--interval``), also the share of the
+Jacobian's intervals alone that hold it (``--log`` keeps every fit's pieces as JSON lines).
 
     python benchmarks/fit_coverage.py [--misfit features|least_squares] [--top controller|measured]
                                       [--draws 20] [--cells 700] [--cache DIR] [--threads 2]
