@@ -157,6 +157,8 @@ def test_the_bootstrap_holds_the_truth_on_another_codes_data():
         est = res.parameters[key]
         assert est.value == pytest.approx(true, rel=0.03)
         assert est.ci_low <= true <= est.ci_high, (key, est, res.intervals["parameters"][key])
+    jacobian = res.intervals["parameters"]["friction.kinetic_ratio"]["jacobian"]
+    assert not jacobian[0] <= 0.72 <= jacobian[1], jacobian  # what the bootstrap is for
 
 
 def test_fit_top_options_are_checked(short_config, synthetic):

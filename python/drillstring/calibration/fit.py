@@ -8,7 +8,9 @@ its controller, setpoint and ramp (``top_drive.*``), and the measured surface sp
 compared; with ``top="measured"`` the data's ``surface_rpm`` is imposed
 (``top_drive.mode = "measured_speed"``, the series as ``top_drive.speed_series``, held after
 its last sample), so that the controller and its gains need not be known, and the model's
-motor torque is the torque that imposes it.
+motor torque is the torque that imposes it. With ``offset=`` a sensor offset of each target
+(constant or linear in time) is fitted by linear least squares at every evaluation and profiled
+out of the residuals.
 
 Residuals: for each event, each target series ``s`` and each model output time ``t_k`` nearest
 a measured sample inside a window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the
@@ -43,7 +45,9 @@ Stages:
    ``profile=True``, the parameter's **profile likelihood** (the misfit minimised over the others
    at each of ``profile_points`` values) gives the interval instead. A parameter whose interval
    spans its whole box is reported not identifiable (a warning), and a near-singular Jacobian
-   names the parameters of its weakest direction (a ridge);
+   names the parameters of its weakest direction (a ridge). Where the sample-by-sample
+   residuals show a model error (``interval="auto"``), each interval is joined with a block
+   bootstrap over the stick-slip cycles (:func:`_bootstrap_intervals`);
 4. **checks** (:mod:`~drillstring.calibration.checks`): warnings for a value at its bound, a
    residual far above the data's noise or correlated, implausible units, a ridge;
 5. **landscape**: the misfit over a ``landscape_points`` x ``landscape_points`` grid of each pair
@@ -111,7 +115,7 @@ HAC_LENGTHS = 3
 #: constant plus a rate (linear in time), each profiled out in closed form at every evaluation.
 OFFSETS = ("none", "constant", "linear")
 #: The intervals a fit can give (``interval=``): the block bootstrap's over the stick-slip cycles
-#: joined to the Jacobian's where sample-by-sample residuals are correlated (``"auto"``), the
+#: joined to the Jacobian's where sample-by-sample residuals show a model error (``"auto"``), the
 #: Jacobian's alone, or the bootstrap's always.
 INTERVALS = ("auto", "jacobian", "bootstrap")
 #: The block bootstrap: points per parameter scattered around the optimum ...
@@ -228,7 +232,8 @@ class FitResult:
     #: deviation and the fitted model's value.
     features: list[dict[str, Any]] = field(default_factory=list)
     #: Where the block bootstrap applied (``interval=``): the cycles, the points and per parameter
-    #: the Jacobian's and the bootstrap's intervals, the grid shift and the reported interval.
+    #: the Jacobian's and the bootstrap's intervals, the smoothed estimate, the grid shift and the
+    #: reported interval.
     intervals: dict[str, Any] = field(default_factory=dict)
     #: The ``offset`` option: ``"none"``, ``"constant"`` or ``"linear"``.
     offset: str = "none"
@@ -465,13 +470,12 @@ class _Problem:
         r = math.sqrt(w) * (np.array([got.get(n, math.nan) for n in names]) - ref) / sd
         return np.where(np.isfinite(r), r, MISSING_FEATURE)
 
-    def residuals(self, points: Sequence[NDArray[np.float64]], keep: Optional[NDArray[np.bool_]] = None
-                  ) -> list[NDArray[np.float64]]:
-        """The residuals at each point; with ``keep`` only those rows, and the misfits do not enter
-        :attr:`history` (the bootstrap's points)."""
+    def residuals(self, points: Sequence[NDArray[np.float64]], record: bool = True) -> list[NDArray[np.float64]]:
+        """The residuals at each point, their misfits recorded in :attr:`history` unless
+        ``record`` is false (the bootstrap's points, on other grids too)."""
         out = [self.residual_of(r) for r in self.run(points)]
-        if keep is not None:
-            return [r[keep] for r in out]
+        if not record:
+            return out
         self.history += [(np.asarray(u, dtype=np.float64), float(r @ r)) for u, r in zip(points, out)]
         return out
 
@@ -559,10 +563,8 @@ class _Cached:
     """The residual function and its batched forward-difference Jacobian for least_squares, over
     the coordinates ``free`` of the scaled vector (the others fixed at ``fixed``)."""
 
-    def __init__(self, problem: _Problem, fixed: NDArray[np.float64], free: list[int], step: float,
-                 keep: Optional[NDArray[np.bool_]] = None) -> None:
+    def __init__(self, problem: _Problem, fixed: NDArray[np.float64], free: list[int], step: float) -> None:
         self.problem = problem
-        self.keep = keep
         self.fixed = fixed
         self.free = free
         self.step = step
@@ -576,7 +578,7 @@ class _Cached:
     def fun(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
         key = np.asarray(v, dtype=np.float64).tobytes()
         if key not in self.cache:
-            self.cache[key] = self.problem.residuals([self.full(v)], self.keep)[0]
+            self.cache[key] = self.problem.residuals([self.full(v)])[0]
         return self.cache[key]
 
     def jac(self, v: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -590,20 +592,18 @@ class _Cached:
             w[i] += h
             steps.append(h)
             points.append(self.full(w))
-        cols = self.problem.residuals(points, self.keep)
+        cols = self.problem.residuals(points)
         return np.column_stack([(c - r0) / h for c, h in zip(cols, steps)])
 
 
 def _refine(problem: _Problem, u0: NDArray[np.float64], free: list[int], step: float,
-            max_iterations: int, keep: Optional[NDArray[np.bool_]] = None
-            ) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
+            max_iterations: int) -> tuple[NDArray[np.float64], float, dict[str, Any]]:
     """:func:`scipy.optimize.least_squares` from ``u0`` over the coordinates ``free`` (forward
     differences of ``step`` in the scaled box, as one batch per Jacobian: larger than the scale at
-    which the set-valued friction makes the misfit jump); never worse than ``u0``. ``keep``: the
-    residual rows compared (all by default)."""
+    which the set-valued friction makes the misfit jump); never worse than ``u0``."""
     from scipy.optimize import least_squares
 
-    cached = _Cached(problem, u0.copy(), free, step, keep)
+    cached = _Cached(problem, u0.copy(), free, step)
     r0 = cached.fun(u0[free])
     # the features' chi-square needs its minimum to a hundredth of a standard deviation, no finer
     tol = {"ftol": 1e-3, "xtol": 1e-4} if problem.misfit == "features" else {}
@@ -1260,9 +1260,9 @@ def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArr
     points = [np.clip(u_opt + (2 * q - 1) * half, 0.0, 1.0) for q in unit]
     opts.say(f"bootstrap: {len(points)} points around the optimum by {cycles} cycles, and on half the cells")
     per_cycle = np.array([np.bincount(labels, weights=r * r, minlength=cycles)
-                          for r in problem.residuals(points, np.ones(labels.size, dtype=bool))])
+                          for r in problem.residuals(points, record=False)])
     coarse = problem.coarser()
-    coarse_ssr = np.array([float(r @ r) for r in coarse.residuals(points, np.ones(labels.size, dtype=bool))])
+    coarse_ssr = np.array([float(r @ r) for r in coarse.residuals(points, record=False)])
     problem.evaluations += coarse.evaluations
     xs = np.array([problem.values(u) for u in points])
     replicates = _block_bootstrap(per_cycle, xs, BOOTSTRAP_REPLICATES, np.random.default_rng(opts.seed))
