@@ -184,7 +184,8 @@ def test_a_linear_drift_is_estimated_with_the_values(short_config: ds.DrillConfi
 def test_a_constant_offset_is_estimated_and_printed(tmp_path: Path, truth_run: ds.DrillResult,
                                                     capsys: pytest.CaptureFixture[str]) -> None:
     """``--offset constant`` on the torque shifted by 3 kN m: the console and ``fit.json`` give
-    the offset within 1 % (the values themselves are checked above)."""
+    the offset within 1 % (the values themselves are checked above); ``--interval bootstrap``
+    reaches ``fit.json`` and the console."""
     cfg = tmp_path / "short.toml"
     cfg.write_text(EXAMPLE.read_text())
     data = tmp_path / "startup.csv"
@@ -193,7 +194,8 @@ def test_a_constant_offset_is_estimated_and_printed(tmp_path: Path, truth_run: d
     pd.DataFrame({"t": truth_run.t, "motor_torque": torque}).to_csv(data, index=False)
     out = tmp_path / "fit"
     code = main(["fit", str(cfg), "--set", "numerics.cells=250", "--set", "numerics.duration=12", "--data", str(data),
-                 "--param", "friction.static=0.2:0.4", "--offset", "constant", "--samples", "8", "--no-landscape",
+                 "--param", "friction.static=0.2:0.4", "--offset", "constant", "--interval", "bootstrap",
+                 "--samples", "8", "--no-landscape",
                  "--no-plots", "--threads", "2", "--out", str(out)])
     assert code == 0
     console = capsys.readouterr()
@@ -203,6 +205,10 @@ def test_a_constant_offset_is_estimated_and_printed(tmp_path: Path, truth_run: d
     assert offset["constant"] == pytest.approx(3e3, rel=0.01) and offset["rate_per_s"] == 0.0
     assert f"{offset['constant']:.6g} N m" in line and "drifting" not in line
     assert "offset of motor_torque" in (out / "report.md").read_text()
+    found, reported = saved["intervals"]["parameters"]["friction.static"], saved["parameters"]["friction.static"]
+    assert saved["intervals"]["method"] == "bootstrap"
+    assert (found["ci_low"], found["ci_high"]) == (reported["ci_low"], reported["ci_high"])
+    assert found["ci_low"] <= found["jacobian"][0] and found["jacobian"][1] <= found["ci_high"]
 
 
 def test_the_offset_and_interval_options_are_checked(short_config: ds.DrillConfig, truth_run: ds.DrillResult
