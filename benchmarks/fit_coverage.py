@@ -19,11 +19,13 @@ on 700, 0.0588 on 1500, 0.0217 on 4000), a physical difference, not a numerical 
 Each data set is fitted for ``friction.static`` in 0.2..0.5 and
 ``friction.kinetic_ratio`` in 0.5..0.9 (``--misfit``, ``--top``), 2 threads; the table gives the
 values, the 95 % intervals, whether they hold the truth, the share that do and the largest
-relative error.
+relative error; where the fit's block bootstrap applied (``--interval``), also the share of the
+Jacobian's intervals alone that hold it (``--log`` keeps every fit's pieces as JSON lines).
 
     python benchmarks/fit_coverage.py [--misfit features|least_squares] [--top controller|measured]
                                       [--draws 20] [--cells 700] [--cache DIR] [--threads 2]
-                                      [--starts N] [--carry K]
+                                      [--starts N] [--carry K] [--interval auto|jacobian|bootstrap]
+                                      [--log FILE.jsonl] [--skip-fine] [--skip-published]
 
 ``--cache DIR`` keeps the noiseless runs of the other codes in DIR (the published port on 4000
 cells takes minutes).
@@ -32,6 +34,7 @@ cells takes minutes).
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
 import time
@@ -141,12 +144,18 @@ def main() -> None:
     parser.add_argument("--starts", type=int, default=None, help="fit's starts (default: the fit's)")
     parser.add_argument("--carry", type=int, default=None, help="fit's carry: starts past the first horizon")
     parser.add_argument("--skip-published", action="store_true", help="leave out the published port (4000 cells)")
+    parser.add_argument("--interval", choices=("auto", "jacobian", "bootstrap"), default="auto",
+                        help="fit's interval (default: the fit's)")
+    parser.add_argument("--skip-fine", action="store_true", help="leave out the numpy port on 1500 cells")
+    parser.add_argument("--log", type=Path, default=None,
+                        help="append each fit's values and every method's intervals to this JSON-lines file")
     args = parser.parse_args()
     cfg = ds.load_drill_config(ROOT / "examples" / "aarsnes-shor-well-b.toml").with_overrides(
         {"numerics.duration": DURATION, "numerics.field_interval": 0.0})
     cases = [(f"numpy port, {args.cells} cells", f"numpy-{args.cells}", lambda: numpy_port(args.cells), seed,
               args.cells) for seed in range(args.first_seed, args.first_seed + args.draws)]
-    cases.append(("numpy port, 1500 cells", "numpy-1500", lambda: numpy_port(1500), 100, 1500))
+    if not args.skip_fine:
+        cases.append(("numpy port, 1500 cells", "numpy-1500", lambda: numpy_port(1500), 100, 1500))
     if not args.skip_published:
         cases.append(("published port, 4000 cells", "published-4000", lambda: published_port(4000), 200, 4000))
     print(f"misfit {args.misfit}, top {args.top}; truth {TRUTH}")
@@ -154,14 +163,27 @@ def main() -> None:
     print("|---|---:|---:|---|---|---:|---|---|---:|---|")
     held = {k: 0 for k in TRUTH}
     worst = {k: 0.0 for k in TRUTH}
+    # where the bootstrap applied: the share of the Jacobian's intervals alone holding the truth
+    jacobian = {k: [0, 0] for k in TRUTH}
     seconds = []
     for label, name, make, seed, cells in cases:
         run = cached(name, make, args.cache)
         start = time.perf_counter()
         model = cfg.with_overrides({"damping_rate": damping_rate(cells)})
         res = ds.fit(model, noisy(run, seed), BOUNDS, threads=args.threads, landscape=False, misfit=args.misfit,
-                     top=args.top, starts=args.starts, carry=args.carry)
+                     top=args.top, starts=args.starts, carry=args.carry, interval=args.interval)
         seconds.append(time.perf_counter() - start)
+        for key, true in TRUTH.items():
+            found = res.intervals.get("parameters", {}).get(key)
+            if found is not None:
+                jacobian[key][0] += found["jacobian"][0] <= true <= found["jacobian"][1]
+                jacobian[key][1] += 1
+        if args.log is not None:
+            with open(args.log, "a", encoding="utf-8") as f:
+                f.write(json.dumps({"data": label, "seed": seed, "misfit": args.misfit, "top": args.top,
+                                    "seconds": seconds[-1], "warnings": res.warnings, "evaluations": res.evaluations,
+                                    "parameters": {k: p.to_dict() for k, p in res.parameters.items()},
+                                    "intervals": res.intervals}) + "\n")
         row = []
         for key, true in TRUTH.items():
             p = res.parameters[key]
@@ -174,6 +196,10 @@ def main() -> None:
     for key in TRUTH:
         print(f"{key}: {held[key]} of {n} intervals hold the truth ({held[key] / n:.0%}); largest error "
               f"{worst[key]:.1%}")
+    for key, (inside, of) in jacobian.items():
+        if of:
+            print(f"{key}: the Jacobian's intervals alone held the truth in {inside} of the {of} fits with the "
+                  "bootstrap")
     print(f"fit time: median {np.median(seconds):.0f} s, largest {max(seconds):.0f} s ({args.threads} threads)")
 
 

@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import drillstring as ds
 from drillstring.drilling.config import DrillConfig
@@ -140,6 +142,13 @@ def test_a_long_horizontal_slack_off_locks_up(tmp_path: Path) -> None:
     assert doc["lockup"]["slackoff"] and doc["lockup"]["sliding"]
     assert doc["hook_load_slackoff_N"] is None and doc["max_set_down_N"] == 0.0
     assert "lock-up: slackoff, sliding" in out
+    # the limits' maxima leave the locked-up operations out: the largest utilisation is the
+    # others' (their compression below the lock-up is no load the string reaches)
+    feasible = [f"{op}_utilisation" for op in ("pickup", "rotating", "rotating_on_bottom")
+                if f"{op}_utilisation" in p.columns]
+    assert feasible and doc["max_utilisation_operation"] not in ("slackoff", "sliding")
+    assert doc["max_utilisation"] == pytest.approx(float(np.nanmax(p[feasible].to_numpy())), rel=1e-8)
+    assert doc["max_utilisation"] < 1.0
     short = _config(plan=[{"hold": 1500.0}, {"build": 6.0, "inclination": 90.0}, {"hold": 400.0}],
                     inclination_deg=0.0)
     short["sections"][0]["length"] = 2300.0
@@ -151,6 +160,37 @@ def test_a_long_horizontal_slack_off_locks_up(tmp_path: Path) -> None:
     short["bit"]["weight_on_bit"] = wob
     at_limit = ds.torque_drag(DrillConfig.from_dict(short))
     assert abs(at_limit.hook_load_sliding_N) < 1e-6 * wob
+
+
+def test_sliding_in_a_horizontal_hole_locks_up_where_the_closed_form_diverges(tmp_path: Path) -> None:
+    """Helically buckled pipe slid along a horizontal hole: the compression going up from the bit
+    obeys `dF/du = mu (w + r_c F^2 / (4 E I))` (Mitchell's contact), whose solution is
+    `F(u) = a tan(mu w u / a + atan(F_0 / a))` with `a = 2 sqrt(E I w / r_c)`: it diverges, and the
+    string locks up, a finite `u* = (pi/2 - atan(F_0 / a)) a / (mu w)` above the bit (the
+    horizontal-hole lock-up analysis of coiled tubing, e.g. He & Kyllingstad 1995). 250 kN on the bit, above the
+    helical load 2 sqrt(2) sqrt(E I w / r_c) = 221 kN from the bit up: u* = 1313 m."""
+    plan = [{"hold": 1000.0}, {"build": 6.0, "inclination": 90.0}, {"hold": 2000.0}]
+    data = _config(plan=plan, inclination_deg=0.0)
+    data["sections"][0]["length"] = 3450.0
+    f0, mu = 250e3, 0.3
+    data["bit"]["weight_on_bit"] = f0
+    doc, p, out = _run(tmp_path, data, "--no-plots")
+    a = 2.0 * math.sqrt(EI * W / RC)
+    assert f0 > math.sqrt(2.0) * a  # helical from the bit
+    u_star = (math.pi / 2.0 - math.atan(f0 / a)) * a / (mu * W)
+    assert u_star == pytest.approx(1313.0, abs=1.0)
+    md = p["md_m"].to_numpy()
+    u = md[-1] - md
+    compression = -p["sliding_tension_N"].to_numpy()
+    closed = a * np.tan(mu * W * np.minimum(u, 0.99 * u_star) / a + math.atan(f0 / a))
+    early = closed < 2.0 * f0  # a doubled compression, 1 m elements: to 0.1 %
+    assert early.sum() > 300
+    np.testing.assert_allclose(compression[early], closed[early], rtol=1e-3)
+    assert (p["sliding_buckling"].to_numpy()[u < 1000.0] == "helical").all()
+    # where the closed form diverges, the core's compression does, within 1 % of u*
+    diverged = u[~(compression < 1e3 * f0)]
+    assert diverged.size and diverged.min() == pytest.approx(u_star, rel=1e-2)
+    assert doc["lockup"]["sliding"] and doc["hook_load_sliding_N"] is None and "lock-up: sliding" in out
 
 
 def test_curved_hole_critical_load_is_the_lateral_balance_root(tmp_path: Path) -> None:
@@ -239,3 +279,53 @@ def test_a_hole_smaller_than_the_tool_joints_is_refused() -> None:
     with pytest.raises(ValidationError, match="tool_joint_outer_diameter") as err:
         ds.torque_drag(DrillConfig.from_dict(data))
     assert err.value.field == "well.hole_diameter"
+
+
+@settings(max_examples=8, deadline=None)
+@given(inc_deg=st.floats(5.0, 85.0), tool_joint_in=st.floats(5.0, 8.0), mu=st.floats(0.05, 0.6))
+def test_the_tool_joints_are_the_friction_lever_arm(inc_deg: float, tool_joint_in: float, mu: float) -> None:
+    """On a straight inclined hole the rotating off-bottom surface torque is the closed form
+    `mu w L sin(i) r`, `r` half the tool joints' outer diameter where a section has tool joints
+    (they touch the wall): `TJ OD / OD` times the torque of the same string (the same weight,
+    `nominal_weight`) without them; a `contact_diameter` overrides the tool joints."""
+    length, weight = 3000.0, 22.6 * 4.4482216152605 / 0.3048  # m, N/m in air
+    data = _config(inclination_deg=inc_deg, hole_diameter=None)
+    data["sections"][0].update(nominal_weight=weight)
+    data["friction"]["static"] = mu
+    data["bit"]["weight_on_bit"] = 10e3
+    data["torque_drag"].update(broomstick_points=2, friction_factors=[mu])
+    joints = {"tool_joint_outer_diameter": tool_joint_in * INCH, "tool_joint_inner_diameter": 2.75 * INCH,
+              "tool_joint_length": 21.0 * INCH}
+
+    def torque(**section: Any) -> float:
+        d = json.loads(json.dumps(data))
+        d["sections"][0].update(section)
+        return float(ds.torque_drag(DrillConfig.from_dict(d)).summary["surface_torque_off_bottom_Nm"])
+
+    w_buoyed = weight * (1.0 - MUD / RHO)
+    normal = w_buoyed * length * math.sin(math.radians(inc_deg))
+    plain, jointed = torque(), torque(**joints)
+    assert plain == pytest.approx(mu * normal * OD / 2.0, rel=1e-9)
+    assert jointed == pytest.approx(mu * normal * tool_joint_in * INCH / 2.0, rel=1e-9)
+    assert jointed / plain == pytest.approx(tool_joint_in / 5.0, rel=1e-12)
+    assert torque(**joints, contact_diameter=OD) == pytest.approx(plain, rel=1e-12)
+    assert torque(**joints, contact_diameter=6.0 * INCH) == pytest.approx(mu * normal * 3.0 * INCH, rel=1e-9)
+
+
+def test_the_example_measured_points_give_back_their_factors(tmp_path: Path) -> None:
+    """`examples/directional-10000ft-measured.csv` was read off the model's broomstick at the
+    factors below (hook loads to 0.1 klbf, torques to 1 ft-lbf): each point's implied friction
+    factor is its own within 0.002; the row of an unknown operation is skipped."""
+    import pandas as pd
+
+    examples = Path(__file__).resolve().parents[1] / "examples"
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "drillstring", "torque-drag",
+                           str(examples / "directional-10000ft-td-field.toml"), "--out", str(out), "--no-plots",
+                           "--measured", str(examples / "directional-10000ft-measured.csv")],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=600)
+    assert proc.returncode == 0, proc.stderr
+    assert "12 points, 12 with an implied friction factor, 1 rows skipped" in proc.stdout
+    m = pd.read_csv(out / "measured.csv")
+    made = [0.3, 0.2, 0.2, 0.3, 0.2, 0.3, 0.3, 0.3, 0.3, 0.4, 0.3, 0.3]
+    np.testing.assert_allclose(m["friction_factor"], made, atol=0.002)

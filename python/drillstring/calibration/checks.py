@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from .features import noise_level
 
 __all__ = ["AUTOCORRELATION_LIMIT", "BOUND_SHARE", "CHI2_RATIO", "NOISE_FLOOR", "NOISE_RATIO", "RIDGE_CORRELATION",
-           "UNIT_RATIO", "SeriesCheck", "series_check"]
+           "SERIES_UNITS", "UNIT_RATIO", "SeriesCheck", "far_above_noise", "model_error", "series_check"]
 
 #: A value within this share of its box from a bound is "at its bound".
 BOUND_SHARE = 0.01
@@ -49,7 +49,8 @@ UNIT_RATIO = 20.0
 #: Estimates correlated beyond this: a ridge.
 RIDGE_CORRELATION = 0.95
 
-_UNITS = {"motor_torque": "N m", "bit_torque": "N m", "surface_rpm": "rpm", "bit_rpm": "rpm", "hook_load": "N",
+#: The SI unit of each fitted series, as messages name it.
+SERIES_UNITS = {"motor_torque": "N m", "bit_torque": "N m", "surface_rpm": "rpm", "bit_rpm": "rpm", "hook_load": "N",
           "weight_on_bit": "N"}
 _LARGER_UNITS = {"N m": "kN m", "N": "kN", "rpm": "rad/s"}
 
@@ -93,6 +94,18 @@ def series_check(event: int, series: str, model: NDArray[np.float64], data: NDAr
                        float(np.mean(np.abs(data))), float(np.mean(np.abs(model))), float(np.std(data)))
 
 
+def far_above_noise(c: SeriesCheck) -> bool:
+    """The residual's RMS more than :data:`NOISE_RATIO` times the data's noise level (at least
+    :data:`NOISE_FLOOR` of the data's spread)."""
+    return c.rms > NOISE_RATIO * max(c.noise, NOISE_FLOOR * c.spread)
+
+
+def model_error(c: SeriesCheck) -> bool:
+    """A sample-by-sample residual that is not the data's noise: far above it
+    (:func:`far_above_noise`) or correlated beyond :data:`AUTOCORRELATION_LIMIT`."""
+    return far_above_noise(c) or c.autocorrelation > AUTOCORRELATION_LIMIT
+
+
 def bound_warnings(estimates: Mapping[str, Any]) -> list[str]:
     """A value within :data:`BOUND_SHARE` of its box from a bound."""
     out = []
@@ -110,7 +123,7 @@ def residual_warnings(checks: Sequence[SeriesCheck], misfit: str) -> list[str]:
     """The residual far above the noise, correlated residuals and implausible units, per series."""
     out = []
     for c in checks:
-        unit = _UNITS.get(c.series, "")
+        unit = SERIES_UNITS.get(c.series, "")
         name = f"{c.series} (event {c.event})" if any(k.event for k in checks) else c.series
         if c.model_scale > 0 and c.data_scale > 0:
             ratio = c.data_scale / c.model_scale
@@ -121,8 +134,7 @@ def residual_warnings(checks: Sequence[SeriesCheck], misfit: str) -> list[str]:
                 out.append(f"column {name}: the data's mean magnitude {c.data_scale:.4g} {unit} is {ratio:.3g} times "
                            f"the fitted model's {c.model_scale:.4g} {unit}, implausible for the quantity{hint}")
                 continue
-        floor = max(c.noise, NOISE_FLOOR * c.spread)
-        if misfit == "least_squares" and c.rms > NOISE_RATIO * floor:
+        if misfit == "least_squares" and far_above_noise(c):
             out.append(f"column {name}: the residual's RMS {c.rms:.4g} {unit} is {c.rms / max(c.noise, 1e-300):.3g} "
                        f"times the data's noise level {c.noise:.4g} {unit} (from successive differences): the model "
                        "misses what the data hold; the values and intervals are not a calibration")

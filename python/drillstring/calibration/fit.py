@@ -8,7 +8,9 @@ its controller, setpoint and ramp (``top_drive.*``), and the measured surface sp
 compared; with ``top="measured"`` the data's ``surface_rpm`` is imposed
 (``top_drive.mode = "measured_speed"``, the series as ``top_drive.speed_series``, held after
 its last sample), so that the controller and its gains need not be known, and the model's
-motor torque is the torque that imposes it.
+motor torque is the torque that imposes it. With ``offset=`` a sensor offset of each target
+(constant or linear in time) is fitted by linear least squares at every evaluation and profiled
+out of the residuals.
 
 Residuals: for each event, each target series ``s`` and each model output time ``t_k`` nearest
 a measured sample inside a window, ``sqrt(w_s) (model_s(t_k) - measured_s(t_k)) / scale_s``, the
@@ -43,7 +45,9 @@ Stages:
    ``profile=True``, the parameter's **profile likelihood** (the misfit minimised over the others
    at each of ``profile_points`` values) gives the interval instead. A parameter whose interval
    spans its whole box is reported not identifiable (a warning), and a near-singular Jacobian
-   names the parameters of its weakest direction (a ridge);
+   names the parameters of its weakest direction (a ridge). Where the sample-by-sample
+   residuals show a model error (``interval="auto"``), each interval is joined with a block
+   bootstrap over the stick-slip cycles (:func:`_bootstrap_intervals`);
 4. **checks** (:mod:`~drillstring.calibration.checks`): warnings for a value at its bound, a
    residual far above the data's noise or correlated, implausible units, a ridge;
 5. **landscape**: the misfit over a ``landscape_points`` x ``landscape_points`` grid of each pair
@@ -78,7 +82,8 @@ from .data import AXIAL_SERIES, MODEL_SERIES, MeasuredData, read_measured
 from .features import features as cycle_features
 from .features import noise_level, uncertainties
 
-__all__ = ["CONDITION_LIMIT", "MISFITS", "Event", "FitResult", "Landscape", "ParameterEstimate", "Profile", "fit"]
+__all__ = ["CONDITION_LIMIT", "INTERVALS", "MISFITS", "OFFSETS", "Event", "FitResult", "Landscape", "ParameterEstimate",
+           "Profile", "fit"]
 
 #: Condition number of the box-scaled Jacobian above which the intervals come from profiles.
 CONDITION_LIMIT = 1e3
@@ -106,6 +111,23 @@ SPEED_SMOOTH_TIME = 0.5
 HAC_CUTOFF = 0.05
 #: ... times this many.
 HAC_LENGTHS = 3
+#: The offsets a fit can estimate per event and target series (``offset=``): none, a constant, or a
+#: constant plus a rate (linear in time), each profiled out in closed form at every evaluation.
+OFFSETS = ("none", "constant", "linear")
+#: The intervals a fit can give (``interval=``): the block bootstrap's over the stick-slip cycles
+#: joined to the Jacobian's where sample-by-sample residuals show a model error (``"auto"``), the
+#: Jacobian's alone, or the bootstrap's always.
+INTERVALS = ("auto", "jacobian", "bootstrap")
+#: The block bootstrap: points per parameter scattered around the optimum ...
+BOOTSTRAP_POINTS = 64
+#: ... over the larger of this many standard errors of the Jacobian ...
+BOOTSTRAP_SE = 4.0
+#: ... and this share of each value;
+BOOTSTRAP_SHARE = 0.03
+#: the resamplings of the cycles;
+BOOTSTRAP_REPLICATES = 2000
+#: the fewest and the most cycles (groups) the windows are cut into.
+BOOTSTRAP_CYCLES = (6, 40)
 #: Multiples of the Jacobian interval's end scanned along its path (see :func:`fit`).
 PATH_MULTIPLES = (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0, 8.0, 12.0, 16.0)
 
@@ -209,6 +231,15 @@ class FitResult:
     #: With ``misfit="features"``: per event, target and feature the data's value, its standard
     #: deviation and the fitted model's value.
     features: list[dict[str, Any]] = field(default_factory=list)
+    #: Where the block bootstrap applied (``interval=``): the cycles, the points and per parameter
+    #: the Jacobian's and the bootstrap's intervals, the smoothed estimate, the grid shift and the
+    #: reported interval.
+    intervals: dict[str, Any] = field(default_factory=dict)
+    #: The ``offset`` option: ``"none"``, ``"constant"`` or ``"linear"``.
+    offset: str = "none"
+    #: Per event and target the estimated offset ``measured - model`` (:meth:`_Problem.offsets`:
+    #: ``constant`` at ``t_ref``, ``rate_per_s``); the fitted series include it.
+    offsets: list[dict[str, dict[str, float]]] = field(default_factory=list)
 
     @property
     def config(self) -> DrillConfig:
@@ -240,6 +271,9 @@ class FitResult:
             "series_checks": [c.to_dict() for c in self.series_checks],
             "correlation": self.correlation,
             "features": self.features,
+            "intervals": self.intervals,
+            "offset": self.offset,
+            "offsets": self.offsets,
         }
 
     def save(self, out_dir: Union[str, os.PathLike[str]], *, plots: bool = True) -> list[Any]:
@@ -267,9 +301,12 @@ class _Problem:
     """The residuals of the events as a function of the parameter vector scaled to ``[0, 1]``."""
 
     def __init__(self, events: list[Event], columns: list[_Column], targets: dict[str, float],
-                 threads: int, fraction: float = 1.0, top: str = "controller", misfit: str = "least_squares") -> None:
+                 threads: int, fraction: float = 1.0, top: str = "controller", misfit: str = "least_squares",
+                 offset: str = "none") -> None:
         self.events = events
         self.misfit = misfit
+        #: ``offset=``: the sensor offset profiled out of each event's and target's residuals.
+        self.offset = offset
         self.columns = columns
         self.targets = targets
         self.threads = threads
@@ -327,6 +364,8 @@ class _Problem:
             self.points = sum(len(ref[s][0]) for ref in self.reference for s in targets)
         else:
             self.points = sum(i.size * len(targets) for i in self.index)
+        #: The offsets' coefficients profiled out (degrees of freedom the residuals lose).
+        self.profiled = OFFSETS.index(offset) * len(targets) * len(events)
 
     def values(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
         return self.lower + np.clip(u, 0.0, 1.0) * (self.upper - self.lower)
@@ -371,8 +410,35 @@ class _Problem:
                 elif isinstance(run, str):
                     parts.append(np.full(self.index[e].size, FAILED_RESIDUAL))
                 else:
-                    parts.append(math.sqrt(w) * (run[s] - self.measured[e][s]) / self.scale[e][s])
+                    difference = run[s] - self.measured[e][s]
+                    if self.offset != "none":
+                        basis = self.offset_basis(e)
+                        difference = difference - basis @ np.linalg.lstsq(basis, difference, rcond=None)[0]
+                    parts.append(math.sqrt(w) * difference / self.scale[e][s])
         return np.concatenate(parts)
+
+    def offset_basis(self, e: int) -> NDArray[np.float64]:
+        """The offset's basis over event ``e``'s compared times: a constant, and with
+        ``offset="linear"`` the time from the times' mean (the two columns orthogonal)."""
+        t = self.times[e]
+        columns = [np.ones(t.size)] + ([t - t.mean()] if self.offset == "linear" else [])
+        return np.column_stack(columns)
+
+    def offsets(self, runs: list[Any]) -> list[dict[str, dict[str, float]]]:
+        """Per event and target the offset ``measured - model`` profiled out at a point's runs:
+        its value at the compared times' mean ``t_ref`` (``constant``, the series' unit) and its
+        ``rate`` per second (0 with ``offset="constant"``); empty without an offset."""
+        out: list[dict[str, dict[str, float]]] = []
+        for e, run in enumerate(runs):
+            out.append({})
+            if self.offset == "none" or isinstance(run, str):
+                continue
+            basis = self.offset_basis(e)
+            for s in self.targets:
+                c = np.linalg.lstsq(basis, self.measured[e][s] - run[s], rcond=None)[0]
+                out[e][s] = {"constant": float(c[0]), "rate_per_s": float(c[1]) if c.size > 1 else 0.0,
+                             "t_ref": float(self.times[e].mean())}
+        return out
 
     def coarse_features(self, u: NDArray[np.float64]) -> list[dict[str, dict[str, float]]]:
         """``misfit="features"``: per event and target the features of the run at ``u`` on half
@@ -404,10 +470,41 @@ class _Problem:
         r = math.sqrt(w) * (np.array([got.get(n, math.nan) for n in names]) - ref) / sd
         return np.where(np.isfinite(r), r, MISSING_FEATURE)
 
-    def residuals(self, points: Sequence[NDArray[np.float64]]) -> list[NDArray[np.float64]]:
+    def residuals(self, points: Sequence[NDArray[np.float64]], record: bool = True) -> list[NDArray[np.float64]]:
+        """The residuals at each point, their misfits recorded in :attr:`history` unless
+        ``record`` is false (the bootstrap's points, on other grids too)."""
         out = [self.residual_of(r) for r in self.run(points)]
+        if not record:
+            return out
         self.history += [(np.asarray(u, dtype=np.float64), float(r @ r)) for u, r in zip(points, out)]
         return out
+
+    def coarser(self) -> _Problem:
+        """The same problem on half the configuration's cells (at least :data:`MIN_GRID_CELLS`),
+        with its own history and count of runs: the model's discretisation error at a point."""
+        import copy
+
+        out = copy.copy(self)
+        out.history, out.evaluations = [], 0
+        bases = []
+        for base in self.bases:
+            cfg = json.loads(base)
+            cfg["numerics"]["cells"] = max(int(cfg["numerics"]["cells"]) // 2, MIN_GRID_CELLS)
+            bases.append(json.dumps(cfg))
+        out.bases = bases
+        return out
+
+    def groups(self, count: int) -> NDArray[np.int64]:
+        """The bootstrap's group of each sample-by-sample residual: the windows' span (from the
+        first window's start, the same for every event) cut into ``count`` contiguous parts of
+        equal time."""
+        labels = []
+        for e, times in enumerate(self.times):
+            first = min(a for a, _ in self.events[e].windows)
+            span = max(float(times[-1] - first), 1e-300)
+            g = np.minimum(np.floor((times - first) / span * count), count - 1).astype(np.int64)
+            labels += [g] * len(self.targets)
+        return np.concatenate(labels)
 
 
 def _reference(times: NDArray[np.float64], values: NDArray[np.float64]
@@ -644,6 +741,8 @@ def fit(
     top: str = "controller",
     carry: Optional[int] = None,
     misfit: str = "least_squares",
+    interval: str = "auto",
+    offset: str = "none",
 ) -> FitResult:
     """Fits configuration values to measured data (see the module docstring).
 
@@ -705,6 +804,14 @@ def fit(
         standard deviations (noise, cycle scatter, model error), over the whole windows: a
         model whose period differs slightly from the well's, a phase shift or a sensor's lag
         leave it unchanged. See the guide's section "Data a model did not make".
+    interval : ``"auto"``, ``"jacobian"`` or ``"bootstrap"``
+        A sample-by-sample fit's intervals: the Jacobian's, joined with the block bootstrap's
+        over the stick-slip cycles (:func:`_bootstrap_intervals`) where the residuals show a
+        model error (``"auto"``), never (``"jacobian"``) or always (``"bootstrap"``).
+    offset : ``"none"``, ``"constant"`` or ``"linear"``
+        A sensor offset per event and target, ``measured = model + a + b (t - t_ref)``, by linear
+        least squares at every run, profiled out of the residuals (``"constant"``: ``b = 0``);
+        in :attr:`FitResult.offsets` and the fitted series. Sample-by-sample misfit only.
 
     Returns
     -------
@@ -725,7 +832,8 @@ def fit(
         starts=starts if starts is not None else (2 if misfit == "features" else 4),
         horizon=horizon, max_iterations=max_iterations, diff_step=diff_step, profile=profile,
         profile_points=profile_points, landscape=landscape, landscape_points=landscape_points, max_gap=max_gap,
-        say=progress or (lambda _msg: None), top=top, carry=carry, misfit=misfit,
+        say=progress or (lambda _msg: None), top=top, carry=carry, misfit=misfit, interval=interval,
+        offset=offset,
     )
     events = _events(configs, datasets, windows, opts)
     columns = _columns(bounds, events, opts.per_event)
@@ -740,9 +848,10 @@ def fit(
     estimates = _jacobian_intervals(problem, u_opt, ssr, spread, columns)
     warnings_ = _ridge_warnings(spread, columns)
     profiles = _profiles(problem, u_opt, ssr, spread, columns, estimates, opts)
+    intervals = _bootstrap_intervals(problem, u_opt, r, spread, columns, estimates, opts)
     warnings_ += _identifiability_warnings(estimates, opts.level)
     landscapes = _landscapes(problem, u_opt, columns, opts)
-    fitted_configs, fitted, failures = _fitted_runs(problem, events, u_opt)
+    fitted_configs, fitted, failures, offsets = _fitted_runs(problem, events, u_opt)
     series_checks, feature_rows = _checks(problem, fitted, grid_error)
     corr = checks.correlation(spread.cov)
     warnings_ += _result_warnings(estimates, series_checks, feature_rows, corr, ssr, r.size, opts)
@@ -752,7 +861,8 @@ def fit(
         condition=spread.condition, residual_autocorrelation=_autocorrelation(series_checks, spread),
         global_stage=global_stage, refinement=refinement, rms=_rms(problem, series_checks), fitted=fitted,
         landscapes=landscapes, profiles=profiles, warnings=warnings_ + failures, top=opts.top, objective=opts.misfit,
-        series_checks=series_checks, correlation=corr.tolist(), features=feature_rows,
+        series_checks=series_checks, correlation=corr.tolist(), features=feature_rows, intervals=intervals,
+        offset=opts.offset, offsets=offsets,
     )
 
 
@@ -782,6 +892,8 @@ class _Options:
     top: str
     carry: Optional[int]
     misfit: str
+    interval: str
+    offset: str
 
     @classmethod
     def checked(cls, targets: dict[str, float], bounds: Mapping[str, tuple[float, float]], *, per_event: Sequence[str],
@@ -810,6 +922,13 @@ class _Options:
                                   "data's)")
         if kw["misfit"] not in MISFITS:
             raise ValidationError("misfit", kw["misfit"], " or ".join(repr(m) for m in MISFITS))
+        if kw["offset"] not in OFFSETS:
+            raise ValidationError("offset", kw["offset"], ", ".join(repr(m) for m in OFFSETS))
+        if kw["offset"] != "none" and kw["misfit"] != "least_squares":
+            raise ValidationError("offset", kw["offset"], "'none' with misfit='features' (the offset is estimated "
+                                  "sample by sample: misfit='least_squares')")
+        if kw["interval"] not in INTERVALS:
+            raise ValidationError("interval", kw["interval"], ", ".join(repr(m) for m in INTERVALS))
         if carry is not None and (isinstance(carry, bool) or not isinstance(carry, int) or carry < 1):
             raise ValidationError("carry", carry, "an integer >= 1, or None for every start")
         if threads is None:
@@ -871,7 +990,8 @@ def _problems(events: list[Event], columns: list[_Column], opts: _Options) -> li
     # the features do not depend on the cycles' phase: the whole windows at once
     while opts.misfit == "least_squares" and fractions[0] * longest / 2 >= horizon * (1 - 1e-9):
         fractions.insert(0, fractions[0] / 2)
-    problems = [_Problem(events, columns, opts.targets, opts.threads, f, opts.top, opts.misfit) for f in fractions]
+    problems = [_Problem(events, columns, opts.targets, opts.threads, f, opts.top, opts.misfit, opts.offset)
+                for f in fractions]
     if min(q.points for q in problems) <= len(columns):
         raise ValidationError("windows", [e.windows for e in events],
                               f"more compared samples ({min(q.points for q in problems)}, in the shortest horizon) "
@@ -976,7 +1096,7 @@ class _Spread:
         from scipy import stats
 
         p = u_opt.size
-        dof = max(r.size - p, 1)
+        dof = max(r.size - p - problem.profiled, 1)
         if problem.misfit == "features":
             # residuals in their standard deviations, nearly independent (one per feature): the
             # chi-square's scale is 1, widened by its excess (a model error beyond the assumed)
@@ -1092,6 +1212,154 @@ def _jacobian_estimate(problem: _Problem, c: _Column, i: int, best: float, ends:
                              "jacobian", not wide)
 
 
+def _bootstrap_intervals(problem: _Problem, u_opt: NDArray[np.float64], r: NDArray[np.float64], spread: _Spread,
+                         columns: list[_Column], estimates: dict[str, ParameterEstimate], opts: _Options
+                         ) -> dict[str, Any]:
+    """The block bootstrap over stick-slip cycles of a sample-by-sample fit (with
+    ``interval="auto"`` where its residuals show a model error, :func:`_model_error`; see the
+    guide's "The measured top" for the coverage it gives), joined to the Jacobian's interval in ``estimates`` (never
+    narrower than it):
+
+    1. the misfit of each **cycle** (the windows cut into groups one period of the data's first
+       target long, :meth:`_Problem.groups`, :func:`_cycle_count`) at :data:`BOOTSTRAP_POINTS`
+       per parameter scattered (scrambled Sobol) around the optimum, over the larger of
+       :data:`BOOTSTRAP_SE` standard errors and :data:`BOOTSTRAP_SHARE` of each value;
+    2. :data:`BOOTSTRAP_REPLICATES` resamplings of the cycles with replacement, each replicate's
+       estimate the minimum of the quadratic fitted to its misfit summed over its cycles
+       (:func:`_quadratic_minima`); the interval from the lesser of the value and the quadratic's
+       minimum over all cycles (the **smoothed** estimate: the value is a minimum of the
+       staircase, which the optimiser may meet a stair away from the smooth one) to the greater,
+       extended on each side by the replicates' standard deviation times Student's t of the
+       cycles' ``G - 1`` degrees of freedom (and ``sqrt(G / (G - 1))``, the jackknife's divisor:
+       few cycles, a wide quantile);
+    3. widened on each side by the model's **discretisation error** at the optimum: the shift of
+       the fitted quadratic's minimum when the same points are solved on half the cells (as the
+       features' deviations carry it, :func:`_grid_error`).
+
+    Why: a model error leaves residuals correlated over whole cycles, and the set-valued friction
+    makes the misfit a staircase in the parameters (the stick and slip instants move by whole
+    steps), so the estimate jumps between the stairs from one noise draw to the next by more than
+    any covariance of the Jacobian says, however its scale is corrected. The cycles are nearly
+    independent, and each replicate meets the staircase itself. Returns ``fit.json``'s
+    ``intervals`` (``method``, ``cycles``, ``points``, and per parameter the ``jacobian``,
+    ``bootstrap`` and reported ``ci_low``, ``ci_high``, the ``smoothed`` estimate, the grid shift),
+    empty where it does not apply."""
+    from scipy import stats
+    from scipy.stats import qmc
+
+    if problem.misfit != "least_squares" or opts.interval == "jacobian" or \
+            (opts.interval == "auto" and not _model_error(problem, r)):
+        return {}
+    p = u_opt.size
+    cycles = _cycle_count(problem)
+    labels = problem.groups(cycles)
+    x_opt = problem.values(u_opt)
+    half = np.maximum(BOOTSTRAP_SE * spread.se, BOOTSTRAP_SHARE * np.abs(x_opt)) / spread.span
+    m = max(int(math.ceil(math.log2(BOOTSTRAP_POINTS * p))), 1)
+    unit = qmc.Sobol(d=p, scramble=True, seed=opts.seed).random_base2(m)
+    points = [np.clip(u_opt + (2 * q - 1) * half, 0.0, 1.0) for q in unit]
+    opts.say(f"bootstrap: {len(points)} points around the optimum by {cycles} cycles, and on half the cells")
+    per_cycle = np.array([np.bincount(labels, weights=r * r, minlength=cycles)
+                          for r in problem.residuals(points, record=False)])
+    coarse = problem.coarser()
+    coarse_ssr = np.array([float(r @ r) for r in coarse.residuals(points, record=False)])
+    problem.evaluations += coarse.evaluations
+    xs = np.array([problem.values(u) for u in points])
+    replicates = _block_bootstrap(per_cycle, xs, BOOTSTRAP_REPLICATES, np.random.default_rng(opts.seed))
+    # Student's t of the cycles' degrees of freedom, the bootstrap's spread of G groups scaled to
+    # the jackknife's (G - 1) divisor
+    quantile = float(stats.t.ppf(0.5 + opts.level / 2, cycles - 1)) * math.sqrt(cycles / (cycles - 1))
+    spread_x = np.std(replicates, axis=0)
+    smooth, smooth_coarse = _quadratic_minima(np.vstack([per_cycle.sum(axis=1), coarse_ssr]), xs)
+    low = np.minimum(x_opt, smooth) - quantile * spread_x
+    high = np.maximum(x_opt, smooth) + quantile * spread_x
+    shift = np.abs(smooth_coarse - smooth)
+    out: dict[str, Any] = {"method": "bootstrap", "cycles": cycles, "points": len(points),
+                           "replicates": BOOTSTRAP_REPLICATES, "parameters": {}}
+    for i, c in enumerate(columns):
+        est = estimates[c.name]
+        lo = max(min(est.ci_low, low[i] - shift[i]), c.lower)
+        hi = min(max(est.ci_high, high[i] + shift[i]), c.upper)
+        out["parameters"][c.name] = {
+            "jacobian": [est.ci_low, est.ci_high], "bootstrap": [float(low[i]), float(high[i])],
+            "smoothed": float(smooth[i]),
+            "grid_shift": float(shift[i]), "ci_low": float(lo), "ci_high": float(hi),
+            "std_error": float(spread_x[i])}
+        if (lo, hi) != (est.ci_low, est.ci_high):
+            span = c.upper - c.lower
+            spans_box = lo <= c.lower + 1e-12 * span and hi >= c.upper - 1e-12 * span
+            estimates[c.name] = ParameterEstimate(c.name, est.value, float(lo), float(hi), c.lower, c.upper,
+                                                  est.std_error, "bootstrap", est.identifiable and not spans_box)
+    return out
+
+
+def _model_error(problem: _Problem, r: NDArray[np.float64]) -> bool:
+    """Whether the residuals ``r`` (the order of :meth:`_Problem.residual_of`) of any event and
+    target show a model error: far above the data's noise or correlated
+    (:func:`~drillstring.calibration.checks.model_error`, the checks' own thresholds)."""
+    k = 0
+    for e, index in enumerate(problem.index):
+        for s, w in problem.targets.items():
+            data = problem.measured[e][s]
+            model = data + r[k:k + index.size] * problem.scale[e][s] / math.sqrt(w)
+            k += index.size
+            if checks.model_error(checks.series_check(e, s, model, data)):
+                return True
+    return False
+
+
+def _cycle_count(problem: _Problem) -> int:
+    """The bootstrap's groups: the windows' span over the stick-slip period of the first event's
+    first target's data (its cycle features, :mod:`~drillstring.calibration.features`), within
+    :data:`BOOTSTRAP_CYCLES`; the range's lower end without a period."""
+    times = problem.times[0]
+    data = problem.measured[0][next(iter(problem.targets))]
+    period = cycle_features(times, data).values.get("period", math.nan)
+    lo, hi = BOOTSTRAP_CYCLES
+    if not (math.isfinite(period) and period > 0):
+        return lo
+    span = float(times[-1] - min(a for a, _ in problem.events[0].windows))
+    return int(min(max(round(span / period), lo), hi))
+
+
+def _block_bootstrap(per_group: NDArray[np.float64], xs: NDArray[np.float64], replicates: int,
+                     rng: np.random.Generator) -> NDArray[np.float64]:
+    """The block bootstrap's estimates: ``per_group[k, g]`` the misfit of group ``g`` at point
+    ``xs[k]``; each replicate draws the groups with replacement (multinomial counts) and takes the
+    minimum of the quadratic fitted to its misfit summed over its draws (:func:`_quadratic_minima`).
+    Returns ``(replicates, p)``."""
+    groups = per_group.shape[1]
+    counts = rng.multinomial(groups, np.full(groups, 1.0 / groups), size=replicates)
+    return _quadratic_minima(counts @ per_group.T, xs)
+
+
+def _quadratic_minima(misfits: NDArray[np.float64], xs: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Per row of ``misfits`` (its values at the points ``xs``, ``(N, p)``), the minimum of the
+    quadratic in ``p`` variables fitted to it by least squares, within the points' box; the
+    point of least misfit where the quadratic has no minimum. The quadratic averages the steps of
+    a staircase misfit (the set-valued friction) where the point of least misfit would jump
+    between them."""
+    n, p = xs.shape
+    centre, scale = xs.mean(axis=0), np.maximum(np.ptp(xs, axis=0) / 2, 1e-300)
+    z = (xs - centre) / scale
+    pairs = [(i, j) for i in range(p) for j in range(i, p)]
+    design = np.column_stack([np.ones(n), z] + [z[:, i] * z[:, j] for i, j in pairs])
+    coef = np.linalg.lstsq(design, misfits.T, rcond=None)[0]  # (1 + p + pairs, rows)
+    out = np.empty((misfits.shape[0], p))
+    for k in range(misfits.shape[0]):
+        g = coef[1:1 + p, k]
+        H = np.zeros((p, p))
+        for (i, j), c in zip(pairs, coef[1 + p:, k]):
+            H[i, j] += c if i != j else 2 * c
+            H[j, i] = H[i, j]
+        eig = np.linalg.eigvalsh(H)
+        if eig[0] > 0:
+            out[k] = np.clip(np.linalg.solve(H, -g), -1.0, 1.0)
+        else:
+            out[k] = z[int(np.argmin(misfits[k]))]
+    return np.asarray(centre + out * scale)
+
+
 def _ridge_warnings(spread: _Spread, columns: list[_Column]) -> list[str]:
     """A near-singular Jacobian's warning, naming the parameters of its weakest direction."""
     if not spread.condition > CONDITION_LIMIT:
@@ -1168,15 +1436,21 @@ def _landscapes(problem: _Problem, u_opt: NDArray[np.float64], columns: list[_Co
 
 
 def _fitted_runs(problem: _Problem, events: list[Event], u_opt: NDArray[np.float64]
-                 ) -> tuple[list[DrillConfig], list[dict[str, NDArray[np.float64]]], list[str]]:
-    """The fitted configuration of each event, its run over the whole span, and the warnings of
-    the runs that failed."""
+                 ) -> tuple[list[DrillConfig], list[dict[str, NDArray[np.float64]]], list[str],
+                            list[dict[str, dict[str, float]]]]:
+    """The fitted configuration of each event, its run over the whole span (each target with its
+    estimated offset added), the warnings of the runs that failed and the offsets."""
     configs = [events[e].config.with_overrides(dict(problem.pairs(u_opt, e)), units="si")
                for e in range(len(events))]
     whole = problem.run([u_opt], whole=True)[0]
     fitted = [w if isinstance(w, dict) else {} for w in whole]
     failures = [f"the fitted configuration's run failed: {w}" for w in whole if isinstance(w, str)]
-    return configs, fitted, failures
+    offsets = problem.offsets([{s: w[s][problem.index[e]] for s in problem.targets} if w else "failed"
+                               for e, w in enumerate(fitted)])
+    for run, found in zip(fitted, offsets):
+        for s, o in found.items():
+            run[s] = run[s] + o["constant"] + o["rate_per_s"] * (run["t"] - o["t_ref"])
+    return configs, fitted, failures, offsets
 
 
 def _rms(problem: _Problem, series_checks: list[checks.SeriesCheck]) -> list[dict[str, float]]:

@@ -269,6 +269,12 @@ def report_markdown(result: FitResult, out_dir: str, figures: list[str]) -> str:
               f"- condition number of the box-scaled Jacobian {result.condition:.3g}; residual lag-one "
               f"autocorrelation {result.residual_autocorrelation:.3g}",
               f"- misfit: {'cycle features' if result.objective == 'features' else 'least squares, sample by sample'}"]
+    for e, found in enumerate(result.offsets):
+        for series, o in found.items():
+            lines.append(f"- event {e}: offset of {series} (measured - model) {o['constant']:.5g} at t = "
+                         f"{o['t_ref']:.4g} s" + (f", drifting {o['rate_per_s']:.4g} per s"
+                                                  if result.offset == "linear" else "")
+                         + " (estimated with the values; the fitted series include it)")
     for e, row in enumerate(result.rms):
         lines.append(f"- event {e} ({_md(os.path.basename(result.events[e].data.source))}): RMS error "
                      + ", ".join(f"{k} {v:.4g}" for k, v in row.items()))

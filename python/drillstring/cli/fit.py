@@ -63,6 +63,14 @@ def add_parser(subparsers: Any) -> None:
                    "torque, each cycle's maximum and minimum, period, mean) with their uncertainties, which a period "
                    "differing slightly from the well's, a phase shift or a sensor's lag leave unchanged: for field "
                    "data and data of another model")
+    p.add_argument("--offset", choices=("none", "constant", "linear"), default="none",
+                   help="a sensor offset of each target series estimated with the values (profiled out at every "
+                   "run): a constant, or a constant and a rate (a drift linear in time); reported in fit.json and "
+                   "the console (default none)")
+    p.add_argument("--interval", choices=("auto", "jacobian", "bootstrap"), default="auto",
+                   help="the intervals of a sample-by-sample fit: the Jacobian's, joined with the block bootstrap's "
+                   "over the stick-slip cycles and the discretisation error's where the residuals show a model error "
+                   "(auto, default), never (jacobian) or always (bootstrap)")
     p.set_defaults(func=run)
 
 
@@ -78,6 +86,7 @@ def _pairs(texts: Sequence[str], field: str, form: str) -> list[tuple[str, str]]
 
 def run(args: argparse.Namespace) -> int:
     """Runs ``drillstring fit``; returns its exit status."""
+    from ..calibration.checks import SERIES_UNITS
     from ..calibration.data import read_measured
     from ..calibration.fit import fit
     from ..calibration.output import next_commands, next_heading, write_files
@@ -120,7 +129,7 @@ def run(args: argparse.Namespace) -> int:
         result = fit(config, data, params, targets=targets, windows=windows or None, per_event=args.per_event,
                      samples=args.samples, threads=args.threads, seed=args.seed, landscape=not args.no_landscape,
                      landscape_points=args.landscape_points, progress=lambda msg: say(f"fit: {msg}"),
-                     top=args.top, misfit=args.misfit)
+                     top=args.top, misfit=args.misfit, offset=args.offset, interval=args.interval)
         system = config.units
         for key, p in result.parameters.items():
             low, high = field_value(key, p.ci_low, system), field_value(key, p.ci_high, system)
@@ -128,6 +137,12 @@ def run(args: argparse.Namespace) -> int:
                      if low is not None and high is not None else "")
             say(f"{key} = {p.value:.6g} ({result.level:.0%}: {p.ci_low:.6g} .. {p.ci_high:.6g}, {p.method}{field})"
                  + ("" if p.identifiable else " NOT identifiable"))
+        for e, found in enumerate(result.offsets):
+            for series, o in found.items():
+                unit = SERIES_UNITS.get(series, "")
+                event = f" (event {e})" if len(result.offsets) > 1 else ""
+                say(f"offset of {series}{event}: {o['constant']:.6g} {unit} at t = {o['t_ref']:.4g} s"
+                    + (f", drifting {o['rate_per_s']:.4g} {unit}/s" if result.offset == "linear" else ""))
         say(f"misfit {result.ssr:.5g} over {result.points} samples; {result.evaluations} runs in "
              f"{result.seconds:.3g} s")
         for warning in result.warnings:

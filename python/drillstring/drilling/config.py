@@ -177,7 +177,8 @@ class StringSection:
 
     The polar moment ``J`` and area ``A`` follow from the diameters (``pi/32 (OD^4 - ID^4)``,
     ``pi/4 (OD^2 - ID^2)``) unless given; the friction lever arm is ``contact_diameter / 2``
-    (default the outer diameter). Unset fields take the core's defaults.
+    (default the tool joints' outer diameter when the section has tool joints, else the outer
+    diameter). Unset fields take the core's defaults.
     """
 
     length: float = field(metadata={"kind": "float"})
@@ -193,7 +194,8 @@ class StringSection:
     density: float = _default("sections", "density", kind="float")
     """Density of the steel, kg/m^3."""
     contact_diameter: Optional[float] = _default("sections", "contact_diameter", kind="float?")
-    """Diameter at which the wall friction acts, m (None: the outer diameter)."""
+    """Diameter at which the wall friction acts, m (None: the tool joints' outer diameter, else
+    the outer diameter)."""
     polar_moment: Optional[float] = _default("sections", "polar_moment", kind="float?")
     """Override of the polar moment of area J, m^4 (None: from the diameters)."""
     area: Optional[float] = _default("sections", "area", kind="float?")
@@ -215,7 +217,8 @@ class StringSection:
     or the body."""
     tool_joint_outer_diameter: Optional[float] = _default("sections", "tool_joint_outer_diameter",
                                                           kind="float?")
-    """Tool-joint outer diameter, m."""
+    """Tool-joint outer diameter, m; the wall friction acts at it unless ``contact_diameter`` is
+    given."""
     tool_joint_inner_diameter: Optional[float] = _default("sections", "tool_joint_inner_diameter",
                                                           kind="float?")
     """Tool-joint inner diameter, m."""

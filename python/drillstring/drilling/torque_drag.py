@@ -12,7 +12,8 @@ metre, mud inside and outside); hook loads are the surface tension plus
 ``torque_drag.block_weight`` and exclude sheave friction; while rotating all the wall friction
 is torque (no axial drag); friction factors are ``friction.static``, or those of
 ``[[friction.intervals]]`` over their depths; the torque lever arm is each section's contact
-radius (``contact_diameter / 2``, default the outer diameter's half). Validated against closed
+radius (``contact_diameter / 2``; default half the tool joints' outer diameter when the section
+has tool joints, which touch the wall, else half the outer diameter). Validated against closed
 forms (a straight inclined hole, the capstan on a weightless arc) and against welleng 0.30.0 on
 ``examples/s-well-3d.toml`` with its two defects corrected (``tests/reference/welleng``).
 """

@@ -28,7 +28,7 @@ pub struct SectionProps {
     pub impedance: f64,
     /// Rotational inertia per length `rho J`, kg m.
     pub inertia_per_length: f64,
-    /// Friction lever arm, m.
+    /// Friction lever arm, m ([`super::pipe::contact_radius`]).
     pub contact_radius: f64,
     /// `(rho - rho_mud) A`, kg/m.
     pub buoyed_mass_per_length: f64,
@@ -57,7 +57,7 @@ impl SectionProps {
             wave_speed: (g / rho).sqrt(),
             impedance: j * (g * rho).sqrt(),
             inertia_per_length: rho * j,
-            contact_radius: s.contact_diameter.unwrap_or(od) / 2.0,
+            contact_radius: super::pipe::contact_radius(s),
             buoyed_mass_per_length: (rho - mud_density) * a,
             stiffness: g * j,
             quartic: consistent_k5(p_wave_modulus(youngs_modulus(g, nu), nu), j4),

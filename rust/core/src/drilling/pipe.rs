@@ -76,6 +76,14 @@ pub fn yield_strength(s: &Section) -> Option<f64> {
     s.yield_strength.or(s.grade.map(Grade::yield_strength))
 }
 
+/// The friction lever arm of a section, m: half its `contact_diameter`, else half its
+/// `tool_joint_outer_diameter` (a string with tool joints touches the wall at them), else half
+/// its outer diameter. The grid's wall friction, the torque and drag and the break-off torque
+/// all take it through [`SectionProps::contact_radius`].
+pub fn contact_radius(s: &Section) -> f64 {
+    s.contact_diameter.or(s.tool_joint_outer_diameter).unwrap_or(s.outer_diameter) / 2.0
+}
+
 /// The steel area averaged over a joint with its tool joints, m^2 (None without tool joints).
 pub fn adjusted_area(s: &Section) -> Option<f64> {
     let (od, id, ltj) = (s.tool_joint_outer_diameter?, s.tool_joint_inner_diameter?, s.tool_joint_length?);
@@ -274,6 +282,18 @@ mod tests {
         // the nominal weight overrides and is buoyed by the steel's density
         let n = Section { nominal_weight: Some(22.6 * LB_FT), ..s };
         assert!((buoyed_weight(&n, 1200.0, 9.81) - 22.6 * LB_FT * (1.0 - 1200.0 / 7850.0)).abs() < 1e-9);
+    }
+
+    /// The wall meets a section at its tool joints: their radius is the default lever arm, the
+    /// body's without them, and `contact_diameter` overrides both.
+    #[test]
+    fn the_tool_joints_are_the_default_lever_arm() {
+        let s =
+            Section { outer_diameter: 5.0 * INCH, tool_joint_outer_diameter: Some(6.625 * INCH), ..Section::default() };
+        assert_eq!(contact_radius(&s), 6.625 * INCH / 2.0);
+        assert_eq!(SectionProps::new(&s, 1200.0).contact_radius, 6.625 * INCH / 2.0);
+        assert_eq!(contact_radius(&Section { tool_joint_outer_diameter: None, ..s.clone() }), 5.0 * INCH / 2.0);
+        assert_eq!(contact_radius(&Section { contact_diameter: Some(0.15), ..s }), 0.075);
     }
 
     #[test]

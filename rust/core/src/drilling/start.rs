@@ -26,9 +26,9 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::axial::bitrock::{DetournayBit, SteadyDrilling};
+use super::axial::hoist_mode::{rule, HoistReference, Steady};
 use super::axial::section::AxialSection;
 use super::config::DrillConfig;
-use super::config::{AutodrillerTarget, HoistMode};
 use super::engine::bit_law::Law;
 use super::grid::Grid;
 use crate::error::{Error, Num, Result};
@@ -176,16 +176,10 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
     let wf = law.contact_weight();
     let slope = law.cutting_weight(1.0);
     let rop_at = |w: f64| (w - wf) / slope * omega / std::f64::consts::TAU;
-    let imposed = match (p.mode, p.autodriller.target) {
-        (HoistMode::Velocity, _) | (HoistMode::Autodriller, AutodrillerTarget::Rop) => None,
-        (HoistMode::Autodriller, AutodrillerTarget::WeightOnBit) => Some((target, false)),
-        (HoistMode::WeightOnBit, _) => Some((target, true)),
-        // (the setpoint the weight indicator's reading, the travelling block's weight with it)
-        (HoistMode::HookLoad, _) => Some((hanging(cfg)?.1 + cfg.torque_drag.block_weight - target, true)),
-    };
-    let rop = match imposed {
-        None => target,
-        Some((w, _)) if w <= wf => {
+    let reference = HoistReference { hanging: hanging(cfg)?.1, block_weight: cfg.torque_drag.block_weight };
+    let rop = match rule(p.mode).steady(p, target, reference) {
+        Steady::Rate(rop) => rop,
+        Steady::WeightAtBit(w) | Steady::WeightAtSurface(w) if w <= wf => {
             return Err(Error::invalid(
                 FIELD,
                 "\"steady\"",
@@ -197,8 +191,8 @@ pub fn steady_point(cfg: &DrillConfig, wall: &Wall, omega: f64) -> Result<Steady
                 ),
             ))
         }
-        Some((w, false)) => rop_at(w),
-        Some((w, true)) => {
+        Steady::WeightAtBit(w) => rop_at(w),
+        Steady::WeightAtSurface(w) => {
             // the weight reaching the bit: the imposed one less the drag of the moving string
             let (mut lo, mut hi) = (wf, w);
             for _ in 0..200 {

@@ -405,8 +405,10 @@ pub fn implied_friction(
         (Some(h), _) if !rotating => (h, false),
         _ => return Err(format!("no {} for {}", if rotating { "surface torque" } else { "hook load" }, op.name())),
     };
+    // the elements at the depth, shared by every factor of the bisection
+    let el = s.elements(traj, depth);
     let load = |mu: f64| {
-        let p = s.solve_at(traj, op, ProfileMethod::Stepwise, depth, Some(mu));
+        let p = s.profile_on(traj, &el, op, ProfileMethod::Stepwise, Some(mu), s.bit_load(op));
         if is_torque {
             p.surface_torque()
         } else {

@@ -155,13 +155,17 @@ pub fn critical_loads(ei: f64, w: f64, rc: f64, tangent: [f64; 3], kappa: [f64; 
 }
 
 /// The smallest `F > 0` with `F^2 = k |a - F b|`: scanned for the first sign change up to a
-/// bound that holds it, then bisected to the rounding.
+/// bound that holds it, then Newton's method on `g(F) = F^2 - k |a - F b|` kept inside the
+/// bracket (a bisection where a step would leave it) to the rounding.
 fn smallest_root(k: f64, a: [f64; 3], b: [f64; 3]) -> f64 {
-    let g = |f: f64| {
+    let norm = |f: f64| {
         let v = [a[0] - f * b[0], a[1] - f * b[1], a[2] - f * b[2]];
-        f * f - k * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+        (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
     };
-    let (na, nb) = ((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt(), (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt());
+    let g = |f: f64| f * f - k * norm(f);
+    let ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (na, bb) = ((a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt(), b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    let nb = bb.sqrt();
     // F^2 <= k (|a| + F |b|) at a root
     let hi = 0.5 * (k * nb + (k * k * nb * nb + 4.0 * k * na).sqrt()) * (1.0 + 1e-12) + f64::MIN_POSITIVE;
     const SCAN: usize = 16;
@@ -174,16 +178,24 @@ fn smallest_root(k: f64, a: [f64; 3], b: [f64; 3]) -> f64 {
         }
         lo = f;
     }
+    // g(lo) < 0 <= g(up); d|a - F b|/dF = (F |b|^2 - a.b) / |a - F b|
+    let mut x = up;
     for _ in 0..200 {
-        let mid = 0.5 * (lo + up);
-        if mid <= lo || mid >= up {
-            break;
-        }
-        if g(mid) >= 0.0 {
-            up = mid;
+        let r = norm(x);
+        let gx = x * x - k * r;
+        if gx >= 0.0 {
+            up = x;
         } else {
-            lo = mid;
+            lo = x;
         }
+        let mut next = x - gx / (2.0 * x - k * (x * bb - ab) / r);
+        if !(next > lo && next < up) {
+            next = 0.5 * (lo + up);
+        }
+        if (next - x).abs() <= 4.0 * f64::EPSILON * x || next <= lo || next >= up {
+            return next.clamp(lo, up);
+        }
+        x = next;
     }
     up
 }
@@ -227,6 +239,21 @@ mod tests {
         let (drop, _) = critical_loads(ei, w, rc, t, [-up[0], 0.0, -up[2]]);
         let (straight, _) = critical_loads(ei, w, rc, t, [0.0; 3]);
         assert!(drop < straight && straight < s);
+    }
+
+    /// In a horizontal turn the curve's pull is across the weight: `|a - F b|^2 = |a|^2 +
+    /// F^2 |b|^2`, so `F^2 = (k^2 |b|^2 + sqrt(k^4 |b|^4 + 4 k^2 |a|^2)) / 2` with `k = 4 E I / r_c`.
+    #[test]
+    fn horizontal_turn_closed_form() {
+        let (ei, rc) = pipe();
+        let (w, radius) = (240.0, 250.0);
+        let (s, h) = critical_loads(ei, w, rc, [1.0, 0.0, 0.0], [0.0, 1.0 / radius, 0.0]);
+        for (load, c) in [(s, 2.0), (h, 2.0 * SQRT_2)] {
+            let k = c * c * ei / rc;
+            let kb = k / radius;
+            let closed = (0.5 * (kb * kb + (kb.powi(4) + 4.0 * k * k * w * w).sqrt())).sqrt();
+            assert!((load - closed).abs() < 1e-12 * closed, "{load} vs {closed}");
+        }
     }
 
     #[test]

@@ -16,7 +16,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use super::buckling::Mode;
-use super::torque_drag::{piece_at, Operation, Profile, ProfileMethod, Setup};
+use super::torque_drag::{piece_at, Elements, Operation, Profile, ProfileMethod, Setup};
 use super::Trajectory;
 
 /// The first depths of each kind of buckling of one operation, m (None: none).
@@ -69,19 +69,19 @@ fn largest(values: impl Iterator<Item = f64>) -> Option<(f64, usize)> {
 }
 
 /// The surface tension of the slack-off with the bit carrying the compression `f`, N.
-fn set_down_tension(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod, f: f64) -> f64 {
-    setup.profile(traj, Operation::SlackOff, scheme, setup.depth(), None, (-f, 0.0)).surface_tension()
+fn set_down_tension(traj: &Trajectory, setup: &Setup, el: &Elements, scheme: ProfileMethod, f: f64) -> f64 {
+    setup.profile_on(traj, el, Operation::SlackOff, scheme, None, (-f, 0.0)).surface_tension()
 }
 
 /// The bit load at which the slack-off's surface tension reaches 0, N (doubling then bisection).
-fn max_weight_on_bit(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod, free: f64) -> Option<f64> {
+fn max_weight_on_bit(traj: &Trajectory, setup: &Setup, el: &Elements, scheme: ProfileMethod, free: f64) -> Option<f64> {
     if free.is_nan() || free < 0.0 {
         return Some(0.0);
     }
     let (mut lo, mut hi) = (0.0, free.max(1.0));
     let mut found = false;
     for _ in 0..64 {
-        let t = set_down_tension(traj, setup, scheme, hi);
+        let t = set_down_tension(traj, setup, el, scheme, hi);
         if t.is_nan() || t < 0.0 {
             found = true;
             break;
@@ -96,7 +96,7 @@ fn max_weight_on_bit(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod, fr
         if mid <= lo || mid >= hi || hi - lo <= 1e-9 * hi {
             break;
         }
-        if set_down_tension(traj, setup, scheme, mid) >= 0.0 {
+        if set_down_tension(traj, setup, el, scheme, mid) >= 0.0 {
             lo = mid;
         } else {
             hi = mid;
@@ -105,8 +105,9 @@ fn max_weight_on_bit(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod, fr
     Some(lo)
 }
 
-/// The limits of the profiles of [`Operation::ALL`] (in that order) of a string all in the hole.
-pub fn limits(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod, profiles: &[Profile]) -> Limits {
+/// The limits of the profiles of [`Operation::ALL`] (in that order) of a string all in the hole,
+/// on its elements `el` ([`Setup::elements`] at the string's depth).
+pub fn limits(traj: &Trajectory, setup: &Setup, el: &Elements, scheme: ProfileMethod, profiles: &[Profile]) -> Limits {
     let ops = Operation::ALL;
     let mut first_buckling = BTreeMap::new();
     let mut lockup = BTreeMap::new();
@@ -122,15 +123,21 @@ pub fn limits(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod, profiles:
     }
     let free = profiles[1].surface_tension();
     let max_set_down = if free >= 0.0 { free } else { 0.0 };
-    let max_wob = max_weight_on_bit(traj, setup, scheme, free);
+    let max_wob = max_weight_on_bit(traj, setup, el, scheme, free);
     // the body at each node of a profile: the element below it, the bit's the one above
     let body = |p: &Profile, k: usize| {
         let at = if k + 1 < p.md.len() { 0.5 * (p.md[k] + p.md[k + 1]) } else { p.md[k] };
         piece_at(&setup.pieces, at).body
     };
+    // a locked-up operation is not carried out as asked (the bit's load would need the surface
+    // to push, and its compression below the lock-up grows without bound): not a load the string
+    // reaches, so not in the limits' maxima
     let best = |value: &dyn Fn(&Profile, usize) -> f64| {
         let mut out: Option<(f64, f64, &'static str)> = None;
         for (op, p) in ops.iter().zip(profiles) {
+            if lockup[op.name()] {
+                continue;
+            }
             if let Some((v, k)) = largest((0..p.md.len()).map(|k| value(p, k))) {
                 if out.is_none_or(|o| v > o.0) {
                     out = Some((v, p.md[k], op.name()));

@@ -265,7 +265,58 @@ pub(crate) fn piece_at(pieces: &[Piece], md: f64) -> &Piece {
     pieces.last().expect("at least one piece")
 }
 
+/// The string's elements with the bit at one depth: the nodes, the direction at each and, with
+/// a hole, each element's bending stiffness, radial clearance and critical loads. These depend
+/// on the geometry alone, not on the operation, the friction factor or the bit's load, so every
+/// profile at one bit depth shares them ([`Setup::elements`] once, then
+/// [`Setup::profile_on`]): the five operations and the lock-up's bisection, each bit depth's
+/// lines of the broomstick, the bisection of an implied friction factor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Elements {
+    bit_md: f64,
+    md: Vec<f64>,
+    tangent: Vec<[f64; 3]>,
+    /// `(E I, r_c, (sinusoidal, helical))` of the element below each node but the bit's (empty
+    /// without a hole).
+    buckling: Vec<(f64, f64, (f64, f64))>,
+}
+
 impl Setup {
+    /// The elements of the string with the bit at `bit_md` (see [`Elements`]).
+    pub fn elements(&self, traj: &Trajectory, bit_md: f64) -> Elements {
+        let offset = self.depth() - bit_md;
+        let md = nodes(traj, self, bit_md);
+        let tangent: Vec<[f64; 3]> = md.iter().map(|&d| traj.at(d).tangent).collect();
+        let buckling = match &self.hole {
+            None => Vec::new(),
+            Some(h) => (0..md.len() - 1)
+                .map(|j| {
+                    let mid = 0.5 * (md[j] + md[j + 1]);
+                    let p = piece_at(&self.pieces, mid + offset);
+                    let length = md[j + 1] - md[j];
+                    let (ta, tb) = (tangent[j], tangent[j + 1]);
+                    let (ei, rc) = (p.body.bending_stiffness(), buckling::clearance(h.at(mid), p.body.outer_diameter));
+                    let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
+                    let m = dot(mean, mean).sqrt();
+                    mean.iter_mut().for_each(|x| *x /= m);
+                    let kappa = [(tb[0] - ta[0]) / length, (tb[1] - ta[1]) / length, (tb[2] - ta[2]) / length];
+                    (ei, rc, buckling::critical_loads(ei, p.weight, rc, mean, kappa))
+                })
+                .collect(),
+        };
+        Elements { bit_md, md, tangent, buckling }
+    }
+
+    /// The bit's tension and torque in `op`, N and N m: `-WOB` and the torque on bit rotating on
+    /// bottom, `-WOB` sliding, none off bottom.
+    pub fn bit_load(&self, op: Operation) -> (f64, f64) {
+        match op {
+            Operation::RotatingOnBottom => (-self.weight_on_bit, self.bit_torque),
+            Operation::Sliding => (-self.weight_on_bit, 0.0),
+            _ => (0.0, 0.0),
+        }
+    }
+
     /// Checks the setup against the trajectory: pieces, friction factors, loads and step, and
     /// that the survey reaches the bit (a survey of one station is a straight hole).
     pub fn validate(&self, traj: &Trajectory) -> Result<()> {
@@ -367,12 +418,7 @@ impl Setup {
         bit_md: f64,
         mu: Option<f64>,
     ) -> Profile {
-        let bit = match op {
-            Operation::RotatingOnBottom => (-self.weight_on_bit, self.bit_torque),
-            Operation::Sliding => (-self.weight_on_bit, 0.0),
-            _ => (0.0, 0.0),
-        };
-        self.profile(traj, op, scheme, bit_md, mu, bit)
+        self.profile(traj, op, scheme, bit_md, mu, self.bit_load(op))
     }
 
     /// The profile from the bit's tension and torque `bit`, N and N m.
@@ -385,45 +431,49 @@ impl Setup {
         mu: Option<f64>,
         bit: (f64, f64),
     ) -> Profile {
-        let offset = self.depth() - bit_md;
+        self.profile_on(traj, &self.elements(traj, bit_md), op, scheme, mu, bit)
+    }
+
+    /// The profile of `op` on the elements `el` ([`Setup::elements`] of this setup and `traj`)
+    /// with the friction factor `mu` everywhere if given, from the bit's tension and torque
+    /// `bit`, N and N m ([`Setup::bit_load`]).
+    pub fn profile_on(
+        &self,
+        traj: &Trajectory,
+        el: &Elements,
+        op: Operation,
+        scheme: ProfileMethod,
+        mu: Option<f64>,
+        bit: (f64, f64),
+    ) -> Profile {
+        let offset = self.depth() - el.bit_md;
         let pieces = &self.pieces;
         let piece = |md: f64| piece_at(pieces, md + offset);
         let friction = |md: f64| mu.unwrap_or_else(|| self.friction.at(md));
-        let md = nodes(traj, self, bit_md);
+        let md = el.md.clone();
         let n = md.len();
         let mut tension = vec![0.0; n];
         let mut torque = vec![0.0; n];
         let mut normal = vec![0.0; n];
         let buckles = self.hole.is_some();
-        let mut loads = if buckles { vec![(0.0, 0.0); n] } else { Vec::new() };
+        // the element at which a helically buckled string locked up
+        let mut locked = None;
         (tension[n - 1], torque[n - 1]) = bit;
         let sign = op.drag_sign();
         let rotating = op.rotating();
-        let mut lower = traj.at(md[n - 1]);
         for j in (0..n - 1).rev() {
-            let upper = traj.at(md[j]);
             let mid = 0.5 * (md[j] + md[j + 1]);
             let p = piece(mid);
             let mu = friction(mid);
             let length = md[j + 1] - md[j];
-            let (ta, tb) = (upper.tangent, lower.tangent);
-            // the element's clearance and bending stiffness, and its critical loads
-            let buckling = self.hole.as_ref().map(|h| {
-                let (ei, rc) = (p.body.bending_stiffness(), buckling::clearance(h.at(mid), p.body.outer_diameter));
-                let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
-                let m = dot(mean, mean).sqrt();
-                mean.iter_mut().for_each(|x| *x /= m);
-                let kappa = [(tb[0] - ta[0]) / length, (tb[1] - ta[1]) / length, (tb[2] - ta[2]) / length];
-                (ei, rc, buckling::critical_loads(ei, p.weight, rc, mean, kappa))
-            });
+            let (ta, tb) = (el.tangent[j], el.tangent[j + 1]);
+            // the element's bending stiffness, clearance and critical loads
+            let buckling = el.buckling.get(j).copied();
             // Mitchell's contact of a helically buckled string under the compression -t
             let helical = |t: f64| match buckling {
                 Some((ei, rc, (_, fh))) if -t >= fh => buckling::helical_contact(ei, -t, rc),
                 _ => 0.0,
             };
-            if let Some((_, _, l)) = buckling {
-                loads[j] = l;
-            }
             match scheme {
                 ProfileMethod::Stepwise => {
                     let mut mean = [ta[0] + tb[0], ta[1] + tb[1], ta[2] + tb[2]];
@@ -482,14 +532,19 @@ impl Setup {
                 // the compression of a helically buckled string diverges: locked up above
                 tension[..=j].fill(f64::NEG_INFINITY);
                 normal[..=j].fill(f64::INFINITY);
+                locked = Some(j);
                 break;
             }
-            lower = upper;
         }
         normal[n - 1] = if n > 1 { normal[n - 2] } else { 0.0 };
         let mut profile = Profile { md, tension, torque, normal_force: normal, ..Profile::default() };
         if buckles {
-            loads[n - 1] = if n > 1 { loads[n - 2] } else { loads[n - 1] };
+            let mut loads: Vec<(f64, f64)> = el.buckling.iter().map(|b| b.2).collect();
+            // above a lock-up the string was not followed: no critical loads there
+            if let Some(j) = locked {
+                loads[..j].fill((0.0, 0.0));
+            }
+            loads.push(loads.last().copied().unwrap_or((0.0, 0.0)));
             profile.buckling = loads.iter().zip(&profile.tension).map(|(l, t)| Mode::of(-t, l.0, l.1)).collect();
             (profile.sinusoidal_load, profile.helical_load) = loads.into_iter().unzip();
         }
@@ -583,7 +638,9 @@ pub fn analyse(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod) -> Resul
 /// [`analyse`] of a setup already checked ([`Setup::validate_string`]; the trajectory
 /// continues straight on below its last station).
 pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod) -> TorqueDrag {
-    let profiles: Vec<Profile> = Operation::ALL.iter().map(|&op| setup.solve(traj, op, scheme)).collect();
+    let el = setup.elements(traj, setup.depth());
+    let profiles: Vec<Profile> =
+        Operation::ALL.iter().map(|&op| setup.profile_on(traj, &el, op, scheme, None, setup.bit_load(op))).collect();
     let hook = |k: usize| profiles[k].surface_tension() + setup.block_weight;
     let (mut best, mut at, mut which) = (0.0, 0.0, Operation::ALL[0].name());
     for (op, p) in Operation::ALL[..4].iter().zip(&profiles) {
@@ -603,7 +660,7 @@ pub fn analyse_unchecked(traj: &Trajectory, setup: &Setup, scheme: ProfileMethod
         max_normal_force_n_per_m: best,
         max_normal_force_md: at,
         max_normal_force_operation: which,
-        limits: super::td_limits::limits(traj, setup, scheme, &profiles),
+        limits: super::td_limits::limits(traj, setup, &el, scheme, &profiles),
         profiles,
     }
 }
@@ -629,28 +686,22 @@ pub fn broomstick(traj: &Trajectory, setup: &Setup, depths: &[f64], mus: &[f64])
             return Err(Error::invalid(format!("friction_factors[{j}]"), Num(m), "a friction factor in [0, 10]"));
         }
     }
-    Ok(mus
-        .iter()
-        .map(|&mu| {
-            depths
-                .iter()
-                .map(|&d| {
-                    let hook = |op| {
-                        setup.solve_at(traj, op, ProfileMethod::Stepwise, d, Some(mu)).surface_tension()
-                            + setup.block_weight
-                    };
-                    let rotating =
-                        setup.solve_at(traj, Operation::RotatingOffBottom, ProfileMethod::Stepwise, d, Some(mu));
-                    [
-                        hook(Operation::PickUp),
-                        hook(Operation::SlackOff),
-                        rotating.surface_tension() + setup.block_weight,
-                        rotating.surface_torque(),
-                    ]
-                })
-                .collect()
-        })
-        .collect())
+    let mut rows = vec![vec![[0.0; 4]; depths.len()]; mus.len()];
+    for (k, &d) in depths.iter().enumerate() {
+        // the elements at this bit depth, shared by every friction factor's lines
+        let el = setup.elements(traj, d);
+        for (row, &mu) in rows.iter_mut().zip(mus) {
+            let solve = |op| setup.profile_on(traj, &el, op, ProfileMethod::Stepwise, Some(mu), (0.0, 0.0));
+            let rotating = solve(Operation::RotatingOffBottom);
+            row[k] = [
+                solve(Operation::PickUp).surface_tension() + setup.block_weight,
+                solve(Operation::SlackOff).surface_tension() + setup.block_weight,
+                rotating.surface_tension() + setup.block_weight,
+                rotating.surface_torque(),
+            ];
+        }
+    }
+    Ok(rows)
 }
 
 #[cfg(test)]

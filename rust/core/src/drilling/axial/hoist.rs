@@ -16,23 +16,13 @@
 
 use serde::Serialize;
 
-use crate::drilling::config::{AutodrillerTarget, Hoist, HoistMode};
+use super::hoist_mode::{rule, HoistReference, StepInput};
+use crate::drilling::config::Hoist;
 
 impl Hoist {
-    /// The mode's target before any step: `speed`, `hook_load`, the autodriller's setpoint or
-    /// `weight_on_bit`.
-    fn base(&self) -> f64 {
-        match self.mode {
-            HoistMode::Velocity => self.speed,
-            HoistMode::HookLoad => self.hook_load,
-            HoistMode::Autodriller => self.autodriller.setpoint,
-            HoistMode::WeightOnBit => self.weight_on_bit,
-        }
-    }
-
     /// The target at time `t`: the last step at or before `t`, else the mode's value.
     pub fn target(&self, t: f64) -> f64 {
-        self.steps.iter().rev().find(|s| s[0] <= t).map_or(self.base(), |s| s[1])
+        self.steps.iter().rev().find(|s| s[0] <= t).map_or_else(|| rule(self.mode).base(self), |s| s[1])
     }
 }
 
@@ -82,7 +72,8 @@ pub struct HoistMeasurement {
     pub rop: f64,
 }
 
-/// The hoist's state: time, the ramped setpoint and the autodriller's integral.
+/// The hoist's state: time, the ramped setpoint and the autodriller's integral; what the
+/// setpoint means and what it commands is the mode's ([`super::hoist_mode`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct HoistState {
     /// The `[hoist]` table.
@@ -93,57 +84,42 @@ pub struct HoistState {
     pub setpoint: f64,
     /// `int e dt` of the autodriller.
     pub integral: f64,
-    /// The static hook load of the string hanging off bottom, N: `weight_on_bit` mode holds the
-    /// hook load at this less its (ramped) weight on bit.
-    pub hanging: f64,
+    /// The loads the modes are referred to: the hanging string's static hook load (the
+    /// `weight_on_bit` mode holds the hook load at it less its ramped weight on bit) and the
+    /// travelling block's weight (in the `hook_load` mode's setpoint, not in the string).
+    pub reference: HoistReference,
 }
 
 impl HoistState {
     /// A hoist at time 0 whose setpoint starts at `initial` (the mode's unit: a block at rest
-    /// starts at 0 m/s, a hook at its static load, a weight on bit at 0 N).
+    /// starts at 0 m/s, a hook at its static load, a weight on bit at 0 N;
+    /// [`super::hoist_mode::HoistRule::at_rest`]).
     pub fn new(params: Hoist, initial: f64) -> Self {
-        HoistState { params, time: 0.0, setpoint: initial, integral: 0.0, hanging: 0.0 }
+        HoistState { params, time: 0.0, setpoint: initial, integral: 0.0, reference: HoistReference::default() }
     }
 
-    /// The same hoist with the static hook load `hanging` (N) of the string hanging off bottom
-    /// (`weight_on_bit` mode's reference: `section::static_tension` at the top, no weight on bit).
-    pub fn hanging(self, hanging: f64) -> Self {
-        HoistState { hanging, ..self }
+    /// The same hoist referred to `reference`.
+    pub fn referred_to(self, reference: HoistReference) -> Self {
+        HoistState { reference, ..self }
     }
 
     /// Advances by `dt` (s): the setpoint towards the target at the step's middle (a step at
     /// `T` takes effect from the step starting at the step boundary nearest `T`, as the top
-    /// drive's), then the command for the step (the autodriller's from `measured`).
+    /// drive's), then the mode's command for the step (the autodriller's from `measured`).
     pub fn step(&mut self, dt: f64, measured: HoistMeasurement) -> HoistCommand {
         let t1 = self.time + dt;
         let p = &self.params;
         self.setpoint = ramp(self.setpoint, p.target(self.time + 0.5 * dt), dt, p.ramp_time);
         self.time = t1;
-        match p.mode {
-            HoistMode::Velocity => HoistCommand::Speed(self.setpoint),
-            HoistMode::HookLoad => HoistCommand::HookLoad(self.setpoint),
-            HoistMode::WeightOnBit => HoistCommand::HookLoad(self.hanging - self.setpoint),
-            HoistMode::Autodriller => {
-                let a = &p.autodriller;
-                let (e, ff) = match a.target {
-                    AutodrillerTarget::WeightOnBit => (self.setpoint - measured.weight_on_bit, 0.0),
-                    AutodrillerTarget::Rop => (self.setpoint - measured.rop, self.setpoint),
-                };
-                let raw = ff + a.kp * e + a.ki * self.integral;
-                let out = raw.clamp(a.min_speed, a.max_speed);
-                if !((raw > a.max_speed && e > 0.0) || (raw < a.min_speed && e < 0.0)) {
-                    self.integral += e * dt;
-                }
-                HoistCommand::Speed(out)
-            }
-        }
+        let step = StepInput { dt, measured, reference: self.reference };
+        rule(p.mode).command(p, self.setpoint, step, &mut self.integral)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::drilling::config::Autodriller;
+    use crate::drilling::config::{Autodriller, AutodrillerTarget, HoistMode};
 
     fn speed(c: HoistCommand) -> f64 {
         match c {
@@ -210,7 +186,7 @@ mod tests {
         // A string hanging at 900 kN: 60 kN on the bit is a hook load of 840 kN, reached as the
         // first-order lag of the weight from 0 (the hook from the hanging load).
         let params = Hoist { mode: HoistMode::WeightOnBit, weight_on_bit: 60e3, ramp_time: 2.0, ..Hoist::default() };
-        let mut h = HoistState::new(params, 0.0).hanging(900e3);
+        let mut h = HoistState::new(params, 0.0).referred_to(HoistReference { hanging: 900e3, block_weight: 0.0 });
         let HoistCommand::HookLoad(first) = h.step(1.0, HoistMeasurement::default()) else { panic!("a hook load") };
         assert!((first - (900e3 - 60e3 * (1.0 - (-0.5f64).exp()))).abs() < 1e-6, "{first}");
         let HoistCommand::HookLoad(last) = h.step(1e3, HoistMeasurement::default()) else { panic!("a hook load") };

@@ -12,7 +12,8 @@
 //! * [`bit_boundary`]: the bit as the set-valued bottom boundary of both fields (cutting, stick,
 //!   lift-off) from their incoming Riemann invariants;
 //! * [`hoist`]: the hoist at the top (block velocity, hook load, autodriller PI on weight on bit
-//!   or rate of penetration with limits and anti-windup, weight on bit as a weight indicator's);
+//!   or rate of penetration with limits and anti-windup, weight on bit as a weight indicator's),
+//!   its modes one implementation each of [`hoist_mode::HoistRule`];
 //! * [`regime`]: the regime of a coupled run's window (smooth drilling, stick-slip, bit bounce,
 //!   both, off bottom) from its torsional verdict and its bounce fraction.
 //!
@@ -23,6 +24,7 @@ pub mod bit_boundary;
 pub mod bitrock;
 pub mod cut_surface;
 pub mod hoist;
+pub mod hoist_mode;
 pub mod regime;
 pub mod section;
 

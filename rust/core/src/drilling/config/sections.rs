@@ -30,7 +30,8 @@ pub struct Section {
     #[schemars(extend("unit" = "kg/m^3", "label" = "density"))]
     pub density: f64,
     /// Diameter at which the wall's friction acts, > 0; the friction lever arm is half of it.
-    /// Null: the outer diameter.
+    /// Null: the tool joints' outer diameter when the section has tool joints (the string
+    /// touches the wall at them), else the outer diameter.
     #[schemars(extend("unit" = "m", "label" = "contact diameter"))]
     pub contact_diameter: Option<f64>,
     /// Polar moment of area `J`, > 0. Null: `pi/32 (OD^4 - ID^4)` of the diameters.
@@ -59,7 +60,8 @@ pub struct Section {
     /// for the torque and drag. Null: from the tool joints, else the body.
     #[schemars(extend("unit" = "N/m", "label" = "nominal weight"))]
     pub nominal_weight: Option<f64>,
-    /// Outer diameter of the tool joints, at least the body's.
+    /// Outer diameter of the tool joints, at least the body's; the wall's friction acts at it
+    /// unless `contact_diameter` is given.
     #[schemars(extend("unit" = "m", "label" = "tool-joint outer diameter"))]
     pub tool_joint_outer_diameter: Option<f64>,
     /// Inner diameter of the tool joints, below their outer diameter.

@@ -1,6 +1,6 @@
 //! The coupled run's axial field and its ends: the string's axial waves `(v, F)` (speed down
 //! positive, `F` the compression carried down) on the same [`Field`] type and [`transport`]
-//! kernel as the torsion, the hoist at the top ([`HoistState`], [`HoistCommand::incoming`]) and the
+//! kernel as the torsion, the hoist at the top ([`HoistState`], [`crate::drilling::axial::hoist::HoistCommand::incoming`]) and the
 //! bit on bottom as the set-valued boundary of both fields ([`solve_bit`]) with the Detournay law.
 //!
 //! * Cells: each section gets `floor(L / (c_a dt)) >= 1` cells of the torsional step `dt`
@@ -44,9 +44,10 @@ use super::sampler::{Channel, Point};
 use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{BitContact, BitPhase, Port};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
-use crate::drilling::axial::hoist::{HoistCommand, HoistMeasurement, HoistState};
+use crate::drilling::axial::hoist::{HoistMeasurement, HoistState};
+use crate::drilling::axial::hoist_mode::{rule, HoistReading, HoistReference};
 use crate::drilling::axial::section::{static_tension, AxialSection};
-use crate::drilling::config::{AutodrillerTarget, Hoist, HoistMode};
+use crate::drilling::config::Hoist;
 use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
 use crate::drilling::grid::Grid;
 use crate::drilling::well;
@@ -207,7 +208,8 @@ impl Axial {
         // The hook load of `hook_load` mode as the weight indicator reads it: the string's
         // tension at the top and the travelling block's weight (`torque_drag.block_weight`).
         let block_weight = cfg.torque_drag.block_weight;
-        let initial = if params.mode == HoistMode::HookLoad { hanging + block_weight } else { 0.0 };
+        let reference = HoistReference { hanging, block_weight };
+        let initial = rule(params.mode).at_rest(reference);
         let law = Law::new(cfg);
         let blades = cfg.bit.detournay.blades;
         let rule = match (cfg.bit.law, cfg.bit.detournay.cut_surface) {
@@ -224,7 +226,7 @@ impl Axial {
             zeros: vec![0.0; len],
             sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
             gravity,
-            hoist: HoistState::new(params, initial).hanging(hanging),
+            hoist: HoistState::new(params, initial).referred_to(reference),
             law,
             blades,
             rule,
@@ -266,19 +268,15 @@ impl Axial {
         if params.mode != h.params.mode {
             let sp = &self.field.sections[0];
             let block = self.field.cell(0, 1).0 - 0.5 * self.gravity[sp.offset + 1];
-            let wob = self.state.contact.weight_on_bit;
-            let a = &params.autodriller;
-            h.setpoint = match params.mode {
-                HoistMode::Velocity => block,
-                HoistMode::HookLoad => self.state.hook_load,
-                HoistMode::WeightOnBit => h.hanging + self.block_weight - self.state.hook_load,
-                HoistMode::Autodriller => match a.target {
-                    AutodrillerTarget::WeightOnBit => wob,
-                    AutodrillerTarget::Rop => self.state.rop,
-                },
+            let now = HoistReading {
+                block,
+                hook_load: self.state.hook_load,
+                weight_on_bit: self.state.contact.weight_on_bit,
+                rop: self.state.rop,
             };
-            let ff = if a.target == AutodrillerTarget::Rop { h.setpoint } else { 0.0 };
-            h.integral = if a.ki > 0.0 { (block - ff) / a.ki } else { 0.0 };
+            let mode = rule(params.mode);
+            h.setpoint = mode.current(&params, now, h.reference);
+            h.integral = mode.integral_on_change(&params, h.setpoint, block);
         }
         h.params = params;
     }
@@ -338,13 +336,7 @@ impl Axial {
     pub fn top(&mut self, dt: f64, ledger: &mut Ledger) {
         let arriving = self.field.arriving_top();
         let measured = HoistMeasurement { weight_on_bit: self.state.contact.weight_on_bit, rop: self.state.rop };
-        let command = match self.hoist.step(dt, measured) {
-            // the weight indicator's hook load less the block: the string's tension at the top
-            HoistCommand::HookLoad(h) if self.hoist.params.mode == HoistMode::HookLoad => {
-                HoistCommand::HookLoad(h - self.block_weight)
-            }
-            c => c,
-        };
+        let command = self.hoist.step(dt, measured);
         let alpha0 = command.incoming(arriving.value, arriving.impedance);
         let v = 0.5 * (alpha0 + arriving.value);
         let force = arriving.impedance * (v - arriving.value);

@@ -2,9 +2,9 @@
 
 use super::{Axial, DepthOfCut};
 use crate::drilling::axial::cut_surface::{CutSurface, SurfaceRule, UpwindCutSurface};
+use crate::drilling::axial::hoist_mode::rule;
 use crate::drilling::axial::section::{static_tension, AxialSection};
 use crate::drilling::config::DrillConfig;
-use crate::drilling::config::{AutodrillerTarget, HoistMode};
 use crate::drilling::start::{SteadyPoint, Wall};
 use crate::error::{Error, Result};
 
@@ -53,9 +53,8 @@ impl Axial {
         }
         let p = &self.hoist.params;
         self.hoist.setpoint = p.target(0.0);
-        let a = &p.autodriller;
-        if p.mode == HoistMode::Autodriller && a.target == AutodrillerTarget::WeightOnBit && a.ki > 0.0 {
-            self.hoist.integral = s.rop / a.ki;
+        if let Some(integral) = rule(p.mode).steady_integral(p, s.rop) {
+            self.hoist.integral = integral;
         }
         Ok(())
     }

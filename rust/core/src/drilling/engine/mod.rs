@@ -51,11 +51,12 @@
 //!   registered in [`controller::Top`], which the run holds (a new controller is one
 //!   implementation, its variant of [`controller::Top`] with its line in
 //!   [`controller::Top::new`], and its `top_drive.controller.type` name and keys);
-//! * the hoist: [`crate::drilling::axial::hoist::HoistState`] gives the axial field's top its
-//!   [`crate::drilling::axial::hoist::HoistCommand`] ([`axial_field::Axial::top`]); not a trait:
-//!   the modes are `match`es on `hoist.mode` in `axial/hoist.rs` (the target, the step's
-//!   command) and in [`axial_field`] (the starting setpoint in `Axial::new`, `Axial::set_hoist`,
-//!   `Axial::set_steady` of `axial_field_steady.rs`, the block's weight in `Axial::top`);
+//! * the hoist: the trait [`crate::drilling::axial::hoist_mode::HoistRule`], one implementation
+//!   per `hoist.mode` (its target, where its setpoint starts, its command per step, what it
+//!   holds in steady drilling), registered in [`crate::drilling::axial::hoist_mode::rule`];
+//!   [`crate::drilling::axial::hoist::HoistState`] holds what the modes share and gives the
+//!   axial field's top its [`crate::drilling::axial::hoist::HoistCommand`]
+//!   ([`axial_field::Axial::top`]);
 //! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
 //!   stick phase) inside the kernels, the buoyed weight in [`axial_field`] after the axial transport,
 //!   a wall friction on both fields in [`coupled_friction`] after both transports; plain structs
@@ -68,6 +69,9 @@
 //!
 //! * a bit law: one file in `bit_law/` implementing [`bit_law::BitRock`], its registration in
 //!   `bit_law/mod.rs`, its name and keys in `config/bit.rs`;
+//! * a hoist mode: one struct implementing [`crate::drilling::axial::hoist_mode::HoistRule`] and
+//!   its line in [`crate::drilling::axial::hoist_mode::rule`] (`axial/hoist_mode.rs`), its name
+//!   and keys in `config/hoist.rs`;
 //! * a controller: one struct implementing [`controller::TopCommand`] and its registration in
 //!   [`controller::Top`] (`controller.rs`), its name and keys in `config/top_drive.rs`;
 //! * a source: `sources.rs` (the per-cell law, a field of [`sources::Sources`]), its limit per
