@@ -49,6 +49,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ValidationError
+from ..io.table import read_parquet_frame
 
 __all__ = ["AXIAL_SERIES", "COLUMNS", "MODEL_SERIES", "UNITS", "Columns", "MeasuredData", "read_columns",
            "read_measured"]
@@ -289,7 +290,7 @@ def _frame(source: Any) -> tuple[str, Any]:
         if not os.path.isfile(label):
             raise ValidationError("data", label, "an existing CSV or Parquet file")
         if label.lower().endswith((".parquet", ".pq")):
-            return label, pd.read_parquet(label)
+            return label, read_parquet_frame(label)
         return label, pd.read_csv(label, dtype=str, skipinitialspace=True)
     raise ValidationError("data", type(source).__name__, "a CSV or Parquet path, a pandas DataFrame or a mapping")
 

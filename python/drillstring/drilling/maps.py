@@ -479,11 +479,12 @@ def write_map_files(table: pd.DataFrame, root: Union[str, os.PathLike[str]],
     :data:`MAP_FILES` or the new ones, never a mix; the store and its resume are untouched. Call
     it holding the store's lock."""
     from ..io.output import atomic_write, remove_leftovers, replaced_folder
+    from ..io.table import frame_to_parquet
 
     remove_leftovers(root)  # of an interrupted swap (the store's lock is held)
     with replaced_folder(root, owned=_map_owned, field="out") as folder:
         directory = os.fspath(folder.directory)
-        atomic_write(os.path.join(directory, "map.parquet"), lambda tmp: table.to_parquet(tmp, index=False),
+        atomic_write(os.path.join(directory, "map.parquet"), lambda tmp: frame_to_parquet(table, tmp, index=False),
                      suffix=".parquet", field="out")
         atomic_write(os.path.join(directory, "map.csv"),
                      lambda tmp: table.to_csv(tmp, index=False, float_format="%.10g"), suffix=".csv", field="out")

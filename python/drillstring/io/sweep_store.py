@@ -55,6 +55,7 @@ from .output import (
     sigint_deferred,
     write_bytes,
 )
+from .table import frame_to_parquet, read_parquet_frame
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -224,7 +225,6 @@ class SweepStore:
         ``(None, None)`` when nothing is stored, ``(None, reason)`` when what is stored fails a
         check (it is then recomputed and rewritten).
         """
-        import pandas as pd
 
         path, record_path = self.chunk_path(index), self.record_path(index)
         _check_regular(path)
@@ -254,9 +254,7 @@ class SweepStore:
         if _sha256(data) != record.get("sha256"):
             return None, "its bytes differ from those written (SHA-256 mismatch)"
         try:
-            import io
-
-            frame = pd.read_parquet(io.BytesIO(data))
+            frame = read_parquet_frame(data)
         except Exception as exc:  # a file with the right checksum that parquet refuses: recompute
             return None, f"its file is not a readable table ({exc})"
         if len(frame) != len(parameters) or list(frame.columns) != columns or record.get("rows") != len(frame):
@@ -270,7 +268,7 @@ class SweepStore:
     def save_chunk(self, index: int, plan: str, frame: pd.DataFrame, complete: bool) -> None:
         """Write chunk ``index`` and then its record, each atomically, as one unit: a Ctrl-C
         arriving in between is raised once both are written (see :func:`_sigint_deferred`)."""
-        data = frame.to_parquet()
+        data = frame_to_parquet(frame)
         record = {"chunk": index, "plan": plan, "rows": len(frame), "sha256": _sha256(data), "complete": complete}
         text = (json.dumps(record, indent=1, sort_keys=True) + "\n").encode()
         with _sigint_deferred():
@@ -280,7 +278,7 @@ class SweepStore:
     def save_results(self, frame: pd.DataFrame) -> tuple[Path, Path]:
         """Write ``results.parquet`` and ``results.csv`` atomically; returns their paths."""
         parquet, csv = self.root / RESULTS_PARQUET, self.root / RESULTS_CSV
-        _atomic_write(parquet, frame.to_parquet())
+        _atomic_write(parquet, frame_to_parquet(frame))
         _atomic_write(csv, frame.to_csv(index=False).encode("utf-8"))
         return parquet, csv
 

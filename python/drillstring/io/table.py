@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["csv_text", "write_parquet"]
+__all__ = ["csv_text", "write_parquet", "read_parquet_frame", "frame_to_parquet"]
 
 _KINDS = {"f": "float64", "i": "int64", "b": "bool"}
 
@@ -86,6 +86,38 @@ def write_parquet(target: Any, index: tuple[str, Any], columns: Mapping[str, Any
     table = pa.Table.from_arrays([_arrow(pa, arrays[name]) for name in names], names=names)
     table = table.replace_schema_metadata({b"pandas": _pandas_metadata(arrays, index[0])})
     pq.write_table(table, target)
+
+
+def read_parquet_frame(source: Any) -> Any:
+    """The ``DataFrame`` in the Parquet ``source`` (a path, a binary file or ``bytes``), as
+    ``pandas.read_parquet`` gives it, read and converted on the calling thread.
+
+    ``pandas.read_parquet`` reads through pyarrow's dataset scanner and thread pools; a process
+    that exits soon after can then abort in pyarrow's teardown ("terminate called without an
+    active exception", apache/arrow#34314). No thread is started here."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    if isinstance(source, (bytes, bytearray, memoryview)):
+        source = pa.BufferReader(bytes(source))
+    table = pq.ParquetFile(source, pre_buffer=False).read(use_threads=False)
+    return table.to_pandas(use_threads=False)
+
+
+def frame_to_parquet(frame: Any, target: Any = None, *, index: Any = None) -> Any:
+    """Writes ``frame`` as ``DataFrame.to_parquet(target, index=index)`` does (pyarrow's
+    defaults: snappy compression, the pandas metadata), on the calling thread (see
+    :func:`read_parquet_frame`); with ``target=None`` returns the file's bytes."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    table = pa.Table.from_pandas(frame, preserve_index=index, nthreads=1)
+    if target is not None:
+        pq.write_table(table, target)
+        return None
+    sink = pa.BufferOutputStream()
+    pq.write_table(table, sink)
+    return sink.getvalue().to_pybytes()
 
 
 def _cell(value: Any, float_format: str) -> str:
