@@ -9,6 +9,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use drillstring_core::drilling::config::FrictionModel;
 use drillstring_core::drilling::engine::kernel::{transport, transport_unbooked};
 use drillstring_core::drilling::engine::sources::Sources;
 
@@ -21,7 +22,13 @@ fn bench(c: &mut Criterion) {
     let stop: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.02 }).collect();
     let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
     let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
-    let src = Sources { damping: 1e-4, stick_speed: 1.5, kinetic_ratio: 0.65, regularised: None };
+    let src = Sources {
+        damping: 1e-4,
+        stick_speed: 1.5,
+        kinetic_ratio: 0.65,
+        model: FrictionModel::SetValued,
+        regularisation_speed: 0.0,
+    };
     println!(
         "transport kernel, {CELLS} cells, path {}, {} cores",
         drillstring_core::simd::path(),

@@ -38,7 +38,7 @@ use std::f64::consts::TAU;
 use super::bit_law::{AxialEnd, BitEnds, Law};
 use super::boundary::{Arriving, EndLine};
 use super::energy::Ledger;
-use super::field::{Field, FieldSection};
+use super::field::{Field, FieldSection, StringField};
 use super::kernel::{transport_kicked, Kick};
 use super::sampler::{Channel, Point};
 use super::sources::Sources;
@@ -48,7 +48,7 @@ use crate::drilling::axial::hoist::{HoistMeasurement, HoistState};
 use crate::drilling::axial::hoist_mode::{rule, HoistReading, HoistReference};
 use crate::drilling::axial::section::{static_tension, AxialSection};
 use crate::drilling::config::Hoist;
-use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig};
+use crate::drilling::config::{BitRockLaw, CutSurfaceScheme, DrillConfig, FrictionModel};
 use crate::drilling::grid::Grid;
 use crate::drilling::well;
 use crate::error::{Error, Num, Result};
@@ -224,7 +224,7 @@ impl Axial {
         let src = Sources::new(cfg, dt);
         Ok(Axial {
             zeros: vec![0.0; len],
-            sources: Sources { damping: src.damping, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None },
+            sources: Sources { stick_speed: 0.0, kinetic_ratio: 0.0, model: FrictionModel::SetValued, ..src },
             gravity,
             hoist: HoistState::new(params, initial).referred_to(reference),
             law,
@@ -317,19 +317,6 @@ impl Axial {
     pub fn bha_kinetic(&self) -> f64 {
         let v = self.state.contact.axial_speed;
         0.5 * self.bha_mass * v * v
-    }
-
-    /// Calls `f(speed, force)` for every cell from the top down: the speed at the middle of the
-    /// step's gravity kick (the state less half the cell's `g dt`: in steady drilling every cell
-    /// moves at the rate of penetration, where the state after the kick is `g dt / 2` faster)
-    /// and the compression.
-    pub fn each_cell(&self, mut f: impl FnMut(f64, f64)) {
-        for (s, sp) in self.field.sections.iter().enumerate() {
-            for j in 1..=sp.cells {
-                let (v, force) = self.field.cell(s, j);
-                f(v - 0.5 * self.gravity[sp.offset + j], force);
-            }
-        }
     }
 
     /// The hoist's end for a step of `dt`: sets the top ghost, books the hoist's work.
@@ -425,11 +412,43 @@ impl Axial {
         point[BLOCK_POSITION] = s.block;
         point[DEPTH_OF_CUT] = if s.depth.is_finite() { s.depth } else { 0.0 };
     }
+}
 
-    /// The cells over a step: the transport with damping, then the buoyed weight, in one
-    /// pass ([`transport_kicked`]); the work booked in `ledger` when `booked`
-    /// (`numerics.energy_balance`).
-    pub fn cells(&mut self, ledger: &mut Ledger, booked: bool) {
+impl StringField for Axial {
+    #[inline]
+    fn channels() -> &'static [Channel] {
+        &CHANNELS
+    }
+
+    #[inline]
+    fn arriving_top(&self) -> Arriving {
+        self.field.arriving_top()
+    }
+
+    #[inline]
+    fn arriving_bottom(&self) -> Arriving {
+        self.field.arriving_bottom()
+    }
+
+    #[inline]
+    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64) {
+        self.field.set_top(arriving, w, load);
+    }
+
+    #[inline]
+    fn set_bottom(&mut self, arriving: Arriving, w: f64) {
+        self.field.set_bottom(arriving, w);
+    }
+
+    #[inline]
+    fn junctions(&mut self) {
+        self.field.junctions();
+    }
+
+    /// The cells over a step (the grid's `dt`, in the buoyed weight's kicks): the transport
+    /// with damping, then the buoyed weight, in one pass ([`transport_kicked`]); the work
+    /// booked in `ledger` when `booked` (`numerics.energy_balance`).
+    fn advance(&mut self, _dt: f64, ledger: &mut Ledger, booked: bool) {
         let Field { sections, alpha, beta, alpha_next, beta_next, .. } = &mut self.field;
         let z = &self.zeros[..];
         for sp in sections.iter() {
@@ -451,6 +470,24 @@ impl Axial {
             }
         }
         self.field.swap();
+    }
+
+    #[inline]
+    fn stored(&self) -> (f64, f64) {
+        self.field.energies()
+    }
+
+    /// Calls `f(speed, force)` for every cell from the top down: the speed at the middle of the
+    /// step's gravity kick (the state less half the cell's `g dt`: in steady drilling every cell
+    /// moves at the rate of penetration, where the state after the kick is `g dt / 2` faster)
+    /// and the compression.
+    fn each_cell(&self, mut f: impl FnMut(f64, f64)) {
+        for (s, sp) in self.field.sections.iter().enumerate() {
+            for j in 1..=sp.cells {
+                let (v, force) = self.field.cell(s, j);
+                f(v - 0.5 * self.gravity[sp.offset + j], force);
+            }
+        }
     }
 }
 

@@ -48,7 +48,7 @@
 //! the mean speed of that part of the step, `v_m = (v* + v') / 2` (`v*` the speed after the
 //! transport, before the kick, `v'` after the friction): the friction's work `m h d v_m`, the
 //! weight's `m h g dt v_m` (the kick's own work at the middle of the kick,
-//! [`super::axial_field::Axial::cells`], corrected here by `m h d g dt / 2`). Their sum is the
+//! [`super::axial_field::Axial`]'s `advance`, corrected here by `m h d g dt / 2`). Their sum is the
 //! kinetic energy the two changes make, exactly, so the split leaves nothing to the numerical
 //! loss, and in a steady slide (where `v_m` is the speed the string moves at: the transport
 //! takes away what the sources add) it books `mu_k N v` per length and the weight's `w v cos i`

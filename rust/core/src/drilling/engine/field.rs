@@ -13,7 +13,37 @@
 //! same [`Arriving`] characteristics.
 
 use super::boundary::Arriving;
+use super::energy::Ledger;
+use super::sampler::Channel;
 use crate::drilling::grid::{Grid, SectionProps};
+
+/// What a field on the string does in a step and in sampling: the characteristic arriving at
+/// each end, the ends and the junctions set for the step, its cells advanced over the step
+/// with its own sources (their work booked), its stored energies, its cells for the
+/// snapshots and the output channels its ends fill. Implemented by the torsional field
+/// ([`super::torsion::Torsion`]) and the axial one ([`super::axial_field::Axial`]); the run
+/// calls them in a fixed order ([`super::run::Simulation`]'s step), never per cell.
+pub trait StringField {
+    /// The series' channels of this field and its ends ([`super::sampler`]).
+    fn channels() -> &'static [Channel];
+    /// The characteristic arriving at the top end.
+    fn arriving_top(&self) -> Arriving;
+    /// The characteristic arriving at the bottom end.
+    fn arriving_bottom(&self) -> Arriving;
+    /// Sets the top end for the step: its speed `w` and the load `load` it carries.
+    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64);
+    /// Sets the bottom end for the step: its speed `w`.
+    fn set_bottom(&mut self, arriving: Arriving, w: f64);
+    /// Sets the junctions between sections for the step.
+    fn junctions(&mut self);
+    /// The cells over a step of `dt` (the transport and the field's sources), the work booked
+    /// in `ledger` when `booked` (`numerics.energy_balance`); the new state made current.
+    fn advance(&mut self, dt: f64, ledger: &mut Ledger, booked: bool);
+    /// The kinetic and elastic energies stored in the cells, J.
+    fn stored(&self) -> (f64, f64);
+    /// Calls `f(speed, load)` for every cell from the top down, as the snapshots store them.
+    fn each_cell(&self, f: impl FnMut(f64, f64));
+}
 
 /// One section's slice of the padded state: `[ghost alpha, cells..., ghost beta]`.
 #[derive(Debug, Clone, Copy)]

@@ -9,7 +9,8 @@
 //! pass by a speed change per cell (the axial field's buoyed weight).
 
 use super::field::{FieldSection, Nonlinear};
-use super::sources::{source, Consts, Sources};
+use super::sources::{source, Consts, SetValued, Sources, WallLaw, WithWallLaw};
+use crate::drilling::config::FrictionModel;
 use crate::drilling::grid::SectionProps;
 
 /// Sums over a section's cells in one step.
@@ -149,41 +150,50 @@ impl crate::simd::Kernel for Transport<'_> {
 
     #[inline(always)]
     fn run<M: crate::simd::MulAdd>(self) -> Sums {
+        let src = self.src;
         match (self.ledger, self.dv.is_empty()) {
-            (true, true) => self.specialised::<true>(),
-            (false, true) => self.specialised::<false>(),
+            (true, true) => src.with_law(Specialised::<true>(self)),
+            (false, true) => src.with_law(Specialised::<false>(self)),
             (true, false) => self.kicked::<true>(),
             (false, false) => self.kicked::<false>(),
         }
     }
 }
 
-impl Transport<'_> {
-    /// [`Transport::cells`] specialised on the model and on which energy terms are non-zero
-    /// (fewer stores).
+/// [`Transport`] without a [`Kick`], with the ledger or without, run with the wall law.
+struct Specialised<'a, const LEDGER: bool>(Transport<'a>);
+
+impl<const LEDGER: bool> WithWallLaw for Specialised<'_, LEDGER> {
+    type Output = Sums;
+
     #[inline(always)]
-    fn specialised<const LEDGER: bool>(self) -> Sums {
-        match (self.src.regularised.is_some(), self.c < 1.0, self.src.damping > 0.0) {
-            (false, false, false) => self.cells::<false, false, false, LEDGER, false>(),
-            (false, false, true) => self.cells::<false, false, true, LEDGER, false>(),
-            (false, true, false) => self.cells::<false, true, false, LEDGER, false>(),
-            (false, true, true) => self.cells::<false, true, true, LEDGER, false>(),
-            (true, false, false) => self.cells::<true, false, false, LEDGER, false>(),
-            (true, false, true) => self.cells::<true, false, true, LEDGER, false>(),
-            (true, true, false) => self.cells::<true, true, false, LEDGER, false>(),
-            (true, true, true) => self.cells::<true, true, true, LEDGER, false>(),
+    fn run<L: WallLaw>(self) -> Sums {
+        self.0.specialised::<L, LEDGER>()
+    }
+}
+
+impl Transport<'_> {
+    /// [`Transport::cells`] with the wall law `L`, specialised on which energy terms are
+    /// non-zero (fewer stores).
+    #[inline(always)]
+    fn specialised<L: WallLaw, const LEDGER: bool>(self) -> Sums {
+        match (self.c < 1.0, self.src.damping > 0.0) {
+            (false, false) => self.cells::<L, false, false, LEDGER, false>(),
+            (false, true) => self.cells::<L, false, true, LEDGER, false>(),
+            (true, false) => self.cells::<L, true, false, LEDGER, false>(),
+            (true, true) => self.cells::<L, true, true, LEDGER, false>(),
         }
     }
 
     /// [`Transport::cells`] with a [`Kick`] (the axial field: set-valued friction only).
     #[inline(always)]
     fn kicked<const LEDGER: bool>(self) -> Sums {
-        assert!(self.src.regularised.is_none(), "a kick with the set-valued friction only");
+        assert!(self.src.model == FrictionModel::SetValued, "a kick with the set-valued friction only");
         match (self.c < 1.0, self.src.damping > 0.0) {
-            (false, false) => self.cells::<false, false, false, LEDGER, true>(),
-            (false, true) => self.cells::<false, false, true, LEDGER, true>(),
-            (true, false) => self.cells::<false, true, false, LEDGER, true>(),
-            (true, true) => self.cells::<false, true, true, LEDGER, true>(),
+            (false, false) => self.cells::<SetValued, false, false, LEDGER, true>(),
+            (false, true) => self.cells::<SetValued, false, true, LEDGER, true>(),
+            (true, false) => self.cells::<SetValued, true, false, LEDGER, true>(),
+            (true, true) => self.cells::<SetValued, true, true, LEDGER, true>(),
         }
     }
 }
@@ -211,7 +221,7 @@ impl Transport<'_> {
     /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
     /// Without `LEDGER` no energy term is computed and the sums are zero.
     #[inline(always)]
-    fn cells<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
+    fn cells<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
         self,
     ) -> Sums {
         let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, dv, .. } = self;
@@ -242,7 +252,7 @@ impl Transport<'_> {
             let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
             let kick = if KICK { at!(dv, i) } else { &none };
             let (na, nb) = (at_mut!(an, i), at_mut!(bn, i));
-            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
             if KICK && LEDGER {
                 for block in w.chunks_exact(LANES) {
                     for l in 0..LANES {
@@ -266,7 +276,7 @@ impl Transport<'_> {
             let [ap, aa, bb, bx, st, sl, kick] = &pad;
             let (mut na, mut nb, mut w) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
             let inputs = [ap, aa, bb, bx, st, sl];
-            chunk::<REGULARISED, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, &mut na, &mut nb, &mut w, &k, &mut lanes);
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, &mut na, &mut nb, &mut w, &k, &mut lanes);
             for (j, (x, y)) in an[i..].iter_mut().zip(&mut bn[i..]).enumerate() {
                 *x = na[j];
                 *y = nb[j];
@@ -303,7 +313,7 @@ impl Transport<'_> {
 /// the speed change `dv` follows the update, as a source after it: its work
 /// `dv (v + dv / 2)` at the speed `v` the update left.
 #[inline(always)]
-fn chunk<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
+fn chunk<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
     [ap, aa, bb, bx, st, sl]: [&Chunk; 6],
     kick: &Chunk,
     na: &mut Chunk,
@@ -313,7 +323,7 @@ fn chunk<const REGULARISED: bool, const UPWIND: bool, const DAMPED: bool, const 
     lanes: &mut Lanes,
 ) {
     for l in 0..WIDTH {
-        let cell = update::<REGULARISED, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], k);
+        let cell = update::<L, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], k);
         if KICK {
             let dv = kick[l];
             if LEDGER {
@@ -351,7 +361,7 @@ struct Cell {
 /// Courant number 1, `!UPWIND`, the exact shift `a_prev`, `b_next`), then the damping and
 /// friction sources; branch-free (selects) so that blocks vectorise.
 #[inline(always)]
-fn update<const REGULARISED: bool, const UPWIND: bool>(
+fn update<L: WallLaw, const UPWIND: bool>(
     a_prev: f64,
     a: f64,
     b: f64,
@@ -363,7 +373,7 @@ fn update<const REGULARISED: bool, const UPWIND: bool>(
     let (da, db) = (a - a_prev, b - b_next);
     let (a1, b1) = if UPWIND { (a - k.c * da, b - k.c * db) } else { (a_prev, b_next) };
     let w1 = 0.5 * (a1 + b1);
-    let (dd, df, stuck) = source::<REGULARISED>(w1, lim, slip, k);
+    let (dd, df, stuck) = source::<L>(w1, lim, slip, k);
     let d = dd + df;
     let wbar = w1 + 0.5 * d;
     // Stuck: stopped exactly (omega = 0), the torque kept.
@@ -412,11 +422,17 @@ impl crate::simd::Kernel for Godunov<'_> {
 
     #[inline(always)]
     fn run<M: crate::simd::MulAdd>(self) -> Sums {
-        if self.src.regularised.is_some() {
-            self.cells::<true>()
-        } else {
-            self.cells::<false>()
-        }
+        let src = self.src;
+        src.with_law(self)
+    }
+}
+
+impl WithWallLaw for Godunov<'_> {
+    type Output = Sums;
+
+    #[inline(always)]
+    fn run<L: WallLaw>(self) -> Sums {
+        self.cells::<L>()
     }
 }
 
@@ -442,7 +458,7 @@ pub(super) fn lane_sum(x: &[f64]) -> f64 {
 
 impl Godunov<'_> {
     #[inline(always)]
-    fn cells<const REGULARISED: bool>(self) -> Sums {
+    fn cells<L: WallLaw>(self) -> Sums {
         let Godunov { nl, sp, law, stop, slip, dt, src } = self;
         let p = &law;
         let r = sp.offset + 1..=sp.offset + sp.cells;
@@ -497,7 +513,7 @@ impl Godunov<'_> {
                     * (0.5 * k1 * (w1 - w) * (w1 + w)
                         + (s1 - s) * (s1 + s) * (0.5 * k2 + 0.25 * k5 * (s1 * s1 + s * s)));
                 jump[j] = dt * (tt * wt - tb * wb) - de;
-                let (dd, df, stuck) = source::<REGULARISED>(w1, lim[c], slip[c], &k);
+                let (dd, df, stuck) = source::<L>(w1, lim[c], slip[c], &k);
                 let d = dd + df;
                 let wbar = w1 + 0.5 * d;
                 wn[c] = if stuck { 0.0 } else { w1 + d };
@@ -519,6 +535,8 @@ impl Godunov<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::drilling::engine::sources::Regularised;
+    use FrictionModel as Model;
 
     /// The chunked kernel, with the last cells padded to a chunk, against the update cell by
     /// cell with the energy terms in lane `j % 16`: the same bits, on every path and for
@@ -532,8 +550,9 @@ mod tests {
             let stop: Vec<f64> =
                 (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.3 + 0.1 * (i % 3) as f64 }).collect();
             let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
-            for (c, regularised) in [(0.93, None), (1.0, None), (0.93, Some(0.1)), (1.0, Some(0.1))] {
-                let src = Sources { damping: 1e-3, stick_speed: 1.5, kinetic_ratio: 0.65, regularised };
+            for (c, model) in [(0.93, Model::SetValued), (1.0, Model::SetValued), (0.93, Model::Regularised), (1.0, Model::Regularised)] {
+                let src =
+                    Sources { damping: 1e-3, stick_speed: 1.5, kinetic_ratio: 0.65, model, regularisation_speed: 0.1 };
                 let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
                 let fast = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
                 let (mut an0, mut bn0) = (vec![0.0; len], vec![0.0; len]);
@@ -555,16 +574,16 @@ mod tests {
                 let mut stuck = 0;
                 for j in 0..n {
                     let i = j + 1;
-                    let cell = if regularised.is_some() {
+                    let cell = if model == Model::Regularised {
                         if c < 1.0 {
-                            update::<true, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                            update::<Regularised, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
                         } else {
-                            update::<true, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                            update::<Regularised, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
                         }
                     } else if c < 1.0 {
-                        update::<false, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                        update::<SetValued, true>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
                     } else {
-                        update::<false, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
+                        update::<SetValued, false>(a[i - 1], a[i], b[i], b[i + 1], stop[i], slip[i], &k)
                     };
                     assert_eq!(
                         (an[i].to_bits(), bn[i].to_bits()),
@@ -585,7 +604,7 @@ mod tests {
                     assert_eq!(sums.friction.to_bits(), total(&lanes.fric).to_bits(), "n {n} c {c}");
                     assert_eq!(sums.damping.to_bits(), total(&lanes.damp).to_bits(), "n {n} c {c}");
                 }
-                if n >= 16 && regularised.is_none() {
+                if n >= 16 && model == Model::SetValued {
                     assert!(stuck > 0 && stuck < n, "n {n}: {stuck} stuck cells (the case must hold both)");
                 }
             }
@@ -606,7 +625,13 @@ mod tests {
             let zeros = vec![0.0; len];
             let dv: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 1e-3 * (1.0 + (i % 5) as f64) }).collect();
             for c in [0.93, 1.0] {
-                let src = Sources { damping: 1e-3, stick_speed: 0.0, kinetic_ratio: 0.0, regularised: None };
+                let src = Sources {
+                    damping: 1e-3,
+                    stick_speed: 0.0,
+                    kinetic_ratio: 0.0,
+                    model: Model::SetValued,
+                    regularisation_speed: 0.0,
+                };
                 let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
                 let sums = transport(&a, &b, &zeros, &zeros, &mut an, &mut bn, c, &src);
                 let mut work = vec![0.0; len];
@@ -649,7 +674,8 @@ mod tests {
             ("Courant 1, damped", 1.0, 1e-4, true),
             ("Courant 1", 1.0, 0.0, true),
         ] {
-            let src = Sources { damping, stick_speed: 1.5, kinetic_ratio: 0.65, regularised: None };
+            let src =
+                Sources { damping, stick_speed: 1.5, kinetic_ratio: 0.65, model: Model::SetValued, regularisation_speed: 0.0 };
             let mut best = f64::INFINITY;
             let mut sink = 0.0;
             for _ in 0..400 {

@@ -5,13 +5,13 @@
 //! evaluated at the speed before the transport, `omega_j = (alpha_j + beta_j) / 2`, where the
 //! solver's scheme takes the transported speed `omega*_j`: the damping `-dt d omega_j`, and the
 //! wall friction's stick threshold, `|omega_j| < stick_speed` (then the torque that stops the
-//! cell at `omega*_j`, clipped to the static limit, [`source`]), else the kinetic limit against
+//! cell at `omega*_j`, clipped to the static limit, [`source`] with the [`SetValued`] law), else the kinetic limit against
 //! the sign of `omega_j`, not clipped (it may reverse a cell within a step, as in their code).
 //! Scalar, cell by cell; the energy terms are those of [`super::kernel::Sums`] (a source's work
 //! `4 e delta (omega* + delta / 2)` per cell holds for any change `delta`, so the ledger closes).
 
 use super::kernel::Sums;
-use super::sources::{source, Consts, Sources};
+use super::sources::{source, Consts, SetValued, Sources};
 
 /// Upwind transport and the sources at the speed before it of one section: `a`, `b`, `stop`,
 /// `slip` padded (`[ghost, cells, ghost]`), the new invariants written to the cells of `an`,
@@ -40,7 +40,7 @@ pub fn transport(
         let w1 = 0.5 * (a1 + b1);
         let dd = -k.damping * w0;
         let (df, stuck) = if w0.abs() < k.slow_below {
-            let (_, df, stuck) = source::<false>(w1 + dd, stop[i], slip[i], &stopping);
+            let (_, df, stuck) = source::<SetValued>(w1 + dd, stop[i], slip[i], &stopping);
             (df, stuck)
         } else if w0 > 0.0 {
             (slip[i], false)
@@ -61,6 +61,7 @@ pub fn transport(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::drilling::config::FrictionModel;
 
     /// The update of torsionalWaveStep.m written as it is there (per unit `rho J`: the torque
     /// `ci` that stops the cell, clipped to `+-Th`, or `sign(o) fRat Th` when `|o| >= oThres` with
@@ -79,8 +80,13 @@ mod tests {
         let stop: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { dts * th[i] }).collect();
         let slip: Vec<f64> = stop.iter().map(|&s| -(fr * s)).collect();
         for (c, kt) in [(0.9291992153906069, 50.0), (1.0, 50.0), (0.93, 0.0)] {
-            let src =
-                Sources { damping: 2.0 * kt * dts * dts, stick_speed: othr, kinetic_ratio: fr, regularised: None };
+            let src = Sources {
+                damping: 2.0 * kt * dts * dts,
+                stick_speed: othr,
+                kinetic_ratio: fr,
+                model: FrictionModel::SetValued,
+                regularisation_speed: 0.0,
+            };
             let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
             let sums = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
             let (mut slow, mut fast, mut stuck) = (0, 0, 0);

@@ -2,7 +2,8 @@
 //!
 //! * [`field`]: a field on the string ([`field::Field`]): per section the Courant number (wave
 //!   speed), impedance and inertia per length, the two Riemann invariants per cell, padded per
-//!   section with ghosts; the junctions between sections; its energies. The torsional field is
+//!   section with ghosts; the junctions between sections; its energies; and what a field does in
+//!   a step and in sampling, the trait [`field::StringField`]. The torsional field is
 //!   `(omega, tau)` with `rho J` and `J sqrt(G rho)`; an axial field is the same type with
 //!   `(v, N)`, `rho A` and `A sqrt(E rho)` (wave speed `sqrt(E / rho)`);
 //! * [`kernel`]: the one transport kernel in Riemann invariants (first-order upwind, the exact
@@ -10,7 +11,10 @@
 //! * [`kernel_published`]: the same transport with the sources at the speed before it
 //!   (`numerics.source_speed = "before_transport"`, the scheme of torsionalWaveStep.m);
 //! * [`sources`]: wall friction with its stick phase and viscous damping, per cell, one place
-//!   each;
+//!   each (the wall friction's law [`sources::WallLaw`]), and the sources of a step on both
+//!   fields ([`sources::StepSource`]);
+//! * [`torsion`]: the torsional field as a [`field::StringField`] ([`torsion::Torsion`]: the
+//!   field, its wall friction and sources, its cells' update over a step);
 //! * [`boundary`]: the ends, as what they do with the characteristic arriving at them
 //!   ([`boundary::Arriving`]): the top drive ([`boundary::TopDriveEnd`]) carrying out a
 //!   controller's command, the bit ([`boundary::BitEnd`]) with a law of the torsional field alone;
@@ -35,12 +39,12 @@
 //! A step: the setpoint, the top drive against the characteristic arriving at the top, the bit
 //! against the one arriving at the bottom, the junctions (each sets the ghost invariant of its
 //! neighbouring cells), then the kernel over every section's cells, whose energy terms go to
-//! the ledger.
+//! the ledger, then the sources of the step on both fields of a coupled run.
 //!
 //! # The seams
 //!
 //! What the run composes, and where a new one plugs in (dispatched once per step, outside the
-//! cell loops; the kernels are plain functions over slices):
+//! cell loops; the kernels are functions over slices, generic over the wall friction's law):
 //!
 //! * the bit law: the trait [`bit_law::BitRock`], one interface for the laws of the torsional
 //!   field alone and those meeting the axial field too (what a law needs from the axial field
@@ -57,13 +61,23 @@
 //!   [`crate::drilling::axial::hoist::HoistState`] holds what the modes share and gives the
 //!   axial field's top its [`crate::drilling::axial::hoist::HoistCommand`]
 //!   ([`axial_field::Axial::top`]);
-//! * the sources per cell: [`sources::Sources`] (damping, the torsional wall friction with its
-//!   stick phase) inside the kernels, the buoyed weight in [`axial_field`] after the axial transport,
-//!   a wall friction on both fields in [`coupled_friction`] after both transports; plain structs
-//!   and functions, not a trait;
-//! * the fields: one type, [`field::Field`], for the torsional and the axial field (no trait);
-//! * the output series: named channels ([`sampler::Channel`]) each part declares where it is
-//!   ([`sampler::TORSIONAL`], [`axial_field::CHANNELS`]).
+//! * the wall friction per cell: the trait [`sources::WallLaw`] (the friction's speed change
+//!   and whether the cell sticks; the damping is common), one zero-sized implementation per
+//!   `friction.model` ([`sources::SetValued`], [`sources::Regularised`]), matched to its name
+//!   once in [`sources::Sources::with_law`]; the kernels ([`kernel`], [`kernel_published`]) are
+//!   generic over it and compiled once per law (no dynamic dispatch in the cell loops);
+//! * the sources of a step: the trait [`sources::StepSource`], applied to both fields after
+//!   both transports and booking its own work, implemented by [`coupled_friction`]'s
+//!   [`coupled_friction::CoupledFriction`] (the run's `coupled_friction`, called through the
+//!   trait); the axial field's buoyed weight is its own source, in its cells' pass;
+//! * the fields: the trait [`field::StringField`] (the characteristic arriving at each end, the
+//!   ends and junctions set, the cells advanced over a step with their sources and booking, the
+//!   stored energies, the snapshot's cells, the channels declared), implemented by the
+//!   torsional field [`torsion::Torsion`] and the axial field [`axial_field::Axial`], both on
+//!   the one type [`field::Field`]; the run's step, stored energies and sampling go through it;
+//! * the output series: named channels ([`sampler::Channel`]) each field declares where it is
+//!   ([`sampler::TORSIONAL`], [`axial_field::CHANNELS`]), returned by
+//!   [`field::StringField::channels`].
 //!
 //! The files a new one touches:
 //!
@@ -74,11 +88,18 @@
 //!   and keys in `config/hoist.rs`;
 //! * a controller: one struct implementing [`controller::TopCommand`] and its registration in
 //!   [`controller::Top`] (`controller.rs`), its name and keys in `config/top_drive.rs`;
-//! * a source: `sources.rs` (the per-cell law, a field of [`sources::Sources`]), its limit per
-//!   cell in `drilling/grid.rs`, its work in `energy.rs`; one on the axial field alone in
-//!   `axial_field.rs`, one on both fields as `coupled_friction.rs`;
-//! * a field: a [`field::Field`] built beside its ends and sources as `axial_field.rs`, advanced
-//!   and sampled from `run.rs` (`Simulation::step`, `Simulation::sample`), its
+//! * a wall friction law (e.g. a Stribeck curve): one zero-sized type implementing
+//!   [`sources::WallLaw`] in `sources.rs` and its line in [`sources::Sources::with_law`], its
+//!   `friction.model` name and keys in `config/friction.rs`, tests against [`sources::SetValued`]
+//!   or its closed form;
+//! * another source per cell: `sources.rs` (a field of [`sources::Sources`]), its limit per cell
+//!   in `drilling/grid.rs`, its work in `energy.rs`; one on the axial field alone in
+//!   `axial_field.rs` (its cells' pass); one on both fields: a type implementing
+//!   [`sources::StepSource`] (as `coupled_friction.rs`), held by the run and applied in
+//!   `Simulation::step` (`run.rs`);
+//! * a field: a type implementing [`field::StringField`] on a [`field::Field`], built beside its
+//!   ends and sources as `axial_field.rs` or `torsion.rs`, stepped and sampled from `run.rs`
+//!   (`Simulation::step`, `Simulation::stored`, `Simulation::sample`) and `sampler.rs`, its
 //!   energies in `energy.rs` ([`energy::Stored`]), its channels declared beside it;
 //! * a metric: `metrics/stickslip.rs` and its entry in the crate's `outputs.rs` (a coupled one a
 //!   field of [`run::CoupledMetrics`]).
@@ -204,6 +225,7 @@ pub mod run;
 pub mod sampler;
 pub mod session;
 pub mod sources;
+pub mod torsion;
 #[cfg(test)]
 mod top_tests;
 

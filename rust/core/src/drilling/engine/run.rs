@@ -9,15 +9,14 @@ use super::boundary::{BitEnd, TopDriveEnd};
 use super::controller::{Setpoint, SpeedSeries, Top, TopInput, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
 use super::energy::{EnergyBalance, Ledger, Stored};
-use super::field::Field;
-use super::kernel::{godunov, transport, transport_unbooked};
-use super::kernel_published::transport as before_transport;
+use super::field::{Field, StringField};
 use super::sampler::{Point, BIT_SPEED, BIT_TORQUE, MOTOR_TORQUE, TIME, TOP_SPEED};
 use super::session::Session;
-use super::sources::{Sources, WallFriction};
+use super::sources::{Sources, StepSource, WallFriction};
+use super::torsion::Torsion;
 use crate::drilling::axial::bitrock::{bit_area, mechanical_specific_energy};
 use crate::drilling::axial::regime::{regime, Regime};
-use crate::drilling::config::{DrillConfig, FrictionCoupling, FrictionModel, Nonlinearity, SourceSpeed};
+use crate::drilling::config::{DrillConfig, FrictionCoupling, Nonlinearity};
 use crate::drilling::grid::{first_natural_frequency, Grid};
 use crate::drilling::start::{steady_point, InitialState, Wall};
 use crate::error::{Error, Num, Result};
@@ -148,9 +147,8 @@ impl DrillRun {
 pub struct Simulation {
     pub(super) cfg: DrillConfig,
     pub(super) grid: Grid,
-    pub(super) field: Field,
-    pub(super) wall: WallFriction,
-    pub(super) sources: Sources,
+    /// The torsional field with its wall friction and sources.
+    pub(super) torsion: Torsion,
     pub(super) top: TopDriveEnd,
     pub(super) bit: BitEnd,
     pub(super) setpoint: Setpoint,
@@ -161,7 +159,8 @@ pub struct Simulation {
     /// The axial field of a coupled run (`[hoist]`).
     pub(super) axial: Option<Axial>,
     /// A coupled run's wall friction on both fields (`friction.coupling = "axial_torsional"`;
-    /// then `wall` is zero and the torsional kernel applies none).
+    /// then the torsional `wall` is zero and the torsional kernel applies none), a
+    /// [`StepSource`].
     pub(super) coupled_friction: Option<CoupledFriction>,
 }
 
@@ -206,12 +205,10 @@ impl Simulation {
             axial,
             coupled_friction,
             cfg: cfg.clone(),
-            sources: Sources::new(cfg, dt),
+            torsion: Torsion { field, wall, sources: Sources::new(cfg, dt), source_speed: cfg.numerics.source_speed },
             top: TopDriveEnd::new(cfg, dt),
             bit: BitEnd::new(cfg),
             grid,
-            field,
-            wall,
             setpoint: Setpoint::new(&cfg.top_drive, dt),
             drive,
             ledger: Ledger::default(),
@@ -250,7 +247,7 @@ impl Simulation {
     /// of its linear limit.
     #[cfg(test)]
     pub(crate) fn zero_quartic(&mut self) {
-        if let Some(nl) = &mut self.field.nl {
+        if let Some(nl) = &mut self.torsion.field.nl {
             for law in &mut nl.laws {
                 law.quartic = 0.0;
             }
@@ -280,9 +277,10 @@ impl Simulation {
             return Err(Error::invalid("omega_top", Num(omega_top + omega_bit), "finite speeds"));
         }
         let mut k = 0;
-        for s in 0..self.field.sections.len() {
-            for j in 1..=self.field.sections[s].cells {
-                self.field.set_cell(s, j, omega[k], torque[k]);
+        let field = &mut self.torsion.field;
+        for s in 0..field.sections.len() {
+            for j in 1..=field.sections[s].cells {
+                field.set_cell(s, j, omega[k], torque[k]);
                 k += 1;
             }
         }
@@ -295,7 +293,7 @@ impl Simulation {
     pub fn fields(&self) -> (Vec<f64>, Vec<f64>) {
         let mut w = Vec::with_capacity(self.grid.cells());
         let mut t = Vec::with_capacity(self.grid.cells());
-        self.field.each_cell(|wj, tj| {
+        self.torsion.each_cell(|wj, tj| {
             w.push(wj);
             t.push(tj);
         });
@@ -313,10 +311,11 @@ impl Simulation {
     /// scheme keeps no angle), so reporting 0 changes nothing else; the published code of
     /// Aarsnes & Shor reports the last cell's speed for the same reason.
     pub(super) fn bit_speed(&self) -> f64 {
-        let s = self.field.sections.len() - 1;
-        let (w, _) = self.field.cell(s, self.field.sections[s].cells);
+        let field = &self.torsion.field;
+        let s = field.sections.len() - 1;
+        let (w, _) = field.cell(s, field.sections[s].cells);
         let fr = &self.cfg.friction;
-        let stuck = fr.model == FrictionModel::SetValued && w == 0.0;
+        let stuck = self.torsion.sources.sticks() && w == 0.0;
         if stuck && self.bit.omega.abs() < fr.stick_speed.max(self.cfg.metrics.stick_speed) {
             0.0
         } else {
@@ -326,7 +325,7 @@ impl Simulation {
 
     /// The energies stored, J.
     pub(super) fn stored(&self) -> Stored {
-        let (kinetic, elastic) = self.field.energies();
+        let (kinetic, elastic) = self.torsion.stored();
         let mut s = Stored {
             kinetic,
             elastic,
@@ -336,86 +335,53 @@ impl Simulation {
             axial_elastic: 0.0,
         };
         if let Some(ax) = &self.axial {
-            (s.axial_kinetic, s.axial_elastic) = ax.field.energies();
+            (s.axial_kinetic, s.axial_elastic) = ax.stored();
             s.bha += ax.bha_kinetic();
         }
         s
     }
 
     /// One step from `t` (start of the step); returns `(motor torque, bit torque)` applied.
+    /// The order: the setpoint, the top drive against the torsional field's top, then a coupled
+    /// run's axial field (the hoist, the bit on both fields' ends, its junctions and cells) or
+    /// the torsional bit, the torsional bottom, junctions and cells, then the sources of the
+    /// step on both fields ([`StepSource`]).
     pub(super) fn step(&mut self, t: f64) -> (f64, f64) {
         let dt = self.grid.dt;
         let td = &self.cfg.top_drive;
+        let booked = self.cfg.numerics.energy_balance;
         let setpoint = self.setpoint.advance(td, t, dt);
 
         // Top drive.
-        let arriving = self.field.arriving_top();
+        let torsion = &mut self.torsion;
+        let arriving = torsion.arriving_top();
         let input = TopInput { t, dt, setpoint, omega: self.top.omega, arriving };
         let command = self.drive.command(td, &input);
         let (omega1, motor, tau_top) = self.top.step(command, arriving, dt, &mut self.ledger);
         self.drive.observe(tau_top);
-        self.field.set_top(arriving, omega1, tau_top);
+        torsion.set_top(arriving, omega1, tau_top);
 
         // Bit.
-        let arriving = self.field.arriving_bottom();
+        let arriving = torsion.arriving_bottom();
         let (wb1, tbit) = match &mut self.axial {
             Some(ax) => {
                 ax.top(dt, &mut self.ledger);
                 let (wb1, tbit) = ax.bit(arriving, self.bit.inertia, self.bit.omega, dt, &mut self.ledger);
                 self.bit.omega = wb1;
-                ax.field.junctions();
-                ax.cells(&mut self.ledger, self.cfg.numerics.energy_balance);
+                ax.junctions();
+                ax.advance(dt, &mut self.ledger, booked);
                 (wb1, tbit)
             }
             None => self.bit.step(arriving, dt, &mut self.ledger),
         };
-        self.field.set_bottom(arriving, wb1);
+        torsion.set_bottom(arriving, wb1);
 
-        self.field.junctions();
-        self.cells(dt);
+        torsion.junctions();
+        torsion.advance(dt, &mut self.ledger, booked);
         if let (Some(cf), Some(ax)) = (&mut self.coupled_friction, &mut self.axial) {
-            let work = cf.apply(&mut self.field, &mut ax.field);
-            self.ledger.friction -= work.torsional + work.axial;
-            self.ledger.axial_friction -= work.axial;
-            self.ledger.gravity += work.gravity;
-            self.ledger.inertia += work.numerical;
-            ax.end_hold = cf.end_hold();
+            StepSource::apply(cf, &mut torsion.field, ax, &mut self.ledger);
         }
         (motor, tbit)
-    }
-
-    /// The cells of every section over a step, the sources' and transport's work booked.
-    fn cells(&mut self, dt: f64) {
-        let Field { sections, alpha, beta, alpha_next, beta_next, nl } = &mut self.field;
-        let (stop, slip) = (&self.wall.stop[..], &self.wall.slip[..]);
-        if let Some(nl) = nl {
-            for (s, sp) in sections.iter().enumerate() {
-                let law = nl.laws[s];
-                let sums = godunov(nl, sp, law, (stop, slip), dt, &self.sources);
-                self.ledger.godunov(&sums);
-                nl.peak_strain[s] = nl.peak_strain[s].max(sums.peak);
-            }
-        } else {
-            let published = self.cfg.numerics.source_speed == SourceSpeed::BeforeTransport;
-            // (without the ledger, the kernel without the energy terms; the published scheme's
-            // is scalar and keeps them, unbooked)
-            let booked = self.cfg.numerics.energy_balance;
-            for sp in sections.iter() {
-                let r = sp.padded();
-                let (a, b, st, sl) = (&alpha[r.clone()], &beta[r.clone()], &stop[r.clone()], &slip[r.clone()]);
-                let (an, bn) = (&mut alpha_next[r.clone()], &mut beta_next[r]);
-                if !published && !booked {
-                    transport_unbooked(a, b, st, sl, an, bn, sp.courant, &self.sources);
-                    continue;
-                }
-                let kernel = if published { before_transport } else { transport };
-                let sums = kernel(a, b, st, sl, an, bn, sp.courant, &self.sources);
-                if booked {
-                    self.ledger.transport(sp.e, sp.courant, &sums);
-                }
-            }
-        }
-        self.field.swap();
     }
 
     /// Runs to `numerics.duration` (or until `interrupt` asks to stop, or a non-finite value),
@@ -443,9 +409,9 @@ impl Simulation {
 
     /// `consistent`: the largest tangent Courant number met, with a note when above 1.
     pub(super) fn courant_peak(&self, run: &mut DrillRun) {
-        let Some(nl) = &self.field.nl else { return };
+        let Some(nl) = &self.torsion.field.nl else { return };
         let dt = self.grid.dt;
-        let peak = (self.field.sections.iter().zip(&nl.laws).zip(&nl.peak_strain))
+        let peak = (self.torsion.field.sections.iter().zip(&nl.laws).zip(&nl.peak_strain))
             .map(|((sp, law), &eps)| law.tangent_speed(eps) * dt / sp.h)
             .fold(0.0, f64::max);
         run.stats.courant_peak = peak;

@@ -2,10 +2,11 @@
 //! ends around each sample time, and the field snapshots at the step nearest to
 //! `k field_interval`; storage reserved up front ([`crate::solution::reserve_outputs`]).
 
-use super::axial_field::{self, Axial, CHANNELS as AXIAL};
+use super::axial_field::{self, Axial};
 use super::controller::RPM_PER_RAD_S;
-use super::field::Field;
+use super::field::StringField;
 use super::run::DrillRun;
+use super::torsion::Torsion;
 use crate::drilling::config::DrillConfig;
 use crate::solution::OutOfMemory;
 
@@ -159,19 +160,19 @@ impl Sampler {
 
     /// The initial snapshot (if any are asked for) and state `point` at `t = 0` (its held
     /// channels are the first step's); `false` when not finite.
-    pub fn start(&mut self, field: &Field, axial: Option<&Axial>, run: &mut DrillRun, point: Point) -> bool {
+    pub fn start(&mut self, torsion: &Torsion, axial: Option<&Axial>, run: &mut DrillRun, point: Point) -> bool {
         self.prev = point;
-        self.n_fields == 0 || snapshot(field, axial, run, 0.0)
+        self.n_fields == 0 || snapshot(torsion, axial, run, 0.0)
     }
 
     /// Samples after step `n` (0-based) ending at `cur`: the series up to `cur[0]`, then a
-    /// snapshot of `field` (and of a coupled run's `axial_field`) if one is due (`dt` the step).
+    /// snapshot of `torsion` (and of a coupled run's `axial`) if one is due (`dt` the step).
     /// `false` (the sample not stored) when a value is not finite.
     pub fn record(
         &mut self,
         n: u64,
         cur: Point,
-        field: &Field,
+        torsion: &Torsion,
         axial: Option<&Axial>,
         run: &mut DrillRun,
         dt: f64,
@@ -179,7 +180,7 @@ impl Sampler {
         let t = cur[TIME];
         let prev = &mut self.prev;
         if n == 0 {
-            for c in TORSIONAL.into_iter().chain(AXIAL).filter(|c| c.held) {
+            for &c in Torsion::channels().iter().chain(Axial::channels()).filter(|c| c.held) {
                 prev[c] = cur[c];
             }
         }
@@ -196,7 +197,7 @@ impl Sampler {
             let at = |c: Channel| prev[c] + w * (cur[c] - prev[c]);
             let sample =
                 [ts, at(TOP_SPEED) * RPM_PER_RAD_S, at(BIT_SPEED) * RPM_PER_RAD_S, at(MOTOR_TORQUE), at(BIT_TORQUE)];
-            if sample.iter().any(|v| !v.is_finite()) || AXIAL.iter().any(|&c| !at(c).is_finite()) {
+            if sample.iter().any(|v| !v.is_finite()) || Axial::channels().iter().any(|&c| !at(c).is_finite()) {
                 return false;
             }
             if self.coupled {
@@ -216,7 +217,7 @@ impl Sampler {
             self.next_series += 1;
         }
         if self.next_field < self.n_fields && t >= self.next_field as f64 * self.field_dt - 0.5 * dt {
-            if !snapshot(field, axial, run, t) {
+            if !snapshot(torsion, axial, run, t) {
                 return false;
             }
             self.next_field += 1;
@@ -228,10 +229,10 @@ impl Sampler {
 
 /// Appends the fields at `t` (a coupled run's axial speed and force too); `false` (nothing
 /// appended) when a value is not finite.
-fn snapshot(field: &Field, axial: Option<&Axial>, run: &mut DrillRun, t: f64) -> bool {
+fn snapshot(torsion: &Torsion, axial: Option<&Axial>, run: &mut DrillRun, t: f64) -> bool {
     let start = run.omega_field.len();
     let axial_start = run.axial_speed_field.len();
-    field.each_cell(|w, tau| {
+    torsion.each_cell(|w, tau| {
         run.omega_field.push(w * RPM_PER_RAD_S);
         run.torque_field.push(tau);
     });

@@ -18,11 +18,12 @@ use super::boundary::{BitEnd, TopDriveEnd};
 use super::controller::{gains, Setpoint, Top, RPM_PER_RAD_S};
 use super::coupled_friction::CoupledFriction;
 use super::energy::{EnergyBalance, NOT_KEPT};
+use super::field::StringField;
 use super::run::{axial_transient, coupled_metrics, metrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};
 use super::sampler::Sampler;
 use super::sources::{Sources, WallFriction};
 use crate::drilling::axial::regime::Regime;
-use crate::drilling::config::{settable_config, Change, DrillConfig, FrictionModel};
+use crate::drilling::config::{settable_config, Change, DrillConfig};
 use crate::drilling::grid::{breakoff_torque, min_cycle_torque, Grid};
 use crate::drilling::plausibility::{
     axial_resolution_warning, lifting, non_finite_metrics_warning, off_bottom_warning, rotation_commanded,
@@ -188,7 +189,7 @@ impl Session {
             run.message = oom.outputs_message();
         }
         if run.status == Status::Success
-            && !sampler.start(&sim.field, sim.axial.as_ref(), &mut run, sim.sample(0.0, f64::NAN, f64::NAN))
+            && !sampler.start(&sim.torsion, sim.axial.as_ref(), &mut run, sim.sample(0.0, f64::NAN, f64::NAN))
         {
             run.status = Status::NonFinite;
             run.message = "the initial state is not finite".into();
@@ -326,7 +327,7 @@ impl Session {
             self.run.stats.steps = n + 1;
             self.last = (motor, bit);
             let point = self.sim.sample(t, motor, bit);
-            if !self.sampler.record(n, point, &self.sim.field, self.sim.axial.as_ref(), &mut self.run, dt) {
+            if !self.sampler.record(n, point, &self.sim.torsion, self.sim.axial.as_ref(), &mut self.run, dt) {
                 self.run.status = Status::NonFinite;
                 self.run.message = format!("the state became non-finite before t = {} s", Num(t));
                 return false;
@@ -404,10 +405,10 @@ impl Session {
         }
         if key.starts_with("friction.") {
             let grid = Grid::new(&cfg)?;
-            let mut wall = WallFriction::torsional(&cfg, &grid, &sim.field);
+            let mut wall = WallFriction::torsional(&cfg, &grid, &sim.torsion.field);
             let coupled = match (&sim.axial, &sim.coupled_friction) {
                 (Some(ax), Some(old)) => {
-                    Some((CoupledFriction::new(&cfg, &grid, &sim.field, &ax.field, &ax.half_kicks())?, old.end_hold()))
+                    Some((CoupledFriction::new(&cfg, &grid, &sim.torsion.field, &ax.field, &ax.half_kicks())?, old.end_hold()))
                 }
                 _ => None,
             };
@@ -419,9 +420,9 @@ impl Session {
                 }
                 sim.coupled_friction = cf;
             }
-            sim.sources = Sources::new(&cfg, dt);
+            sim.torsion.sources = Sources::new(&cfg, dt);
             sim.grid = grid;
-            sim.wall = wall;
+            sim.torsion.wall = wall;
         }
         if let (Some(ax), Some(h)) = (&mut sim.axial, &cfg.hoist) {
             if key.starts_with("hoist.") {
@@ -444,8 +445,8 @@ impl Session {
     pub fn state(&self) -> SessionState {
         let sim = &self.sim;
         let (omega, torque) = sim.fields();
-        let set_valued = sim.cfg.friction.model == FrictionModel::SetValued;
-        let stuck = omega.iter().zip(&sim.grid.limit).map(|(&w, &lim)| set_valued && lim > 0.0 && w == 0.0).collect();
+        let sticks = sim.torsion.sources.sticks();
+        let stuck = omega.iter().zip(&sim.grid.limit).map(|(&w, &lim)| sticks && lim > 0.0 && w == 0.0).collect();
         let (mut az, mut av, mut af) = (Vec::new(), Vec::new(), Vec::new());
         if let Some(ax) = &sim.axial {
             az.clone_from(&ax.z);

@@ -4,14 +4,22 @@
 //! A source is a change of a cell's speed over the step (`dd`, `df`) added to both invariants,
 //! and a set-valued flag (the cell stops exactly, its load kept). Its work goes to the energy
 //! ledger as `4 e delta (omega* + delta / 2)` per cell. Both schemes (the linear transport and
-//! the `consistent` Godunov update, [`super::kernel`]) call [`source`]. A coupled run's wall
-//! friction (against the sliding velocity of both fields, `friction.coupling =
-//! "axial_torsional"`) is [`super::coupled_friction`], applied after both fields' transport;
-//! the kernel then gets zero limits.
+//! the `consistent` Godunov update, [`super::kernel`]) call [`source`]: the damping, common to
+//! every law, then the wall friction's [`WallLaw`] (one zero-sized type per `friction.model`,
+//! [`SetValued`], [`Regularised`], the kernels compiled once per law, the one match from the
+//! model to its law in [`Sources::with_law`]).
+//!
+//! A source of a step rather than of a cell, applied once per step after both fields'
+//! transport, is a [`StepSource`]: a coupled run's wall friction (against the sliding velocity
+//! of both fields, `friction.coupling = "axial_torsional"`, [`super::coupled_friction`]); the
+//! kernel then gets zero limits.
 
 use crate::drilling::config::{DrillConfig, FrictionModel};
 use crate::drilling::grid::Grid;
 
+use super::axial_field::Axial;
+use super::coupled_friction::CoupledFriction;
+use super::energy::Ledger;
 use super::field::Field;
 
 /// The wall's friction per cell of a field: the speed change that stops a cell in one step at
@@ -49,8 +57,11 @@ pub struct Sources {
     pub damping: f64,
     pub stick_speed: f64,
     pub kinetic_ratio: f64,
-    /// `Some(v_r)` for the regularised friction.
-    pub regularised: Option<f64>,
+    /// The wall friction's law per cell (`friction.model`), run as its [`WallLaw`] by
+    /// [`Sources::with_law`].
+    pub model: FrictionModel,
+    /// `v_r` of the regularised friction (unused by the set-valued one).
+    pub regularisation_speed: f64,
 }
 
 impl Sources {
@@ -61,21 +72,52 @@ impl Sources {
             damping: dt * cfg.damping_rate,
             stick_speed: fr.stick_speed,
             kinetic_ratio: fr.kinetic_ratio,
-            regularised: (fr.model == FrictionModel::Regularised).then_some(fr.regularisation_speed),
+            model: fr.model,
+            regularisation_speed: fr.regularisation_speed,
         }
+    }
+
+    /// Runs `kernel` with the [`WallLaw`] of `friction.model`: the one place a model's name
+    /// meets its law (matched once per call, outside the cell loops; the kernel is compiled
+    /// once per law).
+    #[inline(always)]
+    pub fn with_law<K: WithWallLaw>(&self, kernel: K) -> K::Output {
+        match self.model {
+            FrictionModel::SetValued => kernel.run::<SetValued>(),
+            FrictionModel::Regularised => kernel.run::<Regularised>(),
+        }
+    }
+
+    /// Whether the wall friction's law has a stick phase ([`WallLaw::STICKS`]).
+    pub fn sticks(&self) -> bool {
+        struct Sticks;
+        impl WithWallLaw for Sticks {
+            type Output = bool;
+            fn run<L: WallLaw>(self) -> bool {
+                L::STICKS
+            }
+        }
+        self.with_law(Sticks)
     }
 }
 
+/// A kernel generic over the wall friction's law, run by [`Sources::with_law`].
+pub trait WithWallLaw {
+    type Output;
+    fn run<L: WallLaw>(self) -> Self::Output;
+}
+
 /// The constants of a cell update and [`source`].
-pub(super) struct Consts {
+pub struct Consts {
     /// The Courant number.
     pub c: f64,
     pub damping: f64,
     /// A cell is slow below this speed: the stick speed, or with stick speed 0 the least
     /// positive double (then only a cell exactly at rest is slow, and the sign taken in
-    /// [`source`] is never that of a zero).
+    /// [`SetValued`] is never that of a zero).
     pub slow_below: f64,
     pub kr: f64,
+    /// `1 / v_r` of the regularised friction (0 for the set-valued one).
     pub inv_vr: f64,
 }
 
@@ -86,24 +128,33 @@ impl Consts {
             damping: src.damping,
             slow_below: if src.stick_speed > 0.0 { src.stick_speed } else { f64::from_bits(1) },
             kr: src.kinetic_ratio,
-            inv_vr: src.regularised.map_or(0.0, |v| 1.0 / v),
+            inv_vr: if src.model == FrictionModel::Regularised { 1.0 / src.regularisation_speed } else { 0.0 },
         }
     }
 }
 
-/// The sources of a cell whose transported speed is `w1`, with the stop limit `lim`
-/// (`dt limit / m`) and `slip = -kinetic_ratio lim`: the damping change `dd = -dt d w1`,
-/// the friction change `df` and whether the cell sticks (see [`super`]).
-#[inline(always)]
-pub(super) fn source<const REGULARISED: bool>(w1: f64, lim: f64, slip: f64, k: &Consts) -> (f64, f64, bool) {
-    let dd = -k.damping * w1;
-    let wd = w1 + dd;
-    // Friction never reverses a cell within a step: a change larger than the speed after
-    // damping (`wd`, of the sign of `w1` since `dt d <= 1`) stops the cell instead.
-    let (df, stuck) = if REGULARISED {
-        let df = -k.kr * lim * (w1 * k.inv_vr).tanh();
-        (if df.abs() > wd.abs() { -wd } else { df }, false)
-    } else {
+/// The wall friction's law in a cell: one zero-sized implementation per `friction.model`,
+/// matched to its name in [`Sources::with_law`]; the kernels are generic over it.
+pub trait WallLaw {
+    /// The friction's speed change `df` over the step of a cell whose transported speed is
+    /// `w1` and speed after damping `wd`, with the stop limit `lim` (`dt limit / m`) and
+    /// `slip = -kinetic_ratio lim`, and whether the cell sticks (it is then set to rest, its
+    /// load kept). Friction never reverses a cell within a step: a change larger than `wd` (of
+    /// the sign of `w1` since `dt d <= 1`) stops the cell instead. Written without branches
+    /// (selects) so that the cell loops vectorise.
+    fn change(w1: f64, wd: f64, lim: f64, slip: f64, k: &Consts) -> (f64, bool);
+    /// Whether the law has a stick phase (a stuck cell's speed is exactly 0).
+    const STICKS: bool;
+}
+
+/// `friction.model = "set_valued"`: Coulomb friction with a stick phase.
+pub struct SetValued;
+
+impl WallLaw for SetValued {
+    const STICKS: bool = true;
+
+    #[inline(always)]
+    fn change(w1: f64, wd: f64, lim: f64, slip: f64, k: &Consts) -> (f64, bool) {
         // One threshold for both phases: a slow cell (|w1| < stick speed, or w1 = 0,
         // `slow_below`) is held by up to the static limit `lim`, a sliding one by up to the
         // kinetic limit `-slip`. The change is the speed after damping clipped to it,
@@ -115,8 +166,54 @@ pub(super) fn source<const REGULARISED: bool>(w1: f64, lim: f64, slip: f64, k: &
         let thr = if w1.abs() < k.slow_below { lim } else { -slip };
         let mag = if thr < awd { thr } else { awd };
         (f64::from_bits((-mag).to_bits() ^ (w1.to_bits() & SIGN_BIT)), awd <= thr)
-    };
+    }
+}
+
+/// `friction.model = "regularised"`: `tanh(w1 / v_r)` times the kinetic limit, no stick phase.
+pub struct Regularised;
+
+impl WallLaw for Regularised {
+    const STICKS: bool = false;
+
+    #[inline(always)]
+    fn change(w1: f64, wd: f64, lim: f64, _slip: f64, k: &Consts) -> (f64, bool) {
+        let df = -k.kr * lim * (w1 * k.inv_vr).tanh();
+        (if df.abs() > wd.abs() { -wd } else { df }, false)
+    }
+}
+
+/// The sources of a cell whose transported speed is `w1`, with the stop limit `lim`
+/// (`dt limit / m`) and `slip = -kinetic_ratio lim`: the damping change `dd = -dt d w1`,
+/// common to every law, the wall law's friction change `df` and whether the cell sticks
+/// (see [`super`]).
+#[inline(always)]
+pub(super) fn source<L: WallLaw>(w1: f64, lim: f64, slip: f64, k: &Consts) -> (f64, f64, bool) {
+    let dd = -k.damping * w1;
+    let wd = w1 + dd;
+    let (df, stuck) = L::change(w1, wd, lim, slip, k);
     (dd, df, stuck)
+}
+
+/// A source applied to both fields of a coupled run once per step, after both transports
+/// (outside the cell loops): it changes the cells and books its own work in the ledger.
+pub trait StepSource {
+    fn apply(&mut self, torsion: &mut Field, axial: &mut Axial, ledger: &mut Ledger);
+}
+
+impl StepSource for CoupledFriction {
+    /// The coupled wall friction ([`CoupledFriction::apply`]): its work on each field to
+    /// `friction_loss` (the axial part also to `axial_friction_loss`), the weight's work it
+    /// moves to `gravity_work`, the implicit step's dissipation to `inertia_loss`; the axial
+    /// field's bit held below a stuck last cell within [`CoupledFriction::end_hold`].
+    #[inline]
+    fn apply(&mut self, torsion: &mut Field, axial: &mut Axial, ledger: &mut Ledger) {
+        let work = CoupledFriction::apply(self, torsion, &mut axial.field);
+        ledger.friction -= work.torsional + work.axial;
+        ledger.axial_friction -= work.axial;
+        ledger.gravity += work.gravity;
+        ledger.inertia += work.numerical;
+        axial.end_hold = self.end_hold();
+    }
 }
 
 /// The sign bit of an `f64`.
@@ -128,7 +225,7 @@ mod tests {
 
     /// The stick phase written out phase by phase (the static limit's clip of `wd` for a slow
     /// cell, the kinetic limit against the sign of `w1` for a sliding one, the stuck flag of
-    /// each), against [`source`]'s one threshold: the same change and flag on slow, stuck
+    /// each), against [`SetValued`]'s one threshold (through [`source`]): the same change and flag on slow, stuck
     /// and sliding cells, at signed zeros, at the limits exactly, with and without damping up
     /// to `dt d = 1`. The bits of the change are the same wherever the cell does not stick;
     /// a stuck cell's change may differ only in the sign of a zero (its speed is set to 0
@@ -153,12 +250,18 @@ mod tests {
         for damping in [0.0, 1e-3, 0.5, 1.0 - f64::EPSILON, 1.0] {
             for stick_speed in [0.0, 1.5] {
                 for kinetic_ratio in [0.0, 0.65, 1.0] {
-                    let src = Sources { damping, stick_speed, kinetic_ratio, regularised: None };
+                    let src = Sources {
+                        damping,
+                        stick_speed,
+                        kinetic_ratio,
+                        model: FrictionModel::SetValued,
+                        regularisation_speed: 0.0,
+                    };
                     let k = Consts::new(0.9, &src);
                     for &w1 in &speeds {
                         for &lim in &limits {
                             let slip = -(kinetic_ratio * lim);
-                            let (dd, df, stuck) = source::<false>(w1, lim, slip, &k);
+                            let (dd, df, stuck) = source::<SetValued>(w1, lim, slip, &k);
                             let (dd0, df0, stuck0) = written_out(w1, lim, slip, &k);
                             let case = format!("w1 {w1:e} lim {lim:e} damping {damping} stick {stick_speed} kr {kinetic_ratio}");
                             assert_eq!(dd.to_bits(), dd0.to_bits(), "{case}");

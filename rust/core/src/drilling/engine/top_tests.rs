@@ -26,7 +26,7 @@ fn free_string() -> DrillConfig {
 /// The angular momentum of the top drive, the string's cells and the BHA, N m s, and their
 /// inertia, kg m^2.
 fn momentum(sim: &Simulation) -> (f64, f64) {
-    let f = &sim.field;
+    let f = &sim.torsion.field;
     let (mut l, mut inertia) = (sim.top.inertia * sim.top.omega, sim.top.inertia + sim.bit.inertia);
     for (s, sp) in f.sections.iter().enumerate() {
         // the cell's inertia rho J h is 4 e

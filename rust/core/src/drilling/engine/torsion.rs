@@ -1,0 +1,102 @@
+//! The torsional field of a run as a [`StringField`]: the [`Field`] of `(omega, tau)` with the
+//! torsional wall friction per cell ([`WallFriction`]) and the sources' constants
+//! ([`Sources`]), advanced by the transport kernel ([`super::kernel`]; the published scheme
+//! [`super::kernel_published`] with `numerics.source_speed = "before_transport"`, the Godunov
+//! update with `nonlinearity = "consistent"`). Its ends (the top drive, the bit) are the run's
+//! ([`super::run::Simulation`]), its channels [`TORSIONAL`].
+
+use super::boundary::Arriving;
+use super::energy::Ledger;
+use super::field::{Field, StringField};
+use super::kernel::{godunov, transport, transport_unbooked};
+use super::kernel_published::transport as before_transport;
+use super::sampler::{Channel, TORSIONAL};
+use super::sources::{Sources, WallFriction};
+use crate::drilling::config::SourceSpeed;
+
+/// The torsional field, its wall friction and sources.
+#[derive(Clone)]
+pub struct Torsion {
+    pub field: Field,
+    /// The wall friction per cell (zero limits when a coupled run's friction applies it,
+    /// [`super::sources::StepSource`]).
+    pub wall: WallFriction,
+    pub sources: Sources,
+    /// Where the sources take the speed (`numerics.source_speed`).
+    pub source_speed: SourceSpeed,
+}
+
+impl StringField for Torsion {
+    #[inline]
+    fn channels() -> &'static [Channel] {
+        &TORSIONAL
+    }
+
+    #[inline]
+    fn arriving_top(&self) -> Arriving {
+        self.field.arriving_top()
+    }
+
+    #[inline]
+    fn arriving_bottom(&self) -> Arriving {
+        self.field.arriving_bottom()
+    }
+
+    #[inline]
+    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64) {
+        self.field.set_top(arriving, w, load);
+    }
+
+    #[inline]
+    fn set_bottom(&mut self, arriving: Arriving, w: f64) {
+        self.field.set_bottom(arriving, w);
+    }
+
+    #[inline]
+    fn junctions(&mut self) {
+        self.field.junctions();
+    }
+
+    /// The cells of every section over a step, the sources' and transport's work booked (the
+    /// `consistent` scheme's always; without the ledger the linear transport runs without the
+    /// energy terms, the published scheme's are computed and not booked).
+    fn advance(&mut self, dt: f64, ledger: &mut Ledger, booked: bool) {
+        let Field { sections, alpha, beta, alpha_next, beta_next, nl } = &mut self.field;
+        let (stop, slip) = (&self.wall.stop[..], &self.wall.slip[..]);
+        if let Some(nl) = nl {
+            for (s, sp) in sections.iter().enumerate() {
+                let law = nl.laws[s];
+                let sums = godunov(nl, sp, law, (stop, slip), dt, &self.sources);
+                ledger.godunov(&sums);
+                nl.peak_strain[s] = nl.peak_strain[s].max(sums.peak);
+            }
+        } else {
+            let published = self.source_speed == SourceSpeed::BeforeTransport;
+            for sp in sections.iter() {
+                let r = sp.padded();
+                let (a, b, st, sl) = (&alpha[r.clone()], &beta[r.clone()], &stop[r.clone()], &slip[r.clone()]);
+                let (an, bn) = (&mut alpha_next[r.clone()], &mut beta_next[r]);
+                if !published && !booked {
+                    transport_unbooked(a, b, st, sl, an, bn, sp.courant, &self.sources);
+                    continue;
+                }
+                let kernel = if published { before_transport } else { transport };
+                let sums = kernel(a, b, st, sl, an, bn, sp.courant, &self.sources);
+                if booked {
+                    ledger.transport(sp.e, sp.courant, &sums);
+                }
+            }
+        }
+        self.field.swap();
+    }
+
+    #[inline]
+    fn stored(&self) -> (f64, f64) {
+        self.field.energies()
+    }
+
+    #[inline]
+    fn each_cell(&self, f: impl FnMut(f64, f64)) {
+        self.field.each_cell(f);
+    }
+}
