@@ -221,9 +221,7 @@ impl Transport<'_> {
     /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
     /// Without `LEDGER` no energy term is computed and the sums are zero.
     #[inline(always)]
-    fn cells<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
-        self,
-    ) -> Sums {
+    fn cells<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(self) -> Sums {
         let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, dv, .. } = self;
         let n = a.len();
         let k = Consts::new(c, src);
@@ -268,7 +266,8 @@ impl Transport<'_> {
             // Copied element by element (no call out of the vector code).
             let mut pad = [[0.0; WIDTH]; 7];
             let dv = if KICK { &dv[i..] } else { dv };
-            for (p, x) in pad.iter_mut().zip([&a_prev[i..], &a[i..], &b[i..], &b_next[i..], &stop[i..], &slip[i..], dv]) {
+            for (p, x) in pad.iter_mut().zip([&a_prev[i..], &a[i..], &b[i..], &b_next[i..], &stop[i..], &slip[i..], dv])
+            {
                 for (y, &v) in p.iter_mut().zip(x) {
                     *y = v;
                 }
@@ -550,7 +549,12 @@ mod tests {
             let stop: Vec<f64> =
                 (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 0.3 + 0.1 * (i % 3) as f64 }).collect();
             let slip: Vec<f64> = stop.iter().map(|&s| -(0.65 * s)).collect();
-            for (c, model) in [(0.93, Model::SetValued), (1.0, Model::SetValued), (0.93, Model::Regularised), (1.0, Model::Regularised)] {
+            for (c, model) in [
+                (0.93, Model::SetValued),
+                (1.0, Model::SetValued),
+                (0.93, Model::Regularised),
+                (1.0, Model::Regularised),
+            ] {
                 let src =
                     Sources { damping: 1e-3, stick_speed: 1.5, kinetic_ratio: 0.65, model, regularisation_speed: 0.1 };
                 let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
@@ -623,7 +627,8 @@ mod tests {
             let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.77).sin() * 2.0).collect();
             let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.31).cos() * 2.0 - 0.5).collect();
             let zeros = vec![0.0; len];
-            let dv: Vec<f64> = (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 1e-3 * (1.0 + (i % 5) as f64) }).collect();
+            let dv: Vec<f64> =
+                (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 1e-3 * (1.0 + (i % 5) as f64) }).collect();
             for c in [0.93, 1.0] {
                 let src = Sources {
                     damping: 1e-3,
@@ -646,7 +651,8 @@ mod tests {
                     transport_kicked(&a, &b, &zeros, &zeros, &mut ak, &mut bk, c, &src, Kick { dv: &dv, booked: true });
                 assert_eq!((bits(&ak), bits(&bk)), (bits(&an), bits(&bn)), "n {n} c {c}");
                 assert_eq!(kicked.kick.to_bits(), lane_sum(&work[1..=n]).to_bits(), "n {n} c {c}");
-                let pairs = [(kicked.jumps, sums.jumps), (kicked.friction, sums.friction), (kicked.damping, sums.damping)];
+                let pairs =
+                    [(kicked.jumps, sums.jumps), (kicked.friction, sums.friction), (kicked.damping, sums.damping)];
                 assert!(pairs.iter().all(|(x, y)| x.to_bits() == y.to_bits()), "n {n} c {c}");
                 let (mut au, mut bu) = (vec![0.0; len], vec![0.0; len]);
                 transport_kicked(&a, &b, &zeros, &zeros, &mut au, &mut bu, c, &src, Kick { dv: &dv, booked: false });
@@ -674,8 +680,13 @@ mod tests {
             ("Courant 1, damped", 1.0, 1e-4, true),
             ("Courant 1", 1.0, 0.0, true),
         ] {
-            let src =
-                Sources { damping, stick_speed: 1.5, kinetic_ratio: 0.65, model: Model::SetValued, regularisation_speed: 0.0 };
+            let src = Sources {
+                damping,
+                stick_speed: 1.5,
+                kinetic_ratio: 0.65,
+                model: Model::SetValued,
+                regularisation_speed: 0.0,
+            };
             let mut best = f64::INFINITY;
             let mut sink = 0.0;
             for _ in 0..400 {

@@ -225,9 +225,9 @@ pub mod run;
 pub mod sampler;
 pub mod session;
 pub mod sources;
-pub mod torsion;
 #[cfg(test)]
 mod top_tests;
+pub mod torsion;
 
 pub use energy::EnergyBalance;
 pub use run::{CoupledMetrics, DrillRun, DrillStats, Simulation, RUNAWAY_FACTOR};

@@ -407,9 +407,10 @@ impl Session {
             let grid = Grid::new(&cfg)?;
             let mut wall = WallFriction::torsional(&cfg, &grid, &sim.torsion.field);
             let coupled = match (&sim.axial, &sim.coupled_friction) {
-                (Some(ax), Some(old)) => {
-                    Some((CoupledFriction::new(&cfg, &grid, &sim.torsion.field, &ax.field, &ax.half_kicks())?, old.end_hold()))
-                }
+                (Some(ax), Some(old)) => Some((
+                    CoupledFriction::new(&cfg, &grid, &sim.torsion.field, &ax.field, &ax.half_kicks())?,
+                    old.end_hold(),
+                )),
                 _ => None,
             };
             if let (Some((cf, hold)), Some(ax)) = (coupled, &mut sim.axial) {

@@ -263,7 +263,9 @@ mod tests {
                             let slip = -(kinetic_ratio * lim);
                             let (dd, df, stuck) = source::<SetValued>(w1, lim, slip, &k);
                             let (dd0, df0, stuck0) = written_out(w1, lim, slip, &k);
-                            let case = format!("w1 {w1:e} lim {lim:e} damping {damping} stick {stick_speed} kr {kinetic_ratio}");
+                            let case = format!(
+                                "w1 {w1:e} lim {lim:e} damping {damping} stick {stick_speed} kr {kinetic_ratio}"
+                            );
                             assert_eq!(dd.to_bits(), dd0.to_bits(), "{case}");
                             assert_eq!(stuck, stuck0, "{case}");
                             assert_eq!(df, df0, "{case}");
@@ -277,5 +279,37 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&s| s > 50), "{seen:?}");
+    }
+
+    /// [`Sources::sticks`] against the flags of the law [`Sources::with_law`] runs for each
+    /// `friction.model`: a law with a stick phase stops some slow cells held within the static
+    /// limit (and no sliding cell above the kinetic limit), a law without one never flags a
+    /// cell.
+    #[test]
+    fn a_law_flags_stuck_cells_exactly_when_it_says_it_sticks() {
+        /// The stuck flags of the law over slow, held and sliding cells: (any slow, any fast).
+        struct Flags(Consts);
+        impl WithWallLaw for Flags {
+            type Output = (bool, bool);
+            fn run<L: WallLaw>(self) -> (bool, bool) {
+                let (mut slow, mut fast) = (false, false);
+                for w1 in [-3.0, -1.0, -0.2, -1e-3, 0.0, 1e-3, 0.2, 1.0, 3.0] {
+                    let (dd, df, stuck) = source::<L>(w1, 0.4, -0.26, &self.0);
+                    assert!((w1 + dd + df).abs() <= (w1 + dd).abs(), "{w1}: reversed or sped up");
+                    if w1.abs() < self.0.slow_below {
+                        slow |= stuck;
+                    } else {
+                        fast |= stuck;
+                    }
+                }
+                (slow, fast)
+            }
+        }
+        for model in [FrictionModel::SetValued, FrictionModel::Regularised] {
+            let src =
+                Sources { damping: 1e-3, stick_speed: 0.5, kinetic_ratio: 0.65, model, regularisation_speed: 0.1 };
+            let (slow, fast) = src.with_law(Flags(Consts::new(0.93, &src)));
+            assert_eq!((slow, fast), (src.sticks(), false), "{model:?}");
+        }
     }
 }
