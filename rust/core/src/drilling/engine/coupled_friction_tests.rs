@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use super::{slide, ContactStep, ContactSteps, CoupledFriction, Law, Segment, Shares, SlideMany};
+use super::{slide, ContactStep, ContactSteps, CoupledFriction, Law, Segment, Shares, SlideMany, LEAST_NORMAL_FORCE};
 use crate::drilling::config::DrillConfig;
 use crate::drilling::engine::field::Field;
 use crate::drilling::solver::solve;
@@ -104,7 +104,12 @@ fn direct_step(cf: &CoupledFriction, torsion: &mut Field, axial: &mut Field) -> 
     let mut moving: Vec<Vec<f64>> = vec![cf.torsional.untouched.clone(), cf.axial.untouched.clone()];
     for g in &cf.segments {
         let v = speeds[1][g.axial] - cf.half_kick[g.axial];
-        let f = slide(v, speeds[0][g.torsional], &g.contact, &cf.law);
+        // the contact at the axial cell's tension, `N = |T kappa + wz|`
+        let axial = &fields[1];
+        let tension = -cf.half_impedance[g.axial] * (axial.alpha[g.axial] - axial.beta[g.axial]);
+        let n = crate::well::torque_drag::normal_force(tension, g.geometry.kappa, g.geometry.wz).max(LEAST_NORMAL_FORCE);
+        let contact = ContactStep::new(g.geometry.radius, g.geometry.ca * n, g.geometry.ct * n, &cf.law);
+        let f = slide(v, speeds[0][g.torsional], &contact, &cf.law);
         change[0][g.torsional] += g.wt * f.dw;
         change[1][g.axial] += g.wa * f.dv;
         moving[0][g.torsional] += f64::from(u8::from(!f.stuck_torsional));
