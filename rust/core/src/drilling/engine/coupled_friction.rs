@@ -803,10 +803,15 @@ impl crate::simd::Kernel for CellPass<'_> {
         let (change, moving, work) = (&mut self.change[..n], &mut self.moving[..n], &mut self.work[..n]);
         change.fill(0.0);
         moving.copy_from_slice(&self.untouched[..n]);
+        // (indices clamped to the last element, which they never exceed: no bounds check in
+        // the loop, which then gathers in vectors)
+        let last = self.p.len().min(self.free.len()) - 1;
+        let (p, free) = (&self.p[..=last], &self.free[..=last]);
         for slot in &self.slots {
             for ((c, m), &i) in change.iter_mut().zip(moving.iter_mut()).zip(&slot[..n]) {
-                *c += self.p[i as usize];
-                *m += self.free[i as usize];
+                let i = (i as usize).min(last);
+                *c += p[i];
+                *m += free[i];
             }
         }
         let (m, speed) = (self.mass, &self.speed[..n]);
