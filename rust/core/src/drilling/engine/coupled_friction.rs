@@ -801,17 +801,21 @@ impl crate::simd::Kernel for CellPass<'_> {
     fn run<M: crate::simd::MulAdd>(self) -> f64 {
         let n = self.speed.len();
         let (change, moving, work) = (&mut self.change[..n], &mut self.moving[..n], &mut self.work[..n]);
-        change.fill(0.0);
-        moving.copy_from_slice(&self.untouched[..n]);
-        // (indices clamped to the last element, which they never exceed: no bounds check in
-        // the loop, which then gathers in vectors)
-        let last = self.p.len().min(self.free.len()) - 1;
-        let (p, free) = (&self.p[..=last], &self.free[..=last]);
-        for slot in &self.slots {
-            for ((c, m), &i) in change.iter_mut().zip(moving.iter_mut()).zip(&slot[..n]) {
-                let i = (i as usize).min(last);
-                *c += p[i];
-                *m += free[i];
+        let untouched = &self.untouched[..n];
+        match self.slots[..] {
+            [a] => sum_slots([a], self.p, self.free, untouched, change, moving),
+            [a, b] => sum_slots([a, b], self.p, self.free, untouched, change, moving),
+            [a, b, c] => sum_slots([a, b, c], self.p, self.free, untouched, change, moving),
+            [a, b, c, d] => sum_slots([a, b, c, d], self.p, self.free, untouched, change, moving),
+            _ => {
+                change.fill(0.0);
+                moving.copy_from_slice(untouched);
+                for slot in &self.slots {
+                    for ((c, m), &i) in change.iter_mut().zip(moving.iter_mut()).zip(&slot[..n]) {
+                        *c += self.p[i as usize];
+                        *m += self.free[i as usize];
+                    }
+                }
             }
         }
         let (m, speed) = (self.mass, &self.speed[..n]);
@@ -868,6 +872,35 @@ impl crate::simd::Kernel for CellPass<'_> {
             }
         }
         super::kernel::lane_sum(work)
+    }
+}
+
+/// Each cell's shares summed over its `S` slots in order, `change[k] = 0 + p[slot[k]] + ...`
+/// and `moving[k] = base[k] + free[slot[k]] + ...`, one cell at a time in registers (the
+/// operations of the slot-by-slot passes, in their order).
+#[inline(always)]
+fn sum_slots<const S: usize>(
+    slots: [&[u32]; S],
+    p: &[f64],
+    free: &[f64],
+    base: &[f64],
+    change: &mut [f64],
+    moving: &mut [f64],
+) {
+    let n = change.len();
+    // (indices clamped to the last element, which they never exceed: no bounds check in the loop)
+    let last = p.len().min(free.len()) - 1;
+    let (p, free, base, moving) = (&p[..=last], &free[..=last], &base[..n], &mut moving[..n]);
+    let slots = slots.map(|slot| &slot[..n]);
+    for k in 0..n {
+        let (mut c, mut m) = (0.0, base[k]);
+        for slot in &slots {
+            let i = (slot[k] as usize).min(last);
+            c += p[i];
+            m += free[i];
+        }
+        change[k] = c;
+        moving[k] = m;
     }
 }
 
