@@ -648,13 +648,39 @@ impl CoupledFriction {
         }
     }
 
+    /// The touching segments' speeds and contacts of the step (the Coulomb law's operands in
+    /// `v`, `w` and `contacts`) from the fields' speeds `speed_t`, `speed_a` and the axial
+    /// field's tensions.
+    fn contacts(&mut self, axial: &Field) {
+        crate::simd::dispatch(AxialCells {
+            speed: &self.speed_a,
+            half_kick: &self.half_kick,
+            half_impedance: &self.half_impedance,
+            alpha: &axial.alpha,
+            beta: &axial.beta,
+            v: &mut self.v_cell,
+            tension: &mut self.tension_cell,
+        });
+        crate::simd::dispatch(Contacts {
+            overlay: &self.overlay,
+            kinetic_ratio: self.law.kinetic_ratio,
+            v_cell: &self.v_cell,
+            tension_cell: &self.tension_cell,
+            speed_t: &self.speed_t,
+            v: &mut self.v,
+            w: &mut self.w,
+            tension: &mut self.tension,
+            out: &mut self.contacts,
+        });
+    }
+
     /// The friction over a step on the fields' current speeds, with the normal forces of the
     /// axial field's current tensions; returns its work (see [`FrictionWork`]).
     pub fn apply(&mut self, torsion: &mut Field, axial: &mut Field) -> FrictionWork {
         torsion.speeds(&mut self.speed_t);
         axial.speeds(&mut self.speed_a);
-        let sh = &mut self.shares;
         if self.law.inv_regularisation.is_some() {
+            let sh = &mut self.shares;
             for (i, g) in self.segments.iter().enumerate() {
                 let k = g.axial;
                 let v = self.speed_a[k] - self.half_kick[k];
@@ -664,27 +690,8 @@ impl CoupledFriction {
                 sh.set(i, g, slide(v, self.speed_t[g.torsional], &contact, &self.law));
             }
         } else {
-            crate::simd::dispatch(AxialCells {
-                speed: &self.speed_a,
-                half_kick: &self.half_kick,
-                half_impedance: &self.half_impedance,
-                alpha: &axial.alpha,
-                beta: &axial.beta,
-                v: &mut self.v_cell,
-                tension: &mut self.tension_cell,
-            });
-            crate::simd::dispatch(Contacts {
-                overlay: &self.overlay,
-                kinetic_ratio: self.law.kinetic_ratio,
-                v_cell: &self.v_cell,
-                tension_cell: &self.tension_cell,
-                speed_t: &self.speed_t,
-                v: &mut self.v,
-                w: &mut self.w,
-                tension: &mut self.tension,
-                out: &mut self.contacts,
-            });
-            crate::simd::dispatch(SlideMany { contacts: &self.contacts, v: &self.v, w: &self.w, out: sh });
+            self.contacts(axial);
+            crate::simd::dispatch(SlideMany { contacts: &self.contacts, v: &self.v, w: &self.w, out: &mut self.shares });
         }
         let sh = &self.shares;
         let torsional =

@@ -422,28 +422,7 @@ fn friction_pass_time() {
         torsion.speeds(&mut cf.speed_t);
         axial.speeds(&mut cf.speed_a);
     });
-    let contacts = time(&mut || {
-        crate::simd::dispatch(super::AxialCells {
-            speed: &cf.speed_a,
-            half_kick: &cf.half_kick,
-            half_impedance: &cf.half_impedance,
-            alpha: &axial.alpha,
-            beta: &axial.beta,
-            v: &mut cf.v_cell,
-            tension: &mut cf.tension_cell,
-        });
-        crate::simd::dispatch(super::Contacts {
-            overlay: &cf.overlay,
-            kinetic_ratio: cf.law.kinetic_ratio,
-            v_cell: &cf.v_cell,
-            tension_cell: &cf.tension_cell,
-            speed_t: &cf.speed_t,
-            v: &mut cf.v,
-            w: &mut cf.w,
-            tension: &mut cf.tension,
-            out: &mut cf.contacts,
-        });
-    });
+    let contacts = time(&mut || cf.contacts(&axial));
     let slide = time(&mut || {
         crate::simd::dispatch(SlideMany { contacts: &cf.contacts, v: &cf.v, w: &cf.w, out: &mut cf.shares });
     });
