@@ -120,18 +120,20 @@ pub struct ContactStep {
 
 impl ContactStep {
     pub fn new(radius: f64, la: f64, lt: f64, law: &Law) -> Self {
-        let touching = la > 0.0 && lt > 0.0;
-        ContactStep {
-            inv_radius: 1.0 / radius,
-            la,
-            lt,
-            inv_la: if touching { 1.0 / la } else { 0.0 },
-            inv_lt: if touching { 1.0 / lt } else { 0.0 },
-            kla: law.kinetic_ratio * la,
-            klt: law.kinetic_ratio * lt,
-            touching,
-        }
+        let (inv_la, inv_lt, kla, klt, touching) = limits(la, lt, law.kinetic_ratio);
+        ContactStep { inv_radius: 1.0 / radius, la, lt, inv_la, inv_lt, kla, klt, touching }
     }
+}
+
+/// A contact's static-limit changes `la`, `lt` as [`ContactStep`] keeps them: their inverses
+/// (0 where the wall does not hold it), their kinetic parts (`kinetic_ratio` times them) and
+/// whether it touches (`la, lt > 0`).
+#[inline(always)]
+fn limits(la: f64, lt: f64, kinetic_ratio: f64) -> (f64, f64, f64, f64, bool) {
+    let touching = la > 0.0 && lt > 0.0;
+    let inv_la = if touching { 1.0 / la } else { 0.0 };
+    let inv_lt = if touching { 1.0 / lt } else { 0.0 };
+    (inv_la, inv_lt, kinetic_ratio * la, kinetic_ratio * lt, touching)
 }
 
 /// The coupled wall friction of a contact `c` moving at the axial speed `v` and the angular
@@ -257,6 +259,111 @@ impl crate::simd::Kernel for SlideMany<'_> {
     }
 }
 
+/// The touching segments' cells and contact geometry, a vector per component (the operands of
+/// [`Contacts`]).
+#[derive(Debug, Clone, Default)]
+struct Overlay {
+    /// The segments' axial and torsional cells (padded indices).
+    axial: Vec<u32>,
+    torsional: Vec<u32>,
+    /// [`Geometry`]'s `kappa`, `wz` (by component), `ca` and `ct`.
+    kappa: [Vec<f64>; 3],
+    wz: [Vec<f64>; 3],
+    ca: Vec<f64>,
+    ct: Vec<f64>,
+}
+
+impl Overlay {
+    fn new(segments: &[Segment]) -> Self {
+        let mut out = Overlay::default();
+        for g in segments {
+            out.axial.push(g.axial as u32);
+            out.torsional.push(g.torsional as u32);
+            for d in 0..3 {
+                out.kappa[d].push(g.geometry.kappa[d]);
+                out.wz[d].push(g.geometry.wz[d]);
+            }
+            out.ca.push(g.geometry.ca);
+            out.ct.push(g.geometry.ct);
+        }
+        out
+    }
+}
+
+/// The axial cells' speeds at the middle of the gravity kick, `v[k] = speed[k] - half_kick[k]`,
+/// and tensions `tension[k] = -half_impedance[k] (alpha[k] - beta[k])`, per padded index.
+struct AxialCells<'a> {
+    speed: &'a [f64],
+    half_kick: &'a [f64],
+    half_impedance: &'a [f64],
+    alpha: &'a [f64],
+    beta: &'a [f64],
+    v: &'a mut [f64],
+    tension: &'a mut [f64],
+}
+
+impl crate::simd::Kernel for AxialCells<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) {
+        let n = self.speed.len();
+        let (speed, kick, imp) = (&self.speed[..n], &self.half_kick[..n], &self.half_impedance[..n]);
+        let (alpha, beta, v, tension) = (&self.alpha[..n], &self.beta[..n], &mut self.v[..n], &mut self.tension[..n]);
+        for k in 0..n {
+            v[k] = speed[k] - kick[k];
+            tension[k] = -imp[k] * (alpha[k] - beta[k]);
+        }
+    }
+}
+
+/// Each touching segment's speeds of the step (`v` of its axial cell from [`AxialCells`], `w`
+/// of its torsional cell) and its contact at its axial cell's tension: the normal force
+/// ([`Geometry::normal_force`]) and the static limits' inverses and kinetic parts of
+/// [`ContactStep::new`] into `out`, the same operations, so the same bits.
+struct Contacts<'a> {
+    overlay: &'a Overlay,
+    kinetic_ratio: f64,
+    v_cell: &'a [f64],
+    tension_cell: &'a [f64],
+    speed_t: &'a [f64],
+    v: &'a mut [f64],
+    w: &'a mut [f64],
+    /// Scratch: the segments' tensions.
+    tension: &'a mut [f64],
+    out: &'a mut ContactSteps,
+}
+
+impl crate::simd::Kernel for Contacts<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) {
+        let g = self.overlay;
+        let n = g.axial.len();
+        let (ax, tor, ca, ct) = (&g.axial[..n], &g.torsional[..n], &g.ca[..n], &g.ct[..n]);
+        let [k0, k1, k2] = [&g.kappa[0][..n], &g.kappa[1][..n], &g.kappa[2][..n]];
+        let [z0, z1, z2] = [&g.wz[0][..n], &g.wz[1][..n], &g.wz[2][..n]];
+        let (v, w, tension) = (&mut self.v[..n], &mut self.w[..n], &mut self.tension[..n]);
+        let (v_cell, tension_cell, speed_t) = (self.v_cell, self.tension_cell, self.speed_t);
+        // The cells' values gathered first (loads only), then the contacts' arithmetic over
+        // contiguous vectors (a loop with gathers in it is left scalar).
+        for i in 0..n {
+            let (ka, kt) = (ax[i] as usize, tor[i] as usize);
+            v[i] = v_cell[ka];
+            w[i] = speed_t[kt];
+            tension[i] = tension_cell[ka];
+        }
+        let o = &mut *self.out;
+        let (inv_la, inv_lt, kla, klt) = (&mut o.inv_la[..n], &mut o.inv_lt[..n], &mut o.kla[..n], &mut o.klt[..n]);
+        let kr = self.kinetic_ratio;
+        for i in 0..n {
+            let nf = contact_force(tension[i], [k0[i], k1[i], k2[i]], [z0[i], z1[i], z2[i]]);
+            (inv_la[i], inv_lt[i], kla[i], klt[i], _) = limits(ca[i] * nf, ct[i] * nf, kr);
+        }
+    }
+}
+
 /// Where a segment's normal force comes from: `N = |T kappa + wz|` with the tension `T` of its
 /// axial cell, and its static-limit changes per newton of it, `la = ca N`, `lt = ct N`.
 #[derive(Debug, Clone, Copy, Default)]
@@ -276,12 +383,19 @@ impl Geometry {
     /// [`LEAST_NORMAL_FORCE`]).
     #[inline(always)]
     fn normal_force(&self, tension: f64) -> f64 {
-        normal_force(tension, self.kappa, self.wz).max(LEAST_NORMAL_FORCE)
+        contact_force(tension, self.kappa, self.wz)
     }
 }
 
-/// A segment of the overlay of the two grids (padded indices, weights `l / h`, the contact of
-/// the step and its geometry).
+/// The normal force per length of a contact at the tension `tension` ([`normal_force`]), at
+/// least [`LEAST_NORMAL_FORCE`], N/m.
+#[inline(always)]
+fn contact_force(tension: f64, kappa: [f64; 3], wz: [f64; 3]) -> f64 {
+    normal_force(tension, kappa, wz).max(LEAST_NORMAL_FORCE)
+}
+
+/// A segment of the overlay of the two grids (padded indices, weights `l / h`, the contact at
+/// the initial state and its geometry).
 #[derive(Debug, Clone, Copy)]
 struct Segment {
     torsional: usize,
@@ -365,12 +479,14 @@ pub struct FrictionWork {
 pub struct CoupledFriction {
     /// The segments with contact force (the others are counted in [`Slots::untouched`]).
     segments: Vec<Segment>,
-    /// Their contacts, for the vector pass.
+    /// Their contacts, for the vector pass, and their cells and geometry, for [`Contacts`].
     contacts: ContactSteps,
+    overlay: Overlay,
     law: Law,
     /// The step's speeds at the segments and their contributions to their cells.
     v: Vec<f64>,
     w: Vec<f64>,
+    tension: Vec<f64>,
     shares: Shares,
     /// The cells' segments, torsional and axial.
     torsional: Slots,
@@ -379,6 +495,9 @@ pub struct CoupledFriction {
     speed_t: Vec<f64>,
     speed_a: Vec<f64>,
     scratch: CellScratch,
+    /// The axial cells' speeds at the middle of the kick and tensions ([`AxialCells`]).
+    v_cell: Vec<f64>,
+    tension_cell: Vec<f64>,
     /// Half the axial field's gravity kick per padded index (0 at ghosts), m/s, and half its
     /// impedance (`F = Z (alpha - beta) / 2`), N s/m.
     half_kick: Vec<f64>,
@@ -486,16 +605,20 @@ impl CoupledFriction {
         }
         let mut cf = CoupledFriction {
             contacts: ContactSteps::new(&segments),
+            overlay: Overlay::new(&segments),
             torsional: Slots::new(lt, &cells_t, idle_t.into_iter()),
             axial: Slots::new(la, &cells_a, idle_a.into_iter()),
             segments,
             law,
             v: vec![0.0; n],
             w: vec![0.0; n],
+            tension: vec![0.0; n],
             shares: Shares::new(n),
             speed_t: vec![0.0; lt],
             speed_a: vec![0.0; la],
             scratch: CellScratch::new(lt.max(la)),
+            v_cell: vec![0.0; la],
+            tension_cell: vec![0.0; la],
             half_kick: half_kick.to_vec(),
             half_impedance,
             mass_a,
@@ -525,32 +648,50 @@ impl CoupledFriction {
         }
     }
 
+    /// The touching segments' speeds and contacts of the step (the Coulomb law's operands in
+    /// `v`, `w` and `contacts`) from the fields' speeds `speed_t`, `speed_a` and the axial
+    /// field's tensions.
+    fn contacts(&mut self, axial: &Field) {
+        crate::simd::dispatch(AxialCells {
+            speed: &self.speed_a,
+            half_kick: &self.half_kick,
+            half_impedance: &self.half_impedance,
+            alpha: &axial.alpha,
+            beta: &axial.beta,
+            v: &mut self.v_cell,
+            tension: &mut self.tension_cell,
+        });
+        crate::simd::dispatch(Contacts {
+            overlay: &self.overlay,
+            kinetic_ratio: self.law.kinetic_ratio,
+            v_cell: &self.v_cell,
+            tension_cell: &self.tension_cell,
+            speed_t: &self.speed_t,
+            v: &mut self.v,
+            w: &mut self.w,
+            tension: &mut self.tension,
+            out: &mut self.contacts,
+        });
+    }
+
     /// The friction over a step on the fields' current speeds, with the normal forces of the
     /// axial field's current tensions; returns its work (see [`FrictionWork`]).
     pub fn apply(&mut self, torsion: &mut Field, axial: &mut Field) -> FrictionWork {
         torsion.speeds(&mut self.speed_t);
         axial.speeds(&mut self.speed_a);
-        let c = &mut self.contacts;
-        for (i, g) in self.segments.iter_mut().enumerate() {
-            let k = g.axial;
-            self.v[i] = self.speed_a[k] - self.half_kick[k];
-            self.w[i] = self.speed_t[g.torsional];
-            let tension = -self.half_impedance[k] * (axial.alpha[k] - axial.beta[k]);
-            let n = g.geometry.normal_force(tension);
-            let (la, lt) = (g.geometry.ca * n, g.geometry.ct * n);
-            g.contact = ContactStep::new(g.geometry.radius, la, lt, &self.law);
-            c.inv_la[i] = g.contact.inv_la;
-            c.inv_lt[i] = g.contact.inv_lt;
-            c.kla[i] = g.contact.kla;
-            c.klt[i] = g.contact.klt;
-        }
-        let sh = &mut self.shares;
         if self.law.inv_regularisation.is_some() {
+            let sh = &mut self.shares;
             for (i, g) in self.segments.iter().enumerate() {
-                sh.set(i, g, slide(self.v[i], self.w[i], &g.contact, &self.law));
+                let k = g.axial;
+                let v = self.speed_a[k] - self.half_kick[k];
+                let tension = -self.half_impedance[k] * (axial.alpha[k] - axial.beta[k]);
+                let n = g.geometry.normal_force(tension);
+                let contact = ContactStep::new(g.geometry.radius, g.geometry.ca * n, g.geometry.ct * n, &self.law);
+                sh.set(i, g, slide(v, self.speed_t[g.torsional], &contact, &self.law));
             }
         } else {
-            crate::simd::dispatch(SlideMany { contacts: &self.contacts, v: &self.v, w: &self.w, out: sh });
+            self.contacts(axial);
+            crate::simd::dispatch(SlideMany { contacts: &self.contacts, v: &self.v, w: &self.w, out: &mut self.shares });
         }
         let sh = &self.shares;
         let torsional =
@@ -667,12 +808,21 @@ impl crate::simd::Kernel for CellPass<'_> {
     fn run<M: crate::simd::MulAdd>(self) -> f64 {
         let n = self.speed.len();
         let (change, moving, work) = (&mut self.change[..n], &mut self.moving[..n], &mut self.work[..n]);
-        change.fill(0.0);
-        moving.copy_from_slice(&self.untouched[..n]);
-        for slot in &self.slots {
-            for ((c, m), &i) in change.iter_mut().zip(moving.iter_mut()).zip(&slot[..n]) {
-                *c += self.p[i as usize];
-                *m += self.free[i as usize];
+        let untouched = &self.untouched[..n];
+        match self.slots[..] {
+            [a] => sum_slots([a], self.p, self.free, untouched, change, moving),
+            [a, b] => sum_slots([a, b], self.p, self.free, untouched, change, moving),
+            [a, b, c] => sum_slots([a, b, c], self.p, self.free, untouched, change, moving),
+            [a, b, c, d] => sum_slots([a, b, c, d], self.p, self.free, untouched, change, moving),
+            _ => {
+                change.fill(0.0);
+                moving.copy_from_slice(untouched);
+                for slot in &self.slots {
+                    for ((c, m), &i) in change.iter_mut().zip(moving.iter_mut()).zip(&slot[..n]) {
+                        *c += self.p[i as usize];
+                        *m += self.free[i as usize];
+                    }
+                }
             }
         }
         let (m, speed) = (self.mass, &self.speed[..n]);
@@ -729,6 +879,35 @@ impl crate::simd::Kernel for CellPass<'_> {
             }
         }
         super::kernel::lane_sum(work)
+    }
+}
+
+/// Each cell's shares summed over its `S` slots in order, `change[k] = 0 + p[slot[k]] + ...`
+/// and `moving[k] = base[k] + free[slot[k]] + ...`, one cell at a time in registers (the
+/// operations of the slot-by-slot passes, in their order).
+#[inline(always)]
+fn sum_slots<const S: usize>(
+    slots: [&[u32]; S],
+    p: &[f64],
+    free: &[f64],
+    base: &[f64],
+    change: &mut [f64],
+    moving: &mut [f64],
+) {
+    let n = change.len();
+    // (indices clamped to the last element, which they never exceed: no bounds check in the loop)
+    let last = p.len().min(free.len()) - 1;
+    let (p, free, base, moving) = (&p[..=last], &free[..=last], &base[..n], &mut moving[..n]);
+    let slots = slots.map(|slot| &slot[..n]);
+    for k in 0..n {
+        let (mut c, mut m) = (0.0, base[k]);
+        for slot in &slots {
+            let i = (slot[k] as usize).min(last);
+            c += p[i];
+            m += free[i];
+        }
+        change[k] = c;
+        moving[k] = m;
     }
 }
 

@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use super::{slide, ContactStep, ContactSteps, CoupledFriction, Law, Segment, Shares, SlideMany};
+use super::{slide, ContactStep, ContactSteps, CoupledFriction, Law, Segment, Shares, SlideMany, LEAST_NORMAL_FORCE};
 use crate::drilling::config::DrillConfig;
 use crate::drilling::engine::field::Field;
 use crate::drilling::solver::solve;
@@ -104,7 +104,12 @@ fn direct_step(cf: &CoupledFriction, torsion: &mut Field, axial: &mut Field) -> 
     let mut moving: Vec<Vec<f64>> = vec![cf.torsional.untouched.clone(), cf.axial.untouched.clone()];
     for g in &cf.segments {
         let v = speeds[1][g.axial] - cf.half_kick[g.axial];
-        let f = slide(v, speeds[0][g.torsional], &g.contact, &cf.law);
+        // the contact at the axial cell's tension, `N = |T kappa + wz|`
+        let axial = &fields[1];
+        let tension = -cf.half_impedance[g.axial] * (axial.alpha[g.axial] - axial.beta[g.axial]);
+        let n = crate::well::torque_drag::normal_force(tension, g.geometry.kappa, g.geometry.wz).max(LEAST_NORMAL_FORCE);
+        let contact = ContactStep::new(g.geometry.radius, g.geometry.ca * n, g.geometry.ct * n, &cf.law);
+        let f = slide(v, speeds[0][g.torsional], &contact, &cf.law);
         change[0][g.torsional] += g.wt * f.dw;
         change[1][g.axial] += g.wa * f.dv;
         moving[0][g.torsional] += f64::from(u8::from(!f.stuck_torsional));
@@ -372,3 +377,60 @@ fn torsion_only_reproduces_the_runs_without_coupled_friction() {
 /// 56.54881508776878 rpm, 47877.84881486934 N, -0.001431170948766422 m, 142922.07685413523 J.
 const FINGERPRINT: [u64; 5] =
     [4680906846478690284, 4633155355514421847, 4676813095018810630, 13787614970808123328, 4684150778005664619];
+
+/// The friction pass's parts timed on the configuration in `DRILLSTRING_FRICTION_JSON` (a
+/// configuration's JSON): `cargo test --release -p drillstring-core --lib friction_pass_time -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn friction_pass_time() {
+    use crate::drilling::engine::axial_field::Axial;
+    use crate::drilling::grid::Grid;
+    let json = std::fs::read_to_string(std::env::var("DRILLSTRING_FRICTION_JSON").unwrap()).unwrap();
+    let cfg = DrillConfig::from_json(&json).unwrap();
+    let grid = Grid::new(&cfg).unwrap();
+    let mut torsion = Field::torsional(&grid, false);
+    let ax = Axial::new(&cfg, &grid, cfg.hoist.as_ref().unwrap()).unwrap();
+    let mut axial = ax.field.clone();
+    let mut cf = CoupledFriction::new(&cfg, &grid, &torsion, &axial, &ax.half_kicks()).unwrap().unwrap();
+    let mut uniform = uniform(3);
+    for (a, b) in torsion.alpha.iter_mut().zip(torsion.beta.iter_mut()) {
+        (*a, *b) = (3.0 * uniform(), 3.0 * uniform());
+    }
+    let time = |f: &mut dyn FnMut()| {
+        let mut best = f64::INFINITY;
+        for _ in 0..200 {
+            let start = std::time::Instant::now();
+            for _ in 0..20 {
+                f();
+            }
+            best = best.min(start.elapsed().as_secs_f64() / 20.0);
+        }
+        best * 1e6
+    };
+    println!("segments {}, torsional cells {}, axial cells {}, slots {} / {}", cf.segments.len(), grid.cells(),
+             axial.cells(), cf.torsional.slot.len(), cf.axial.slot.len());
+    let (t0, a0) = (torsion.clone(), axial.clone());
+    let whole = time(&mut || {
+        let (mut t, mut a) = (t0.clone(), a0.clone());
+        cf.apply(&mut t, &mut a);
+    });
+    let copies = time(&mut || {
+        let (t, a) = (t0.clone(), a0.clone());
+        assert!(t.alpha.len() + a.alpha.len() > 0);
+    });
+    let speeds = time(&mut || {
+        torsion.speeds(&mut cf.speed_t);
+        axial.speeds(&mut cf.speed_a);
+    });
+    let contacts = time(&mut || cf.contacts(&axial));
+    let slide = time(&mut || {
+        crate::simd::dispatch(SlideMany { contacts: &cf.contacts, v: &cf.v, w: &cf.w, out: &mut cf.shares });
+    });
+    let cells = time(&mut || {
+        let sh = &cf.shares;
+        super::apply_cells(&mut torsion, &cf.speed_t, &cf.torsional, &sh.pt, &sh.free_t, None, &mut cf.scratch);
+        super::apply_cells(&mut axial, &cf.speed_a, &cf.axial, &sh.pa, &sh.free_a, Some(&cf.half_kick), &mut cf.scratch);
+    });
+    println!("apply {whole:.2} us (less the copies {copies:.2}); speeds {speeds:.2}, contacts {contacts:.2}, slide {slide:.2}, cells {cells:.2} ({})",
+             crate::simd::path());
+}
