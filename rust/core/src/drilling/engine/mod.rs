@@ -74,7 +74,9 @@
 //!   ends and junctions set, the cells advanced over a step with their sources and booking, the
 //!   stored energies, the snapshot's cells, the channels declared), implemented by the
 //!   torsional field [`torsion::Torsion`] and the axial field [`axial_field::Axial`], both on
-//!   the one type [`field::Field`]; the run's step, stored energies and sampling go through it;
+//!   the one type [`field::Field`]; the run's step and stored energies, the sampler's
+//!   snapshots and held channels go through it (the channels' values after a step come from
+//!   the ends: [`run::Simulation`]'s `sample`, [`axial_field::Axial::sample`]);
 //! * the output series: named channels ([`sampler::Channel`]) each field declares where it is
 //!   ([`sampler::TORSIONAL`], [`axial_field::CHANNELS`]), returned by
 //!   [`field::StringField::channels`].
@@ -90,8 +92,8 @@
 //!   [`controller::Top`] (`controller.rs`), its name and keys in `config/top_drive.rs`;
 //! * a wall friction law (e.g. a Stribeck curve): one zero-sized type implementing
 //!   [`sources::WallLaw`] in `sources.rs` and its line in [`sources::Sources::with_law`], its
-//!   `friction.model` name and keys in `config/friction.rs`, tests against [`sources::SetValued`]
-//!   or its closed form;
+//!   `friction.model` name and keys in `config/friction.rs` (a constant of its own a field of
+//!   [`sources::Consts`]), tests against [`sources::SetValued`] or its closed form;
 //! * another source per cell: `sources.rs` (a field of [`sources::Sources`]), its limit per cell
 //!   in `drilling/grid.rs`, its work in `energy.rs`; one on the axial field alone in
 //!   `axial_field.rs` (its cells' pass); one on both fields: a type implementing

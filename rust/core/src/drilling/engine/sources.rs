@@ -117,7 +117,7 @@ pub struct Consts {
     /// [`SetValued`] is never that of a zero).
     pub slow_below: f64,
     pub kr: f64,
-    /// `1 / v_r` of the regularised friction (0 for the set-valued one).
+    /// `1 / v_r` of the regularised friction (unused by the set-valued one).
     pub inv_vr: f64,
 }
 
@@ -128,7 +128,7 @@ impl Consts {
             damping: src.damping,
             slow_below: if src.stick_speed > 0.0 { src.stick_speed } else { f64::from_bits(1) },
             kr: src.kinetic_ratio,
-            inv_vr: if src.model == FrictionModel::Regularised { 1.0 / src.regularisation_speed } else { 0.0 },
+            inv_vr: 1.0 / src.regularisation_speed,
         }
     }
 }
