@@ -691,7 +691,12 @@ impl CoupledFriction {
             }
         } else {
             self.contacts(axial);
-            crate::simd::dispatch(SlideMany { contacts: &self.contacts, v: &self.v, w: &self.w, out: &mut self.shares });
+            crate::simd::dispatch(SlideMany {
+                contacts: &self.contacts,
+                v: &self.v,
+                w: &self.w,
+                out: &mut self.shares,
+            });
         }
         let sh = &self.shares;
         let torsional =

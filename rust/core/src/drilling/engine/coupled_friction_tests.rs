@@ -107,7 +107,8 @@ fn direct_step(cf: &CoupledFriction, torsion: &mut Field, axial: &mut Field) -> 
         // the contact at the axial cell's tension, `N = |T kappa + wz|`
         let axial = &fields[1];
         let tension = -cf.half_impedance[g.axial] * (axial.alpha[g.axial] - axial.beta[g.axial]);
-        let n = crate::well::torque_drag::normal_force(tension, g.geometry.kappa, g.geometry.wz).max(LEAST_NORMAL_FORCE);
+        let n =
+            crate::well::torque_drag::normal_force(tension, g.geometry.kappa, g.geometry.wz).max(LEAST_NORMAL_FORCE);
         let contact = ContactStep::new(g.geometry.radius, g.geometry.ca * n, g.geometry.ct * n, &cf.law);
         let f = slide(v, speeds[0][g.torsional], &contact, &cf.law);
         change[0][g.torsional] += g.wt * f.dw;
@@ -407,8 +408,14 @@ fn friction_pass_time() {
         }
         best * 1e6
     };
-    println!("segments {}, torsional cells {}, axial cells {}, slots {} / {}", cf.segments.len(), grid.cells(),
-             axial.cells(), cf.torsional.slot.len(), cf.axial.slot.len());
+    println!(
+        "segments {}, torsional cells {}, axial cells {}, slots {} / {}",
+        cf.segments.len(),
+        grid.cells(),
+        axial.cells(),
+        cf.torsional.slot.len(),
+        cf.axial.slot.len()
+    );
     let (t0, a0) = (torsion.clone(), axial.clone());
     let whole = time(&mut || {
         let (mut t, mut a) = (t0.clone(), a0.clone());
@@ -429,7 +436,15 @@ fn friction_pass_time() {
     let cells = time(&mut || {
         let sh = &cf.shares;
         super::apply_cells(&mut torsion, &cf.speed_t, &cf.torsional, &sh.pt, &sh.free_t, None, &mut cf.scratch);
-        super::apply_cells(&mut axial, &cf.speed_a, &cf.axial, &sh.pa, &sh.free_a, Some(&cf.half_kick), &mut cf.scratch);
+        super::apply_cells(
+            &mut axial,
+            &cf.speed_a,
+            &cf.axial,
+            &sh.pa,
+            &sh.free_a,
+            Some(&cf.half_kick),
+            &mut cf.scratch,
+        );
     });
     println!("apply {whole:.2} us (less the copies {copies:.2}); speeds {speeds:.2}, contacts {contacts:.2}, slide {slide:.2}, cells {cells:.2} ({})",
              crate::simd::path());
