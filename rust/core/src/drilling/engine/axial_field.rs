@@ -421,28 +421,13 @@ impl StringField for Axial {
     }
 
     #[inline]
-    fn arriving_top(&self) -> Arriving {
-        self.field.arriving_top()
+    fn field(&self) -> &Field {
+        &self.field
     }
 
     #[inline]
-    fn arriving_bottom(&self) -> Arriving {
-        self.field.arriving_bottom()
-    }
-
-    #[inline]
-    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64) {
-        self.field.set_top(arriving, w, load);
-    }
-
-    #[inline]
-    fn set_bottom(&mut self, arriving: Arriving, w: f64) {
-        self.field.set_bottom(arriving, w);
-    }
-
-    #[inline]
-    fn junctions(&mut self) {
-        self.field.junctions();
+    fn field_mut(&mut self) -> &mut Field {
+        &mut self.field
     }
 
     /// The cells over a step (the grid's `dt`, in the buoyed weight's kicks): the transport
@@ -470,11 +455,6 @@ impl StringField for Axial {
             }
         }
         self.field.swap();
-    }
-
-    #[inline]
-    fn stored(&self) -> (f64, f64) {
-        self.field.energies()
     }
 
     /// Calls `f(speed, force)` for every cell from the top down: the speed at the middle of the

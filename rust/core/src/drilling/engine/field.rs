@@ -26,21 +26,42 @@ use crate::drilling::grid::{Grid, SectionProps};
 pub trait StringField {
     /// The series' channels of this field and its ends ([`super::sampler`]).
     fn channels() -> &'static [Channel];
+    /// The field's cells (the ends, junctions and energies below act on them).
+    fn field(&self) -> &Field;
+    fn field_mut(&mut self) -> &mut Field;
     /// The characteristic arriving at the top end.
-    fn arriving_top(&self) -> Arriving;
+    #[inline]
+    fn arriving_top(&self) -> Arriving {
+        self.field().arriving_top()
+    }
     /// The characteristic arriving at the bottom end.
-    fn arriving_bottom(&self) -> Arriving;
+    #[inline]
+    fn arriving_bottom(&self) -> Arriving {
+        self.field().arriving_bottom()
+    }
     /// Sets the top end for the step: its speed `w` and the load `load` it carries.
-    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64);
+    #[inline]
+    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64) {
+        self.field_mut().set_top(arriving, w, load);
+    }
     /// Sets the bottom end for the step: its speed `w`.
-    fn set_bottom(&mut self, arriving: Arriving, w: f64);
+    #[inline]
+    fn set_bottom(&mut self, arriving: Arriving, w: f64) {
+        self.field_mut().set_bottom(arriving, w);
+    }
     /// Sets the junctions between sections for the step.
-    fn junctions(&mut self);
+    #[inline]
+    fn junctions(&mut self) {
+        self.field_mut().junctions();
+    }
     /// The cells over a step of `dt` (the transport and the field's sources), the work booked
     /// in `ledger` when `booked` (`numerics.energy_balance`); the new state made current.
     fn advance(&mut self, dt: f64, ledger: &mut Ledger, booked: bool);
     /// The kinetic and elastic energies stored in the cells, J.
-    fn stored(&self) -> (f64, f64);
+    #[inline]
+    fn stored(&self) -> (f64, f64) {
+        self.field().energies()
+    }
     /// Calls `f(speed, load)` for every cell from the top down, as the snapshots store them.
     fn each_cell(&self, f: impl FnMut(f64, f64));
 }

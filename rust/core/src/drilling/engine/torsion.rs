@@ -5,7 +5,6 @@
 //! update with `nonlinearity = "consistent"`). Its ends (the top drive, the bit) are the run's
 //! ([`super::run::Simulation`]), its channels [`TORSIONAL`].
 
-use super::boundary::Arriving;
 use super::energy::Ledger;
 use super::field::{Field, StringField};
 use super::kernel::{godunov, transport, transport_unbooked};
@@ -33,28 +32,13 @@ impl StringField for Torsion {
     }
 
     #[inline]
-    fn arriving_top(&self) -> Arriving {
-        self.field.arriving_top()
+    fn field(&self) -> &Field {
+        &self.field
     }
 
     #[inline]
-    fn arriving_bottom(&self) -> Arriving {
-        self.field.arriving_bottom()
-    }
-
-    #[inline]
-    fn set_top(&mut self, arriving: Arriving, w: f64, load: f64) {
-        self.field.set_top(arriving, w, load);
-    }
-
-    #[inline]
-    fn set_bottom(&mut self, arriving: Arriving, w: f64) {
-        self.field.set_bottom(arriving, w);
-    }
-
-    #[inline]
-    fn junctions(&mut self) {
-        self.field.junctions();
+    fn field_mut(&mut self) -> &mut Field {
+        &mut self.field
     }
 
     /// The cells of every section over a step, the sources' and transport's work booked (the
@@ -88,11 +72,6 @@ impl StringField for Torsion {
             }
         }
         self.field.swap();
-    }
-
-    #[inline]
-    fn stored(&self) -> (f64, f64) {
-        self.field.energies()
     }
 
     #[inline]
