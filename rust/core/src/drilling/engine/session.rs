@@ -415,8 +415,7 @@ impl Session {
             };
             if let (Some((cf, hold)), Some(ax)) = (coupled, &mut sim.axial) {
                 if cf.is_some() {
-                    wall.stop.fill(0.0);
-                    wall.slip.fill(-0.0);
+                    wall.off();
                     ax.end_hold = hold;
                 }
                 sim.coupled_friction = cf;
