@@ -233,8 +233,9 @@ impl Transport<'_> {
     /// The update loop over chunks of [`WIDTH`] cells read and written in place, the energy
     /// terms added lane by lane in a fixed order (so every instruction set gives the same
     /// bits), the accumulators in registers. The last `n % WIDTH` cells go through the same
-    /// chunk code, padded with cells at rest without friction, whose terms are zeros (adding
-    /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
+    /// chunk code: the last whole chunk of the section again, or in a section shorter than a
+    /// chunk padded with cells at rest without friction, whose terms are zeros (adding a zero
+    /// leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
     /// Without `LEDGER` no energy term is computed and the sums are zero. With `WALL` not
     /// `CELLS` the limits are the constants of [`Wall::Off`] or [`Wall::OffZeros`].
     #[inline(always)]
@@ -294,8 +295,37 @@ impl Transport<'_> {
         }
         // (the sum of the last `n % LANES` cells', empty unless a tail has them)
         let mut kick_rest = [0.0_f64; 0].iter().sum::<f64>();
-        if i < n {
-            // Copied element by element (no call out of the vector code).
+        if i < n && n >= WIDTH {
+            // The last chunk ends at the last cell: it overlaps the one before, whose cells it
+            // writes again with the values they have (the inputs are not written), and the
+            // terms of its cells from `i` on go to their lanes (cell `j` into lane `j - i`,
+            // `j % WIDTH`). The terms come to the lanes as `0 + term`, which adds to a lane as
+            // `term` does (a lane's sum is never -0). No copies to a padded chunk, which the
+            // compiler makes calls of.
+            let s = n - WIDTH;
+            let inputs = [at!(a_prev, s), at!(a, s), at!(b, s), at!(b_next, s), at!(stop, s), at!(slip, s)];
+            let kick = if KICK { at!(dv, s) } else { &none };
+            let (na, nb) = (at_mut!(an, s), at_mut!(bn, s));
+            let mut last = Lanes::default();
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, na, nb, &mut w, &k, &mut last);
+            if LEDGER {
+                for j in i..n {
+                    lanes.jump[j - i] += last.jump[j - s];
+                    lanes.fric[j - i] += last.fric[j - s];
+                    lanes.damp[j - i] += last.damp[j - s];
+                }
+            }
+            if KICK && LEDGER {
+                let blocks = w[i - s..].chunks_exact(LANES);
+                kick_rest = blocks.remainder().iter().sum::<f64>();
+                for block in blocks {
+                    for l in 0..LANES {
+                        kick_lanes[l] += block[l];
+                    }
+                }
+            }
+        } else if i < n {
+            // Fewer cells than a chunk: copied element by element into a padded one.
             let mut pad = [[0.0; WIDTH]; 7];
             let dv = if KICK { &dv[i..] } else { dv };
             for (p, x) in pad.iter_mut().zip([&a_prev[i..], &a[i..], &b[i..], &b_next[i..], &stop[i..], &slip[i..], dv])
