@@ -606,9 +606,10 @@ mod tests {
     use crate::drilling::engine::sources::Regularised;
     use FrictionModel as Model;
 
-    /// The chunked kernel, with the last cells padded to a chunk, against the update cell by
-    /// cell with the energy terms in lane `j % 16`: the same bits, on every path and for
-    /// counts below, at and above a chunk, stuck, slow and sliding cells, both friction laws.
+    /// The chunked kernel, with the last cells through the last whole chunk again (or padded
+    /// to a chunk below one), against the update cell by cell with the energy terms in lane
+    /// `j % 16`: the same bits, on every path and for counts below, at and above a chunk,
+    /// stuck, slow and sliding cells, both friction laws.
     #[test]
     fn chunks_and_padding_give_the_bits_of_the_cell_by_cell_update() {
         for n in [1, 5, 16, 17, 31, 40, 91] {
