@@ -10,7 +10,7 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use drillstring_core::drilling::config::FrictionModel;
-use drillstring_core::drilling::engine::kernel::{transport, transport_unbooked};
+use drillstring_core::drilling::engine::kernel::{transport, transport_unbooked, Wall};
 use drillstring_core::drilling::engine::sources::Sources;
 
 const CELLS: usize = 1000;
@@ -37,10 +37,22 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("transport_kernel");
     group.throughput(Throughput::Elements(CELLS as u64));
     group.bench_function("ledger_on_1000_cells", |bench| {
-        bench.iter(|| transport(black_box(&a), &b, &stop, &slip, &mut an, &mut bn, 0.998, &src))
+        bench.iter(|| {
+            transport(black_box(&a), &b, Wall::Cells { stop: &stop, slip: &slip }, &mut an, &mut bn, 0.998, &src)
+        })
     });
     group.bench_function("ledger_off_1000_cells", |bench| {
-        bench.iter(|| transport_unbooked(black_box(&a), &b, &stop, &slip, &mut an, &mut bn, 0.998, &src))
+        bench.iter(|| {
+            transport_unbooked(
+                black_box(&a),
+                &b,
+                Wall::Cells { stop: &stop, slip: &slip },
+                &mut an,
+                &mut bn,
+                0.998,
+                &src,
+            )
+        })
     });
     group.finish();
 }

@@ -203,10 +203,28 @@ impl UpwindCutSurface {
     /// down at `axial_speed` (m/s).
     pub fn advance(&mut self, dt: f64, angular_speed: f64, axial_speed: f64) {
         let courant = dt * self.depth.len() as f64 * self.blades * angular_speed.max(0.0) / std::f64::consts::TAU;
-        let sub = courant.ceil().max(1.0);
-        let (c, dv) = (courant / sub, dt * axial_speed / sub);
+        crate::simd::dispatch(Stages { depth: &mut self.depth, courant, dv: dt * axial_speed });
+    }
+}
+
+/// The sub-steps of [`UpwindCutSurface::advance`] at Courant number `courant` over the step
+/// and the bit's advance `dv` in it, as a [`crate::simd::Kernel`] (the stages in vector code;
+/// no fused multiply-adds: the same bits on every path).
+struct Stages<'a> {
+    depth: &'a mut [f64],
+    courant: f64,
+    dv: f64,
+}
+
+impl crate::simd::Kernel for Stages<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<M: crate::simd::MulAdd>(self) {
+        let sub = self.courant.ceil().max(1.0);
+        let (c, dv) = (self.courant / sub, self.dv / sub);
         for _ in 0..sub as usize {
-            upwind_stage(&mut self.depth, c, dv);
+            upwind_stage(self.depth, c, dv);
         }
     }
 }
@@ -217,7 +235,7 @@ const STAGE_BLOCK: usize = 8;
 /// One upwind stage of the cut surface in place, `l_j += dv - c (l_j - l_{j-1})` from the
 /// old values (`l_{-1} = 0`): from the last cell down, [`STAGE_BLOCK`] cells at a time from
 /// the old values below them (so that the block vectorises), the rest one by one.
-#[inline]
+#[inline(always)]
 fn upwind_stage(depth: &mut [f64], c: f64, dv: f64) {
     let mut top = depth.len();
     while top > STAGE_BLOCK {

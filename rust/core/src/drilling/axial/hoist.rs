@@ -31,8 +31,19 @@ impl Hoist {
 /// (`target` at once for `ramp_time = 0`).
 #[inline]
 pub fn ramp(value: f64, target: f64, dt: f64, ramp_time: f64) -> f64 {
+    ramp_by(value, target, ramp_time, lag(dt, ramp_time))
+}
+
+/// The factor of [`ramp`] over `dt`, `1 - exp(-dt / ramp_time)` (unused without a ramp).
+fn lag(dt: f64, ramp_time: f64) -> f64 {
+    1.0 - (-dt / ramp_time).exp()
+}
+
+/// [`ramp`] with its factor `lag` ([`lag`]) computed once for its step and ramp time.
+#[inline]
+fn ramp_by(value: f64, target: f64, ramp_time: f64, lag: f64) -> f64 {
     if ramp_time > 0.0 {
-        value + (target - value) * (1.0 - (-dt / ramp_time).exp())
+        value + (target - value) * lag
     } else {
         target
     }
@@ -88,6 +99,9 @@ pub struct HoistState {
     /// `weight_on_bit` mode holds the hook load at it less its ramped weight on bit) and the
     /// travelling block's weight (in the `hook_load` mode's setpoint, not in the string).
     pub reference: HoistReference,
+    /// The step and ramp time the ramp's factor was computed for, and the factor ([`lag`]):
+    /// the exponential once per run (again when `params.ramp_time` changes), not every step.
+    lag: (f64, f64, f64),
 }
 
 impl HoistState {
@@ -95,7 +109,15 @@ impl HoistState {
     /// starts at 0 m/s, a hook at its static load, a weight on bit at 0 N;
     /// [`super::hoist_mode::HoistRule::at_rest`]).
     pub fn new(params: Hoist, initial: f64) -> Self {
-        HoistState { params, time: 0.0, setpoint: initial, integral: 0.0, reference: HoistReference::default() }
+        HoistState {
+            params,
+            time: 0.0,
+            setpoint: initial,
+            integral: 0.0,
+            reference: HoistReference::default(),
+            // (a step is never 0: computed at the first)
+            lag: (0.0, 0.0, 0.0),
+        }
     }
 
     /// The same hoist referred to `reference`.
@@ -109,7 +131,10 @@ impl HoistState {
     pub fn step(&mut self, dt: f64, measured: HoistMeasurement) -> HoistCommand {
         let t1 = self.time + dt;
         let p = &self.params;
-        self.setpoint = ramp(self.setpoint, p.target(self.time + 0.5 * dt), dt, p.ramp_time);
+        if (self.lag.0.to_bits(), self.lag.1.to_bits()) != (dt.to_bits(), p.ramp_time.to_bits()) {
+            self.lag = (dt, p.ramp_time, lag(dt, p.ramp_time));
+        }
+        self.setpoint = ramp_by(self.setpoint, p.target(self.time + 0.5 * dt), p.ramp_time, self.lag.2);
         self.time = t1;
         let step = StepInput { dt, measured, reference: self.reference };
         rule(p.mode).command(p, self.setpoint, step, &mut self.integral)

@@ -39,7 +39,7 @@ use super::bit_law::{AxialEnd, BitEnds, Law};
 use super::boundary::{Arriving, EndLine};
 use super::energy::Ledger;
 use super::field::{Field, FieldSection, StringField};
-use super::kernel::{transport_kicked, Kick};
+use super::kernel::{transport_kicked, Kick, Wall};
 use super::sampler::{Channel, Point};
 use super::sources::Sources;
 use crate::drilling::axial::bit_boundary::{BitContact, BitPhase, Port};
@@ -104,7 +104,6 @@ pub struct AxialState {
 #[derive(Clone)]
 pub struct Axial {
     pub field: Field,
-    zeros: Vec<f64>,
     sources: Sources,
     /// `g dt` per padded index (0 at ghosts).
     gravity: Vec<f64>,
@@ -223,7 +222,6 @@ impl Axial {
         };
         let src = Sources::new(cfg, dt);
         Ok(Axial {
-            zeros: vec![0.0; len],
             sources: Sources { stick_speed: 0.0, kinetic_ratio: 0.0, model: FrictionModel::SetValued, ..src },
             gravity,
             hoist: HoistState::new(params, initial).referred_to(reference),
@@ -435,14 +433,12 @@ impl StringField for Axial {
     /// booked in `ledger` when `booked` (`numerics.energy_balance`).
     fn advance(&mut self, _dt: f64, ledger: &mut Ledger, booked: bool) {
         let Field { sections, alpha, beta, alpha_next, beta_next, .. } = &mut self.field;
-        let z = &self.zeros[..];
         for sp in sections.iter() {
             let r = sp.padded();
             let sums = transport_kicked(
                 &alpha[r.clone()],
                 &beta[r.clone()],
-                &z[r.clone()],
-                &z[r.clone()],
+                Wall::OffZeros,
                 &mut alpha_next[r.clone()],
                 &mut beta_next[r.clone()],
                 sp.courant,

@@ -29,37 +29,42 @@ pub struct Sums {
     pub kick: f64,
 }
 
-/// Upwind transport and sources of one section: `a`, `b`, `stop`, `slip` padded (`[ghost,
-/// cells, ghost]`), the new invariants written to the cells of `an`, `bn`.
-#[allow(clippy::too_many_arguments)]
+/// The wall friction's limits of a section's cells as the kernels read them: per cell (the
+/// `stop` and `slip` of [`super::sources::WallFriction`], padded like the invariants), or
+/// none anywhere, the zeros stored without friction taken as constants. Without friction the
+/// kernel computes with the same values, so it gives the same bits, but reads no limits and
+/// leaves out what the constants fold away (the slow cell's threshold select: a sixth of the
+/// torsional update at Courant number 1).
+#[derive(Debug, Clone, Copy)]
+pub enum Wall<'a> {
+    Cells {
+        stop: &'a [f64],
+        slip: &'a [f64],
+    },
+    /// Every `stop` `+0` and every `slip` `-0` (the torsional wall friction's zeros,
+    /// `-(kinetic_ratio 0)`; [`super::sources::WallFriction::off`]). Not with a [`Kick`].
+    Off,
+    /// Every `stop` and `slip` `+0` (the axial field's, which has no wall friction of its own).
+    /// With a [`Kick`] only (each kernel is compiled for the walls it is given).
+    OffZeros,
+}
+
+/// [`Wall`] as a kernel's constant parameter.
+const CELLS: u8 = 0;
+const OFF: u8 = 1;
+const OFF_ZEROS: u8 = 2;
+
+/// Upwind transport and sources of one section: `a`, `b` (and the `wall`'s limits) padded
+/// (`[ghost, cells, ghost]`), the new invariants written to the cells of `an`, `bn`.
 #[inline]
-pub fn transport(
-    a: &[f64],
-    b: &[f64],
-    stop: &[f64],
-    slip: &[f64],
-    an: &mut [f64],
-    bn: &mut [f64],
-    c: f64,
-    src: &Sources,
-) -> Sums {
-    crate::simd::dispatch(Transport::new(a, b, stop, slip, an, bn, c, src, true))
+pub fn transport(a: &[f64], b: &[f64], wall: Wall, an: &mut [f64], bn: &mut [f64], c: f64, src: &Sources) -> Sums {
+    crate::simd::dispatch(Transport::new(a, b, wall, an, bn, c, src, true))
 }
 
 /// [`transport`] without the energy terms (the same new invariants, bit for bit; no sums).
-#[allow(clippy::too_many_arguments)]
 #[inline]
-pub fn transport_unbooked(
-    a: &[f64],
-    b: &[f64],
-    stop: &[f64],
-    slip: &[f64],
-    an: &mut [f64],
-    bn: &mut [f64],
-    c: f64,
-    src: &Sources,
-) {
-    crate::simd::dispatch(Transport::new(a, b, stop, slip, an, bn, c, src, false));
+pub fn transport_unbooked(a: &[f64], b: &[f64], wall: Wall, an: &mut [f64], bn: &mut [f64], c: f64, src: &Sources) {
+    crate::simd::dispatch(Transport::new(a, b, wall, an, bn, c, src, false));
 }
 
 /// A speed change added to every cell after the transport and the other sources (the
@@ -80,15 +85,14 @@ pub struct Kick<'a> {
 pub fn transport_kicked(
     a: &[f64],
     b: &[f64],
-    stop: &[f64],
-    slip: &[f64],
+    wall: Wall,
     an: &mut [f64],
     bn: &mut [f64],
     c: f64,
     src: &Sources,
     kick: Kick,
 ) -> Sums {
-    let mut transport = Transport::new(a, b, stop, slip, an, bn, c, src, kick.booked);
+    let mut transport = Transport::new(a, b, wall, an, bn, c, src, kick.booked);
     let n = transport.a.len();
     transport.dv = &kick.dv[1..=n];
     crate::simd::dispatch(transport)
@@ -99,8 +103,8 @@ struct Transport<'a> {
     a: &'a [f64],
     b: &'a [f64],
     b_next: &'a [f64],
-    stop: &'a [f64],
-    slip: &'a [f64],
+    /// The wall's limits (of the cells, without the ghosts).
+    wall: Wall<'a>,
     an: &'a mut [f64],
     bn: &'a mut [f64],
     c: f64,
@@ -112,15 +116,14 @@ struct Transport<'a> {
 }
 
 impl<'a> Transport<'a> {
-    /// The kernel over the cells of padded `a`, `b`, `stop`, `slip` (`[ghost, cells, ghost]`),
+    /// The kernel over the cells of padded `a`, `b` and `wall` (`[ghost, cells, ghost]`),
     /// writing the cells of `an`, `bn`.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn new(
         a: &'a [f64],
         b: &'a [f64],
-        stop: &'a [f64],
-        slip: &'a [f64],
+        wall: Wall<'a>,
         an: &'a mut [f64],
         bn: &'a mut [f64],
         c: f64,
@@ -133,8 +136,10 @@ impl<'a> Transport<'a> {
             a: &a[1..=n],
             b: &b[1..=n],
             b_next: &b[2..n + 2],
-            stop: &stop[1..=n],
-            slip: &slip[1..=n],
+            wall: match wall {
+                Wall::Cells { stop, slip } => Wall::Cells { stop: &stop[1..=n], slip: &slip[1..=n] },
+                off => off,
+            },
             an: &mut an[1..=n],
             bn: &mut bn[1..=n],
             c,
@@ -174,26 +179,37 @@ impl<const LEDGER: bool> WithWallLaw for Specialised<'_, LEDGER> {
 
 impl Transport<'_> {
     /// [`Transport::cells`] with the wall law `L`, specialised on which energy terms are
-    /// non-zero (fewer stores).
+    /// non-zero (fewer stores) and on a wall without friction ([`Wall::Off`]; the axial
+    /// field's [`Wall::OffZeros`] is a kick's).
     #[inline(always)]
     fn specialised<L: WallLaw, const LEDGER: bool>(self) -> Sums {
-        match (self.c < 1.0, self.src.damping > 0.0) {
-            (false, false) => self.cells::<L, false, false, LEDGER, false>(),
-            (false, true) => self.cells::<L, false, true, LEDGER, false>(),
-            (true, false) => self.cells::<L, true, false, LEDGER, false>(),
-            (true, true) => self.cells::<L, true, true, LEDGER, false>(),
+        match self.wall {
+            Wall::Cells { .. } => self.damped::<L, LEDGER, false, CELLS>(),
+            Wall::Off => self.damped::<L, LEDGER, false, OFF>(),
+            Wall::OffZeros => panic!("the axial field's wall without a kick"),
         }
     }
 
-    /// [`Transport::cells`] with a [`Kick`] (the axial field: set-valued friction only).
+    /// [`Transport::cells`] with a [`Kick`] (the axial field: set-valued friction only), its
+    /// wall without friction ([`Wall::OffZeros`]) or any.
     #[inline(always)]
     fn kicked<const LEDGER: bool>(self) -> Sums {
         assert!(self.src.model == FrictionModel::SetValued, "a kick with the set-valued friction only");
+        match self.wall {
+            Wall::Cells { .. } => self.damped::<SetValued, LEDGER, true, CELLS>(),
+            Wall::OffZeros => self.damped::<SetValued, LEDGER, true, OFF_ZEROS>(),
+            Wall::Off => panic!("a kick with the torsional wall's zeros"),
+        }
+    }
+
+    /// [`Transport::cells`] at Courant number 1 or below, with damping or without.
+    #[inline(always)]
+    fn damped<L: WallLaw, const LEDGER: bool, const KICK: bool, const WALL: u8>(self) -> Sums {
         match (self.c < 1.0, self.src.damping > 0.0) {
-            (false, false) => self.cells::<SetValued, false, false, LEDGER, true>(),
-            (false, true) => self.cells::<SetValued, false, true, LEDGER, true>(),
-            (true, false) => self.cells::<SetValued, true, false, LEDGER, true>(),
-            (true, true) => self.cells::<SetValued, true, true, LEDGER, true>(),
+            (false, false) => self.cells::<L, false, false, LEDGER, KICK, WALL>(),
+            (false, true) => self.cells::<L, false, true, LEDGER, KICK, WALL>(),
+            (true, false) => self.cells::<L, true, false, LEDGER, KICK, WALL>(),
+            (true, true) => self.cells::<L, true, true, LEDGER, KICK, WALL>(),
         }
     }
 }
@@ -217,13 +233,30 @@ impl Transport<'_> {
     /// The update loop over chunks of [`WIDTH`] cells read and written in place, the energy
     /// terms added lane by lane in a fixed order (so every instruction set gives the same
     /// bits), the accumulators in registers. The last `n % WIDTH` cells go through the same
-    /// chunk code, padded with cells at rest without friction, whose terms are zeros (adding
-    /// a zero leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
-    /// Without `LEDGER` no energy term is computed and the sums are zero.
+    /// chunk code: the last whole chunk of the section again, or in a section shorter than a
+    /// chunk padded with cells at rest without friction, whose terms are zeros (adding a zero
+    /// leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
+    /// Without `LEDGER` no energy term is computed and the sums are zero. With `WALL` not
+    /// `CELLS` the limits are the constants of [`Wall::Off`] or [`Wall::OffZeros`].
     #[inline(always)]
-    fn cells<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(self) -> Sums {
-        let Transport { a_prev, a, b, b_next, stop, slip, an, bn, c, src, dv, .. } = self;
+    fn cells<
+        L: WallLaw,
+        const UPWIND: bool,
+        const DAMPED: bool,
+        const LEDGER: bool,
+        const KICK: bool,
+        const WALL: u8,
+    >(
+        self,
+    ) -> Sums {
+        let Transport { a_prev, a, b, b_next, wall, an, bn, c, src, dv, .. } = self;
         let n = a.len();
+        let (stop, slip) = match wall {
+            Wall::Cells { stop, slip } if WALL == CELLS => (stop, slip),
+            _ if WALL == CELLS => unreachable!("a wall of cells"),
+            // (not read)
+            _ => (a, a),
+        };
         let k = Consts::new(c, src);
         let mut lanes = Lanes::default();
         // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds
@@ -250,7 +283,7 @@ impl Transport<'_> {
             let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
             let kick = if KICK { at!(dv, i) } else { &none };
             let (na, nb) = (at_mut!(an, i), at_mut!(bn, i));
-            chunk::<L, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
             if KICK && LEDGER {
                 for block in w.chunks_exact(LANES) {
                     for l in 0..LANES {
@@ -262,8 +295,37 @@ impl Transport<'_> {
         }
         // (the sum of the last `n % LANES` cells', empty unless a tail has them)
         let mut kick_rest = [0.0_f64; 0].iter().sum::<f64>();
-        if i < n {
-            // Copied element by element (no call out of the vector code).
+        if i < n && n >= WIDTH {
+            // The last chunk ends at the last cell: it overlaps the one before, whose cells it
+            // writes again with the values they have (the inputs are not written), and the
+            // terms of its cells from `i` on go to their lanes (cell `j` into lane `j - i`,
+            // `j % WIDTH`). The terms come to the lanes as `0 + term`, which adds to a lane as
+            // `term` does (a lane's sum is never -0). No copies to a padded chunk, which the
+            // compiler makes calls of.
+            let s = n - WIDTH;
+            let inputs = [at!(a_prev, s), at!(a, s), at!(b, s), at!(b_next, s), at!(stop, s), at!(slip, s)];
+            let kick = if KICK { at!(dv, s) } else { &none };
+            let (na, nb) = (at_mut!(an, s), at_mut!(bn, s));
+            let mut last = Lanes::default();
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, na, nb, &mut w, &k, &mut last);
+            if LEDGER {
+                for j in i..n {
+                    lanes.jump[j - i] += last.jump[j - s];
+                    lanes.fric[j - i] += last.fric[j - s];
+                    lanes.damp[j - i] += last.damp[j - s];
+                }
+            }
+            if KICK && LEDGER {
+                let blocks = w[i - s..].chunks_exact(LANES);
+                kick_rest = blocks.remainder().iter().sum::<f64>();
+                for block in blocks {
+                    for l in 0..LANES {
+                        kick_lanes[l] += block[l];
+                    }
+                }
+            }
+        } else if i < n {
+            // Fewer cells than a chunk: copied element by element into a padded one.
             let mut pad = [[0.0; WIDTH]; 7];
             let dv = if KICK { &dv[i..] } else { dv };
             for (p, x) in pad.iter_mut().zip([&a_prev[i..], &a[i..], &b[i..], &b_next[i..], &stop[i..], &slip[i..], dv])
@@ -275,7 +337,7 @@ impl Transport<'_> {
             let [ap, aa, bb, bx, st, sl, kick] = &pad;
             let (mut na, mut nb, mut w) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
             let inputs = [ap, aa, bb, bx, st, sl];
-            chunk::<L, UPWIND, DAMPED, LEDGER, KICK>(inputs, kick, &mut na, &mut nb, &mut w, &k, &mut lanes);
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, &mut na, &mut nb, &mut w, &k, &mut lanes);
             for (j, (x, y)) in an[i..].iter_mut().zip(&mut bn[i..]).enumerate() {
                 *x = na[j];
                 *y = nb[j];
@@ -310,9 +372,11 @@ impl Transport<'_> {
 /// an array of references it does not, and the loop measured a fifth slower), the energy
 /// terms added to `lanes` (cell `l` of the chunk into lane `l`) with `LEDGER`. With `KICK`
 /// the speed change `dv` follows the update, as a source after it: its work
-/// `dv (v + dv / 2)` at the speed `v` the update left.
+/// `dv (v + dv / 2)` at the speed `v` the update left. With `WALL` not `CELLS`, `st` and `sl`
+/// are not read: the limits are [`Wall::Off`]'s or [`Wall::OffZeros`]'s constants.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn chunk<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool>(
+fn chunk<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool, const WALL: u8>(
     [ap, aa, bb, bx, st, sl]: [&Chunk; 6],
     kick: &Chunk,
     na: &mut Chunk,
@@ -322,7 +386,12 @@ fn chunk<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool,
     lanes: &mut Lanes,
 ) {
     for l in 0..WIDTH {
-        let cell = update::<L, UPWIND>(ap[l], aa[l], bb[l], bx[l], st[l], sl[l], k);
+        let (lim, slip) = match WALL {
+            CELLS => (st[l], sl[l]),
+            OFF => (0.0, -0.0),
+            _ => (0.0, 0.0),
+        };
+        let cell = update::<L, UPWIND>(ap[l], aa[l], bb[l], bx[l], lim, slip, k);
         if KICK {
             let dv = kick[l];
             if LEDGER {
@@ -537,9 +606,10 @@ mod tests {
     use crate::drilling::engine::sources::Regularised;
     use FrictionModel as Model;
 
-    /// The chunked kernel, with the last cells padded to a chunk, against the update cell by
-    /// cell with the energy terms in lane `j % 16`: the same bits, on every path and for
-    /// counts below, at and above a chunk, stuck, slow and sliding cells, both friction laws.
+    /// The chunked kernel, with the last cells through the last whole chunk again (or padded
+    /// to a chunk below one), against the update cell by cell with the energy terms in lane
+    /// `j % 16`: the same bits, on every path and for counts below, at and above a chunk,
+    /// stuck, slow and sliding cells, both friction laws.
     #[test]
     fn chunks_and_padding_give_the_bits_of_the_cell_by_cell_update() {
         for n in [1, 5, 16, 17, 31, 40, 91] {
@@ -558,12 +628,20 @@ mod tests {
                 let src =
                     Sources { damping: 1e-3, stick_speed: 1.5, kinetic_ratio: 0.65, model, regularisation_speed: 0.1 };
                 let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
-                let fast = transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
+                let fast = transport(&a, &b, Wall::Cells { stop: &stop, slip: &slip }, &mut an, &mut bn, c, &src);
                 let (mut an0, mut bn0) = (vec![0.0; len], vec![0.0; len]);
-                let slow =
-                    crate::simd::baseline(Transport::new(&a, &b, &stop, &slip, &mut an0, &mut bn0, c, &src, true));
+                let slow = crate::simd::baseline(Transport::new(
+                    &a,
+                    &b,
+                    Wall::Cells { stop: &stop, slip: &slip },
+                    &mut an0,
+                    &mut bn0,
+                    c,
+                    &src,
+                    true,
+                ));
                 let (mut an1, mut bn1) = (vec![0.0; len], vec![0.0; len]);
-                transport_unbooked(&a, &b, &stop, &slip, &mut an1, &mut bn1, c, &src);
+                transport_unbooked(&a, &b, Wall::Cells { stop: &stop, slip: &slip }, &mut an1, &mut bn1, c, &src);
                 assert_eq!(
                     an1.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
                     an.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
@@ -638,7 +716,7 @@ mod tests {
                     regularisation_speed: 0.0,
                 };
                 let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
-                let sums = transport(&a, &b, &zeros, &zeros, &mut an, &mut bn, c, &src);
+                let sums = transport(&a, &b, Wall::Cells { stop: &zeros, slip: &zeros }, &mut an, &mut bn, c, &src);
                 let mut work = vec![0.0; len];
                 for i in 1..=n {
                     let v = 0.5 * (an[i] + bn[i]);
@@ -647,16 +725,86 @@ mod tests {
                     bn[i] += dv[i];
                 }
                 let (mut ak, mut bk) = (vec![0.0; len], vec![0.0; len]);
-                let kicked =
-                    transport_kicked(&a, &b, &zeros, &zeros, &mut ak, &mut bk, c, &src, Kick { dv: &dv, booked: true });
+                let kicked = transport_kicked(
+                    &a,
+                    &b,
+                    Wall::Cells { stop: &zeros, slip: &zeros },
+                    &mut ak,
+                    &mut bk,
+                    c,
+                    &src,
+                    Kick { dv: &dv, booked: true },
+                );
                 assert_eq!((bits(&ak), bits(&bk)), (bits(&an), bits(&bn)), "n {n} c {c}");
                 assert_eq!(kicked.kick.to_bits(), lane_sum(&work[1..=n]).to_bits(), "n {n} c {c}");
                 let pairs =
                     [(kicked.jumps, sums.jumps), (kicked.friction, sums.friction), (kicked.damping, sums.damping)];
                 assert!(pairs.iter().all(|(x, y)| x.to_bits() == y.to_bits()), "n {n} c {c}");
                 let (mut au, mut bu) = (vec![0.0; len], vec![0.0; len]);
-                transport_kicked(&a, &b, &zeros, &zeros, &mut au, &mut bu, c, &src, Kick { dv: &dv, booked: false });
+                transport_kicked(
+                    &a,
+                    &b,
+                    Wall::Cells { stop: &zeros, slip: &zeros },
+                    &mut au,
+                    &mut bu,
+                    c,
+                    &src,
+                    Kick { dv: &dv, booked: false },
+                );
                 assert_eq!((bits(&au), bits(&bu)), (bits(&an), bits(&bn)), "n {n} c {c} without the ledger");
+            }
+        }
+    }
+
+    /// A wall without friction taken as constants ([`Wall::Off`], [`Wall::OffZeros`]) against
+    /// the same zeros read per cell: the same bits of the invariants and the energy terms, with
+    /// and without the ledger, a kick, damping, below, at and above a chunk, upwind and at
+    /// Courant number 1, on cells at rest, at signed zeros and tiny speeds.
+    #[test]
+    fn a_wall_without_friction_gives_the_bits_of_its_zeros_per_cell() {
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        for n in [1, 5, 16, 17, 40, 91] {
+            let len = n + 2;
+            let special = [0.0, -0.0, 1e-320, -1e-320, 5e-324];
+            let a: Vec<f64> =
+                (0..len).map(|i| if i % 7 == 3 { special[i % 5] } else { (i as f64 * 0.77).sin() }).collect();
+            let b: Vec<f64> =
+                (0..len).map(|i| if i % 7 == 3 { -a[i] } else { (i as f64 * 0.31).cos() - 0.5 }).collect();
+            let dv: Vec<f64> =
+                (0..len).map(|i| if i == 0 || i == len - 1 { 0.0 } else { 1e-3 * (i % 3) as f64 }).collect();
+            let (zeros, negative) = (vec![0.0; len], vec![-0.0; len]);
+            for (c, damping, stick_speed) in [(0.93, 1e-3, 0.0), (1.0, 1e-3, 0.5), (1.0, 0.0, 0.0), (0.93, 0.0, 0.5)] {
+                let src = Sources {
+                    damping,
+                    stick_speed,
+                    kinetic_ratio: 0.0,
+                    model: FrictionModel::SetValued,
+                    regularisation_speed: 0.0,
+                };
+                for (off, slip) in [(Wall::Off, &negative), (Wall::OffZeros, &zeros)] {
+                    let cells = Wall::Cells { stop: &zeros, slip };
+                    for booked in [true, false] {
+                        for kicked in [true, false] {
+                            let run = |wall: Wall| {
+                                let (mut an, mut bn) = (vec![0.0; len], vec![0.0; len]);
+                                let sums = if kicked {
+                                    transport_kicked(&a, &b, wall, &mut an, &mut bn, c, &src, Kick { dv: &dv, booked })
+                                } else if booked {
+                                    transport(&a, &b, wall, &mut an, &mut bn, c, &src)
+                                } else {
+                                    transport_unbooked(&a, &b, wall, &mut an, &mut bn, c, &src);
+                                    Sums::default()
+                                };
+                                (bits(&an), bits(&bn), bits(&[sums.jumps, sums.friction, sums.damping, sums.kick]))
+                            };
+                            // (each wall without friction is compiled for its field's kernel)
+                            if kicked != matches!(off, Wall::OffZeros) {
+                                continue;
+                            }
+                            assert_eq!(run(off), run(cells), "n {n} c {c} {off:?} booked {booked} kicked {kicked}");
+                        }
+                    }
+                }
             }
         }
     }
@@ -693,9 +841,10 @@ mod tests {
                 let start = std::time::Instant::now();
                 for _ in 0..50 {
                     if ledger {
-                        sink += transport(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src).friction;
+                        sink += transport(&a, &b, Wall::Cells { stop: &stop, slip: &slip }, &mut an, &mut bn, c, &src)
+                            .friction;
                     } else {
-                        transport_unbooked(&a, &b, &stop, &slip, &mut an, &mut bn, c, &src);
+                        transport_unbooked(&a, &b, Wall::Cells { stop: &stop, slip: &slip }, &mut an, &mut bn, c, &src);
                     }
                     sink += an[n / 2];
                 }

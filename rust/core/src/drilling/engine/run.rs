@@ -198,8 +198,7 @@ impl Simulation {
         };
         if coupled_friction.is_some() {
             // The torsional kernel's friction off (the values of a zero limit).
-            wall.stop.fill(0.0);
-            wall.slip.fill(-0.0);
+            wall.off();
         }
         let mut sim = Simulation {
             axial,

@@ -165,19 +165,41 @@ impl Sampler {
         self.n_fields == 0 || snapshot(torsion, axial, run, 0.0)
     }
 
-    /// Samples after step `n` (0-based) ending at `cur`: the series up to `cur[0]`, then a
-    /// snapshot of `torsion` (and of a coupled run's `axial`) if one is due (`dt` the step).
-    /// `false` (the sample not stored) when a value is not finite.
+    /// Whether a sample of the series falls at or before the step end `t`.
+    #[inline]
+    fn series_due(&self, t: f64) -> bool {
+        self.next_series < self.n_series && self.next_series as f64 * self.out_dt <= t * (1.0 + 1e-12)
+    }
+
+    /// Whether [`Sampler::record`] needs the point at the end `t` of step `n` (0-based; the
+    /// next step ending at `t_next`): the first step's (its held channels), and a step end
+    /// with a sample of the series in the step before it or after it (the two ends a sample
+    /// is interpolated between). The points of the other steps are not made.
+    #[inline]
+    pub fn needs_point(&self, n: u64, t: f64, t_next: f64) -> bool {
+        n == 0 || self.series_due(t) || self.series_due(t_next)
+    }
+
+    /// Samples after step `n` (0-based) ending at `t` with the point `cur` there (`None` where
+    /// [`Sampler::needs_point`] says it is not needed): the series up to `t`, then a snapshot
+    /// of `torsion` (and of a coupled run's `axial`) if one is due (`dt` the step). `false`
+    /// (the sample not stored) when a value is not finite.
+    #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
         n: u64,
-        cur: Point,
+        t: f64,
+        cur: Option<Point>,
         torsion: &Torsion,
         axial: Option<&Axial>,
         run: &mut DrillRun,
         dt: f64,
     ) -> bool {
-        let t = cur[TIME];
+        let Some(cur) = cur else {
+            debug_assert!(!self.series_due(t));
+            return self.snapshot_due(t, torsion, axial, run, dt);
+        };
+        debug_assert_eq!(t.to_bits(), cur[TIME].to_bits());
         let prev = &mut self.prev;
         if n == 0 {
             for &c in Torsion::channels().iter().chain(Axial::channels()).filter(|c| c.held) {
@@ -216,13 +238,19 @@ impl Sampler {
             run.bit_torque.push(sample[4]);
             self.next_series += 1;
         }
+        self.prev = cur;
+        self.snapshot_due(t, torsion, axial, run, dt)
+    }
+
+    /// The snapshot at the step end `t` if one is due; `false` when a value is not finite.
+    #[inline]
+    fn snapshot_due(&mut self, t: f64, torsion: &Torsion, axial: Option<&Axial>, run: &mut DrillRun, dt: f64) -> bool {
         if self.next_field < self.n_fields && t >= self.next_field as f64 * self.field_dt - 0.5 * dt {
             if !snapshot(torsion, axial, run, t) {
                 return false;
             }
             self.next_field += 1;
         }
-        *prev = cur;
         true
     }
 }

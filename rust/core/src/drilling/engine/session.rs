@@ -326,8 +326,8 @@ impl Session {
             self.steps = n + 1;
             self.run.stats.steps = n + 1;
             self.last = (motor, bit);
-            let point = self.sim.sample(t, motor, bit);
-            if !self.sampler.record(n, point, &self.sim.torsion, self.sim.axial.as_ref(), &mut self.run, dt) {
+            let point = self.sampler.needs_point(n, t, (n + 2) as f64 * dt).then(|| self.sim.sample(t, motor, bit));
+            if !self.sampler.record(n, t, point, &self.sim.torsion, self.sim.axial.as_ref(), &mut self.run, dt) {
                 self.run.status = Status::NonFinite;
                 self.run.message = format!("the state became non-finite before t = {} s", Num(t));
                 return false;
@@ -415,8 +415,7 @@ impl Session {
             };
             if let (Some((cf, hold)), Some(ax)) = (coupled, &mut sim.axial) {
                 if cf.is_some() {
-                    wall.stop.fill(0.0);
-                    wall.slip.fill(-0.0);
+                    wall.off();
                     ax.end_hold = hold;
                 }
                 sim.coupled_friction = cf;

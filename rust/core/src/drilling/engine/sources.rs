@@ -21,14 +21,18 @@ use super::axial_field::Axial;
 use super::coupled_friction::CoupledFriction;
 use super::energy::Ledger;
 use super::field::Field;
+use super::kernel::Wall;
 
 /// The wall's friction per cell of a field: the speed change that stops a cell in one step at
 /// the static limit, `dt limit / m` per padded index (0 at the ghosts), and the kinetic one
 /// `-kinetic_ratio dt limit / m`.
 #[derive(Clone)]
 pub struct WallFriction {
-    pub stop: Vec<f64>,
-    pub slip: Vec<f64>,
+    stop: Vec<f64>,
+    slip: Vec<f64>,
+    /// Whether every `stop` is `+0` and every `slip` `-0` (no friction anywhere: the kernel
+    /// takes them as constants, [`Wall::Off`]); kept with them.
+    off: bool,
 }
 
 impl WallFriction {
@@ -45,8 +49,33 @@ impl WallFriction {
             }
             stop.push(0.0);
         }
-        let slip = stop.iter().map(|&lim| -(cfg.friction.kinetic_ratio * lim)).collect();
-        WallFriction { stop, slip }
+        let slip: Vec<f64> = stop.iter().map(|&lim| -(cfg.friction.kinetic_ratio * lim)).collect();
+        let off = stop.iter().all(|x| x.to_bits() == 0.0_f64.to_bits())
+            && slip.iter().all(|x| x.to_bits() == (-0.0_f64).to_bits());
+        WallFriction { stop, slip, off }
+    }
+
+    /// No friction (the values of a zero limit; a coupled run's friction applies it instead,
+    /// [`StepSource`]).
+    pub fn off(&mut self) {
+        self.stop.fill(0.0);
+        self.slip.fill(-0.0);
+        self.off = true;
+    }
+
+    /// The limits of the padded range `r` as the transport kernel reads them.
+    #[inline]
+    pub fn wall(&self, r: std::ops::Range<usize>) -> Wall<'_> {
+        if self.off {
+            Wall::Off
+        } else {
+            Wall::Cells { stop: &self.stop[r.clone()], slip: &self.slip[r] }
+        }
+    }
+
+    /// The limits per padded index, `(stop, slip)`.
+    pub fn limits(&self) -> (&[f64], &[f64]) {
+        (&self.stop, &self.slip)
     }
 }
 

@@ -46,7 +46,7 @@ impl StringField for Torsion {
     /// energy terms, the published scheme's are computed and not booked).
     fn advance(&mut self, dt: f64, ledger: &mut Ledger, booked: bool) {
         let Field { sections, alpha, beta, alpha_next, beta_next, nl } = &mut self.field;
-        let (stop, slip) = (&self.wall.stop[..], &self.wall.slip[..]);
+        let (stop, slip) = self.wall.limits();
         if let Some(nl) = nl {
             for (s, sp) in sections.iter().enumerate() {
                 let law = nl.laws[s];
@@ -58,14 +58,17 @@ impl StringField for Torsion {
             let published = self.source_speed == SourceSpeed::BeforeTransport;
             for sp in sections.iter() {
                 let r = sp.padded();
-                let (a, b, st, sl) = (&alpha[r.clone()], &beta[r.clone()], &stop[r.clone()], &slip[r.clone()]);
-                let (an, bn) = (&mut alpha_next[r.clone()], &mut beta_next[r]);
+                let (a, b, wall) = (&alpha[r.clone()], &beta[r.clone()], self.wall.wall(r.clone()));
+                let (an, bn) = (&mut alpha_next[r.clone()], &mut beta_next[r.clone()]);
                 if !published && !booked {
-                    transport_unbooked(a, b, st, sl, an, bn, sp.courant, &self.sources);
+                    transport_unbooked(a, b, wall, an, bn, sp.courant, &self.sources);
                     continue;
                 }
-                let kernel = if published { before_transport } else { transport };
-                let sums = kernel(a, b, st, sl, an, bn, sp.courant, &self.sources);
+                let sums = if published {
+                    before_transport(a, b, &stop[r.clone()], &slip[r], an, bn, sp.courant, &self.sources)
+                } else {
+                    transport(a, b, wall, an, bn, sp.courant, &self.sources)
+                };
                 if booked {
                     ledger.transport(sp.e, sp.courant, &sums);
                 }
