@@ -37,9 +37,8 @@
 //! coefficient (17 for `q`, 16 for `v`), eight samples and three components side by side in
 //! vector registers (six independent chains), into the solution's storage. (The Newton form
 //! evaluated directly costs two multiply-adds per coefficient for `p` and `p'` together, plus
-//! the factors `s - z_i`, and did not vectorise: 60-70 ns per 3-mode sample; sixteen samples
-//! of one component at a time, one chain of dependent steps per register, about 8 ns;
-//! now about 5 ns.)
+//! the factors `s - z_i`, and did not vectorise: 60-70 ns per 3-mode sample. Sixteen samples
+//! of one component at a time left one chain of dependent steps per register.)
 //!
 //! An end closer than a quarter of the interval's length to one already taken is left out
 //! (a spare end is kept for it): near-coincident nodes, e.g. a short last step, would cost
@@ -586,7 +585,8 @@ mod timing {
             let a: Vec<f64> = (0..n).map(|i| -(f64::from(i as u32 + 1) * 40.0).powi(2) * (f64::from(i as u32 + 1) * 40.0 * t).sin()).collect();
             ([q, v].concat(), a)
         };
-        let ends: Vec<f64> = (0..=steps).map(|k| f64::from(k as u32) / steps as f64 * (1.0 + 0.01 * (f64::from(k as u32)).sin())).collect();
+        // Uneven steps, in order.
+        let ends: Vec<f64> = (0..=steps).map(|k| (f64::from(k as u32) + 0.3 * f64::from(k as u32).sin()) / steps as f64).collect();
         let data: Vec<(Vec<f64>, Vec<f64>)> = ends.iter().map(|&t| state(t)).collect();
         let run = |samples: usize| {
             let times: Vec<f64> = (0..samples).map(|k| k as f64 / (samples - 1) as f64 * ends[steps - 1]).collect();
