@@ -5,7 +5,7 @@ Case: examples/aarsnes-shor-well-b-corrected.toml (Well B, 2500 m, two sections,
 damping; Courant numbers 0.998 and 0.999, so the upwind form of the update). The ports step the
 same scheme as ``rust/core/src/drilling/engine`` (the Riemann invariants with an impedance
 junction, the implicit top drive under the sampled PI controller, the free bit end, the sources
-at the transported speed with the stick phase, the energy terms summed in 16 lanes per
+at the transported speed with the stick phase, the energy terms summed in 8 lanes per
 section), in the same order of operations, so they reproduce ``ds.drill``'s series to rounding;
 the check runs inside the benchmark before the timing.
 
@@ -31,7 +31,7 @@ import drillstring as ds
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "aarsnes-shor-well-b-corrected.toml"
 RPM = 60.0 / (2.0 * math.pi)
-WIDTH = 16
+WIDTH = 8
 TINY = 5e-324  # the least positive double: "slow" below it means exactly at rest
 
 

@@ -376,8 +376,10 @@ fn torsion_only_reproduces_the_runs_without_coupled_friction() {
 /// The last hook load, bit rpm, weight on bit, bit depth and friction loss of
 /// `inclined(torsion_only)` before the coupled friction (commit e829c94): 89791.62183991045 N,
 /// 56.54881508776878 rpm, 47877.84881486934 N, -0.001431170948766422 m, 142922.07685413523 J.
+/// The friction loss one unit in the last place lower, 142922.0768541352 J, since the energy
+/// terms are summed in eight lanes instead of sixteen (the state's bits unchanged).
 const FINGERPRINT: [u64; 5] =
-    [4680906846478690284, 4633155355514421847, 4676813095018810630, 13787614970808123328, 4684150778005664619];
+    [4680906846478690284, 4633155355514421847, 4676813095018810630, 13787614970808123328, 4684150778005664618];
 
 /// The friction pass's parts timed on the configuration in `DRILLSTRING_FRICTION_JSON` (a
 /// configuration's JSON): `cargo test --release -p drillstring-core --lib friction_pass_time -- --ignored --nocapture`.

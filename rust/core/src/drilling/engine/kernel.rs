@@ -206,33 +206,63 @@ impl Transport<'_> {
     #[inline(always)]
     fn damped<L: WallLaw, const LEDGER: bool, const KICK: bool, const WALL: u8>(self) -> Sums {
         match (self.c < 1.0, self.src.damping > 0.0) {
-            (false, false) => self.cells::<L, false, false, LEDGER, KICK, WALL>(),
-            (false, true) => self.cells::<L, false, true, LEDGER, KICK, WALL>(),
-            (true, false) => self.cells::<L, true, false, LEDGER, KICK, WALL>(),
-            (true, true) => self.cells::<L, true, true, LEDGER, KICK, WALL>(),
+            (false, false) => self.wide::<L, false, false, LEDGER, KICK, WALL>(),
+            (false, true) => self.wide::<L, false, true, LEDGER, KICK, WALL>(),
+            (true, false) => self.wide::<L, true, false, LEDGER, KICK, WALL>(),
+            (true, true) => self.wide::<L, true, true, LEDGER, KICK, WALL>(),
+        }
+    }
+
+    /// [`Transport::cells`] in chunks of [`WIDTH`] cells with the ledger, else of
+    /// [`UNBOOKED_WALL`] or [`UNBOOKED_OFF`] cells.
+    #[inline(always)]
+    fn wide<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool, const WALL: u8>(
+        self,
+    ) -> Sums {
+        if LEDGER {
+            self.cells::<L, UPWIND, DAMPED, LEDGER, KICK, WALL, WIDTH>()
+        } else if KICK || WALL != CELLS {
+            self.cells::<L, UPWIND, DAMPED, LEDGER, KICK, WALL, UNBOOKED_OFF>()
+        } else {
+            self.cells::<L, UPWIND, DAMPED, LEDGER, KICK, WALL, UNBOOKED_WALL>()
         }
     }
 }
 
-/// Cells side by side in [`Transport::cells`]: the energy terms are added lane by lane into
-/// [`WIDTH`] accumulators (cell `i` into lane `i % WIDTH`), the lanes summed at the end.
-const WIDTH: usize = 16;
+/// The energy terms are added lane by lane into [`WIDTH`] accumulators (cell `i` into lane
+/// `i % WIDTH`), the lanes summed at the end: eight, two AVX2 registers or one AVX-512
+/// register per sum, so that the three sums and the update of a chunk fit AVX2's sixteen
+/// registers. (Sixteen lanes, until 2026-12-08, spilled them on AVX2.)
+const WIDTH: usize = 8;
 
-/// The energy terms of a step, lane by lane.
-#[derive(Default)]
-struct Lanes {
-    jump: [f64; WIDTH],
-    fric: [f64; WIDTH],
-    damp: [f64; WIDTH],
+/// Cells per chunk without the ledger (no lanes to keep), as measured fastest on AVX2 and
+/// AVX-512 alike: eight with a wall of cells (the update then fits AVX2's registers: 0.80
+/// against 1.03 ns per cell update), sixteen with a wall without friction or a kick (the
+/// coupled fields; eight were compiled into loads lane by lane there: the coupled example
+/// 0.62 against 0.46 s on AVX2).
+const UNBOOKED_WALL: usize = 8;
+const UNBOOKED_OFF: usize = 16;
+
+/// The energy terms of a step, lane by lane (`W` lanes: [`WIDTH`] with the ledger).
+struct Lanes<const W: usize> {
+    jump: [f64; W],
+    fric: [f64; W],
+    damp: [f64; W],
 }
 
-/// A chunk of [`WIDTH`] cells.
-type Chunk = [f64; WIDTH];
+impl<const W: usize> Lanes<W> {
+    fn new() -> Self {
+        Lanes { jump: [0.0; W], fric: [0.0; W], damp: [0.0; W] }
+    }
+}
+
+/// A chunk of `W` cells.
+type Chunk<const W: usize> = [f64; W];
 
 impl Transport<'_> {
-    /// The update loop over chunks of [`WIDTH`] cells read and written in place, the energy
+    /// The update loop over chunks of `W` cells read and written in place, the energy
     /// terms added lane by lane in a fixed order (so every instruction set gives the same
-    /// bits), the accumulators in registers. The last `n % WIDTH` cells go through the same
+    /// bits), the accumulators in registers. The last `n % W` cells go through the same
     /// chunk code: the last whole chunk of the section again, or in a section shorter than a
     /// chunk padded with cells at rest without friction, whose terms are zeros (adding a zero
     /// leaves a lane's sum unchanged, bit for bit: a lane's sum is never `-0`).
@@ -246,6 +276,7 @@ impl Transport<'_> {
         const LEDGER: bool,
         const KICK: bool,
         const WALL: u8,
+        const W: usize,
     >(
         self,
     ) -> Sums {
@@ -258,32 +289,32 @@ impl Transport<'_> {
             _ => (a, a),
         };
         let k = Consts::new(c, src);
-        let mut lanes = Lanes::default();
-        // Every slice exactly `n` long, so that `i + WIDTH <= n` proves the chunks in bounds
+        let mut lanes = Lanes::<W>::new();
+        // Every slice exactly `n` long, so that `i + W <= n` proves the chunks in bounds
         // (the kick's only where it is used).
         let (a_prev, a, b, b_next, stop, slip) = (&a_prev[..n], &a[..n], &b[..n], &b_next[..n], &stop[..n], &slip[..n]);
         let (an, bn) = (&mut an[..n], &mut bn[..n]);
         let dv = if KICK { &dv[..n] } else { dv };
         macro_rules! at {
             ($x:expr, $i:expr) => {
-                <&Chunk>::try_from(&$x[$i..$i + WIDTH]).expect("a whole chunk")
+                <&Chunk<W>>::try_from(&$x[$i..$i + W]).expect("a whole chunk")
             };
         }
         macro_rules! at_mut {
             ($x:expr, $i:expr) => {
-                <&mut Chunk>::try_from(&mut $x[$i..$i + WIDTH]).expect("a whole chunk")
+                <&mut Chunk<W>>::try_from(&mut $x[$i..$i + W]).expect("a whole chunk")
             };
         }
         // The kick's work in the lanes of [`lane_sum`] (cell `i` into lane `i % LANES`; a chunk
         // starts at a multiple of LANES).
         let mut kick_lanes = [0.0; LANES];
-        let (none, mut w) = ([0.0; WIDTH], [0.0; WIDTH]);
+        let (none, mut w) = ([0.0; W], [0.0; W]);
         let mut i = 0;
-        while i + WIDTH <= n {
+        while i + W <= n {
             let inputs = [at!(a_prev, i), at!(a, i), at!(b, i), at!(b_next, i), at!(stop, i), at!(slip, i)];
             let kick = if KICK { at!(dv, i) } else { &none };
             let (na, nb) = (at_mut!(an, i), at_mut!(bn, i));
-            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL, W>(inputs, kick, na, nb, &mut w, &k, &mut lanes);
             if KICK && LEDGER {
                 for block in w.chunks_exact(LANES) {
                     for l in 0..LANES {
@@ -291,23 +322,23 @@ impl Transport<'_> {
                     }
                 }
             }
-            i += WIDTH;
+            i += W;
         }
         // (the sum of the last `n % LANES` cells', empty unless a tail has them)
         let mut kick_rest = [0.0_f64; 0].iter().sum::<f64>();
-        if i < n && n >= WIDTH {
+        if i < n && n >= W {
             // The last chunk ends at the last cell: it overlaps the one before, whose cells it
             // writes again with the values they have (the inputs are not written), and the
             // terms of its cells from `i` on go to their lanes (cell `j` into lane `j - i`,
-            // `j % WIDTH`). The terms come to the lanes as `0 + term`, which adds to a lane as
+            // `j % W`). The terms come to the lanes as `0 + term`, which adds to a lane as
             // `term` does (a lane's sum is never -0). No copies to a padded chunk, which the
             // compiler makes calls of.
-            let s = n - WIDTH;
+            let s = n - W;
             let inputs = [at!(a_prev, s), at!(a, s), at!(b, s), at!(b_next, s), at!(stop, s), at!(slip, s)];
             let kick = if KICK { at!(dv, s) } else { &none };
             let (na, nb) = (at_mut!(an, s), at_mut!(bn, s));
-            let mut last = Lanes::default();
-            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, na, nb, &mut w, &k, &mut last);
+            let mut last = Lanes::<W>::new();
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL, W>(inputs, kick, na, nb, &mut w, &k, &mut last);
             if LEDGER {
                 for j in i..n {
                     lanes.jump[j - i] += last.jump[j - s];
@@ -326,7 +357,7 @@ impl Transport<'_> {
             }
         } else if i < n {
             // Fewer cells than a chunk: copied element by element into a padded one.
-            let mut pad = [[0.0; WIDTH]; 7];
+            let mut pad = [[0.0; W]; 7];
             let dv = if KICK { &dv[i..] } else { dv };
             for (p, x) in pad.iter_mut().zip([&a_prev[i..], &a[i..], &b[i..], &b_next[i..], &stop[i..], &slip[i..], dv])
             {
@@ -335,9 +366,9 @@ impl Transport<'_> {
                 }
             }
             let [ap, aa, bb, bx, st, sl, kick] = &pad;
-            let (mut na, mut nb, mut w) = ([0.0; WIDTH], [0.0; WIDTH], [0.0; WIDTH]);
+            let (mut na, mut nb, mut w) = ([0.0; W], [0.0; W], [0.0; W]);
             let inputs = [ap, aa, bb, bx, st, sl];
-            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL>(inputs, kick, &mut na, &mut nb, &mut w, &k, &mut lanes);
+            chunk::<L, UPWIND, DAMPED, LEDGER, KICK, WALL, W>(inputs, kick, &mut na, &mut nb, &mut w, &k, &mut lanes);
             for (j, (x, y)) in an[i..].iter_mut().zip(&mut bn[i..]).enumerate() {
                 *x = na[j];
                 *y = nb[j];
@@ -355,7 +386,7 @@ impl Transport<'_> {
         // The lanes in order, the three sums side by side (a lane's sum is never -0, so
         // starting from 0 gives the bits of `Iterator::sum`).
         let mut sums = Sums::default();
-        for l in 0..WIDTH {
+        for l in 0..W {
             sums.jumps += lanes.jump[l];
             sums.friction += lanes.fric[l];
             sums.damping += lanes.damp[l];
@@ -376,16 +407,24 @@ impl Transport<'_> {
 /// are not read: the limits are [`Wall::Off`]'s or [`Wall::OffZeros`]'s constants.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn chunk<L: WallLaw, const UPWIND: bool, const DAMPED: bool, const LEDGER: bool, const KICK: bool, const WALL: u8>(
-    [ap, aa, bb, bx, st, sl]: [&Chunk; 6],
-    kick: &Chunk,
-    na: &mut Chunk,
-    nb: &mut Chunk,
-    work: &mut Chunk,
+fn chunk<
+    L: WallLaw,
+    const UPWIND: bool,
+    const DAMPED: bool,
+    const LEDGER: bool,
+    const KICK: bool,
+    const WALL: u8,
+    const W: usize,
+>(
+    [ap, aa, bb, bx, st, sl]: [&Chunk<W>; 6],
+    kick: &Chunk<W>,
+    na: &mut Chunk<W>,
+    nb: &mut Chunk<W>,
+    work: &mut Chunk<W>,
     k: &Consts,
-    lanes: &mut Lanes,
+    lanes: &mut Lanes<W>,
 ) {
-    for l in 0..WIDTH {
+    for l in 0..W {
         let (lim, slip) = match WALL {
             CELLS => (st[l], sl[l]),
             OFF => (0.0, -0.0),
@@ -608,11 +647,11 @@ mod tests {
 
     /// The chunked kernel, with the last cells through the last whole chunk again (or padded
     /// to a chunk below one), against the update cell by cell with the energy terms in lane
-    /// `j % 16`: the same bits, on every path and for counts below, at and above a chunk,
+    /// `j % WIDTH`: the same bits, on every path and for counts below, at and above a chunk,
     /// stuck, slow and sliding cells, both friction laws.
     #[test]
     fn chunks_and_padding_give_the_bits_of_the_cell_by_cell_update() {
-        for n in [1, 5, 16, 17, 31, 40, 91] {
+        for n in [1, 5, 8, 9, 16, 17, 31, 40, 91] {
             let len = n + 2;
             let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.77).sin() * 2.0).collect();
             let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.31).cos() * 2.0 - 0.5).collect();
@@ -652,7 +691,7 @@ mod tests {
                 );
                 // The reference: cell by cell.
                 let k = Consts::new(c, &src);
-                let mut lanes = Lanes::default();
+                let mut lanes = Lanes::<WIDTH>::new();
                 let mut stuck = 0;
                 for j in 0..n {
                     let i = j + 1;
@@ -700,7 +739,7 @@ mod tests {
     #[test]
     fn the_kick_in_the_pass_gives_the_bits_of_the_kick_after_it() {
         let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-        for n in [1, 5, 16, 17, 40, 91] {
+        for n in [1, 5, 8, 9, 16, 17, 40, 91] {
             let len = n + 2;
             let a: Vec<f64> = (0..len).map(|i| (i as f64 * 0.77).sin() * 2.0).collect();
             let b: Vec<f64> = (0..len).map(|i| (i as f64 * 0.31).cos() * 2.0 - 0.5).collect();
@@ -763,7 +802,7 @@ mod tests {
     #[test]
     fn a_wall_without_friction_gives_the_bits_of_its_zeros_per_cell() {
         let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-        for n in [1, 5, 16, 17, 40, 91] {
+        for n in [1, 5, 8, 9, 16, 17, 40, 91] {
             let len = n + 2;
             let special = [0.0, -0.0, 1e-320, -1e-320, 5e-324];
             let a: Vec<f64> =
