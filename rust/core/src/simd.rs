@@ -96,6 +96,15 @@ pub(crate) fn dispatch<K: Kernel>(kernel: K) -> K::Output {
     kernel.run::<Unfused>()
 }
 
+/// The AVX2 + FMA token where the processor has it and [`SIMD_ENV`] allows (AVX-512 machines
+/// included), for a kernel written with explicit 4-lane vectors (`pulp::f64x4`) and run with
+/// `vectorize`; `None` means the caller's baseline code.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) fn avx2() -> Option<pulp::x86::V3> {
+    v3()
+}
+
 /// Loops shorter than this run inline as baseline code: the call into the vector path
 /// costs more than it saves on a handful of components (a modal system of a few modes),
 /// and small systems then give bit-identical results on every machine.
