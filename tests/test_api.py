@@ -160,7 +160,7 @@ def test_plain_install_has_what_the_readme_uses():
     names = _names(project["dependencies"])
     # drill's series.parquet and the sweep store (pyarrow), progress bars, the paper's report (jinja2)
     assert {"numpy", "matplotlib", "pandas", "pyarrow", "tqdm", "jinja2"} <= names
-    # netCDF output is an extra; h5py was never imported (h5netcdf brings it)
+    # netCDF output is an extra (xarray, h5netcdf and its HDF5 backend h5py)
     assert not names & {"xarray", "h5netcdf", "h5py"}
     assert "sweep" not in project["optional-dependencies"]
     sources = "".join(p.read_text(encoding="utf-8") for p in (ROOT / "python/drillstring").rglob("*.py"))

@@ -106,7 +106,7 @@ def test_save_replaces_a_file_atomically_and_refuses_a_directory(modal, tmp_path
 # --------------------------------------------------------------------------- the extra `netcdf`
 
 
-@pytest.mark.parametrize("module", ["xarray", "h5netcdf"])
+@pytest.mark.parametrize("module", ["xarray", "h5netcdf", "h5py"])
 def test_netcdf_without_its_extra_names_the_extra_and_writes_nothing(modal, tmp_path, monkeypatch, module):
     monkeypatch.setitem(sys.modules, module, None)  # `import module` raises ImportError
     path = tmp_path / "run.nc"

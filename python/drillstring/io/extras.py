@@ -11,7 +11,9 @@ __all__ = ["EXTRAS", "require"]
 
 #: Each extra of an optional output -> the modules it brings (the distributions of the same names).
 EXTRAS: dict[str, tuple[str, ...]] = {
-    "netcdf": ("xarray", "h5netcdf"),  # TrajectoryResult.to_xarray / save, `simulate --out run.nc`
+    # TrajectoryResult.to_xarray / save, `simulate --out run.nc` (h5netcdf 1.8 leaves its HDF5
+    # backend, h5py, to an extra of its own)
+    "netcdf": ("xarray", "h5netcdf", "h5py"),
     "las": ("lasio",),  # LAS 2.0 rig logs of `drillstring rig-log` (calibration/rig_log.py)
     "live": ("aiohttp",),  # the display of `drillstring live` (live/server.py)
 }

@@ -250,7 +250,7 @@ class TrajectoryResult:
         the path. Read it back with ``xarray.open_dataset(path)``. A file is replaced atomically
         (an interrupted write leaves the old one), a symlink is written through, a device, FIFO
         or ``"-"`` is streamed into (see :mod:`drillstring.io.output`). Needs the extra ``netcdf``
-        (xarray and h5netcdf); without it raises :class:`~drillstring.errors.MissingExtraError`
+        (xarray, h5netcdf and h5py); without it raises :class:`~drillstring.errors.MissingExtraError`
         before anything is written."""
         require("netcdf", "writing netCDF")
         dataset = self.to_xarray()
