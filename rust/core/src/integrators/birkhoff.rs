@@ -645,6 +645,7 @@ mod tests {
     /// AVX2) give the interpolant of the loops ([`BuildKernel`], baseline code) bit for bit:
     /// uneven ends, 1 to 9 components (short last blocks, a second block).
     #[test]
+    #[cfg(target_arch = "x86_64")]
     fn full_window_matches_the_loops() {
         let Some(simd) = crate::simd::avx2() else { return };
         for n in 1..10 {
